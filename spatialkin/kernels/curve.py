@@ -1,0 +1,371 @@
+"""Intersection-curve kernels: Dragilev's right-hand side, the pull-back, Newton corrections, event values.
+
+State y = (u1, v1, u2, v2): parameters of the current point on surface a and on surface b. ' = d/ds, s the
+arc length of the intersection curve.
+
+References
+----------
+Seed 002 and ../shared/reference/looper-drive.md: n = N1 x N2 / |N1 x N2| and the two Gram systems.
+../shared/reference/ssi-notes.md: pull-back -lambda (M1 - M2) and Newton projection keep the gap flat;
+a corrector in the plane normal to the tangent (pseudo-arclength, as SISL does).
+"""
+import math
+
+import numpy as np
+
+from .._jit import jit
+from .surfaces import first_derivatives, derivatives, POINT, DU, DV
+
+#: Below this, a 3x3 or 4x4 pivot is treated as zero (relative to the matrix scale).
+PIVOT_EPS = 1e-14
+
+
+@jit
+def cross(a, b, out):
+    out[0] = a[1] * b[2] - a[2] * b[1]
+    out[1] = a[2] * b[0] - a[0] * b[2]
+    out[2] = a[0] * b[1] - a[1] * b[0]
+
+
+@jit
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+@jit
+def norm(a):
+    return math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+
+
+@jit
+def tangent_from_normals(su1, sv1, su2, sv2, t):
+    """Unit tangent t = N1 x N2 / |N1 x N2| of the intersection; returns sin of the angle between the
+    normals (0 where they are parallel; t is then left as zeros)."""
+    n1 = np.empty(3)
+    n2 = np.empty(3)
+    cross(su1, sv1, n1)
+    cross(su2, sv2, n2)
+    cross(n1, n2, t)
+    c = norm(t)
+    scale = norm(n1) * norm(n2)
+    if c == 0.0 or scale == 0.0:
+        t[:] = 0.0
+        return 0.0
+    for i in range(3):
+        t[i] /= c
+    return c / scale
+
+
+@jit
+def gram_solve(su, sv, w, out, k):
+    """Parameter velocity (du, dv) whose image su*du + sv*dv is the tangent-plane part of w.
+
+    Solves [E F; F G] [du; dv] = [w.su; w.sv] and writes du, dv to out[k], out[k + 1].
+    Returns False where the parametrisation is singular (E G - F^2 = 0).
+    """
+    e = dot(su, su)
+    f = dot(su, sv)
+    g = dot(sv, sv)
+    det = e * g - f * f
+    if det <= PIVOT_EPS * (e * g):
+        out[k] = 0.0
+        out[k + 1] = 0.0
+        return False
+    bu = dot(w, su)
+    bv = dot(w, sv)
+    out[k] = (g * bu - f * bv) / det
+    out[k + 1] = (e * bv - f * bu) / det
+    return True
+
+
+@jit
+def solve3(m, r, x):
+    """Solve the symmetric 3x3 system m x = r by Cramer's rule; False if (nearly) singular."""
+    c00 = m[1, 1] * m[2, 2] - m[1, 2] * m[2, 1]
+    c01 = m[1, 2] * m[2, 0] - m[1, 0] * m[2, 2]
+    c02 = m[1, 0] * m[2, 1] - m[1, 1] * m[2, 0]
+    det = m[0, 0] * c00 + m[0, 1] * c01 + m[0, 2] * c02
+    scale = abs(m[0, 0]) + abs(m[1, 1]) + abs(m[2, 2])
+    if scale == 0.0 or abs(det) <= PIVOT_EPS * scale ** 3:
+        return False
+    c10 = m[0, 2] * m[2, 1] - m[0, 1] * m[2, 2]
+    c11 = m[0, 0] * m[2, 2] - m[0, 2] * m[2, 0]
+    c12 = m[0, 1] * m[2, 0] - m[0, 0] * m[2, 1]
+    c20 = m[0, 1] * m[1, 2] - m[0, 2] * m[1, 1]
+    c21 = m[0, 2] * m[1, 0] - m[0, 0] * m[1, 2]
+    c22 = m[0, 0] * m[1, 1] - m[0, 1] * m[1, 0]
+    x[0] = (c00 * r[0] + c10 * r[1] + c20 * r[2]) / det
+    x[1] = (c01 * r[0] + c11 * r[1] + c21 * r[2]) / det
+    x[2] = (c02 * r[0] + c12 * r[1] + c22 * r[2]) / det
+    return True
+
+
+@jit
+def solve_small(m, r, x):
+    """Solve the n x n system m x = r by Gaussian elimination with partial pivoting (m, r overwritten).
+    Returns False if a pivot vanishes relative to the largest entry."""
+    n = r.shape[0]
+    big = 0.0
+    for i in range(n):
+        for j in range(n):
+            big = max(big, abs(m[i, j]))
+    if big == 0.0:
+        return False
+    for col in range(n):
+        piv = col
+        for i in range(col + 1, n):
+            if abs(m[i, col]) > abs(m[piv, col]):
+                piv = i
+        if abs(m[piv, col]) <= PIVOT_EPS * big:
+            return False
+        if piv != col:
+            for j in range(n):
+                tmp = m[col, j]
+                m[col, j] = m[piv, j]
+                m[piv, j] = tmp
+            tmp = r[col]
+            r[col] = r[piv]
+            r[piv] = tmp
+        for i in range(col + 1, n):
+            f = m[i, col] / m[col, col]
+            for j in range(col, n):
+                m[i, j] -= f * m[col, j]
+            r[i] -= f * r[col]
+    for i in range(n - 1, -1, -1):
+        acc = r[i]
+        for j in range(i + 1, n):
+            acc -= m[i, j] * x[j]
+        x[i] = acc / m[i, i]
+    return True
+
+
+@jit
+def gap_correction(su1, sv1, su2, sv2, gap, out):
+    """Minimum-norm Gauss-Newton step (4,) in (u1, v1, u2, v2) that removes the gap M1 - M2 to first order:
+    out = -J^T (J J^T)^-1 gap with J = [su1, sv1, -su2, -sv2]. Returns False (out zero) if J J^T is singular
+    (the two tangent planes coincide)."""
+    jj = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            jj[i, j] = su1[i] * su1[j] + sv1[i] * sv1[j] + su2[i] * su2[j] + sv2[i] * sv2[j]
+    w = np.empty(3)
+    if not solve3(jj, gap, w):
+        out[:] = 0.0
+        return False
+    out[0] = -dot(su1, w)
+    out[1] = -dot(sv1, w)
+    out[2] = dot(su2, w)
+    out[3] = dot(sv2, w)
+    return True
+
+
+@jit
+def dragilev_rhs(s, y, a, b, sign, pullback):
+    """Right-hand side of the arc-length Cauchy problem, with a pull-back onto both surfaces.
+
+    Parameters
+    ----------
+    s : float
+        Arc length (unused: the system is autonomous).
+    y : ndarray (4,)
+        (u1, v1, u2, v2).
+    a, b : ndarray (DATA_SIZE,)
+        Packed surfaces.
+    sign : float
+        +1 or -1: the direction of travel along N1 x N2.
+    pullback : float
+        Rate lambda (1/length) of the pull-back: the gap M1 - M2 decays like exp(-lambda s).
+
+    Returns
+    -------
+    ndarray (4,)
+        dy/ds. Zero where the normals are parallel or a parametrisation is singular.
+    """
+    p1 = np.empty(3)
+    su1 = np.empty(3)
+    sv1 = np.empty(3)
+    p2 = np.empty(3)
+    su2 = np.empty(3)
+    sv2 = np.empty(3)
+    first_derivatives(a, y[0], y[1], p1, su1, sv1)
+    first_derivatives(b, y[2], y[3], p2, su2, sv2)
+    t = np.empty(3)
+    dy = np.zeros(4)
+    if tangent_from_normals(su1, sv1, su2, sv2, t) == 0.0:
+        return dy
+    for i in range(3):
+        t[i] *= sign
+    gram_solve(su1, sv1, t, dy, 0)
+    gram_solve(su2, sv2, t, dy, 2)
+    if pullback > 0.0:
+        gap = p1 - p2
+        corr = np.empty(4)
+        if gap_correction(su1, sv1, su2, sv2, gap, corr):
+            for i in range(4):
+                dy[i] += pullback * corr[i]
+    return dy
+
+
+@jit
+def curve_frame(y, a, b, point, tangent):
+    """Point M1(y) and unit tangent N1 x N2/|.| at y; returns sin of the normals' angle."""
+    su1 = np.empty(3)
+    sv1 = np.empty(3)
+    p2 = np.empty(3)
+    su2 = np.empty(3)
+    sv2 = np.empty(3)
+    first_derivatives(a, y[0], y[1], point, su1, sv1)
+    first_derivatives(b, y[2], y[3], p2, su2, sv2)
+    return tangent_from_normals(su1, sv1, su2, sv2, tangent)
+
+
+@jit
+def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
+    """Newton correction of y onto the curve, in the plane through q normal to t.
+
+    Solves M1(u1, v1) - M2(u2, v2) = 0 and (M1 - q).t = 0 (4 equations, 4 unknowns) in place.
+    With t = 0 the plane condition is dropped and minimum-norm Gauss-Newton steps are taken instead.
+
+    Returns
+    -------
+    int
+        Number of iterations used (>= 0) on convergence (|M1 - M2| <= gap_tol and the last step below
+        gap_tol), or -1 if Newton failed (singular system or no convergence within max_iter).
+    """
+    p1 = np.empty(3)
+    su1 = np.empty(3)
+    sv1 = np.empty(3)
+    p2 = np.empty(3)
+    su2 = np.empty(3)
+    sv2 = np.empty(3)
+    m = np.empty((4, 4))
+    r = np.empty(4)
+    dx = np.empty(4)
+    use_plane = dot(t, t) > 0.0
+    step = np.inf
+    for it in range(max_iter + 1):
+        first_derivatives(a, y[0], y[1], p1, su1, sv1)
+        first_derivatives(b, y[2], y[3], p2, su2, sv2)
+        gap = p1 - p2
+        plane = dot(p1 - q, t) if use_plane else 0.0
+        err = max(norm(gap), abs(plane))
+        if it > 0 and err <= gap_tol and step <= gap_tol:
+            return it
+        if it == max_iter:
+            break
+        if use_plane:
+            for i in range(3):
+                m[i, 0] = su1[i]
+                m[i, 1] = sv1[i]
+                m[i, 2] = -su2[i]
+                m[i, 3] = -sv2[i]
+                r[i] = -gap[i]
+            m[3, 0] = dot(t, su1)
+            m[3, 1] = dot(t, sv1)
+            m[3, 2] = 0.0
+            m[3, 3] = 0.0
+            r[3] = -plane
+            if not solve_small(m, r, dx):
+                return -1
+        else:
+            if not gap_correction(su1, sv1, su2, sv2, gap, dx):
+                return -1
+        for i in range(4):
+            y[i] += dx[i]
+        # the size of the step in space, measured on both surfaces
+        step = max(norm(su1 * dx[0] + sv1 * dx[1]), norm(su2 * dx[2] + sv2 * dx[3]))
+        if err <= gap_tol and step <= gap_tol:
+            return it + 1
+    return -1
+
+
+@jit
+def project_many(ys, a, b, gap_tol, max_iter, points, tangents, status):
+    """Project each row of ys (N, 4) onto the curve in its own normal plane (through M1(y), normal to
+    the tangent there). Writes the corrected rows in place, their points (N, 3) and tangents (N, 3);
+    status[k] = iterations used or -1."""
+    q = np.empty(3)
+    t = np.empty(3)
+    for k in range(ys.shape[0]):
+        curve_frame(ys[k], a, b, q, t)
+        status[k] = project_to_curve(ys[k], a, b, q, t, gap_tol, max_iter)
+        curve_frame(ys[k], a, b, points[k], tangents[k])
+
+
+@jit
+def degeneracy(y, a, b, area_a, area_b):
+    """Smallest of: sin(angle between the normals), and the relative area element sqrt(EG - F^2)/(E G)^(1/2)
+    of each surface whose flag (area_a, area_b) is set. Zero at a singular point of the curve or of a
+    parametrisation."""
+    p = np.empty(3)
+    su1 = np.empty(3)
+    sv1 = np.empty(3)
+    su2 = np.empty(3)
+    sv2 = np.empty(3)
+    first_derivatives(a, y[0], y[1], p, su1, sv1)
+    first_derivatives(b, y[2], y[3], p, su2, sv2)
+    t = np.empty(3)
+    value = tangent_from_normals(su1, sv1, su2, sv2, t)
+    if area_a:
+        value = min(value, relative_area(su1, sv1))
+    if area_b:
+        value = min(value, relative_area(su2, sv2))
+    return value
+
+
+@jit
+def relative_area(su, sv):
+    """|su x sv| / (|su| |sv|) measured against the length scale of the larger derivative: zero where the
+    parametrisation degenerates (a derivative vanishes or they become parallel)."""
+    n = np.empty(3)
+    cross(su, sv, n)
+    big = max(dot(su, su), dot(sv, sv))
+    if big == 0.0:
+        return 0.0
+    return norm(n) / big
+
+
+@jit
+def closure_value(y, a, start, direction, offset):
+    """Signed distance of M1(y) past the plane through start normal to direction, plus offset."""
+    loc = np.empty((6, 3))
+    derivatives(a, y[0], y[1], loc)
+    return dot(loc[POINT] - start, direction) + offset
+
+
+@jit
+def curvature_vector(y, a, b, sign, out):
+    """Second derivative d2M/ds2 of the curve at y (its curvature vector), by the identity
+    d2M/ds2 = sum over surfaces of the normal curvature along t: for a point moving at unit speed along t
+    on both surfaces, the acceleration k satisfies k.N1 = II1(t, t), k.N2 = II2(t, t), k.t = 0.
+    Writes it to out; returns False at a singular point."""
+    d1 = np.empty((6, 3))
+    d2 = np.empty((6, 3))
+    derivatives(a, y[0], y[1], d1)
+    derivatives(b, y[2], y[3], d2)
+    t = np.empty(3)
+    if tangent_from_normals(d1[DU], d1[DV], d2[DU], d2[DV], t) == 0.0:
+        out[:] = 0.0
+        return False
+    for i in range(3):
+        t[i] *= sign
+    w = np.empty(4)
+    gram_solve(d1[DU], d1[DV], t, w, 0)
+    gram_solve(d2[DU], d2[DV], t, w, 2)
+    n1 = np.empty(3)
+    n2 = np.empty(3)
+    cross(d1[DU], d1[DV], n1)
+    cross(d2[DU], d2[DV], n2)
+    # second fundamental forms along the parameter velocity: II(w) = N . (Suu du^2 + 2 Suv du dv + Svv dv^2)
+    acc1 = d1[3] * w[0] * w[0] + 2.0 * d1[4] * w[0] * w[1] + d1[5] * w[1] * w[1]
+    acc2 = d2[3] * w[2] * w[2] + 2.0 * d2[4] * w[2] * w[3] + d2[5] * w[3] * w[3]
+    m = np.empty((3, 3))
+    r = np.empty(3)
+    for j in range(3):
+        m[0, j] = n1[j]
+        m[1, j] = n2[j]
+        m[2, j] = t[j]
+    r[0] = dot(n1, acc1)
+    r[1] = dot(n2, acc2)
+    r[2] = 0.0
+    return solve_small(m, r, out)

@@ -1,0 +1,121 @@
+"""Kernels for g(u, v) = f_Q(P(u, v)): the implicit value of surface Q read on the parametrised surface P.
+
+The intersection P ∩ Q is the zero level set of g. Its critical points and gradient flow find every
+component (see spatialkin.tracing.seeds).
+"""
+import math
+
+import numpy as np
+
+from .._jit import jit
+from .curve import solve_small
+from .surfaces import POINT, DU, DV, derivatives, implicit_value
+
+#: Parameter step of the central differences, for a parameter of unit scale (angles).
+FD_STEP_GRAD = 1e-6
+FD_STEP_HESS = 1e-4
+
+
+@jit
+def level_value(p, q, u, v):
+    loc = np.empty((6, 3))
+    derivatives(p, u, v, loc)
+    return implicit_value(q, loc[POINT])
+
+
+@jit
+def level_gradient(p, q, u, v, h, grad):
+    """Central-difference gradient of g in (u, v) with step h[0], h[1]; returns g."""
+    grad[0] = (level_value(p, q, u + h[0], v) - level_value(p, q, u - h[0], v)) / (2 * h[0])
+    grad[1] = (level_value(p, q, u, v + h[1]) - level_value(p, q, u, v - h[1])) / (2 * h[1])
+    return level_value(p, q, u, v)
+
+
+@jit
+def level_hessian(p, q, u, v, h, hess):
+    """Central-difference Hessian of g in (u, v) with steps h (2,)."""
+    g0 = level_value(p, q, u, v)
+    hess[0, 0] = (level_value(p, q, u + h[0], v) - 2 * g0 + level_value(p, q, u - h[0], v)) / h[0] ** 2
+    hess[1, 1] = (level_value(p, q, u, v + h[1]) - 2 * g0 + level_value(p, q, u, v - h[1])) / h[1] ** 2
+    hess[0, 1] = (level_value(p, q, u + h[0], v + h[1]) - level_value(p, q, u + h[0], v - h[1])
+                  - level_value(p, q, u - h[0], v + h[1]) + level_value(p, q, u - h[0], v - h[1])) / (4 * h[0] * h[1])
+    hess[1, 0] = hess[0, 1]
+
+
+@jit
+def critical_newton(p, q, starts, param_scale, max_iter, out, status):
+    """Newton on grad g = 0 from each start (N, 2); out (N, 2) the critical points, status 1 if converged.
+
+    param_scale (2,) is the length of a unit step in u and v (1 for angles), setting the difference steps.
+    Steps are capped at 0.5 parameter units so that Newton stays near its start.
+    """
+    hg = np.empty(2)
+    hh = np.empty(2)
+    for i in range(2):
+        hg[i] = FD_STEP_GRAD * param_scale[i]
+        hh[i] = FD_STEP_HESS * param_scale[i]
+    grad = np.empty(2)
+    hess = np.empty((2, 2))
+    dx = np.empty(2)
+    for k in range(starts.shape[0]):
+        u = starts[k, 0]
+        v = starts[k, 1]
+        status[k] = 0
+        for _ in range(max_iter):
+            level_gradient(p, q, u, v, hg, grad)
+            level_hessian(p, q, u, v, hh, hess)
+            r = -grad
+            if not solve_small(hess, r, dx):
+                break
+            step = math.sqrt((dx[0] / param_scale[0]) ** 2 + (dx[1] / param_scale[1]) ** 2)
+            if step > 0.5:
+                dx *= 0.5 / step
+            u += dx[0]
+            v += dx[1]
+            if step < 1e-10:
+                status[k] = 1
+                break
+        out[k, 0] = u
+        out[k, 1] = v
+
+
+@jit
+def gradient_flow_rhs(t, x, p, q, sigma, h):
+    """d(u, v)/dtau of the unit-speed gradient flow of g on P: sigma * G^-1 grad g / |grad_S g|."""
+    loc = np.empty((6, 3))
+    derivatives(p, x[0], x[1], loc)
+    e = loc[DU, 0] ** 2 + loc[DU, 1] ** 2 + loc[DU, 2] ** 2
+    f = loc[DU, 0] * loc[DV, 0] + loc[DU, 1] * loc[DV, 1] + loc[DU, 2] * loc[DV, 2]
+    g = loc[DV, 0] ** 2 + loc[DV, 1] ** 2 + loc[DV, 2] ** 2
+    det = e * g - f * f
+    grad = np.empty(2)
+    level_gradient(p, q, x[0], x[1], h, grad)
+    out = np.zeros(2)
+    if det <= 0.0:
+        return out
+    du = (g * grad[0] - f * grad[1]) / det
+    dv = (e * grad[1] - f * grad[0]) / det
+    speed2 = du * grad[0] + dv * grad[1]        # |grad_S g|^2
+    if speed2 <= 0.0:
+        return out
+    speed = math.sqrt(speed2)
+    out[0] = sigma * du / speed
+    out[1] = sigma * dv / speed
+    return out
+
+
+@jit
+def surface_gradient_norm(p, q, u, v, h):
+    """|grad_S g| at (u, v): the rate of change of g per unit length on P along its steepest direction."""
+    loc = np.empty((6, 3))
+    derivatives(p, u, v, loc)
+    e = loc[DU, 0] ** 2 + loc[DU, 1] ** 2 + loc[DU, 2] ** 2
+    f = loc[DU, 0] * loc[DV, 0] + loc[DU, 1] * loc[DV, 1] + loc[DU, 2] * loc[DV, 2]
+    g = loc[DV, 0] ** 2 + loc[DV, 1] ** 2 + loc[DV, 2] ** 2
+    det = e * g - f * f
+    grad = np.empty(2)
+    level_gradient(p, q, u, v, h, grad)
+    if det <= 0.0:
+        return 0.0
+    s2 = ((g * grad[0] - f * grad[1]) * grad[0] + (e * grad[1] - f * grad[0]) * grad[1]) / det
+    return math.sqrt(max(s2, 0.0))

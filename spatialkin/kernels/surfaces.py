@@ -1,0 +1,314 @@
+"""Surface kernels: points, first and second derivatives, implicit values, exact distances, inverse maps.
+
+A placed surface is packed into one float64 array (its *data*), so that one jitted function serves every
+kind of surface and every pair of them:
+
+    data[KIND]            kind code (PLANE, SPHERE, CYLINDER, CONE, TORUS)
+    data[P0], data[P1]    shape parameters (see below)
+    data[ORIGIN:+3]       frame origin in global coordinates
+    data[ROT:+9]          frame rotation, row-major; its columns are the local x, y, z axes
+    data[BOUNDS:+4]       u_min, u_max, v_min, v_max (infinite where unbounded)
+
+Local parametrisations (x, y, z in the surface frame):
+
+    PLANE     (u, v, 0)
+    SPHERE    (R cos v cos u, R cos v sin u, R sin v)                 P0 = R
+    TORUS     ((R + r cos v) cos u, (R + r cos v) sin u, r sin v)     P0 = R (major), P1 = r (minor)
+    CYLINDER  (r cos u, r sin u, v)                                   P0 = r
+    CONE      (v tan a cos u, v tan a sin u, v)   apex at the origin  P1 = tan a
+
+The sphere is the torus with R = 0, and the cylinder and cone are both the revolution of the line
+rho(v) = P0 + P1 v, so three parametrisations cover the five kinds.
+
+References
+----------
+Seed 002 (../shared/seeds/002_*.txt), decoded in ../shared/reference/looper-drive.md: the torus and sphere
+parametrisations and their first derivatives.
+"""
+import math
+
+import numpy as np
+
+from .._jit import jit
+
+# --- layout of the data array -------------------------------------------------------------------------
+KIND, P0, P1, ORIGIN, ROT, BOUNDS = 0, 1, 2, 4, 7, 16
+DATA_SIZE = 20
+
+# --- kind codes ---------------------------------------------------------------------------------------
+PLANE, SPHERE, CYLINDER, CONE, TORUS = 0, 1, 2, 3, 4
+
+# --- rows of the derivative block returned by ``derivatives`` ----------------------------------------
+POINT, DU, DV, DUU, DUV, DVV = 0, 1, 2, 3, 4, 5
+
+
+@jit
+def to_global(data, local, out):
+    """out = origin + rotation @ local (a point)."""
+    for i in range(3):
+        out[i] = data[ORIGIN + i] + (data[ROT + 3 * i] * local[0] + data[ROT + 3 * i + 1] * local[1]
+                                     + data[ROT + 3 * i + 2] * local[2])
+
+
+@jit
+def rotate(data, local, out):
+    """out = rotation @ local (a vector)."""
+    for i in range(3):
+        out[i] = (data[ROT + 3 * i] * local[0] + data[ROT + 3 * i + 1] * local[1]
+                  + data[ROT + 3 * i + 2] * local[2])
+
+
+@jit
+def to_local(data, point, out):
+    """out = rotation.T @ (point - origin)."""
+    d0 = point[0] - data[ORIGIN]
+    d1 = point[1] - data[ORIGIN + 1]
+    d2 = point[2] - data[ORIGIN + 2]
+    for j in range(3):
+        out[j] = data[ROT + j] * d0 + data[ROT + 3 + j] * d1 + data[ROT + 6 + j] * d2
+
+
+@jit
+def local_derivatives(data, u, v, loc):
+    """Local point and derivatives (6, 3): rows POINT, DU, DV, DUU, DUV, DVV."""
+    loc[:, :] = 0.0
+    kind = int(data[KIND])
+    cu = math.cos(u)
+    su = math.sin(u)
+    if kind == PLANE:
+        loc[POINT, 0] = u
+        loc[POINT, 1] = v
+        loc[DU, 0] = 1.0
+        loc[DV, 1] = 1.0
+    elif kind == SPHERE or kind == TORUS:
+        if kind == SPHERE:
+            big = 0.0
+            small = data[P0]
+        else:
+            big = data[P0]
+            small = data[P1]
+        cv = math.cos(v)
+        sv = math.sin(v)
+        w = big + small * cv
+        loc[POINT, 0] = w * cu
+        loc[POINT, 1] = w * su
+        loc[POINT, 2] = small * sv
+        loc[DU, 0] = -w * su
+        loc[DU, 1] = w * cu
+        loc[DV, 0] = -small * sv * cu
+        loc[DV, 1] = -small * sv * su
+        loc[DV, 2] = small * cv
+        loc[DUU, 0] = -w * cu
+        loc[DUU, 1] = -w * su
+        loc[DUV, 0] = small * sv * su
+        loc[DUV, 1] = -small * sv * cu
+        loc[DVV, 0] = -small * cv * cu
+        loc[DVV, 1] = -small * cv * su
+        loc[DVV, 2] = -small * sv
+    else:  # CYLINDER, CONE: revolution of rho(v) = P0 + P1 v
+        a = data[P0]
+        b = data[P1]
+        rho = a + b * v
+        loc[POINT, 0] = rho * cu
+        loc[POINT, 1] = rho * su
+        loc[POINT, 2] = v
+        loc[DU, 0] = -rho * su
+        loc[DU, 1] = rho * cu
+        loc[DV, 0] = b * cu
+        loc[DV, 1] = b * su
+        loc[DV, 2] = 1.0
+        loc[DUU, 0] = -rho * cu
+        loc[DUU, 1] = -rho * su
+        loc[DUV, 0] = -b * su
+        loc[DUV, 1] = b * cu
+
+
+@jit
+def derivatives(data, u, v, out):
+    """Global point and its first and second derivatives in (u, v), written to out (6, 3)."""
+    loc = np.empty((6, 3))
+    local_derivatives(data, u, v, loc)
+    to_global(data, loc[POINT], out[POINT])
+    for row in range(1, 6):
+        rotate(data, loc[row], out[row])
+
+
+@jit
+def first_derivatives(data, u, v, point, su, sv):
+    """Global point and first derivatives (the hot path of the right-hand side)."""
+    loc = np.empty((6, 3))
+    local_derivatives(data, u, v, loc)
+    to_global(data, loc[POINT], point)
+    rotate(data, loc[DU], su)
+    rotate(data, loc[DV], sv)
+
+
+@jit
+def implicit_local(data, q):
+    """A signed implicit value of the surface at the local point q, zero exactly on the surface.
+
+    It is the signed distance for the plane, sphere, cylinder, cone and ring torus (positive outside);
+    for a horn or spindle torus it is the product of the signed distances to the two circles of the
+    meridian plane, which vanishes on both the outer (apple) and inner (lemon) parts.
+    """
+    kind = int(data[KIND])
+    if kind == PLANE:
+        return q[2]
+    if kind == SPHERE:
+        return math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) - data[P0]
+    rho = math.sqrt(q[0] * q[0] + q[1] * q[1])
+    if kind == TORUS:
+        big = data[P0]
+        small = data[P1]
+        outer = math.sqrt((rho - big) ** 2 + q[2] * q[2]) - small
+        if small < big:
+            return outer
+        inner = math.sqrt((rho + big) ** 2 + q[2] * q[2]) - small
+        return outer * inner / small
+    # revolution of the line rho = a + b z: signed distance to the nearer generator of the meridian plane
+    a = data[P0]
+    b = data[P1]
+    norm = math.sqrt(1.0 + b * b)
+    d_same = (rho - a - b * q[2]) / norm
+    d_opposite = (-rho - a - b * q[2]) / norm
+    if abs(d_same) <= abs(d_opposite):
+        return d_same
+    return -d_opposite
+
+
+@jit
+def implicit_value(data, point):
+    """Signed implicit value at a global point (see ``implicit_local``)."""
+    q = np.empty(3)
+    to_local(data, point, q)
+    return implicit_local(data, q)
+
+
+@jit
+def implicit_gradient(data, point, grad):
+    """Signed implicit value at a global point and its gradient (central differences of the closed
+    form, step relative to the surface size), written to grad; returns the value."""
+    q = np.empty(3)
+    to_local(data, point, q)
+    h = 1e-6 * size(data)
+    g = np.empty(3)
+    for j in range(3):
+        keep = q[j]
+        q[j] = keep + h
+        fp = implicit_local(data, q)
+        q[j] = keep - h
+        fm = implicit_local(data, q)
+        q[j] = keep
+        g[j] = (fp - fm) / (2.0 * h)
+    rotate(data, g, grad)
+    return implicit_local(data, q)
+
+
+@jit
+def size(data):
+    """Characteristic length of the surface (radius, outer radius of a torus; 1 for a plane)."""
+    kind = int(data[KIND])
+    if kind == TORUS:
+        return data[P0] + data[P1]
+    if kind == SPHERE or kind == CYLINDER:
+        return data[P0]
+    if kind == CONE:
+        lo = data[BOUNDS + 2]
+        hi = data[BOUNDS + 3]
+        if math.isfinite(lo) and math.isfinite(hi):
+            return max(abs(lo), abs(hi)) * math.sqrt(1.0 + data[P1] * data[P1])
+        return 1.0
+    return 1.0
+
+
+@jit
+def distance_local(data, q):
+    """Exact unsigned distance from the local point q to the (untrimmed) surface."""
+    kind = int(data[KIND])
+    if kind == PLANE:
+        return abs(q[2])
+    if kind == SPHERE:
+        return abs(math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) - data[P0])
+    rho = math.sqrt(q[0] * q[0] + q[1] * q[1])
+    if kind == TORUS:
+        big = data[P0]
+        small = data[P1]
+        d_outer = abs(math.sqrt((rho - big) ** 2 + q[2] * q[2]) - small)
+        d_inner = abs(math.sqrt((rho + big) ** 2 + q[2] * q[2]) - small)
+        return min(d_outer, d_inner)
+    a = data[P0]
+    b = data[P1]
+    norm = math.sqrt(1.0 + b * b)
+    d_same = abs(rho - a - b * q[2]) / norm
+    d_opposite = abs(-rho - a - b * q[2]) / norm
+    return min(d_same, d_opposite)
+
+
+@jit
+def distances(data, points, out):
+    """Exact unsigned distances of points (N, 3) to the surface, written to out (N,)."""
+    q = np.empty(3)
+    for k in range(points.shape[0]):
+        to_local(data, points[k], q)
+        out[k] = distance_local(data, q)
+
+
+@jit
+def inverse_local(data, q, uv):
+    """Parameters (u, v) of the surface point nearest to the local point q, written to uv.
+
+    Exact foot point for every kind; u is in (-pi, pi].
+    """
+    kind = int(data[KIND])
+    if kind == PLANE:
+        uv[0] = q[0]
+        uv[1] = q[1]
+        return
+    theta = math.atan2(q[1], q[0])
+    rho = math.sqrt(q[0] * q[0] + q[1] * q[1])
+    if kind == SPHERE:
+        uv[0] = theta
+        uv[1] = math.atan2(q[2], rho)
+        return
+    if kind == TORUS:
+        big = data[P0]
+        small = data[P1]
+        d_outer = abs(math.sqrt((rho - big) ** 2 + q[2] * q[2]) - small)
+        d_inner = abs(math.sqrt((rho + big) ** 2 + q[2] * q[2]) - small)
+        if d_outer <= d_inner:
+            uv[0] = theta
+            uv[1] = math.atan2(q[2], rho - big)
+        else:
+            uv[0] = theta + math.pi if theta <= 0.0 else theta - math.pi
+            uv[1] = math.atan2(q[2], -rho - big)
+        return
+    a = data[P0]
+    b = data[P1]
+    v_same = (b * (rho - a) + q[2]) / (1.0 + b * b)
+    v_opposite = (b * (-rho - a) + q[2]) / (1.0 + b * b)
+    d_same = (a + b * v_same - rho) ** 2 + (v_same - q[2]) ** 2
+    d_opposite = (a + b * v_opposite + rho) ** 2 + (v_opposite - q[2]) ** 2
+    if d_same <= d_opposite:
+        uv[0] = theta
+        uv[1] = v_same
+    else:
+        uv[0] = theta + math.pi if theta <= 0.0 else theta - math.pi
+        uv[1] = v_opposite
+
+
+@jit
+def inverse(data, points, out):
+    """Foot-point parameters (N, 2) of global points (N, 3)."""
+    q = np.empty(3)
+    for k in range(points.shape[0]):
+        to_local(data, points[k], q)
+        inverse_local(data, q, out[k])
+
+
+@jit
+def evaluate(data, uv, out):
+    """Global points (N, 3) at parameters uv (N, 2)."""
+    loc = np.empty((6, 3))
+    for k in range(uv.shape[0]):
+        local_derivatives(data, uv[k, 0], uv[k, 1], loc)
+        to_global(data, loc[POINT], out[k])

@@ -1,0 +1,262 @@
+"""Drive solve_ivp along one branch of an intersection curve, segment by segment.
+
+A branch is integrated from a point on the curve in one direction (sign = +1 along N1 x N2, -1 against it)
+until it closes on its start, reaches a singular point, leaves a bounded surface or reaches max_length.
+It is split into segments at events that need Python between two integrations:
+
+* a sphere's chart nears its poles: the sphere is re-charted (its internal pole axis turned so that the
+  current point lies on the new equator, moving along it) and integration goes on; the user's (u, v) are
+  recovered from the points afterwards;
+* a crossing of the start's normal plane that is not the start (a closure candidate rejected).
+
+At every segment start the state is projected back onto the curve by Newton, and the right-hand side
+carries a pull-back term, so the gap between the surfaces stays flat however long the branch is.
+"""
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..kernels import curve as kc
+from ..kernels import surfaces as ks
+
+# --- named limits -------------------------------------------------------------------------------------
+#: A sphere is re-charted when |cos(latitude)| falls below this (latitude beyond 60 degrees).
+POLE_GUARD = 0.5
+#: The closure plane is put this far (relative to the curve scale) behind the start, so that the start
+#: itself is never taken for a crossing.
+CLOSURE_OFFSET = 1e-8
+#: A crossing of the closure plane closes the curve if it lies within this distance (relative to the
+#: curve scale) of the start and moves in the same direction (cosine above CLOSURE_COSINE).
+CLOSURE_RADIUS = 1e-5
+CLOSURE_COSINE = 0.9
+#: Newton iterations allowed for one projection onto the curve.
+NEWTON_MAX_ITER = 12
+#: At most this many segments in one branch (each ends at an event): bounds the work on pathological input.
+MAX_SEGMENTS = 10_000
+
+
+@dataclass
+class Segment:
+    """One solve_ivp run: branch arc length s in [s0, s1] is solver time t = s - s0."""
+    s0: float
+    s1: float
+    sign: float          # direction of travel along N1 x N2
+    sol: object          # scipy OdeSolution over [0, s1 - s0]
+    a: np.ndarray        # chart data of surface a used in this segment
+    b: np.ndarray
+    t: np.ndarray        # solver step points (local t)
+    y: np.ndarray        # states at the step points (4, n)
+
+
+@dataclass
+class Branch:
+    """Result of integrating one direction from a start point."""
+    sign: float
+    segments: list = field(default_factory=list)
+    status: str = "max_length"   # 'closed', 'singular', 'boundary', 'max_length', 'failed'
+    message: str = ""
+    length: float = 0.0
+    nfev: int = 0
+    end_state: np.ndarray = None
+
+
+@dataclass
+class Settings:
+    """Numerical settings of one trace (absolute lengths already scaled)."""
+    method: str
+    rtol: float
+    atol: float
+    gap_tol: float          # Newton target for |M1 - M2|
+    scale: float            # curve length scale
+    singular_tol: float     # stop when sin(normals' angle) or a relative area element falls below it
+    pullback: float         # lambda, 1/length
+    max_length: float
+    max_step: float
+    close: bool = True
+
+
+def recharted_sphere(data, point, tangent):
+    """Sphere data with its chart turned so that point is at (u, v) = (0, 0) and tangent along +u."""
+    new = data.copy()
+    center = data[ks.ORIGIN:ks.ORIGIN + 3]
+    x = point - center
+    x /= np.linalg.norm(x)
+    z = np.cross(x, tangent)
+    nz = np.linalg.norm(z)
+    if nz < 1e-12:            # tangent not known (zero): any axis normal to x will do
+        z = np.cross(x, np.eye(3)[np.argmin(np.abs(x))])
+        nz = np.linalg.norm(z)
+    z /= nz
+    y = np.cross(z, x)
+    new[ks.ROT:ks.ROT + 9] = np.column_stack([x, y, z]).ravel()
+    return new
+
+
+def area_flag(data):
+    """Whether a degenerate parametrisation of this surface ends a branch (spheres are re-charted)."""
+    return int(data[ks.KIND]) not in (ks.SPHERE, ks.PLANE, ks.CYLINDER)
+
+
+def charts_at(a_user, b_user, point, tangent, y_prev=None):
+    """Charts for a new segment at point and the state there in them.
+
+    Spheres are re-charted at point (so it lies on their equator, tangent along +u); the other surfaces
+    keep their own chart and take (u, v) from y_prev (continuous u) or, without it, from the foot point.
+    """
+    y = np.empty(4)
+    charts = []
+    for k, user in enumerate((a_user, b_user)):
+        uv = np.empty((1, 2))
+        if int(user[ks.KIND]) == ks.SPHERE:
+            data = recharted_sphere(user, point, tangent)
+            ks.inverse(data, point.reshape(1, 3), uv)
+        elif y_prev is not None:
+            data = user
+            uv[0] = y_prev[2 * k:2 * k + 2]
+        else:
+            data = user
+            ks.inverse(data, point.reshape(1, 3), uv)
+        y[2 * k:2 * k + 2] = uv[0]
+        charts.append(data)
+    return charts[0], charts[1], y
+
+
+def make_events(a, b, settings, sign, start, direction, s_arm):
+    """The event functions of one segment, in a fixed order: singular, boundaries, poles, closure."""
+    events, kinds = [], []
+    flag_a, flag_b = area_flag(a), area_flag(b)
+    sing_tol = settings.singular_tol
+
+    def singular(s, y, *_):
+        return kc.degeneracy(y, a, b, flag_a, flag_b) - sing_tol
+    singular.terminal, singular.direction = True, -1
+    events.append(singular)
+    kinds.append(("singular", None))
+
+    for k, data in enumerate((a, b)):
+        for j in range(4):
+            bound = data[ks.BOUNDS + j]
+            if not np.isfinite(bound):
+                continue
+            idx = 2 * k + j // 2
+            lower = j % 2 == 0
+
+            def edge(s, y, *_, idx=idx, bound=bound, lower=lower):
+                return y[idx] - bound if lower else bound - y[idx]
+            edge.terminal, edge.direction = True, -1
+            events.append(edge)
+            kinds.append(("boundary", (k, j)))
+
+        if int(data[ks.KIND]) == ks.SPHERE:
+            iv = 2 * k + 1
+
+            def pole(s, y, *_, iv=iv):
+                return abs(np.cos(y[iv])) - POLE_GUARD
+            pole.terminal, pole.direction = True, -1
+            events.append(pole)
+            kinds.append(("chart", k))
+
+    if settings.close:
+        offset = CLOSURE_OFFSET * settings.scale
+
+        def closure(s, y, *_):
+            if s <= s_arm:
+                return 1.0
+            return kc.closure_value(y, a, start, direction, offset)
+        closure.terminal, closure.direction = True, 1
+        events.append(closure)
+        kinds.append(("closure", None))
+    return events, kinds
+
+
+def project_state(y, a, b, settings, tangent_hint=None):
+    """Project y onto the curve in the plane normal to the local tangent; returns (y, point, tangent, ok)."""
+    y = np.array(y, dtype=float)
+    point = np.empty(3)
+    tangent = np.empty(3)
+    kc.curve_frame(y, a, b, point, tangent)
+    if tangent_hint is None:
+        tangent_hint = tangent.copy()
+    iters = kc.project_to_curve(y, a, b, point.copy(), tangent_hint, settings.gap_tol, NEWTON_MAX_ITER)
+    kc.curve_frame(y, a, b, point, tangent)
+    return y, point, tangent, iters >= 0
+
+
+def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
+    """Integrate one direction from point (on the curve, unit tangent N1 x N2/|.| there).
+
+    y_start holds the non-sphere parameters at point (a sphere's come from its chart). Returns a Branch
+    whose segments cover [0, branch.length] in arc length.
+    """
+    branch = Branch(sign=sign)
+    point = np.array(point, dtype=float)
+    tangent = np.array(tangent, dtype=float)
+    y = np.asarray(y_start, dtype=float)
+    start, direction = point.copy(), sign * tangent
+    s, s_arm = 0.0, 0.0
+    radius = CLOSURE_RADIUS * settings.scale
+    for _ in range(MAX_SEGMENTS):
+        a, b, y = charts_at(a_user, b_user, point, sign * tangent, y)
+        y, point, tangent, ok = project_state(y, a, b, settings)
+        if not ok:
+            branch.status, branch.message = "failed", f"Newton correction failed at s = {s:.6g}"
+            break
+        events, kinds = make_events(a, b, settings, sign, start, direction, s_arm - s)
+        res = solve_ivp(kc.dragilev_rhs, (0.0, settings.max_length - s), y, method=settings.method,
+                        rtol=settings.rtol, atol=settings.atol, dense_output=True, events=events,
+                        args=(a, b, sign, settings.pullback), max_step=settings.max_step)
+        branch.nfev += res.nfev
+        if res.status == -1:
+            branch.status, branch.message = "failed", f"solve_ivp failed at s = {s:.6g}: {res.message}"
+            break
+        length = res.t[-1]
+        seg = Segment(s0=s, s1=s + length, sign=sign, sol=res.sol, a=a, b=b, t=res.t, y=res.y)
+        branch.segments.append(seg)
+        s += length
+        y = res.y[:, -1].copy()
+        if res.status == 0:
+            branch.status = "max_length"
+            branch.message = f"stopped at max_length = {settings.max_length:.6g} without closing"
+            break
+        hit = next(i for i, te in enumerate(res.t_events) if te.size)
+        kind, info = kinds[hit]
+        y = res.y_events[hit][0].copy()
+        kc.curve_frame(y, a, b, point, tangent)
+        if kind == "chart":
+            continue
+        if kind == "closure":
+            yp, p_e, t_e, _ = project_state(y, a, b, settings)
+            close_enough = np.linalg.norm(p_e - start) <= radius
+            if close_enough and float(np.dot(sign * t_e, direction)) >= CLOSURE_COSINE:
+                remaining = float(np.dot(start - p_e, sign * t_e))
+                branch.status = "closed"
+                branch.message = f"closed on its start after s = {s + remaining:.12g}"
+                branch.length = s + remaining
+                branch.end_state = yp
+                return branch
+            s_arm = s          # a crossing elsewhere: go on, re-armed past it
+            continue
+        if kind == "singular":
+            branch.status = "singular"
+            flag_a, flag_b = area_flag(a), area_flag(b)
+            sin_normals = kc.degeneracy(y, a, b, 0, 0)
+            if sin_normals > 2 * settings.singular_tol and (flag_a or flag_b):
+                branch.message = (f"a parametrisation degenerates at s = {s:.6g}, point {point.tolist()} "
+                                  "(apex of a cone or axis point of a horn/spindle torus)")
+            else:
+                branch.message = (f"singular point (surface normals parallel, sin = {sin_normals:.2g}) "
+                                  f"at s = {s:.6g}, point {point.tolist()}")
+            break
+        if kind == "boundary":
+            k, j = info
+            name = "ab"[k]
+            which = ("u_min", "u_max", "v_min", "v_max")[j]
+            branch.status = "boundary"
+            branch.message = f"reached the edge {which} of surface {name} at s = {s:.6g}"
+            break
+    else:
+        branch.status, branch.message = "failed", f"more than {MAX_SEGMENTS} segments"
+    branch.length = s
+    branch.end_state = y
+    return branch

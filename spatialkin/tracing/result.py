@@ -1,0 +1,185 @@
+"""sk.Curve: one traced component of an intersection, with dense evaluation corrected onto both surfaces."""
+import numpy as np
+
+from ..kernels import curve as kc
+from ..kernels import surfaces as ks
+from .ivp import NEWTON_MAX_ITER
+
+#: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
+#: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.
+DUPLICATE_SPACING = 1e-9
+#: Newton steps in arc length refining the nearest sample in Curve.closest.
+CLOSEST_NEWTON_STEPS = 4
+
+
+class TracingError(RuntimeError):
+    """Tracing could not start or go on; ``where`` is the point (3,) or None, ``status`` a short code."""
+
+    def __init__(self, message, where=None, status="failed"):
+        super().__init__(message)
+        self.where = where
+        self.status = status
+
+
+class Span:
+    """A piece of the dense output: global s in [lo, hi] maps to segment time t = shift + flip * s."""
+
+    __slots__ = ("lo", "hi", "flip", "shift", "seg")
+
+    def __init__(self, lo, hi, flip, shift, seg):
+        self.lo, self.hi, self.flip, self.shift, self.seg = lo, hi, flip, shift, seg
+
+    def states(self, s):
+        return self.seg.sol(self.shift + self.flip * s)
+
+
+class Curve:
+    """One connected component of the intersection of two surfaces, parametrised by arc length.
+
+    Attributes
+    ----------
+    points : ndarray (N, 3)
+        Points on the curve (solver steps, each corrected onto both surfaces by Newton).
+    s : ndarray (N,)
+        Arc length at each point, from 0 to ``length``, increasing.
+    params : ndarray (N, 4)
+        (u1, v1, u2, v2) of each point in the charts of surface a and b (u continuous, not wrapped).
+    closed : bool
+        True for a closed loop: the last point is the first (exactly), ``length`` is the period.
+    length : float
+        Arc length of the curve.
+    status : str
+        'closed', or why an open curve ends: 'singular', 'boundary', 'max_length', 'contact' (a single point
+        where the surfaces touch).
+    message : str
+        A sentence on how it ended (both ends for an open curve).
+    max_distance : float
+        Largest measured distance (exact distance functions) of the returned points and of dense
+        evaluations midway between them, to either surface.
+    nfev : int
+        Right-hand-side evaluations spent by solve_ivp.
+    wall_time : float
+        Seconds spent tracing this curve.
+    """
+
+    def __init__(self, surfaces, points, s, params, closed, length, status, message, spans, gap_tol,
+                 nfev=0, wall_time=0.0):
+        self.surfaces = surfaces
+        self.points = points
+        self.s = s
+        self.params = params
+        self.closed = bool(closed)
+        self.length = float(length)
+        self.status = status
+        self.message = message
+        self.nfev = int(nfev)
+        self.wall_time = float(wall_time)
+        self._spans = spans
+        self._gap_tol = gap_tol
+        self._lo = np.array([sp.lo for sp in spans])
+        self.max_distance = self._measure()
+
+    # --- dense evaluation -------------------------------------------------------------------------
+    def _locate(self, s):
+        s = np.asarray(s, dtype=float)
+        if not np.all(np.isfinite(s)):
+            raise ValueError("s must be finite")
+        if self.closed and self.length > 0:
+            s = np.mod(s, self.length)
+        elif np.any((s < -1e-12 * max(1.0, self.length)) | (s > self.length * (1 + 1e-12) + 1e-300)):
+            raise ValueError(f"s must lie in [0, {self.length:.12g}] for this open curve")
+        idx = np.clip(np.searchsorted(self._lo, s, side="right") - 1, 0, len(self._spans) - 1)
+        return s, idx
+
+    def _evaluate(self, s):
+        """Corrected states, points and tangents at s (flattened)."""
+        s, idx = self._locate(np.ravel(s))
+        ys = np.empty((s.size, 4))
+        points = np.empty((s.size, 3))
+        tangents = np.empty((s.size, 3))
+        status = np.empty(s.size, dtype=np.int64)
+        params = np.empty((s.size, 4))
+        for k in np.unique(idx):
+            mask = idx == k
+            span = self._spans[k]
+            y = np.ascontiguousarray(span.states(s[mask]).T)
+            p, t, st = points[mask], tangents[mask], status[mask]
+            kc.project_many(y, span.seg.a, span.seg.b, self._gap_tol, NEWTON_MAX_ITER, p, t, st)
+            points[mask], tangents[mask], status[mask] = p, t * span.flip * self._sign(span), st
+            params[mask] = user_params(self.surfaces, y, p, span.seg.a, span.seg.b)
+        return s, points, tangents, params
+
+    @staticmethod
+    def _sign(span):
+        return span.seg.sign
+
+    def __call__(self, s):
+        """Points (..., 3) on the curve at arc lengths s (...,), corrected onto both surfaces."""
+        shape = np.shape(s)
+        if self.length == 0:
+            return np.broadcast_to(self.points[0], shape + (3,)).copy()
+        _, points, _, _ = self._evaluate(s)
+        return points.reshape(shape + (3,))
+
+    def tangent(self, s):
+        """Unit tangents (..., 3) at s, pointing towards increasing s."""
+        shape = np.shape(s)
+        _, _, tangents, _ = self._evaluate(s)
+        return tangents.reshape(shape + (3,))
+
+    def parameters(self, s):
+        """(u1, v1, u2, v2) (..., 4) at s (u wrapped to (-pi, pi] where a sphere had to be re-charted)."""
+        shape = np.shape(s)
+        _, _, _, params = self._evaluate(s)
+        return params.reshape(shape + (4,))
+
+    def sample(self, n):
+        """n points evenly spaced in arc length (for a closed curve the last equals the first)."""
+        return self(np.linspace(0.0, self.length, int(n)))
+
+    def closest(self, points):
+        """Arc length (...,) of the curve point nearest to each point (..., 3), and the distance (...,)."""
+        pts = np.asarray(points, dtype=float)
+        flat = pts.reshape(-1, 3)
+        if self.length == 0:
+            return np.zeros(len(flat)).reshape(pts.shape[:-1]), np.linalg.norm(flat - self.points[0], axis=1).reshape(pts.shape[:-1])
+        grid = np.linspace(0.0, self.length, max(8 * len(self.points), 64))
+        dense = self(grid)
+        s = grid[np.argmin(np.linalg.norm(dense[None, :, :] - flat[:, None, :], axis=2), axis=1)]
+        for _ in range(CLOSEST_NEWTON_STEPS):
+            s = s + np.einsum("ij,ij->i", flat - self(s), self.tangent(s))
+            s = s if self.closed else np.clip(s, 0.0, self.length)
+        dist = np.linalg.norm(flat - self(s), axis=1)
+        s = np.mod(s, self.length) if self.closed else s
+        return s.reshape(pts.shape[:-1]), dist.reshape(pts.shape[:-1])
+
+    def distances(self, points=None):
+        """Exact distances (N, 2) of points (default: self.points) to surface a and surface b."""
+        pts = self.points if points is None else np.asarray(points, dtype=float)
+        return np.stack([surf.distance(pts) for surf in self.surfaces], axis=-1)
+
+    def _measure(self):
+        worst = float(np.max(self.distances())) if len(self.points) else 0.0
+        if len(self.s) > 1 and self.length > 0:
+            mid = 0.5 * (self.s[1:] + self.s[:-1])
+            worst = max(worst, float(np.max(self.distances(self(mid)))))
+        return worst
+
+    def __len__(self):
+        return len(self.points)
+
+    def __repr__(self):
+        kind = "closed" if self.closed else f"open ({self.status})"
+        return (f"Curve({kind}, length={self.length:.6g}, points={len(self.points)}, "
+                f"max_distance={self.max_distance:.2e})")
+
+
+def user_params(surfaces, y, points, a_chart, b_chart):
+    """(u1, v1, u2, v2) in the surfaces' own charts: a re-charted sphere's (u, v) come from the point."""
+    out = np.array(y, dtype=float, copy=True)
+    for k, (surf, chart) in enumerate(zip(surfaces, (a_chart, b_chart))):
+        if chart is not surf.data and not np.array_equal(chart, surf.data):
+            uv = np.empty((len(points), 2))
+            ks.inverse(surf.data, np.ascontiguousarray(points), uv)
+            out[:, 2 * k:2 * k + 2] = uv
+    return out

@@ -1,0 +1,269 @@
+"""Start points on every component of an intersection.
+
+One surface, P, is kept parametrised; the other, Q, is read through its implicit function f_Q. The
+intersection is the zero level set of g = f_Q o P on P's parameter domain, and Morse theory says where to
+look: each component of a level set is met by the gradient flow of g leaving the lower end of its edge of
+the Reeb graph, a minimum or a saddle (and, going down, by the flow leaving the upper end, a maximum or a
+saddle). So from every critical point of g with g < 0 we follow the ascending flow along both senses of
+the Hessian's positive eigen-direction, from every one with g > 0 the descending flow, and stop where g
+changes sign; a component that reaches the edge of a trimmed surface is also found by scanning the edges.
+
+Critical points come from closed forms where they exist (Q a sphere: the foot points of its centre on a
+torus or a sphere; Q a plane: the points of a torus or sphere whose normal is the plane's), otherwise from
+Newton started on a grid over P's domain. A critical point on the level itself is a contact point (an
+extremum) or a node where branches cross (a saddle).
+
+References
+----------
+../shared/reference/ssi-notes.md: the critical radii of torus ∩ sphere are the distances from the sphere
+centre to its foot points on the torus; small loops are missed by grids coarser than the loop.
+"""
+import math
+
+import numpy as np
+import scipy.linalg
+from scipy.integrate import solve_ivp
+
+from ..kernels import level as kl
+from ..kernels import surfaces as ks
+
+#: Grid of Newton starts for the generic critical-point search (per parameter direction).
+GRID = 40
+#: Critical points closer than this (relative to the scale) are one.
+MERGE_RADIUS = 1e-6
+#: Parameter offset from a critical point at which its gradient flow starts.
+FLOW_OFFSET = 1e-4
+#: Relative tolerance of the gradient flow integration (only a point near the level is needed).
+FLOW_RTOL = 1e-8
+#: A flow stops (without a seed) where |grad g| falls below this: it reached another extremum.
+FLOW_MIN_GRADIENT = 1e-7
+#: Longest gradient flow, in turns around P (2 pi times its size).
+FLOW_TURNS = 4
+#: Samples along each edge of a trimmed surface.
+EDGE_SAMPLES = 400
+#: Eigenvalues of the Hessian below this (relative to the largest) count as zero (degenerate directions).
+EIGEN_RATIO = 1e-6
+#: Charts of a sphere kept away from its poles in the grid search: |latitude| below this.
+SPHERE_LATITUDE = 1.25
+
+
+def roles(a, b):
+    """(P, Q, swapped): P parametrised, Q implicit. A sphere or a plane is best as Q (closed-form critical
+    points); otherwise a compact surface is best as P (its domain is finite)."""
+    kinds = (int(a.data[ks.KIND]), int(b.data[ks.KIND]))
+    for implicit_kind in (ks.SPHERE, ks.PLANE):
+        if kinds[1] == implicit_kind and kinds[0] != implicit_kind:
+            return a, b, False
+        if kinds[0] == implicit_kind and kinds[1] != implicit_kind:
+            return b, a, True
+    if not a.compact and b.compact:
+        return b, a, True
+    return a, b, False
+
+
+def closed_form_critical(p, q):
+    """Critical parameters (K, 2) of g on P in closed form, or None where none is known."""
+    kp, kq = int(p.data[ks.KIND]), int(q.data[ks.KIND])
+    if kp not in (ks.TORUS, ks.SPHERE) or kq not in (ks.SPHERE, ks.PLANE):
+        return None
+    rot = p.frame.rotation
+    if kq == ks.SPHERE:
+        w = rot.T @ (q.frame.origin - p.frame.origin)      # the source point in P's frame
+        is_point = True
+    else:
+        w = rot.T @ q.frame.rotation[:, 2]                  # the plane normal in P's frame
+        is_point = False
+    if kp == ks.SPHERE:
+        if np.linalg.norm(w) == 0.0:
+            return np.array([[0.0, 0.0]])                   # concentric: g is constant
+        d = w / np.linalg.norm(w)
+        uv = [[math.atan2(d[1], d[0]), math.asin(np.clip(d[2], -1, 1))]]
+        uv.append([uv[0][0] + math.pi, -uv[0][1]])
+        return np.array(uv)
+    big = p.major_radius
+    theta = math.atan2(w[1], w[0])
+    out = []
+    for u in (theta, theta + math.pi):
+        er = np.array([math.cos(u), math.sin(u), 0.0])
+        x = w - big * er if is_point else w
+        v = math.atan2(x[2], float(x @ er))
+        out += [[u, v], [u, v + math.pi]]
+    return np.array(out)
+
+
+def parameter_box(p, q):
+    """(lo (2,), hi (2,), periodic (2,)) of P's domain to search, bounded by Q's extent where P is not."""
+    kind = int(p.data[ks.KIND])
+    if kind == ks.TORUS:
+        return np.array([-math.pi, -math.pi]), np.array([math.pi, math.pi]), (True, True)
+    if kind == ks.SPHERE:
+        return (np.array([-math.pi, -SPHERE_LATITUDE]), np.array([math.pi, SPHERE_LATITUDE]), (True, False))
+    lo = np.array([p.u_range[0], p.v_range[0]], dtype=float)
+    hi = np.array([p.u_range[1], p.v_range[1]], dtype=float)
+    periodic = (kind != ks.PLANE, False)
+    if periodic[0]:
+        lo[0], hi[0] = -math.pi, math.pi
+    if not np.all(np.isfinite(np.r_[lo, hi])):
+        if not q.compact:
+            raise ValueError(f"intersect needs a bounded domain: give {type(p).__name__} a v_range "
+                             "(and a Plane u_range and v_range) when the other surface is unbounded too")
+        centre = p.frame.to_local(q.frame.origin)
+        reach = 1.05 * q.size
+        if kind == ks.PLANE:
+            box_lo, box_hi = centre[:2] - reach, centre[:2] + reach
+            lo = np.where(np.isfinite(lo), lo, box_lo)
+            hi = np.where(np.isfinite(hi), hi, box_hi)
+        else:
+            # cylinder and cone: v is the axial coordinate
+            lo[1] = lo[1] if np.isfinite(lo[1]) else centre[2] - reach
+            hi[1] = hi[1] if np.isfinite(hi[1]) else centre[2] + reach
+    return lo, hi, periodic
+
+
+def grid_critical(p, q, lo, hi, param_scale):
+    """Critical parameters of g on P by Newton from a GRID x GRID lattice over [lo, hi]."""
+    cells = [(np.arange(GRID) + 0.5) / GRID * (hi[i] - lo[i]) + lo[i] for i in range(2)]
+    uu, vv = np.meshgrid(*cells, indexing="ij")
+    starts = np.ascontiguousarray(np.stack([uu.ravel(), vv.ravel()], axis=1))
+    out = np.empty_like(starts)
+    status = np.empty(len(starts), dtype=np.int64)
+    kl.critical_newton(p.data, q.data, starts, param_scale, 40, out, status)
+    inside = (status == 1) & np.all(out >= lo - 1e-9, axis=1) & np.all(out <= hi + 1e-9, axis=1)
+    return out[inside]
+
+
+def critical_points(p, q, scale):
+    """Critical points of g on P: list of (uv (2,), value, eigenvalues (2,), eigenvectors (2, 2))."""
+    uv = closed_form_critical(p, q)
+    kind = int(p.data[ks.KIND])
+    param_scale = np.ones(2)
+    if kind in (ks.PLANE,):
+        param_scale[:] = scale
+    elif kind in (ks.CYLINDER, ks.CONE):
+        param_scale[1] = scale
+    charts = [p]
+    if uv is None:
+        lo, hi, _ = parameter_box(p, q)
+        found = [grid_critical(p, q, lo, hi, param_scale)]
+        if kind == ks.SPHERE:     # a second chart, its poles on the first one's equator
+            turned = p.with_frame(type(p.frame)(p.frame.origin, p.frame.rotation @ np.array(
+                [[1.0, 0, 0], [0, 0, -1.0], [0, 1.0, 0]])))
+            extra = grid_critical(turned, q, lo, hi, param_scale)
+            found.append(p.parameters(turned.point(extra[:, 0], extra[:, 1])) if len(extra) else extra)
+        uv = np.vstack([f.reshape(-1, 2) for f in found])
+    pts = p.point(uv[:, 0], uv[:, 1]) if len(uv) else np.empty((0, 3))
+    result, kept = [], []
+    h = kl.FD_STEP_HESS * param_scale
+    for k in range(len(uv)):
+        if any(np.linalg.norm(pts[k] - pts[j]) <= MERGE_RADIUS * scale for j in kept):
+            continue
+        kept.append(k)
+        hess = np.empty((2, 2))
+        kl.level_hessian(p.data, q.data, uv[k, 0], uv[k, 1], h, hess)
+        d = p.derivatives(*uv[k])
+        metric = np.array([[d[1] @ d[1], d[1] @ d[2]], [d[1] @ d[2], d[2] @ d[2]]])
+        if np.linalg.det(metric) <= 1e-14 * np.trace(metric) ** 2:
+            continue                                 # a singular point of the parametrisation
+        lam, vec = scipy.linalg.eigh(hess, metric)
+        value = kl.level_value(p.data, q.data, uv[k, 0], uv[k, 1])
+        result.append((uv[k].copy(), float(value), lam, vec))
+    return result
+
+
+def flow_to_level(p, q, uv, direction, sigma, scale):
+    """Follow the unit-speed gradient flow of g (sigma = +1 up, -1 down) from uv + offset * direction
+    until g = 0; returns the point (3,) near the level, or None if the flow ends first."""
+    x0 = np.asarray(uv, dtype=float) + FLOW_OFFSET * direction / np.linalg.norm(direction)
+    h = np.array([kl.FD_STEP_GRAD, kl.FD_STEP_GRAD])
+    if int(p.data[ks.KIND]) == ks.PLANE:
+        h *= scale
+    elif int(p.data[ks.KIND]) in (ks.CYLINDER, ks.CONE):
+        h[1] *= scale
+
+    def level(t, x, *_):
+        return kl.level_value(p.data, q.data, x[0], x[1])
+    level.terminal = True
+
+    def stalled(t, x, *_):
+        return kl.surface_gradient_norm(p.data, q.data, x[0], x[1], h) - FLOW_MIN_GRADIENT
+    stalled.terminal, stalled.direction = True, -1
+    events = [level, stalled]
+    (ulo, uhi), (vlo, vhi) = p.u_range, p.v_range
+    for idx, bound, lower in ((0, ulo, True), (0, uhi, False), (1, vlo, True), (1, vhi, False)):
+        if np.isfinite(bound):
+            def edge(t, x, *_, idx=idx, bound=bound, lower=lower):
+                return x[idx] - bound if lower else bound - x[idx]
+            edge.terminal = True
+            events.append(edge)
+    g0 = level(0.0, x0)
+    if g0 == 0.0:
+        return p.point(*x0)
+    res = solve_ivp(kl.gradient_flow_rhs, (0.0, FLOW_TURNS * 2 * math.pi * max(p.size, scale)), x0,
+                    method="RK45", rtol=FLOW_RTOL, atol=FLOW_RTOL, events=events,
+                    args=(p.data, q.data, float(sigma), h))
+    if res.status == 1 and res.t_events[0].size:
+        return p.point(*res.y_events[0][0])
+    return None
+
+
+def edge_crossings(p, q):
+    """Points where the zero level of g meets the edges of a trimmed P (sign changes along each edge)."""
+    (ulo, uhi), (vlo, vhi) = p.u_range, p.v_range
+    kind = int(p.data[ks.KIND])
+    edges = []
+    if kind == ks.PLANE and np.all(np.isfinite([ulo, uhi])):
+        t = np.linspace(vlo, vhi, EDGE_SAMPLES) if np.all(np.isfinite([vlo, vhi])) else None
+        if t is not None:
+            edges += [np.column_stack([np.full_like(t, ulo), t]), np.column_stack([np.full_like(t, uhi), t])]
+    if np.all(np.isfinite([vlo, vhi])):
+        ulo_e, uhi_e = (ulo, uhi) if kind == ks.PLANE else (-math.pi, math.pi)
+        if np.all(np.isfinite([ulo_e, uhi_e])):
+            t = np.linspace(ulo_e, uhi_e, EDGE_SAMPLES)
+            edges += [np.column_stack([t, np.full_like(t, vlo)]), np.column_stack([t, np.full_like(t, vhi)])]
+    out = []
+    for uv in edges:
+        g = np.array([kl.level_value(p.data, q.data, a, b) for a, b in uv])
+        for i in np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) <= 0)[0]:
+            w = g[i] / (g[i] - g[i + 1]) if g[i] != g[i + 1] else 0.0
+            out.append(p.point(*((1 - w) * uv[i] + w * uv[i + 1])))
+    return out
+
+
+def find_seeds(a, b, scale, level_tol):
+    """Start points on the intersection of a and b.
+
+    Returns
+    -------
+    seeds : list of ndarray (3,)
+        Points near the curve, at least one on every component (more are harmless).
+    contacts : list of ndarray (3,)
+        Isolated points where the surfaces touch (an extremum of g on the level).
+    nodes : list of ndarray (3,)
+        Points where branches cross (a saddle of g on the level); seeds near them are included.
+    """
+    p, q, _ = roles(a, b)
+    seeds, contacts, nodes = [], [], []
+    for uv, value, lam, vec in critical_points(p, q, scale):
+        big = max(abs(lam[0]), abs(lam[1]), 1e-300)
+        on_level = abs(value) <= level_tol
+        if on_level:
+            nonzero = np.abs(lam) > EIGEN_RATIO * big
+            if np.all(nonzero) and lam[0] * lam[1] > 0:
+                contacts.append(p.point(*uv))
+                continue
+            if np.all(nonzero):   # a node: start on each of the four arms, along the asymptotic directions
+                nodes.append(p.point(*uv))
+                ratio = math.sqrt(-lam[0] / lam[1])
+                for d in (vec[:, 0] + ratio * vec[:, 1], vec[:, 0] - ratio * vec[:, 1]):
+                    for sense in (1.0, -1.0):
+                        seeds.append(p.point(*(uv + 1e-3 * sense * d / np.linalg.norm(d))))
+            continue
+        sigma = 1.0 if value < 0 else -1.0
+        for i in range(2):
+            if sigma * lam[i] > EIGEN_RATIO * big:
+                for sense in (1.0, -1.0):
+                    hit = flow_to_level(p, q, uv, sense * vec[:, i], sigma, scale)
+                    if hit is not None:
+                        seeds.append(hit)
+    seeds += edge_crossings(p, q)
+    return seeds, contacts, nodes

@@ -1,0 +1,103 @@
+"""Start points: a point near the curve, parameters near it, or the seed's auxiliary-curve cut.
+
+References
+----------
+Seed 002 (../shared/reference/looper-drive.md): the start from the sphere's equator M3(u2) = M2(u2, 0),
+solving M1(u1, v1) = M3(u2) for (u1, v1, u2) with v2 = 0.
+"""
+import numpy as np
+
+from ..kernels import curve as kc
+from ..kernels import surfaces as ks
+from .ivp import NEWTON_MAX_ITER, charts_at
+from .result import TracingError
+
+#: Samples of an auxiliary parameter line when looking for its crossings with the other surface.
+AUX_SAMPLES = 720
+
+
+def scene_scale(a, b):
+    """Length scale of an intersection: the smaller characteristic length of the two surfaces, ignoring
+    planes (which have none)."""
+    sizes = [s.size for s in (a, b) if int(s.data[ks.KIND]) != ks.PLANE]
+    return min(sizes) if sizes else 1.0
+
+
+def locate_on_curve(a, b, guess, gap_tol, y_guess=None):
+    """A point of the curve near guess (3,) by minimum-norm Gauss-Newton on M1 - M2 = 0.
+
+    Returns (point (3,), y (4,) in the user's charts, or with a sphere's (u, v) from its point).
+    Raises TracingError if Newton does not converge (no intersection point near guess).
+    """
+    guess = np.asarray(guess, dtype=float)
+    point = guess.copy()
+    a_chart, b_chart, y = charts_at(a.data, b.data, point, np.zeros(3), y_guess)
+    iters = kc.project_to_curve(y, a_chart, b_chart, point.copy(), np.zeros(3), gap_tol, NEWTON_MAX_ITER)
+    p1 = np.empty(3)
+    t = np.empty(3)
+    kc.curve_frame(y, a_chart, b_chart, p1, t)
+    if iters < 0 or not np.all(np.isfinite(p1)):
+        raise TracingError(f"no intersection point found near start {guess.tolist()}: "
+                           "Newton on M1 = M2 did not converge", where=guess, status="no_start")
+    y_user = y.copy()
+    for k, surf in enumerate((a, b)):
+        if int(surf.data[ks.KIND]) == ks.SPHERE:
+            y_user[2 * k:2 * k + 2] = surf.parameters(p1)
+    return p1, y_user
+
+
+def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
+    """The seed's start: cut surface a with the parameter line v2 = v of surface b.
+
+    For the sphere b and v = 0 this is the equator of the seed (M3(u2) = M2(u2, 0)). Every crossing of the
+    line with a is found (sign changes of a's implicit function over `samples` points of u2 in [-pi, pi)),
+    then M1(u1, v1) = M2(u2, v) is solved by Newton for (u1, v1, u2).
+
+    Returns
+    -------
+    ndarray (K, 4)
+        (u1, v1, u2, v) of each crossing, in the order of u2.
+    """
+    if not np.isfinite(v):
+        raise ValueError(f"v must be finite, got {v}")
+    lo, hi = b.u_range
+    lo, hi = (-np.pi, np.pi) if not (np.isfinite(lo) and np.isfinite(hi)) else (lo, hi)
+    u2 = np.linspace(lo, hi, int(samples) + 1)
+    pts = b.point(u2, np.full_like(u2, v))
+    f = np.array([ks.implicit_value(a.data, p) for p in pts])
+    scale = scene_scale(a, b)
+    out = []
+    for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) <= 0)[0]:
+        if f[i] == 0 and i > 0 and f[i - 1] == 0:
+            continue
+        x = np.array([*a.parameters(pts[i]), u2[i]])
+        x = _newton_aux(a, b, x, v, tol * scale)
+        if x is not None and lo <= x[2] <= hi + 1e-12:
+            out.append([x[0], x[1], x[2], v])
+    out = np.array(out).reshape(-1, 4)
+    if len(out) > 1:       # crossings found twice (a root exactly at a sample) are merged
+        keep = [0]
+        for k in range(1, len(out)):
+            if np.min(np.linalg.norm(b.point(out[keep, 2], v) - b.point(out[k, 2], v), axis=-1)) > 1e3 * tol * scale:
+                keep.append(k)
+        out = out[keep]
+    return out
+
+
+def _newton_aux(a, b, x, v, gap_tol, max_iter=30):
+    """Newton on M1(u1, v1) - M2(u2, v) = 0 in (u1, v1, u2); None if it fails."""
+    d1 = np.empty((6, 3))
+    d2 = np.empty((6, 3))
+    for _ in range(max_iter):
+        ks.derivatives(a.data, x[0], x[1], d1)
+        ks.derivatives(b.data, x[2], v, d2)
+        r = d1[0] - d2[0]
+        if np.linalg.norm(r) <= gap_tol:
+            return x
+        jac = np.column_stack([d1[1], d1[2], -d2[1]])
+        try:
+            dx = np.linalg.solve(jac, -r)
+        except np.linalg.LinAlgError:
+            return None
+        x = x + dx
+    return None

@@ -1,0 +1,250 @@
+"""sk.trace: one component of the intersection of two surfaces, from a start near it.
+
+References
+----------
+Seed 002 (../shared/reference/looper-drive.md): the curve as the solution of the arc-length Cauchy problem.
+"""
+import math
+import time
+
+import numpy as np
+
+from ..kernels import curve as kc
+from ..kernels import surfaces as ks
+from ..surfaces import check_surface
+from .ivp import NEWTON_MAX_ITER, Settings, charts_at, integrate_branch
+from .result import Curve, Span, TracingError, user_params, DUPLICATE_SPACING
+from .start import locate_on_curve, scene_scale
+
+# --- defaults -----------------------------------------------------------------------------------------
+#: Relative tolerance of solve_ivp on (u1, v1, u2, v2): sets how far a step may stray before the Newton
+#: correction; positions are corrected onto both surfaces independently of it.
+DEFAULT_RTOL = 1e-10
+#: The branch stops where sin(angle between the normals) falls below this (a singular point).
+DEFAULT_SINGULAR_TOL = 1e-7
+#: Pull-back rate times the curve scale: the gap decays like exp(-PULLBACK * s / scale).
+DEFAULT_PULLBACK = 1.0
+#: Without a max_length, a branch may run this many times 2 pi times the larger surface extent.
+MAX_LENGTH_TURNS = 32
+#: Newton's target for |M1 - M2|, as a fraction of the requested tolerance ...
+GAP_FRACTION = 1e-2
+#: ... but never below this many ulps of the coordinates' magnitude (round-off floor).
+ROUNDOFF_ULPS = 64
+METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA")
+#: Status precedence when the two ends of an open curve differ.
+STATUS_ORDER = ("failed", "singular", "boundary", "max_length")
+
+
+def check_positive(name, value):
+    x = float(value)
+    if not math.isfinite(x) or x <= 0:
+        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+    return x
+
+
+def extent(surface):
+    """A length that bounds the surface (inf for an untrimmed plane, cylinder or cone)."""
+    kind = int(surface.data[ks.KIND])
+    if kind in (ks.SPHERE, ks.TORUS):
+        return surface.size
+    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    if kind == ks.PLANE:
+        return math.hypot(u1 - u0, v1 - v0)
+    if kind == ks.CYLINDER:
+        return max(surface.size, v1 - v0)
+    return max(abs(v0), abs(v1)) * math.sqrt(1.0 + surface.data[ks.P1] ** 2)
+
+
+def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor):
+    """Validated numerical settings, absolute lengths scaled by the scene."""
+    tol = check_positive("tol", tol)
+    rtol = check_positive("rtol", rtol)
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    singular_tol = check_positive("singular_tol", singular_tol)
+    if pullback < 0 or not math.isfinite(pullback):
+        raise ValueError(f"pullback must be a finite number >= 0, got {pullback!r}")
+    scale = scene_scale(a, b)
+    if max_length is None:
+        bound = min(extent(a), extent(b))
+        max_length = MAX_LENGTH_TURNS * 2 * math.pi * (bound if math.isfinite(bound) else 1e3 * scale)
+    max_length = check_positive("max_length", max_length)
+    if atol is None:
+        # angles get rtol, lengths (plane u, v; cylinder and cone v) rtol * scale
+        atol = np.full(4, rtol)
+        for k, surf in enumerate((a, b)):
+            kind = int(surf.data[ks.KIND])
+            if kind == ks.PLANE:
+                atol[2 * k:2 * k + 2] = rtol * scale
+            elif kind in (ks.CYLINDER, ks.CONE):
+                atol[2 * k + 1] = rtol * scale
+    else:
+        atol = check_positive("atol", atol)
+    magnitude = max(scale, float(np.max(np.abs(anchor))))
+    gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
+    return Settings(method=method, rtol=rtol, atol=atol, gap_tol=gap_tol, scale=scale,
+                    singular_tol=singular_tol, pullback=pullback / scale, max_length=max_length,
+                    max_step=math.pi * scale / 4, close=close)
+
+
+def start_point(a, b, start, gap_tol):
+    """(point, y) on the curve from a 3-vector near it or from (u1, v1, u2, v2)."""
+    arr = np.asarray(start, dtype=float)
+    if arr.shape not in ((3,), (4,)):
+        raise ValueError(f"start must be a point (3,) or parameters (u1, v1, u2, v2) (4,), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"start must be finite, got {arr.tolist()}")
+    if arr.shape == (3,):
+        return locate_on_curve(a, b, arr, gap_tol)
+    guess = 0.5 * (a.point(arr[0], arr[1]) + b.point(arr[2], arr[3]))
+    return locate_on_curve(a, b, guess, gap_tol, y_guess=arr)
+
+
+def trace(a, b, start, *, tol=1e-10, method="DOP853", rtol=DEFAULT_RTOL, atol=None, max_length=None,
+          singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK, close=True):
+    """Trace the component of a ∩ b through a start point, by arc length (Dragilev's method).
+
+    Parameters
+    ----------
+    a, b : Surface
+        The two surfaces.
+    start : array_like (3,) or (4,)
+        A point near the curve, or parameters (u1, v1, u2, v2) near it.
+    tol : float
+        Accuracy asked of every returned point and every dense evaluation, relative to the scene scale (the
+        smaller characteristic length of the two surfaces): distance to both surfaces <= tol * scale.
+    method : str
+        solve_ivp method ('DOP853' by default).
+    rtol, atol : float
+        solve_ivp tolerances on (u1, v1, u2, v2); atol defaults to rtol for angles and rtol * scale for lengths.
+    max_length : float, optional
+        Longest arc length traced in each direction (default: 32 turns around the smaller surface extent).
+    singular_tol : float
+        A branch stops where sin(angle between the normals) falls below this.
+    pullback : float
+        Pull-back rate times the scale (0 turns it off).
+    close : bool
+        Detect closure (True) or trace on to max_length (False; for drift studies).
+
+    Returns
+    -------
+    Curve
+
+    Raises
+    ------
+    ValueError
+        For bad arguments (named).
+    TracingError
+        If no curve point is found near start, or start is a singular point of the intersection.
+    """
+    check_surface("a", a)
+    check_surface("b", b)
+    t_start = time.perf_counter()
+    anchor = np.concatenate([a.frame.origin, b.frame.origin])
+    settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor)
+    point, y = start_point(a, b, start, settings.gap_tol)
+    return trace_from(a, b, point, y, settings, t_start)
+
+
+def trace_from(a, b, point, y, settings, t_start):
+    """Trace both directions from a point on the curve and assemble the Curve."""
+    tangent = np.empty(3)
+    p = np.empty(3)
+    sin_normals = kc.curve_frame(np.asarray(y, dtype=float), *_user_charts(a, b, point, y), p, tangent)
+    if sin_normals < settings.singular_tol:
+        raise TracingError(f"start {point.tolist()} is a singular point of the intersection "
+                           f"(normals parallel, sin = {sin_normals:.2g}): no tangent to follow",
+                           where=point, status="singular")
+    forward = integrate_branch(a.data, b.data, point, tangent, y, 1.0, settings)
+    nfev = forward.nfev
+    if forward.status == "closed":
+        branches = [(forward, 1.0, 0.0)]
+        closed, length = True, forward.length
+        status, message = "closed", forward.message
+    else:
+        backward = integrate_branch(a.data, b.data, point, tangent, y, -1.0, settings)
+        nfev += backward.nfev
+        if backward.status == "closed":
+            branches = [(backward, 1.0, 0.0)]
+            closed, length = True, backward.length
+            status, message = "closed", backward.message
+        else:
+            branches = [(backward, -1.0, backward.length), (forward, 1.0, backward.length)]
+            closed, length = False, backward.length + forward.length
+            status = min((backward.status, forward.status), key=STATUS_ORDER.index)
+            message = f"start end: {backward.message}; finish end: {forward.message}"
+    spans, ys, ss, charts = [], [], [], []
+    for branch, flip, offset in branches:
+        pieces = []
+        for seg in branch.segments:
+            if flip > 0:
+                lo, hi, shift = offset + seg.s0, offset + seg.s1, -(offset + seg.s0)
+                s_pts = offset + seg.s0 + seg.t
+            else:
+                lo, hi, shift = offset - seg.s1, offset - seg.s0, offset - seg.s0
+                s_pts = offset - seg.s0 - seg.t
+            pieces.append((Span(lo, hi, flip, shift, seg), s_pts, seg.y.T))
+        if flip < 0:
+            pieces.reverse()
+        for span, s_pts, y_pts in pieces:
+            order = np.argsort(s_pts)
+            spans.append(span)
+            ss.append(s_pts[order])
+            ys.append(y_pts[order])
+            charts.append(np.full(len(order), len(spans) - 1))
+    s_all = np.concatenate(ss)
+    y_all = np.ascontiguousarray(np.concatenate(ys))
+    span_of = np.concatenate(charts)
+    keep = np.ones(len(s_all), dtype=bool)
+    keep[1:] = np.diff(s_all) > DUPLICATE_SPACING * settings.scale
+    if closed:
+        spans[-1].hi = length
+        keep &= s_all < length - DUPLICATE_SPACING * settings.scale
+    s_all, y_all, span_of = s_all[keep], y_all[keep], span_of[keep]
+    points, params = _corrected(a, b, y_all, span_of, spans, settings)
+    if closed:
+        points = np.vstack([points, points[:1]])
+        params = np.vstack([params, _closing_params(a, b, params[0], params[-1])])
+        s_all = np.append(s_all, length)
+    curve = Curve((a, b), points, s_all, params, closed, length, status, message, spans, settings.gap_tol,
+                  nfev=nfev, wall_time=0.0)
+    curve.wall_time = time.perf_counter() - t_start
+    return curve
+
+
+def _user_charts(a, b, point, y):
+    a_chart, b_chart, y_chart = charts_at(a.data, b.data, point, np.zeros(3), y)
+    y[:] = y_chart
+    return a_chart, b_chart
+
+
+def _corrected(a, b, y_all, span_of, spans, settings):
+    """Project the solver's step states onto the curve (each in its segment's charts); user parameters."""
+    points = np.empty((len(y_all), 3))
+    params = np.empty((len(y_all), 4))
+    for k in np.unique(span_of):
+        mask = span_of == k
+        seg = spans[k].seg
+        y = np.ascontiguousarray(y_all[mask])
+        p = np.empty((len(y), 3))
+        t = np.empty((len(y), 3))
+        st = np.empty(len(y), dtype=np.int64)
+        kc.project_many(y, seg.a, seg.b, settings.gap_tol, NEWTON_MAX_ITER, p, t, st)
+        points[mask] = p
+        params[mask] = user_params((a, b), y, p, seg.a, seg.b)
+    for k, surf in enumerate((a, b)):
+        if int(surf.data[ks.KIND]) == ks.SPHERE:
+            params[:, 2 * k] = np.unwrap(params[:, 2 * k])
+    return points, params
+
+
+def _closing_params(a, b, first, last):
+    """The parameters of the closing point: the first point's, shifted by whole turns in periodic u (and v)
+    so that they continue the last point's."""
+    out = first.copy()
+    for i in range(4):
+        surf = (a, b)[i // 2]
+        periodic = (i % 2 == 0 and int(surf.data[ks.KIND]) != ks.PLANE) or (i % 2 == 1 and surf.periodic_v)
+        if periodic:
+            out[i] = first[i] + 2 * np.pi * np.round((last[i] - first[i]) / (2 * np.pi))
+    return out

@@ -326,6 +326,17 @@ def relative_area(su, sv):
 
 
 @jit
+def degeneracy_slope(y, a, b, sign, h):
+    """d/ds of sin(angle between the normals) along the direction of travel, by a central difference of
+    arc-length step h. It changes sign from - to + where the path passes a minimum: at a node where branches
+    cross this minimum is (near) zero and the slope jumps."""
+    dy = dragilev_rhs(0.0, y, a, b, sign, 0.0)
+    yp = y + h * dy
+    ym = y - h * dy
+    return (degeneracy(yp, a, b, 0, 0) - degeneracy(ym, a, b, 0, 0)) / (2.0 * h)
+
+
+@jit
 def closure_value(y, a, start, direction, offset):
     """Signed distance of M1(y) past the plane through start normal to direction, plus offset."""
     loc = np.empty((6, 3))

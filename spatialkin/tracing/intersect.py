@@ -5,8 +5,8 @@ import numpy as np
 
 from ..surfaces import check_surface
 from .result import Curve, TracingError
-from .seeds import find_seeds
-from .start import locate_on_curve
+from .seeds import find_seeds, roles
+from .start import locate_on_curve, newton_fixed
 from .trace import DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
@@ -39,14 +39,20 @@ def intersect(a, b, tol=1e-10, *, method="DOP853", rtol=DEFAULT_RTOL, atol=None,
     t0 = time.perf_counter()
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
-    seeds, contacts, nodes = find_seeds(a, b, settings.scale, tol * settings.scale)
+    seeds, contacts, nodes, edge_points = find_seeds(a, b, settings.scale, tol * settings.scale)
     curves = [contact_curve(a, b, p, settings) for p in contacts]
     radius = SAME_COMPONENT * settings.scale
+    p_index = 0 if roles(a, b)[0] is a else 1
+    starts = [edge_start(a, b, point, p_index, fixed, value, settings) for point, fixed, value in edge_points]
     for seed in seeds:
         try:
-            point, y = locate_on_curve(a, b, seed, settings.gap_tol)
+            starts.append(locate_on_curve(a, b, seed, settings.gap_tol))
         except TracingError:
             continue
+    for start in starts:
+        if start is None:
+            continue
+        point, y = start
         if any(np.min(c.closest(point)[1]) <= radius for c in curves):
             continue
         try:
@@ -56,6 +62,17 @@ def intersect(a, b, tol=1e-10, *, method="DOP853", rtol=DEFAULT_RTOL, atol=None,
     for c in curves:
         c.search_time = time.perf_counter() - t0
     return curves
+
+
+def edge_start(a, b, point, p_index, fixed, value, settings):
+    """(point, y) on the curve exactly on the edge parameter `fixed` = value of surface p_index, or None."""
+    y = np.concatenate([a.parameters(point), b.parameters(point)])
+    index = 2 * p_index + fixed
+    y[index] = value
+    y = newton_fixed(a, b, y, index, settings.gap_tol)
+    if y is None:
+        return None
+    return a.point(y[0], y[1]), y
 
 
 def contact_curve(a, b, point, settings):

@@ -30,6 +30,20 @@ CLOSURE_OFFSET = 1e-8
 #: curve scale) of the start and moves in the same direction (cosine above CLOSURE_COSINE).
 CLOSURE_RADIUS = 1e-5
 CLOSURE_COSINE = 0.9
+#: A segment ends at each local minimum of sin(angle between the normals) along the path; a minimum below
+#: this is a singular point: the node itself (where N1 x N2 flips) or, on a path a gap's width beside it,
+#: the turn onto the other branch (a branch jump), which is never taken.
+NODE_SUSPECT = 1e-5
+#: Where Newton fails with the normals closer to parallel than this (sine), the branch ends at a singular point.
+NEWTON_NEAR_SINGULAR = 1e-3
+#: Arc-length step (relative to the curve scale) of the difference that gives the slope of that sine.
+SLOPE_STEP = 1e-7
+#: Minima are watched only where the sine is below this, and counted once its slope (times the scale)
+#: rises above SLOPE_FLOOR, so that a constant sine (a circle on a surface of revolution) never triggers.
+WATCH_BELOW = 1e-2
+SLOPE_FLOOR = 1e-6
+#: A parameter this close to a bound (relative) counts as on the edge.
+EDGE_TOL = 1e-12
 #: Newton iterations allowed for one projection onto the curve.
 NEWTON_MAX_ITER = 12
 #: At most this many segments in one branch (each ends at an event): bounds the work on pathological input.
@@ -123,7 +137,7 @@ def charts_at(a_user, b_user, point, tangent, y_prev=None):
 
 
 def make_events(a, b, settings, sign, start, direction, s_arm):
-    """The event functions of one segment, in a fixed order: singular, boundaries, poles, closure."""
+    """The event functions of one segment, in a fixed order: singular, minimum, boundaries, poles, closure."""
     events, kinds = [], []
     flag_a, flag_b = area_flag(a), area_flag(b)
     sing_tol = settings.singular_tol
@@ -133,6 +147,18 @@ def make_events(a, b, settings, sign, start, direction, s_arm):
     singular.terminal, singular.direction = True, -1
     events.append(singular)
     kinds.append(("singular", None))
+
+    h = SLOPE_STEP * settings.scale
+
+    floor = SLOPE_FLOOR / settings.scale
+
+    def minimum(s, y, *_):
+        if kc.degeneracy(y, a, b, 0, 0) > WATCH_BELOW:
+            return -1.0
+        return kc.degeneracy_slope(y, a, b, sign, h) - floor
+    minimum.terminal, minimum.direction = True, 1
+    events.append(minimum)
+    kinds.append(("minimum", None))
 
     for k, data in enumerate((a, b)):
         for j in range(4):
@@ -170,6 +196,22 @@ def make_events(a, b, settings, sign, start, direction, s_arm):
     return events, kinds
 
 
+def at_outer_edge(a, b, y, sign):
+    """True where y lies on (or past) an edge of a trimmed surface and the direction of travel leaves it."""
+    dy = kc.dragilev_rhs(0.0, y, a, b, sign, 0.0)
+    for k, data in enumerate((a, b)):
+        for j in range(4):
+            bound = data[ks.BOUNDS + j]
+            if not np.isfinite(bound):
+                continue
+            idx = 2 * k + j // 2
+            inside = y[idx] - bound if j % 2 == 0 else bound - y[idx]
+            rate = dy[idx] if j % 2 == 0 else -dy[idx]
+            if inside <= EDGE_TOL * max(1.0, abs(bound)) and rate < 0:
+                return True
+    return False
+
+
 def project_state(y, a, b, settings, tangent_hint=None):
     """Project y onto the curve in the plane normal to the local tangent; returns (y, point, tangent, ok)."""
     y = np.array(y, dtype=float)
@@ -200,7 +242,16 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         a, b, y = charts_at(a_user, b_user, point, sign * tangent, y)
         y, point, tangent, ok = project_state(y, a, b, settings)
         if not ok:
-            branch.status, branch.message = "failed", f"Newton correction failed at s = {s:.6g}"
+            sin_normals = kc.degeneracy(y, a, b, 0, 0)
+            if sin_normals < NEWTON_NEAR_SINGULAR:
+                branch.status = "singular"
+                branch.message = (f"singular point (normals nearly parallel, sin = {sin_normals:.2g}; Newton "
+                                  f"cannot separate the branches) at s = {s:.6g}, point {point.tolist()}")
+            else:
+                branch.status, branch.message = "failed", f"Newton correction failed at s = {s:.6g}"
+            break
+        if at_outer_edge(a, b, y, sign):
+            branch.status, branch.message = "boundary", f"starts on an edge, leaving the surface, at s = {s:.6g}"
             break
         events, kinds = make_events(a, b, settings, sign, start, direction, s_arm - s)
         res = solve_ivp(kc.dragilev_rhs, (0.0, settings.max_length - s), y, method=settings.method,
@@ -208,7 +259,17 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                         args=(a, b, sign, settings.pullback), max_step=settings.max_step)
         branch.nfev += res.nfev
         if res.status == -1:
-            branch.status, branch.message = "failed", f"solve_ivp failed at s = {s:.6g}: {res.message}"
+            y_last = res.y[:, -1] if res.y.size else y
+            if kc.degeneracy(y_last, a, b, 0, 0) < NODE_SUSPECT:
+                branch.status = "singular"
+                branch.message = f"singular point (normals parallel) near s = {s + res.t[-1]:.6g}"
+            else:
+                branch.status, branch.message = "failed", f"solve_ivp failed at s = {s:.6g}: {res.message}"
+            if res.t.size:
+                branch.segments.append(Segment(s0=s, s1=s + res.t[-1], sign=sign, sol=res.sol, a=a, b=b,
+                                               t=res.t, y=res.y))
+                s += res.t[-1]
+                y = res.y[:, -1].copy()
             break
         length = res.t[-1]
         seg = Segment(s0=s, s1=s + length, sign=sign, sol=res.sol, a=a, b=b, t=res.t, y=res.y)
@@ -223,6 +284,14 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         kind, info = kinds[hit]
         y = res.y_events[hit][0].copy()
         kc.curve_frame(y, a, b, point, tangent)
+        if kind == "minimum":
+            sin_normals = kc.degeneracy(y, a, b, 0, 0)
+            if sin_normals < NODE_SUSPECT:
+                branch.status = "singular"
+                branch.message = (f"singular point (branches cross or the surfaces touch; sin = {sin_normals:.2g}) "
+                                  f"at s = {s:.6g}, point {point.tolist()}")
+                break
+            continue
         if kind == "chart":
             continue
         if kind == "closure":

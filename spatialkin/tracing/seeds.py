@@ -173,7 +173,9 @@ def critical_points(p, q, scale):
 def flow_to_level(p, q, uv, direction, sigma, scale):
     """Follow the unit-speed gradient flow of g (sigma = +1 up, -1 down) from uv + offset * direction
     until g = 0; returns the point (3,) near the level, or None if the flow ends first."""
-    x0 = np.asarray(uv, dtype=float) + FLOW_OFFSET * direction / np.linalg.norm(direction)
+    x0 = np.asarray(uv, dtype=float)
+    if direction is not None:
+        x0 = x0 + FLOW_OFFSET * direction / np.linalg.norm(direction)
     h = np.array([kl.FD_STEP_GRAD, kl.FD_STEP_GRAD])
     if int(p.data[ks.KIND]) == ks.PLANE:
         h *= scale
@@ -193,7 +195,7 @@ def flow_to_level(p, q, uv, direction, sigma, scale):
         if np.isfinite(bound):
             def edge(t, x, *_, idx=idx, bound=bound, lower=lower):
                 return x[idx] - bound if lower else bound - x[idx]
-            edge.terminal = True
+            edge.terminal, edge.direction = True, -1
             events.append(edge)
     g0 = level(0.0, x0)
     if g0 == 0.0:
@@ -206,27 +208,44 @@ def flow_to_level(p, q, uv, direction, sigma, scale):
     return None
 
 
-def edge_crossings(p, q):
-    """Points where the zero level of g meets the edges of a trimmed P (sign changes along each edge)."""
+def edges(p):
+    """Sampled edges of a trimmed P: list of (uv (n, 2), index of the fixed parameter, its value)."""
     (ulo, uhi), (vlo, vhi) = p.u_range, p.v_range
     kind = int(p.data[ks.KIND])
-    edges = []
-    if kind == ks.PLANE and np.all(np.isfinite([ulo, uhi])):
-        t = np.linspace(vlo, vhi, EDGE_SAMPLES) if np.all(np.isfinite([vlo, vhi])) else None
-        if t is not None:
-            edges += [np.column_stack([np.full_like(t, ulo), t]), np.column_stack([np.full_like(t, uhi), t])]
-    if np.all(np.isfinite([vlo, vhi])):
-        ulo_e, uhi_e = (ulo, uhi) if kind == ks.PLANE else (-math.pi, math.pi)
-        if np.all(np.isfinite([ulo_e, uhi_e])):
-            t = np.linspace(ulo_e, uhi_e, EDGE_SAMPLES)
-            edges += [np.column_stack([t, np.full_like(t, vlo)]), np.column_stack([t, np.full_like(t, vhi)])]
     out = []
-    for uv in edges:
-        g = np.array([kl.level_value(p.data, q.data, a, b) for a, b in uv])
+    if kind == ks.PLANE and np.all(np.isfinite([ulo, uhi, vlo, vhi])):
+        t = np.linspace(vlo, vhi, EDGE_SAMPLES)
+        out += [(np.column_stack([np.full_like(t, u), t]), 0, u) for u in (ulo, uhi)]
+    if np.all(np.isfinite([vlo, vhi])):
+        lo, hi = (ulo, uhi) if kind == ks.PLANE else (-math.pi, math.pi)
+        if np.all(np.isfinite([lo, hi])):
+            t = np.linspace(lo, hi, EDGE_SAMPLES)
+            out += [(np.column_stack([t, np.full_like(t, v)]), 1, v) for v in (vlo, vhi)]
+    return out
+
+
+def edge_seeds(p, q, scale):
+    """Seeds from the edges of a trimmed P: the points where the level meets an edge (sign changes of g
+    along it), and gradient flows from the edge's local extrema of g (for components inside that touch
+    no edge, as the interior critical points do for closed surfaces)."""
+    seeds = []
+    for uv, fixed, value in edges(p):
+        g = np.array([kl.level_value(p.data, q.data, x, y) for x, y in uv])
         for i in np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) <= 0)[0]:
             w = g[i] / (g[i] - g[i + 1]) if g[i] != g[i + 1] else 0.0
-            out.append(p.point(*((1 - w) * uv[i] + w * uv[i + 1])))
-    return out
+            seeds.append(("edge", p.point(*((1 - w) * uv[i] + w * uv[i + 1])), fixed, value))
+        interior = np.arange(1, len(g) - 1)
+        extrema = interior[((g[interior] - g[interior - 1]) * (g[interior + 1] - g[interior]) <= 0)]
+        inward = 1.0 if value == min(p.u_range[fixed] if fixed == 0 else p.v_range[0], value) else -1.0
+        nudge = np.zeros(2)
+        nudge[fixed] = inward * FLOW_OFFSET * (scale if (fixed == 0 or int(p.data[ks.KIND]) == ks.PLANE) and
+                                               int(p.data[ks.KIND]) == ks.PLANE else 1.0)
+        for i in np.r_[extrema, 0, len(g) - 1]:
+            if g[i] != 0:
+                hit = flow_to_level(p, q, uv[i] + nudge, None, -np.sign(g[i]), scale)
+                if hit is not None:
+                    seeds.append(("flow", hit, None, None))
+    return seeds
 
 
 def find_seeds(a, b, scale, level_tol):
@@ -240,6 +259,8 @@ def find_seeds(a, b, scale, level_tol):
         Isolated points where the surfaces touch (an extremum of g on the level).
     nodes : list of ndarray (3,)
         Points where branches cross (a saddle of g on the level); seeds near them are included.
+    edge_points : list of (point (3,), fixed, value)
+        Points near where the level meets an edge of P, parameter `fixed` (0 u, 1 v) of P held at value.
     """
     p, q, _ = roles(a, b)
     seeds, contacts, nodes = [], [], []
@@ -265,5 +286,10 @@ def find_seeds(a, b, scale, level_tol):
                     hit = flow_to_level(p, q, uv, sense * vec[:, i], sigma, scale)
                     if hit is not None:
                         seeds.append(hit)
-    seeds += edge_crossings(p, q)
-    return seeds, contacts, nodes
+    edge_points = []
+    for kind, point, fixed, value in edge_seeds(p, q, scale):
+        if kind == "flow":
+            seeds.append(point)
+        else:
+            edge_points.append((point, fixed, value))
+    return seeds, contacts, nodes, edge_points

@@ -70,10 +70,10 @@ def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
     for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) <= 0)[0]:
         if f[i] == 0 and i > 0 and f[i - 1] == 0:
             continue
-        x = np.array([*a.parameters(pts[i]), u2[i]])
-        x = _newton_aux(a, b, x, v, tol * scale)
-        if x is not None and lo <= x[2] <= hi + 1e-12:
-            out.append([x[0], x[1], x[2], v])
+        y = np.array([*a.parameters(pts[i]), u2[i], v])
+        y = newton_fixed(a, b, y, 3, tol * scale)
+        if y is not None and lo <= y[2] <= hi + 1e-12:
+            out.append(y)
     out = np.array(out).reshape(-1, 4)
     if len(out) > 1:       # crossings found twice (a root exactly at a sample) are merged
         keep = [0]
@@ -84,20 +84,26 @@ def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
     return out
 
 
-def _newton_aux(a, b, x, v, gap_tol, max_iter=30):
-    """Newton on M1(u1, v1) - M2(u2, v) = 0 in (u1, v1, u2); None if it fails."""
+def newton_fixed(a, b, y, fixed, gap_tol, max_iter=30):
+    """Newton on M1(u1, v1) - M2(u2, v2) = 0 for the three parameters other than y[fixed], which is held.
+
+    Returns the solved (4,) state, or None if Newton fails. This cuts one surface with a parameter line of
+    the other (the seed's auxiliary curve, or the edge of a trimmed surface).
+    """
+    y = np.array(y, dtype=float)
+    free = [i for i in range(4) if i != fixed]
     d1 = np.empty((6, 3))
     d2 = np.empty((6, 3))
     for _ in range(max_iter):
-        ks.derivatives(a.data, x[0], x[1], d1)
-        ks.derivatives(b.data, x[2], v, d2)
+        ks.derivatives(a.data, y[0], y[1], d1)
+        ks.derivatives(b.data, y[2], y[3], d2)
         r = d1[0] - d2[0]
         if np.linalg.norm(r) <= gap_tol:
-            return x
-        jac = np.column_stack([d1[1], d1[2], -d2[1]])
+            return y
+        jac = np.column_stack([d1[1], d1[2], -d2[1], -d2[2]])[:, free]
         try:
             dx = np.linalg.solve(jac, -r)
         except np.linalg.LinAlgError:
             return None
-        x = x + dx
+        y[free] += dx
     return None

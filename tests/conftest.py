@@ -1,0 +1,3 @@
+import os
+
+os.environ.setdefault("PYVISTA_OFF_SCREEN", "true")

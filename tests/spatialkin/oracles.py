@@ -1,0 +1,65 @@
+"""Independent oracles (numpy only, no spatialkin kernels): exact distances, closed forms, topology.
+
+From ../shared/reference/ssi-notes.md.
+"""
+import numpy as np
+
+
+def random_rotation(rng):
+    """A uniformly random proper rotation (from a random unit quaternion)."""
+    q = rng.normal(size=4)
+    w, x, y, z = q / np.linalg.norm(q)
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ])
+
+
+def torus_distance(local_points, big, small):
+    """Exact distance to the torus about local z (both circles of the meridian plane)."""
+    p = np.asarray(local_points)
+    rho = np.hypot(p[..., 0], p[..., 1])
+    z = p[..., 2]
+    return np.minimum(np.abs(np.hypot(rho - big, z) - small), np.abs(np.hypot(rho + big, z) - small))
+
+
+def sphere_distance(points, centre, radius):
+    return np.abs(np.linalg.norm(np.asarray(points) - centre, axis=-1) - radius)
+
+
+def torus_sphere_closed_form(big, small, c, rho, phi):
+    """Exact points (n, 2, 3) (local torus coordinates) of torus ∩ sphere at torus angles phi where they exist,
+    and the mask of those angles: alpha cos v + beta sin v = gamma (ssi-notes)."""
+    phi = np.asarray(phi, dtype=float)
+    a = c[0] * np.cos(phi) + c[1] * np.sin(phi)
+    alpha = 2 * small * (big - a)
+    beta = np.full_like(phi, -2 * small * c[2])
+    gamma = 2 * big * a - big ** 2 - small ** 2 - c @ c + rho ** 2
+    amp = np.hypot(alpha, beta)
+    ok = np.abs(gamma) <= amp
+    base = np.arctan2(beta, alpha)
+    spread = np.arccos(np.clip(gamma / np.where(amp > 0, amp, 1), -1, 1))
+    pts = []
+    for v in (base + spread, base - spread):
+        w = big + small * np.cos(v)
+        pts.append(np.stack([w * np.cos(phi), w * np.sin(phi), small * np.sin(v)], axis=-1))
+    return np.stack(pts, axis=1)[ok], ok
+
+
+def torus_sphere_critical_radii(big, small, c):
+    """Sorted critical sphere radii for a ring torus and a sphere centre c off the axis (local coords)."""
+    rho_c = np.hypot(c[0], c[1])
+    d_min = np.hypot(rho_c - big, c[2])
+    d_max = np.hypot(rho_c + big, c[2])
+    return np.sort([abs(d_min - small), d_min + small, abs(d_max - small), d_max + small])
+
+
+def torus_sphere_components(big, small, c, rho):
+    """Number of components by the band of rho among the critical radii (generic position)."""
+    r1, r2, r3, r4 = torus_sphere_critical_radii(big, small, c)
+    if rho < r1 or rho > r4:
+        return 0
+    if r2 < rho < r3:
+        return 2
+    return 1

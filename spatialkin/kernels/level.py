@@ -80,8 +80,9 @@ def critical_newton(p, q, starts, param_scale, max_iter, out, status):
 
 
 @jit
-def gradient_flow_rhs(t, x, p, q, sigma, h):
-    """d(u, v)/dtau of the unit-speed gradient flow of g on P: sigma * G^-1 grad g / |grad_S g|."""
+def gradient_flow_rhs(t, x, p, q, sigma, h, saturation):
+    """d(u, v)/dtau of the gradient flow of g on P, sigma * G^-1 grad g / max(|grad_S g|, saturation):
+    unit speed in space where the gradient is steep, slowing smoothly into an extremum (no chattering)."""
     loc = np.empty((6, 3))
     derivatives(p, x[0], x[1], loc)
     e = loc[DU, 0] ** 2 + loc[DU, 1] ** 2 + loc[DU, 2] ** 2
@@ -98,7 +99,7 @@ def gradient_flow_rhs(t, x, p, q, sigma, h):
     speed2 = du * grad[0] + dv * grad[1]        # |grad_S g|^2
     if speed2 <= 0.0:
         return out
-    speed = math.sqrt(speed2)
+    speed = max(math.sqrt(speed2), saturation)
     out[0] = sigma * du / speed
     out[1] = sigma * dv / speed
     return out

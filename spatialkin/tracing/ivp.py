@@ -212,6 +212,31 @@ def at_outer_edge(a, b, y, sign):
     return False
 
 
+def newton_fixed(a, b, y, fixed, gap_tol, max_iter=30):
+    """Newton on M1(u1, v1) - M2(u2, v2) = 0 for the three parameters other than y[fixed], which is held.
+
+    Returns the solved (4,) state, or None if Newton fails. This cuts one surface with a parameter line of
+    the other (the seed's auxiliary curve, or the edge of a trimmed surface).
+    """
+    y = np.array(y, dtype=float)
+    free = [i for i in range(4) if i != fixed]
+    d1 = np.empty((6, 3))
+    d2 = np.empty((6, 3))
+    for _ in range(max_iter):
+        ks.derivatives(a, y[0], y[1], d1)
+        ks.derivatives(b, y[2], y[3], d2)
+        r = d1[0] - d2[0]
+        if np.linalg.norm(r) <= gap_tol:
+            return y
+        jac = np.column_stack([d1[1], d1[2], -d2[1], -d2[2]])[:, free]
+        try:
+            dx = np.linalg.solve(jac, -r)
+        except np.linalg.LinAlgError:
+            return None
+        y[free] += dx
+    return None
+
+
 def project_state(y, a, b, settings, tangent_hint=None):
     """Project y onto the curve in the plane normal to the local tangent; returns (y, point, tangent, ok)."""
     y = np.array(y, dtype=float)
@@ -323,6 +348,12 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             which = ("u_min", "u_max", "v_min", "v_max")[j]
             branch.status = "boundary"
             branch.message = f"reached the edge {which} of surface {name} at s = {s:.6g}"
+            edge_state = y.copy()
+            edge_state[2 * k + j // 2] = (a, b)[k][ks.BOUNDS + j]
+            snapped = newton_fixed(a, b, edge_state, 2 * k + j // 2, settings.gap_tol)
+            if snapped is not None:      # end exactly on the edge
+                y = snapped
+                seg.y[:, -1] = y
             break
     else:
         branch.status, branch.message = "failed", f"more than {MAX_SEGMENTS} segments"

@@ -60,6 +60,9 @@ class Curve:
         Right-hand-side evaluations spent by solve_ivp.
     wall_time : float
         Seconds spent tracing this curve.
+    solver_gap : ndarray (M,)
+        |M1 - M2| of the solver's own states at its steps, before the Newton correction: how far plain
+        integration (with the pull-back) strays; a diagnostic of drift.
     """
 
     def __init__(self, surfaces, points, s, params, closed, length, status, message, spans, gap_tol,
@@ -74,6 +77,7 @@ class Curve:
         self.message = message
         self.nfev = int(nfev)
         self.wall_time = float(wall_time)
+        self.solver_gap = np.zeros(0)
         self._spans = spans
         self._gap_tol = gap_tol
         self._lo = np.array([sp.lo for sp in spans])

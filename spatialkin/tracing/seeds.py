@@ -35,8 +35,10 @@ MERGE_RADIUS = 1e-6
 FLOW_OFFSET = 1e-4
 #: Relative tolerance of the gradient flow integration (only a point near the level is needed).
 FLOW_RTOL = 1e-8
-#: A flow stops (without a seed) where |grad g| falls below this: it reached another extremum.
-FLOW_MIN_GRADIENT = 1e-7
+#: The flow slows where |grad_S g| falls below FLOW_SATURATION, and stops (without a seed) below
+#: FLOW_MIN_GRADIENT: it ran into an extremum that does not reach the level.
+FLOW_SATURATION = 1e-3
+FLOW_MIN_GRADIENT = 1e-4
 #: Longest gradient flow, in turns around P (2 pi times its size).
 FLOW_TURNS = 4
 #: Samples along each edge of a trimmed surface.
@@ -202,7 +204,7 @@ def flow_to_level(p, q, uv, direction, sigma, scale):
         return p.point(*x0)
     res = solve_ivp(kl.gradient_flow_rhs, (0.0, FLOW_TURNS * 2 * math.pi * max(p.size, scale)), x0,
                     method="RK45", rtol=FLOW_RTOL, atol=FLOW_RTOL, events=events,
-                    args=(p.data, q.data, float(sigma), h))
+                    args=(p.data, q.data, float(sigma), h, FLOW_SATURATION))
     if res.status == 1 and res.t_events[0].size:
         return p.point(*res.y_events[0][0])
     return None
@@ -264,7 +266,11 @@ def find_seeds(a, b, scale, level_tol):
     """
     p, q, _ = roles(a, b)
     seeds, contacts, nodes = [], [], []
-    for uv, value, lam, vec in critical_points(p, q, scale):
+    critical = critical_points(p, q, scale)
+    values = np.array([c[1] for c in critical])
+    if p.compact and len(values) and (values.min() > level_tol or values.max() < -level_tol):
+        return seeds, contacts, nodes, []      # g keeps one sign on a closed surface: no intersection
+    for uv, value, lam, vec in critical:
         big = max(abs(lam[0]), abs(lam[1]), 1e-300)
         on_level = abs(value) <= level_tol
         if on_level:

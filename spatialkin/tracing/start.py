@@ -10,6 +10,7 @@ import numpy as np
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
 from .ivp import NEWTON_MAX_ITER, charts_at
+from .ivp import newton_fixed as ivp_newton_fixed
 from .result import TracingError
 
 #: Samples of an auxiliary parameter line when looking for its crossings with the other surface.
@@ -84,26 +85,6 @@ def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
     return out
 
 
-def newton_fixed(a, b, y, fixed, gap_tol, max_iter=30):
-    """Newton on M1(u1, v1) - M2(u2, v2) = 0 for the three parameters other than y[fixed], which is held.
-
-    Returns the solved (4,) state, or None if Newton fails. This cuts one surface with a parameter line of
-    the other (the seed's auxiliary curve, or the edge of a trimmed surface).
-    """
-    y = np.array(y, dtype=float)
-    free = [i for i in range(4) if i != fixed]
-    d1 = np.empty((6, 3))
-    d2 = np.empty((6, 3))
-    for _ in range(max_iter):
-        ks.derivatives(a.data, y[0], y[1], d1)
-        ks.derivatives(b.data, y[2], y[3], d2)
-        r = d1[0] - d2[0]
-        if np.linalg.norm(r) <= gap_tol:
-            return y
-        jac = np.column_stack([d1[1], d1[2], -d2[1], -d2[2]])[:, free]
-        try:
-            dx = np.linalg.solve(jac, -r)
-        except np.linalg.LinAlgError:
-            return None
-        y[free] += dx
-    return None
+def newton_fixed(a, b, y, fixed, gap_tol):
+    """newton_fixed of spatialkin.tracing.ivp for two Surface objects."""
+    return ivp_newton_fixed(a.data, b.data, y, fixed, gap_tol)

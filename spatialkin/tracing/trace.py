@@ -201,13 +201,14 @@ def trace_from(a, b, point, y, settings, t_start):
         spans[-1].hi = length
         keep &= s_all < length - DUPLICATE_SPACING * settings.scale
     s_all, y_all, span_of = s_all[keep], y_all[keep], span_of[keep]
-    points, params = _corrected(a, b, y_all, span_of, spans, settings)
+    points, params, raw_gap = _corrected(a, b, y_all, span_of, spans, settings)
     if closed:
         points = np.vstack([points, points[:1]])
         params = np.vstack([params, _closing_params(a, b, params[0], params[-1])])
         s_all = np.append(s_all, length)
     curve = Curve((a, b), points, s_all, params, closed, length, status, message, spans, settings.gap_tol,
                   nfev=nfev, wall_time=0.0)
+    curve.solver_gap = raw_gap
     curve.wall_time = time.perf_counter() - t_start
     return curve
 
@@ -222,10 +223,15 @@ def _corrected(a, b, y_all, span_of, spans, settings):
     """Project the solver's step states onto the curve (each in its segment's charts); user parameters."""
     points = np.empty((len(y_all), 3))
     params = np.empty((len(y_all), 4))
+    raw_gap = np.empty(len(y_all))
     for k in np.unique(span_of):
         mask = span_of == k
         seg = spans[k].seg
         y = np.ascontiguousarray(y_all[mask])
+        on_a, on_b = np.empty((len(y), 3)), np.empty((len(y), 3))
+        ks.evaluate(seg.a, np.ascontiguousarray(y[:, :2]), on_a)
+        ks.evaluate(seg.b, np.ascontiguousarray(y[:, 2:]), on_b)
+        raw_gap[mask] = np.linalg.norm(on_a - on_b, axis=1)
         p = np.empty((len(y), 3))
         t = np.empty((len(y), 3))
         st = np.empty(len(y), dtype=np.int64)
@@ -235,7 +241,7 @@ def _corrected(a, b, y_all, span_of, spans, settings):
     for k, surf in enumerate((a, b)):
         if int(surf.data[ks.KIND]) == ks.SPHERE:
             params[:, 2 * k] = np.unwrap(params[:, 2 * k])
-    return points, params
+    return points, params, raw_gap
 
 
 def _closing_params(a, b, first, last):

@@ -1,0 +1,214 @@
+"""sk.trace: start points, closure, dense evaluation, drift, singular points and edges, against oracles."""
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+import spatialkin as sk
+
+TOL = 1e-10
+
+
+@pytest.fixture(scope="module")
+def looper_pair():
+    """The reference geometry of ../shared/reference/looper-drive.md (mm)."""
+    torus = sk.Torus(8.0, 50.0)
+    sphere = sk.Sphere(30.0, sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1, 0, 0), -np.pi / 2)))
+    return torus, sphere
+
+
+def test_auxiliary_start_is_on_both_surfaces(looper_pair):
+    """The seed's start: the sphere's equator cut by the torus; oracle: exact distances and v2 = 0."""
+    torus, sphere = looper_pair
+    starts = sk.auxiliary_starts(torus, sphere)
+    assert len(starts) >= 2
+    assert np.all(starts[:, 3] == 0.0)
+    pts = torus.point(starts[:, 0], starts[:, 1])
+    np.testing.assert_allclose(pts, sphere.point(starts[:, 2], starts[:, 3]), atol=TOL * 30)
+    assert np.max(torus.distance(pts)) < TOL * 30 and np.max(sphere.distance(pts)) < TOL * 30
+
+
+def test_looper_curve_closes_with_reference_length(looper_pair):
+    """From the seed's start at v1 ≈ 110° the ball-centre path is the 59.7 mm loop of the reference."""
+    torus, sphere = looper_pair
+    starts = sk.auxiliary_starts(torus, sphere)
+    start = starts[np.argmin(np.abs(starts[:, 1] - np.radians(110)))]
+    curve = sk.trace(torus, sphere, start)
+    assert curve.closed and curve.status == "closed"
+    assert abs(curve.length - 59.7) < 0.05
+    assert curve.max_distance < TOL * 30
+    # the parameters reproduce the points on each surface (to 1e-9 mm)
+    np.testing.assert_allclose(torus.point(curve.params[:, 0], curve.params[:, 1]), curve.points, atol=1e-9)
+    np.testing.assert_allclose(sphere.point(curve.params[:, 2], curve.params[:, 3]), curve.points, atol=1e-9)
+    # v1 stays in about 107°-114° (reference, measured independently)
+    v1 = np.degrees(np.mod(curve.params[:, 1], 2 * np.pi))
+    assert 106 < v1.min() and v1.max() < 115
+
+
+def test_start_forms_give_the_same_curve(looper_pair):
+    torus, sphere = looper_pair
+    start = sk.auxiliary_starts(torus, sphere)[-1]
+    by_params = sk.trace(torus, sphere, start)
+    point = torus.point(start[0], start[1]) + np.array([0.3, -0.2, 0.1])   # near the curve, off it
+    by_point = sk.trace(torus, sphere, point)
+    assert by_params.closed and by_point.closed
+    assert abs(by_params.length - by_point.length) < 1e-8 * by_params.length
+    assert np.max(by_params.closest(by_point.points)[1]) < 1e-9
+
+
+def test_plane_sphere_circle_closes_exactly():
+    """Oracle: a circle of radius sqrt(R^2 - d^2) about the foot of the centre on the plane."""
+    centre, radius = np.array([0.3, 0.1, 0.2]), 2.0
+    normal = np.array([1.0, 1.0, 1.0]) / np.sqrt(3)
+    plane = sk.Plane(sk.Frame.from_z_axis((0, 0, 1.0), normal))
+    sphere = sk.Sphere(radius, sk.Frame(centre))
+    d = (centre - np.array([0, 0, 1.0])) @ normal
+    foot = centre - d * normal
+    circle_radius = np.sqrt(radius ** 2 - d ** 2)
+    curve = sk.trace(sphere, plane, foot + circle_radius * np.array([1, -1, 0]) / np.sqrt(2))
+    assert curve.closed
+    assert curve.points[-1].tolist() == curve.points[0].tolist()        # closed exactly
+    assert curve.s[-1] == curve.length and np.all(np.diff(curve.s) > 0)
+    assert abs(curve.length - 2 * np.pi * circle_radius) < 1e-8 * circle_radius   # one lap, no more
+    np.testing.assert_allclose(np.linalg.norm(curve.points - foot, axis=1), circle_radius, atol=1e-12)
+    np.testing.assert_allclose((curve.points - foot) @ normal, 0.0, atol=1e-12)
+
+
+def test_dense_evaluation_on_both_surfaces_and_unit_speed(looper_pair):
+    torus, sphere = looper_pair
+    curve = sk.trace(torus, sphere, sk.auxiliary_starts(torus, sphere)[0])
+    s = np.random.default_rng(0).uniform(0, curve.length, 2000)
+    pts = curve(s)
+    assert pts.shape == (2000, 3)
+    assert np.max(curve.distances(pts)) < TOL * 30
+    # arc length parametrisation: chord over a short arc equals the arc (curvature <= 1/5 mm here)
+    h = 1e-4
+    speed = np.linalg.norm(curve(s + h) - curve(s - h), axis=1) / (2 * h)
+    np.testing.assert_allclose(speed, 1.0, atol=1e-7)
+    # the tangent is the derivative of the position (central difference, h = 1e-4: error ~ 1e-9)
+    np.testing.assert_allclose(curve.tangent(s), (curve(s + h) - curve(s - h)) / (2 * h), atol=1e-7)
+    # periodic: s and s + length are the same point
+    np.testing.assert_allclose(curve(s[:10] + curve.length), curve(s[:10]), atol=1e-9)
+
+
+def test_drift_stays_flat_over_100_loops():
+    """Traced on for 100 laps (each way) without closing: every point within tol of both surfaces, the solver's own
+    gap flat from the first lap to the last, and the pull-back term smaller than without it."""
+    torus = sk.Torus(3.0, 1.0)
+    sphere = sk.Sphere(2.5, sk.Frame((1.0, 0.5, 0.7)))
+    loop = sk.intersect(torus, sphere)[0]
+    length = loop.length
+    gaps = {}
+    for pullback in (1.0, 0.0):
+        long = sk.trace(torus, sphere, loop.points[0], close=False, max_length=100 * length, pullback=pullback)
+        # traced 100 laps each way from the start, which sits at s = 100 * length
+        assert long.status == "max_length" and abs(long.length - 200 * length) < 1e-9 * length
+        assert long.max_distance < TOL * 2.5
+        gap, s = long.solver_gap, long.s
+        first = gap[np.abs(s - 100 * length) < length].max()
+        last = max(gap[s < length].max(), gap[s > 199 * length].max())
+        gaps[pullback] = (first, last)
+    first, last = gaps[1.0]
+    assert last <= 10 * first + 1e-13
+    assert gaps[1.0][1] < gaps[0.0][1]
+
+
+def test_singular_points_stop_the_branch_villarceau():
+    """A plane through the torus centre tilted by asin(r/R) cuts two Villarceau circles of radius R
+    crossing at the two points where the plane touches the torus. Each arc ends there as 'singular'."""
+    big, small = 3.0, 1.0
+    theta = np.arcsin(small / big)
+    normal = np.array([np.sin(theta), 0.0, np.cos(theta)])
+    torus = sk.Torus(big, small)
+    plane = sk.Plane(sk.Frame.from_z_axis((0, 0, 0), normal))
+    curves = sk.intersect(torus, plane)
+    assert len(curves) == 4 and all(c.status == "singular" and not c.closed for c in curves)
+    node = big * np.cos(theta) * np.array([np.cos(theta), 0.0, -np.sin(theta)])
+    for c in curves:
+        on_circle = np.minimum(np.abs(np.linalg.norm(c.points - [0, small, 0], axis=1) - big),
+                               np.abs(np.linalg.norm(c.points - [0, -small, 0], axis=1) - big))
+        near_node = np.minimum(np.linalg.norm(c.points - node, axis=1), np.linalg.norm(c.points + node, axis=1))
+        # away from the nodes the points are on the circles to round-off; beside a node, where the surfaces
+        # are tangent, a point within 1e-15 of both may sit up to ~1e-8 off the curve (ill-conditioned)
+        assert on_circle[near_node > 1e-3].max() < 1e-12
+        assert on_circle.max() < 1e-7
+        for end in c.points[[0, -1]]:
+            assert min(np.linalg.norm(end - node), np.linalg.norm(end + node)) < 1e-5 * big
+    # together they cover both circles up to the stops beside the nodes
+    assert abs(sum(c.length for c in curves) - 4 * np.pi * big) < 1e-4 * big
+
+
+def test_viviani_lobes_end_at_the_node():
+    """Viviani's curve (sphere radius 2a ∩ cylinder radius a through the centre): x = a(1 + cos t),
+    y = a sin t, z = 2a sin(t/2); a figure-eight with its node at (2a, 0, 0)."""
+    a = 1.0
+    sphere = sk.Sphere(2 * a)
+    cylinder = sk.Cylinder(a, sk.Frame((a, 0, 0)))
+    curves = sk.intersect(sphere, cylinder)
+    lobe = 2 * a * quad(lambda w: np.sqrt(1 + np.cos(w) ** 2), 0, np.pi)[0]
+    assert len(curves) == 2
+    for c in curves:
+        p = c.points
+        np.testing.assert_allclose((p[:, 0] - a) ** 2 + p[:, 1] ** 2, a ** 2, atol=1e-12)
+        np.testing.assert_allclose(np.linalg.norm(p, axis=1), 2 * a, atol=1e-12)
+        assert c.status == "singular"
+        assert abs(c.length - lobe) < 1e-5
+        for end in p[[0, -1]]:
+            assert np.linalg.norm(end - [2 * a, 0, 0]) < 1e-5
+
+
+def test_edges_of_a_trimmed_cylinder():
+    """Plane z = -x through a cylinder trimmed to |z| <= 0.5: two arcs of the ellipse x = cos u, y = sin u,
+    z = -cos u, for |cos u| <= 1/2, ending exactly on the rims."""
+    cylinder = sk.Cylinder(1.0, v_range=(-0.5, 0.5))
+    plane = sk.Plane(sk.Frame.from_z_axis((0, 0, 0), (1, 0, 1)))
+    curves = sk.intersect(cylinder, plane)
+    arc = quad(lambda u: np.sqrt(1 + np.sin(u) ** 2), np.pi / 3, 2 * np.pi / 3)[0]
+    assert len(curves) == 2
+    for c in curves:
+        assert c.status == "boundary" and not c.closed
+        np.testing.assert_allclose(np.abs(c.points[[0, -1], 2]), 0.5, atol=1e-12)
+        assert np.all(np.abs(c.points[:, 2]) <= 0.5 + 1e-12)
+        assert abs(c.length - arc) < 1e-8
+    # the untrimmed cylinder gives the whole ellipse (perimeter of semi-axes sqrt(2) and 1)
+    whole = sk.intersect(sk.Cylinder(1.0, v_range=(-2, 2)), plane)
+    assert len(whole) == 1 and whole[0].closed
+    assert abs(whole[0].length - 4 * arc * 1.5 / 1.5 * 0 - quad(lambda u: np.sqrt(1 + np.sin(u) ** 2), 0, 2 * np.pi)[0]) < 1e-8
+
+
+def test_no_intersection_is_an_error_for_trace_and_empty_for_intersect():
+    torus = sk.Torus(3.0, 1.0)
+    far = sk.Sphere(1.0, sk.Frame((20.0, 0, 0)))
+    assert sk.intersect(torus, far) == []
+    with pytest.raises(sk.TracingError, match="no intersection point"):
+        sk.trace(torus, far, (15.0, 0, 0))
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    ({"tol": 0.0}, "tol"), ({"tol": -1e-10}, "tol"), ({"tol": np.nan}, "tol"), ({"rtol": -1.0}, "rtol"),
+    ({"method": "Euler"}, "method"), ({"max_length": 0.0}, "max_length"), ({"singular_tol": 0}, "singular_tol"),
+])
+def test_bad_arguments_are_named(kwargs, name, looper_pair):
+    torus, sphere = looper_pair
+    start = sk.auxiliary_starts(torus, sphere)[0]
+    with pytest.raises(ValueError, match=name):
+        sk.trace(torus, sphere, start, **kwargs)
+
+
+def test_bad_start_and_surfaces(looper_pair):
+    torus, sphere = looper_pair
+    with pytest.raises(ValueError, match="start"):
+        sk.trace(torus, sphere, (1.0, 2.0))
+    with pytest.raises(ValueError, match="start"):
+        sk.trace(torus, sphere, (np.nan, 0, 0))
+    with pytest.raises(TypeError, match="b must be"):
+        sk.trace(torus, "sphere", (0, 0, 0))
+    with pytest.raises(ValueError, match="tol"):
+        sk.intersect(torus, sphere, tol=0)
+
+
+def test_open_curve_evaluation_outside_is_an_error():
+    cylinder = sk.Cylinder(1.0, v_range=(-0.5, 0.5))
+    plane = sk.Plane(sk.Frame.from_z_axis((0, 0, 0), (1, 0, 1)))
+    c = sk.intersect(cylinder, plane)[0]
+    with pytest.raises(ValueError, match="s must lie"):
+        c(c.length + 1.0)

@@ -136,6 +136,16 @@ def charts_at(a_user, b_user, point, tangent, y_prev=None):
     return charts[0], charts[1], y
 
 
+def finite_bounds(*surfaces):
+    """(surface index k, bound index j, state index, bound value, is a lower bound) of every finite bound of
+    the surfaces' data, j in (u_min, u_max, v_min, v_max) order."""
+    for k, data in enumerate(surfaces):
+        for j in range(4):
+            bound = data[ks.BOUNDS + j]
+            if np.isfinite(bound):
+                yield k, j, 2 * k + j // 2, bound, j % 2 == 0
+
+
 def make_events(a, b, settings, sign, start, direction, s_arm):
     """The event functions of one segment, in a fixed order: singular, minimum, boundaries, poles, closure."""
     events, kinds = [], []
@@ -160,20 +170,14 @@ def make_events(a, b, settings, sign, start, direction, s_arm):
     events.append(minimum)
     kinds.append(("minimum", None))
 
+    for k, j, idx, bound, lower in finite_bounds(a, b):
+        def edge(s, y, *_, idx=idx, bound=bound, lower=lower):
+            return y[idx] - bound if lower else bound - y[idx]
+        edge.terminal, edge.direction = True, -1
+        events.append(edge)
+        kinds.append(("boundary", (k, j)))
+
     for k, data in enumerate((a, b)):
-        for j in range(4):
-            bound = data[ks.BOUNDS + j]
-            if not np.isfinite(bound):
-                continue
-            idx = 2 * k + j // 2
-            lower = j % 2 == 0
-
-            def edge(s, y, *_, idx=idx, bound=bound, lower=lower):
-                return y[idx] - bound if lower else bound - y[idx]
-            edge.terminal, edge.direction = True, -1
-            events.append(edge)
-            kinds.append(("boundary", (k, j)))
-
         if int(data[ks.KIND]) == ks.SPHERE:
             iv = 2 * k + 1
 
@@ -199,16 +203,11 @@ def make_events(a, b, settings, sign, start, direction, s_arm):
 def at_outer_edge(a, b, y, sign):
     """True where y lies on (or past) an edge of a trimmed surface and the direction of travel leaves it."""
     dy = kc.dragilev_rhs(0.0, y, a, b, sign, 0.0)
-    for k, data in enumerate((a, b)):
-        for j in range(4):
-            bound = data[ks.BOUNDS + j]
-            if not np.isfinite(bound):
-                continue
-            idx = 2 * k + j // 2
-            inside = y[idx] - bound if j % 2 == 0 else bound - y[idx]
-            rate = dy[idx] if j % 2 == 0 else -dy[idx]
-            if inside <= EDGE_TOL * max(1.0, abs(bound)) and rate < 0:
-                return True
+    for _, _, idx, bound, lower in finite_bounds(a, b):
+        inside = y[idx] - bound if lower else bound - y[idx]
+        rate = dy[idx] if lower else -dy[idx]
+        if inside <= EDGE_TOL * max(1.0, abs(bound)) and rate < 0:
+            return True
     return False
 
 

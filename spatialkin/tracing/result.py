@@ -109,13 +109,9 @@ class Curve:
             y = np.ascontiguousarray(span.states(s[mask]).T)
             p, t, st = points[mask], tangents[mask], status[mask]
             kc.project_many(y, span.seg.a, span.seg.b, self._gap_tol, NEWTON_MAX_ITER, p, t, st)
-            points[mask], tangents[mask], status[mask] = p, t * span.flip * self._sign(span), st
+            points[mask], tangents[mask], status[mask] = p, t * span.flip * span.seg.sign, st
             params[mask] = user_params(self.surfaces, y, p, span.seg.a, span.seg.b)
         return s, points, tangents, params
-
-    @staticmethod
-    def _sign(span):
-        return span.seg.sign
 
     def __call__(self, s):
         """Points (..., 3) on the curve at arc lengths s (...,), corrected onto both surfaces."""

@@ -26,6 +26,7 @@ from scipy.integrate import solve_ivp
 
 from ..kernels import level as kl
 from ..kernels import surfaces as ks
+from .ivp import finite_bounds
 
 #: Grid of Newton starts for the generic critical-point search (per parameter direction).
 GRID = 40
@@ -192,13 +193,11 @@ def flow_to_level(p, q, uv, direction, sigma, scale):
         return kl.surface_gradient_norm(p.data, q.data, x[0], x[1], h) - FLOW_MIN_GRADIENT
     stalled.terminal, stalled.direction = True, -1
     events = [level, stalled]
-    (ulo, uhi), (vlo, vhi) = p.u_range, p.v_range
-    for idx, bound, lower in ((0, ulo, True), (0, uhi, False), (1, vlo, True), (1, vhi, False)):
-        if np.isfinite(bound):
-            def edge(t, x, *_, idx=idx, bound=bound, lower=lower):
-                return x[idx] - bound if lower else bound - x[idx]
-            edge.terminal, edge.direction = True, -1
-            events.append(edge)
+    for _, _, idx, bound, lower in finite_bounds(p.data):
+        def edge(t, x, *_, idx=idx, bound=bound, lower=lower):
+            return x[idx] - bound if lower else bound - x[idx]
+        edge.terminal, edge.direction = True, -1
+        events.append(edge)
     g0 = level(0.0, x0)
     if g0 == 0.0:
         return p.point(*x0)

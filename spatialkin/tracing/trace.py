@@ -150,7 +150,8 @@ def trace_from(a, b, point, y, settings, t_start):
     """Trace both directions from a point on the curve and assemble the Curve."""
     tangent = np.empty(3)
     p = np.empty(3)
-    sin_normals = kc.curve_frame(np.asarray(y, dtype=float), *_user_charts(a, b, point, y), p, tangent)
+    a_chart, b_chart, y_chart = charts_at(a.data, b.data, point, np.zeros(3), y)
+    sin_normals = kc.curve_frame(y_chart, a_chart, b_chart, p, tangent)
     if sin_normals < settings.singular_tol:
         raise TracingError(f"start {point.tolist()} is a singular point of the intersection "
                            f"(normals parallel, sin = {sin_normals:.2g}): no tangent to follow",
@@ -211,12 +212,6 @@ def trace_from(a, b, point, y, settings, t_start):
     curve.solver_gap = raw_gap
     curve.wall_time = time.perf_counter() - t_start
     return curve
-
-
-def _user_charts(a, b, point, y):
-    a_chart, b_chart, y_chart = charts_at(a.data, b.data, point, np.zeros(3), y)
-    y[:] = y_chart
-    return a_chart, b_chart
 
 
 def _corrected(a, b, y_all, span_of, spans, settings):

@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .._jit import jit
-from .surfaces import first_derivatives, derivatives, POINT, DU, DV
+from .surfaces import first_derivatives, derivatives, POINT
 
 #: Below this, a 3x3 or 4x4 pivot is treated as zero (relative to the matrix scale).
 PIVOT_EPS = 1e-14

@@ -36,7 +36,6 @@ def intersect(a, b, tol=1e-10, *, method="DOP853", rtol=DEFAULT_RTOL, atol=None,
     """
     check_surface("a", a)
     check_surface("b", b)
-    t0 = time.perf_counter()
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
     seeds, contacts, nodes, edge_points = find_seeds(a, b, settings.scale, tol * settings.scale)
@@ -59,8 +58,6 @@ def intersect(a, b, tol=1e-10, *, method="DOP853", rtol=DEFAULT_RTOL, atol=None,
             curves.append(trace_from(a, b, point, y, settings, time.perf_counter()))
         except TracingError:
             continue            # the seed sits on a singular point: the arms' seeds trace it
-    for c in curves:
-        c.search_time = time.perf_counter() - t0
     return curves
 
 

@@ -98,7 +98,6 @@ class Curve:
     def _evaluate(self, s):
         """Corrected states, points and tangents at s (flattened)."""
         s, idx = self._locate(np.ravel(s))
-        ys = np.empty((s.size, 4))
         points = np.empty((s.size, 3))
         tangents = np.empty((s.size, 3))
         status = np.empty(s.size, dtype=np.int64)

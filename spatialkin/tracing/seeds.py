@@ -27,6 +27,7 @@ from scipy.integrate import solve_ivp
 from ..kernels import level as kl
 from ..kernels import surfaces as ks
 from .ivp import finite_bounds
+from .start import parameter_units
 
 #: Grid of Newton starts for the generic critical-point search (per parameter direction).
 GRID = 40
@@ -139,12 +140,7 @@ def critical_points(p, q, scale):
     """Critical points of g on P: list of (uv (2,), value, eigenvalues (2,), eigenvectors (2, 2))."""
     uv = closed_form_critical(p, q)
     kind = int(p.data[ks.KIND])
-    param_scale = np.ones(2)
-    if kind in (ks.PLANE,):
-        param_scale[:] = scale
-    elif kind in (ks.CYLINDER, ks.CONE):
-        param_scale[1] = scale
-    charts = [p]
+    param_scale = parameter_units(p.data, scale)
     if uv is None:
         lo, hi, _ = parameter_box(p, q)
         found = [grid_critical(p, q, lo, hi, param_scale)]
@@ -179,11 +175,7 @@ def flow_to_level(p, q, uv, direction, sigma, scale):
     x0 = np.asarray(uv, dtype=float)
     if direction is not None:
         x0 = x0 + FLOW_OFFSET * direction / np.linalg.norm(direction)
-    h = np.array([kl.FD_STEP_GRAD, kl.FD_STEP_GRAD])
-    if int(p.data[ks.KIND]) == ks.PLANE:
-        h *= scale
-    elif int(p.data[ks.KIND]) in (ks.CYLINDER, ks.CONE):
-        h[1] *= scale
+    h = kl.FD_STEP_GRAD * parameter_units(p.data, scale)
 
     def level(t, x, *_):
         return kl.level_value(p.data, q.data, x[0], x[1])
@@ -237,10 +229,9 @@ def edge_seeds(p, q, scale):
             seeds.append(("edge", p.point(*((1 - w) * uv[i] + w * uv[i + 1])), fixed, value))
         interior = np.arange(1, len(g) - 1)
         extrema = interior[((g[interior] - g[interior - 1]) * (g[interior + 1] - g[interior]) <= 0)]
-        inward = 1.0 if value == min(p.u_range[fixed] if fixed == 0 else p.v_range[0], value) else -1.0
-        nudge = np.zeros(2)
-        nudge[fixed] = inward * FLOW_OFFSET * (scale if (fixed == 0 or int(p.data[ks.KIND]) == ks.PLANE) and
-                                               int(p.data[ks.KIND]) == ks.PLANE else 1.0)
+        lower = (p.u_range, p.v_range)[fixed][0]
+        nudge = np.zeros(2)                      # flows start just inside the edge
+        nudge[fixed] = (1.0 if value == lower else -1.0) * FLOW_OFFSET * parameter_units(p.data, scale)[fixed]
         for i in np.r_[extrema, 0, len(g) - 1]:
             if g[i] != 0:
                 hit = flow_to_level(p, q, uv[i] + nudge, None, -np.sign(g[i]), scale)

@@ -24,6 +24,18 @@ def scene_scale(a, b):
     return min(sizes) if sizes else 1.0
 
 
+def parameter_units(data, scale):
+    """Length of a unit step in (u, v) (2,): 1 for an angle, scale for a length (plane u and v, the axial v
+    of a cylinder or cone). Sets absolute tolerances and difference steps per parameter."""
+    kind = int(data[ks.KIND])
+    units = np.ones(2)
+    if kind == ks.PLANE:
+        units[:] = scale
+    elif kind in (ks.CYLINDER, ks.CONE):
+        units[1] = scale
+    return units
+
+
 def locate_on_curve(a, b, guess, gap_tol, y_guess=None):
     """A point of the curve near guess (3,) by minimum-norm Gauss-Newton on M1 - M2 = 0.
 

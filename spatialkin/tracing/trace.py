@@ -14,7 +14,7 @@ from ..kernels import surfaces as ks
 from ..surfaces import check_surface
 from .ivp import NEWTON_MAX_ITER, Settings, charts_at, integrate_branch
 from .result import Curve, Span, TracingError, user_params, DUPLICATE_SPACING
-from .start import locate_on_curve, scene_scale
+from .start import locate_on_curve, parameter_units, scene_scale
 
 # --- defaults -----------------------------------------------------------------------------------------
 #: Relative tolerance of solve_ivp on (u1, v1, u2, v2): sets how far a step may stray before the Newton
@@ -71,13 +71,7 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
     max_length = check_positive("max_length", max_length)
     if atol is None:
         # angles get rtol, lengths (plane u, v; cylinder and cone v) rtol * scale
-        atol = np.full(4, rtol)
-        for k, surf in enumerate((a, b)):
-            kind = int(surf.data[ks.KIND])
-            if kind == ks.PLANE:
-                atol[2 * k:2 * k + 2] = rtol * scale
-            elif kind in (ks.CYLINDER, ks.CONE):
-                atol[2 * k + 1] = rtol * scale
+        atol = rtol * np.concatenate([parameter_units(a.data, scale), parameter_units(b.data, scale)])
     else:
         atol = check_positive("atol", atol)
     magnitude = max(scale, float(np.max(np.abs(anchor))))

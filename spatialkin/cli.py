@@ -1,6 +1,5 @@
-"""Command line: ``spatialkin demo`` (the built-in torus-sphere example).
-
-The main job, ``spatialkin looper``, and ``spatialkin bench`` arrive with their issues.
+"""Command line: ``spatialkin looper --out DIR [--config FILE.toml]`` (the main job) and ``spatialkin demo``
+(torus ∩ sphere of the looper, every component). ``spatialkin bench`` arrives with its issue.
 """
 import argparse
 import sys
@@ -33,9 +32,23 @@ def demo(args):
     return 0
 
 
+def looper(args):
+    from .looper_job import run
+    try:
+        run(args.out, args.config)
+    except (ValueError, OSError) as err:
+        print(f"spatialkin looper: {err}", file=sys.stderr)
+        return 2
+    return 0
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="spatialkin", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
+    p_looper = sub.add_parser("looper", help="the looper drive over a full crank turn: CSV, plot, summary")
+    p_looper.add_argument("--out", required=True, help="output folder (created if missing)")
+    p_looper.add_argument("--config", default=None, help="TOML file overriding the reference geometry")
+    p_looper.set_defaults(func=looper)
     p_demo = sub.add_parser("demo", help="trace torus ∩ sphere of the looper drive and print the components")
     p_demo.add_argument("--tol", type=float, default=1e-10, help="accuracy relative to the scene scale")
     p_demo.set_defaults(func=demo)

@@ -342,3 +342,93 @@ def closure_value(y, a, start, direction, offset):
     loc = np.empty((6, 3))
     derivatives(a, y[0], y[1], loc)
     return dot(loc[POINT] - start, direction) + offset
+
+
+@jit
+def curve_derivatives(y, a, b, sign, dy, ddy, d1, d2):
+    """Analytic first and second derivatives in arc length at a point y on the curve.
+
+    Writes dy = y' (4,), ddy = y'' (4,), d1 = C' (3,) (the unit tangent, sign * N1 x N2/|.|) and
+    d2 = C'' (3,) (the curvature vector). C'' follows from the surfaces' second derivatives:
+    N_i . C'' = N_i . Q_i with Q_i = S_uu u'^2 + 2 S_uv u'v' + S_vv v'^2, and t . C'' = 0 (unit speed);
+    then S_u u'' + S_v v'' = C'' - Q_i is solved in each surface's Gram system. Returns False at a
+    singular point.
+    """
+    e1 = np.empty((6, 3))
+    e2 = np.empty((6, 3))
+    derivatives(a, y[0], y[1], e1)
+    derivatives(b, y[2], y[3], e2)
+    if tangent_from_normals(e1[1], e1[2], e2[1], e2[2], d1) == 0.0:
+        return False
+    for i in range(3):
+        d1[i] *= sign
+    gram_solve(e1[1], e1[2], d1, dy, 0)
+    gram_solve(e2[1], e2[2], d1, dy, 2)
+    q1 = e1[3] * dy[0] * dy[0] + 2.0 * e1[4] * dy[0] * dy[1] + e1[5] * dy[1] * dy[1]
+    q2 = e2[3] * dy[2] * dy[2] + 2.0 * e2[4] * dy[2] * dy[3] + e2[5] * dy[3] * dy[3]
+    n1 = np.empty(3)
+    n2 = np.empty(3)
+    cross(e1[1], e1[2], n1)
+    cross(e2[1], e2[2], n2)
+    m = np.empty((3, 3))
+    r = np.empty(3)
+    for j in range(3):
+        m[0, j] = n1[j]
+        m[1, j] = n2[j]
+        m[2, j] = d1[j]
+    r[0] = dot(n1, q1)
+    r[1] = dot(n2, q2)
+    r[2] = 0.0
+    if not solve_small(m, r, d2):
+        return False
+    gram_solve(e1[1], e1[2], d2 - q1, ddy, 0)
+    gram_solve(e2[1], e2[2], d2 - q2, ddy, 2)
+    return True
+
+
+@jit
+def curve_derivatives_many(ys, a, b, sign, dy, ddy, d1, d2, ok):
+    """curve_derivatives for each row of ys (N, 4); ok[k] False at singular points."""
+    for k in range(ys.shape[0]):
+        ok[k] = curve_derivatives(ys[k], a, b, sign, dy[k], ddy[k], d1[k], d2[k])
+
+
+@jit
+def newton_fixed_many(ys, a, b, fixed, gap_tol, max_iter, ok):
+    """Newton on M1(u1, v1) - M2(u2, v2) = 0 for the three parameters other than ys[k, fixed], in place
+    for each row of ys (N, 4); ok[k] True once |M1 - M2| <= gap_tol (then one more step is taken)."""
+    e1 = np.empty((6, 3))
+    e2 = np.empty((6, 3))
+    m = np.empty((3, 3))
+    r = np.empty(3)
+    dx = np.empty(3)
+    for k in range(ys.shape[0]):
+        ok[k] = False
+        for _ in range(max_iter):
+            first_derivatives(a, ys[k, 0], ys[k, 1], e1[0], e1[1], e1[2])
+            first_derivatives(b, ys[k, 2], ys[k, 3], e2[0], e2[1], e2[2])
+            gap = e1[0] - e2[0]
+            if norm(gap) <= gap_tol:
+                if ok[k]:
+                    break
+                ok[k] = True      # converged: one more step polishes to round-off
+            col = 0
+            for i in range(4):
+                if i == fixed:
+                    continue
+                for j in range(3):
+                    if i < 2:
+                        m[j, col] = e1[1 + i, j]
+                    else:
+                        m[j, col] = -e2[1 + i - 2, j]
+                col += 1
+            for j in range(3):
+                r[j] = -gap[j]
+            if not solve_small(m, r, dx):
+                break
+            col = 0
+            for i in range(4):
+                if i == fixed:
+                    continue
+                ys[k, i] += dx[col]
+                col += 1

@@ -215,25 +215,12 @@ def newton_fixed(a, b, y, fixed, gap_tol, max_iter=30):
     """Newton on M1(u1, v1) - M2(u2, v2) = 0 for the three parameters other than y[fixed], which is held.
 
     Returns the solved (4,) state, or None if Newton fails. This cuts one surface with a parameter line of
-    the other (the seed's auxiliary curve, or the edge of a trimmed surface).
+    the other (the seed's auxiliary curve, the edge of a trimmed surface, a given crank angle).
     """
-    y = np.array(y, dtype=float)
-    free = [i for i in range(4) if i != fixed]
-    d1 = np.empty((6, 3))
-    d2 = np.empty((6, 3))
-    for _ in range(max_iter):
-        ks.derivatives(a, y[0], y[1], d1)
-        ks.derivatives(b, y[2], y[3], d2)
-        r = d1[0] - d2[0]
-        if np.linalg.norm(r) <= gap_tol:
-            return y
-        jac = np.column_stack([d1[1], d1[2], -d2[1], -d2[2]])[:, free]
-        try:
-            dx = np.linalg.solve(jac, -r)
-        except np.linalg.LinAlgError:
-            return None
-        y[free] += dx
-    return None
+    ys = np.array(y, dtype=float).reshape(1, 4)
+    ok = np.zeros(1, dtype=np.bool_)
+    kc.newton_fixed_many(ys, a, b, fixed, gap_tol, max_iter, ok)
+    return ys[0] if ok[0] else None
 
 
 def project_state(y, a, b, settings, tangent_hint=None):

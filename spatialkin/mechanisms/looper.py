@@ -1,0 +1,351 @@
+"""The looper drive of a blind-stitch sewing machine: a spatial five-link crank-rocker R-R-S-R-R.
+
+Crank 1 turns about the crank shaft (local z of the crank frame) by u1; coupler 2 hinges on the crank pin
+(axis perpendicular to the shaft and to the crank arm, at the crank radius R1) by v1; its ball centre C sits
+at the coupler length r1 from the pin axis, so C runs on the torus M1(u1, v1). Rocker shaft 4 turns about
+the local z of the rocker frame by u2, rocker arm 3 hinges on it about a perpendicular axis by v2, and C sits
+at the rocker length R2 from the rocker centre: on the sphere M2(u2, v2). The motion of C over the cycle is
+torus ∩ sphere, traced once by arc length and re-parametrised by the crank angle u1.
+
+References
+----------
+Seed 002 and ../shared/reference/looper-drive.md (the scheme, the surfaces, the start from the sphere's
+equator, the reference geometry).
+"""
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..frame import Frame
+from ..kernels import curve as kc
+from ..kinematics import serial_chain
+from ..surfaces import Sphere, Torus, check_length
+from ..tracing.result import TracingError
+from ..tracing.start import auxiliary_starts
+from ..tracing.trace import trace
+from ..trajectory import time_map, to_time
+
+#: Crank angles sampled when checking where the mechanism can be assembled.
+ASSEMBLY_SAMPLES = 3600
+#: Dense samples per traced loop used to predict the state at a requested crank angle.
+LOOP_SAMPLES = 2048
+#: Newton iterations at a fixed crank angle.
+NEWTON_MAX_ITER = 30
+#: Accuracy of positions relative to the mechanism's size.
+POSITION_TOL = 1e-14
+#: Links of the mechanism, for points fixed to them.
+LINKS = ("crank", "coupler", "rocker_shaft", "rocker_arm")
+_Z = (0.0, 0.0, 1.0)
+_MINUS_Y = (0.0, -1.0, 0.0)
+
+
+@dataclass
+class PointMotion:
+    """Position, velocity and acceleration (N, 3) of a point of a link, in fixed axes."""
+    position: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+
+
+class LooperDrive:
+    """Spatial five-link crank-rocker (R-R-S-R-R) of a blind-stitch sewing machine's looper.
+
+    Parameters
+    ----------
+    crank_radius : float
+        R1, distance of the crank pin axis from the crank shaft.
+    coupler_length : float
+        r1, distance of the ball centre C from the crank pin axis.
+    rocker_length : float
+        R2, distance of C from the rocker centre.
+    crank_frame : Frame
+        Origin on the crank shaft; local z along the shaft. u1 is measured from local x.
+    rocker_frame : Frame
+        Origin at the rocker centre P2; local z along the rocker shaft. (u2, v2) are the sphere's angles.
+    looper_tip : array_like (3,)
+        The looper tip in the frame of `looper_link` (rocker arm: x along the arm to C).
+    looper_link : str
+        'rocker_arm' or 'rocker_shaft'.
+
+    Raises
+    ------
+    ValueError
+        For non-positive lengths, or a mechanism that cannot be assembled at any crank angle.
+    """
+
+    def __init__(self, crank_radius, coupler_length, rocker_length, crank_frame=None, rocker_frame=None,
+                 looper_tip=(0.0, 0.0, 0.0), looper_link="rocker_arm"):
+        self.crank_radius = check_length("crank_radius", crank_radius)
+        self.coupler_length = check_length("coupler_length", coupler_length)
+        self.rocker_length = check_length("rocker_length", rocker_length)
+        self.crank_frame = crank_frame if crank_frame is not None else Frame()
+        self.rocker_frame = rocker_frame if rocker_frame is not None else Frame()
+        for name, f in (("crank_frame", self.crank_frame), ("rocker_frame", self.rocker_frame)):
+            if not isinstance(f, Frame):
+                raise TypeError(f"{name} must be a spatialkin.Frame, got {type(f).__name__}")
+        if looper_link not in ("rocker_arm", "rocker_shaft"):
+            raise ValueError(f"looper_link must be 'rocker_arm' or 'rocker_shaft', got {looper_link!r}")
+        self.looper_link = looper_link
+        self.looper_tip = np.asarray(looper_tip, dtype=float)
+        if self.looper_tip.shape != (3,) or not np.all(np.isfinite(self.looper_tip)):
+            raise ValueError(f"looper_tip must be a finite point (3,), got {looper_tip!r}")
+        self.torus = Torus(self.crank_radius, self.coupler_length, self.crank_frame)
+        self.sphere = Sphere(self.rocker_length, self.rocker_frame)
+        self.size = self.crank_radius + self.coupler_length + self.rocker_length
+        grid = np.linspace(0.0, 2 * np.pi, ASSEMBLY_SAMPLES, endpoint=False)
+        margin = self.assembly_margin(grid)
+        if np.all(margin < 0):
+            raise ValueError("the mechanism cannot be assembled at any crank angle: the coupler's circle never "
+                             f"reaches the rocker sphere (closest miss {-margin.max():.6g})")
+        self._blocked = ranges_of(grid, margin < 0)
+        self._loops = None
+
+    @classmethod
+    def reference(cls):
+        """The reference geometry of ../shared/reference/looper-drive.md (mm), looper tip 40 mm along the
+        rocker arm and 12 mm off it."""
+        return cls(8.0, 50.0, 30.0, Frame(), Frame((6.0, 0.0, 75.0), _rotation_x(-np.pi / 2)),
+                   looper_tip=(40.0, 0.0, 12.0))
+
+    # --- assembly ---------------------------------------------------------------------------------
+    def assembly_margin(self, crank_angles):
+        """How far (length) the rocker length lies inside the range of distances from the rocker centre to
+        the coupler's circle at each crank angle; negative where the mechanism cannot be assembled."""
+        u1 = np.asarray(crank_angles, dtype=float)
+        rot = self.crank_frame.rotation
+        q = rot.T @ (self.rocker_frame.origin - self.crank_frame.origin)     # rocker centre, crank frame
+        radial = np.stack([np.cos(u1), np.sin(u1), np.zeros_like(u1)], axis=-1)
+        axis = np.stack([-np.sin(u1), np.cos(u1), np.zeros_like(u1)], axis=-1)   # the pin axis
+        rel = q - self.crank_radius * radial
+        h = np.einsum("...i,...i->...", rel, axis)
+        inplane = np.linalg.norm(rel - h[..., None] * axis, axis=-1)
+        d_min = np.hypot(inplane - self.coupler_length, h)
+        d_max = np.hypot(inplane + self.coupler_length, h)
+        return np.minimum(self.rocker_length - d_min, d_max - self.rocker_length)
+
+    @property
+    def blocked_ranges(self):
+        """Crank-angle intervals (radians, in [0, 2 pi)) where the mechanism cannot be assembled."""
+        return list(self._blocked)
+
+    def branch_of(self, states):
+        """Assembly branch (0 or 1) of states (..., 4): 0 where the coupler's circle leaves the rocker
+        sphere as v1 grows ((C - P2) . dC/dv1 > 0), 1 where it enters. In the reference geometry branch 0
+        is the 59.7 mm loop with v1 in about 107-114 deg."""
+        y = np.asarray(states, dtype=float).reshape(-1, 4)
+        out = np.empty(len(y), dtype=int)
+        for k, (u1, v1) in enumerate(y[:, :2]):
+            d = self.torus.derivatives(u1, v1)
+            out[k] = 0 if (d[0] - self.rocker_frame.origin) @ d[2] > 0 else 1
+        return out.reshape(np.shape(states)[:-1])
+
+    def assemble(self, crank_angle, branch=0):
+        """State (u1, v1, u2, v2) at one crank angle on the given branch (Newton from the coupler circle's
+        crossings of the rocker sphere)."""
+        check_branch(branch)
+        u1 = float(crank_angle)
+        self._check_assemblable(np.array([u1]))
+        v1 = np.linspace(-np.pi, np.pi, 721)
+        pts = self.torus.point(np.full_like(v1, u1), v1)
+        f = np.linalg.norm(pts - self.rocker_frame.origin, axis=1) - self.rocker_length
+        for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) <= 0)[0]:
+            y = np.array([u1, v1[i], *self.sphere.parameters(pts[i])])
+            y = self._at_crank_angles(y.reshape(1, 4))
+            if y is not None and self.branch_of(y[0]) == branch:
+                return y[0]
+        raise ValueError(f"no assembly on branch {branch} at crank angle {math.degrees(u1):.6g} deg")
+
+    def _check_assemblable(self, u1):
+        bad = self.assembly_margin(u1) < -POSITION_TOL * self.size
+        if np.any(bad):
+            spans = ", ".join(f"[{math.degrees(a):.3f}, {math.degrees(b):.3f}] deg" for a, b in self._blocked)
+            raise ValueError(f"the mechanism cannot be assembled at {int(bad.sum())} of the requested crank "
+                             f"angles (first {math.degrees(float(u1[bad][0])):.6g} deg): the coupler's circle "
+                             f"misses the rocker sphere for crank angles in {spans}")
+
+    def _at_crank_angles(self, ys):
+        """Newton at fixed u1 (column 0) onto torus ∩ sphere, in place; None if any fails."""
+        ys = np.ascontiguousarray(ys, dtype=float)
+        ok = np.zeros(len(ys), dtype=np.bool_)
+        kc.newton_fixed_many(ys, self.torus.data, self.sphere.data, 0, POSITION_TOL * self.size,
+                             NEWTON_MAX_ITER, ok)
+        return ys if np.all(ok) else None
+
+    # --- the cycle --------------------------------------------------------------------------------
+    def loops(self):
+        """Every closed or open component of torus ∩ sphere reached from the seed's start (the sphere's
+        equator cut by the torus) and from an assembly at crank angle 0 on each branch (traced once)."""
+        if self._loops is None:
+            starts = list(auxiliary_starts(self.torus, self.sphere))
+            for branch in (0, 1):
+                try:
+                    starts.append(self.assemble(self._first_free_angle(), branch))
+                except ValueError:
+                    pass
+            loops = []
+            for y in starts:
+                p = self.torus.point(y[0], y[1])
+                if any(np.min(c.closest(p)[1]) <= 1e-6 * self.size for c in loops):
+                    continue
+                try:
+                    loops.append(trace(self.torus, self.sphere, y))
+                except TracingError:
+                    continue
+            self._loops = loops
+        return self._loops
+
+    def _first_free_angle(self):
+        grid = np.linspace(0.0, 2 * np.pi, ASSEMBLY_SAMPLES, endpoint=False)
+        return float(grid[np.argmax(self.assembly_margin(grid))])
+
+    def _samples(self, branch):
+        """Dense states (M, 4) on the given branch over all loops, sorted by u1 mod 2 pi."""
+        ys = []
+        for c in self.loops():
+            if c.length == 0:
+                continue
+            y = c.parameters(np.linspace(0.0, c.length, LOOP_SAMPLES))
+            ys.append(y[self.branch_of(y) == branch])
+        y = np.vstack(ys) if ys else np.empty((0, 4))
+        if not len(y):
+            raise ValueError(f"no assembly of branch {branch} was found")
+        return y[np.argsort(np.mod(y[:, 0], 2 * np.pi))]
+
+    def solve(self, crank_angles, omega=1.0, branch=0):
+        """Motion at exactly the given crank angles, the crank turning at the constant rate omega.
+
+        Returns
+        -------
+        LooperMotion
+        """
+        check_branch(branch)
+        u1 = np.atleast_1d(np.asarray(crank_angles, dtype=float))
+        if u1.ndim != 1 or not np.all(np.isfinite(u1)):
+            raise ValueError("crank_angles must be a finite 1-D array")
+        if not math.isfinite(omega) or omega == 0:
+            raise ValueError(f"omega must be finite and non-zero, got {omega!r}")
+        t0 = time.perf_counter()
+        self._check_assemblable(np.mod(u1, 2 * np.pi))
+        samples = self._samples(branch)
+        key = np.mod(samples[:, 0], 2 * np.pi)
+        target = np.mod(u1, 2 * np.pi)
+        idx = np.searchsorted(key, target)
+        lo, hi = np.clip(idx - 1, 0, len(key) - 1), np.clip(idx, 0, len(key) - 1)
+        near = np.where(np.abs(key[lo] - target) <= np.abs(key[hi] - target), lo, hi)
+        ys = samples[near].copy()
+        ys[:, 0] = u1
+        solved = self._at_crank_angles(ys)
+        if solved is None:
+            raise ValueError("Newton at fixed crank angle failed: the crank angles are too close to a dead "
+                             "position or a branch point")
+        wrong = self.branch_of(solved) != branch
+        if np.any(wrong):
+            raise ValueError(f"branch {branch} is not continuous through crank angle "
+                             f"{math.degrees(float(u1[wrong][0])):.6g} deg (branches meet there)")
+        return LooperMotion(self, solved, omega, branch, time.perf_counter() - t0)
+
+
+class LooperMotion:
+    """The looper drive's motion at given crank angles (all in fixed axes; angles in radians).
+
+    Attributes
+    ----------
+    crank_angle : (N,)            u1, exactly as requested
+    coupler_angle : (N,)          v1
+    rocker_angles : (N, 2)        (u2, v2)
+    rocker_rates, rocker_accelerations : (N, 2)   d/dt and d2/dt2 of (u2, v2)
+    ball_center, ball_velocity, ball_acceleration : (N, 3)
+    ds_dt : (N,)                  speed of C (arc length of torus ∩ sphere per unit time)
+    """
+
+    def __init__(self, drive, states, omega, branch, wall_time):
+        self.drive, self.omega, self.branch = drive, float(omega), branch
+        self.states = states
+        n = len(states)
+        dy, ddy = np.empty((n, 4)), np.empty((n, 4))
+        d1, d2 = np.empty((n, 3)), np.empty((n, 3))
+        ok = np.zeros(n, dtype=np.bool_)
+        kc.curve_derivatives_many(states, drive.torus.data, drive.sphere.data, 1.0, dy, ddy, d1, d2, ok)
+        if not np.all(ok):
+            raise ValueError("a singular point of torus ∩ sphere (the branches meet) lies at crank angle "
+                             f"{math.degrees(float(states[~ok][0, 0])):.6g} deg")
+        flip = np.where(dy[:, 0] < 0, -1.0, 1.0)        # orient s so that the crank angle grows with it
+        dy *= flip[:, None]
+        d1 *= flip[:, None]
+        self.dy_ds, self.d2y_ds2 = dy, ddy
+        sdot, sddot = time_map(dy[:, 0], ddy[:, 0], self.omega)
+        self.ds_dt, self.d2s_dt2 = sdot, sddot
+        rates, accels = to_time(dy, ddy, sdot, sddot)
+        self.crank_angle = states[:, 0].copy()
+        self.coupler_angle = states[:, 1].copy()
+        self.rocker_angles = states[:, 2:].copy()
+        self.rocker_rates, self.rocker_accelerations = rates[:, 2:], accels[:, 2:]
+        self.coupler_rate, self.coupler_acceleration = rates[:, 1], accels[:, 1]
+        self.ball_center = drive.torus.point(states[:, 0], states[:, 1])
+        self.ball_velocity, self.ball_acceleration = to_time(d1, d2, sdot, sddot)
+        self._rates, self._accels = rates, accels
+        self.wall_time = wall_time
+        self._links = None
+
+    def links(self):
+        """LinkState of each link (crank, coupler, rocker_shaft, rocker_arm) by serial-chain propagation."""
+        if self._links is None:
+            d = self.drive
+            q, qd, qdd = self.states, self._rates, self._accels
+            crank, coupler = serial_chain(d.crank_frame.origin, d.crank_frame.rotation,
+                                          [((0, 0, 0), _Z), ((d.crank_radius, 0, 0), _MINUS_Y)],
+                                          q[:, :2], qd[:, :2], qdd[:, :2])
+            shaft, arm = serial_chain(d.rocker_frame.origin, d.rocker_frame.rotation,
+                                      [((0, 0, 0), _Z), ((0, 0, 0), _MINUS_Y)], q[:, 2:], qd[:, 2:], qdd[:, 2:])
+            self._links = dict(zip(LINKS, (crank, coupler, shaft, arm)))
+        return self._links
+
+    def point(self, link, local):
+        """PointMotion of a point fixed to a link ('crank', 'coupler', 'rocker_shaft', 'rocker_arm'),
+        given in that link's frame (coupler: x from the pin axis to C; rocker arm: x from P2 to C)."""
+        if link not in LINKS:
+            raise ValueError(f"link must be one of {LINKS}, got {link!r}")
+        local = np.asarray(local, dtype=float)
+        if local.shape != (3,) or not np.all(np.isfinite(local)):
+            raise ValueError(f"local must be a finite point (3,), got {local!r}")
+        return PointMotion(*self.links()[link].point(local))
+
+    @property
+    def looper_tip(self):
+        return self.point(self.drive.looper_link, self.drive.looper_tip)
+
+    def angular_velocity(self, link):
+        """Angular velocity (N, 3) of a link in fixed axes."""
+        return self.links()[link].omega
+
+    def angular_acceleration(self, link):
+        return self.links()[link].alpha
+
+
+def check_branch(branch):
+    if branch not in (0, 1):
+        raise ValueError(f"branch must be 0 or 1, got {branch!r}")
+
+
+def ranges_of(grid, mask):
+    """Contiguous intervals (start, end) of grid values where mask holds (grid uniform and periodic)."""
+    if not np.any(mask):
+        return []
+    step = grid[1] - grid[0]
+    out, start = [], None
+    for g, m in zip(grid, mask):
+        if m and start is None:
+            start = g
+        if not m and start is not None:
+            out.append((start, g - step))
+            start = None
+    if start is not None:
+        out.append((start, grid[-1]))
+    return out
+
+
+def _rotation_x(angle):
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])

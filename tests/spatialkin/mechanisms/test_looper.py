@@ -1,0 +1,155 @@
+"""The looper drive against the closed form per crank angle (A cos v1 + B sin v1 + C = 0), its finite
+differences, and the rigid-chain identities."""
+import os
+
+import numpy as np
+import pytest
+
+import spatialkin as sk
+from spatialkin.mechanisms import LooperDrive
+
+
+def closed_form(drive, u1, branch):
+    """(v1, C) at crank angles u1 (N,) from the coupler circle cut by the rocker sphere; branch 0 is the root
+    where |C - P2| grows with v1 (v1 = atan2(B, A) - arccos(-C0 / sqrt(A^2 + B^2)))."""
+    rot, o1 = drive.crank_frame.rotation, drive.crank_frame.origin
+    q = rot.T @ (drive.rocker_frame.origin - o1)
+    big, small, rho = drive.crank_radius, drive.coupler_length, drive.rocker_length
+    qr = q[0] * np.cos(u1) + q[1] * np.sin(u1)
+    a = 2 * small * (big - qr)
+    b = -2 * small * q[2] * np.ones_like(u1)
+    c0 = big ** 2 + small ** 2 + q @ q - 2 * big * qr - rho ** 2
+    spread = np.arccos(-c0 / np.hypot(a, b))
+    v1 = np.arctan2(b, a) + (-spread if branch == 0 else spread)
+    w = big + small * np.cos(v1)
+    local = np.stack([w * np.cos(u1), w * np.sin(u1), small * np.sin(v1)], axis=-1)
+    return v1, o1 + local @ rot.T
+
+
+def five_point(f, x, h):
+    """First and second derivatives by the 5-point stencils (errors O(h^4))."""
+    fm2, fm1, fp1, fp2 = f(x - 2 * h), f(x - h), f(x + h), f(x + 2 * h)
+    f0 = f(x)
+    d1 = (fm2 - 8 * fm1 + 8 * fp1 - fp2) / (12 * h)
+    d2 = (-fm2 + 16 * fm1 - 30 * f0 + 16 * fp1 - fp2) / (12 * h * h)
+    return d1, d2
+
+
+@pytest.fixture(scope="module")
+def drive():
+    return LooperDrive.reference()
+
+
+@pytest.mark.parametrize("branch", [0, 1])
+def test_full_turn_matches_closed_form(drive, branch):
+    """Done-criterion: over a full turn, positions to 1e-9 mm, velocities and accelerations to 1e-8
+    (relative to their largest magnitude) against the closed form and its 5-point differences."""
+    omega = 3.0
+    u1 = np.linspace(0.0, 2 * np.pi, 721)
+    m = drive.solve(u1, omega=omega, branch=branch)
+    np.testing.assert_array_equal(m.crank_angle, u1)
+    v1, c = closed_form(drive, u1, branch)
+    assert np.max(np.abs(m.ball_center - c)) < 1e-9
+    assert np.max(np.abs(np.angle(np.exp(1j * (m.coupler_angle - v1))))) < 1e-11
+    # time derivatives: d/dt = omega d/du1
+    d1, d2 = five_point(lambda x: closed_form(drive, x, branch)[1], u1, 3e-3)   # FD error ~1e-9 relative
+    vel, acc = omega * d1, omega ** 2 * d2
+    assert np.max(np.abs(m.ball_velocity - vel)) < 1e-8 * np.max(np.abs(vel))
+    assert np.max(np.abs(m.ball_acceleration - acc)) < 1e-8 * np.max(np.abs(acc))
+
+
+def test_reference_branches_and_swing(drive):
+    """The reference (looper-drive.md): branch 0 has v1 in about 107-114 deg, u2 in 77.8-115 deg,
+    v2 within +-18.3 deg; branch 1 near v1 = 76 deg."""
+    u1 = np.radians(np.arange(0, 360, 0.5))
+    m0, m1 = drive.solve(u1, branch=0), drive.solve(u1, branch=1)
+    v1 = np.degrees(m0.coupler_angle)
+    assert 106.5 < v1.min() and v1.max() < 114.5
+    u2, v2 = np.degrees(m0.rocker_angles.T)
+    assert abs(u2.min() - 77.8) < 0.1 and abs(u2.max() - 115.0) < 0.1 and abs(np.abs(v2).max() - 18.35) < 0.05
+    assert abs(np.degrees(m1.coupler_angle).min() - 76.0) < 0.1
+
+
+def test_rocker_rates_and_link_points(drive):
+    """Rocker angle rates against 5-point differences of the solved angles, and the chain identities:
+    C as a point of the coupler and of the rocker arm agrees in position, velocity and acceleration."""
+    omega = 2.0
+    u1 = np.linspace(0.1, 6.0, 50)
+    h = 1e-3
+    m = drive.solve(u1, omega=omega)
+    angles = lambda x: drive.solve(x, omega=omega).rocker_angles
+    d1, d2 = five_point(angles, u1, h)
+    np.testing.assert_allclose(m.rocker_rates, omega * d1, atol=1e-9)
+    np.testing.assert_allclose(m.rocker_accelerations, omega ** 2 * d2, atol=1e-7)
+    by_coupler = m.point("coupler", (drive.coupler_length, 0, 0))
+    by_rocker = m.point("rocker_arm", (drive.rocker_length, 0, 0))
+    for field in ("position", "velocity", "acceleration"):
+        np.testing.assert_allclose(getattr(by_coupler, field), getattr(m, f"ball_{field if field != 'position' else 'center'}"), atol=1e-11)
+        np.testing.assert_allclose(getattr(by_rocker, field), getattr(by_coupler, field), atol=1e-11)
+    # the looper tip against differences of its position (a point off the arm, on the rocker arm's frame)
+    tip = m.looper_tip
+    tip_pos = lambda x: drive.solve(x, omega=omega).looper_tip.position
+    t1, t2 = five_point(tip_pos, u1, h)
+    np.testing.assert_allclose(tip.velocity, omega * t1, atol=1e-8 * np.abs(omega * t1).max())
+    np.testing.assert_allclose(tip.acceleration, omega ** 2 * t2, atol=1e-7 * np.abs(omega ** 2 * t2).max())
+    # the crank turns uniformly: its angular velocity is omega along the shaft
+    np.testing.assert_allclose(m.angular_velocity("crank"), np.tile([0, 0, omega], (50, 1)), atol=1e-15)
+
+
+def test_mechanism_that_cannot_be_assembled():
+    with pytest.raises(ValueError, match="cannot be assembled at any crank angle"):
+        LooperDrive(8.0, 50.0, 5.0, rocker_frame=sk.Frame((6.0, 0.0, 200.0)))
+    # assembled for part of the turn only: the error names the crank angles
+    d = LooperDrive(8.0, 50.0, 30.0, rocker_frame=sk.Frame((40.0, 0.0, 60.0)))
+    assert d.blocked_ranges
+    lo, hi = d.blocked_ranges[0]
+    with pytest.raises(ValueError, match="cannot be assembled at .* crank angles in"):
+        d.solve([0.5 * (lo + hi)])
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    ({"crank_radius": 0}, "crank_radius"), ({"coupler_length": -1}, "coupler_length"),
+    ({"rocker_length": np.nan}, "rocker_length"), ({"looper_link": "crank"}, "looper_link"),
+])
+def test_bad_arguments(kwargs, name):
+    args = dict(crank_radius=8.0, coupler_length=50.0, rocker_length=30.0,
+                rocker_frame=sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1, 0, 0), -np.pi / 2)))
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=name):
+        LooperDrive(**args)
+
+
+def test_bad_solve_arguments(drive):
+    with pytest.raises(ValueError, match="branch"):
+        drive.solve([0.0], branch=2)
+    with pytest.raises(ValueError, match="omega"):
+        drive.solve([0.0], omega=0.0)
+    with pytest.raises(ValueError, match="crank_angles"):
+        drive.solve([np.nan])
+
+
+def test_looper_job_writes_what_it_promises(tmp_path):
+    from spatialkin.cli import main
+    out = tmp_path / "out"
+    assert main(["looper", "--out", str(out)]) == 0
+    table = np.loadtxt(out / "looper_motion.csv", delimiter=",", skiprows=1)
+    header = (out / "looper_motion.csv").read_text().splitlines()[0].split(",")
+    assert header[:10] == ["crank_angle", "x", "y", "z", "vx", "vy", "vz", "ax", "ay", "az"]
+    assert table.shape[0] >= 361 and table.shape[1] == len(header)
+    drive = LooperDrive.reference()
+    _, c = closed_form(drive, table[:, 0], 0)
+    assert np.max(np.abs(table[:, 1:4] - c)) < 1e-9
+    assert (out / "looper_speed.png").stat().st_size > 1000
+    assert not [p for p in os.listdir(out) if p.startswith(".tmp-")]
+
+
+def test_looper_job_config_errors_are_clear(tmp_path, capsys):
+    from spatialkin.cli import main
+    bad = tmp_path / "bad.toml"
+    bad.write_text("crank_radius = -1\n")
+    assert main(["looper", "--out", str(tmp_path / "o"), "--config", str(bad)]) == 2
+    assert "crank_radius" in capsys.readouterr().err
+    bad.write_text("crank_radiu = 3\n")
+    assert main(["looper", "--out", str(tmp_path / "o"), "--config", str(bad)]) == 2
+    assert "unknown keys" in capsys.readouterr().err
+    assert not (tmp_path / "o" / "looper_motion.csv").exists()

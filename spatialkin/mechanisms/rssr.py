@@ -1,0 +1,148 @@
+"""The classic spatial four-link crank-rocker RSSR (seed 002's reference [3]), through the same pipeline:
+the configuration curve F(phi, psi) = |C(psi) - B(phi)|^2 - L^2 = 0 traced once by arc length (solve_ivp on
+a jitted right-hand side), re-parametrised by the crank angle, differentiated analytically, mapped to time
+by the trajectory pipeline and to the links by the serial-chain propagation.
+"""
+import math
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..frame import Frame
+from ..kernels import linkage as kl
+from ..kinematics import serial_chain
+from ..surfaces import check_length
+from ..trajectory import time_map, to_time
+from .looper import PointMotion, check_branch
+
+#: solve_ivp tolerance of the configuration-curve trace (a predictor: positions are solved by Newton).
+TRACE_RTOL = 1e-10
+#: Samples of the rocker angle when assembling at the first crank angle.
+ASSEMBLY_SAMPLES = 720
+#: Newton tolerance on F (length^2) relative to the mechanism size squared.
+RESIDUAL_TOL = 1e-15
+_Z = (0.0, 0.0, 1.0)
+
+
+class RSSR:
+    """Spatial crank-rocker: crank (revolute about the crank frame's z), coupler with ball joints at both
+    ends, rocker (revolute about the rocker frame's z).
+
+    Parameters
+    ----------
+    crank_radius, coupler_length, rocker_radius : float
+        a = |O1 B|, L = |B C|, c = |O2 C|.
+    crank_frame, rocker_frame : Frame
+        Origins on the axes, local z along them; angles phi, psi measured from local x.
+    """
+
+    def __init__(self, crank_radius, coupler_length, rocker_radius, crank_frame=None, rocker_frame=None):
+        self.crank_radius = check_length("crank_radius", crank_radius)
+        self.coupler_length = check_length("coupler_length", coupler_length)
+        self.rocker_radius = check_length("rocker_radius", rocker_radius)
+        self.crank_frame = crank_frame if crank_frame is not None else Frame()
+        self.rocker_frame = rocker_frame if rocker_frame is not None else Frame()
+        p = np.zeros(kl.PARAMS_SIZE)
+        p[kl.O1:kl.O1 + 3] = self.crank_frame.origin
+        p[kl.T1:kl.T1 + 9] = self.crank_frame.rotation.ravel()
+        p[kl.A] = self.crank_radius
+        p[kl.O2:kl.O2 + 3] = self.rocker_frame.origin
+        p[kl.T2:kl.T2 + 9] = self.rocker_frame.rotation.ravel()
+        p[kl.C] = self.rocker_radius
+        p[kl.L] = self.coupler_length
+        self.params = p
+        self.size = self.crank_radius + self.coupler_length + self.rocker_radius
+        self._cycles = {}
+
+    def residual(self, phi, psi):
+        """F and its gradient (2,) at one (phi, psi)."""
+        grad, hess = np.empty(2), np.empty((2, 2))
+        f = kl.rssr_residual(self.params, np.array([phi, psi], dtype=float), grad, hess)
+        return f, grad
+
+    def assemble(self, phi, branch=0):
+        """(phi, psi) on the branch (0: |C - B| grows with psi) by sampling psi and Newton."""
+        check_branch(branch)
+        psi = np.linspace(-np.pi, np.pi, ASSEMBLY_SAMPLES + 1)
+        f = np.array([self.residual(phi, q)[0] for q in psi])
+        for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) <= 0)[0]:
+            x = self._newton(np.array([[phi, psi[i]]]))
+            if x is not None and self.branch_of(x)[0] == branch:
+                return x[0]
+        raise ValueError(f"the RSSR cannot be assembled on branch {branch} at crank angle "
+                         f"{math.degrees(phi):.6g} deg: the coupler sphere misses the rocker circle")
+
+    def branch_of(self, xs):
+        xs = np.asarray(xs, dtype=float).reshape(-1, 2)
+        return np.array([0 if self.residual(*x)[1][1] > 0 else 1 for x in xs])
+
+    def _newton(self, xs):
+        xs = np.ascontiguousarray(xs, dtype=float)
+        ok = np.zeros(len(xs), dtype=np.bool_)
+        kl.newton_psi(self.params, xs, RESIDUAL_TOL * self.size ** 2, 50, ok)
+        return xs if np.all(ok) else None
+
+    def cycle(self, branch=0):
+        """The configuration curve over one crank turn, traced by arc length: the solve_ivp result."""
+        if branch not in self._cycles:
+            x0 = self.assemble(0.0, branch)
+            grad = self.residual(*x0)[1]
+            sign = 1.0 if -grad[1] > 0 else -1.0          # travel with the crank angle growing
+
+            def turn(s, x, *_):
+                return x[0] - x0[0] - 2 * np.pi
+            turn.terminal, turn.direction = True, 1
+
+            def dead(s, x, *_):
+                return kl.implicit_curve_rhs(s, x, self.params, sign, 0.0)[0]
+            dead.terminal, dead.direction = True, -1
+            res = solve_ivp(kl.implicit_curve_rhs, (0.0, 1e3 * 2 * np.pi), x0, method="DOP853",
+                            rtol=TRACE_RTOL, atol=TRACE_RTOL, dense_output=True, events=[turn, dead],
+                            args=(self.params, sign, 1.0))
+            if res.t_events[1].size:
+                raise ValueError("the crank of this RSSR cannot turn fully: dead position at crank angle "
+                                 f"{math.degrees(res.y_events[1][0][0]):.6g} deg")
+            if not res.t_events[0].size:
+                raise ValueError(f"tracing the RSSR cycle failed: {res.message}")
+            self._cycles[branch] = (res, sign)
+        return self._cycles[branch]
+
+    def solve(self, crank_angles, omega=1.0, branch=0):
+        """Motion at exactly the given crank angles; see RSSRMotion."""
+        check_branch(branch)
+        phi = np.atleast_1d(np.asarray(crank_angles, dtype=float))
+        if phi.ndim != 1 or not np.all(np.isfinite(phi)):
+            raise ValueError("crank_angles must be a finite 1-D array")
+        if not math.isfinite(omega) or omega == 0:
+            raise ValueError(f"omega must be finite and non-zero, got {omega!r}")
+        res, sign = self.cycle(branch)
+        s_grid = np.linspace(0.0, res.t[-1], 4096)
+        path = res.sol(s_grid)
+        turns = np.floor((phi - path[0, 0]) / (2 * np.pi))
+        local = phi - 2 * np.pi * turns
+        psi = np.interp(local, path[0], path[1])
+        xs = self._newton(np.column_stack([phi, psi]))
+        if xs is None:
+            raise ValueError("Newton at fixed crank angle failed")
+        return RSSRMotion(self, xs, sign, omega)
+
+
+class RSSRMotion:
+    """RSSR motion at given crank angles: crank_angle, rocker_angle, rocker_rate, rocker_acceleration (N,),
+    crank_pin and ball_center (PointMotion, fixed axes)."""
+
+    def __init__(self, mech, xs, sign, omega):
+        n = len(xs)
+        d1, d2 = np.empty((n, 2)), np.empty((n, 2))
+        ok = np.zeros(n, dtype=np.bool_)
+        kl.implicit_curve_derivatives(mech.params, xs, sign, d1, d2, ok)
+        sdot, sddot = time_map(d1[:, 0], d2[:, 0], omega)
+        rates, accels = to_time(d1, d2, sdot, sddot)
+        self.crank_angle, self.rocker_angle = xs[:, 0], xs[:, 1]
+        self.rocker_rate, self.rocker_acceleration = rates[:, 1], accels[:, 1]
+        crank, = serial_chain(mech.crank_frame.origin, mech.crank_frame.rotation, [((0, 0, 0), _Z)],
+                              xs[:, :1], rates[:, :1], accels[:, :1])
+        rocker, = serial_chain(mech.rocker_frame.origin, mech.rocker_frame.rotation, [((0, 0, 0), _Z)],
+                               xs[:, 1:], rates[:, 1:], accels[:, 1:])
+        self.crank_pin = PointMotion(*crank.point((mech.crank_radius, 0, 0)))
+        self.ball_center = PointMotion(*rocker.point((mech.rocker_radius, 0, 0)))

@@ -91,11 +91,22 @@ def run(out_dir, config_path=None, echo=print):
     chains = np.abs(motion.point("coupler", (drive.coupler_length, 0, 0)).position
                     - motion.point("rocker_arm", (drive.rocker_length, 0, 0)).position).max()
     u2, v2 = np.degrees(motion.rocker_angles.T)
+    analysis = drive.analyse(branch=int(config["branch"]))
+    mu, at = np.degrees(analysis.min_transmission)
     echo(f"looper drive: crank {drive.crank_radius:g}, coupler {drive.coupler_length:g}, rocker "
          f"{drive.rocker_length:g}; branch {motion.branch}; omega {motion.omega:g} rad/s; {n} crank angles")
     echo(f"ball centre: |v| max {np.max(np.linalg.norm(motion.ball_velocity, axis=1)):.6g}, "
          f"|a| max {np.max(np.linalg.norm(motion.ball_acceleration, axis=1)):.6g}")
     echo(f"rocker swing: u2 {u2.min():.3f}..{u2.max():.3f} deg, v2 {v2.min():.3f}..{v2.max():.3f} deg")
+    if analysis.turns_fully:
+        echo("the crank turns fully (no dead position)")
+    else:
+        echo("the crank cannot turn fully: dead positions at "
+             + ", ".join(f"{np.degrees(x):.4f}" for x in analysis.dead_positions) + " deg")
+    if analysis.branch_points:
+        echo("assembly branches meet at crank angles "
+             + ", ".join(f"{np.degrees(x):.4f}" for x in analysis.branch_points) + " deg")
+    echo(f"smallest transmission angle {mu:.2f} deg at crank angle {at:.1f} deg")
     echo(f"measured error: C to torus {on_torus:.2e}, to sphere {on_sphere:.2e}, coupler vs rocker chain "
          f"{chains:.2e} (length units)")
     echo(f"time: solve {1e3 * t_solve:.1f} ms, whole job {time.perf_counter() - t0:.2f} s")

@@ -17,14 +17,14 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import brentq
 
 from ..frame import Frame
 from ..kernels import curve as kc
 from ..kinematics import serial_chain
 from ..surfaces import Sphere, Torus, check_length
-from ..tracing.result import TracingError
 from ..tracing.start import auxiliary_starts
-from ..tracing.trace import trace
+from ..tracing.intersect import intersect
 from ..trajectory import time_map, to_time
 
 #: Crank angles sampled when checking where the mechanism can be assembled.
@@ -99,7 +99,9 @@ class LooperDrive:
         if np.all(margin < 0):
             raise ValueError("the mechanism cannot be assembled at any crank angle: the coupler's circle never "
                              f"reaches the rocker sphere (closest miss {-margin.max():.6g})")
-        self._blocked = ranges_of(grid, margin < 0)
+        self._blocked = [(self._edge(lo - step, lo), self._edge(hi, hi + step))
+                         for lo, hi in ranges_of(grid, margin < 0)
+                         for step in [grid[1] - grid[0]]]
         self._loops = None
 
     @classmethod
@@ -124,6 +126,14 @@ class LooperDrive:
         d_min = np.hypot(inplane - self.coupler_length, h)
         d_max = np.hypot(inplane + self.coupler_length, h)
         return np.minimum(self.rocker_length - d_min, d_max - self.rocker_length)
+
+    def _edge(self, a, b):
+        """The crank angle in [a, b] where the assembly margin crosses zero (or a, b at the turn's ends)."""
+        fa, fb = self.assembly_margin(np.array([a, b]))
+        if fa * fb > 0:
+            return float(np.clip(a if abs(fa) < abs(fb) else b, 0.0, 2 * np.pi))
+        return float(np.mod(brentq(lambda x: float(self.assembly_margin(np.array([x]))[0]), a, b, xtol=1e-14),
+                            2 * np.pi))
 
     @property
     def blocked_ranges(self):
@@ -174,31 +184,15 @@ class LooperDrive:
         return ys if np.all(ok) else None
 
     # --- the cycle --------------------------------------------------------------------------------
-    def loops(self):
-        """Every closed or open component of torus ∩ sphere reached from the seed's start (the sphere's
-        equator cut by the torus) and from an assembly at crank angle 0 on each branch (traced once)."""
-        if self._loops is None:
-            starts = list(auxiliary_starts(self.torus, self.sphere))
-            for branch in (0, 1):
-                try:
-                    starts.append(self.assemble(self._first_free_angle(), branch))
-                except ValueError:
-                    pass
-            loops = []
-            for y in starts:
-                p = self.torus.point(y[0], y[1])
-                if any(np.min(c.closest(p)[1]) <= 1e-6 * self.size for c in loops):
-                    continue
-                try:
-                    loops.append(trace(self.torus, self.sphere, y))
-                except TracingError:
-                    continue
-            self._loops = loops
-        return self._loops
+    def seed_starts(self):
+        """The seed's start: states (K, 4) where the sphere's equator (v2 = 0) meets the torus."""
+        return auxiliary_starts(self.torus, self.sphere)
 
-    def _first_free_angle(self):
-        grid = np.linspace(0.0, 2 * np.pi, ASSEMBLY_SAMPLES, endpoint=False)
-        return float(grid[np.argmax(self.assembly_margin(grid))])
+    def loops(self):
+        """Every component of torus ∩ sphere (sk.intersect), traced once and cached: the paths of C."""
+        if self._loops is None:
+            self._loops = intersect(self.torus, self.sphere)
+        return self._loops
 
     def _samples(self, branch):
         """Dense states (M, 4) on the given branch over all loops, sorted by u1 mod 2 pi."""
@@ -212,6 +206,11 @@ class LooperDrive:
         if not len(y):
             raise ValueError(f"no assembly of branch {branch} was found")
         return y[np.argsort(np.mod(y[:, 0], 2 * np.pi))]
+
+    def analyse(self, branch=0, samples=3601):
+        """What a designer needs to know: see spatialkin.mechanisms.looper_analysis.LooperAnalysis."""
+        from .looper_analysis import analyse
+        return analyse(self, branch, samples)
 
     def solve(self, crank_angles, omega=1.0, branch=0):
         """Motion at exactly the given crank angles, the crank turning at the constant rate omega.

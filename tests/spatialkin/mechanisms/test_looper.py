@@ -153,3 +153,26 @@ def test_looper_job_config_errors_are_clear(tmp_path, capsys):
     assert main(["looper", "--out", str(tmp_path / "o"), "--config", str(bad)]) == 2
     assert "unknown keys" in capsys.readouterr().err
     assert not (tmp_path / "o" / "looper_motion.csv").exists()
+
+
+def test_analysis_of_the_reference(drive):
+    """The reference crank turns fully on both branches; swing ranges as in looper-drive.md; the
+    transmission angle is 90 deg where C moves normal to the plane of the coupler line and the pin axis,
+    as at crank angle 0 (C moves along the pin axis there by the symmetry of the reference)."""
+    a = drive.analyse(branch=0)
+    assert a.turns_fully and a.dead_positions == [] and a.blocked_ranges == [] and a.branch_points == []
+    assert abs(np.degrees(a.u2_range[0]) - 77.8) < 0.05 and abs(np.degrees(a.v2_range[1]) - 18.35) < 0.05
+    assert abs(np.degrees(a.transmission_angle[0]) - 90.0) < 1e-9
+    assert 0 < a.min_transmission[0] < np.pi / 2
+
+
+def test_dead_positions_are_the_edges_of_the_blocked_ranges():
+    """A crank that cannot turn fully: the dead positions found on the traced loops (u1' = 0) are the crank
+    angles where the coupler circle just touches the rocker sphere (independent distance formula)."""
+    d = LooperDrive(8.0, 50.0, 30.0, rocker_frame=sk.Frame((40.0, 0.0, 60.0)))
+    a = d.analyse()
+    assert not a.turns_fully
+    edges = sorted(x for rng in d.blocked_ranges for x in rng)
+    assert len(a.dead_positions) == len(edges) == 4
+    np.testing.assert_allclose(a.dead_positions, edges, atol=1e-5)
+    assert np.all(d.assembly_margin(a.crank_angles) > 0)

@@ -1,0 +1,93 @@
+"""What a designer needs to know about a looper drive: does the crank turn fully, where are its dead
+positions and the points where assembly branches meet, how far does the rocker swing, how well is force
+transmitted over the cycle."""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..kernels import curve as kc
+
+#: Samples per traced loop when looking for dead positions.
+LOOP_SAMPLES = 4096
+#: Crank angles whose assembly margin is below this (relative to the size) are left out of the analysis of
+#: a crank that cannot turn fully: there the two branches are about to merge.
+CLEARANCE = 1e-3
+
+
+@dataclass
+class LooperAnalysis:
+    """Angles in radians.
+
+    turns_fully : the crank can turn all round on this branch (no blocked crank angles, u1' keeps its sign)
+    dead_positions : crank angles where u1' = 0 on a traced loop (the crank's extreme positions)
+    branch_points : crank angles where torus and sphere are tangent (N1 || N2): assembly branches meet
+    blocked_ranges : crank-angle intervals where the mechanism cannot be assembled
+    u2_range, v2_range : (min, max) of the rocker angles over the turn
+    transmission_angle : (N,) 90 deg minus the pressure angle at C. The coupler (revolute at the pin,
+        ball at C) can push C only with forces in the plane of the coupler line and the pin axis (their
+        moment about the pin axis must vanish); the pressure angle is the angle between C's velocity and
+        that plane. 90 deg is ideal, 0 means the coupler cannot drive C at all.
+    min_transmission : (value, crank angle) of the smallest transmission angle
+    """
+    turns_fully: bool
+    dead_positions: list
+    branch_points: list
+    blocked_ranges: list
+    u2_range: tuple
+    v2_range: tuple
+    crank_angles: np.ndarray = field(repr=False)
+    transmission_angle: np.ndarray = field(repr=False)
+    min_transmission: tuple = (0.0, 0.0)
+
+
+def dead_positions(drive):
+    """Crank angles where u1' changes sign along any traced loop of torus ∩ sphere."""
+    out = []
+    for c in drive.loops():
+        if c.length == 0:
+            continue
+        s = np.linspace(0.0, c.length, LOOP_SAMPLES)
+        ys = np.ascontiguousarray(c.parameters(s))
+        n = len(ys)
+        dy, ddy, d1, d2 = np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 3)), np.empty((n, 3))
+        ok = np.zeros(n, dtype=np.bool_)
+        kc.curve_derivatives_many(ys, drive.torus.data, drive.sphere.data, 1.0, dy, ddy, d1, d2, ok)
+        rate = np.where(ok, dy[:, 0], np.nan)
+        for i in np.nonzero(rate[:-1] * rate[1:] < 0)[0]:
+            w = rate[i] / (rate[i] - rate[i + 1])
+            out.append(float(np.mod((1 - w) * ys[i, 0] + w * ys[i + 1, 0], 2 * np.pi)))
+    return sorted(out)
+
+
+def branch_points(drive):
+    """Crank angles at the ends of traced loops that stop at a singular point (N1 || N2)."""
+    out = []
+    for c in drive.loops():
+        if c.status == "singular":
+            out += [float(np.mod(c.params[k, 0], 2 * np.pi)) for k in (0, -1)]
+    return sorted(out)
+
+
+def analyse(drive, branch=0, samples=3601):
+    """LooperAnalysis of a LooperDrive on one branch."""
+    dead = dead_positions(drive)
+    meets = branch_points(drive)
+    blocked = drive.blocked_ranges
+    turns = not blocked and not dead
+    angles = np.linspace(0.0, 2 * np.pi, samples)
+    if not turns:       # keep clear of the blocked ranges, where the two branches merge
+        angles = angles[drive.assembly_margin(angles) > CLEARANCE * drive.size]
+    motion = drive.solve(angles, branch=branch)
+    coupler = motion.links()["coupler"]
+    line = motion.ball_center - coupler.origin
+    pin_axis = coupler.rotation[:, :, 1]
+    normal = np.cross(line, pin_axis)
+    vel = motion.ball_velocity
+    sin = np.abs(np.einsum("ij,ij->i", normal, vel)) / (np.linalg.norm(normal, axis=1) * np.linalg.norm(vel, axis=1))
+    mu = np.pi / 2 - np.arcsin(np.clip(sin, 0.0, 1.0))
+    k = int(np.argmin(mu))
+    u2, v2 = motion.rocker_angles.T
+    return LooperAnalysis(turns_fully=turns, dead_positions=dead, branch_points=meets, blocked_ranges=blocked,
+                          u2_range=(float(u2.min()), float(u2.max())), v2_range=(float(v2.min()), float(v2.max())),
+                          crank_angles=angles, transmission_angle=mu,
+                          min_transmission=(float(mu[k]), float(angles[k])))

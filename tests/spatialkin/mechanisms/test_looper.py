@@ -176,3 +176,16 @@ def test_dead_positions_are_the_edges_of_the_blocked_ranges():
     assert len(a.dead_positions) == len(edges) == 4
     np.testing.assert_allclose(a.dead_positions, edges, atol=1e-5)
     assert np.all(d.assembly_margin(a.crank_angles) > 0)
+
+
+def test_seed_start_and_assembly_agree_with_solve(drive):
+    """The seed's start (the sphere's equator cut by the torus) and assembly at any crank angle give the
+    states that solve() returns at those crank angles, each on its branch."""
+    for y in drive.seed_starts():
+        branch = int(drive.branch_of(y))
+        m = drive.solve([y[0]], branch=branch)
+        np.testing.assert_allclose(np.angle(np.exp(1j * (m.states[0] - y))), 0.0, atol=1e-9)
+    for branch in (0, 1):
+        y = drive.assemble(1.234, branch)
+        m = drive.solve([1.234], branch=branch)
+        np.testing.assert_allclose(np.angle(np.exp(1j * (m.states[0] - y))), 0.0, atol=1e-9)

@@ -1,4 +1,6 @@
 """Layer 4: mechanisms built on the tracer and the trajectory pipeline."""
-from .looper import LooperDrive, LooperMotion, PointMotion
+from .common import PointMotion
+from .looper import LooperDrive, LooperMotion
+from .rssr import RSSR, RSSRMotion
 
-__all__ = ["LooperDrive", "LooperMotion", "PointMotion"]
+__all__ = ["LooperDrive", "LooperMotion", "PointMotion", "RSSR", "RSSRMotion"]

@@ -14,7 +14,6 @@ equator, the reference geometry).
 """
 import math
 import time
-from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq
@@ -26,6 +25,7 @@ from ..surfaces import Sphere, Torus, check_length
 from ..tracing.start import auxiliary_starts
 from ..tracing.intersect import intersect
 from ..trajectory import time_map, to_time
+from .common import PointMotion, check_branch, check_drive
 
 #: Crank angles sampled when checking where the mechanism can be assembled.
 ASSEMBLY_SAMPLES = 3600
@@ -39,14 +39,6 @@ POSITION_TOL = 1e-14
 LINKS = ("crank", "coupler", "rocker_shaft", "rocker_arm")
 _Z = (0.0, 0.0, 1.0)
 _MINUS_Y = (0.0, -1.0, 0.0)
-
-
-@dataclass
-class PointMotion:
-    """Position, velocity and acceleration (N, 3) of a point of a link, in fixed axes."""
-    position: np.ndarray
-    velocity: np.ndarray
-    acceleration: np.ndarray
 
 
 class LooperDrive:
@@ -219,12 +211,7 @@ class LooperDrive:
         -------
         LooperMotion
         """
-        check_branch(branch)
-        u1 = np.atleast_1d(np.asarray(crank_angles, dtype=float))
-        if u1.ndim != 1 or not np.all(np.isfinite(u1)):
-            raise ValueError("crank_angles must be a finite 1-D array")
-        if not math.isfinite(omega) or omega == 0:
-            raise ValueError(f"omega must be finite and non-zero, got {omega!r}")
+        u1 = check_drive(crank_angles, omega, branch)
         t0 = time.perf_counter()
         self._check_assemblable(np.mod(u1, 2 * np.pi))
         samples = self._samples(branch)
@@ -321,11 +308,6 @@ class LooperMotion:
 
     def angular_acceleration(self, link):
         return self.links()[link].alpha
-
-
-def check_branch(branch):
-    if branch not in (0, 1):
-        raise ValueError(f"branch must be 0 or 1, got {branch!r}")
 
 
 def ranges_of(grid, mask):

@@ -13,7 +13,7 @@ from ..kernels import linkage as kl
 from ..kinematics import serial_chain
 from ..surfaces import check_length
 from ..trajectory import time_map, to_time
-from .looper import PointMotion, check_branch
+from .common import PointMotion, check_branch, check_drive
 
 #: solve_ivp tolerance of the configuration-curve trace (a predictor: positions are solved by Newton).
 TRACE_RTOL = 1e-10
@@ -109,12 +109,7 @@ class RSSR:
 
     def solve(self, crank_angles, omega=1.0, branch=0):
         """Motion at exactly the given crank angles; see RSSRMotion."""
-        check_branch(branch)
-        phi = np.atleast_1d(np.asarray(crank_angles, dtype=float))
-        if phi.ndim != 1 or not np.all(np.isfinite(phi)):
-            raise ValueError("crank_angles must be a finite 1-D array")
-        if not math.isfinite(omega) or omega == 0:
-            raise ValueError(f"omega must be finite and non-zero, got {omega!r}")
+        phi = check_drive(crank_angles, omega, branch)
         res, sign = self.cycle(branch)
         s_grid = np.linspace(0.0, res.t[-1], 4096)
         path = res.sol(s_grid)

@@ -126,12 +126,6 @@ class Surface:
         ks.inverse(self.data, flat, out)
         return out.reshape(pts.shape[:-1] + (2,))
 
-    def contains_parameters(self, u, v):
-        """True where (u, v) lies inside the surface's bounds."""
-        lo_u, hi_u = self.u_range
-        lo_v, hi_v = self.v_range
-        return (lo_u <= u) & (u <= hi_u) & (lo_v <= v) & (v <= hi_v)
-
     def with_frame(self, frame):
         """The same surface placed by another frame."""
         raise NotImplementedError

@@ -38,15 +38,13 @@ class Trajectory:
 
     Attributes
     ----------
-    s : ndarray (N,)
     position, d1, d2 : ndarray (N, k)
         The point and its first and second derivatives in s.
     sdot, sddot : ndarray (N,)
         ds/dt and d2s/dt2.
     """
 
-    def __init__(self, s, position, d1, d2, sdot, sddot):
-        self.s = np.asarray(s, dtype=float)
+    def __init__(self, position, d1, d2, sdot, sddot):
         self.position = np.asarray(position, dtype=float)
         self.d1 = np.asarray(d1, dtype=float)
         self.d2 = np.asarray(d2, dtype=float)

@@ -185,26 +185,6 @@ def implicit_value(data, point):
 
 
 @jit
-def implicit_gradient(data, point, grad):
-    """Signed implicit value at a global point and its gradient (central differences of the closed
-    form, step relative to the surface size), written to grad; returns the value."""
-    q = np.empty(3)
-    to_local(data, point, q)
-    h = 1e-6 * size(data)
-    g = np.empty(3)
-    for j in range(3):
-        keep = q[j]
-        q[j] = keep + h
-        fp = implicit_local(data, q)
-        q[j] = keep - h
-        fm = implicit_local(data, q)
-        q[j] = keep
-        g[j] = (fp - fm) / (2.0 * h)
-    rotate(data, g, grad)
-    return implicit_local(data, q)
-
-
-@jit
 def size(data):
     """Characteristic length of the surface (radius, outer radius of a torus; 1 for a plane)."""
     kind = int(data[KIND])

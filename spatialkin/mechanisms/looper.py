@@ -24,7 +24,7 @@ from ..kinematics import serial_chain
 from ..surfaces import Sphere, Torus, check_length
 from ..tracing.start import auxiliary_starts
 from ..tracing.intersect import intersect
-from ..trajectory import time_map, to_time
+from ..trajectory import Trajectory, time_map, to_time
 from .common import PointMotion, check_branch, check_drive
 
 #: Crank angles sampled when checking where the mechanism can be assembled.
@@ -243,6 +243,7 @@ class LooperMotion:
     rocker_angles : (N, 2)        (u2, v2)
     rocker_rates, rocker_accelerations : (N, 2)   d/dt and d2/dt2 of (u2, v2)
     ball_center, ball_velocity, ball_acceleration : (N, 3)
+    ball : Trajectory             the ball centre with its arc-length derivatives (C', C'') and s -> time
     ds_dt : (N,)                  speed of C (arc length of torus ∩ sphere per unit time)
     """
 
@@ -269,8 +270,9 @@ class LooperMotion:
         self.rocker_angles = states[:, 2:].copy()
         self.rocker_rates, self.rocker_accelerations = rates[:, 2:], accels[:, 2:]
         self.coupler_rate, self.coupler_acceleration = rates[:, 1], accels[:, 1]
-        self.ball_center = drive.torus.point(states[:, 0], states[:, 1])
-        self.ball_velocity, self.ball_acceleration = to_time(d1, d2, sdot, sddot)
+        self.ball = Trajectory(drive.torus.point(states[:, 0], states[:, 1]), d1, d2, sdot, sddot)
+        self.ball_center = self.ball.position
+        self.ball_velocity, self.ball_acceleration = self.ball.velocity, self.ball.acceleration
         self._rates, self._accels = rates, accels
         self.wall_time = wall_time
         self._links = None

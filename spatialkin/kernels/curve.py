@@ -266,7 +266,9 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
             m[3, 3] = 0.0
             r[3] = -plane
             if not solve_small(m, r, dx):
-                return -1
+                # a parametrisation degenerates (an apex, a pole): take the minimum-norm step instead
+                if not gap_correction(su1, sv1, su2, sv2, gap, dx):
+                    return -1
         else:
             if not gap_correction(su1, sv1, su2, sv2, gap, dx):
                 return -1
@@ -280,16 +282,23 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
 
 
 @jit
-def project_many(ys, a, b, gap_tol, max_iter, points, tangents, status):
-    """Project each row of ys (N, 4) onto the curve in its own normal plane (through M1(y), normal to
-    the tangent there). Writes the corrected rows in place, their points (N, 3) and tangents (N, 3);
+def project_many(ys, a, b, normal, gap_tol, max_iter, points, tangents, status):
+    """Project each row of ys (N, 4) onto the curve in the plane through M1(y) normal to the tangent there,
+    or normal to the fixed vector `normal` where it is non-zero (beside a singular point, where the tangent
+    is ill-defined). Writes the corrected rows in place, their points (N, 3) and tangents (N, 3);
     status[k] = iterations used or -1."""
     q = np.empty(3)
     t = np.empty(3)
+    fixed = dot(normal, normal) > 0.0
     for k in range(ys.shape[0]):
         curve_frame(ys[k], a, b, q, t)
+        if fixed:
+            t[:] = normal
         status[k] = project_to_curve(ys[k], a, b, q, t, gap_tol, max_iter)
         curve_frame(ys[k], a, b, points[k], tangents[k])
+        if fixed and dot(tangents[k], normal) < 0.0:
+            for i in range(3):
+                tangents[k, i] = -tangents[k, i]
 
 
 @jit
@@ -310,6 +319,22 @@ def degeneracy(y, a, b, area_a, area_b):
         value = min(value, relative_area(su1, sv1))
     if area_b:
         value = min(value, relative_area(su2, sv2))
+    return value
+
+
+@jit
+def area_degeneracy(y, a, b, area_a, area_b):
+    """Smallest relative area element of the flagged surfaces' parametrisations at y (1 if none flagged)."""
+    p = np.empty(3)
+    su = np.empty(3)
+    sv = np.empty(3)
+    value = 1.0
+    if area_a:
+        first_derivatives(a, y[0], y[1], p, su, sv)
+        value = min(value, relative_area(su, sv))
+    if area_b:
+        first_derivatives(b, y[2], y[3], p, su, sv)
+        value = min(value, relative_area(su, sv))
     return value
 
 

@@ -36,6 +36,15 @@ CLOSURE_COSINE = 0.9
 NODE_SUSPECT = 1e-5
 #: Where Newton fails with the normals closer to parallel than this (sine), the branch ends at a singular point.
 NEWTON_NEAR_SINGULAR = 1e-3
+#: A singular point (a node where branches cross, the apex of a spindle or horn torus or a cone) is
+#: passed by a jump of this length (relative to the curve scale) along the incoming direction, then Newton
+#: in the plane normal to it; the jump's dense output is corrected in that plane.
+JUMP_LENGTH = 1e-3
+#: The relative area element of a parametrisation below which its apex is jumped (not a pole: spheres are
+#: re-charted well before).
+APEX_GUARD = 2e-4
+#: After a jump the point must lie within this fraction of the jump of the straight continuation.
+JUMP_STRAIGHTNESS = 0.1
 #: Arc-length step (relative to the curve scale) of the difference that gives the slope of that sine.
 SLOPE_STEP = 1e-7
 #: Minima are watched only where the sine is below this, and counted once its slope (times the scale)
@@ -61,6 +70,18 @@ class Segment:
     b: np.ndarray
     t: np.ndarray        # solver step points (local t)
     y: np.ndarray        # states at the step points (4, n)
+    normal: np.ndarray = field(default_factory=lambda: np.zeros(3))   # fixed correction plane (jumps)
+
+
+class LinearStates:
+    """Dense output of a jump across a singular point: states interpolated linearly over [0, length]."""
+
+    def __init__(self, y0, y1, length):
+        self.y0, self.y1, self.length = np.asarray(y0, dtype=float), np.asarray(y1, dtype=float), length
+
+    def __call__(self, t):
+        w = np.clip(np.asarray(t, dtype=float) / self.length, 0.0, 1.0)
+        return self.y0[:, None] * (1 - w) + self.y1[:, None] * w if np.ndim(t) else self.y0 * (1 - w) + self.y1 * w
 
 
 @dataclass
@@ -73,6 +94,7 @@ class Branch:
     length: float = 0.0
     nfev: int = 0
     end_state: np.ndarray = None
+    nodes: list = field(default_factory=list)      # (s, point) of singular points passed through
 
 
 @dataclass
@@ -153,10 +175,17 @@ def make_events(a, b, settings, sign, start, direction, s_arm):
     sing_tol = settings.singular_tol
 
     def singular(s, y, *_):
-        return kc.degeneracy(y, a, b, flag_a, flag_b) - sing_tol
+        return kc.degeneracy(y, a, b, 0, 0) - sing_tol
     singular.terminal, singular.direction = True, -1
     events.append(singular)
     kinds.append(("singular", None))
+
+    if flag_a or flag_b:
+        def apex(s, y, *_):
+            return kc.area_degeneracy(y, a, b, flag_a, flag_b) - APEX_GUARD
+        apex.terminal, apex.direction = True, -1
+        events.append(apex)
+        kinds.append(("apex", None))
 
     h = SLOPE_STEP * settings.scale
 
@@ -236,11 +265,89 @@ def project_state(y, a, b, settings, tangent_hint=None):
     return y, point, tangent, iters >= 0
 
 
+def jump_across(seg, t_event, y_event, settings):
+    """Pass a singular point reached at solver time t_event of seg (state y_event, on or beside it).
+
+    The jump starts a jump length before the event, where the solver's path is still on the incoming
+    branch, and goes on along the incoming chord to as far beyond the event; there the curve is found by
+    Newton in the plane normal to the chord (the nearest branch: the same one, straight through).
+
+    Returns (solver time where the jump starts, state there, state after, unit direction, length), or None
+    if no point of the same branch is found.
+    """
+    a, b = seg.a, seg.b
+    h = JUMP_LENGTH * settings.scale
+    back = max(t_event - h, 0.0)
+    if t_event - back <= 0.0:
+        return None
+    y_back = seg.sol(back)
+    p_event, p_back, t = np.empty(3), np.empty(3), np.empty(3)
+    kc.curve_frame(y_event, a, b, p_event, t)
+    kc.curve_frame(y_back, a, b, p_back, t)
+    d = p_event - p_back
+    span = np.linalg.norm(d)
+    if span == 0.0:
+        return None
+    d /= span
+    y = y_back + (y_event - y_back) * (2.0 * h / (t_event - back))
+    target = p_back + 2.0 * h * d
+    if kc.project_to_curve(y, a, b, target, d, settings.gap_tol, NEWTON_MAX_ITER) < 0:
+        return None
+    p_after = np.empty(3)
+    kc.curve_frame(y, a, b, p_after, t)
+    if np.linalg.norm(p_after - target) > JUMP_STRAIGHTNESS * h:
+        return None
+    if kc.degeneracy(y, a, b, 0, 0) < 10 * settings.singular_tol:
+        return None
+    return back, y_back, y, d, float(np.linalg.norm(p_after - p_back))
+
+
+def locate_node(a, b, y_from, y_to, d, y_event):
+    """The singular point passed by a jump from y_from to y_to (direction d), to about the chord's sagitta:
+    the sine of the normals' angle grows like |s - s_node| on either side of a node, so its values at a
+    quarter and three quarters of the jump (corrected onto the curve in planes normal to d) place the node
+    between them. Falls back to the event point where they do not straddle it (an apex)."""
+    pts, sines = [], []
+    for w in (0.25, 0.75):
+        y = y_from + w * (y_to - y_from)
+        p, t = np.empty(3), np.empty(3)
+        kc.curve_frame(y, a, b, p, t)
+        kc.project_to_curve(y, a, b, p.copy(), d, 0.0, NEWTON_MAX_ITER)
+        kc.curve_frame(y, a, b, p, t)
+        pts.append(p)
+        sines.append(kc.degeneracy(y, a, b, 0, 0))
+    total = sines[0] + sines[1]
+    if total == 0.0 or float(np.dot(pts[1] - pts[0], d)) <= 0.0:
+        p, t = np.empty(3), np.empty(3)
+        kc.curve_frame(y_event, a, b, p, t)
+        return p
+    w = sines[0] / total
+    return pts[0] + w * (pts[1] - pts[0])
+
+
+def take_jump(branch, seg, y_event, jump):
+    """Record a jump across a singular point: cut seg where the jump starts, add the jump segment, and
+    return the new (sign, state, point, tangent) to go on from."""
+    back, y_back, y_after, d, length = jump
+    keep = seg.t <= back
+    seg.t, seg.y = np.append(seg.t[keep], back), np.column_stack([seg.y[:, keep], y_back])
+    seg.s1 = seg.s0 + back
+    point, tangent = np.empty(3), np.empty(3)
+    branch.nodes.append((seg.s1, locate_node(seg.a, seg.b, y_back, y_after, d, y_event)))
+    branch.segments.append(Segment(s0=seg.s1, s1=seg.s1 + length, sign=1.0,
+                                   sol=LinearStates(y_back, y_after, length), a=seg.a, b=seg.b,
+                                   t=np.array([0.0, length]), y=np.column_stack([y_back, y_after]), normal=d))
+    kc.curve_frame(y_after, seg.a, seg.b, point, tangent)
+    sign = 1.0 if float(np.dot(tangent, d)) > 0 else -1.0
+    return sign, y_after.copy(), point, tangent
+
+
 def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     """Integrate one direction from point (on the curve, unit tangent N1 x N2/|.| there).
 
-    y_start holds the non-sphere parameters at point (a sphere's come from its chart). Returns a Branch
-    whose segments cover [0, branch.length] in arc length.
+    y_start holds the non-sphere parameters at point (a sphere's come from its chart). Singular points on
+    the way (nodes where branches cross, apexes) are passed straight through. Returns a Branch whose
+    segments cover [0, branch.length] in arc length.
     """
     branch = Branch(sign=sign)
     point = np.array(point, dtype=float)
@@ -250,8 +357,17 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     s, s_arm = 0.0, 0.0
     radius = CLOSURE_RADIUS * settings.scale
     for _ in range(MAX_SEGMENTS):
+        y_prev = y
         a, b, y = charts_at(a_user, b_user, point, sign * tangent, y)
         y, point, tangent, ok = project_state(y, a, b, settings)
+        if not ok and branch.segments and not np.any(branch.segments[-1].normal):
+            # a restart beside a singular point: pass it from the last integrated segment instead
+            last = branch.segments[-1]
+            jump = jump_across(last, last.s1 - last.s0, y_prev, settings)
+            if jump is not None:
+                sign, y, point, tangent = take_jump(branch, last, y_prev, jump)
+                s = branch.segments[-1].s1
+                continue
         if not ok:
             sin_normals = kc.degeneracy(y, a, b, 0, 0)
             if sin_normals < NEWTON_NEAR_SINGULAR:
@@ -269,24 +385,19 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                         rtol=settings.rtol, atol=settings.atol, dense_output=True, events=events,
                         args=(a, b, sign, settings.pullback), max_step=settings.max_step)
         branch.nfev += res.nfev
+        seg = Segment(s0=s, s1=s + (res.t[-1] if res.t.size else 0.0), sign=sign, sol=res.sol, a=a, b=b,
+                      t=res.t, y=res.y)
+        if res.t.size and res.t[-1] > 0:
+            branch.segments.append(seg)
+        s = seg.s1
+        y = res.y[:, -1].copy() if res.t.size else y
         if res.status == -1:
-            y_last = res.y[:, -1] if res.y.size else y
-            if kc.degeneracy(y_last, a, b, 0, 0) < NODE_SUSPECT:
+            if kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT:
                 branch.status = "singular"
-                branch.message = f"singular point (normals parallel) near s = {s + res.t[-1]:.6g}"
+                branch.message = f"singular point (normals parallel) near s = {s:.6g}"
             else:
                 branch.status, branch.message = "failed", f"solve_ivp failed at s = {s:.6g}: {res.message}"
-            if res.t.size:
-                branch.segments.append(Segment(s0=s, s1=s + res.t[-1], sign=sign, sol=res.sol, a=a, b=b,
-                                               t=res.t, y=res.y))
-                s += res.t[-1]
-                y = res.y[:, -1].copy()
             break
-        length = res.t[-1]
-        seg = Segment(s0=s, s1=s + length, sign=sign, sol=res.sol, a=a, b=b, t=res.t, y=res.y)
-        branch.segments.append(seg)
-        s += length
-        y = res.y[:, -1].copy()
         if res.status == 0:
             branch.status = "max_length"
             branch.message = f"stopped at max_length = {settings.max_length:.6g} without closing"
@@ -295,15 +406,21 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         kind, info = kinds[hit]
         y = res.y_events[hit][0].copy()
         kc.curve_frame(y, a, b, point, tangent)
-        if kind == "minimum":
-            sin_normals = kc.degeneracy(y, a, b, 0, 0)
-            if sin_normals < NODE_SUSPECT:
+        singular = kind in ("singular", "apex") or (
+            kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT)
+        if singular:
+            jump = jump_across(seg, res.t_events[hit][0], y, settings)
+            if jump is None:
                 branch.status = "singular"
-                branch.message = (f"singular point (branches cross or the surfaces touch; sin = {sin_normals:.2g}) "
-                                  f"at s = {s:.6g}, point {point.tolist()}")
+                what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
+                        if kind == "apex" else "singular point (branches cross or the surfaces touch)")
+                branch.message = (f"{what}, not passed, at s = {s:.6g}, point {point.tolist()}, sin of the normals' "
+                                  f"angle {kc.degeneracy(y, a, b, 0, 0):.2g}")
                 break
+            sign, y, point, tangent = take_jump(branch, seg, y, jump)
+            s = branch.segments[-1].s1
             continue
-        if kind == "chart":
+        if kind in ("minimum", "chart"):
             continue
         if kind == "closure":
             yp, p_e, t_e, _ = project_state(y, a, b, settings)
@@ -317,17 +434,6 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 return branch
             s_arm = s          # a crossing elsewhere: go on, re-armed past it
             continue
-        if kind == "singular":
-            branch.status = "singular"
-            flag_a, flag_b = area_flag(a), area_flag(b)
-            sin_normals = kc.degeneracy(y, a, b, 0, 0)
-            if sin_normals > 2 * settings.singular_tol and (flag_a or flag_b):
-                branch.message = (f"a parametrisation degenerates at s = {s:.6g}, point {point.tolist()} "
-                                  "(apex of a cone or axis point of a horn/spindle torus)")
-            else:
-                branch.message = (f"singular point (surface normals parallel, sin = {sin_normals:.2g}) "
-                                  f"at s = {s:.6g}, point {point.tolist()}")
-            break
         if kind == "boundary":
             k, j = info
             name = "ab"[k]

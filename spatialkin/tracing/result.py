@@ -8,8 +8,9 @@ from .ivp import NEWTON_MAX_ITER
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.
 DUPLICATE_SPACING = 1e-9
-#: Newton steps in arc length refining the nearest sample in Curve.closest.
+#: Newton steps in arc length refining the nearest samples in Curve.closest, and how many are refined.
 CLOSEST_NEWTON_STEPS = 4
+CLOSEST_CANDIDATES = 6
 
 
 class TracingError(RuntimeError):
@@ -60,6 +61,10 @@ class Curve:
         Right-hand-side evaluations spent by solve_ivp.
     wall_time : float
         Seconds spent tracing this curve.
+    nodes : ndarray (K, 3)
+        Singular points the curve passed straight through: nodes where branches cross (each branch is then
+        followed on through the node, so a figure-eight is one closed curve passing its node twice), and
+        apexes of a spindle or horn torus or a cone.
     solver_gap : ndarray (M,)
         |M1 - M2| of the solver's own states at its steps, before the Newton correction: how far plain
         integration (with the pull-back) strays; a diagnostic of drift.
@@ -78,6 +83,7 @@ class Curve:
         self.nfev = int(nfev)
         self.wall_time = float(wall_time)
         self.solver_gap = np.zeros(0)
+        self.nodes = np.empty((0, 3))
         self._spans = spans
         self._gap_tol = gap_tol
         self._lo = np.array([sp.lo for sp in spans])
@@ -107,7 +113,7 @@ class Curve:
             span = self._spans[k]
             y = np.ascontiguousarray(span.states(s[mask]).T)
             p, t, st = points[mask], tangents[mask], status[mask]
-            kc.project_many(y, span.seg.a, span.seg.b, self._gap_tol, NEWTON_MAX_ITER, p, t, st)
+            kc.project_many(y, span.seg.a, span.seg.b, span.seg.normal, self._gap_tol, NEWTON_MAX_ITER, p, t, st)
             points[mask], tangents[mask], status[mask] = p, t * span.flip * span.seg.sign, st
             params[mask] = user_params(self.surfaces, y, p, span.seg.a, span.seg.b)
         return s, points, tangents, params
@@ -144,10 +150,17 @@ class Curve:
             return np.zeros(len(flat)).reshape(pts.shape[:-1]), np.linalg.norm(flat - self.points[0], axis=1).reshape(pts.shape[:-1])
         grid = np.linspace(0.0, self.length, max(8 * len(self.points), 64))
         dense = self(grid)
-        s = grid[np.argmin(np.linalg.norm(dense[None, :, :] - flat[:, None, :], axis=2), axis=1)]
+        gaps = np.linalg.norm(dense[None, :, :] - flat[:, None, :], axis=2)
+        # refine the few nearest samples (not only the nearest: the curve may pass close to itself)
+        k = min(CLOSEST_CANDIDATES, len(grid))
+        cand = grid[np.argpartition(gaps, k - 1, axis=1)[:, :k]].ravel()
+        rep = np.repeat(flat, k, axis=0)
         for _ in range(CLOSEST_NEWTON_STEPS):
-            s = s + np.einsum("ij,ij->i", flat - self(s), self.tangent(s))
-            s = s if self.closed else np.clip(s, 0.0, self.length)
+            cand = cand + np.einsum("ij,ij->i", rep - self(cand), self.tangent(cand))
+            cand = cand if self.closed else np.clip(cand, 0.0, self.length)
+        d = np.linalg.norm(rep - self(cand), axis=1).reshape(-1, k)
+        best = np.argmin(d, axis=1)
+        s = cand.reshape(-1, k)[np.arange(len(flat)), best]
         dist = np.linalg.norm(flat - self(s), axis=1)
         s = np.mod(s, self.length) if self.closed else s
         return s.reshape(pts.shape[:-1]), dist.reshape(pts.shape[:-1])

@@ -204,6 +204,8 @@ def trace_from(a, b, point, y, settings, t_start):
     curve = Curve((a, b), points, s_all, params, closed, length, status, message, spans, settings.gap_tol,
                   nfev=nfev, wall_time=0.0)
     curve.solver_gap = raw_gap
+    nodes = [p for branch, _, _ in branches for _, p in branch.nodes]
+    curve.nodes = np.array(nodes).reshape(-1, 3)
     curve.wall_time = time.perf_counter() - t_start
     return curve
 
@@ -224,7 +226,7 @@ def _corrected(a, b, y_all, span_of, spans, settings):
         p = np.empty((len(y), 3))
         t = np.empty((len(y), 3))
         st = np.empty(len(y), dtype=np.int64)
-        kc.project_many(y, seg.a, seg.b, settings.gap_tol, NEWTON_MAX_ITER, p, t, st)
+        kc.project_many(y, seg.a, seg.b, seg.normal, settings.gap_tol, NEWTON_MAX_ITER, p, t, st)
         points[mask] = p
         params[mask] = user_params((a, b), y, p, seg.a, seg.b)
     for k, surf in enumerate((a, b)):

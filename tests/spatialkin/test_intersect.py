@@ -94,19 +94,22 @@ def test_cone_and_plane_make_an_ellipse():
 
 
 def test_equal_cylinders_cross_in_two_ellipses():
-    """Cylinders of equal radius with axes x and y meet in the ellipses x = y and x = -y, which cross at
-    (0, 0, +-r): four arcs, each ending at the crossings (singular)."""
+    """Cylinders of equal radius with axes x and y meet in the ellipses x = y and x = -y (semi-axes sqrt(2) r
+    and r), which cross at (0, 0, +-r): two closed curves, each through both nodes."""
     r = 1.0
     cx = sk.Cylinder(r, sk.Frame.from_z_axis((0, 0, 0), (1, 0, 0)), v_range=(-3, 3))
     cy = sk.Cylinder(r, sk.Frame.from_z_axis((0, 0, 0), (0, 1, 0)), v_range=(-3, 3))
     curves = sk.intersect(cx, cy)
-    assert len(curves) == 4
+    perimeter = 4 * np.sqrt(2) * r * 1.3506438810476755   # 4 a E(e), e^2 = 1/2, E(1/sqrt 2) = 1.35064...
+    assert len(curves) == 2
+    signs = []
     for c in curves:
-        assert c.status == "singular"
-        far = np.abs(np.abs(c.points[:, 2]) - r) > 1e-3
-        np.testing.assert_allclose(np.abs(c.points[far, 0]), np.abs(c.points[far, 1]), atol=1e-11)
-    perimeter = 4 * np.sqrt(2) * r * 1.3506438810476755   # ellipse, semi-axes sqrt(2) r and r: E(1/2)
-    assert abs(sum(c.length for c in curves) - 2 * perimeter) < 1e-4
+        assert c.closed and len(c.nodes) == 2 and abs(c.length - perimeter) < 1e-8
+        ratio = c.points[:, 0] / np.where(np.abs(c.points[:, 1]) > 1e-3, c.points[:, 1], np.nan)
+        signs.append(np.sign(np.nanmean(ratio)))
+        np.testing.assert_allclose(np.abs(c.points[:, 0]), np.abs(c.points[:, 1]), atol=1e-11)
+        np.testing.assert_allclose(np.abs(c.nodes[:, 2]), r, atol=1e-6)
+    assert sorted(signs) == [-1, 1]          # one ellipse in x = y, the other in x = -y
 
 
 def test_spindle_torus_of_the_looper_has_two_components():

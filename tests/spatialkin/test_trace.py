@@ -112,48 +112,46 @@ def test_drift_stays_flat_over_100_loops():
     assert gaps[1.0][1] < gaps[0.0][1]
 
 
-def test_singular_points_stop_the_branch_villarceau():
-    """A plane through the torus centre tilted by asin(r/R) cuts two Villarceau circles of radius R
-    crossing at the two points where the plane touches the torus. Each arc ends there as 'singular'."""
+def test_villarceau_circles_pass_through_their_nodes():
+    """A plane through the torus centre tilted by asin(r/R) cuts two Villarceau circles of radius R about
+    (0, +-r, 0), crossing at the two points where the plane touches the torus. Each circle is traced as one
+    closed curve straight through both nodes, without jumping to the other circle."""
     big, small = 3.0, 1.0
     theta = np.arcsin(small / big)
     normal = np.array([np.sin(theta), 0.0, np.cos(theta)])
     torus = sk.Torus(big, small)
     plane = sk.Plane(sk.Frame.from_z_axis((0, 0, 0), normal))
     curves = sk.intersect(torus, plane)
-    assert len(curves) == 4 and all(c.status == "singular" and not c.closed for c in curves)
     node = big * np.cos(theta) * np.array([np.cos(theta), 0.0, -np.sin(theta)])
-    for c in curves:
-        on_circle = np.minimum(np.abs(np.linalg.norm(c.points - [0, small, 0], axis=1) - big),
-                               np.abs(np.linalg.norm(c.points - [0, -small, 0], axis=1) - big))
-        near_node = np.minimum(np.linalg.norm(c.points - node, axis=1), np.linalg.norm(c.points + node, axis=1))
-        # away from the nodes the points are on the circles to round-off; beside a node, where the surfaces
-        # are tangent, a point within 1e-15 of both may sit up to ~1e-8 off the curve (ill-conditioned)
-        assert on_circle[near_node > 1e-3].max() < 1e-12
-        assert on_circle.max() < 1e-7
-        for end in c.points[[0, -1]]:
-            assert min(np.linalg.norm(end - node), np.linalg.norm(end + node)) < 1e-5 * big
-    # together they cover both circles up to the stops beside the nodes
-    assert abs(sum(c.length for c in curves) - 4 * np.pi * big) < 1e-4 * big
-
-
-def test_viviani_lobes_end_at_the_node():
-    """Viviani's curve (sphere radius 2a ∩ cylinder radius a through the centre): x = a(1 + cos t),
-    y = a sin t, z = 2a sin(t/2); a figure-eight with its node at (2a, 0, 0)."""
-    a = 1.0
-    sphere = sk.Sphere(2 * a)
-    cylinder = sk.Cylinder(a, sk.Frame((a, 0, 0)))
-    curves = sk.intersect(sphere, cylinder)
-    lobe = 2 * a * quad(lambda w: np.sqrt(1 + np.cos(w) ** 2), 0, np.pi)[0]
     assert len(curves) == 2
+    centres = []
     for c in curves:
-        p = c.points
+        assert c.closed and len(c.nodes) == 2
+        assert abs(c.length - 2 * np.pi * big) < 1e-7 * big
+        for pts in (c.points, c(np.linspace(0, c.length, 3000))):
+            d = [np.abs(np.linalg.norm(pts - [0, sgn * small, 0], axis=1) - big) for sgn in (1, -1)]
+            k = int(np.argmin([x.max() for x in d]))
+            assert d[k].max() < 1e-11 * big                   # all on one circle: no branch jump
+        centres.append(k)
+        for p in c.nodes:
+            assert min(np.linalg.norm(p - node), np.linalg.norm(p + node)) < 1e-5 * big
+    assert sorted(centres) == [0, 1]
+
+
+def test_viviani_figure_eight_is_one_curve_through_its_node():
+    """Viviani's curve (sphere radius 2a ∩ cylinder radius a through the centre): x = a(1 + cos t),
+    y = a sin t, z = 2a sin(t/2), a figure-eight through its node (2a, 0, 0), passed twice."""
+    a = 1.0
+    curves = sk.intersect(sk.Sphere(2 * a), sk.Cylinder(a, sk.Frame((a, 0, 0))))
+    length = 2 * a * quad(lambda w: np.sqrt(1 + np.cos(w) ** 2), 0, 2 * np.pi)[0]
+    assert len(curves) == 1
+    c = curves[0]
+    assert c.closed and abs(c.length - length) < 1e-9
+    for p in (c.points, c(np.linspace(0, c.length, 3000))):
         np.testing.assert_allclose((p[:, 0] - a) ** 2 + p[:, 1] ** 2, a ** 2, atol=1e-12)
         np.testing.assert_allclose(np.linalg.norm(p, axis=1), 2 * a, atol=1e-12)
-        assert c.status == "singular"
-        assert abs(c.length - lobe) < 1e-5
-        for end in p[[0, -1]]:
-            assert np.linalg.norm(end - [2 * a, 0, 0]) < 1e-5
+    assert len(c.nodes) == 2
+    np.testing.assert_allclose(c.nodes, [[2 * a, 0, 0]] * 2, atol=1e-6)
 
 
 def test_edges_of_a_trimmed_cylinder():

@@ -52,15 +52,12 @@ SPHERE_LATITUDE = 1.25
 
 
 def roles(a, b):
-    """(P, Q, swapped): P parametrised, Q implicit. A sphere or a plane is best as Q (closed-form critical
-    points); otherwise a compact surface is best as P (its domain is finite)."""
-    kinds = (int(a.data[ks.KIND]), int(b.data[ks.KIND]))
-    for implicit_kind in (ks.SPHERE, ks.PLANE):
-        if kinds[1] == implicit_kind and kinds[0] != implicit_kind:
-            return a, b, False
-        if kinds[0] == implicit_kind and kinds[1] != implicit_kind:
-            return b, a, True
-    if not a.compact and b.compact:
+    """(P, Q, swapped): P parametrised, Q implicit. Best is a pair with closed-form critical points (P a
+    torus or sphere, Q a sphere or plane); next, a compact P (its domain is finite)."""
+    def score(p, q):
+        closed = int(p.data[ks.KIND]) in (ks.TORUS, ks.SPHERE) and int(q.data[ks.KIND]) in (ks.SPHERE, ks.PLANE)
+        return 2 * closed + p.compact
+    if score(b, a) > score(a, b):
         return b, a, True
     return a, b, False
 

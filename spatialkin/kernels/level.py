@@ -120,3 +120,17 @@ def surface_gradient_norm(p, q, u, v, h):
         return 0.0
     s2 = ((g * grad[0] - f * grad[1]) * grad[0] + (e * grad[1] - f * grad[0]) * grad[1]) / det
     return math.sqrt(max(s2, 0.0))
+
+
+@jit
+def relative_area_at(p, u, v):
+    """|S_u x S_v| / max(|S_u|^2, |S_v|^2) of P at (u, v): zero where its parametrisation collapses."""
+    loc = np.empty((6, 3))
+    derivatives(p, u, v, loc)
+    nx = loc[DU, 1] * loc[DV, 2] - loc[DU, 2] * loc[DV, 1]
+    ny = loc[DU, 2] * loc[DV, 0] - loc[DU, 0] * loc[DV, 2]
+    nz = loc[DU, 0] * loc[DV, 1] - loc[DU, 1] * loc[DV, 0]
+    big = max(loc[DU, 0] ** 2 + loc[DU, 1] ** 2 + loc[DU, 2] ** 2, loc[DV, 0] ** 2 + loc[DV, 1] ** 2 + loc[DV, 2] ** 2)
+    if big == 0.0:
+        return 0.0
+    return math.sqrt(nx * nx + ny * ny + nz * nz) / big

@@ -40,6 +40,8 @@ NEWTON_NEAR_SINGULAR = 1e-3
 #: passed by a jump of this length (relative to the curve scale) along the incoming direction, then Newton
 #: in the plane normal to it; the jump's dense output is corrected in that plane.
 JUMP_LENGTH = 1e-3
+#: Longest jump (relative to the curve scale), reached by doubling where the landing is still beside an apex.
+MAX_JUMP = 0.1
 #: The relative area element of a parametrisation below which its apex is jumped (not a pole: spheres are
 #: re-charted well before).
 APEX_GUARD = 2e-4
@@ -55,6 +57,8 @@ SLOPE_FLOOR = 1e-6
 EDGE_TOL = 1e-12
 #: Newton iterations allowed for one projection onto the curve.
 NEWTON_MAX_ITER = 12
+#: At most this many right-hand-side evaluations in one segment (a stalled integration ends the branch).
+SEGMENT_MAX_EVALUATIONS = 200_000
 #: At most this many segments in one branch (each ends at an event): bounds the work on pathological input.
 MAX_SEGMENTS = 10_000
 
@@ -156,6 +160,23 @@ def charts_at(a_user, b_user, point, tangent, y_prev=None):
         y[2 * k:2 * k + 2] = uv[0]
         charts.append(data)
     return charts[0], charts[1], y
+
+
+class BudgetExceeded(Exception):
+    """An integration used up its right-hand-side evaluations."""
+
+
+def budgeted(rhs, limit=None):
+    """rhs wrapped so that it raises BudgetExceeded after `limit` calls (bounded time on any input)."""
+    limit = SEGMENT_MAX_EVALUATIONS if limit is None else limit
+    calls = [0]
+
+    def wrapped(t, y, *args):
+        calls[0] += 1
+        if calls[0] > limit:
+            raise BudgetExceeded
+        return rhs(t, y, *args)
+    return wrapped
 
 
 def finite_bounds(*surfaces):
@@ -270,36 +291,44 @@ def jump_across(seg, t_event, y_event, settings):
 
     The jump starts a jump length before the event, where the solver's path is still on the incoming
     branch, and goes on along the incoming chord to as far beyond the event; there the curve is found by
-    Newton in the plane normal to the chord (the nearest branch: the same one, straight through).
+    Newton in the plane normal to the chord (the nearest branch: the same one, straight through). The jump
+    is lengthened (up to MAX_JUMP) until it lands clear of an apex's degenerate zone.
 
     Returns (solver time where the jump starts, state there, state after, unit direction, length), or None
     if no point of the same branch is found.
     """
     a, b = seg.a, seg.b
+    flags = (area_flag(a), area_flag(b))
     h = JUMP_LENGTH * settings.scale
-    back = max(t_event - h, 0.0)
-    if t_event - back <= 0.0:
-        return None
-    y_back = seg.sol(back)
-    p_event, p_back, t = np.empty(3), np.empty(3), np.empty(3)
-    kc.curve_frame(y_event, a, b, p_event, t)
-    kc.curve_frame(y_back, a, b, p_back, t)
-    d = p_event - p_back
-    span = np.linalg.norm(d)
-    if span == 0.0:
-        return None
-    d /= span
-    y = y_back + (y_event - y_back) * (2.0 * h / (t_event - back))
-    target = p_back + 2.0 * h * d
-    if kc.project_to_curve(y, a, b, target, d, settings.gap_tol, NEWTON_MAX_ITER) < 0:
-        return None
-    p_after = np.empty(3)
-    kc.curve_frame(y, a, b, p_after, t)
-    if np.linalg.norm(p_after - target) > JUMP_STRAIGHTNESS * h:
-        return None
-    if kc.degeneracy(y, a, b, 0, 0) < 10 * settings.singular_tol:
-        return None
-    return back, y_back, y, d, float(np.linalg.norm(p_after - p_back))
+    while h <= MAX_JUMP * settings.scale:
+        back = max(t_event - h, 0.0)
+        if t_event - back <= 0.0:
+            return None
+        y_back = seg.sol(back)
+        p_event, p_back, t = np.empty(3), np.empty(3), np.empty(3)
+        kc.curve_frame(y_event, a, b, p_event, t)
+        kc.curve_frame(y_back, a, b, p_back, t)
+        d = p_event - p_back
+        span = np.linalg.norm(d)
+        if span == 0.0:
+            return None
+        d /= span
+        reach = h + span
+        y = y_back + (y_event - y_back) * (reach / (t_event - back))
+        target = p_back + reach * d
+        if kc.project_to_curve(y, a, b, target, d, settings.gap_tol, NEWTON_MAX_ITER) < 0:
+            return None
+        p_after = np.empty(3)
+        kc.curve_frame(y, a, b, p_after, t)
+        if np.linalg.norm(p_after - target) > JUMP_STRAIGHTNESS * reach:
+            return None
+        if kc.area_degeneracy(y, a, b, *flags) < 2 * APEX_GUARD:
+            h *= 2                      # still beside an apex (a horn torus's cusp): jump further
+            continue
+        if kc.degeneracy(y, a, b, 0, 0) < 10 * settings.singular_tol:
+            return None
+        return back, y_back, y, d, float(np.linalg.norm(p_after - p_back))
+    return None
 
 
 def locate_node(a, b, y_from, y_to, d, y_event):
@@ -381,9 +410,15 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             branch.status, branch.message = "boundary", f"starts on an edge, leaving the surface, at s = {s:.6g}"
             break
         events, kinds = make_events(a, b, settings, sign, start, direction, s_arm - s)
-        res = solve_ivp(kc.dragilev_rhs, (0.0, settings.max_length - s), y, method=settings.method,
-                        rtol=settings.rtol, atol=settings.atol, dense_output=True, events=events,
-                        args=(a, b, sign, settings.pullback), max_step=settings.max_step)
+        try:
+            res = solve_ivp(budgeted(kc.dragilev_rhs), (0.0, settings.max_length - s), y, method=settings.method,
+                            rtol=settings.rtol, atol=settings.atol, dense_output=True, events=events,
+                            args=(a, b, sign, settings.pullback), max_step=settings.max_step)
+        except BudgetExceeded:
+            branch.status = "failed"
+            branch.message = (f"integration stalled after s = {s:.6g} ({SEGMENT_MAX_EVALUATIONS} right-hand-side "
+                              f"evaluations in one segment), near point {point.tolist()}")
+            break
         branch.nfev += res.nfev
         seg = Segment(s0=s, s1=s + (res.t[-1] if res.t.size else 0.0), sign=sign, sol=res.sol, a=a, b=b,
                       t=res.t, y=res.y)

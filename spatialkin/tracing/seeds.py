@@ -26,7 +26,7 @@ from scipy.integrate import solve_ivp
 
 from ..kernels import level as kl
 from ..kernels import surfaces as ks
-from .ivp import finite_bounds
+from .ivp import BudgetExceeded, budgeted, finite_bounds
 from .start import parameter_units
 
 #: Grid of Newton starts for the generic critical-point search (per parameter direction).
@@ -43,10 +43,16 @@ FLOW_SATURATION = 1e-3
 FLOW_MIN_GRADIENT = 1e-4
 #: Longest gradient flow, in turns around P (2 pi times its size).
 FLOW_TURNS = 4
+#: A gradient flow is cut off after this many right-hand-side evaluations ...
+FLOW_MAX_EVALUATIONS = 5_000
+#: ... or where P's relative area element falls below this (beside an apex).
+FLOW_APEX_GUARD = 1e-3
 #: Samples along each edge of a trimmed surface.
 EDGE_SAMPLES = 400
 #: Eigenvalues of the Hessian below this (relative to the largest) count as zero (degenerate directions).
 EIGEN_RATIO = 1e-6
+#: Parameter distance from an apex of the rings sampled for seeds near it.
+APEX_RING = 2e-2
 #: Charts of a sphere kept away from its poles in the grid search: |latitude| below this.
 SPHERE_LATITUDE = 1.25
 
@@ -182,6 +188,11 @@ def flow_to_level(p, q, uv, direction, sigma, scale):
         return kl.surface_gradient_norm(p.data, q.data, x[0], x[1], h) - FLOW_MIN_GRADIENT
     stalled.terminal, stalled.direction = True, -1
     events = [level, stalled]
+    if apex_lines(p):
+        def apex(t, x, *_):
+            return kl.relative_area_at(p.data, x[0], x[1]) - FLOW_APEX_GUARD
+        apex.terminal, apex.direction = True, -1
+        events.append(apex)
     for _, _, idx, bound, lower in finite_bounds(p.data):
         def edge(t, x, *_, idx=idx, bound=bound, lower=lower):
             return x[idx] - bound if lower else bound - x[idx]
@@ -190,9 +201,12 @@ def flow_to_level(p, q, uv, direction, sigma, scale):
     g0 = level(0.0, x0)
     if g0 == 0.0:
         return p.point(*x0)
-    res = solve_ivp(kl.gradient_flow_rhs, (0.0, FLOW_TURNS * 2 * math.pi * max(p.size, scale)), x0,
-                    method="RK45", rtol=FLOW_RTOL, atol=FLOW_RTOL, events=events,
-                    args=(p.data, q.data, float(sigma), h, FLOW_SATURATION))
+    try:
+        res = solve_ivp(budgeted(kl.gradient_flow_rhs, FLOW_MAX_EVALUATIONS), (0.0, FLOW_TURNS * 2 * math.pi * max(p.size, scale)), x0,
+                        method="RK45", rtol=FLOW_RTOL, atol=FLOW_RTOL, events=events,
+                        args=(p.data, q.data, float(sigma), h, FLOW_SATURATION))
+    except BudgetExceeded:       # bounded time: a flow stalling beside an apex is cut off
+        return None
     if res.status == 1 and res.t_events[0].size:
         return p.point(*res.y_events[0][0])
     return None
@@ -237,6 +251,43 @@ def edge_seeds(p, q, scale):
     return seeds
 
 
+def apex_lines(p):
+    """Parameter lines (fixed index, value) along which P's parametrisation collapses to a point: the axis
+    points of a horn or spindle torus (R + r cos v = 0), the apex of a cone (v = 0)."""
+    kind = int(p.data[ks.KIND])
+    if kind == ks.TORUS and p.minor_radius >= p.major_radius:
+        v = math.acos(-p.major_radius / p.minor_radius)
+        return [v, -v] if v < math.pi else [v]          # a horn torus has one axis point
+    if kind == ks.CONE:
+        return [0.0]
+    return []
+
+
+def apex_seeds(p, q, scale, level_tol):
+    """Seeds near an apex of P that lies on Q: there the critical points of g sit on the degenerate line
+    and are not found; the level is sampled on small parameter circles around the apex instead. An apex
+    on Q with no level crossing around it is an isolated point of the intersection.
+
+    Returns (seeds, isolated points)."""
+    out, isolated = [], []
+    for v_apex in apex_lines(p):
+        if abs(kl.level_value(p.data, q.data, 0.0, v_apex)) > max(level_tol, 1e-9 * scale):
+            continue
+        u = np.linspace(-math.pi, math.pi, EDGE_SAMPLES)
+        found_any = False
+        for dv in (-APEX_RING, APEX_RING):
+            ring = np.column_stack([u, np.full_like(u, v_apex + dv)])
+            g = np.array([kl.level_value(p.data, q.data, x, y) for x, y in ring])
+            crossings = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) <= 0)[0]
+            for i in crossings:
+                w = g[i] / (g[i] - g[i + 1]) if g[i] != g[i + 1] else 0.0
+                out.append(p.point(*((1 - w) * ring[i] + w * ring[i + 1])))
+            found_any = found_any or len(crossings) > 0
+        if not found_any:
+            isolated.append(p.point(0.0, v_apex))
+    return out, isolated
+
+
 def find_seeds(a, b, scale, level_tol):
     """Start points on the intersection of a and b.
 
@@ -256,7 +307,8 @@ def find_seeds(a, b, scale, level_tol):
     critical = critical_points(p, q, scale)
     values = np.array([c[1] for c in critical])
     if p.compact and len(values) and (values.min() > level_tol or values.max() < -level_tol):
-        return seeds, contacts, nodes, []      # g keeps one sign on a closed surface: no intersection
+        # g keeps one sign on a closed surface: no intersection, but for an apex of P touching Q
+        return seeds, apex_seeds(p, q, scale, level_tol)[1], nodes, []
     for uv, value, lam, vec in critical:
         big = max(abs(lam[0]), abs(lam[1]), 1e-300)
         on_level = abs(value) <= level_tol
@@ -279,6 +331,9 @@ def find_seeds(a, b, scale, level_tol):
                     hit = flow_to_level(p, q, uv, sense * vec[:, i], sigma, scale)
                     if hit is not None:
                         seeds.append(hit)
+    near_apex, apex_points = apex_seeds(p, q, scale, level_tol)
+    seeds += near_apex
+    contacts += apex_points
     edge_points = []
     for kind, point, fixed, value in edge_seeds(p, q, scale):
         if kind == "flow":

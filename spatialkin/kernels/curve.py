@@ -142,20 +142,29 @@ def solve_small(m, r, x):
 @jit
 def gap_correction(su1, sv1, su2, sv2, gap, out):
     """Minimum-norm Gauss-Newton step (4,) in (u1, v1, u2, v2) that removes the gap M1 - M2 to first order:
-    out = -J^T (J J^T)^-1 gap with J = [su1, sv1, -su2, -sv2]. Returns False (out zero) if J J^T is singular
+    out = -J^T (J J^T)^-1 gap with J = [su1, sv1, -su2, -sv2], its columns first scaled to unit length (so
+    that surfaces of very different sizes are weighed alike). Returns False (out zero) if J J^T is singular
     (the two tangent planes coincide)."""
+    n0 = norm(su1)
+    n1 = norm(sv1)
+    n2 = norm(su2)
+    n3 = norm(sv2)
+    if n0 == 0.0 or n1 == 0.0 or n2 == 0.0 or n3 == 0.0:
+        out[:] = 0.0
+        return False
     jj = np.empty((3, 3))
     for i in range(3):
         for j in range(3):
-            jj[i, j] = su1[i] * su1[j] + sv1[i] * sv1[j] + su2[i] * su2[j] + sv2[i] * sv2[j]
+            jj[i, j] = (su1[i] * su1[j] / (n0 * n0) + sv1[i] * sv1[j] / (n1 * n1)
+                        + su2[i] * su2[j] / (n2 * n2) + sv2[i] * sv2[j] / (n3 * n3))
     w = np.empty(3)
     if not solve3(jj, gap, w):
         out[:] = 0.0
         return False
-    out[0] = -dot(su1, w)
-    out[1] = -dot(sv1, w)
-    out[2] = dot(su2, w)
-    out[3] = dot(sv2, w)
+    out[0] = -dot(su1, w) / (n0 * n0)
+    out[1] = -dot(sv1, w) / (n1 * n1)
+    out[2] = dot(su2, w) / (n2 * n2)
+    out[3] = dot(sv2, w) / (n3 * n3)
     return True
 
 

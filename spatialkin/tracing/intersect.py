@@ -75,5 +75,7 @@ def edge_start(a, b, point, p_index, fixed, value, settings):
 def contact_curve(a, b, point, settings):
     """A component that is a single point where the surfaces touch."""
     y = np.concatenate([a.parameters(point), b.parameters(point)]).reshape(1, 4)
-    return Curve((a, b), point.reshape(1, 3), np.zeros(1), y, False, 0.0, "contact",
-                 f"the surfaces touch at {point.tolist()}", [], settings.gap_tol)
+    curve = Curve((a, b), point.reshape(1, 3), np.zeros(1), y, False, 0.0, "contact",
+                  f"the surfaces touch at {point.tolist()}", [], settings.gap_tol)
+    curve.tolerance = settings.tolerance
+    return curve

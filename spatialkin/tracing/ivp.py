@@ -109,6 +109,7 @@ class Settings:
     atol: float
     gap_tol: float          # Newton target for |M1 - M2|
     scale: float            # curve length scale
+    tolerance: float        # accuracy promised: tol * scale, or the round-off floor of the coordinates
     singular_tol: float     # stop when sin(normals' angle) or a relative area element falls below it
     pullback: float         # lambda, 1/length
     max_length: float

@@ -65,6 +65,9 @@ class Curve:
         Singular points the curve passed straight through: nodes where branches cross (each branch is then
         followed on through the node, so a figure-eight is one closed curve passing its node twice), and
         apexes of a spindle or horn torus or a cone.
+    tolerance : float
+        The accuracy asked for, as an absolute length: tol times the scene scale (the smaller surface
+        size), or the round-off floor of the coordinates (64 ulps of their magnitude) where that is larger.
     solver_gap : ndarray (M,)
         |M1 - M2| of the solver's own states at its steps, before the Newton correction: how far plain
         integration (with the pull-back) strays; a diagnostic of drift.
@@ -84,6 +87,7 @@ class Curve:
         self.wall_time = float(wall_time)
         self.solver_gap = np.zeros(0)
         self.nodes = np.empty((0, 3))
+        self.tolerance = gap_tol
         self._spans = spans
         self._gap_tol = gap_tol
         self._lo = np.array([sp.lo for sp in spans])

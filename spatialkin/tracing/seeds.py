@@ -33,7 +33,7 @@ from .start import parameter_units
 GRID = 40
 #: Critical points closer than this (relative to the scale) are one.
 MERGE_RADIUS = 1e-6
-#: Parameter offset from a critical point at which its gradient flow starts.
+#: Offset (relative to the scene scale, in space) from a critical point at which its gradient flow starts.
 FLOW_OFFSET = 1e-4
 #: Relative tolerance of the gradient flow integration (only a point near the level is needed).
 FLOW_RTOL = 1e-8
@@ -127,6 +127,15 @@ def parameter_box(p, q):
     return lo, hi, periodic
 
 
+def param_steps(p, uv, scale):
+    """Parameter increments (2,) that move P's point by `scale` in space at uv (the scene's length scale
+    may be far below the surface's own)."""
+    d = p.derivatives(*uv)
+    lengths = np.array([np.linalg.norm(d[1]), np.linalg.norm(d[2])])
+    fallback = parameter_units(p.data, scale)
+    return np.where(lengths > 1e-12 * fallback, scale / np.maximum(lengths, 1e-300), fallback)
+
+
 def grid_critical(p, q, lo, hi, param_scale):
     """Critical parameters of g on P by Newton from a GRID x GRID lattice over [lo, hi]."""
     cells = [(np.arange(GRID) + 0.5) / GRID * (hi[i] - lo[i]) + lo[i] for i in range(2)]
@@ -155,12 +164,12 @@ def critical_points(p, q, scale):
         uv = np.vstack([f.reshape(-1, 2) for f in found])
     pts = p.point(uv[:, 0], uv[:, 1]) if len(uv) else np.empty((0, 3))
     result, kept = [], []
-    h = kl.FD_STEP_HESS * param_scale
     for k in range(len(uv)):
         if any(np.linalg.norm(pts[k] - pts[j]) <= MERGE_RADIUS * scale for j in kept):
             continue
         kept.append(k)
         hess = np.empty((2, 2))
+        h = kl.FD_STEP_HESS * param_steps(p, uv[k], scale)
         kl.level_hessian(p.data, q.data, uv[k, 0], uv[k, 1], h, hess)
         d = p.derivatives(*uv[k])
         metric = np.array([[d[1] @ d[1], d[1] @ d[2]], [d[1] @ d[2], d[2] @ d[2]]])
@@ -176,9 +185,11 @@ def flow_to_level(p, q, uv, direction, sigma, scale):
     """Follow the unit-speed gradient flow of g (sigma = +1 up, -1 down) from uv + offset * direction
     until g = 0; returns the point (3,) near the level, or None if the flow ends first."""
     x0 = np.asarray(uv, dtype=float)
-    if direction is not None:
-        x0 = x0 + FLOW_OFFSET * direction / np.linalg.norm(direction)
-    h = kl.FD_STEP_GRAD * parameter_units(p.data, scale)
+    if direction is not None:            # a step of FLOW_OFFSET * scale in space
+        d = p.derivatives(*x0)
+        length = np.linalg.norm(d[1] * direction[0] + d[2] * direction[1])
+        x0 = x0 + FLOW_OFFSET * scale * direction / max(length, 1e-300)
+    h = kl.FD_STEP_GRAD * param_steps(p, x0, scale)
 
     def level(t, x, *_):
         return kl.level_value(p.data, q.data, x[0], x[1])
@@ -242,7 +253,7 @@ def edge_seeds(p, q, scale):
         extrema = interior[((g[interior] - g[interior - 1]) * (g[interior + 1] - g[interior]) <= 0)]
         lower = (p.u_range, p.v_range)[fixed][0]
         nudge = np.zeros(2)                      # flows start just inside the edge
-        nudge[fixed] = (1.0 if value == lower else -1.0) * FLOW_OFFSET * parameter_units(p.data, scale)[fixed]
+        nudge[fixed] = (1.0 if value == lower else -1.0) * FLOW_OFFSET * param_steps(p, uv[0], scale)[fixed]
         for i in np.r_[extrema, 0, len(g) - 1]:
             if g[i] != 0:
                 hit = flow_to_level(p, q, uv[i] + nudge, None, -np.sign(g[i]), scale)

@@ -76,7 +76,8 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
         atol = check_positive("atol", atol)
     magnitude = max(scale, float(np.max(np.abs(anchor))))
     gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
-    return Settings(method=method, rtol=rtol, atol=atol, gap_tol=gap_tol, scale=scale,
+    tolerance = max(tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
+    return Settings(method=method, rtol=rtol, atol=atol, gap_tol=gap_tol, scale=scale, tolerance=tolerance,
                     singular_tol=singular_tol, pullback=pullback / scale, max_length=max_length,
                     max_step=math.pi * scale / 4, close=close)
 
@@ -204,6 +205,7 @@ def trace_from(a, b, point, y, settings, t_start):
     curve = Curve((a, b), points, s_all, params, closed, length, status, message, spans, settings.gap_tol,
                   nfev=nfev, wall_time=0.0)
     curve.solver_gap = raw_gap
+    curve.tolerance = settings.tolerance
     nodes = [p for branch, _, _ in branches for _, p in branch.nodes]
     curve.nodes = np.array(nodes).reshape(-1, 3)
     curve.wall_time = time.perf_counter() - t_start

@@ -1,3 +1,20 @@
 import os
 
+import pytest
+
 os.environ.setdefault("PYVISTA_OFF_SCREEN", "true")
+
+_REPORT = []
+
+
+@pytest.fixture(scope="session")
+def stress_report():
+    """Lines a stress test wants in the terminal summary."""
+    return _REPORT
+
+
+def pytest_terminal_summary(terminalreporter):
+    if _REPORT:
+        terminalreporter.write_sep("-", "stress report")
+        for line in _REPORT:
+            terminalreporter.write_line(line)

@@ -334,9 +334,9 @@ def jump_across(seg, t_event, y_event, settings):
 
 def locate_node(a, b, y_from, y_to, d, y_event):
     """The singular point passed by a jump from y_from to y_to (direction d), to about the chord's sagitta:
-    the sine of the normals' angle grows like |s - s_node| on either side of a node, so its values at a
-    quarter and three quarters of the jump (corrected onto the curve in planes normal to d) place the node
-    between them. Falls back to the event point where they do not straddle it (an apex)."""
+    the sine of the normals' angle (at a node) or the relative area element (at an apex) grows like
+    |s - s_node| on either side, so its values at a quarter and three quarters of the jump (corrected onto
+    the curve in planes normal to d) place the point between them. Falls back to the event point."""
     pts, sines = [], []
     for w in (0.25, 0.75):
         y = y_from + w * (y_to - y_from)
@@ -345,7 +345,7 @@ def locate_node(a, b, y_from, y_to, d, y_event):
         kc.project_to_curve(y, a, b, p.copy(), d, 0.0, NEWTON_MAX_ITER)
         kc.curve_frame(y, a, b, p, t)
         pts.append(p)
-        sines.append(kc.degeneracy(y, a, b, 0, 0))
+        sines.append(kc.degeneracy(y, a, b, area_flag(a), area_flag(b)))
     total = sines[0] + sines[1]
     if total == 0.0 or float(np.dot(pts[1] - pts[0], d)) <= 0.0:
         p, t = np.empty(3), np.empty(3)
@@ -370,6 +370,19 @@ def take_jump(branch, seg, y_event, jump):
     kc.curve_frame(y_after, seg.a, seg.b, point, tangent)
     sign = 1.0 if float(np.dot(tangent, d)) > 0 else -1.0
     return sign, y_after.copy(), point, tangent
+
+
+def closes_within_jump(jump, start, direction):
+    """Arc length at which the curve returns to its start inside a jump segment, or None."""
+    p_from, t = np.empty(3), np.empty(3)
+    kc.curve_frame(jump.y[:, 0], jump.a, jump.b, p_from, t)
+    d = jump.normal
+    along = float(np.dot(start - p_from, d))
+    length = jump.s1 - jump.s0
+    lateral = np.linalg.norm(start - p_from - along * d)
+    if 0.0 < along <= length and lateral <= JUMP_STRAIGHTNESS * length and float(np.dot(d, direction)) >= CLOSURE_COSINE:
+        return jump.s0 + along
+    return None
 
 
 def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
@@ -455,6 +468,13 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 break
             sign, y, point, tangent = take_jump(branch, seg, y, jump)
             s = branch.segments[-1].s1
+            closing = closes_within_jump(branch.segments[-1], start, direction)
+            if closing is not None:
+                branch.status = "closed"
+                branch.message = f"closed on its start, within a jump, after s = {closing:.12g}"
+                branch.length = closing
+                branch.end_state = y
+                return branch
             continue
         if kind in ("minimum", "chart"):
             continue

@@ -51,6 +51,8 @@ FLOW_APEX_GUARD = 1e-3
 EDGE_SAMPLES = 400
 #: Eigenvalues of the Hessian below this (relative to the largest) count as zero (degenerate directions).
 EIGEN_RATIO = 1e-6
+#: Seeds on the arms of a node sit this far (relative to the scene scale) from it: well beyond a jump.
+NODE_OFFSET = 2e-2
 #: Parameter distance from an apex of the rings sampled for seeds near it.
 APEX_RING = 2e-2
 #: Charts of a sphere kept away from its poles in the grid search: |latitude| below this.
@@ -331,9 +333,11 @@ def find_seeds(a, b, scale, level_tol):
             if np.all(nonzero):   # a node: start on each of the four arms, along the asymptotic directions
                 nodes.append(p.point(*uv))
                 ratio = math.sqrt(-lam[0] / lam[1])
+                steps = param_steps(p, uv, scale)
                 for d in (vec[:, 0] + ratio * vec[:, 1], vec[:, 0] - ratio * vec[:, 1]):
+                    d = d / np.linalg.norm(d / steps)           # a step of NODE_OFFSET * scale in space
                     for sense in (1.0, -1.0):
-                        seeds.append(p.point(*(uv + 1e-3 * sense * d / np.linalg.norm(d))))
+                        seeds.append(p.point(*(uv + NODE_OFFSET * sense * d)))
             continue
         sigma = 1.0 if value < 0 else -1.0
         for i in range(2):

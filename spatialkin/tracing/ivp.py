@@ -12,17 +12,16 @@ It is split into segments at events that need Python between two integrations:
 At every segment start the state is projected back onto the curve by Newton, and the right-hand side
 carries a pull-back term, so the gap between the surfaces stays flat however long the branch is.
 """
-from dataclasses import dataclass, field
-
 import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
+from .segments import (EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, BudgetExceeded, Segment, area_flag,
+                       budgeted, charts_at, finite_bounds, newton_fixed, project_state)
+from .singular import APEX_GUARD, closes_within_jump, jump_across, take_jump
 
 # --- named limits -------------------------------------------------------------------------------------
-#: A sphere is re-charted when |cos(latitude)| falls below this (latitude beyond 60 degrees).
-POLE_GUARD = 0.5
 #: The closure plane is put this far (relative to the curve scale) behind the start, so that the start
 #: itself is never taken for a crossing.
 CLOSURE_OFFSET = 1e-8
@@ -38,156 +37,15 @@ NODE_SUSPECT = 1e-5
 NEWTON_NEAR_SINGULAR = 1e-3
 #: A singular point (a node where branches cross, the apex of a spindle or horn torus or a cone) is
 #: passed by a jump of this length (relative to the curve scale) along the incoming direction, then Newton
-#: in the plane normal to it; the jump's dense output is corrected in that plane.
-JUMP_LENGTH = 1e-3
-#: Longest jump (relative to the curve scale), reached by doubling where the landing is still beside an apex.
-MAX_JUMP = 0.1
 #: The relative area element of a parametrisation below which its apex is jumped (not a pole: spheres are
-#: re-charted well before).
-APEX_GUARD = 2e-4
-#: After a jump the point must lie within this fraction of the jump of the straight continuation.
-JUMP_STRAIGHTNESS = 0.1
 #: Arc-length step (relative to the curve scale) of the difference that gives the slope of that sine.
 SLOPE_STEP = 1e-7
 #: Minima are watched only where the sine is below this, and counted once its slope (times the scale)
 #: rises above SLOPE_FLOOR, so that a constant sine (a circle on a surface of revolution) never triggers.
 WATCH_BELOW = 1e-2
 SLOPE_FLOOR = 1e-6
-#: A parameter this close to a bound (relative) counts as on the edge.
-EDGE_TOL = 1e-12
-#: Newton iterations allowed for one projection onto the curve.
-NEWTON_MAX_ITER = 12
-#: At most this many right-hand-side evaluations in one segment (a stalled integration ends the branch).
-SEGMENT_MAX_EVALUATIONS = 200_000
 #: At most this many segments in one branch (each ends at an event): bounds the work on pathological input.
 MAX_SEGMENTS = 10_000
-
-
-@dataclass
-class Segment:
-    """One solve_ivp run: branch arc length s in [s0, s1] is solver time t = s - s0."""
-    s0: float
-    s1: float
-    sign: float          # direction of travel along N1 x N2
-    sol: object          # scipy OdeSolution over [0, s1 - s0]
-    a: np.ndarray        # chart data of surface a used in this segment
-    b: np.ndarray
-    t: np.ndarray        # solver step points (local t)
-    y: np.ndarray        # states at the step points (4, n)
-    normal: np.ndarray = field(default_factory=lambda: np.zeros(3))   # fixed correction plane (jumps)
-
-
-class LinearStates:
-    """Dense output of a jump across a singular point: states interpolated linearly over [0, length]."""
-
-    def __init__(self, y0, y1, length):
-        self.y0, self.y1, self.length = np.asarray(y0, dtype=float), np.asarray(y1, dtype=float), length
-
-    def __call__(self, t):
-        w = np.clip(np.asarray(t, dtype=float) / self.length, 0.0, 1.0)
-        return self.y0[:, None] * (1 - w) + self.y1[:, None] * w if np.ndim(t) else self.y0 * (1 - w) + self.y1 * w
-
-
-@dataclass
-class Branch:
-    """Result of integrating one direction from a start point."""
-    sign: float
-    segments: list = field(default_factory=list)
-    status: str = "max_length"   # 'closed', 'singular', 'boundary', 'max_length', 'failed'
-    message: str = ""
-    length: float = 0.0
-    nfev: int = 0
-    end_state: np.ndarray = None
-    nodes: list = field(default_factory=list)      # (s, point) of singular points passed through
-
-
-@dataclass
-class Settings:
-    """Numerical settings of one trace (absolute lengths already scaled)."""
-    method: str
-    rtol: float
-    atol: float
-    gap_tol: float          # Newton target for |M1 - M2|
-    scale: float            # curve length scale
-    tolerance: float        # accuracy promised: tol * scale, or the round-off floor of the coordinates
-    singular_tol: float     # stop when sin(normals' angle) or a relative area element falls below it
-    pullback: float         # lambda, 1/length
-    max_length: float
-    max_step: float
-    close: bool = True
-
-
-def recharted_sphere(data, point, tangent):
-    """Sphere data with its chart turned so that point is at (u, v) = (0, 0) and tangent along +u."""
-    new = data.copy()
-    center = data[ks.ORIGIN:ks.ORIGIN + 3]
-    x = point - center
-    x /= np.linalg.norm(x)
-    z = np.cross(x, tangent)
-    nz = np.linalg.norm(z)
-    if nz < 1e-12:            # tangent not known (zero): any axis normal to x will do
-        z = np.cross(x, np.eye(3)[np.argmin(np.abs(x))])
-        nz = np.linalg.norm(z)
-    z /= nz
-    y = np.cross(z, x)
-    new[ks.ROT:ks.ROT + 9] = np.column_stack([x, y, z]).ravel()
-    return new
-
-
-def area_flag(data):
-    """Whether a degenerate parametrisation of this surface ends a branch (spheres are re-charted)."""
-    return int(data[ks.KIND]) not in (ks.SPHERE, ks.PLANE, ks.CYLINDER)
-
-
-def charts_at(a_user, b_user, point, tangent, y_prev=None):
-    """Charts for a new segment at point and the state there in them.
-
-    Spheres are re-charted at point (so it lies on their equator, tangent along +u); the other surfaces
-    keep their own chart and take (u, v) from y_prev (continuous u) or, without it, from the foot point.
-    """
-    y = np.empty(4)
-    charts = []
-    for k, user in enumerate((a_user, b_user)):
-        uv = np.empty((1, 2))
-        if int(user[ks.KIND]) == ks.SPHERE:
-            data = recharted_sphere(user, point, tangent)
-            ks.inverse(data, point.reshape(1, 3), uv)
-        elif y_prev is not None:
-            data = user
-            uv[0] = y_prev[2 * k:2 * k + 2]
-        else:
-            data = user
-            ks.inverse(data, point.reshape(1, 3), uv)
-        y[2 * k:2 * k + 2] = uv[0]
-        charts.append(data)
-    return charts[0], charts[1], y
-
-
-class BudgetExceeded(Exception):
-    """An integration used up its right-hand-side evaluations."""
-
-
-def budgeted(rhs, limit=None):
-    """rhs wrapped so that it raises BudgetExceeded after `limit` calls (bounded time on any input)."""
-    limit = SEGMENT_MAX_EVALUATIONS if limit is None else limit
-    calls = [0]
-
-    def wrapped(t, y, *args):
-        calls[0] += 1
-        if calls[0] > limit:
-            raise BudgetExceeded
-        return rhs(t, y, *args)
-    return wrapped
-
-
-def finite_bounds(*surfaces):
-    """(surface index k, bound index j, state index, bound value, is a lower bound) of every finite bound of
-    the surfaces' data, j in (u_min, u_max, v_min, v_max) order."""
-    for k, data in enumerate(surfaces):
-        for j in range(4):
-            bound = data[ks.BOUNDS + j]
-            if np.isfinite(bound):
-                yield k, j, 2 * k + j // 2, bound, j % 2 == 0
 
 
 def make_events(a, b, settings, sign, start, direction, s_arm):
@@ -262,129 +120,6 @@ def at_outer_edge(a, b, y, sign):
     return False
 
 
-def newton_fixed(a, b, y, fixed, gap_tol, max_iter=30):
-    """Newton on M1(u1, v1) - M2(u2, v2) = 0 for the three parameters other than y[fixed], which is held.
-
-    Returns the solved (4,) state, or None if Newton fails. This cuts one surface with a parameter line of
-    the other (the seed's auxiliary curve, the edge of a trimmed surface, a given crank angle).
-    """
-    ys = np.array(y, dtype=float).reshape(1, 4)
-    ok = np.zeros(1, dtype=np.bool_)
-    kc.newton_fixed_many(ys, a, b, fixed, gap_tol, max_iter, ok)
-    return ys[0] if ok[0] else None
-
-
-def project_state(y, a, b, settings, tangent_hint=None):
-    """Project y onto the curve in the plane normal to the local tangent; returns (y, point, tangent, ok)."""
-    y = np.array(y, dtype=float)
-    point = np.empty(3)
-    tangent = np.empty(3)
-    kc.curve_frame(y, a, b, point, tangent)
-    if tangent_hint is None:
-        tangent_hint = tangent.copy()
-    iters = kc.project_to_curve(y, a, b, point.copy(), tangent_hint, settings.gap_tol, NEWTON_MAX_ITER)
-    kc.curve_frame(y, a, b, point, tangent)
-    return y, point, tangent, iters >= 0
-
-
-def jump_across(seg, t_event, y_event, settings):
-    """Pass a singular point reached at solver time t_event of seg (state y_event, on or beside it).
-
-    The jump starts a jump length before the event, where the solver's path is still on the incoming
-    branch, and goes on along the incoming chord to as far beyond the event; there the curve is found by
-    Newton in the plane normal to the chord (the nearest branch: the same one, straight through). The jump
-    is lengthened (up to MAX_JUMP) until it lands clear of an apex's degenerate zone.
-
-    Returns (solver time where the jump starts, state there, state after, unit direction, length), or None
-    if no point of the same branch is found.
-    """
-    a, b = seg.a, seg.b
-    flags = (area_flag(a), area_flag(b))
-    h = JUMP_LENGTH * settings.scale
-    while h <= MAX_JUMP * settings.scale:
-        back = max(t_event - h, 0.0)
-        if t_event - back <= 0.0:
-            return None
-        y_back = seg.sol(back)
-        p_event, p_back, t = np.empty(3), np.empty(3), np.empty(3)
-        kc.curve_frame(y_event, a, b, p_event, t)
-        kc.curve_frame(y_back, a, b, p_back, t)
-        d = p_event - p_back
-        span = np.linalg.norm(d)
-        if span == 0.0:
-            return None
-        d /= span
-        reach = h + span
-        y = y_back + (y_event - y_back) * (reach / (t_event - back))
-        target = p_back + reach * d
-        if kc.project_to_curve(y, a, b, target, d, settings.gap_tol, NEWTON_MAX_ITER) < 0:
-            return None
-        p_after = np.empty(3)
-        kc.curve_frame(y, a, b, p_after, t)
-        if np.linalg.norm(p_after - target) > JUMP_STRAIGHTNESS * reach:
-            return None
-        if kc.area_degeneracy(y, a, b, *flags) < 2 * APEX_GUARD:
-            h *= 2                      # still beside an apex (a horn torus's cusp): jump further
-            continue
-        if kc.degeneracy(y, a, b, 0, 0) < 10 * settings.singular_tol:
-            return None
-        return back, y_back, y, d, float(np.linalg.norm(p_after - p_back))
-    return None
-
-
-def locate_node(a, b, y_from, y_to, d, y_event):
-    """The singular point passed by a jump from y_from to y_to (direction d), to about the chord's sagitta:
-    the sine of the normals' angle (at a node) or the relative area element (at an apex) grows like
-    |s - s_node| on either side, so its values at a quarter and three quarters of the jump (corrected onto
-    the curve in planes normal to d) place the point between them. Falls back to the event point."""
-    pts, sines = [], []
-    for w in (0.25, 0.75):
-        y = y_from + w * (y_to - y_from)
-        p, t = np.empty(3), np.empty(3)
-        kc.curve_frame(y, a, b, p, t)
-        kc.project_to_curve(y, a, b, p.copy(), d, 0.0, NEWTON_MAX_ITER)
-        kc.curve_frame(y, a, b, p, t)
-        pts.append(p)
-        sines.append(kc.degeneracy(y, a, b, area_flag(a), area_flag(b)))
-    total = sines[0] + sines[1]
-    if total == 0.0 or float(np.dot(pts[1] - pts[0], d)) <= 0.0:
-        p, t = np.empty(3), np.empty(3)
-        kc.curve_frame(y_event, a, b, p, t)
-        return p
-    w = sines[0] / total
-    return pts[0] + w * (pts[1] - pts[0])
-
-
-def take_jump(branch, seg, y_event, jump):
-    """Record a jump across a singular point: cut seg where the jump starts, add the jump segment, and
-    return the new (sign, state, point, tangent) to go on from."""
-    back, y_back, y_after, d, length = jump
-    keep = seg.t <= back
-    seg.t, seg.y = np.append(seg.t[keep], back), np.column_stack([seg.y[:, keep], y_back])
-    seg.s1 = seg.s0 + back
-    point, tangent = np.empty(3), np.empty(3)
-    branch.nodes.append((seg.s1, locate_node(seg.a, seg.b, y_back, y_after, d, y_event)))
-    branch.segments.append(Segment(s0=seg.s1, s1=seg.s1 + length, sign=1.0,
-                                   sol=LinearStates(y_back, y_after, length), a=seg.a, b=seg.b,
-                                   t=np.array([0.0, length]), y=np.column_stack([y_back, y_after]), normal=d))
-    kc.curve_frame(y_after, seg.a, seg.b, point, tangent)
-    sign = 1.0 if float(np.dot(tangent, d)) > 0 else -1.0
-    return sign, y_after.copy(), point, tangent
-
-
-def closes_within_jump(jump, start, direction):
-    """Arc length at which the curve returns to its start inside a jump segment, or None."""
-    p_from, t = np.empty(3), np.empty(3)
-    kc.curve_frame(jump.y[:, 0], jump.a, jump.b, p_from, t)
-    d = jump.normal
-    along = float(np.dot(start - p_from, d))
-    length = jump.s1 - jump.s0
-    lateral = np.linalg.norm(start - p_from - along * d)
-    if 0.0 < along <= length and lateral <= JUMP_STRAIGHTNESS * length and float(np.dot(d, direction)) >= CLOSURE_COSINE:
-        return jump.s0 + along
-    return None
-
-
 def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     """Integrate one direction from point (on the curve, unit tangent N1 x N2/|.| there).
 
@@ -406,7 +141,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if not ok and branch.segments and not np.any(branch.segments[-1].normal):
             # a restart beside a singular point: pass it from the last integrated segment instead
             last = branch.segments[-1]
-            jump = jump_across(last, last.s1 - last.s0, y_prev, settings)
+            jump = jump_across(branch, last, last.s1 - last.s0, y_prev, settings)
             if jump is not None:
                 sign, y, point, tangent = take_jump(branch, last, y_prev, jump)
                 s = branch.segments[-1].s1
@@ -458,7 +193,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         singular = kind in ("singular", "apex") or (
             kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT)
         if singular:
-            jump = jump_across(seg, res.t_events[hit][0], y, settings)
+            jump = jump_across(branch, seg, res.t_events[hit][0], y, settings)
             if jump is None:
                 branch.status = "singular"
                 what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
@@ -468,7 +203,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 break
             sign, y, point, tangent = take_jump(branch, seg, y, jump)
             s = branch.segments[-1].s1
-            closing = closes_within_jump(branch.segments[-1], start, direction)
+            closing = closes_within_jump(branch.segments[-1], start, direction, CLOSURE_COSINE)
             if closing is not None:
                 branch.status = "closed"
                 branch.message = f"closed on its start, within a jump, after s = {closing:.12g}"

@@ -3,7 +3,7 @@ import numpy as np
 
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
-from .ivp import NEWTON_MAX_ITER
+from .segments import NEWTON_MAX_ITER
 
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.

@@ -26,7 +26,7 @@ from scipy.integrate import solve_ivp
 
 from ..kernels import level as kl
 from ..kernels import surfaces as ks
-from .ivp import BudgetExceeded, budgeted, finite_bounds
+from .segments import BudgetExceeded, budgeted, finite_bounds
 from .start import parameter_units
 
 #: Grid of Newton starts for the generic critical-point search (per parameter direction).

@@ -9,8 +9,8 @@ import numpy as np
 
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
-from .ivp import NEWTON_MAX_ITER, charts_at
-from .ivp import newton_fixed as ivp_newton_fixed
+from .segments import NEWTON_MAX_ITER, charts_at
+from .segments import newton_fixed as data_newton_fixed
 from .result import TracingError
 
 #: Samples of an auxiliary parameter line when looking for its crossings with the other surface.
@@ -98,5 +98,5 @@ def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
 
 
 def newton_fixed(a, b, y, fixed, gap_tol):
-    """newton_fixed of spatialkin.tracing.ivp for two Surface objects."""
-    return ivp_newton_fixed(a.data, b.data, y, fixed, gap_tol)
+    """newton_fixed of spatialkin.tracing.segments for two Surface objects."""
+    return data_newton_fixed(a.data, b.data, y, fixed, gap_tol)

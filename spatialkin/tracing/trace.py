@@ -12,7 +12,8 @@ import numpy as np
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
 from ..surfaces import check_surface
-from .ivp import NEWTON_MAX_ITER, Settings, charts_at, integrate_branch
+from .ivp import integrate_branch
+from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from .result import Curve, Span, TracingError, user_params, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
 

@@ -1,0 +1,173 @@
+"""Pieces of an integrated branch: segments and their dense output, settings, charts, budgets, Newton.
+
+A branch is integrated segment by segment (see spatialkin.tracing.ivp); each segment keeps the charts it
+was integrated in (a sphere is re-charted away from its poles) and its dense output.
+"""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..kernels import curve as kc
+from ..kernels import surfaces as ks
+
+# --- named limits -------------------------------------------------------------------------------------
+#: A sphere is re-charted when |cos(latitude)| falls below this (latitude beyond 60 degrees).
+POLE_GUARD = 0.5
+#: A parameter this close to a bound (relative) counts as on the edge.
+EDGE_TOL = 1e-12
+#: Newton iterations allowed for one projection onto the curve.
+NEWTON_MAX_ITER = 12
+#: At most this many right-hand-side evaluations in one segment (a stalled integration ends the branch).
+SEGMENT_MAX_EVALUATIONS = 200_000
+
+
+@dataclass
+class Segment:
+    """One solve_ivp run: branch arc length s in [s0, s1] is solver time t = s - s0."""
+    s0: float
+    s1: float
+    sign: float          # direction of travel along N1 x N2
+    sol: object          # scipy OdeSolution over [0, s1 - s0]
+    a: np.ndarray        # chart data of surface a used in this segment
+    b: np.ndarray
+    t: np.ndarray        # solver step points (local t)
+    y: np.ndarray        # states at the step points (4, n)
+    normal: np.ndarray = field(default_factory=lambda: np.zeros(3))   # fixed correction plane (jumps)
+
+
+class LinearStates:
+    """Dense output of a jump across a singular point: states interpolated linearly over [0, length]."""
+
+    def __init__(self, y0, y1, length):
+        self.y0, self.y1, self.length = np.asarray(y0, dtype=float), np.asarray(y1, dtype=float), length
+
+    def __call__(self, t):
+        w = np.clip(np.asarray(t, dtype=float) / self.length, 0.0, 1.0)
+        return self.y0[:, None] * (1 - w) + self.y1[:, None] * w if np.ndim(t) else self.y0 * (1 - w) + self.y1 * w
+
+
+@dataclass
+class Branch:
+    """Result of integrating one direction from a start point."""
+    sign: float
+    segments: list = field(default_factory=list)
+    status: str = "max_length"   # 'closed', 'singular', 'boundary', 'max_length', 'failed'
+    message: str = ""
+    length: float = 0.0
+    nfev: int = 0
+    end_state: np.ndarray = None
+    nodes: list = field(default_factory=list)      # (s, point) of singular points passed through
+
+
+@dataclass
+class Settings:
+    """Numerical settings of one trace (absolute lengths already scaled)."""
+    method: str
+    rtol: float
+    atol: float
+    gap_tol: float          # Newton target for |M1 - M2|
+    scale: float            # curve length scale
+    tolerance: float        # accuracy promised: tol * scale, or the round-off floor of the coordinates
+    singular_tol: float     # stop when sin(normals' angle) or a relative area element falls below it
+    pullback: float         # lambda, 1/length
+    max_length: float
+    max_step: float
+    close: bool = True
+
+
+def recharted_sphere(data, point, tangent):
+    """Sphere data with its chart turned so that point is at (u, v) = (0, 0) and tangent along +u."""
+    new = data.copy()
+    center = data[ks.ORIGIN:ks.ORIGIN + 3]
+    x = point - center
+    x /= np.linalg.norm(x)
+    z = np.cross(x, tangent)
+    nz = np.linalg.norm(z)
+    if nz < 1e-12:            # tangent not known (zero): any axis normal to x will do
+        z = np.cross(x, np.eye(3)[np.argmin(np.abs(x))])
+        nz = np.linalg.norm(z)
+    z /= nz
+    y = np.cross(z, x)
+    new[ks.ROT:ks.ROT + 9] = np.column_stack([x, y, z]).ravel()
+    return new
+
+
+def area_flag(data):
+    """Whether a degenerate parametrisation of this surface ends a branch (spheres are re-charted)."""
+    return int(data[ks.KIND]) not in (ks.SPHERE, ks.PLANE, ks.CYLINDER)
+
+
+def charts_at(a_user, b_user, point, tangent, y_prev=None):
+    """Charts for a new segment at point and the state there in them.
+
+    Spheres are re-charted at point (so it lies on their equator, tangent along +u); the other surfaces
+    keep their own chart and take (u, v) from y_prev (continuous u) or, without it, from the foot point.
+    """
+    y = np.empty(4)
+    charts = []
+    for k, user in enumerate((a_user, b_user)):
+        uv = np.empty((1, 2))
+        if int(user[ks.KIND]) == ks.SPHERE:
+            data = recharted_sphere(user, point, tangent)
+            ks.inverse(data, point.reshape(1, 3), uv)
+        elif y_prev is not None:
+            data = user
+            uv[0] = y_prev[2 * k:2 * k + 2]
+        else:
+            data = user
+            ks.inverse(data, point.reshape(1, 3), uv)
+        y[2 * k:2 * k + 2] = uv[0]
+        charts.append(data)
+    return charts[0], charts[1], y
+
+
+class BudgetExceeded(Exception):
+    """An integration used up its right-hand-side evaluations."""
+
+
+def budgeted(rhs, limit=None):
+    """rhs wrapped so that it raises BudgetExceeded after `limit` calls (bounded time on any input)."""
+    limit = SEGMENT_MAX_EVALUATIONS if limit is None else limit
+    calls = [0]
+
+    def wrapped(t, y, *args):
+        calls[0] += 1
+        if calls[0] > limit:
+            raise BudgetExceeded
+        return rhs(t, y, *args)
+    return wrapped
+
+
+def finite_bounds(*surfaces):
+    """(surface index k, bound index j, state index, bound value, is a lower bound) of every finite bound of
+    the surfaces' data, j in (u_min, u_max, v_min, v_max) order."""
+    for k, data in enumerate(surfaces):
+        for j in range(4):
+            bound = data[ks.BOUNDS + j]
+            if np.isfinite(bound):
+                yield k, j, 2 * k + j // 2, bound, j % 2 == 0
+
+
+def newton_fixed(a, b, y, fixed, gap_tol, max_iter=30):
+    """Newton on M1(u1, v1) - M2(u2, v2) = 0 for the three parameters other than y[fixed], which is held.
+
+    Returns the solved (4,) state, or None if Newton fails. This cuts one surface with a parameter line of
+    the other (the seed's auxiliary curve, the edge of a trimmed surface, a given crank angle).
+    """
+    ys = np.array(y, dtype=float).reshape(1, 4)
+    ok = np.zeros(1, dtype=np.bool_)
+    kc.newton_fixed_many(ys, a, b, fixed, gap_tol, max_iter, ok)
+    return ys[0] if ok[0] else None
+
+
+def project_state(y, a, b, settings, tangent_hint=None):
+    """Project y onto the curve in the plane normal to the local tangent; returns (y, point, tangent, ok)."""
+    y = np.array(y, dtype=float)
+    point = np.empty(3)
+    tangent = np.empty(3)
+    kc.curve_frame(y, a, b, point, tangent)
+    if tangent_hint is None:
+        tangent_hint = tangent.copy()
+    iters = kc.project_to_curve(y, a, b, point.copy(), tangent_hint, settings.gap_tol, NEWTON_MAX_ITER)
+    kc.curve_frame(y, a, b, point, tangent)
+    return y, point, tangent, iters >= 0

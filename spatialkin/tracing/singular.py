@@ -1,0 +1,157 @@
+"""Passing singular points of a branch straight through: nodes where branches cross, apexes of a spindle or
+horn torus or a cone, a horn torus's cusp.
+
+References
+----------
+../shared/reference/ssi-notes.md: a sign flip of N1 x N2 marks a node passed (SISL); the corrector in the
+plane normal to the direction of travel keeps to the same branch.
+"""
+import numpy as np
+
+from ..kernels import curve as kc
+from ..kernels import surfaces as ks
+from .segments import NEWTON_MAX_ITER, LinearStates, Segment, area_flag
+
+# --- named limits -------------------------------------------------------------------------------------
+#: in the plane normal to it; the jump's dense output is corrected in that plane.
+JUMP_LENGTH = 1e-3
+#: Longest jump (relative to the curve scale), reached by doubling where the landing is still beside an apex.
+MAX_JUMP = 0.1
+#: re-charted well before).
+APEX_GUARD = 2e-4
+#: After a jump the point must lie within this fraction of the jump of the straight continuation.
+JUMP_STRAIGHTNESS = 0.1
+#: A jump must land where the normals' sine exceeds ten times this (clear of the node), else it is doubled.
+NODE_CLEARANCE = 1e-6
+
+
+def restate(y, from_a, from_b, to_a, to_b):
+    """State y given in the charts (from_a, from_b) expressed in (to_a, to_b) (a re-charted sphere's
+    parameters come from its point; the other surfaces keep their continuous parameters)."""
+    out = np.array(y, dtype=float)
+    for k, (old, new) in enumerate(((from_a, to_a), (from_b, to_b))):
+        if old is new or np.array_equal(old, new):
+            continue
+        point = np.empty((1, 3))
+        ks.evaluate(old, np.ascontiguousarray(out[2 * k:2 * k + 2].reshape(1, 2)), point)
+        uv = np.empty((1, 2))
+        ks.inverse(new, point, uv)
+        out[2 * k:2 * k + 2] = uv[0]
+    return out
+
+
+def state_before(branch, s_back):
+    """(segment index, local time, state in that segment's charts) of the integrated branch at arc length
+    s_back, from the last solver segment that reaches back to it; None if there is none."""
+    for i in range(len(branch.segments) - 1, -1, -1):
+        seg = branch.segments[i]
+        if np.any(seg.normal):
+            return None                      # a jump lies in between: do not jump back across it
+        if seg.s0 <= s_back:
+            t = s_back - seg.s0
+            return i, t, np.asarray(seg.sol(t), dtype=float)
+    return None
+
+
+def jump_across(branch, seg, t_event, y_event, settings):
+    """Pass a singular point reached at solver time t_event of seg (state y_event, on or beside it).
+
+    The jump starts a jump length before the event (in seg or a segment before it), where the solver's
+    path is still on the incoming branch, and goes on along the incoming chord to as far beyond the event;
+    there the curve is found by Newton in the plane normal to the chord (the nearest branch: the same one,
+    straight through). The jump is lengthened (up to MAX_JUMP) until it lands clear of the singular point
+    (an apex's degenerate zone, the narrow wedge between branches crossing at a shallow angle).
+
+    Returns (segment index, its local time, state there in its charts, the same in seg's charts, state
+    after, unit direction, length), or None if no point of the same branch is found.
+    """
+    a, b = seg.a, seg.b
+    flags = (area_flag(a), area_flag(b))
+    s_event = seg.s0 + t_event
+    h = JUMP_LENGTH * settings.scale
+    p_event, p_back, t = np.empty(3), np.empty(3), np.empty(3)
+    kc.curve_frame(y_event, a, b, p_event, t)
+    while h <= MAX_JUMP * settings.scale:
+        found = state_before(branch, max(s_event - h, 0.0))
+        if found is None:
+            return None
+        index, t_back, y_own = found
+        owner = branch.segments[index]
+        y_back = restate(y_own, owner.a, owner.b, a, b)
+        kc.curve_frame(y_back, a, b, p_back, t)
+        d = p_event - p_back
+        span = np.linalg.norm(d)
+        if span == 0.0:
+            return None
+        d /= span
+        reach = h + span
+        y = y_back + (y_event - y_back) * (reach / span)
+        target = p_back + reach * d
+        if kc.project_to_curve(y, a, b, target, d, settings.gap_tol, NEWTON_MAX_ITER) < 0:
+            h *= 2
+            continue
+        p_after = np.empty(3)
+        kc.curve_frame(y, a, b, p_after, t)
+        if np.linalg.norm(p_after - target) > JUMP_STRAIGHTNESS * reach:
+            return None
+        if (kc.area_degeneracy(y, a, b, *flags) < 2 * APEX_GUARD
+                or kc.degeneracy(y, a, b, 0, 0) < 10 * NODE_CLEARANCE):
+            h *= 2                      # still beside the singular point (a cusp, a shallow crossing)
+            continue
+        return index, t_back, y_own, y_back, y, d, float(np.linalg.norm(p_after - p_back))
+    return None
+
+
+def locate_node(a, b, y_from, y_to, d, y_event):
+    """The singular point passed by a jump from y_from to y_to (direction d), to about the chord's sagitta:
+    the sine of the normals' angle (at a node) or the relative area element (at an apex) grows like
+    |s - s_node| on either side, so its values at a quarter and three quarters of the jump (corrected onto
+    the curve in planes normal to d) place the point between them. Falls back to the event point."""
+    pts, sines = [], []
+    for w in (0.25, 0.75):
+        y = y_from + w * (y_to - y_from)
+        p, t = np.empty(3), np.empty(3)
+        kc.curve_frame(y, a, b, p, t)
+        kc.project_to_curve(y, a, b, p.copy(), d, 0.0, NEWTON_MAX_ITER)
+        kc.curve_frame(y, a, b, p, t)
+        pts.append(p)
+        sines.append(kc.degeneracy(y, a, b, area_flag(a), area_flag(b)))
+    total = sines[0] + sines[1]
+    if total == 0.0 or float(np.dot(pts[1] - pts[0], d)) <= 0.0:
+        p, t = np.empty(3), np.empty(3)
+        kc.curve_frame(y_event, a, b, p, t)
+        return p
+    w = sines[0] / total
+    return pts[0] + w * (pts[1] - pts[0])
+
+
+def take_jump(branch, seg, y_event, jump):
+    """Record a jump across a singular point: cut the branch where the jump starts, add the jump segment
+    (in seg's charts), and return the new (sign, state, point, tangent) to go on from."""
+    index, t_back, y_own, y_back, y_after, d, length = jump
+    owner = branch.segments[index]
+    keep = owner.t <= t_back
+    owner.t, owner.y = np.append(owner.t[keep], t_back), np.column_stack([owner.y[:, keep], y_own])
+    owner.s1 = owner.s0 + t_back
+    del branch.segments[index + 1:]
+    point, tangent = np.empty(3), np.empty(3)
+    branch.nodes.append((owner.s1, locate_node(seg.a, seg.b, y_back, y_after, d, y_event)))
+    branch.segments.append(Segment(s0=owner.s1, s1=owner.s1 + length, sign=1.0,
+                                   sol=LinearStates(y_back, y_after, length), a=seg.a, b=seg.b,
+                                   t=np.array([0.0, length]), y=np.column_stack([y_back, y_after]), normal=d))
+    kc.curve_frame(y_after, seg.a, seg.b, point, tangent)
+    sign = 1.0 if float(np.dot(tangent, d)) > 0 else -1.0
+    return sign, y_after.copy(), point, tangent
+
+
+def closes_within_jump(jump, start, direction, min_cosine):
+    """Arc length at which the curve returns to its start inside a jump segment, or None."""
+    p_from, t = np.empty(3), np.empty(3)
+    kc.curve_frame(jump.y[:, 0], jump.a, jump.b, p_from, t)
+    d = jump.normal
+    along = float(np.dot(start - p_from, d))
+    length = jump.s1 - jump.s0
+    lateral = np.linalg.norm(start - p_from - along * d)
+    if 0.0 < along <= length and lateral <= JUMP_STRAIGHTNESS * length and float(np.dot(d, direction)) >= min_cosine:
+        return jump.s0 + along
+    return None

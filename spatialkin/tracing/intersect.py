@@ -58,7 +58,15 @@ def intersect(a, b, tol=1e-10, *, method="DOP853", rtol=DEFAULT_RTOL, atol=None,
             curves.append(trace_from(a, b, point, y, settings, time.perf_counter()))
         except TracingError:
             continue            # the seed sits on a singular point: the arms' seeds trace it
-    return curves
+    return [c for i, c in enumerate(curves) if not covered(c, curves[:i] + curves[i + 1:], radius)]
+
+
+def covered(curve, others, radius):
+    """True for an open curve lying wholly on another curve (a piece of a component traced again)."""
+    if curve.closed or curve.status == "contact":
+        return False
+    return any(other.length >= curve.length and np.max(other.closest(curve.points)[1]) <= radius
+               for other in others)
 
 
 def edge_start(a, b, point, p_index, fixed, value, settings):

@@ -32,7 +32,7 @@ CLOSURE_COSINE = 0.9
 #: A segment ends at each local minimum of sin(angle between the normals) along the path; a minimum below
 #: this is a singular point: the node itself (where N1 x N2 flips) or, on a path a gap's width beside it,
 #: the turn onto the other branch (a branch jump), which is never taken.
-NODE_SUSPECT = 1e-5
+NODE_SUSPECT = 1e-4
 #: Where Newton fails with the normals closer to parallel than this (sine), the branch ends at a singular point.
 NEWTON_NEAR_SINGULAR = 1e-3
 #: A singular point (a node where branches cross, the apex of a spindle or horn torus or a cone) is
@@ -44,6 +44,8 @@ SLOPE_STEP = 1e-7
 #: rises above SLOPE_FLOOR, so that a constant sine (a circle on a surface of revolution) never triggers.
 WATCH_BELOW = 1e-2
 SLOPE_FLOOR = 1e-6
+#: The minimum event is armed only this far (relative to the scale) into a segment.
+MINIMUM_ARM = 1e-9
 #: At most this many segments in one branch (each ends at an event): bounds the work on pathological input.
 MAX_SEGMENTS = 10_000
 
@@ -71,7 +73,11 @@ def make_events(a, b, settings, sign, start, direction, s_arm):
 
     floor = SLOPE_FLOOR / settings.scale
 
+    arm = MINIMUM_ARM * settings.scale
+
     def minimum(s, y, *_):
+        if s <= arm:
+            return 1.0          # not at the segment's start, which may be the minimum just found
         if kc.degeneracy(y, a, b, 0, 0) > WATCH_BELOW:
             return -1.0
         return kc.degeneracy_slope(y, a, b, sign, h) - floor

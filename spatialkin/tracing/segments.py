@@ -168,6 +168,10 @@ def project_state(y, a, b, settings, tangent_hint=None):
     kc.curve_frame(y, a, b, point, tangent)
     if tangent_hint is None:
         tangent_hint = tangent.copy()
+    start = y.copy()
     iters = kc.project_to_curve(y, a, b, point.copy(), tangent_hint, settings.gap_tol, NEWTON_MAX_ITER)
+    if iters < 0:          # the plane condition is ill-posed (a tiny loop, near tangency): minimum-norm steps
+        y[:] = start
+        iters = kc.project_to_curve(y, a, b, point.copy(), np.zeros(3), settings.gap_tol, NEWTON_MAX_ITER)
     kc.curve_frame(y, a, b, point, tangent)
     return y, point, tangent, iters >= 0

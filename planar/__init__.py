@@ -1,4 +1,9 @@
-"""planar: kinematics of planar mechanisms (Frenet-trihedron laws, multi-input linkages).
+"""planar: kinematics of planar mechanisms of technological machines.
 
-Built on spatialkin's trajectory pipeline; the modules arrive with their issues.
+The Frenet-trihedron module (seed 000): laws phi(s) of a crank mechanism's driven link and the link's
+kinematics, on spatialkin's trajectory pipeline.
 """
+from .laws import CrankRocker, CrankSlider, Law, LawFromFunctions, LawFromGamma
+from .link import DrivenLink
+
+__all__ = ["Law", "CrankSlider", "CrankRocker", "LawFromFunctions", "LawFromGamma", "DrivenLink"]

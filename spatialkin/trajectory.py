@@ -24,12 +24,13 @@ def time_map(driver_d1, driver_d2, omega):
 
 
 def to_time(d1, d2, sdot, sddot):
-    """Time derivatives (first, second) of a quantity from its s-derivatives d1, d2 (N, ...)."""
+    """Time derivatives (first, second) of a quantity from its s-derivatives d1, d2: shaped like sdot
+    (scalars) or like sdot plus a trailing vector axis."""
     d1 = np.asarray(d1, dtype=float)
     d2 = np.asarray(d2, dtype=float)
-    shape = (-1,) + (1,) * (d1.ndim - 1)
-    sd = np.reshape(sdot, shape)
-    sdd = np.reshape(sddot, shape)
+    sd, sdd = np.asarray(sdot, dtype=float), np.asarray(sddot, dtype=float)
+    if d1.ndim > sd.ndim:          # vector quantities (..., k): one s-rate per point
+        sd, sdd = sd[..., None], sdd[..., None]
     return d1 * sd, d2 * sd ** 2 + d1 * sdd
 
 

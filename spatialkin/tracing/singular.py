@@ -152,6 +152,8 @@ def closes_within_jump(jump, start, direction, min_cosine):
     along = float(np.dot(start - p_from, d))
     length = jump.s1 - jump.s0
     lateral = np.linalg.norm(start - p_from - along * d)
-    if 0.0 < along <= length and lateral <= JUMP_STRAIGHTNESS * length and float(np.dot(d, direction)) >= min_cosine:
+    travelled = jump.s0 + along > 2.0 * length         # not the start's own neighbourhood
+    if (0.0 < along <= length and travelled and lateral <= JUMP_STRAIGHTNESS * length
+            and float(np.dot(d, direction)) >= min_cosine):
         return jump.s0 + along
     return None

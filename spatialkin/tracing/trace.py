@@ -189,6 +189,9 @@ def trace_from(a, b, point, y, settings, t_start):
             ss.append(s_pts[order])
             ys.append(y_pts[order])
             charts.append(np.full(len(order), len(spans) - 1))
+    if not ss:
+        raise TracingError(f"nothing could be traced from {point.tolist()}: {message}", where=point,
+                           status=status)
     s_all = np.concatenate(ss)
     y_all = np.ascontiguousarray(np.concatenate(ys))
     span_of = np.concatenate(charts)

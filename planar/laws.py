@@ -1,0 +1,152 @@
+"""Laws phi(s) of a crank mechanism's driven link, relative to the Frenet trihedron on the crank pin.
+
+The crank pin A runs on a circle of curvature k (radius 1/k) at arc length s; the link passes through A at
+the angle phi(s) to the tangent tau (anticlockwise). Each law gives phi, phi' and phi'' (' = d/ds) at once.
+Convention (../shared/reference/frenet-planar.md): A(s) = (sin ks, -cos ks)/k, tau = (cos ks, sin ks),
+n = (-sin ks, cos ks), the crank angle is ks.
+
+References
+----------
+Seed 000 and ../shared/reference/frenet-planar.md (formulas reconstructed; the printed (15), (16) have the
+wrong sign of the gamma term: the corrected derivatives are used).
+"""
+import math
+
+import numpy as np
+
+
+def check_positive(name, value):
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+    if not math.isfinite(x) or x <= 0:
+        raise ValueError(f"{name} must be positive and finite, got {value!r}")
+    return x
+
+
+def as_s(s):
+    s = np.asarray(s, dtype=float)
+    if not np.all(np.isfinite(s)):
+        raise ValueError("s must be finite")
+    return s
+
+
+class Law:
+    """Base: a law evaluates (phi, phi', phi'') at arc lengths s of the crank pin's circle."""
+
+    k = 1.0
+
+    def evaluate(self, s):
+        """(phi, dphi, ddphi), arrays shaped like s."""
+        raise NotImplementedError
+
+    def gamma(self, s):
+        """Angle of the link to the fixed x-axis, gamma = ks + phi (eq. (1))."""
+        s = as_s(s)
+        return self.k * s + self.evaluate(s)[0]
+
+
+class CrankSlider(Law):
+    """Offset crank-slider: the slider (rho = L) on the guide y = side * e.
+
+    Parameters
+    ----------
+    k : float          curvature of the crank circle (1 / crank radius)
+    e : float          guide offset (>= 0)
+    L : float          rod length A to slider
+    side : +1 or -1    which side of the crank centre the guide lies on
+    branch : 0 or 1    assembly: 0 takes phi = asin(q) - ks, 1 takes pi - asin(q) - ks
+
+    Raises ValueError unless e + 1/k <= L (the rod must reach the guide at every crank angle).
+    """
+
+    def __init__(self, k, e, L, side=1, branch=0):
+        self.k = check_positive("k", k)
+        e = float(e)
+        if not math.isfinite(e) or e < 0:
+            raise ValueError(f"e must be a finite offset >= 0, got {e!r}")
+        self.e = e
+        self.L = check_positive("L", L)
+        if side not in (1, -1):
+            raise ValueError(f"side must be +1 or -1, got {side!r}")
+        if branch not in (0, 1):
+            raise ValueError(f"branch must be 0 or 1, got {branch!r}")
+        if self.e + 1.0 / self.k > self.L * (1 + 1e-12):
+            raise ValueError(f"the crank-slider needs e + 1/k <= L to turn fully: e + 1/k = "
+                             f"{self.e + 1 / self.k:.6g} > L = {self.L:.6g}")
+        self.side, self.branch = side, branch
+        self.h = side * self.e
+
+    def evaluate(self, s):
+        s = as_s(s)
+        k, L, h = self.k, self.L, self.h
+        ks = k * s
+        c, sn = np.cos(ks), np.sin(ks)
+        q = np.clip((k * h + c) / (k * L), -1.0, 1.0)
+        w2 = np.maximum(k * k * L * L - (k * h + c) ** 2, 0.0)
+        # at the boundary case (e + 1/k = L) W vanishes where rod and crank line up: a cusp of phi; there
+        # the derivatives take their limit along sin(ks) -> 0 (W ~ |sin ks|), finite
+        w = np.sqrt(np.maximum(w2, np.finfo(float).tiny))
+        sgn = 1.0 if self.branch == 0 else -1.0
+        asq = np.arcsin(q)
+        phi = (asq if self.branch == 0 else np.pi - asq) - ks
+        ratio = np.where(w2 > 0, sn / w, 0.0)
+        dphi = -k - sgn * k * ratio
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            ddphi = np.where(w2 > 0, -sgn * k * k * (c * w2 - sn * sn * (k * h + c)) / w ** 3, 0.0)
+        return phi, dphi, ddphi
+
+
+class CrankRocker(Law):
+    """Crank-rocker through a fixed stone at distance d from the crank centre O; in this convention the
+    stone sits at (d, 0). d > r (r = 1/k): a rocking stone; d = r: the link turns uniformly at -k/2 per unit
+    s; d < r: a rotating stone (no arccos break: phi = atan2(cos ks, kd - sin ks) - ks, continuous)."""
+
+    def __init__(self, k, d):
+        self.k = check_positive("k", k)
+        self.d = check_positive("d", d)
+
+    def evaluate(self, s):
+        s = as_s(s)
+        k, d = self.k, self.d
+        ks = k * s
+        kd = k * d
+        if kd == 1.0:                      # the pin passes through the stone: the link turns uniformly
+            phi = np.pi / 4 - ks / 2
+            return phi, np.full_like(ks, -k / 2), np.zeros_like(ks)
+        phi = np.arctan2(np.cos(ks), kd - np.sin(ks)) - ks
+        big_d = 1 + kd * kd - 2 * kd * np.sin(ks)
+        dphi = -k * k * d * (kd - np.sin(ks)) / big_d
+        ddphi = -d * k ** 3 * (kd * kd - 1) * np.cos(ks) / big_d ** 2
+        return phi, dphi, ddphi
+
+    @property
+    def stone(self):
+        return np.array([self.d, 0.0])
+
+
+class LawFromFunctions(Law):
+    """A law from user functions phi(s), phi'(s), phi''(s) (vectorised callables) on a circle of curvature k."""
+
+    def __init__(self, k, phi, dphi, ddphi):
+        self.k = check_positive("k", k)
+        for name, f in (("phi", phi), ("dphi", dphi), ("ddphi", ddphi)):
+            if not callable(f):
+                raise ValueError(f"{name} must be callable, got {type(f).__name__}")
+        self._f = (phi, dphi, ddphi)
+
+    def evaluate(self, s):
+        s = as_s(s)
+        out = tuple(np.broadcast_to(np.asarray(f(s), dtype=float), s.shape).copy() for f in self._f)
+        if not all(np.all(np.isfinite(x)) for x in out):
+            raise ValueError("the law's functions returned non-finite values (outside their domain?)")
+        return out
+
+
+class LawFromGamma(LawFromFunctions):
+    """A law from the link's angle to Ox, gamma(s), with gamma' and gamma'': phi = gamma - ks (eq. (1))."""
+
+    def __init__(self, k, gamma, dgamma, ddgamma):
+        k = check_positive("k", k)
+        super().__init__(k, lambda s: gamma(s) - k * s, lambda s: np.asarray(dgamma(s)) - k, ddgamma)

@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .._jit import jit
-from .surfaces import first_derivatives, derivatives, POINT
+from .surfaces import first_derivatives, derivatives
 
 #: Below this, a 3x3 or 4x4 pivot is treated as zero (relative to the matrix scale).
 PIVOT_EPS = 1e-14
@@ -373,9 +373,11 @@ def degeneracy_slope(y, a, b, sign, h):
 @jit
 def closure_value(y, a, start, direction, offset):
     """Signed distance of M1(y) past the plane through start normal to direction, plus offset."""
-    loc = np.empty((6, 3))
-    derivatives(a, y[0], y[1], loc)
-    return dot(loc[POINT] - start, direction) + offset
+    p = np.empty(3)
+    su = np.empty(3)
+    sv = np.empty(3)
+    first_derivatives(a, y[0], y[1], p, su, sv)
+    return dot(p - start, direction) + offset
 
 
 @jit

@@ -133,7 +133,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     the way (nodes where branches cross, apexes) are passed straight through. Returns a Branch whose
     segments cover [0, branch.length] in arc length.
     """
-    branch = Branch(sign=sign)
+    branch = Branch()
     point = np.array(point, dtype=float)
     tangent = np.array(tangent, dtype=float)
     y = np.asarray(y_start, dtype=float)

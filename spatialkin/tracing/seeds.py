@@ -101,16 +101,15 @@ def closed_form_critical(p, q):
 
 
 def parameter_box(p, q):
-    """(lo (2,), hi (2,), periodic (2,)) of P's domain to search, bounded by Q's extent where P is not."""
+    """(lo (2,), hi (2,)) of P's domain to search, bounded by Q's extent where P is not."""
     kind = int(p.data[ks.KIND])
     if kind == ks.TORUS:
-        return np.array([-math.pi, -math.pi]), np.array([math.pi, math.pi]), (True, True)
+        return np.array([-math.pi, -math.pi]), np.array([math.pi, math.pi])
     if kind == ks.SPHERE:
-        return (np.array([-math.pi, -SPHERE_LATITUDE]), np.array([math.pi, SPHERE_LATITUDE]), (True, False))
+        return np.array([-math.pi, -SPHERE_LATITUDE]), np.array([math.pi, SPHERE_LATITUDE])
     lo = np.array([p.u_range[0], p.v_range[0]], dtype=float)
     hi = np.array([p.u_range[1], p.v_range[1]], dtype=float)
-    periodic = (kind != ks.PLANE, False)
-    if periodic[0]:
+    if kind != ks.PLANE:                 # u of a cylinder or cone is an angle
         lo[0], hi[0] = -math.pi, math.pi
     if not np.all(np.isfinite(np.r_[lo, hi])):
         if not q.compact:
@@ -126,7 +125,7 @@ def parameter_box(p, q):
             # cylinder and cone: v is the axial coordinate
             lo[1] = lo[1] if np.isfinite(lo[1]) else centre[2] - reach
             hi[1] = hi[1] if np.isfinite(hi[1]) else centre[2] + reach
-    return lo, hi, periodic
+    return lo, hi
 
 
 def param_steps(p, uv, scale):
@@ -156,7 +155,7 @@ def critical_points(p, q, scale):
     kind = int(p.data[ks.KIND])
     param_scale = parameter_units(p.data, scale)
     if uv is None:
-        lo, hi, _ = parameter_box(p, q)
+        lo, hi = parameter_box(p, q)
         found = [grid_critical(p, q, lo, hi, param_scale)]
         if kind == ks.SPHERE:     # a second chart, its poles on the first one's equator
             turned = p.with_frame(type(p.frame)(p.frame.origin, p.frame.rotation @ np.array(

@@ -49,7 +49,6 @@ class LinearStates:
 @dataclass
 class Branch:
     """Result of integrating one direction from a start point."""
-    sign: float
     segments: list = field(default_factory=list)
     status: str = "max_length"   # 'closed', 'singular', 'boundary', 'max_length', 'failed'
     message: str = ""

@@ -1,0 +1,345 @@
+"""General planar linkages of revolute joints: fixed joints, binary and ternary (or larger) links, one or
+more driving cranks geared to one input angle.
+
+The loop-closure equations F(q, phi) = 0 are written in natural coordinates (the moving joints' x, y;
+see planar.kernels), so a class III group (a triad) is solved as one system with no dyad decomposition.
+The configuration curve is followed along the input by arc length with spatialkin's continuation pipeline
+(solve_ivp over a jitted right-hand side), each requested input angle is then solved exactly by Newton
+from the traced prediction, and velocities and accelerations come analytically (y', y'' of the curve,
+mapped to time by the trajectory pipeline); each crank's share of the velocity is -J_q^-1 dF/dtheta_k
+theta_k' (the velocities are linear in the crank rates at a fixed position).
+
+References
+----------
+Seed 001 (../shared/reference/fnf-sixbar.md): the double-crank six-link of the FNF warp-knitting machine,
+velocity plans by stopping one crank at a time, superposition.
+"""
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from spatialkin.tracing.continuation import trace_cycle
+from . import kernels as kn
+from .linkage_motion import LinkageMotion, LockError
+
+#: Random starts of the assembly search at one input angle (deterministic seed).
+ASSEMBLY_STARTS = 200
+ASSEMBLY_SEED = 20261121
+#: Residual (in units of the linkage's mean length) below which a configuration is assembled.
+ASSEMBLY_TOL = 1e-11
+#: Two assemblies closer than this (mean length units) are the same.
+SAME_ASSEMBLY = 1e-6
+#: Newton at fixed input: residual tolerance (mean length units) and iterations.
+NEWTON_TOL = 1e-14
+NEWTON_ITER = 30
+#: A Newton solution further than this (mean length units) from its traced prediction is another branch.
+BRANCH_JUMP = 1e-3
+#: Largest denominator of a gear ratio (the input period is 2 pi times their least common multiple).
+MAX_DENOMINATOR = 64
+#: Input angles scanned when the linkage does not assemble at the requested one.
+SCAN_ANGLES = 36
+#: Arc-length budget of one configuration curve, per unit of input period and unknown.
+LENGTH_BUDGET = 200.0
+
+
+@dataclass(frozen=True)
+class Crank:
+    """A driving crank: pin = pivot + radius (cos theta, sin theta), theta = phase + ratio * phi, phi the
+    linkage's input angle (crank 1's angle: ratio 1, phase 0). A gear pair z1, z2 in external mesh gives
+    ratio -z1/z2."""
+    name: str
+    pivot: str
+    pin: str
+    radius: float
+    ratio: float = 1.0
+    phase: float = 0.0
+
+
+@dataclass(frozen=True)
+class Link:
+    """A rigid link through its joints; shape (k, 2) gives their coordinates in the link's own frame
+    (a binary link may give length instead)."""
+    name: str
+    joints: tuple
+    shape: tuple = None
+    length: float = None
+
+    def local(self):
+        if self.shape is not None:
+            return np.asarray(self.shape, dtype=float)
+        return np.array([[0.0, 0.0], [float(self.length), 0.0]])
+
+
+def _check_positive(name, value):
+    value = float(value)
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be a finite positive length, got {value!r}")
+    return value
+
+
+class Linkage:
+    """A planar linkage of revolute joints driven by geared cranks.
+
+    Parameters
+    ----------
+    fixed : dict name -> (x, y)
+        Fixed joints (frame pivots).
+    cranks : list of Crank
+        Driving cranks; the first is the input (its ratio must be 1 and phase 0).
+    links : list of Link
+        The other moving links.
+    hint : dict name -> (x, y), optional
+        Approximate moving-joint positions at input angle hint_angle: selects the assembly.
+    hint_angle : float
+        Input angle of the hint (and of the start of the traced configuration curve).
+    """
+
+    def __init__(self, fixed, cranks, links, hint=None, hint_angle=0.0):
+        self.fixed = {str(k): np.asarray(v, dtype=float).reshape(2) for k, v in fixed.items()}
+        self.cranks = list(cranks)
+        self.links = list(links)
+        if not self.cranks:
+            raise ValueError("cranks: a linkage needs at least one driving crank")
+        if self.cranks[0].ratio != 1.0 or self.cranks[0].phase != 0.0:
+            raise ValueError("cranks: the first crank is the input (ratio 1, phase 0)")
+        self.moving = self._moving_joints()
+        self.mean_length = float(np.mean([c.radius for c in self.cranks] + [
+            np.max(np.linalg.norm(lk.local() - lk.local()[0], axis=1)) for lk in self.links]))
+        self.ci, self.cf, self.fixed_xy = self._constraints()
+        self.period = self._period()
+        self.hint = None if hint is None else {k: np.asarray(v, float) for k, v in hint.items()}
+        self.hint_angle = float(hint_angle)
+        self._cycles = {}
+
+    # --- model -----------------------------------------------------------------------------------
+    def _moving_joints(self):
+        names = []
+        for c in self.cranks:
+            _check_positive(f"crank {c.name} radius", c.radius)
+            if not (math.isfinite(c.ratio) and c.ratio != 0 and math.isfinite(c.phase)):
+                raise ValueError(f"crank {c.name}: ratio must be finite and non-zero, phase finite")
+            for j in (c.pivot, c.pin):
+                if j not in self.fixed and j not in names:
+                    names.append(j)
+            if c.pin in self.fixed:
+                raise ValueError(f"crank {c.name}: its pin {c.pin!r} is a fixed joint")
+        for lk in self.links:
+            if len(lk.joints) < 2 or len(set(lk.joints)) != len(lk.joints):
+                raise ValueError(f"link {lk.name}: needs at least two distinct joints, got {lk.joints}")
+            if lk.shape is None:
+                if lk.length is None:
+                    raise ValueError(f"link {lk.name}: give shape (joint coordinates) or length")
+                _check_positive(f"link {lk.name} length", lk.length)
+            shape = lk.local()
+            if shape.shape != (len(lk.joints), 2) or not np.all(np.isfinite(shape)):
+                raise ValueError(f"link {lk.name}: shape must be finite ({len(lk.joints)}, 2)")
+            _check_positive(f"link {lk.name} distance {lk.joints[0]}-{lk.joints[1]}",
+                            np.linalg.norm(shape[1] - shape[0]))
+            for j in lk.joints:
+                if j not in self.fixed and j not in names:
+                    names.append(j)
+        return names
+
+    def _code(self, joint):
+        if joint in self.fixed:
+            return -list(self.fixed).index(joint) - 1
+        return self.moving.index(joint)
+
+    def _constraints(self):
+        ell = self.mean_length
+        ci, cf, row = [], [], 0
+        for k, c in enumerate(self.cranks):
+            ci.append((kn.CRANK, row, self._code(c.pivot), self._code(c.pin), 0, k))
+            cf.append((c.radius / ell, c.ratio, c.phase))
+            row += 2
+        for lk in self.links:
+            shape = lk.local()
+            e = shape[1] - shape[0]
+            ci.append((kn.DIST, row, self._code(lk.joints[0]), self._code(lk.joints[1]), 0, 0))
+            cf.append((np.linalg.norm(e) / ell, 0.0, 0.0))
+            row += 1
+            for j, p in zip(lk.joints[2:], shape[2:]):
+                d = p - shape[0]
+                a = np.dot(d, e) / np.dot(e, e)
+                b = (e[0] * d[1] - e[1] * d[0]) / np.dot(e, e)
+                ci.append((kn.RIGID, row, self._code(lk.joints[0]), self._code(lk.joints[1]),
+                           self._code(j), 0))
+                cf.append((a, b, 0.0))
+                row += 2
+        unknowns = 2 * len(self.moving)
+        if row != unknowns:
+            raise ValueError(f"the linkage is not driven to one degree of freedom: {unknowns} joint "
+                             f"coordinates but {row} equations (moving joints {self.moving})")
+        fixed = np.array(list(self.fixed.values()), dtype=float).reshape(-1, 2) / ell
+        return np.array(ci, dtype=np.int64), np.array(cf, dtype=float), fixed
+
+    def _period(self):
+        lcm = 1
+        for c in self.cranks:
+            frac = Fraction(c.ratio).limit_denominator(MAX_DENOMINATOR)
+            if abs(float(frac) - c.ratio) > 1e-12 * abs(c.ratio):
+                raise ValueError(f"crank {c.name}: ratio {c.ratio} is not a gear ratio (a fraction with "
+                                 f"denominator up to {MAX_DENOMINATOR})")
+            lcm = math.lcm(lcm, frac.denominator)
+        return 2 * math.pi * lcm
+
+    @property
+    def joints(self):
+        return list(self.fixed) + self.moving
+
+    def residual(self, state):
+        """F (n,) and its Jacobian (n, n+1) at a state (n+1,) in scaled units."""
+        n = len(state) - 1
+        f, jac = np.empty(n), np.empty((n, n + 1))
+        kn.linkage_system(np.asarray(state, float), self.ci, self.cf, self.fixed_xy, f, jac,
+                          np.empty((n, len(self.cranks))))
+        return f, jac
+
+    def state(self, positions, angle):
+        """Scaled state from a dict of moving-joint positions and the input angle."""
+        q = np.concatenate([np.asarray(positions[j], float) for j in self.moving]) / self.mean_length
+        return np.append(q, angle)
+
+    def positions(self, state):
+        """Dict joint -> (x, y) of one scaled state (fixed joints included)."""
+        out = {k: v.copy() for k, v in self.fixed.items()}
+        q = np.asarray(state[:-1]).reshape(-1, 2) * self.mean_length
+        out.update({j: q[i] for i, j in enumerate(self.moving)})
+        return out
+
+    # --- assembly --------------------------------------------------------------------------------
+    def _least_squares(self, q0, angle):
+        n = q0.size
+
+        def fun(q):
+            return self.residual(np.append(q, angle))[0]
+
+        def jac(q):
+            return self.residual(np.append(q, angle))[1][:, :n]
+        res = least_squares(fun, q0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+        return res.x, float(np.max(np.abs(res.fun)))
+
+    def assemblies(self, angle):
+        """Every assembly found at one input angle: a list of dicts joint -> (x, y), by multi-start
+        Levenberg-Marquardt from random joint positions (deterministic)."""
+        return [self.positions(s) for s in self._assemblies(float(angle))[0]]
+
+    def _assemblies(self, angle):
+        rng = np.random.default_rng(ASSEMBLY_SEED)
+        centre = np.mean(self.fixed_xy, axis=0) if len(self.fixed_xy) else np.zeros(2)
+        reach = np.max(np.linalg.norm(self.fixed_xy - centre, axis=1), initial=0.0) + 3.0
+        found, best = [], (np.inf, None)
+        for _ in range(ASSEMBLY_STARTS):
+            q0 = (centre + reach * rng.uniform(-1, 1, (len(self.moving), 2))).ravel()
+            q, worst = self._least_squares(q0, angle)
+            if worst < ASSEMBLY_TOL:
+                state = np.append(q, angle)
+                if all(np.max(np.abs(state - s)) > SAME_ASSEMBLY for s in found):
+                    found.append(state)
+            elif worst < best[0]:
+                best = (worst, q)
+        return found, best
+
+    def assemble(self, angle, assembly=None):
+        """Scaled state at an input angle: the assembly nearest the hint (or number `assembly` of
+        assemblies(angle))."""
+        angle = float(angle)
+        if assembly is None and self.hint is not None:
+            guess = self.state(self.hint, angle)
+            q, worst = self._least_squares(guess[:-1], angle)
+            if worst < ASSEMBLY_TOL:
+                return np.append(q, angle)
+        found, best = self._assemblies(angle)
+        if not found:
+            raise ValueError(self._not_assembled(angle, best[1]))
+        if assembly is None:
+            if self.hint is None:
+                return found[0]
+            guess = self.state(self.hint, angle)
+            return min(found, key=lambda s: np.linalg.norm(s - guess))
+        if not 0 <= assembly < len(found):
+            raise ValueError(f"assembly must be in 0..{len(found) - 1} at input angle {angle:.6g} rad, "
+                             f"got {assembly!r}")
+        return found[assembly]
+
+    def _not_assembled(self, angle, q):
+        names = [f"crank {c.name} ({c.pivot}-{c.pin})" for c in self.cranks for _ in (0, 1)]
+        for lk in self.links:
+            names.append(f"link {lk.name} ({lk.joints[0]}-{lk.joints[1]})")
+            names += [f"link {lk.name} joint {j}" for j in lk.joints[2:] for _ in (0, 1)]
+        f = self.residual(np.append(q, angle))[0] * self.mean_length
+        worst = int(np.argmax(np.abs(f)))
+        where = [a for a in np.linspace(0, self.period, SCAN_ANGLES, endpoint=False)
+                 if self._assemblies_quick(a)]
+        also = (f"; it assembles at input angles such as {math.degrees(where[0]):.4g} deg: its motion is "
+                f"limited by lock positions" if where else "; it assembles at none of "
+                f"{SCAN_ANGLES} input angles over the period")
+        return (f"the linkage cannot be assembled at input angle {math.degrees(angle):.6g} deg: the "
+                f"closest configuration found misses {names[worst]} by {abs(f[worst]):.4g}{also}")
+
+    def _assemblies_quick(self, angle):
+        rng = np.random.default_rng(ASSEMBLY_SEED)
+        centre = np.mean(self.fixed_xy, axis=0)
+        reach = np.max(np.linalg.norm(self.fixed_xy - centre, axis=1), initial=0.0) + 3.0
+        for _ in range(ASSEMBLY_STARTS // 10):
+            q0 = (centre + reach * rng.uniform(-1, 1, (len(self.moving), 2))).ravel()
+            if self._least_squares(q0, angle)[1] < ASSEMBLY_TOL:
+                return True
+        return False
+
+    # --- motion ----------------------------------------------------------------------------------
+    def cycle(self, assembly=None):
+        """The configuration curve through the chosen assembly at hint_angle (cached): see
+        spatialkin.tracing.continuation.Cycle."""
+        if assembly not in self._cycles:
+            y0 = self.assemble(self.hint_angle, assembly)
+            args = (self.ci, self.cf, self.fixed_xy, len(self.cranks))
+            budget = LENGTH_BUDGET * self.period * len(y0)
+            self._cycles[assembly] = trace_cycle(kn.linkage_rhs, y0, args, self.period, budget)
+        return self._cycles[assembly]
+
+    def lock_positions(self, assembly=None):
+        """Input angles (rad) where the driven group locks (the Jacobian in the joints is singular and the
+        input reverses), in the order met from hint_angle; empty when the input turns fully."""
+        return np.array([s[-1] for s in self.cycle(assembly).locks])
+
+    def solve(self, crank_angles, omega=1.0, assembly=None):
+        """Positions, velocities and accelerations at the given input angles, the input turning at omega.
+
+        Raises
+        ------
+        LockError
+            When a requested angle lies beyond a lock position of the assembly.
+        """
+        angles = np.atleast_1d(np.asarray(crank_angles, dtype=float))
+        if angles.ndim != 1 or angles.size == 0 or not np.all(np.isfinite(angles)):
+            raise ValueError("crank_angles must be a finite, non-empty 1-D array")
+        if not (math.isfinite(omega) and omega != 0):
+            raise ValueError(f"omega must be finite and non-zero, got {omega!r}")
+        cycle = self.cycle(assembly)
+        inputs, states = cycle.branch_samples()
+        order = np.argsort(inputs)
+        inputs, states = inputs[order], states[order]
+        if cycle.full_turn:
+            local = inputs[0] + np.mod(angles - inputs[0], cycle.period)
+        else:
+            lo, hi = inputs[0], inputs[-1]
+            local = lo + np.mod(angles - lo, self.period)
+            outside = local > hi
+            if outside.any():
+                raise LockError(self.lock_positions(assembly), angles[outside])
+        guess = np.column_stack([np.interp(local, inputs, states[:, i]) for i in range(states.shape[1] - 1)]
+                                + [local])
+        ys = guess.copy()
+        ok = np.zeros(len(ys), dtype=np.bool_)
+        kn.newton_fixed_input(ys, self.ci, self.cf, self.fixed_xy, len(self.cranks), NEWTON_TOL,
+                              NEWTON_ITER, ok)
+        jump = np.max(np.abs(ys - guess), axis=1)
+        bad = ~ok | (jump > BRANCH_JUMP)
+        if bad.any():
+            raise LockError(self.lock_positions(assembly), angles[bad])
+        ys[:, -1] = angles
+        return LinkageMotion(self, ys, float(omega))

@@ -1,0 +1,38 @@
+"""The six-link's pictures draw exactly the solved data (identity oracle)."""
+import numpy as np
+import pytest
+
+import planar
+from planar import linkage_figures as lf
+
+
+@pytest.fixture(scope="module")
+def sol():
+    return planar.examples.fnf_sixbar().solve(np.linspace(0.0, 2 * np.pi, 73))
+
+
+def test_paths_draw_the_joint_trajectories(sol):
+    fig = lf.paths(sol, joints=("B", "C", "K"))
+    lines = {ln.get_label(): ln.get_xydata() for ln in fig.axes[0].get_lines()}
+    for j in "BCK":
+        assert np.array_equal(lines[f"path of {j}"], sol.position(j))
+
+
+def test_velocity_plans_show_each_share_and_their_sum(sol):
+    fig = lf.velocity_plans(sol, 10)
+    assert len(fig.axes) == 3
+    for ax, crank in zip(fig.axes, (1, 2, None)):
+        tips = {t.get_text(): np.array(t.xy) for t in ax.texts if t.get_text() in "abckd" and t.get_text()}
+        for j in "ABCKD":
+            assert np.allclose(tips[j.lower()], sol.velocity(j, crank)[10], atol=1e-12)
+    dashed = [ln.get_xydata() for ln in fig.axes[2].get_lines() if ln.get_linestyle() == "--"]
+    for j in "ABCKD":                                        # share chains end at the full velocity
+        assert any(np.allclose(d[-1], sol.velocity(j)[10], atol=1e-12) for d in dashed)
+
+
+def test_mechanism_draws_every_link(sol):
+    fig = lf.mechanism(sol, (0, 36))
+    ax = fig.axes[0]
+    assert len(ax.patches) == 2                         # the ternary link at both positions
+    k = sol.position("K")[0]
+    assert any(np.allclose(t.xy, k) for t in ax.texts if t.get_text() == "K")

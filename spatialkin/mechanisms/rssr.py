@@ -6,17 +6,19 @@ by the trajectory pipeline and to the links by the serial-chain propagation.
 import math
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ..frame import Frame
 from ..kernels import linkage as kl
 from ..kinematics import serial_chain
 from ..surfaces import check_length
+from ..tracing.continuation import trace_cycle
 from ..trajectory import time_map, to_time
 from .common import PointMotion, check_branch, check_drive
 
 #: solve_ivp tolerance of the configuration-curve trace (a predictor: positions are solved by Newton).
 TRACE_RTOL = 1e-10
+#: Arc-length budget of the configuration curve per radian of crank angle (the curve is bounded).
+LENGTH_BUDGET = 1e3
 #: Samples of the rocker angle when assembling at the first crank angle.
 ASSEMBLY_SAMPLES = 720
 #: Newton tolerance on F (length^2) relative to the mechanism size squared.
@@ -83,43 +85,27 @@ class RSSR:
         return xs if np.all(ok) else None
 
     def cycle(self, branch=0):
-        """The configuration curve over one crank turn, traced by arc length: the solve_ivp result."""
+        """The configuration curve over one crank turn, traced by arc length (a continuation Cycle)."""
         if branch not in self._cycles:
             x0 = self.assemble(0.0, branch)
-            grad = self.residual(*x0)[1]
-            sign = 1.0 if -grad[1] > 0 else -1.0          # travel with the crank angle growing
-
-            def turn(s, x, *_):
-                return x[0] - x0[0] - 2 * np.pi
-            turn.terminal, turn.direction = True, 1
-
-            def dead(s, x, *_):
-                return kl.implicit_curve_rhs(s, x, self.params, sign, 0.0)[0]
-            dead.terminal, dead.direction = True, -1
-            res = solve_ivp(kl.implicit_curve_rhs, (0.0, 1e3 * 2 * np.pi), x0, method="DOP853",
-                            rtol=TRACE_RTOL, atol=TRACE_RTOL, dense_output=True, events=[turn, dead],
-                            args=(self.params, sign, 1.0))
-            if res.t_events[1].size:
+            cycle = trace_cycle(kl.implicit_curve_rhs, x0, (self.params,), 2 * np.pi,
+                                LENGTH_BUDGET * 2 * np.pi, index=0, rtol=TRACE_RTOL)
+            if cycle.locks:
                 raise ValueError("the crank of this RSSR cannot turn fully: dead position at crank angle "
-                                 f"{math.degrees(res.y_events[1][0][0]):.6g} deg")
-            if not res.t_events[0].size:
-                raise ValueError(f"tracing the RSSR cycle failed: {res.message}")
-            self._cycles[branch] = (res, sign)
+                                 f"{math.degrees(cycle.locks[0][0]):.6g} deg")
+            self._cycles[branch] = cycle
         return self._cycles[branch]
 
     def solve(self, crank_angles, omega=1.0, branch=0):
         """Motion at exactly the given crank angles; see RSSRMotion."""
         phi = check_drive(crank_angles, omega, branch)
-        res, sign = self.cycle(branch)
-        s_grid = np.linspace(0.0, res.t[-1], 4096)
-        path = res.sol(s_grid)
-        turns = np.floor((phi - path[0, 0]) / (2 * np.pi))
-        local = phi - 2 * np.pi * turns
-        psi = np.interp(local, path[0], path[1])
+        inputs, path = self.cycle(branch).branch_samples()
+        local = inputs[0] + np.mod(phi - inputs[0], 2 * np.pi)
+        psi = np.interp(local, inputs, path[:, 1])
         xs = self._newton(np.column_stack([phi, psi]))
         if xs is None:
             raise ValueError("Newton at fixed crank angle failed")
-        return RSSRMotion(self, xs, sign, omega)
+        return RSSRMotion(self, xs, 1.0, omega)
 
 
 class RSSRMotion:

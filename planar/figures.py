@@ -8,12 +8,12 @@
 import numpy as np
 
 
-def _figure(size=(6.0, 6.0)):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=size)
-    return fig, ax
+def _figure(size=(6.0, 6.0), columns=1):
+    """A matplotlib Figure outside pyplot's state (no backend switch, nothing accumulates; Jupyter shows
+    it when returned) with its axes."""
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=size)
+    return fig, fig.subplots(1, columns)
 
 
 def _turn(link, samples):

@@ -78,9 +78,8 @@ def velocity_plans(motion, index, joints=("A", "B", "C", "K", "D"), title=None):
     """Velocity plans at position `index`: one panel per crank with the others stopped (crank k's share
     of every joint's velocity, from the pole p) and one of the full motion, where each share is drawn
     tip to tail to show V = sum of the shares. Returns a matplotlib Figure."""
-    import matplotlib.pyplot as plt
     cranks = len(motion.linkage.cranks)
-    fig, axes = plt.subplots(1, cranks + 1, figsize=(4.0 * (cranks + 1), 4.2))
+    fig, axes = _figure((4.0 * (cranks + 1), 4.2), columns=cranks + 1)
     panels = [(k + 1, f"crank {k + 1} alone (others stopped)") for k in range(cranks)]
     panels.append((None, "full motion = sum of the shares"))
     for ax, (crank, name) in zip(axes, panels):

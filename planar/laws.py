@@ -14,6 +14,8 @@ import math
 
 import numpy as np
 
+from . import law_kernels as lk
+
 
 def check_positive(name, value):
     try:
@@ -30,6 +32,14 @@ def as_s(s):
     if not np.all(np.isfinite(s)):
         raise ValueError("s must be finite")
     return s
+
+
+def kernel_law(kernel, s, *params):
+    """(phi, dphi, ddphi) shaped like s from a jitted law kernel (planar.law_kernels)."""
+    s = as_s(s)
+    out = np.empty((3, s.size))
+    kernel(*params, np.ascontiguousarray(s).ravel(), out[0], out[1], out[2])
+    return tuple(o.reshape(s.shape) for o in out)
 
 
 class Law:
@@ -79,23 +89,7 @@ class CrankSlider(Law):
         self.h = side * self.e
 
     def evaluate(self, s):
-        s = as_s(s)
-        k, L, h = self.k, self.L, self.h
-        ks = k * s
-        c, sn = np.cos(ks), np.sin(ks)
-        q = np.clip((k * h + c) / (k * L), -1.0, 1.0)
-        w2 = np.maximum(k * k * L * L - (k * h + c) ** 2, 0.0)
-        # at the boundary case (e + 1/k = L) W vanishes where rod and crank line up: a cusp of phi; there
-        # the derivatives take their limit along sin(ks) -> 0 (W ~ |sin ks|), finite
-        w = np.sqrt(np.maximum(w2, np.finfo(float).tiny))
-        sgn = 1.0 if self.branch == 0 else -1.0
-        asq = np.arcsin(q)
-        phi = (asq if self.branch == 0 else np.pi - asq) - ks
-        ratio = np.where(w2 > 0, sn / w, 0.0)
-        dphi = -k - sgn * k * ratio
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            ddphi = np.where(w2 > 0, -sgn * k * k * (c * w2 - sn * sn * (k * h + c)) / w ** 3, 0.0)
-        return phi, dphi, ddphi
+        return kernel_law(lk.crank_slider_law, s, self.k, self.h, self.L, self.branch)
 
 
 class CrankRocker(Law):
@@ -108,18 +102,7 @@ class CrankRocker(Law):
         self.d = check_positive("d", d)
 
     def evaluate(self, s):
-        s = as_s(s)
-        k, d = self.k, self.d
-        ks = k * s
-        kd = k * d
-        if kd == 1.0:                      # the pin passes through the stone: the link turns uniformly
-            phi = np.pi / 4 - ks / 2
-            return phi, np.full_like(ks, -k / 2), np.zeros_like(ks)
-        phi = np.arctan2(np.cos(ks), kd - np.sin(ks)) - ks
-        big_d = 1 + kd * kd - 2 * kd * np.sin(ks)
-        dphi = -k * k * d * (kd - np.sin(ks)) / big_d
-        ddphi = -d * k ** 3 * (kd * kd - 1) * np.cos(ks) / big_d ** 2
-        return phi, dphi, ddphi
+        return kernel_law(lk.crank_rocker_law, s, self.k, self.d)
 
     @property
     def stone(self):

@@ -21,6 +21,7 @@ import numpy as np
 
 from spatialkin.trajectory import Trajectory, time_map
 
+from . import law_kernels as lk
 from .laws import Law
 
 
@@ -42,29 +43,25 @@ class DrivenLink:
         self.speed = self.omega / self.k          # V, the pin's speed
 
     def trajectory(self, s, rho):
-        """Trajectory (the spatial side's pipeline) of the points (s, rho), each law value computed once."""
-        s, rho = np.broadcast_arrays(np.asarray(s, dtype=float), np.asarray(rho, dtype=float))
+        """Trajectory (the spatial side's pipeline) of the points (s, rho), broadcast together: the law is
+        evaluated once per value of s and shared by every rho (s[:, None] with rho (R,) gives R points of
+        the link at N crank positions), positions and s-derivatives by a jitted kernel."""
+        s = np.asarray(s, dtype=float)
+        rho = np.asarray(rho, dtype=float)
         if not np.all(np.isfinite(rho)):
             raise ValueError("rho must be finite")
-        k = self.k
+        shape = np.broadcast_shapes(s.shape, rho.shape)
+        if s.ndim == 2 and s.shape[1] == 1 and rho.ndim == 1:        # N positions x R points
+            s = s[:, 0]
+            rho = np.broadcast_to(rho, shape)
+        else:
+            s = np.broadcast_to(s, shape).ravel()
+            rho = np.broadcast_to(rho, shape).reshape(-1, 1)
         phi, dphi, ddphi = self.law.evaluate(s)
-        ks = k * s
-        gamma = ks + phi
-        g1 = k + dphi
-        e = np.stack([np.cos(gamma), np.sin(gamma)], axis=-1)
-        ep = np.stack([-np.sin(gamma), np.cos(gamma)], axis=-1)
-        tau = np.stack([np.cos(ks), np.sin(ks)], axis=-1)
-        n = np.stack([-np.sin(ks), np.cos(ks)], axis=-1)
-        pin = np.stack([np.sin(ks), -np.cos(ks)], axis=-1) / k
-        r = rho[..., None]
-        position = pin + r * e
-        d1 = tau + r * g1[..., None] * ep
-        d2 = k * n + r * (ddphi[..., None] * ep - (g1 ** 2)[..., None] * e)
-        sdot, sddot = time_map(np.full(s.shape, k), np.zeros(s.shape), self.omega)
-        traj = Trajectory(position, d1, d2, sdot, sddot)
-        traj.frame = (tau, n)
-        traj.law = (phi, dphi, ddphi)
-        return traj
+        out = np.empty((3,) + rho.shape + (2,))
+        lk.link_derivatives(self.k, s, phi, dphi, ddphi, rho, out[0], out[1], out[2])
+        sdot, sddot = time_map(self.k, 0.0, self.omega)        # uniform: ds/dt = omega / k for every point
+        return Trajectory(*(o.reshape(shape + (2,)) for o in out), sdot, sddot)
 
     def position(self, s, rho):
         return self.trajectory(s, rho).position
@@ -75,17 +72,19 @@ class DrivenLink:
     def acceleration(self, s, rho):
         return self.trajectory(s, rho).acceleration
 
+    def _on_frame(self, s, rho, vectors):
+        ks = self.k * np.asarray(s, dtype=float)
+        tau = np.stack([np.cos(ks), np.sin(ks)], axis=-1)
+        n = np.stack([-np.sin(ks), np.cos(ks)], axis=-1)
+        return np.stack([np.sum(vectors * tau, -1), np.sum(vectors * n, -1)], axis=-1)
+
     def velocity_frame(self, s, rho):
         """(V_tau, V_n) (..., 2): velocity components on the trihedron (tau, n)."""
-        t = self.trajectory(s, rho)
-        tau, n = t.frame
-        return np.stack([np.sum(t.velocity * tau, -1), np.sum(t.velocity * n, -1)], axis=-1)
+        return self._on_frame(s, rho, self.velocity(s, rho))
 
     def acceleration_frame(self, s, rho):
         """(W_tau, W_n) (..., 2): acceleration components on (tau, n)."""
-        t = self.trajectory(s, rho)
-        tau, n = t.frame
-        return np.stack([np.sum(t.acceleration * tau, -1), np.sum(t.acceleration * n, -1)], axis=-1)
+        return self._on_frame(s, rho, self.acceleration(s, rho))
 
     def angular_velocity(self, s):
         """Omega = V (k + phi') of the link (anticlockwise positive)."""

@@ -1,0 +1,73 @@
+"""Jitted laws phi(s) of seed 000's crank mechanisms and the driven link's s-derivatives.
+
+Each law kernel fills phi, phi', phi'' at the arc lengths s (flat arrays); link_derivatives fills the
+positions of the link's points and their first and second s-derivatives from the law (computed once per s
+by the caller and shared by every point rho). Formulas: planar.laws and planar.link.
+"""
+import math
+
+from spatialkin._jit import jit
+
+#: Smallest W^2 kept under the square root of the crank-slider (its boundary case has W = 0 at a cusp).
+TINY = 2.2250738585072014e-308
+
+
+@jit
+def crank_slider_law(k, h, length, branch, s, phi, dphi, ddphi):
+    """Offset crank-slider (guide y = h, rod length `length`, branch 0 or 1)."""
+    sgn = 1.0 if branch == 0 else -1.0
+    for i in range(s.size):
+        ks = k * s[i]
+        c, sn = math.cos(ks), math.sin(ks)
+        u = k * h + c
+        q = min(max(u / (k * length), -1.0), 1.0)
+        w2 = max(k * k * length * length - u * u, 0.0)
+        w = math.sqrt(max(w2, TINY))
+        asq = math.asin(q)
+        phi[i] = (asq if branch == 0 else math.pi - asq) - ks
+        if w2 > 0.0:
+            dphi[i] = -k - sgn * k * sn / w
+            ddphi[i] = -sgn * k * k * (c * w2 - sn * sn * u) / (w * w * w)
+        else:          # the cusp of the boundary case: the limits along sin(ks) -> 0
+            dphi[i] = -k
+            ddphi[i] = 0.0
+
+
+@jit
+def crank_rocker_law(k, d, s, phi, dphi, ddphi):
+    """Crank-rocker through the stone at (d, 0); d = 1/k turns uniformly."""
+    kd = k * d
+    for i in range(s.size):
+        ks = k * s[i]
+        if kd == 1.0:
+            phi[i] = math.pi / 4 - ks / 2
+            dphi[i] = -k / 2
+            ddphi[i] = 0.0
+            continue
+        sn, c = math.sin(ks), math.cos(ks)
+        big_d = 1.0 + kd * kd - 2.0 * kd * sn
+        phi[i] = math.atan2(c, kd - sn) - ks
+        dphi[i] = -k * k * d * (kd - sn) / big_d
+        ddphi[i] = -d * k ** 3 * (kd * kd - 1.0) * c / (big_d * big_d)
+
+
+@jit
+def link_derivatives(k, s, phi, dphi, ddphi, rho, pos, d1, d2):
+    """Points P = A + rho e of the link and P', P'' (M, R, 2) at arc lengths s (M,) with their law (M,),
+    for the distances rho (M, R): the trihedron and the link direction are computed once per s."""
+    for i in range(s.size):
+        ks = k * s[i]
+        sk, ck = math.sin(ks), math.cos(ks)
+        gamma = ks + phi[i]
+        cg, sg = math.cos(gamma), math.sin(gamma)
+        g1 = k + dphi[i]
+        g1s = g1 * g1
+        g2 = ddphi[i]
+        for j in range(rho.shape[1]):
+            r = rho[i, j]
+            pos[i, j, 0] = sk / k + r * cg
+            pos[i, j, 1] = -ck / k + r * sg
+            d1[i, j, 0] = ck - r * g1 * sg
+            d1[i, j, 1] = sk + r * g1 * cg
+            d2[i, j, 0] = -k * sk - r * (g2 * sg + g1s * cg)
+            d2[i, j, 1] = k * ck + r * (g2 * cg - g1s * sg)

@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 from spatialkin._jit import jit
-from spatialkin.kernels.implicit import follow_rhs, oriented_tangent, second_derivative, solve_partial
+from spatialkin.kernels.implicit import follow_rhs, lu_factor, lu_solve, solve_partial
 
 DIST, RIGID, CRANK = 0, 1, 2
 #: Columns of ci.
@@ -159,23 +159,36 @@ def newton_fixed_input(ys, ci, cf, fixed, cranks, tol, max_iter, ok):
 
 
 @jit
-def linkage_derivatives(ys, ci, cf, fixed, sign, d1, d2, parts, ok):
-    """Along the configuration curve at ys (N, n+1): y' (N, n+1) and y'' (N, n+1) in arc length, and the
-    joints' rates per unit rate of each crank, parts (N, cranks, n) = -J_q^-1 dF/dtheta_k. ok[k] False
-    where J_q is singular (a lock position)."""
+def linkage_derivatives(ys, ci, cf, fixed, d1, d2, parts, ok):
+    """Derivatives along the configuration curve parametrised by the input phi, at ys (N, n+1):
+    y' = (dq/dphi, 1) and y'' = (d2q/dphi2, 0) (N, n+1) from J_q q' = -F_phi, J_q q'' = -F''[y', y'], and
+    the joints' rates per unit rate of each crank, parts (N, cranks, n) = -J_q^-1 dF/dtheta_k: one LU of
+    J_q per point. ok[k] False where J_q is singular (a lock position)."""
     n = ys.shape[1] - 1
     cranks = parts.shape[1]
     f = np.empty(n)
     jac = np.empty((n, n + 1))
     dtheta = np.empty((n, cranks))
+    m = np.empty((n, n))
+    piv = np.empty(n, dtype=np.int64)
+    rhs = np.empty(n)
     quad = np.empty(n)
-    col = np.empty(n)
     for k in range(ys.shape[0]):
         linkage_system(ys[k], ci, cf, fixed, f, jac, dtheta)
-        oriented_tangent(jac, sign, d1[k])
+        m[:, :] = jac[:, :n]
+        ok[k] = lu_factor(m, piv)
+        if not ok[k]:
+            continue
+        for i in range(n):
+            rhs[i] = -jac[i, n]
+        lu_solve(m, piv, rhs, d1[k])
+        d1[k, n] = 1.0
         linkage_quadratic(ys[k], d1[k], ci, cf, fixed, quad)
-        ok[k] = second_derivative(jac, d1[k], quad, d2[k])
+        for i in range(n):
+            rhs[i] = -quad[i]
+        lu_solve(m, piv, rhs, d2[k])
+        d2[k, n] = 0.0
         for c in range(cranks):
             for i in range(n):
-                col[i] = -dtheta[i, c]
-            ok[k] = ok[k] and solve_partial(jac, col, parts[k, c])
+                rhs[i] = -dtheta[i, c]
+            lu_solve(m, piv, rhs, parts[k, c])

@@ -60,7 +60,7 @@ class LinkageMotion:
         d1, d2 = np.empty((m, n + 1)), np.empty((m, n + 1))
         parts = np.empty((m, len(linkage.cranks), n))
         ok = np.zeros(m, dtype=np.bool_)
-        kn.linkage_derivatives(states, linkage.ci, linkage.cf, linkage.fixed_xy, 1.0, d1, d2, parts, ok)
+        kn.linkage_derivatives(states, linkage.ci, linkage.cf, linkage.fixed_xy, d1, d2, parts, ok)
         if not ok.all():
             raise LockError(linkage.lock_positions(), self.crank_angles[~ok])
         ell = linkage.mean_length

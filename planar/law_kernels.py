@@ -13,8 +13,9 @@ TINY = 2.2250738585072014e-308
 
 
 @jit
-def crank_slider_law(k, h, length, branch, s, phi, dphi, ddphi):
-    """Offset crank-slider (guide y = h, rod length `length`, branch 0 or 1)."""
+def crank_slider_law(k, h, length, branch, s, phi, dphi, ddphi, cg, sg):
+    """Offset crank-slider (guide y = h, rod length `length`, branch 0 or 1); cg, sg: the link's direction
+    (cos, sin of gamma = ks + phi), here sin gamma = q and cos gamma = +-W/(kL) with no further trig."""
     sgn = 1.0 if branch == 0 else -1.0
     for i in range(s.size):
         ks = k * s[i]
@@ -25,6 +26,8 @@ def crank_slider_law(k, h, length, branch, s, phi, dphi, ddphi):
         w = math.sqrt(max(w2, TINY))
         asq = math.asin(q)
         phi[i] = (asq if branch == 0 else math.pi - asq) - ks
+        sg[i] = q
+        cg[i] = sgn * math.sqrt(w2) / (k * length)
         if w2 > 0.0:
             dphi[i] = -k - sgn * k * sn / w
             ddphi[i] = -sgn * k * k * (c * w2 - sn * sn * u) / (w * w * w)
@@ -34,8 +37,9 @@ def crank_slider_law(k, h, length, branch, s, phi, dphi, ddphi):
 
 
 @jit
-def crank_rocker_law(k, d, s, phi, dphi, ddphi):
-    """Crank-rocker through the stone at (d, 0); d = 1/k turns uniformly."""
+def crank_rocker_law(k, d, s, phi, dphi, ddphi, cg, sg):
+    """Crank-rocker through the stone at (d, 0); d = 1/k turns uniformly. cg, sg: the link's direction,
+    gamma = atan2(cos ks, kd - sin ks)."""
     kd = k * d
     for i in range(s.size):
         ks = k * s[i]
@@ -43,23 +47,28 @@ def crank_rocker_law(k, d, s, phi, dphi, ddphi):
             phi[i] = math.pi / 4 - ks / 2
             dphi[i] = -k / 2
             ddphi[i] = 0.0
+            cg[i] = math.cos(math.pi / 4 + ks / 2)
+            sg[i] = math.sin(math.pi / 4 + ks / 2)
             continue
         sn, c = math.sin(ks), math.cos(ks)
         big_d = 1.0 + kd * kd - 2.0 * kd * sn
         phi[i] = math.atan2(c, kd - sn) - ks
+        norm = math.sqrt(big_d)
+        cg[i] = (kd - sn) / norm
+        sg[i] = c / norm
         dphi[i] = -k * k * d * (kd - sn) / big_d
         ddphi[i] = -d * k ** 3 * (kd * kd - 1.0) * c / (big_d * big_d)
 
 
 @jit
-def link_derivatives(k, s, phi, dphi, ddphi, rho, pos, d1, d2):
-    """Points P = A + rho e of the link and P', P'' (M, R, 2) at arc lengths s (M,) with their law (M,),
-    for the distances rho (M, R): the trihedron and the link direction are computed once per s."""
+def link_derivatives(k, s, dphi, ddphi, cgs, sgs, rho, pos, d1, d2):
+    """Points P = A + rho e of the link and P', P'' (M, R, 2) at arc lengths s (M,) with their law's
+    derivatives and the link's direction e = (cgs, sgs) (M,), for the distances rho (M, R): the trihedron
+    is computed once per s."""
     for i in range(s.size):
         ks = k * s[i]
         sk, ck = math.sin(ks), math.cos(ks)
-        gamma = ks + phi[i]
-        cg, sg = math.cos(gamma), math.sin(gamma)
+        cg, sg = cgs[i], sgs[i]
         g1 = k + dphi[i]
         g1s = g1 * g1
         g2 = ddphi[i]

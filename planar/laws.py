@@ -35,10 +35,11 @@ def as_s(s):
 
 
 def kernel_law(kernel, s, *params):
-    """(phi, dphi, ddphi) shaped like s from a jitted law kernel (planar.law_kernels)."""
+    """(phi, dphi, ddphi, cos gamma, sin gamma) shaped like s from a jitted law kernel
+    (planar.law_kernels)."""
     s = as_s(s)
-    out = np.empty((3, s.size))
-    kernel(*params, np.ascontiguousarray(s).ravel(), out[0], out[1], out[2])
+    out = np.empty((5, s.size))
+    kernel(*params, np.ascontiguousarray(s).ravel(), *out)
     return tuple(o.reshape(s.shape) for o in out)
 
 
@@ -49,7 +50,13 @@ class Law:
 
     def evaluate(self, s):
         """(phi, dphi, ddphi), arrays shaped like s."""
-        raise NotImplementedError
+        return self.evaluate_with_direction(s)[:3]
+
+    def evaluate_with_direction(self, s):
+        """(phi, dphi, ddphi, cos gamma, sin gamma): the law with the link's direction gamma = ks + phi."""
+        phi, dphi, ddphi = self.evaluate(s)
+        gamma = self.k * np.asarray(s, dtype=float) + phi
+        return phi, dphi, ddphi, np.cos(gamma), np.sin(gamma)
 
     def gamma(self, s):
         """Angle of the link to the fixed x-axis, gamma = ks + phi (eq. (1))."""
@@ -88,7 +95,7 @@ class CrankSlider(Law):
         self.side, self.branch = side, branch
         self.h = side * self.e
 
-    def evaluate(self, s):
+    def evaluate_with_direction(self, s):
         return kernel_law(lk.crank_slider_law, s, self.k, self.h, self.L, self.branch)
 
 
@@ -101,7 +108,7 @@ class CrankRocker(Law):
         self.k = check_positive("k", k)
         self.d = check_positive("d", d)
 
-    def evaluate(self, s):
+    def evaluate_with_direction(self, s):
         return kernel_law(lk.crank_rocker_law, s, self.k, self.d)
 
     @property

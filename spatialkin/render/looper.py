@@ -4,11 +4,9 @@ import numpy as np
 
 from .scene import ARROW_FRACTION, Scene
 
-#: Velocity arrows drawn along a path: one every this many of the motion's crank angles.
-ARROW_EVERY = 60
 
 
-def looper_scene(motion, index=0, surfaces=False, velocities=False, color_by="speed", **scene_args):
+def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed", **scene_args):
     """A Scene of the looper drive.
 
     Parameters
@@ -19,8 +17,9 @@ def looper_scene(motion, index=0, surfaces=False, velocities=False, color_by="sp
         The crank angle (index into ``motion.crank_angle``) at which the links are drawn.
     surfaces : bool
         Also the torus and the sphere (translucent) whose intersection is the ball centre's path.
-    velocities : bool
-        Also velocity arrows of the ball centre and of the looper tip, every ARROW_EVERY crank angles.
+    velocities : int
+        Velocity arrows drawn on each of the two paths (spread evenly over the motion's crank angles, one
+        length scale for both); 0 for none.
     color_by : {'speed', 's', None}
         Colour of the two paths: speed |v| of the point, arc length, or plain.
     **scene_args
@@ -32,6 +31,9 @@ def looper_scene(motion, index=0, surfaces=False, velocities=False, color_by="sp
         Items 'torus', 'sphere' (if asked), 'ball_path', 'tip_path', 'looper', 'ball_velocity' and
         'tip_velocity' (if asked).
     """
+    count = int(velocities)
+    if count != velocities or count < 0:
+        raise ValueError(f"velocities must be a non-negative integer (arrows per path), got {velocities!r}")
     scene = Scene(**scene_args)
     drive = motion.drive
     if surfaces:
@@ -45,8 +47,8 @@ def looper_scene(motion, index=0, surfaces=False, velocities=False, color_by="sp
         scene.add_curve(position, name=f"{name}_path", color_by=color_by, speed=speed, clim=clim,
                         scalar_bar=name == "tip" or clim is None)
     scene.add_looper(motion, index, name="looper")
-    if velocities:
-        every = slice(None, None, ARROW_EVERY)
+    if count:
+        every = np.unique(np.linspace(0, len(motion.crank_angle) - 1, count).round().astype(int))
         longest = max(np.max(np.linalg.norm(motion.ball_velocity, axis=1)),
                       np.max(np.linalg.norm(tip.velocity, axis=1)))
         scale = ARROW_FRACTION * scene.extent() / longest if longest > 0 else 1.0     # one scale for both

@@ -33,6 +33,8 @@ JOINT_RESOLUTION = 16
 ANTI_ALIASING = "ssaa"
 #: Default opacity of a surface (translucent, so the curves on it show).
 SURFACE_OPACITY = 0.3
+#: Grid points of a surface closer than this (relative to its extent) are merged: periodic seams, poles.
+SEAM_TOLERANCE = 1e-12
 #: Colour modes of a curve.
 COLOR_MODES = ("s", "speed", None)
 #: Colours used in turn when the caller gives none.
@@ -142,9 +144,7 @@ class Scene:
         """
         opacity = _check_opacity(opacity)
         grid = geo.surface_grid(surface, u_range, v_range, resolution)
-        pv = pyvista()
-        mesh = pv.StructuredGrid(grid[..., 0], grid[..., 1], grid[..., 2]).extract_surface(algorithm=None)
-        mesh = mesh.clean(tolerance=1e-12 * max(1.0, float(np.ptp(grid))), absolute=True)   # merge seams, poles
+        mesh = grid_mesh(grid).clean(tolerance=SEAM_TOLERANCE * max(1.0, float(np.ptp(grid))), absolute=True)
         return self._add(name, "surface", mesh, {"color": color, "opacity": opacity})
 
     def add_curve(self, curve, name=None, color_by="s", speed=None, radius=None, color=None, cmap="viridis",
@@ -336,6 +336,14 @@ def polyline(points):
     if len(points) > 1:
         data.lines = np.concatenate([[len(points)], np.arange(len(points))])
     return data
+
+
+def grid_mesh(grid):
+    """A quad mesh (PolyData, float64 points) of a grid of points (nu, nv, 3); point (i, j) is i * nv + j."""
+    nu, nv = grid.shape[:2]
+    corner = (np.arange(nu - 1)[:, None] * nv + np.arange(nv - 1)[None, :]).ravel()
+    quads = np.column_stack([np.full_like(corner, 4), corner, corner + nv, corner + nv + 1, corner + 1])
+    return pyvista().PolyData(np.ascontiguousarray(grid.reshape(-1, 3), dtype=float), faces=quads.ravel())
 
 
 def tube(data, radius, scalars=None):

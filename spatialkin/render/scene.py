@@ -250,10 +250,12 @@ class Scene:
         size = self.extent()
         return {item.name: _drawn(item, size) for item in self._items}
 
-    def plotter(self):
-        """A pyvista Plotter holding the scene, camera set; call .show() on it for a window, or see image()."""
+    def plotter(self, off_screen=None):
+        """A pyvista Plotter holding the scene, camera set (off-screen as the scene says unless given);
+        call .show() on it for a window, or see image()."""
         pv = pyvista()
-        kwargs = {"off_screen": self.off_screen, "theme": self.theme if self.theme is not None
+        off_screen = self.off_screen if off_screen is None else bool(off_screen)
+        kwargs = {"off_screen": off_screen, "theme": self.theme if self.theme is not None
                   else default_theme()}
         if self.window_size is not None or self.theme is None:
             kwargs["window_size"] = list(self.window_size or WINDOW_SIZE)
@@ -271,7 +273,7 @@ class Scene:
 
     def image(self):
         """The picture as an array (height, width, 3) of uint8, rendered off-screen."""
-        plotter = self.plotter()
+        plotter = self.plotter(off_screen=True)
         try:
             return np.asarray(plotter.screenshot(None, return_img=True))
         finally:

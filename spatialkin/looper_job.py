@@ -16,6 +16,9 @@ DEFAULTS = {
     "crank_frame": {"origin": [0.0, 0.0, 0.0]},
     "rocker_frame": {"origin": [6.0, 0.0, 75.0], "rotation": [[1, 0, 0], [0, 0, 1], [0, -1, 0]]},
 }
+#: The 3-D picture: crank angle (deg) at which the links are drawn, and its size in pixels.
+PICTURE_CRANK_ANGLE_DEG = 60.0
+PICTURE_SIZE = (800, 600)
 COLUMNS = ["crank_angle", "x", "y", "z", "vx", "vy", "vz", "ax", "ay", "az",
            "u2", "v2", "u2_dot", "v2_dot", "u2_ddot", "v2_ddot",
            "tip_x", "tip_y", "tip_z", "tip_vx", "tip_vy", "tip_vz", "tip_ax", "tip_ay", "tip_az"]
@@ -85,6 +88,10 @@ def run(out_dir, config_path=None, echo=print):
     png_path = os.path.join(out_dir, "looper_speed.png")
     with atomic_path(png_path) as tmp:
         plot_speed(motion, tmp)
+    t_picture = time.perf_counter()
+    picture_path = os.path.join(out_dir, "looper_3d.png")
+    picture_3d(motion, picture_path)
+    t_picture = time.perf_counter() - t_picture
     # measured errors: exact distances of C to both surfaces; C by the coupler chain against the rocker chain
     on_torus = drive.torus.distance(motion.ball_center).max()
     on_sphere = drive.sphere.distance(motion.ball_center).max()
@@ -109,9 +116,19 @@ def run(out_dir, config_path=None, echo=print):
     echo(f"smallest transmission angle {mu:.2f} deg at crank angle {at:.1f} deg")
     echo(f"measured error: C to torus {on_torus:.2e}, to sphere {on_sphere:.2e}, coupler vs rocker chain "
          f"{chains:.2e} (length units)")
-    echo(f"time: solve {1e3 * t_solve:.1f} ms, whole job {time.perf_counter() - t0:.2f} s")
-    echo(f"wrote {csv_path} and {png_path}")
+    echo(f"time: solve {1e3 * t_solve:.1f} ms, 3-D picture {t_picture:.2f} s, whole job "
+         f"{time.perf_counter() - t0:.2f} s")
+    echo(f"wrote {csv_path}, {png_path} and {picture_path}")
     return motion
+
+
+def picture_3d(motion, path, crank_angle_deg=PICTURE_CRANK_ANGLE_DEG):
+    """The mechanism in 3-D to a PNG (off-screen): links and joints at the crank angle nearest to
+    crank_angle_deg, the ball centre's and the looper tip's paths coloured by speed."""
+    from .render import looper_scene
+    wrapped = np.mod(motion.crank_angle - np.radians(crank_angle_deg) + np.pi, 2 * np.pi) - np.pi
+    index = int(np.argmin(np.abs(wrapped)))
+    looper_scene(motion, index, window_size=PICTURE_SIZE).screenshot(path)
 
 
 def plot_speed(motion, path):

@@ -141,6 +141,15 @@ def test_looper_job_writes_what_it_promises(tmp_path):
     assert np.max(np.abs(table[:, 1:4] - c)) < 1e-9
     assert (out / "looper_speed.png").stat().st_size > 1000
     assert not [p for p in os.listdir(out) if p.startswith(".tmp-")]
+    from PIL import Image
+
+    from spatialkin.looper_job import PICTURE_SIZE
+    with Image.open(out / "looper_3d.png") as png:          # the 3-D picture: a PNG of the stated size
+        assert png.format == "PNG" and png.size == PICTURE_SIZE
+        pixels = np.asarray(png.convert("L"), dtype=float)
+    # not blank: a white picture has variance 0; the links and paths give ~1000 (measured here)
+    assert pixels.var() > 100.0
+    assert (pixels < 128).mean() > 0.005        # dark pixels (the links: 2.8 % here) cover more than 0.5 %
 
 
 def test_looper_job_config_errors_are_clear(tmp_path, capsys):

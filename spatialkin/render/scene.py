@@ -1,0 +1,481 @@
+"""sk.render.Scene: what the caller asks to see - surfaces, traced curves, links, arrows - drawn off-screen by
+pyvista, saved as PNG, or exported as VTK / PLY for other tools.
+
+A Scene keeps each item as its data (a pyvista dataset of the caller's points and scalars, made when the
+item is added) and turns it into drawn geometry (tubes, arrow glyphs, joint spheres) only when a picture or
+a tube export is asked for, with sizes relative to the whole scene's extent. Nothing is meshed that is not
+added.
+"""
+import os
+import shutil
+import tempfile
+
+import numpy as np
+
+from ..io import atomic_path
+from ..tracing.result import Curve
+from . import geometry as geo
+from ._backend import pyvista
+
+#: Default window (pixels) of a picture.
+WINDOW_SIZE = (1024, 768)
+#: Tube radius of curves and links, and arrow length, as fractions of the scene's extent (bounding-box
+#: diagonal) when the caller gives no absolute size.
+TUBE_FRACTION = 0.004
+LINK_FRACTION = 0.008
+JOINT_FRACTION = 0.018
+ARROW_FRACTION = 0.12
+#: Sides of a tube's cross-section, and the resolution of a joint sphere.
+TUBE_SIDES = 16
+JOINT_RESOLUTION = 16
+#: Anti-aliasing of the default theme. Not multisampling: with translucent surfaces we use depth peeling,
+#: and depth peeling on a multisampled off-screen buffer renders blank through Mesa's EGL.
+ANTI_ALIASING = "ssaa"
+#: Default opacity of a surface (translucent, so the curves on it show).
+SURFACE_OPACITY = 0.3
+#: Grid points of a surface closer than this (relative to its extent) are merged: periodic seams, poles.
+SEAM_TOLERANCE = 1e-12
+#: Colour modes of a curve.
+COLOR_MODES = ("s", "speed", None)
+#: Colours used in turn when the caller gives none.
+PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf")
+#: Colours of the mechanism's parts.
+LINK_COLOR, JOINT_COLOR, SHAFT_COLOR = "#4d4d4d", "#b8860b", "#9e9e9e"
+#: File suffixes of screenshot() and export().
+IMAGE_SUFFIXES = (".png",)
+EXPORT_SUFFIXES = (".vtm", ".vtp", ".ply")
+#: Name of the arc-length and speed arrays on a curve's data.
+S_ARRAY, SPEED_ARRAY, VECTOR_ARRAY = "s", "speed", "vectors"
+
+
+class Item:
+    """One thing in a scene: its data (pyvista dataset) and how to draw it."""
+
+    def __init__(self, name, kind, data, style):
+        self.name, self.kind, self.data, self.style = name, kind, data, style
+
+
+class Scene:
+    """A picture of surfaces, traced curves, mechanism links and velocity / acceleration arrows.
+
+    Parameters
+    ----------
+    window_size : (int, int), optional
+        Pixels (width, height) of screenshots; default WINDOW_SIZE, or the theme's when a theme is given.
+    theme : pyvista.themes.Theme, optional
+        Look of the picture (background, multisampling, ...); default pyvista's document theme (white).
+    camera_position : str or list, optional
+        pyvista camera position: 'iso', 'xy', 'xz', ... or [position, focal point, view up]. Default 'iso'.
+    zoom : float
+        Camera zoom after fitting the scene (> 1 moves closer).
+    off_screen : bool
+        Render without a window (default); False lets ``plotter().show()`` open one.
+
+    Examples
+    --------
+    >>> scene = Scene()
+    >>> scene.add_surface(torus); scene.add_surface(sphere)
+    >>> scene.add_curve(curve, color_by="s")
+    >>> scene.screenshot("curves.png"); scene.export("curves.vtm")
+    """
+
+    def __init__(self, window_size=None, theme=None, camera_position="iso", zoom=1.0, off_screen=True):
+        if window_size is not None:
+            try:
+                w, h = (int(x) for x in window_size)
+            except (TypeError, ValueError):
+                raise ValueError(f"window_size must be a pair (width, height), got {window_size!r}") from None
+            if min(w, h) <= 0:
+                raise ValueError(f"window_size must be positive, got {window_size!r}")
+            window_size = (w, h)
+        self.window_size = window_size
+        self.theme = theme
+        self.camera_position = camera_position
+        self.zoom = geo.check_positive("zoom", zoom)
+        self.off_screen = bool(off_screen)
+        self._items = []
+
+    # --- what is in the scene ---------------------------------------------------------------------
+    @property
+    def names(self):
+        """Names of the items, in the order they were added."""
+        return [item.name for item in self._items]
+
+    def data(self, name=None):
+        """The data of an item (pyvista dataset: surface mesh, curve polyline with its 's' and 'speed'
+        arrays, arrow points with their 'vectors'), or a dict of all of them by name."""
+        if name is None:
+            return {item.name: item.data for item in self._items}
+        return self._item(name).data
+
+    def _item(self, name):
+        for item in self._items:
+            if item.name == name:
+                return item
+        raise ValueError(f"name: no item {name!r} in the scene; it holds {self.names}")
+
+    def _add(self, name, kind, data, style):
+        name = f"{kind}{len(self._items)}" if name is None else str(name)
+        if name in self.names:
+            raise ValueError(f"name: the scene already holds an item named {name!r}")
+        if style.get("color") is None and kind != "links":
+            style["color"] = PALETTE[len(self._items) % len(PALETTE)]
+        self._items.append(Item(name, kind, data, style))
+        return name
+
+    # --- adding things ----------------------------------------------------------------------------
+    def add_surface(self, surface, name=None, u_range=None, v_range=None, resolution=geo.SURFACE_RESOLUTION,
+                    color=None, opacity=SURFACE_OPACITY):
+        """Mesh a surface by its parametrisation ``surface.point(u, v)`` and add it (translucent).
+
+        Parameters
+        ----------
+        surface : spatialkin.Surface
+        u_range, v_range : (float, float), optional
+            Parameter ranges to mesh; default the surface's own (the full turn of an angle, the trimmed
+            range of a plane, cylinder or cone, which must then be finite).
+        resolution : (int, int)
+            Grid samples along u and v.
+        opacity : float in (0, 1]
+
+        Returns
+        -------
+        str : the item's name.
+        """
+        opacity = _check_opacity(opacity)
+        grid = geo.surface_grid(surface, u_range, v_range, resolution)
+        mesh = grid_mesh(grid).clean(tolerance=SEAM_TOLERANCE * max(1.0, float(np.ptp(grid))), absolute=True)
+        return self._add(name, "surface", mesh, {"color": color, "opacity": opacity})
+
+    def add_curve(self, curve, name=None, color_by="s", speed=None, radius=None, color=None, cmap="viridis",
+                  clim=None, scalar_bar=True):
+        """Add a traced curve (or any polyline) drawn as a tube.
+
+        Parameters
+        ----------
+        curve : sk.Curve or array_like (N, 3)
+            A traced curve (its points and arc lengths ``curve.s``) or points of a path (arc length then
+            the cumulative chord length).
+        color_by : {'s', 'speed', None}
+            Colour the tube by arc length, by `speed`, or plainly (`color`).
+        speed : array_like (N,), optional
+            A scalar per point (e.g. |velocity| of the motion); needed for color_by='speed', kept as the
+            'speed' array otherwise.
+        radius : float, optional
+            Tube radius (length); default TUBE_FRACTION of the scene's extent.
+        clim : (float, float), optional
+            Range of the colour map (share one between curves to compare them); default the curve's own.
+        scalar_bar : bool
+            Show a colour bar titled '<name>: <color_by>'.
+
+        Returns
+        -------
+        str : the item's name.
+        """
+        if color_by not in COLOR_MODES:
+            raise ValueError(f"color_by must be one of {COLOR_MODES}, got {color_by!r}")
+        if isinstance(curve, Curve):
+            points = geo.check_points("curve.points", curve.points)
+            s = np.asarray(curve.s, dtype=float)
+        else:
+            points = geo.check_points("curve", curve)
+            s = geo.chord_length(points)
+        if color_by == "speed" and speed is None:
+            raise ValueError("speed must be given (one value per point) for color_by='speed'")
+        data = polyline(points)
+        data.point_data[S_ARRAY] = s
+        if speed is not None:
+            data.point_data[SPEED_ARRAY] = geo.check_scalars("speed", speed, len(points))
+        style = {"color_by": color_by, "radius": geo.check_positive("radius", radius, allow_none=True),
+                 "color": color, "cmap": cmap, "clim": _check_clim(clim), "scalar_bar": bool(scalar_bar)}
+        return self._add(name, "curve", data, style)
+
+    def add_arrows(self, points, vectors, scale=None, name=None, color=None):
+        """Add arrows (velocity or acceleration glyphs) at points.
+
+        Parameters
+        ----------
+        points, vectors : array_like (N, 3)
+            Where the arrows start, and the vectors they show.
+        scale : float, optional
+            Arrow length per unit of vector (e.g. mm per mm/s); default: the longest arrow is ARROW_FRACTION
+            of the scene's extent.
+
+        Returns
+        -------
+        str : the item's name.
+        """
+        points = geo.check_points("points", points)
+        vectors = geo.check_points("vectors", vectors, count=len(points))
+        data = pyvista().PolyData(points)
+        data.point_data[VECTOR_ARRAY] = vectors
+        style = {"scale": geo.check_positive("scale", scale, allow_none=True), "color": color}
+        return self._add(name, "arrows", data, style)
+
+    def add_looper(self, motion, index=0, name="looper"):
+        """Add the looper drive's links and joints at one of the motion's crank angles.
+
+        Parameters
+        ----------
+        motion : spatialkin.mechanisms.looper.LooperMotion
+        index : int
+            Which of ``motion.crank_angle`` to draw.
+
+        Returns
+        -------
+        str : the item's name (its data is a MultiBlock: one polyline per link, then the joints).
+        """
+        links, joints = geo.looper_links(motion, index)
+        pv = pyvista()
+        data = pv.MultiBlock()
+        for key, pts in links.items():
+            data[key] = polyline(pts)
+        data["joints"] = pv.PolyData(joints)
+        return self._add(name, "links", data, {})
+
+    # --- drawing ----------------------------------------------------------------------------------
+    def extent(self):
+        """Diagonal of the bounding box of everything added (1 for an empty or point-like scene)."""
+        boxes = [np.asarray(item.data.bounds, dtype=float).reshape(3, 2) for item in self._items]
+        if not boxes:
+            return 1.0
+        lo = np.min([b[:, 0] for b in boxes], axis=0)
+        hi = np.max([b[:, 1] for b in boxes], axis=0)
+        diag = float(np.linalg.norm(hi - lo))
+        return diag if diag > 0 else 1.0
+
+    def meshes(self):
+        """What is drawn, by name: surface meshes, curve tubes (with the curve's arrays), arrow glyphs, link
+        tubes and joint spheres (a MultiBlock for the links)."""
+        size = self.extent()
+        return {item.name: _drawn(item, size) for item in self._items}
+
+    def plotter(self, off_screen=None):
+        """A pyvista Plotter holding the scene, camera set (off-screen as the scene says unless given);
+        call .show() on it for a window, or see image()."""
+        pv = pyvista()
+        off_screen = self.off_screen if off_screen is None else bool(off_screen)
+        kwargs = {"off_screen": off_screen, "theme": self.theme if self.theme is not None
+                  else default_theme()}
+        if self.window_size is not None or self.theme is None:
+            kwargs["window_size"] = list(self.window_size or WINDOW_SIZE)
+        plotter = pv.Plotter(**kwargs)
+        size = self.extent()
+        for item in self._items:
+            _draw(plotter, item, _drawn(item, size))
+        if any(item.kind == "surface" and item.style["opacity"] < 1 for item in self._items):
+            plotter.ren_win.SetMultiSamples(0)      # see ANTI_ALIASING
+            plotter.enable_depth_peeling()
+        plotter.camera_position = self.camera_position
+        plotter.reset_camera()
+        plotter.camera.zoom(self.zoom)
+        return plotter
+
+    def image(self):
+        """The picture as an array (height, width, 3) of uint8, rendered off-screen."""
+        plotter = self.plotter(off_screen=True)
+        try:
+            return np.asarray(plotter.screenshot(None, return_img=True))
+        finally:
+            plotter.close()
+
+    def screenshot(self, path):
+        """Render off-screen and write a PNG, whole or not at all. Returns the image array."""
+        _check_suffix(path, IMAGE_SUFFIXES)
+        img = self.image()
+        pil = _pil_image(img)
+        with atomic_path(path) as tmp:
+            pil.save(tmp, format="PNG")
+        return img
+
+    # --- export -----------------------------------------------------------------------------------
+    def export(self, path, name=None, tubes=False):
+        """Write the scene for other tools, whole or not at all.
+
+        Parameters
+        ----------
+        path : str
+            '.vtm' (VTK multiblock: one block per item, by name; VTK writes the blocks into a folder named
+            like the file beside it), '.vtp' (VTK polydata) or '.ply' (one mesh: the item `name`, or all
+            items merged when name is None; PLY keeps geometry and colours only).
+        name : str, optional
+            The one item to write.
+        tubes : bool
+            Write what is drawn (tubes, glyphs) instead of the data (curve polylines with their 's' and
+            'speed' arrays, arrow points with their vectors).
+        """
+        suffix = _check_suffix(path, EXPORT_SUFFIXES)
+        if not self._items:
+            raise ValueError("the scene is empty: nothing to export")
+        blocks = self.meshes() if tubes else self.data()
+        if name is not None:
+            blocks = {name: blocks[self._item(name).name]}
+        pv = pyvista()
+        if suffix == ".vtm":
+            multi = pv.MultiBlock()
+            for key, mesh in blocks.items():
+                multi[key] = mesh
+            write_multiblock(multi, path)
+            return
+        mesh = as_polydata(list(blocks.values()))
+        with atomic_path(path) as tmp:
+            mesh.save(tmp)
+
+
+# --- helpers ----------------------------------------------------------------------------------------
+def default_theme():
+    """pyvista's document theme (white background, black text), no multisampling, SSAA anti-aliasing (FXAA is not supported off-screen by EGL)."""
+    theme = pyvista().themes.DocumentTheme()
+    theme.multi_samples = 0
+    theme.anti_aliasing = ANTI_ALIASING
+    return theme
+
+
+def polyline(points):
+    """A pyvista PolyData of points (N, 3) joined by one polyline in order."""
+    pv = pyvista()
+    data = pv.PolyData(np.asarray(points, dtype=float))
+    if len(points) > 1:
+        data.lines = np.concatenate([[len(points)], np.arange(len(points))])
+    return data
+
+
+def grid_mesh(grid):
+    """A quad mesh (PolyData, float64 points) of a grid of points (nu, nv, 3); point (i, j) is i * nv + j."""
+    nu, nv = grid.shape[:2]
+    corner = (np.arange(nu - 1)[:, None] * nv + np.arange(nv - 1)[None, :]).ravel()
+    quads = np.column_stack([np.full_like(corner, 4), corner, corner + nv, corner + nv + 1, corner + 1])
+    return pyvista().PolyData(np.ascontiguousarray(grid.reshape(-1, 3), dtype=float), faces=quads.ravel())
+
+
+def tube(data, radius, scalars=None):
+    """The polyline `data` as a tube of the given radius, carrying its point arrays; a single point becomes
+    a small sphere."""
+    if data.n_lines == 0:
+        return pyvista().Sphere(radius=radius, center=data.points[0], theta_resolution=JOINT_RESOLUTION,
+                                phi_resolution=JOINT_RESOLUTION)
+    return data.tube(radius=radius, n_sides=TUBE_SIDES, capping=True, scalars=scalars)
+
+
+def arrows(data, scale):
+    """Arrow glyphs at data's points along its 'vectors', length |vector| * scale."""
+    pv = pyvista()
+    glyphs = data.copy()
+    glyphs.point_data["length"] = np.linalg.norm(glyphs.point_data[VECTOR_ARRAY], axis=1)
+    return glyphs.glyph(orient=VECTOR_ARRAY, scale="length", factor=scale, geom=pv.Arrow())
+
+
+def _drawn(item, size):
+    """The geometry drawn for an item in a scene of the given extent."""
+    style = item.style
+    if item.kind == "surface":
+        return item.data
+    if item.kind == "curve":
+        return tube(item.data, style["radius"] or TUBE_FRACTION * size)
+    if item.kind == "arrows":
+        scale = style["scale"]
+        if scale is None:
+            longest = float(np.max(np.linalg.norm(item.data.point_data[VECTOR_ARRAY], axis=1)))
+            scale = ARROW_FRACTION * size / longest if longest > 0 else 1.0
+        return arrows(item.data, scale)
+    pv = pyvista()
+    out = pv.MultiBlock()
+    for key in item.data.keys():
+        block = item.data[key]
+        if key == "joints":
+            out[key] = block.glyph(geom=pv.Sphere(radius=JOINT_FRACTION * size, theta_resolution=JOINT_RESOLUTION,
+                                                  phi_resolution=JOINT_RESOLUTION), orient=False, scale=False)
+        else:
+            out[key] = tube(block, LINK_FRACTION * size * (0.5 if key.endswith("shaft") else 1.0))
+    return out
+
+
+def _draw(plotter, item, mesh):
+    style = item.style
+    if item.kind == "surface":
+        plotter.add_mesh(mesh, color=style["color"], opacity=style["opacity"], smooth_shading=True,
+                         name=item.name)
+    elif item.kind == "curve":
+        mode = style["color_by"]
+        if mode is None:
+            plotter.add_mesh(mesh, color=style["color"], name=item.name)
+        else:
+            plotter.add_mesh(mesh, scalars=mode, cmap=style["cmap"], clim=style["clim"], show_scalar_bar=style["scalar_bar"],
+                             scalar_bar_args={"title": f"{item.name}: {mode}"}, name=item.name)
+    elif item.kind == "arrows":
+        plotter.add_mesh(mesh, color=style["color"], name=item.name)
+    else:
+        for key in mesh.keys():
+            color = JOINT_COLOR if key == "joints" else SHAFT_COLOR if key.endswith("shaft") else LINK_COLOR
+            plotter.add_mesh(mesh[key], color=color, smooth_shading=True, name=f"{item.name}/{key}")
+
+
+def as_polydata(meshes):
+    """One PolyData from datasets (MultiBlocks flattened): the one itself, or all merged."""
+    pv = pyvista()
+    flat = list(_leaves(meshes, pv))
+    if len(flat) == 1:
+        return flat[0]
+    return pv.merge(flat, merge_points=False).extract_surface(algorithm=None)
+
+
+def _leaves(meshes, pv):
+    for mesh in meshes:
+        if isinstance(mesh, pv.MultiBlock):
+            yield from _leaves([mesh[k] for k in mesh.keys()], pv)
+        else:
+            yield mesh
+
+
+def write_multiblock(multi, path):
+    """Save a MultiBlock as .vtm: the blocks go into the folder VTK names after the file, written first;
+    the .vtm that lists them is renamed into place last, so it is whole or absent. A previous export's
+    folder of the same name is replaced."""
+    folder = os.path.dirname(os.path.abspath(path))
+    base = os.path.basename(path)
+    stem = os.path.splitext(base)[0]
+    work = tempfile.mkdtemp(prefix=".tmp-", dir=folder)
+    try:
+        multi.save(os.path.join(work, base))
+        blocks_dir, target_dir = os.path.join(work, stem), os.path.join(folder, stem)
+        if os.path.isdir(blocks_dir):
+            if os.path.isdir(target_dir):
+                os.replace(target_dir, os.path.join(work, ".old"))
+            os.replace(blocks_dir, target_dir)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(os.path.join(work, base), 0o666 & ~umask)
+        os.replace(os.path.join(work, base), path)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def _check_suffix(path, allowed):
+    suffix = os.path.splitext(str(path))[1].lower()
+    if suffix not in allowed:
+        raise ValueError(f"path must end in one of {allowed}, got {str(path)!r}")
+    return suffix
+
+
+def _check_clim(clim):
+    if clim is None:
+        return None
+    try:
+        lo, hi = (float(x) for x in clim)
+    except (TypeError, ValueError):
+        raise ValueError(f"clim must be a pair (min, max), got {clim!r}") from None
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+        raise ValueError(f"clim must be finite with min < max, got {clim!r}")
+    return lo, hi
+
+
+def _check_opacity(opacity):
+    x = geo.check_positive("opacity", opacity)
+    if x > 1:
+        raise ValueError(f"opacity must lie in (0, 1], got {opacity!r}")
+    return x
+
+
+def _pil_image(img):
+    from PIL import Image
+    return Image.fromarray(np.ascontiguousarray(img))

@@ -3,6 +3,7 @@ for the looper drive, a per-crank-angle root solve with scipy as a user would wr
 
 Neither is used by the library itself; OCP is an optional benchmark dependency (``pip install ".[bench]"``).
 """
+import importlib.util
 import math
 import time
 
@@ -22,10 +23,9 @@ ROOT_XTOL = 1e-12
 def occ_available():
     """True when the optional ``cadquery-ocp`` wheel (module OCP) can be imported."""
     try:
-        import OCP.GeomAPI  # noqa: F401
+        return importlib.util.find_spec("OCP") is not None and importlib.util.find_spec("OCP.GeomAPI") is not None
     except ImportError:
         return False
-    return True
 
 
 def _ax3(frame):

@@ -22,7 +22,7 @@ QUICK_RTOLS = (1e-6, 1e-10)
 #: Accuracy asked of the traced points (relative to the scene scale), the library's default.
 TRACE_TOL = 1e-10
 #: Timed repetitions of each measurement (the best is kept: the machine is shared and noisy).
-REPEATS = 5
+REPEATS = 3
 QUICK_REPEATS = 1
 #: A run whose right-hand-side evaluations per curve would exceed this is skipped (RK23 at tight tolerances
 #: takes seconds and says nothing new).
@@ -122,7 +122,12 @@ def tracer_rows(case, rtols, repeats, methods=METHODS):
     for method in methods:
         for rtol in rtols:
             probe = [trace(a, b, p, tol=TRACE_TOL, method=method, rtol=rtol) for p in starts]
-            if sum(c.nfev for c in probe) > MAX_NFEV_PER_CURVE * max(1, len(starts)):
+            nfev = sum(c.nfev for c in probe) // max(1, len(starts))
+            if nfev > MAX_NFEV_PER_CURVE:     # shown, not timed: tight RK23, or a loop missed at loose rtol
+                rows.append(Row(case.name, "trace", method, rtol, sum(c.closed for c in probe), case.components,
+                                np.nan, np.nan, curve_error(probe, (a, b)), nfev,
+                                extra=f"not timed: {nfev} rhs evaluations per curve; " + ", ".join(
+                                    sorted({c.status for c in probe}))))
                 continue
             seconds, curves = best_time(
                 lambda: [trace(a, b, p, tol=TRACE_TOL, method=method, rtol=rtol) for p in starts], repeats)
@@ -208,15 +213,19 @@ def goals(rows, startup):
     """The goal figures from the measured rows (nan where a side is missing)."""
     occ = [r for r in rows if r.case == "looper" and r.solver == "OCC IntSS"
            and r.rtol == baselines.OCC_DEFAULT_TOL]
-    fits = [r for r in rows if r.case == "looper" and r.solver == "trace" and r.error <= GOAL_ERROR
-            and r.curves == r.expected]
+    # settings that found every component within GOAL_ERROR in every case (no setting picked for one case)
+    traced = [r for r in rows if r.solver == "trace"]
+    failed = {(r.method, r.rtol) for r in traced
+              if not (r.error <= GOAL_ERROR and r.curves == r.expected and np.isfinite(r.seconds))}
+    fits = [r for r in traced if r.case == "looper" and (r.method, r.rtol) not in failed]
     occ_ratio, occ_detail = np.nan, "OCP not installed"
     if occ and fits:
         best = min(fits, key=lambda r: r.per_curve)
         occ_ratio = occ[0].per_curve / best.per_curve
         occ_detail = (f"OCC IntSS tol {occ[0].rtol:g}: {1e3 * occ[0].per_curve:.2f} ms/curve (error "
                       f"{occ[0].error:.1e}) vs trace {best.method} rtol {best.rtol:g}: "
-                      f"{1e3 * best.per_curve:.2f} ms/curve (error {best.error:.1e})")
+                      f"{1e3 * best.per_curve:.2f} ms/curve (error {best.error:.1e}; the fastest setting "
+                      "that found every component of every case)")
     by = {r.solver: r for r in rows if r.case == "looper drive"}
     looper_ratio, looper_detail = np.nan, "not measured"
     if "LooperDrive" in by and "scipy root" in by:

@@ -1,5 +1,6 @@
 """Command line: ``spatialkin looper --out DIR [--config FILE.toml]`` (the main job) and ``spatialkin demo``
-(torus ∩ sphere of the looper, every component). ``spatialkin bench`` arrives with its issue.
+(torus ∩ sphere of the looper, every component) and ``spatialkin bench [--out DIR] [--quick]`` (speed against
+error: work–precision table, goal ratios, CSV and PNG).
 """
 import argparse
 import sys
@@ -42,6 +43,16 @@ def looper(args):
     return 0
 
 
+def bench(args):
+    from .bench import run
+    try:
+        run(args.out, quick=args.quick)
+    except (ValueError, OSError, RuntimeError) as err:
+        print(f"spatialkin bench: {err}", file=sys.stderr)
+        return 2
+    return 0
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="spatialkin", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -52,6 +63,11 @@ def main(argv=None):
     p_demo = sub.add_parser("demo", help="trace torus ∩ sphere of the looper drive and print the components")
     p_demo.add_argument("--tol", type=float, default=1e-10, help="accuracy relative to the scene scale")
     p_demo.set_defaults(func=demo)
+    p_bench = sub.add_parser("bench", help="speed against error: every solve_ivp method and tolerance, "
+                             "OpenCascade (if installed), the looper against a per-angle root solve")
+    p_bench.add_argument("--out", default=None, help="folder for bench.csv and bench.png (created if missing)")
+    p_bench.add_argument("--quick", action="store_true", help="a short run: two cases, two tolerances, one repeat")
+    p_bench.set_defaults(func=bench)
     args = parser.parse_args(argv)
     return args.func(args)
 

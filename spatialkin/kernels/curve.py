@@ -18,6 +18,8 @@ from .surfaces import first_derivatives, derivatives
 
 #: Below this, a 3x3 or 4x4 pivot is treated as zero (relative to the matrix scale).
 PIVOT_EPS = 1e-14
+#: A Newton step longer than this fraction of the previous one has stopped contracting (round-off floor).
+STAGNATION = 0.25
 
 
 @jit
@@ -239,7 +241,9 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
     -------
     int
         Number of iterations used (>= 0) on convergence (|M1 - M2| <= gap_tol and the last step below
-        gap_tol), or -1 if Newton failed (singular system or no convergence within max_iter).
+        gap_tol, or no longer contracting: near tangency round-off in the gap, amplified by the nearly
+        parallel normals, keeps the steps above gap_tol while the point sits on both surfaces), or -1 if
+        Newton failed (singular system or no convergence within max_iter).
     """
     p1 = np.empty(3)
     su1 = np.empty(3)
@@ -252,14 +256,16 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
     dx = np.empty(4)
     use_plane = dot(t, t) > 0.0
     step = np.inf
+    prev_step = np.inf
     for it in range(max_iter + 1):
         first_derivatives(a, y[0], y[1], p1, su1, sv1)
         first_derivatives(b, y[2], y[3], p2, su2, sv2)
         gap = p1 - p2
         plane = dot(p1 - q, t) if use_plane else 0.0
         err = max(norm(gap), abs(plane))
-        if it > 0 and err <= gap_tol and step <= gap_tol:
+        if it > 0 and err <= gap_tol and (step <= gap_tol or step > STAGNATION * prev_step):
             return it
+        prev_step = step
         if it == max_iter:
             break
         if use_plane:

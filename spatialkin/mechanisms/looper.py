@@ -137,11 +137,13 @@ class LooperDrive:
         sphere as v1 grows ((C - P2) . dC/dv1 > 0), 1 where it enters. In the reference geometry branch 0
         is the 59.7 mm loop with v1 in about 107-114 deg."""
         y = np.asarray(states, dtype=float).reshape(-1, 4)
-        out = np.empty(len(y), dtype=int)
-        for k, (u1, v1) in enumerate(y[:, :2]):
-            d = self.torus.derivatives(u1, v1)
-            out[k] = 0 if (d[0] - self.rocker_frame.origin) @ d[2] > 0 else 1
-        return out.reshape(np.shape(states)[:-1])
+        u1, v1 = y[:, 0], y[:, 1]
+        # dC/dv1 of the torus point, in the crank frame then in fixed axes (all states at once)
+        local = self.coupler_length * np.stack([-np.sin(v1) * np.cos(u1), -np.sin(v1) * np.sin(u1), np.cos(v1)],
+                                               axis=-1)
+        d_v1 = local @ self.crank_frame.rotation.T
+        outward = np.einsum("ij,ij->i", self.torus.point(u1, v1) - self.rocker_frame.origin, d_v1)
+        return np.where(outward > 0, 0, 1).reshape(np.shape(states)[:-1])
 
     def assemble(self, crank_angle, branch=0):
         """State (u1, v1, u2, v2) at one crank angle on the given branch (Newton from the coupler circle's

@@ -52,13 +52,24 @@ def intersect(a, b, tol=1e-10, *, method="DOP853", rtol=DEFAULT_RTOL, atol=None,
         if start is None:
             continue
         point, y = start
-        if any(np.min(c.closest(point)[1]) <= radius for c in curves):
+        if any(near_curve(c, point, radius) for c in curves):
             continue
         try:
             curves.append(trace_from(a, b, point, y, settings, time.perf_counter()))
         except TracingError:
             continue            # the seed sits on a singular point: the arms' seeds trace it
     return [c for i, c in enumerate(curves) if not covered(c, curves[:i] + curves[i + 1:], radius)]
+
+
+def near_curve(curve, point, radius):
+    """True where point lies within radius of the curve. A point farther than radius plus half the longest
+    step from every stored point is farther than radius from the curve (each arc between two stored points
+    lies within half its length of one of them), so Curve.closest runs only for points near the curve."""
+    if curve.length > 0 and len(curve.points) > 1:
+        reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
+        if np.min(np.linalg.norm(curve.points - point, axis=1)) > reach:
+            return False
+    return float(np.min(curve.closest(point)[1])) <= radius
 
 
 def covered(curve, others, radius):

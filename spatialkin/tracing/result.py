@@ -91,6 +91,7 @@ class Curve:
         self._spans = spans
         self._gap_tol = gap_tol
         self._lo = np.array([sp.lo for sp in spans])
+        self._grid = None
         self.max_distance = self._measure()
 
     # --- dense evaluation -------------------------------------------------------------------------
@@ -152,8 +153,7 @@ class Curve:
         flat = pts.reshape(-1, 3)
         if self.length == 0:
             return np.zeros(len(flat)).reshape(pts.shape[:-1]), np.linalg.norm(flat - self.points[0], axis=1).reshape(pts.shape[:-1])
-        grid = np.linspace(0.0, self.length, max(8 * len(self.points), 64))
-        dense = self(grid)
+        grid, dense = self._closest_grid()
         gaps = np.linalg.norm(dense[None, :, :] - flat[:, None, :], axis=2)
         # refine the few nearest samples (not only the nearest: the curve may pass close to itself)
         k = min(CLOSEST_CANDIDATES, len(grid))
@@ -168,6 +168,14 @@ class Curve:
         dist = np.linalg.norm(flat - self(s), axis=1)
         s = np.mod(s, self.length) if self.closed else s
         return s.reshape(pts.shape[:-1]), dist.reshape(pts.shape[:-1])
+
+    def _closest_grid(self):
+        """Arc lengths and corrected points of the dense grid closest() starts from (computed once: a Curve
+        does not change)."""
+        if self._grid is None:
+            grid = np.linspace(0.0, self.length, max(8 * len(self.points), 64))
+            self._grid = (grid, self(grid))
+        return self._grid
 
     def distances(self, points=None):
         """Exact distances (N, 2) of points (default: self.points) to surface a and surface b."""

@@ -200,3 +200,44 @@ def sixbar_case(n=SIXBAR_POSITIONS, repeats=3):
             ("continuation pipeline, traced cycle reused", t_cached, t_root / t_cached),
             ("per-angle scipy.optimize.root (warm start)", t_root, 1.0)]
     return rows, diff
+
+
+# --- report ---------------------------------------------------------------------------------------
+#: Goals of the planar cases: the Frenet module's positions per second over pylinkage's; the six-link's
+#: full turn over the per-angle root solve.
+GOAL_PYLINKAGE_RATIO = 5.0
+GOAL_SIXBAR_RATIO = 20.0
+
+
+def report(quick=False, echo=print):
+    """Print the planar cases (a spatialkin bench plug-in, entry point group 'spatialkin.bench').
+
+    Returns the goal ratios {name: (measured, goal)} (None where a peer is missing)."""
+    repeats = 2 if quick else REPEATS
+    echo("")
+    echo(f"planar (a): seed-000 crank-slider k = {SLIDER['k']}, e = {SLIDER['e']}, L = {SLIDER['L']}: pin and "
+         f"slider positions, velocities, accelerations at {SLIDER_POSITIONS} crank positions")
+    rows, diff = slider_case(repeats=repeats)
+    echo(f"{'solver':<52} {'positions/s':>12} {'max rel. error':>15} {'ratio':>7}")
+    for name, rate, err, ratio in rows:
+        echo(f"{name:<52} {rate:>12.4g} {err:>15.2e} {'' if ratio is None else f'{ratio:.1f}x':>7}")
+    pyl = rows[1][3] if len(rows) > 1 else None
+    if diff is None:
+        echo("pylinkage: not installed -- pip install '.[bench]' for the side-by-side run")
+    else:
+        echo(f"max difference Frenet module vs pylinkage (relative): {diff:.2e}")
+    echo("")
+    echo(f"planar (b): seed-001 six-link, full turn at {SIXBAR_POSITIONS} positions with velocities and "
+         "accelerations")
+    rows, (dq, dv, da) = sixbar_case(repeats=1 if quick else 3)
+    echo(f"{'solver':<52} {'time [ms]':>12} {'speed-up':>15}")
+    for name, t, ratio in rows:
+        echo(f"{name:<52} {1e3 * t:>12.2f} {ratio:>14.1f}x")
+    echo(f"max difference pipeline vs root solve: positions {dq:.1e} mm, velocities {dv:.1e}, "
+         f"accelerations {da:.1e} (relative)")
+    goals = {"Frenet module vs pylinkage": (pyl, GOAL_PYLINKAGE_RATIO),
+             "six-link full turn vs per-angle root solve": (rows[0][2], GOAL_SIXBAR_RATIO)}
+    for name, (got, goal) in goals.items():
+        state = "not measured" if got is None else ("reached" if got >= goal else "NOT reached")
+        echo(f"goal: {name}: {'-' if got is None else f'{got:.1f}x'} (goal {goal:g}x) {state}")
+    return goals

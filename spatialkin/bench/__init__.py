@@ -7,11 +7,14 @@ the closed form and a per-angle scipy root solve; prints the table and the goal 
 and a log–log PNG.
 """
 import os
+from importlib.metadata import entry_points
 
 from . import runner
 from .report import goal_lines, machine, plot, table, write_csv
 
 __all__ = ["run"]
+#: Entry-point group of bench plug-ins: callables (quick, echo) that print their own cases.
+PLUGIN_GROUP = "spatialkin.bench"
 
 
 def run(out_dir=None, quick=False, echo=print):
@@ -28,6 +31,8 @@ def run(out_dir=None, quick=False, echo=print):
     rows, goals = runner.run_all(quick=quick, echo=echo)
     for line in table(rows) + [""] + goal_lines(goals, runner):
         echo(line)
+    for plugin in entry_points(group=PLUGIN_GROUP):      # e.g. planar's cases (spatialkin never imports planar)
+        plugin.load()(quick=quick, echo=echo)
     if out_dir is not None:
         os.makedirs(out_dir, exist_ok=True)
         write_csv(rows, os.path.join(out_dir, "bench.csv"))

@@ -279,6 +279,13 @@ class Scene:
         finally:
             plotter.close()
 
+    def _repr_png_(self):
+        """PNG bytes: Jupyter shows a Scene returned from a cell as its off-screen picture."""
+        import io
+        buffer = io.BytesIO()
+        _pil_image(self.image()).save(buffer, format="PNG")
+        return buffer.getvalue()
+
     def screenshot(self, path):
         """Render off-screen and write a PNG, whole or not at all. Returns the image array."""
         _check_suffix(path, IMAGE_SUFFIXES)

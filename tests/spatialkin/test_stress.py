@@ -89,3 +89,10 @@ def test_stress_report(stress_report):
 def test_stress_hypothesis(seed, kind):
     """The same check under hypothesis (shrinks a failing seed)."""
     assert check(*configuration(np.random.default_rng(seed), kind)) == ""
+
+
+def test_found_failures_stay_fixed():
+    """Configurations hypothesis once shrank to (seed, kind): a tiny near-tangent loop whose Newton steps
+    stalled at round-off (seed 789, 'near')."""
+    for seed, kind in [(789, "near")]:
+        assert check(*configuration(np.random.default_rng(seed), kind)) == ""

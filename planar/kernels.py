@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 from spatialkin._jit import jit
-from spatialkin.kernels.implicit import follow_rhs, lu_factor, lu_solve, solve_partial
+from spatialkin.kernels.implicit import follow_rhs, lu_factor, lu_solve
 
 DIST, RIGID, CRANK = 0, 1, 2
 #: Columns of ci.
@@ -132,38 +132,14 @@ def linkage_rhs(s, y, ci, cf, fixed, cranks, sign, pullback):
 
 
 @jit
-def newton_fixed_input(ys, ci, cf, fixed, cranks, tol, max_iter, ok):
-    """Newton in the joints at each row's fixed input angle, in place on ys (N, n+1); ok[k] when the
-    residual fell below tol (and one more step was taken)."""
-    n = ys.shape[1] - 1
-    f = np.empty(n)
-    jac = np.empty((n, n + 1))
-    dtheta = np.empty((n, cranks))
-    step = np.empty(n)
-    for k in range(ys.shape[0]):
-        ok[k] = False
-        for _ in range(max_iter):
-            linkage_system(ys[k], ci, cf, fixed, f, jac, dtheta)
-            big = 0.0
-            for i in range(n):
-                big = max(big, abs(f[i]))
-            if big <= tol:
-                if ok[k]:
-                    break
-                ok[k] = True
-            if not solve_partial(jac, f, step):
-                ok[k] = False
-                break
-            for i in range(n):
-                ys[k, i] -= step[i]
+def solve_configurations(ys, ci, cf, fixed, tol, max_iter, d1, d2, parts, status):
+    """At each row's fixed input angle: Newton in the joints from the prediction in ys (N, n+1) until the
+    residual is below tol, then, with the same Jacobian and its LU, the derivatives along the
+    configuration curve parametrised by the input, y' = (dq/dphi, 1) and y'' = (d2q/dphi2, 0) (N, n+1)
+    from J_q q' = -F_phi, J_q q'' = -F''[y', y'], and the joints' rates per unit rate of each crank,
+    parts (N, cranks, n) = -J_q^-1 dF/dtheta_k.
 
-
-@jit
-def linkage_derivatives(ys, ci, cf, fixed, d1, d2, parts, ok):
-    """Derivatives along the configuration curve parametrised by the input phi, at ys (N, n+1):
-    y' = (dq/dphi, 1) and y'' = (d2q/dphi2, 0) (N, n+1) from J_q q' = -F_phi, J_q q'' = -F''[y', y'], and
-    the joints' rates per unit rate of each crank, parts (N, cranks, n) = -J_q^-1 dF/dtheta_k: one LU of
-    J_q per point. ok[k] False where J_q is singular (a lock position)."""
+    status[k]: 0 solved, 1 Newton did not converge, 2 J_q singular (a lock position)."""
     n = ys.shape[1] - 1
     cranks = parts.shape[1]
     f = np.empty(n)
@@ -172,12 +148,26 @@ def linkage_derivatives(ys, ci, cf, fixed, d1, d2, parts, ok):
     m = np.empty((n, n))
     piv = np.empty(n, dtype=np.int64)
     rhs = np.empty(n)
+    step = np.empty(n)
     quad = np.empty(n)
     for k in range(ys.shape[0]):
-        linkage_system(ys[k], ci, cf, fixed, f, jac, dtheta)
-        m[:, :] = jac[:, :n]
-        ok[k] = lu_factor(m, piv)
-        if not ok[k]:
+        status[k] = 1
+        for _ in range(max_iter + 1):
+            linkage_system(ys[k], ci, cf, fixed, f, jac, dtheta)
+            m[:, :] = jac[:, :n]
+            if not lu_factor(m, piv):
+                status[k] = 2
+                break
+            big = 0.0
+            for i in range(n):
+                big = max(big, abs(f[i]))
+            if big <= tol:
+                status[k] = 0
+                break
+            lu_solve(m, piv, f, step)
+            for i in range(n):
+                ys[k, i] -= step[i]
+        if status[k] != 0:
             continue
         for i in range(n):
             rhs[i] = -jac[i, n]

@@ -41,6 +41,9 @@ BRANCH_JUMP = 1e-3
 MAX_DENOMINATOR = 64
 #: Input angles scanned when the linkage does not assemble at the requested one.
 SCAN_ANGLES = 36
+#: solve_ivp tolerance of the traced configuration curve: a predictor, each angle is then solved by Newton
+#: (from 1e-8 one quadratic step reaches the round-off floor).
+TRACE_RTOL = 1e-8
 #: Arc-length budget of one configuration curve, per unit of input period and unknown.
 LENGTH_BUDGET = 200.0
 
@@ -298,7 +301,7 @@ class Linkage:
             y0 = self.assemble(self.hint_angle, assembly)
             args = (self.ci, self.cf, self.fixed_xy, len(self.cranks))
             budget = LENGTH_BUDGET * self.period * len(y0)
-            self._cycles[assembly] = trace_cycle(kn.linkage_rhs, y0, args, self.period, budget)
+            self._cycles[assembly] = trace_cycle(kn.linkage_rhs, y0, args, self.period, budget, rtol=TRACE_RTOL)
         return self._cycles[assembly]
 
     def lock_positions(self, assembly=None):
@@ -334,12 +337,15 @@ class Linkage:
         guess = np.column_stack([np.interp(local, inputs, states[:, i]) for i in range(states.shape[1] - 1)]
                                 + [local])
         ys = guess.copy()
-        ok = np.zeros(len(ys), dtype=np.bool_)
-        kn.newton_fixed_input(ys, self.ci, self.cf, self.fixed_xy, len(self.cranks), NEWTON_TOL,
-                              NEWTON_ITER, ok)
+        m, n = ys.shape
+        d1, d2 = np.empty((m, n)), np.empty((m, n))
+        parts = np.empty((m, len(self.cranks), n - 1))
+        status = np.empty(m, dtype=np.int64)
+        kn.solve_configurations(ys, self.ci, self.cf, self.fixed_xy, NEWTON_TOL, NEWTON_ITER, d1, d2, parts,
+                                status)
         jump = np.max(np.abs(ys - guess), axis=1)
-        bad = ~ok | (jump > BRANCH_JUMP)
+        bad = (status != 0) | (jump > BRANCH_JUMP)
         if bad.any():
             raise LockError(self.lock_positions(assembly), angles[bad])
         ys[:, -1] = angles
-        return LinkageMotion(self, ys, float(omega))
+        return LinkageMotion(self, ys, float(omega), d1, d2, parts)

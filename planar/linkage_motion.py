@@ -5,7 +5,6 @@ import math
 import numpy as np
 
 from spatialkin.trajectory import time_map, to_time
-from . import kernels as kn
 
 
 class LockError(ValueError):
@@ -50,19 +49,14 @@ class LinkageMotion:
         Scaled configuration states (joint coordinates / mean length, input angle).
     """
 
-    def __init__(self, linkage, states, omega):
+    def __init__(self, linkage, states, omega, d1, d2, parts):
+        """From solved states (N, n+1) and their derivatives in the input (planar.kernels.
+        solve_configurations)."""
         self.linkage = linkage
         self.states = states
         self.omega = omega
         self.crank_angles = states[:, -1]
-        n = states.shape[1] - 1
         m = len(states)
-        d1, d2 = np.empty((m, n + 1)), np.empty((m, n + 1))
-        parts = np.empty((m, len(linkage.cranks), n))
-        ok = np.zeros(m, dtype=np.bool_)
-        kn.linkage_derivatives(states, linkage.ci, linkage.cf, linkage.fixed_xy, d1, d2, parts, ok)
-        if not ok.all():
-            raise LockError(linkage.lock_positions(), self.crank_angles[~ok])
         ell = linkage.mean_length
         sdot, sddot = time_map(d1[:, -1], d2[:, -1], omega)
         rates, accels = to_time(d1[:, :-1], d2[:, :-1], sdot, sddot)

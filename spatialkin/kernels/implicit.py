@@ -13,7 +13,7 @@ tangent t(J)), ch. 3 (the Moore-Penrose corrector) and ch. 4 (both from one QR f
 import numpy as np
 
 from .._jit import jit
-from .curve import PIVOT_EPS, solve_small
+from .curve import PIVOT_EPS
 
 #: Diagonal entries of R below this fraction of the largest count as zero (rank loss: a branch point).
 RANK_EPS = 1e-13
@@ -161,16 +161,3 @@ def lu_solve(m, piv, r, x):
         for j in range(i + 1, n):
             x[i] -= m[i, j] * x[j]
         x[i] /= m[i, i]
-
-
-@jit
-def solve_partial(jac, f, out):
-    """Solve J[:, :n] out = f (the Jacobian in the unknowns at a fixed input); False if singular."""
-    n = jac.shape[0]
-    m = np.empty((n, n))
-    r = np.empty(n)
-    for i in range(n):
-        for j in range(n):
-            m[i, j] = jac[i, j]
-        r[i] = f[i]
-    return solve_small(m, r, out)

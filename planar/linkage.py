@@ -32,6 +32,8 @@ ASSEMBLY_SEED = 20261121
 ASSEMBLY_TOL = 1e-11
 #: Two assemblies closer than this (mean length units) are the same.
 SAME_ASSEMBLY = 1e-6
+#: Newton from a hint may move the joints this far (mean length units) before the hint counts as rough.
+HINT_REACH = 0.05
 #: Newton at fixed input: residual tolerance (mean length units) and iterations.
 NEWTON_TOL = 1e-14
 NEWTON_ITER = 30
@@ -252,7 +254,10 @@ class Linkage:
         angle = float(angle)
         if assembly is None and self.hint is not None:
             guess = self.state(self.hint, angle)
-            q, worst = self._least_squares(guess[:-1], angle)
+            state = self._newton(guess)                  # quick from a close hint ...
+            if state is not None:
+                return state
+            q, worst = self._least_squares(guess[:-1], angle)      # ... robust from a rough one
             if worst < ASSEMBLY_TOL:
                 return np.append(q, angle)
         found, best = self._assemblies(angle)
@@ -267,6 +272,25 @@ class Linkage:
             raise ValueError(f"assembly must be in 0..{len(found) - 1} at input angle {angle:.6g} rad, "
                              f"got {assembly!r}")
         return found[assembly]
+
+    def _newton(self, state):
+        """Newton at the state's input angle (jitted); the solved state, or None."""
+        ys = np.array(state, dtype=float)[None, :]
+        n = ys.shape[1]
+        out = [np.empty((1, n)), np.empty((1, n)), np.empty((1, len(self.cranks), n - 1))]
+        status = np.empty(1, dtype=np.int64)
+        kn.solve_configurations(ys, self.ci, self.cf, self.fixed_xy, NEWTON_TOL, NEWTON_ITER, *out, status)
+        return ys[0] if status[0] == 0 and np.max(np.abs(ys[0] - state)) < HINT_REACH else None
+
+    def _onto_curve(self, state, steps=4):
+        """A traced state corrected onto F = 0 by minimum-norm Gauss-Newton steps (the input free, so a lock
+        position stays one)."""
+        y = np.array(state, dtype=float)
+        args = (self.ci, self.cf, self.fixed_xy, len(self.cranks))
+        for _ in range(steps):
+            tangent = kn.linkage_rhs(0.0, y, *args, 1.0, 0.0)
+            y -= tangent - kn.linkage_rhs(0.0, y, *args, 1.0, 1.0)       # J^+ F
+        return y
 
     def _not_assembled(self, angle, q):
         names = [f"crank {c.name} ({c.pivot}-{c.pin})" for c in self.cranks for _ in (0, 1)]
@@ -301,7 +325,9 @@ class Linkage:
             y0 = self.assemble(self.hint_angle, assembly)
             args = (self.ci, self.cf, self.fixed_xy, len(self.cranks))
             budget = LENGTH_BUDGET * self.period * len(y0)
-            self._cycles[assembly] = trace_cycle(kn.linkage_rhs, y0, args, self.period, budget, rtol=TRACE_RTOL)
+            cycle = trace_cycle(kn.linkage_rhs, y0, args, self.period, budget, rtol=TRACE_RTOL)
+            cycle.locks = [self._onto_curve(y) for y in cycle.locks]
+            self._cycles[assembly] = cycle
         return self._cycles[assembly]
 
     def lock_positions(self, assembly=None):

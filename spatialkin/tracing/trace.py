@@ -31,7 +31,9 @@ MAX_LENGTH_TURNS = 32
 GAP_FRACTION = 1e-2
 #: ... but never below this many ulps of the coordinates' magnitude (round-off floor).
 ROUNDOFF_ULPS = 64
-METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA")
+#: solve_ivp's methods, and "compiled": the compiled Dormand–Prince 5(4) of spatialkin.kernels.dopri (scipy's
+#: RK45 steps without the per-step Python work), handing hard cases to solve_ivp's DOP853.
+METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", "compiled")
 #: Status precedence when the two ends of an open curve differ.
 STATUS_ORDER = ("failed", "singular", "boundary", "max_length")
 

@@ -25,6 +25,8 @@ DEFAULT_RTOL = 1e-10
 DEFAULT_SINGULAR_TOL = 1e-7
 #: Pull-back rate times the curve scale: the gap decays like exp(-PULLBACK * s / scale).
 DEFAULT_PULLBACK = 1.0
+#: The integrator: the compiled Dormand–Prince 5(4) (solve_ivp DOP853 for hard cases), or a solve_ivp method.
+DEFAULT_METHOD = "compiled"
 #: Without a max_length, a branch may run this many times 2 pi times the larger surface extent.
 MAX_LENGTH_TURNS = 32
 #: Newton's target for |M1 - M2|, as a fraction of the requested tolerance ...
@@ -98,7 +100,7 @@ def start_point(a, b, start, gap_tol):
     return locate_on_curve(a, b, guess, gap_tol, y_guess=arr)
 
 
-def trace(a, b, start, *, tol=1e-10, method="DOP853", rtol=DEFAULT_RTOL, atol=None, max_length=None,
+def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol=None, max_length=None,
           singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK, close=True):
     """Trace the component of a ∩ b through a start point, by arc length (Dragilev's method).
 

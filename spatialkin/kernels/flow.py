@@ -33,7 +33,10 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
                   watch_apex, apex_guard, lo, hi, out):
     """Follow gradient_flow_rhs from x0 (2,) until g changes sign; the crossing is written to out (2,).
 
-    Returns HIT, NO_HIT (t_bound reached) or HANDOFF (stall, apex, bound or step failure: use solve_ivp).
+    The flow ends without a seed (NO_HIT) where solve_ivp's version does: at the end of the interval, the
+    evaluation budget or a step failure, or a terminal event (|grad_S g| falling below min_gradient, the
+    relative area element below apex_guard where watch_apex, a parameter leaving [lo, hi]). Where such an
+    event and the level crossing fall in one step, returns HANDOFF: the caller runs solve_ivp.
     """
     n = 2
     y = x0.copy()
@@ -52,6 +55,12 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
     step_h = min(100.0 * h0, h1, t_bound, max_step)
     t = 0.0
     g_old = level_value(p, q, y[0], y[1])
+    e_old = np.empty(6)
+    e_old[0] = surface_gradient_norm(p, q, y[0], y[1], h) - min_gradient
+    e_old[1] = relative_area_at(p, y[0], y[1]) - apex_guard
+    for i in range(n):
+        e_old[2 + 2 * i] = y[i] - lo[i]
+        e_old[3 + 2 * i] = hi[i] - y[i]
     k = np.empty((7, n))
     y_new = np.empty(n)
     err = np.empty(n)
@@ -63,7 +72,7 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
         rejected = False
         while True:
             if nfev > max_nfev or step_h < min_step:
-                return HANDOFF
+                return NO_HIT          # solve_ivp's budget or step failure: no seed either
             t_new = min(t + step_h, t_bound)
             step = t_new - t
             k[0] = f
@@ -95,16 +104,28 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
                 break
             step_h = step * max(MIN_FACTOR, SAFETY * error_norm ** ERROR_EXPONENT)
             rejected = True
-        # any other event condition: leave it to solve_ivp
-        if surface_gradient_norm(p, q, y_new[0], y_new[1], h) < min_gradient:
-            return HANDOFF
-        if watch_apex and relative_area_at(p, y_new[0], y_new[1]) < apex_guard:
-            return HANDOFF
+        # the other (terminal, downward) events of the solve_ivp version: stalled, apex, edges
+        stop = False
+        e_new = surface_gradient_norm(p, q, y_new[0], y_new[1], h) - min_gradient
+        stop = stop or (e_old[0] >= 0.0 and e_new <= 0.0)
+        e_old[0] = e_new
+        if watch_apex:
+            e_new = relative_area_at(p, y_new[0], y_new[1]) - apex_guard
+            stop = stop or (e_old[1] >= 0.0 and e_new <= 0.0)
+            e_old[1] = e_new
         for i in range(n):
-            if y_new[i] < lo[i] or y_new[i] > hi[i]:
-                return HANDOFF
+            e_lo = y_new[i] - lo[i]
+            e_hi = hi[i] - y_new[i]
+            stop = stop or (e_old[2 + 2 * i] >= 0.0 and e_lo <= 0.0) or (e_old[3 + 2 * i] >= 0.0 and e_hi <= 0.0)
+            e_old[2 + 2 * i] = e_lo
+            e_old[3 + 2 * i] = e_hi
         g_new = level_value(p, q, y_new[0], y_new[1])
-        if (g_old <= 0.0 and g_new >= 0.0) or (g_old >= 0.0 and g_new <= 0.0):
+        crossed = (g_old <= 0.0 and g_new >= 0.0) or (g_old >= 0.0 and g_new <= 0.0)
+        if stop:
+            # another event ends the flow without a seed, unless the level is crossed in the same step
+            # (then which comes first is solve_ivp's to decide)
+            return HANDOFF if crossed else NO_HIT
+        if crossed:
             for i in range(n):
                 for m in range(4):
                     acc = 0.0

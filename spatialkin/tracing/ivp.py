@@ -227,8 +227,8 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                                 args=(a, b, sign, settings.pullback), max_step=settings.max_step)
             except BudgetExceeded:
                 branch.status = "failed"
-                branch.message = (f"integration stalled after s = {s:.6g} ({SEGMENT_MAX_EVALUATIONS} right-hand-side "
-                                  f"evaluations in one segment), near point {point.tolist()}")
+                branch.message = (f"integration stalled after s = {s:.6g} ({SEGMENT_MAX_EVALUATIONS} "
+                                  f"right-hand-side evaluations in one segment), near point {point.tolist()}")
                 break
             branch.nfev += res.nfev
             seg = Segment(s0=s, s1=s + (res.t[-1] if res.t.size else 0.0), sign=sign, sol=res.sol, a=a, b=b,
@@ -260,7 +260,8 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                     branch.status = "singular"
                     what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
                             if kind == "apex" else "singular point (branches cross or the surfaces touch)")
-                    branch.message = (f"{what}, not passed, at s = {s:.6g}, point {point.tolist()}, sin of the normals' "
+                    branch.message = (f"{what}, not passed, at s = {s:.6g}, point {point.tolist()}, sin of the "
+                                      "normals' "
                                       f"angle {kc.degeneracy(y, a, b, 0, 0):.2g}")
                     break
                 sign, y, point, tangent = take_jump(branch, seg, y, jump)

@@ -114,7 +114,9 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
         Accuracy asked of every returned point and every dense evaluation, relative to the scene scale (the
         smaller characteristic length of the two surfaces): distance to both surfaces <= tol * scale.
     method : str
-        solve_ivp method ('DOP853' by default).
+        'compiled' (default): the compiled Dormand–Prince 5(4) of spatialkin.kernels.dopri, scipy's RK45 steps
+        without per-step Python work, handing singular points, apexes and edges to solve_ivp's DOP853; or a
+        solve_ivp method ('DOP853', 'RK45', ...) for the whole curve.
     rtol, atol : float
         solve_ivp tolerances on (u1, v1, u2, v2); atol defaults to rtol for angles and rtol * scale for lengths.
     max_length : float, optional

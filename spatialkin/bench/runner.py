@@ -12,7 +12,7 @@ import numpy as np
 
 from ..mechanisms import LooperDrive
 from ..tracing.intersect import intersect
-from ..tracing.trace import METHODS, trace
+from ..tracing.trace import DEFAULT_METHOD, METHODS, trace
 from . import baselines
 from .cases import looper_closed_form, torus_sphere_cases
 
@@ -141,7 +141,7 @@ def tracer_rows(case, rtols, repeats, methods=METHODS):
 def intersect_row(case, repeats):
     """sk.intersect at its defaults: every component, seeding included."""
     seconds, curves = best_time(lambda: intersect(case.torus, case.sphere, tol=TRACE_TOL), repeats)
-    return Row(case.name, "intersect", "DOP853", np.nan, len(curves), case.components, seconds,
+    return Row(case.name, "intersect", DEFAULT_METHOD, np.nan, len(curves), case.components, seconds,
                seconds / max(1, len(curves)), curve_error(curves, (case.torus, case.sphere)),
                sum(c.nfev for c in curves) // max(1, len(curves)))
 

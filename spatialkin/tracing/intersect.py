@@ -7,13 +7,13 @@ from ..surfaces import check_surface
 from .result import Curve, TracingError
 from .seeds import find_seeds, roles
 from .start import locate_on_curve, newton_fixed
-from .trace import DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
+from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
 SAME_COMPONENT = 1e-6
 
 
-def intersect(a, b, tol=1e-10, *, method="DOP853", rtol=DEFAULT_RTOL, atol=None, max_length=None,
+def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol=None, max_length=None,
               singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK):
     """Every component of a ∩ b.
 

@@ -16,9 +16,10 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..kernels import curve as kc
+from ..kernels import dopri as kd
 from ..kernels import surfaces as ks
-from .segments import (EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, BudgetExceeded, Segment, area_flag,
-                       budgeted, charts_at, finite_bounds, newton_fixed, project_state)
+from .segments import (EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, BudgetExceeded, Segment, StepStates,
+                       area_flag, budgeted, charts_at, finite_bounds, newton_fixed, project_state)
 from .singular import APEX_GUARD, closes_within_jump, jump_across, take_jump
 
 # --- named limits -------------------------------------------------------------------------------------
@@ -46,6 +47,13 @@ WATCH_BELOW = 1e-2
 SLOPE_FLOOR = 1e-6
 #: The minimum event is armed only this far (relative to the scale) into a segment.
 MINIMUM_ARM = 1e-9
+#: settings.method of the compiled integrator (spatialkin.kernels.dopri), and the solve_ivp method it hands
+#: hard cases to.
+COMPILED = "compiled"
+FALLBACK_METHOD = "DOP853"
+#: The compiled integrator hands over to solve_ivp this many times before a watched threshold (the sine's
+#: WATCH_BELOW or the singular tolerance, APEX_GUARD), so that solve_ivp's events see the whole approach.
+HANDOFF_MARGIN = 2.0
 #: At most this many segments in one branch (each ends at an event): bounds the work on pathological input.
 MAX_SEGMENTS = 10_000
 
@@ -115,6 +123,25 @@ def make_events(a, b, settings, sign, start, direction, s_arm):
     return events, kinds
 
 
+def compiled_segment(a, b, y, sign, settings, start, direction, s_arm, t_bound):
+    """One segment by the compiled integrator over local arc length [0, t_bound], the closure armed past s_arm:
+    (status, ts, ys (n, 4), hs, qs, nfev), see kd.dopri_segment."""
+    lo, hi = np.full(4, -np.inf), np.full(4, np.inf)
+    for _, _, idx, bound, lower in finite_bounds(a, b):
+        if lower:
+            lo[idx] = max(lo[idx], bound)
+        else:
+            hi[idx] = min(hi[idx], bound)
+    atol = np.ascontiguousarray(np.broadcast_to(np.asarray(settings.atol, dtype=float), (4,)))
+    watch = HANDOFF_MARGIN * max(WATCH_BELOW, settings.singular_tol)
+    return kd.dopri_segment(np.ascontiguousarray(y, dtype=float), a, b, float(sign), settings.pullback,
+                            float(t_bound),
+                            settings.rtol, atol, settings.max_step, SEGMENT_MAX_EVALUATIONS, settings.close, start,
+                            direction, CLOSURE_OFFSET * settings.scale, s_arm, watch, area_flag(a), area_flag(b),
+                            HANDOFF_MARGIN * APEX_GUARD, lo, hi, int(a[ks.KIND]) == ks.SPHERE,
+                            int(b[ks.KIND]) == ks.SPHERE, POLE_GUARD)
+
+
 def at_outer_edge(a, b, y, sign):
     """True where y lies on (or past) an edge of a trimmed surface and the direction of travel leaves it."""
     dy = kc.dragilev_rhs(0.0, y, a, b, sign, 0.0)
@@ -140,6 +167,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     start, direction = point.copy(), sign * tangent
     s, s_arm = 0.0, 0.0
     radius = CLOSURE_RADIUS * settings.scale
+    compiled = settings.method == COMPILED
     for _ in range(MAX_SEGMENTS):
         y_prev = y
         a, b, y = charts_at(a_user, b_user, point, sign * tangent, y)
@@ -164,61 +192,90 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if at_outer_edge(a, b, y, sign):
             branch.status, branch.message = "boundary", f"starts on an edge, leaving the surface, at s = {s:.6g}"
             break
-        events, kinds = make_events(a, b, settings, sign, start, direction, s_arm - s)
-        try:
-            res = solve_ivp(budgeted(kc.dragilev_rhs), (0.0, settings.max_length - s), y, method=settings.method,
-                            rtol=settings.rtol, atol=settings.atol, dense_output=True, events=events,
-                            args=(a, b, sign, settings.pullback), max_step=settings.max_step)
-        except BudgetExceeded:
-            branch.status = "failed"
-            branch.message = (f"integration stalled after s = {s:.6g} ({SEGMENT_MAX_EVALUATIONS} right-hand-side "
-                              f"evaluations in one segment), near point {point.tolist()}")
-            break
-        branch.nfev += res.nfev
-        seg = Segment(s0=s, s1=s + (res.t[-1] if res.t.size else 0.0), sign=sign, sol=res.sol, a=a, b=b,
-                      t=res.t, y=res.y)
-        if res.t.size and res.t[-1] > 0:
-            branch.segments.append(seg)
-        s = seg.s1
-        y = res.y[:, -1].copy() if res.t.size else y
-        if res.status == -1:
-            if kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT:
-                branch.status = "singular"
-                branch.message = f"singular point (normals parallel) near s = {s:.6g}"
-            else:
-                branch.status, branch.message = "failed", f"solve_ivp failed at s = {s:.6g}: {res.message}"
-            break
-        if res.status == 0:
-            branch.status = "max_length"
-            branch.message = f"stopped at max_length = {settings.max_length:.6g} without closing"
-            break
-        hit = next(i for i, te in enumerate(res.t_events) if te.size)
-        kind, info = kinds[hit]
-        y = res.y_events[hit][0].copy()
-        kc.curve_frame(y, a, b, point, tangent)
-        singular = kind in ("singular", "apex") or (
-            kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT)
-        if singular:
-            jump = jump_across(branch, seg, res.t_events[hit][0], y, settings)
-            if jump is None:
-                branch.status = "singular"
-                what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
-                        if kind == "apex" else "singular point (branches cross or the surfaces touch)")
-                branch.message = (f"{what}, not passed, at s = {s:.6g}, point {point.tolist()}, sin of the normals' "
-                                  f"angle {kc.degeneracy(y, a, b, 0, 0):.2g}")
+        if compiled:
+            status, ts, ys, hs, qs, nfev = compiled_segment(a, b, y, sign, settings, start, direction, s_arm - s,
+                                                             settings.max_length - s)
+            branch.nfev += nfev
+            seg = Segment(s0=s, s1=s + ts[-1], sign=sign, sol=StepStates(ts, ys, hs, qs), a=a, b=b, t=ts,
+                          y=np.ascontiguousarray(ys.T))
+            if ts[-1] > 0:
+                branch.segments.append(seg)
+            s = seg.s1
+            y = ys[-1].copy()
+            kc.curve_frame(y, a, b, point, tangent)
+            if status == kd.BUDGET:
+                branch.status = "failed"
+                branch.message = (f"integration stalled after s = {s:.6g} ({SEGMENT_MAX_EVALUATIONS} right-hand-side "
+                                  f"evaluations in one segment), near point {point.tolist()}")
                 break
-            sign, y, point, tangent = take_jump(branch, seg, y, jump)
-            s = branch.segments[-1].s1
-            closing = closes_within_jump(branch.segments[-1], start, direction, CLOSURE_COSINE)
-            if closing is not None:
-                branch.status = "closed"
-                branch.message = f"closed on its start, within a jump, after s = {closing:.12g}"
-                branch.length = closing
-                branch.end_state = y
-                return branch
-            continue
-        if kind in ("minimum", "chart"):
-            continue
+            if status == kd.DONE:
+                branch.status = "max_length"
+                branch.message = f"stopped at max_length = {settings.max_length:.6g} without closing"
+                break
+            if status in (kd.HANDOFF, kd.FAILED):
+                compiled = False         # a hard case ahead: solve_ivp and its event functions from here on
+                continue
+            if status in (kd.CHART_A, kd.CHART_B):
+                continue
+            kind, info = "closure", None
+        else:
+            events, kinds = make_events(a, b, settings, sign, start, direction, s_arm - s)
+            try:
+                method = FALLBACK_METHOD if settings.method == COMPILED else settings.method
+                res = solve_ivp(budgeted(kc.dragilev_rhs), (0.0, settings.max_length - s), y, method=method,
+                                rtol=settings.rtol, atol=settings.atol, dense_output=True, events=events,
+                                args=(a, b, sign, settings.pullback), max_step=settings.max_step)
+            except BudgetExceeded:
+                branch.status = "failed"
+                branch.message = (f"integration stalled after s = {s:.6g} ({SEGMENT_MAX_EVALUATIONS} "
+                                  f"right-hand-side evaluations in one segment), near point {point.tolist()}")
+                break
+            branch.nfev += res.nfev
+            seg = Segment(s0=s, s1=s + (res.t[-1] if res.t.size else 0.0), sign=sign, sol=res.sol, a=a, b=b,
+                          t=res.t, y=res.y)
+            if res.t.size and res.t[-1] > 0:
+                branch.segments.append(seg)
+            s = seg.s1
+            y = res.y[:, -1].copy() if res.t.size else y
+            if res.status == -1:
+                if kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT:
+                    branch.status = "singular"
+                    branch.message = f"singular point (normals parallel) near s = {s:.6g}"
+                else:
+                    branch.status, branch.message = "failed", f"solve_ivp failed at s = {s:.6g}: {res.message}"
+                break
+            if res.status == 0:
+                branch.status = "max_length"
+                branch.message = f"stopped at max_length = {settings.max_length:.6g} without closing"
+                break
+            hit = next(i for i, te in enumerate(res.t_events) if te.size)
+            kind, info = kinds[hit]
+            y = res.y_events[hit][0].copy()
+            kc.curve_frame(y, a, b, point, tangent)
+            singular = kind in ("singular", "apex") or (
+                kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT)
+            if singular:
+                jump = jump_across(branch, seg, res.t_events[hit][0], y, settings)
+                if jump is None:
+                    branch.status = "singular"
+                    what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
+                            if kind == "apex" else "singular point (branches cross or the surfaces touch)")
+                    branch.message = (f"{what}, not passed, at s = {s:.6g}, point {point.tolist()}, sin of the "
+                                      "normals' "
+                                      f"angle {kc.degeneracy(y, a, b, 0, 0):.2g}")
+                    break
+                sign, y, point, tangent = take_jump(branch, seg, y, jump)
+                s = branch.segments[-1].s1
+                closing = closes_within_jump(branch.segments[-1], start, direction, CLOSURE_COSINE)
+                if closing is not None:
+                    branch.status = "closed"
+                    branch.message = f"closed on its start, within a jump, after s = {closing:.12g}"
+                    branch.length = closing
+                    branch.end_state = y
+                    return branch
+                continue
+            if kind in ("minimum", "chart"):
+                continue
         if kind == "closure":
             yp, p_e, t_e, _ = project_state(y, a, b, settings)
             close_enough = np.linalg.norm(p_e - start) <= radius

@@ -24,6 +24,7 @@ import numpy as np
 import scipy.linalg
 from scipy.integrate import solve_ivp
 
+from ..kernels import flow as kf
 from ..kernels import level as kl
 from ..kernels import surfaces as ks
 from .segments import BudgetExceeded, budgeted, finite_bounds
@@ -213,6 +214,22 @@ def flow_to_level(p, q, uv, direction, sigma, scale):
     g0 = level(0.0, x0)
     if g0 == 0.0:
         return p.point(*x0)
+    t_bound = FLOW_TURNS * 2 * math.pi * max(p.size, scale)
+    lo, hi = np.full(2, -np.inf), np.full(2, np.inf)
+    for _, _, idx, bound, lower in finite_bounds(p.data):
+        if lower:
+            lo[idx] = max(lo[idx], bound)
+        else:
+            hi[idx] = min(hi[idx], bound)
+    hit = np.empty(2)
+    status = kf.flow_to_level(np.ascontiguousarray(x0), p.data, q.data, float(sigma), h, FLOW_SATURATION, t_bound,
+                              np.inf, FLOW_RTOL, FLOW_RTOL, FLOW_MAX_EVALUATIONS, FLOW_MIN_GRADIENT,
+                              bool(apex_lines(p)), FLOW_APEX_GUARD, lo, hi, hit)
+    if status == kf.HIT:
+        return p.point(*hit)
+    if status == kf.NO_HIT:
+        return None
+    # the flow stalls, nears an apex or an edge: solve_ivp and its event functions decide
     try:
         res = solve_ivp(budgeted(kl.gradient_flow_rhs, FLOW_MAX_EVALUATIONS), (0.0, FLOW_TURNS * 2 * math.pi * max(p.size, scale)), x0,
                         method="RK45", rtol=FLOW_RTOL, atol=FLOW_RTOL, events=events,

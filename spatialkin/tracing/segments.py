@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..kernels import curve as kc
+from ..kernels import dopri as kd
 from ..kernels import surfaces as ks
 
 # --- named limits -------------------------------------------------------------------------------------
@@ -44,6 +45,20 @@ class LinearStates:
     def __call__(self, t):
         w = np.clip(np.asarray(t, dtype=float) / self.length, 0.0, 1.0)
         return self.y0[:, None] * (1 - w) + self.y1[:, None] * w if np.ndim(t) else self.y0 * (1 - w) + self.y1 * w
+
+
+class StepStates:
+    """Dense output of a compiled segment (spatialkin.kernels.dopri): the RK45 polynomial of each step, called
+    like scipy's OdeSolution: sol(t) is (4,) for a scalar t, (4, n) for an array."""
+
+    def __init__(self, ts, ys, hs, qs):
+        self.ts, self.ys, self.hs, self.qs = ts, ys, hs, qs
+
+    def __call__(self, t):
+        tt = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
+        out = np.empty((tt.size, self.ys.shape[1]))
+        kd.dense_many(self.ts, self.ys, self.hs, self.qs, tt, out)
+        return out[0] if np.ndim(t) == 0 else out.T
 
 
 @dataclass

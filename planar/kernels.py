@@ -18,7 +18,8 @@ import math
 import numpy as np
 
 from spatialkin._jit import jit
-from spatialkin.kernels.implicit import follow_rhs, lu_factor, lu_solve
+from spatialkin.kernels.curve import lu_factor, lu_solve
+from spatialkin.kernels.implicit import follow_rhs
 
 DIST, RIGID, CRANK = 0, 1, 2
 #: Columns of ci.

@@ -103,10 +103,10 @@ def solve3(m, r, x):
 
 
 @jit
-def solve_small(m, r, x):
-    """Solve the n x n system m x = r by Gaussian elimination with partial pivoting (m, r overwritten).
-    Returns False if a pivot vanishes relative to the largest entry."""
-    n = r.shape[0]
+def lu_factor(m, piv):
+    """LU factorisation with partial pivoting of the square m, in place; False if a pivot vanishes
+    relative to the largest entry (a singular matrix)."""
+    n = m.shape[0]
     big = 0.0
     for i in range(n):
         for j in range(n):
@@ -114,30 +114,53 @@ def solve_small(m, r, x):
     if big == 0.0:
         return False
     for col in range(n):
-        piv = col
+        p = col
         for i in range(col + 1, n):
-            if abs(m[i, col]) > abs(m[piv, col]):
-                piv = i
-        if abs(m[piv, col]) <= PIVOT_EPS * big:
+            if abs(m[i, col]) > abs(m[p, col]):
+                p = i
+        piv[col] = p
+        if abs(m[p, col]) <= PIVOT_EPS * big:
             return False
-        if piv != col:
+        if p != col:
             for j in range(n):
                 tmp = m[col, j]
-                m[col, j] = m[piv, j]
-                m[piv, j] = tmp
-            tmp = r[col]
-            r[col] = r[piv]
-            r[piv] = tmp
+                m[col, j] = m[p, j]
+                m[p, j] = tmp
         for i in range(col + 1, n):
-            f = m[i, col] / m[col, col]
-            for j in range(col, n):
-                m[i, j] -= f * m[col, j]
-            r[i] -= f * r[col]
+            m[i, col] /= m[col, col]
+            for j in range(col + 1, n):
+                m[i, j] -= m[i, col] * m[col, j]
+    return True
+
+
+@jit
+def lu_solve(m, piv, r, x):
+    """x = m^-1 r from lu_factor's m, piv (r is left untouched)."""
+    n = m.shape[0]
+    for i in range(n):
+        x[i] = r[i]
+    for i in range(n):
+        p = piv[i]
+        if p != i:
+            tmp = x[i]
+            x[i] = x[p]
+            x[p] = tmp
+        for j in range(i):
+            x[i] -= m[i, j] * x[j]
     for i in range(n - 1, -1, -1):
-        acc = r[i]
         for j in range(i + 1, n):
-            acc -= m[i, j] * x[j]
-        x[i] = acc / m[i, i]
+            x[i] -= m[i, j] * x[j]
+        x[i] /= m[i, i]
+
+
+@jit
+def solve_small(m, r, x):
+    """Solve the n x n system m x = r by LU with partial pivoting (m overwritten). Returns False if a pivot
+    vanishes relative to the largest entry."""
+    piv = np.empty(r.shape[0], dtype=np.int64)
+    if not lu_factor(m, piv):
+        return False
+    lu_solve(m, piv, r, x)
     return True
 
 

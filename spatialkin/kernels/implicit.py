@@ -13,7 +13,6 @@ tangent t(J)), ch. 3 (the Moore-Penrose corrector) and ch. 4 (both from one QR f
 import numpy as np
 
 from .._jit import jit
-from .curve import PIVOT_EPS
 
 #: Diagonal entries of R below this fraction of the largest count as zero (rank loss: a branch point).
 RANK_EPS = 1e-13
@@ -110,54 +109,3 @@ def oriented_tangent(jac, sign, tangent):
     """Unit null vector of jac (n, n+1) into tangent (n+1,), with sign * det([jac; tangent]) > 0.
     False at a rank loss (a branch point, where the tangent is not defined)."""
     return follow_rhs(jac, jac[:, 0], sign, 0.0, tangent)
-
-
-@jit
-def lu_factor(m, piv):
-    """LU factorisation with partial pivoting of the square m, in place; False if a pivot vanishes
-    relative to the largest entry (a singular matrix)."""
-    n = m.shape[0]
-    big = 0.0
-    for i in range(n):
-        for j in range(n):
-            big = max(big, abs(m[i, j]))
-    if big == 0.0:
-        return False
-    for col in range(n):
-        p = col
-        for i in range(col + 1, n):
-            if abs(m[i, col]) > abs(m[p, col]):
-                p = i
-        piv[col] = p
-        if abs(m[p, col]) <= PIVOT_EPS * big:
-            return False
-        if p != col:
-            for j in range(n):
-                tmp = m[col, j]
-                m[col, j] = m[p, j]
-                m[p, j] = tmp
-        for i in range(col + 1, n):
-            m[i, col] /= m[col, col]
-            for j in range(col + 1, n):
-                m[i, j] -= m[i, col] * m[col, j]
-    return True
-
-
-@jit
-def lu_solve(m, piv, r, x):
-    """x = m^-1 r from lu_factor's m, piv (r is left untouched)."""
-    n = m.shape[0]
-    for i in range(n):
-        x[i] = r[i]
-    for i in range(n):
-        p = piv[i]
-        if p != i:
-            tmp = x[i]
-            x[i] = x[p]
-            x[p] = tmp
-        for j in range(i):
-            x[i] -= m[i, j] * x[j]
-    for i in range(n - 1, -1, -1):
-        for j in range(i + 1, n):
-            x[i] -= m[i, j] * x[j]
-        x[i] /= m[i, i]

@@ -1,8 +1,8 @@
-"""Continuation kernels (spatialkin.kernels.implicit) against numpy's linear algebra."""
+"""Continuation kernels (spatialkin.kernels.implicit) and the LU kernels against numpy's linear algebra."""
 import numpy as np
 import pytest
 
-from spatialkin.kernels import implicit as ki
+from spatialkin.kernels import curve as kc, implicit as ki
 
 TOL = 1e-13
 
@@ -42,7 +42,7 @@ def test_lu_solve_matches_numpy():
     for n in (1, 3, 10):
         m, r = rng.normal(size=(n, n)), rng.normal(size=n)
         lu, piv, x = m.copy(), np.empty(n, dtype=np.int64), np.empty(n)
-        assert ki.lu_factor(lu, piv)
-        ki.lu_solve(lu, piv, r, x)
+        assert kc.lu_factor(lu, piv)
+        kc.lu_solve(lu, piv, r, x)
         assert np.allclose(x, np.linalg.solve(m, r), rtol=1e-12, atol=1e-12)
-    assert not ki.lu_factor(np.ones((3, 3)), np.empty(3, dtype=np.int64))
+    assert not kc.lu_factor(np.ones((3, 3)), np.empty(3, dtype=np.int64))

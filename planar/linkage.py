@@ -232,18 +232,22 @@ class Linkage:
         Levenberg-Marquardt from random joint positions (deterministic)."""
         return [self.positions(s) for s in self._assemblies(float(angle))[0]]
 
-    def _assemblies(self, angle):
+    def _assemblies(self, angle, starts=ASSEMBLY_STARTS, first=False):
+        """(distinct assembled states, (worst residual, joints) of the best failed start) from `starts`
+        random starts (deterministic); with first=True it stops at the first assembly."""
         rng = np.random.default_rng(ASSEMBLY_SEED)
         centre = np.mean(self.fixed_xy, axis=0) if len(self.fixed_xy) else np.zeros(2)
         reach = np.max(np.linalg.norm(self.fixed_xy - centre, axis=1), initial=0.0) + 3.0
         found, best = [], (np.inf, None)
-        for _ in range(ASSEMBLY_STARTS):
+        for _ in range(starts):
             q0 = (centre + reach * rng.uniform(-1, 1, (len(self.moving), 2))).ravel()
             q, worst = self._least_squares(q0, angle)
             if worst < ASSEMBLY_TOL:
                 state = np.append(q, angle)
                 if all(np.max(np.abs(state - s)) > SAME_ASSEMBLY for s in found):
                     found.append(state)
+                if first:
+                    break
             elif worst < best[0]:
                 best = (worst, q)
         return found, best
@@ -300,22 +304,12 @@ class Linkage:
         f = self.residual(np.append(q, angle))[0] * self.mean_length
         worst = int(np.argmax(np.abs(f)))
         where = [a for a in np.linspace(0, self.period, SCAN_ANGLES, endpoint=False)
-                 if self._assemblies_quick(a)]
+                 if self._assemblies(a, ASSEMBLY_STARTS // 10, first=True)[0]]
         also = (f"; it assembles at input angles such as {math.degrees(where[0]):.4g} deg: its motion is "
                 f"limited by lock positions" if where else "; it assembles at none of "
                 f"{SCAN_ANGLES} input angles over the period")
         return (f"the linkage cannot be assembled at input angle {math.degrees(angle):.6g} deg: the "
                 f"closest configuration found misses {names[worst]} by {abs(f[worst]):.4g}{also}")
-
-    def _assemblies_quick(self, angle):
-        rng = np.random.default_rng(ASSEMBLY_SEED)
-        centre = np.mean(self.fixed_xy, axis=0)
-        reach = np.max(np.linalg.norm(self.fixed_xy - centre, axis=1), initial=0.0) + 3.0
-        for _ in range(ASSEMBLY_STARTS // 10):
-            q0 = (centre + reach * rng.uniform(-1, 1, (len(self.moving), 2))).ravel()
-            if self._least_squares(q0, angle)[1] < ASSEMBLY_TOL:
-                return True
-        return False
 
     # --- motion ----------------------------------------------------------------------------------
     def cycle(self, assembly=None):

@@ -102,6 +102,26 @@ def _initial_step(y0, f0, a, b, sign, pullback, t_bound, max_step, rtol, atol):
 
 
 @jit
+def regula_falsi_point(lo, hi, g_lo, g_hi):
+    """The secant root of g on [lo, hi] (the midpoint where the secant leaves the bracket or is flat)."""
+    tm = (lo * g_hi - hi * g_lo) / (g_hi - g_lo) if g_hi != g_lo else 0.5 * (lo + hi)
+    return tm if lo < tm < hi else 0.5 * (lo + hi)
+
+
+@jit
+def illinois_update(lo, hi, g_lo, g_hi, side, tm, gm, to_lo):
+    """One Illinois update of the bracket: tm (value gm) replaces lo when to_lo, else hi; when the same end
+    moves twice running, the other end's value is halved. Returns (lo, hi, g_lo, g_hi, side)."""
+    if to_lo:
+        if side == -1:
+            g_hi *= 0.5
+        return tm, hi, gm, g_hi, -1
+    if side == 1:
+        g_lo *= 0.5
+    return lo, tm, g_lo, gm, 1
+
+
+@jit
 def dense_state(t_old, h, y_old, q, t, out):
     """RK45 dense output on one step: out = y_old + h Q p(x), x = (t - t_old)/h, p = (x, x^2, x^3, x^4)."""
     x = (t - t_old) / h
@@ -298,27 +318,13 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
                 for _ in range(ROOT_MAX_ITER):
                     if hi - lo <= ROOT_ULPS * 2.220446049250313e-16 * max(abs(hi), 1e-300):
                         break
-                    if g_hi != g_lo:
-                        tm = (lo * g_hi - hi * g_lo) / (g_hi - g_lo)
-                    else:
-                        tm = 0.5 * (lo + hi)
-                    if not (lo < tm < hi):
-                        tm = 0.5 * (lo + hi)
+                    tm = regula_falsi_point(lo, hi, g_lo, g_hi)
                     dense_state(t, step, y, q, tm, y_mid)
                     gm = _closure_g(tm, y_mid, s_arm, a, start, direction, offset)
                     if gm == 0.0:
                         lo = hi = tm
                         break
-                    if gm < 0.0:
-                        lo, g_lo = tm, gm
-                        if side == -1:
-                            g_hi *= 0.5
-                        side = -1
-                    else:
-                        hi, g_hi = tm, gm
-                        if side == 1:
-                            g_lo *= 0.5
-                        side = 1
+                    lo, hi, g_lo, g_hi, side = illinois_update(lo, hi, g_lo, g_hi, side, tm, gm, gm < 0.0)
                 t_e = hi
                 dense_state(t, step, y, q, t_e, y_mid)
                 ts[count] = t_e

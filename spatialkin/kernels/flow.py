@@ -7,7 +7,8 @@ runs solve_ivp with its event functions instead.
 import numpy as np
 
 from .._jit import jit
-from .dopri import A, B, E, ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, P, SAFETY, dense_state
+from .dopri import (A, B, E, ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, P, SAFETY, dense_state, illinois_update,
+                    regula_falsi_point)
 from .level import gradient_flow_rhs, level_value, relative_area_at, surface_gradient_norm
 
 #: Status codes of flow_to_level.
@@ -137,24 +138,14 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
             for _ in range(ROOT_MAX_ITER):
                 if b - a <= ROOT_ULPS * 2.220446049250313e-16 * max(abs(b), 1e-300):
                     break
-                tm = (a * gb - b * ga) / (gb - ga) if gb != ga else 0.5 * (a + b)
-                if not (a < tm < b):
-                    tm = 0.5 * (a + b)
+                tm = regula_falsi_point(a, b, ga, gb)
                 dense_state(t, step, y, qm, tm, y_mid)
                 gm = level_value(p, q, y_mid[0], y_mid[1])
                 if gm == 0.0:
                     a = b = tm
                     break
-                if (gm < 0.0) == (ga < 0.0) and ga != 0.0:
-                    a, ga = tm, gm
-                    if side == -1:
-                        gb *= 0.5
-                    side = -1
-                else:
-                    b, gb = tm, gm
-                    if side == 1:
-                        ga *= 0.5
-                    side = 1
+                a, b, ga, gb, side = illinois_update(a, b, ga, gb, side, tm, gm,
+                                                     (gm < 0.0) == (ga < 0.0) and ga != 0.0)
             dense_state(t, step, y, qm, b, out)
             return HIT
         g_old = g_new

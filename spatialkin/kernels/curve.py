@@ -462,38 +462,73 @@ def curve_derivatives_many(ys, a, b, sign, dy, ddy, d1, d2, ok):
 def newton_fixed_many(ys, a, b, fixed, gap_tol, max_iter, ok):
     """Newton on M1(u1, v1) - M2(u2, v2) = 0 for the three parameters other than ys[k, fixed], in place
     for each row of ys (N, 4); ok[k] True once |M1 - M2| <= gap_tol (then one more step is taken)."""
+    for k in range(ys.shape[0]):
+        ok[k] = newton_fixed_row(ys[k], a, b, fixed, gap_tol, max_iter)
+
+
+@jit
+def newton_fixed_row(y, a, b, fixed, gap_tol, max_iter):
+    """newton_fixed_many for one state y (4,), in place; True once |M1 - M2| <= gap_tol."""
     e1 = np.empty((6, 3))
     e2 = np.empty((6, 3))
     m = np.empty((3, 3))
     r = np.empty(3)
     dx = np.empty(3)
-    for k in range(ys.shape[0]):
-        ok[k] = False
-        for _ in range(max_iter):
-            first_derivatives(a, ys[k, 0], ys[k, 1], e1[0], e1[1], e1[2])
-            first_derivatives(b, ys[k, 2], ys[k, 3], e2[0], e2[1], e2[2])
-            gap = e1[0] - e2[0]
-            if norm(gap) <= gap_tol:
-                if ok[k]:
-                    break
-                ok[k] = True      # converged: one more step polishes to round-off
-            col = 0
-            for i in range(4):
-                if i == fixed:
-                    continue
-                for j in range(3):
-                    if i < 2:
-                        m[j, col] = e1[1 + i, j]
-                    else:
-                        m[j, col] = -e2[1 + i - 2, j]
-                col += 1
-            for j in range(3):
-                r[j] = -gap[j]
-            if not solve_small(m, r, dx):
+    done = False
+    for _ in range(max_iter):
+        first_derivatives(a, y[0], y[1], e1[0], e1[1], e1[2])
+        first_derivatives(b, y[2], y[3], e2[0], e2[1], e2[2])
+        gap = e1[0] - e2[0]
+        if norm(gap) <= gap_tol:
+            if done:
                 break
-            col = 0
+            done = True      # converged: one more step polishes to round-off
+        col = 0
+        for i in range(4):
+            if i == fixed:
+                continue
+            for j in range(3):
+                if i < 2:
+                    m[j, col] = e1[1 + i, j]
+                else:
+                    m[j, col] = -e2[1 + i - 2, j]
+            col += 1
+        for j in range(3):
+            r[j] = -gap[j]
+        if not solve_small(m, r, dx):
+            break
+        col = 0
+        for i in range(4):
+            if i == fixed:
+                continue
+            y[i] += dx[col]
+            col += 1
+    return done
+
+
+@jit
+def fixed_parameter_path(ys, targets, a, b, fixed, reach, gap_tol, max_iter, dy, ddy, d1, d2, status):
+    """States on the curve at the values targets (N,) of the parameter `fixed`, visited in the given order,
+    with their arc-length derivatives (as curve_derivatives with sign +1).
+
+    Row k starts from a second-order Taylor prediction in the fixed parameter off the row before when the step
+    between their targets is at most reach, else from the guess ys[k] (a nearby curve state); then Newton at
+    the fixed value (newton_fixed_row). Continuation keeps each row on the branch of the one before. status[k]:
+    0 solved, 1 Newton failed, 2 a singular point (derivatives undefined).
+    """
+    for k in range(ys.shape[0]):
+        if k > 0 and status[k - 1] == 0 and abs(targets[k] - targets[k - 1]) <= reach \
+                and abs(dy[k - 1, fixed]) > 0.0:
+            h = targets[k] - targets[k - 1]
+            rate = dy[k - 1, fixed]
             for i in range(4):
-                if i == fixed:
-                    continue
-                ys[k, i] += dx[col]
-                col += 1
+                first = dy[k - 1, i] / rate
+                second = (ddy[k - 1, i] * rate - dy[k - 1, i] * ddy[k - 1, fixed]) / (rate * rate * rate)
+                ys[k, i] = ys[k - 1, i] + h * first + 0.5 * h * h * second
+        ys[k, fixed] = targets[k]
+        if not newton_fixed_row(ys[k], a, b, fixed, gap_tol, max_iter):
+            status[k] = 1
+        elif not curve_derivatives(ys[k], a, b, 1.0, dy[k], ddy[k], d1[k], d2[k]):
+            status[k] = 2
+        else:
+            status[k] = 0

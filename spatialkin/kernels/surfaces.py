@@ -292,3 +292,39 @@ def evaluate(data, uv, out):
     for k in range(uv.shape[0]):
         local_derivatives(data, uv[k, 0], uv[k, 1], loc)
         to_global(data, loc[POINT], out[k])
+
+
+@jit
+def recharted_sphere(data, point, tangent, out):
+    """out = sphere data with its chart turned so that point is at (u, v) = (0, 0) and tangent along +u; a
+    zero tangent (not known) takes any axis normal to the radius."""
+    out[:] = data
+    x = np.empty(3)
+    for i in range(3):
+        x[i] = point[i] - data[ORIGIN + i]
+    nx = math.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2])
+    for i in range(3):
+        x[i] /= nx
+    z = np.empty(3)
+    _unit_cross(x, tangent, z)
+    if z[0] == 0.0 and z[1] == 0.0 and z[2] == 0.0:
+        axis = np.zeros(3)
+        axis[np.argmin(np.abs(x))] = 1.0
+        _unit_cross(x, axis, z)
+    y = np.empty(3)
+    _unit_cross(z, x, y)
+    for i in range(3):
+        out[ROT + 3 * i] = x[i]
+        out[ROT + 3 * i + 1] = y[i]
+        out[ROT + 3 * i + 2] = z[i]
+
+
+@jit
+def _unit_cross(a, b, out):
+    """out = a x b normalised, or zeros where |a x b| < 1e-12."""
+    out[0] = a[1] * b[2] - a[2] * b[1]
+    out[1] = a[2] * b[0] - a[0] * b[2]
+    out[2] = a[0] * b[1] - a[1] * b[0]
+    n = math.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2])
+    for i in range(3):
+        out[i] = out[i] / n if n >= 1e-12 else 0.0

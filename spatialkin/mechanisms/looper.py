@@ -35,6 +35,9 @@ LOOP_SAMPLES = 2048
 NEWTON_MAX_ITER = 30
 #: Accuracy of positions relative to the mechanism's size.
 POSITION_TOL = 1e-14
+#: Crank angles at most this far apart (rad) are solved by continuation, each Newton started from a second
+#: order prediction off the angle before; farther ones start from the nearest dense sample.
+CONTINUATION_REACH = 0.02
 #: Links of the mechanism, for points fixed to them.
 LINKS = ("crank", "coupler", "rocker_shaft", "rocker_arm")
 _Z = (0.0, 0.0, 1.0)
@@ -189,12 +192,13 @@ class LooperDrive:
         return self._loops
 
     def _samples(self, branch):
-        """Dense states (M, 4) on the given branch over all loops, sorted by u1 mod 2 pi."""
+        """Dense states (M, 4) on the given branch over all loops, sorted by u1 mod 2 pi: Newton's starts, from
+        the tracer's dense output (Curve.predicted_parameters)."""
         ys = []
         for c in self.loops():
             if c.length == 0:
                 continue
-            y = c.parameters(np.linspace(0.0, c.length, LOOP_SAMPLES))
+            y = c.predicted_parameters(np.linspace(0.0, c.length, LOOP_SAMPLES))
             ys.append(y[self.branch_of(y) == branch])
         y = np.vstack(ys) if ys else np.empty((0, 4))
         if not len(y):
@@ -222,17 +226,44 @@ class LooperDrive:
         idx = np.searchsorted(key, target)
         lo, hi = np.clip(idx - 1, 0, len(key) - 1), np.clip(idx, 0, len(key) - 1)
         near = np.where(np.abs(key[lo] - target) <= np.abs(key[hi] - target), lo, hi)
-        ys = samples[near].copy()
-        ys[:, 0] = u1
-        solved = self._at_crank_angles(ys)
-        if solved is None:
+        # the angles in increasing order, each Newton started by continuation from the one before (when it is
+        # within CONTINUATION_REACH) or else from the nearest sample
+        order = np.argsort(target, kind="stable")
+        ys = np.ascontiguousarray(samples[near[order]])
+        n = len(ys)
+        dy, ddy, d1, d2 = np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 3)), np.empty((n, 3))
+        status = np.empty(n, dtype=np.int64)
+        kc.fixed_parameter_path(ys, np.ascontiguousarray(u1[order]), self.torus.data, self.sphere.data, 0,
+                                CONTINUATION_REACH, POSITION_TOL * self.size, NEWTON_MAX_ITER, dy, ddy, d1, d2,
+                                status)
+        back = np.empty(n, dtype=np.int64)
+        back[order] = np.arange(n)
+        solved, status = ys[back], status[back]
+        if np.any(status == 1):
             raise ValueError("Newton at fixed crank angle failed: the crank angles are too close to a dead "
                              "position or a branch point")
         wrong = self.branch_of(solved) != branch
         if np.any(wrong):
             raise ValueError(f"branch {branch} is not continuous through crank angle "
                              f"{math.degrees(float(u1[wrong][0])):.6g} deg (branches meet there)")
-        return LooperMotion(self, solved, omega, branch, time.perf_counter() - t0)
+        if np.any(status == 2):
+            raise ValueError("a singular point of torus ∩ sphere (the branches meet) lies at crank angle "
+                             f"{math.degrees(float(solved[status == 2][0, 0])):.6g} deg")
+        derivatives = (dy[back], ddy[back], d1[back], d2[back])
+        return LooperMotion(self, solved, omega, branch, time.perf_counter() - t0, derivatives)
+
+
+def state_derivatives(drive, states):
+    """(y', y'', C', C'') in arc length (sign +1) at states (N, 4) on torus ∩ sphere."""
+    n = len(states)
+    dy, ddy = np.empty((n, 4)), np.empty((n, 4))
+    d1, d2 = np.empty((n, 3)), np.empty((n, 3))
+    ok = np.zeros(n, dtype=np.bool_)
+    kc.curve_derivatives_many(states, drive.torus.data, drive.sphere.data, 1.0, dy, ddy, d1, d2, ok)
+    if not np.all(ok):
+        raise ValueError("a singular point of torus ∩ sphere (the branches meet) lies at crank angle "
+                         f"{math.degrees(float(states[~ok][0, 0])):.6g} deg")
+    return dy, ddy, d1, d2
 
 
 class LooperMotion:
@@ -249,17 +280,12 @@ class LooperMotion:
     ds_dt : (N,)                  speed of C (arc length of torus ∩ sphere per unit time)
     """
 
-    def __init__(self, drive, states, omega, branch, wall_time):
+    def __init__(self, drive, states, omega, branch, wall_time, derivatives=None):
         self.drive, self.omega, self.branch = drive, float(omega), branch
         self.states = states
-        n = len(states)
-        dy, ddy = np.empty((n, 4)), np.empty((n, 4))
-        d1, d2 = np.empty((n, 3)), np.empty((n, 3))
-        ok = np.zeros(n, dtype=np.bool_)
-        kc.curve_derivatives_many(states, drive.torus.data, drive.sphere.data, 1.0, dy, ddy, d1, d2, ok)
-        if not np.all(ok):
-            raise ValueError("a singular point of torus ∩ sphere (the branches meet) lies at crank angle "
-                             f"{math.degrees(float(states[~ok][0, 0])):.6g} deg")
+        if derivatives is None:
+            derivatives = state_derivatives(drive, states)
+        dy, ddy, d1, d2 = (np.array(x) for x in derivatives)
         flip = np.where(dy[:, 0] < 0, -1.0, 1.0)        # orient s so that the crank angle grows with it
         dy *= flip[:, None]
         d1 *= flip[:, None]

@@ -42,34 +42,63 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     curves = [contact_curve(a, b, p, settings) for p in contacts]
     radius = SAME_COMPONENT * settings.scale
     p_index = 0 if roles(a, b)[0] is a else 1
-    starts = [edge_start(a, b, point, p_index, fixed, value, settings) for point, fixed, value in edge_points]
-    for seed in seeds:
+    # (point, y, on the curve): exact starts on the edges, then the seeds, located only when one is traced
+    pending = [(point, y, True) for point, y in (edge_start(a, b, point, p_index, fixed, value, settings)
+                                                 for point, fixed, value in edge_points) if y is not None]
+    if seeds:
+        seeds = np.array(seeds, dtype=float).reshape(-1, 3)
+        on = np.maximum(a.distance(seeds), b.distance(seeds)) <= settings.tolerance
+        pending += [(seed, None, bool(exact)) for seed, exact in zip(seeds, on)]
+    pending = drop_traced(pending, curves, radius)
+    while pending:
+        point, y, _ = pending.pop(0)
+        if y is None:
+            try:
+                point, y = locate_on_curve(a, b, point, settings.gap_tol)
+            except TracingError:
+                continue
+            if any(near_curve(c, point, radius)[0] for c in curves):
+                continue
         try:
-            starts.append(locate_on_curve(a, b, seed, settings.gap_tol))
-        except TracingError:
-            continue
-    for start in starts:
-        if start is None:
-            continue
-        point, y = start
-        if any(near_curve(c, point, radius) for c in curves):
-            continue
-        try:
-            curves.append(trace_from(a, b, point, y, settings, time.perf_counter()))
+            curve = trace_from(a, b, point, y, settings, time.perf_counter())
         except TracingError:
             continue            # the seed sits on a singular point: the arms' seeds trace it
+        curves.append(curve)
+        pending = drop_traced(pending, [curve], radius)
     return [c for i, c in enumerate(curves) if not covered(c, curves[:i] + curves[i + 1:], radius)]
 
 
-def near_curve(curve, point, radius):
-    """True where point lies within radius of the curve. A point farther than radius plus half the longest
-    step from every stored point is farther than radius from the curve (each arc between two stored points
-    lies within half its length of one of them), so Curve.closest runs only for points near the curve."""
+def drop_traced(pending, curves, radius):
+    """The pending starts (point, y, on the curve) less those on the curve (within the accuracy asked) and
+    within radius of one of the curves, tested in one query per curve; the others are kept and tested once
+    located."""
+    for curve in curves:
+        exact = [k for k, item in enumerate(pending) if item[2]]
+        if not exact:
+            break
+        hit = near_curve(curve, np.array([pending[k][0] for k in exact]), radius)
+        dropped = {k for k, h in zip(exact, hit) if h}
+        pending = [item for k, item in enumerate(pending) if k not in dropped]
+    return pending
+
+
+def near_curve(curve, points, radius):
+    """Mask (M,) of the points (M, 3) lying within radius of the curve. A point farther than radius plus half
+    the longest step from every stored point is farther than radius from the curve (each arc between two
+    stored points lies within half its length of one of them); a point within radius of a foot point found
+    from the nearest stored point is near; Curve.closest decides the rest."""
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    out = np.zeros(len(points), dtype=bool)
+    ask = np.ones(len(points), dtype=bool)
     if curve.length > 0 and len(curve.points) > 1:
         reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
-        if np.min(np.linalg.norm(curve.points - point, axis=1)) > reach:
-            return False
-    return float(np.min(curve.closest(point)[1])) <= radius
+        ask = np.min(np.linalg.norm(curve.points[None, :, :] - points[:, None, :], axis=2), axis=1) <= reach
+        if ask.any():
+            out[ask] = curve.near_points(points[ask]) <= radius
+            ask &= ~out
+    if ask.any():
+        out[ask] = curve.closest(points[ask])[1] <= radius
+    return out
 
 
 def covered(curve, others, radius):

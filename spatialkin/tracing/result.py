@@ -106,21 +106,22 @@ class Curve:
         idx = np.clip(np.searchsorted(self._lo, s, side="right") - 1, 0, len(self._spans) - 1)
         return s, idx
 
-    def _evaluate(self, s):
-        """Corrected states, points and tangents at s (flattened)."""
+    def _evaluate(self, s, with_params=True):
+        """Corrected states, points and tangents at s (flattened); params is None unless with_params."""
         s, idx = self._locate(np.ravel(s))
         points = np.empty((s.size, 3))
         tangents = np.empty((s.size, 3))
         status = np.empty(s.size, dtype=np.int64)
-        params = np.empty((s.size, 4))
-        for k in np.unique(idx):
-            mask = idx == k
+        params = np.empty((s.size, 4)) if with_params else None
+        for k in (np.unique(idx) if len(self._spans) > 1 else (0,)):
+            mask = idx == k if len(self._spans) > 1 else slice(None)
             span = self._spans[k]
             y = np.ascontiguousarray(span.states(s[mask]).T)
             p, t, st = points[mask], tangents[mask], status[mask]
             kc.project_many(y, span.seg.a, span.seg.b, span.seg.normal, self._gap_tol, NEWTON_MAX_ITER, p, t, st)
             points[mask], tangents[mask], status[mask] = p, t * span.flip * span.seg.sign, st
-            params[mask] = user_params(self.surfaces, y, p, span.seg.a, span.seg.b)
+            if with_params:
+                params[mask] = user_params(self.surfaces, y, p, span.seg.a, span.seg.b)
         return s, points, tangents, params
 
     def __call__(self, s):
@@ -128,19 +129,37 @@ class Curve:
         shape = np.shape(s)
         if self.length == 0:
             return np.broadcast_to(self.points[0], shape + (3,)).copy()
-        _, points, _, _ = self._evaluate(s)
+        _, points, _, _ = self._evaluate(s, with_params=False)
         return points.reshape(shape + (3,))
 
     def tangent(self, s):
         """Unit tangents (..., 3) at s, pointing towards increasing s."""
         shape = np.shape(s)
-        _, _, tangents, _ = self._evaluate(s)
+        _, _, tangents, _ = self._evaluate(s, with_params=False)
         return tangents.reshape(shape + (3,))
 
     def parameters(self, s):
         """(u1, v1, u2, v2) (..., 4) at s (u wrapped to (-pi, pi] where a sphere had to be re-charted)."""
         shape = np.shape(s)
         _, _, _, params = self._evaluate(s)
+        return params.reshape(shape + (4,))
+
+    def predicted_parameters(self, s):
+        """(u1, v1, u2, v2) (..., 4) at s from the solver's dense output alone, without the Newton correction:
+        within the solver's tolerance of the curve, a cheap start for Newton (a sphere's (u, v) are those of
+        the point on surface a, as in parameters())."""
+        shape = np.shape(s)
+        if self.length == 0:
+            return np.broadcast_to(self.params[0], shape + (4,)).copy()
+        s, idx = self._locate(np.ravel(s))
+        params = np.empty((s.size, 4))
+        for k in (np.unique(idx) if len(self._spans) > 1 else (0,)):
+            mask = idx == k if len(self._spans) > 1 else slice(None)
+            span = self._spans[k]
+            y = np.ascontiguousarray(span.states(s[mask]).T)
+            on_a = np.empty((len(y), 3))
+            ks.evaluate(span.seg.a, np.ascontiguousarray(y[:, :2]), on_a)
+            params[mask] = user_params(self.surfaces, y, on_a, span.seg.a, span.seg.b)
         return params.reshape(shape + (4,))
 
     def sample(self, n):
@@ -158,16 +177,29 @@ class Curve:
         # refine the few nearest samples (not only the nearest: the curve may pass close to itself)
         k = min(CLOSEST_CANDIDATES, len(grid))
         cand = grid[np.argpartition(gaps, k - 1, axis=1)[:, :k]].ravel()
-        rep = np.repeat(flat, k, axis=0)
-        for _ in range(CLOSEST_NEWTON_STEPS):
-            cand = cand + np.einsum("ij,ij->i", rep - self(cand), self.tangent(cand))
-            cand = cand if self.closed else np.clip(cand, 0.0, self.length)
-        d = np.linalg.norm(rep - self(cand), axis=1).reshape(-1, k)
-        best = np.argmin(d, axis=1)
-        s = cand.reshape(-1, k)[np.arange(len(flat)), best]
-        dist = np.linalg.norm(flat - self(s), axis=1)
-        s = np.mod(s, self.length) if self.closed else s
+        s, dist = self._foot_points(np.repeat(flat, k, axis=0), cand, CLOSEST_NEWTON_STEPS)
+        best = np.argmin(dist.reshape(-1, k), axis=1)
+        s, dist = s.reshape(-1, k)[np.arange(len(flat)), best], dist.reshape(-1, k)[np.arange(len(flat)), best]
         return s.reshape(pts.shape[:-1]), dist.reshape(pts.shape[:-1])
+
+    def near_points(self, points):
+        """An upper bound (M,) on the distance of each point (M, 3) to the curve, cheaply: the distance to a
+        foot point found by Newton in s from the nearest stored point. Exact for points on or close to the
+        curve (within a fraction of a step); use closest() for the true distance of any point."""
+        pts = np.asarray(points, dtype=float).reshape(-1, 3)
+        if self.length == 0 or len(self.points) < 2:
+            return np.linalg.norm(pts - self.points[0], axis=1)
+        nearest = np.argmin(np.linalg.norm(self.points[None, :, :] - pts[:, None, :], axis=2), axis=1)
+        return self._foot_points(pts, self.s[nearest], CLOSEST_NEWTON_STEPS)[1]
+
+    def _foot_points(self, pts, s, steps):
+        """(s, distance) of foot points of pts (M, 3) on the curve by `steps` Newton steps in s from s (M,)."""
+        for _ in range(steps):
+            _, at, tangent, _ = self._evaluate(s, with_params=False)
+            s = s + np.einsum("ij,ij->i", pts - at, tangent)
+            s = s if self.closed else np.clip(s, 0.0, self.length)
+        s, at, _, _ = self._evaluate(s, with_params=False)
+        return s, np.linalg.norm(pts - at, axis=1)
 
     def _closest_grid(self):
         """Arc lengths and corrected points of the dense grid closest() starts from (computed once: a Curve

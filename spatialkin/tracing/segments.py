@@ -90,19 +90,11 @@ class Settings:
 
 
 def recharted_sphere(data, point, tangent):
-    """Sphere data with its chart turned so that point is at (u, v) = (0, 0) and tangent along +u."""
-    new = data.copy()
-    center = data[ks.ORIGIN:ks.ORIGIN + 3]
-    x = point - center
-    x /= np.linalg.norm(x)
-    z = np.cross(x, tangent)
-    nz = np.linalg.norm(z)
-    if nz < 1e-12:            # tangent not known (zero): any axis normal to x will do
-        z = np.cross(x, np.eye(3)[np.argmin(np.abs(x))])
-        nz = np.linalg.norm(z)
-    z /= nz
-    y = np.cross(z, x)
-    new[ks.ROT:ks.ROT + 9] = np.column_stack([x, y, z]).ravel()
+    """Sphere data with its chart turned so that point is at (u, v) = (0, 0) and tangent along +u (any axis
+    normal to the radius where the tangent is not known, zero)."""
+    new = np.empty_like(data)
+    ks.recharted_sphere(data, np.ascontiguousarray(point, dtype=float), np.ascontiguousarray(tangent, dtype=float),
+                        new)
     return new
 
 

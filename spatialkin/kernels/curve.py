@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .._jit import jit
-from .surfaces import first_derivatives, derivatives
+from .surfaces import derivatives, first_derivatives, frame, second
 
 #: Below this, a 3x3 or 4x4 pivot is treated as zero (relative to the matrix scale).
 PIVOT_EPS = 1e-14
@@ -40,44 +40,57 @@ def norm(a):
 
 
 @jit
-def tangent_from_normals(su1, sv1, su2, sv2, t):
-    """Unit tangent t = N1 x N2 / |N1 x N2| of the intersection; returns sin of the angle between the
-    normals (0 where they are parallel; t is then left as zeros)."""
-    n1 = np.empty(3)
-    n2 = np.empty(3)
-    cross(su1, sv1, n1)
-    cross(su2, sv2, n2)
-    cross(n1, n2, t)
-    c = norm(t)
-    scale = norm(n1) * norm(n2)
-    if c == 0.0 or scale == 0.0:
-        t[:] = 0.0
-        return 0.0
-    for i in range(3):
-        t[i] /= c
-    return c / scale
+def cross3(a, b):
+    """a x b as a 3-tuple (a, b: 3-tuples or arrays)."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 @jit
-def gram_solve(su, sv, w, out, k):
-    """Parameter velocity (du, dv) whose image su*du + sv*dv is the tangent-plane part of w.
+def unit_tangent(su1, sv1, su2, sv2):
+    """(t, sin): the unit tangent N1 x N2 / |N1 x N2| as a 3-tuple and sin of the angle between the normals
+    (0, with t zero, where they are parallel)."""
+    n1 = cross3(su1, sv1)
+    n2 = cross3(su2, sv2)
+    t = cross3(n1, n2)
+    c = norm(t)
+    scale = norm(n1) * norm(n2)
+    if c == 0.0 or scale == 0.0:
+        return (0.0, 0.0, 0.0), 0.0
+    return (t[0] / c, t[1] / c, t[2] / c), c / scale
 
-    Solves [E F; F G] [du; dv] = [w.su; w.sv] and writes du, dv to out[k], out[k + 1].
-    Returns False where the parametrisation is singular (E G - F^2 = 0).
-    """
+
+@jit
+def gram(su, sv, w):
+    """(du, dv, ok): the parameter velocity whose image su*du + sv*dv is the tangent-plane part of w, from
+    [E F; F G] [du; dv] = [w.su; w.sv]; (0, 0, False) where the parametrisation is singular (EG - F^2 = 0)."""
     e = dot(su, su)
     f = dot(su, sv)
     g = dot(sv, sv)
     det = e * g - f * f
     if det <= PIVOT_EPS * (e * g):
-        out[k] = 0.0
-        out[k + 1] = 0.0
-        return False
+        return 0.0, 0.0, False
     bu = dot(w, su)
     bv = dot(w, sv)
-    out[k] = (g * bu - f * bv) / det
-    out[k + 1] = (e * bv - f * bu) / det
-    return True
+    return (g * bu - f * bv) / det, (e * bv - f * bu) / det, True
+
+
+@jit
+def tangent_from_normals(su1, sv1, su2, sv2, t):
+    """Unit tangent t = N1 x N2 / |N1 x N2| of the intersection; returns sin of the angle between the
+    normals (0 where they are parallel; t is then left as zeros)."""
+    tt, c = unit_tangent(su1, sv1, su2, sv2)
+    for i in range(3):
+        t[i] = tt[i]
+    return c
+
+
+@jit
+def gram_solve(su, sv, w, out, k):
+    """gram(su, sv, w) written to out[k], out[k + 1]; returns False where the parametrisation is singular."""
+    du, dv, ok = gram(su, sv, w)
+    out[k] = du
+    out[k + 1] = dv
+    return ok
 
 
 @jit
@@ -165,32 +178,48 @@ def solve_small(m, r, x):
 
 
 @jit
+def min_norm_step(su1, sv1, su2, sv2, gap):
+    """(step, ok): the minimum-norm Gauss-Newton step (4-tuple) in (u1, v1, u2, v2) that removes the gap
+    M1 - M2 to first order, -J^T (J J^T)^-1 gap with J = [su1, sv1, -su2, -sv2], its columns first scaled to
+    unit length (so that surfaces of very different sizes are weighed alike); ok False (step zero) where
+    J J^T is singular (the two tangent planes coincide)."""
+    zero = (0.0, 0.0, 0.0, 0.0)
+    w0 = 1.0 / dot(su1, su1) if dot(su1, su1) > 0.0 else 0.0
+    w1 = 1.0 / dot(sv1, sv1) if dot(sv1, sv1) > 0.0 else 0.0
+    w2 = 1.0 / dot(su2, su2) if dot(su2, su2) > 0.0 else 0.0
+    w3 = 1.0 / dot(sv2, sv2) if dot(sv2, sv2) > 0.0 else 0.0
+    if w0 == 0.0 or w1 == 0.0 or w2 == 0.0 or w3 == 0.0:
+        return zero, False
+    m00 = w0 * su1[0] * su1[0] + w1 * sv1[0] * sv1[0] + w2 * su2[0] * su2[0] + w3 * sv2[0] * sv2[0]
+    m11 = w0 * su1[1] * su1[1] + w1 * sv1[1] * sv1[1] + w2 * su2[1] * su2[1] + w3 * sv2[1] * sv2[1]
+    m22 = w0 * su1[2] * su1[2] + w1 * sv1[2] * sv1[2] + w2 * su2[2] * su2[2] + w3 * sv2[2] * sv2[2]
+    m01 = w0 * su1[0] * su1[1] + w1 * sv1[0] * sv1[1] + w2 * su2[0] * su2[1] + w3 * sv2[0] * sv2[1]
+    m02 = w0 * su1[0] * su1[2] + w1 * sv1[0] * sv1[2] + w2 * su2[0] * su2[2] + w3 * sv2[0] * sv2[2]
+    m12 = w0 * su1[1] * su1[2] + w1 * sv1[1] * sv1[2] + w2 * su2[1] * su2[2] + w3 * sv2[1] * sv2[2]
+    # symmetric 3x3 by cofactors
+    c00 = m11 * m22 - m12 * m12
+    c01 = m12 * m02 - m01 * m22
+    c02 = m01 * m12 - m11 * m02
+    det = m00 * c00 + m01 * c01 + m02 * c02
+    scale = abs(m00) + abs(m11) + abs(m22)
+    if scale == 0.0 or abs(det) <= PIVOT_EPS * scale ** 3:
+        return zero, False
+    c11 = m00 * m22 - m02 * m02
+    c12 = m01 * m02 - m00 * m12
+    c22 = m00 * m11 - m01 * m01
+    w = ((c00 * gap[0] + c01 * gap[1] + c02 * gap[2]) / det,
+         (c01 * gap[0] + c11 * gap[1] + c12 * gap[2]) / det,
+         (c02 * gap[0] + c12 * gap[1] + c22 * gap[2]) / det)
+    return (-dot(su1, w) * w0, -dot(sv1, w) * w1, dot(su2, w) * w2, dot(sv2, w) * w3), True
+
+
+@jit
 def gap_correction(su1, sv1, su2, sv2, gap, out):
-    """Minimum-norm Gauss-Newton step (4,) in (u1, v1, u2, v2) that removes the gap M1 - M2 to first order:
-    out = -J^T (J J^T)^-1 gap with J = [su1, sv1, -su2, -sv2], its columns first scaled to unit length (so
-    that surfaces of very different sizes are weighed alike). Returns False (out zero) if J J^T is singular
-    (the two tangent planes coincide)."""
-    n0 = norm(su1)
-    n1 = norm(sv1)
-    n2 = norm(su2)
-    n3 = norm(sv2)
-    if n0 == 0.0 or n1 == 0.0 or n2 == 0.0 or n3 == 0.0:
-        out[:] = 0.0
-        return False
-    jj = np.empty((3, 3))
-    for i in range(3):
-        for j in range(3):
-            jj[i, j] = (su1[i] * su1[j] / (n0 * n0) + sv1[i] * sv1[j] / (n1 * n1)
-                        + su2[i] * su2[j] / (n2 * n2) + sv2[i] * sv2[j] / (n3 * n3))
-    w = np.empty(3)
-    if not solve3(jj, gap, w):
-        out[:] = 0.0
-        return False
-    out[0] = -dot(su1, w) / (n0 * n0)
-    out[1] = -dot(sv1, w) / (n1 * n1)
-    out[2] = dot(su2, w) / (n2 * n2)
-    out[3] = dot(sv2, w) / (n3 * n3)
-    return True
+    """min_norm_step written to out (4,); returns its ok flag."""
+    step, ok = min_norm_step(su1, sv1, su2, sv2, gap)
+    for i in range(4):
+        out[i] = step[i]
+    return ok
 
 
 @jit
@@ -215,41 +244,38 @@ def dragilev_rhs(s, y, a, b, sign, pullback):
     ndarray (4,)
         dy/ds. Zero where the normals are parallel or a parametrisation is singular.
     """
-    p1 = np.empty(3)
-    su1 = np.empty(3)
-    sv1 = np.empty(3)
-    p2 = np.empty(3)
-    su2 = np.empty(3)
-    sv2 = np.empty(3)
-    first_derivatives(a, y[0], y[1], p1, su1, sv1)
-    first_derivatives(b, y[2], y[3], p2, su2, sv2)
-    t = np.empty(3)
-    dy = np.zeros(4)
-    if tangent_from_normals(su1, sv1, su2, sv2, t) == 0.0:
-        return dy
-    for i in range(3):
-        t[i] *= sign
-    gram_solve(su1, sv1, t, dy, 0)
-    gram_solve(su2, sv2, t, dy, 2)
-    if pullback > 0.0:
-        gap = p1 - p2
-        corr = np.empty(4)
-        if gap_correction(su1, sv1, su2, sv2, gap, corr):
-            for i in range(4):
-                dy[i] += pullback * corr[i]
+    dy = np.empty(4)
+    dragilev_into(y, a, b, sign, pullback, dy)
     return dy
+
+
+@jit
+def dragilev_into(y, a, b, sign, pullback, out):
+    """dragilev_rhs written to out (4,), without allocating (the compiled integrator's hot path)."""
+    p1, su1, sv1 = frame(a, y[0], y[1])
+    p2, su2, sv2 = frame(b, y[2], y[3])
+    t, c = unit_tangent(su1, sv1, su2, sv2)
+    if c == 0.0:
+        for i in range(4):
+            out[i] = 0.0
+        return
+    t = (sign * t[0], sign * t[1], sign * t[2])
+    out[0], out[1], _ = gram(su1, sv1, t)
+    out[2], out[3], _ = gram(su2, sv2, t)
+    if pullback > 0.0:
+        step, ok = min_norm_step(su1, sv1, su2, sv2, (p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2]))
+        if ok:
+            for i in range(4):
+                out[i] += pullback * step[i]
 
 
 @jit
 def curve_frame(y, a, b, point, tangent):
     """Point M1(y) and unit tangent N1 x N2/|.| at y; returns sin of the normals' angle."""
-    su1 = np.empty(3)
-    sv1 = np.empty(3)
-    p2 = np.empty(3)
-    su2 = np.empty(3)
-    sv2 = np.empty(3)
-    first_derivatives(a, y[0], y[1], point, su1, sv1)
-    first_derivatives(b, y[2], y[3], p2, su2, sv2)
+    p1, su1, sv1 = frame(a, y[0], y[1])
+    _, su2, sv2 = frame(b, y[2], y[3])
+    for i in range(3):
+        point[i] = p1[i]
     return tangent_from_normals(su1, sv1, su2, sv2, tangent)
 
 
@@ -268,23 +294,18 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
         parallel normals, keeps the steps above gap_tol while the point sits on both surfaces), or -1 if
         Newton failed (singular system or no convergence within max_iter).
     """
-    p1 = np.empty(3)
-    su1 = np.empty(3)
-    sv1 = np.empty(3)
-    p2 = np.empty(3)
-    su2 = np.empty(3)
-    sv2 = np.empty(3)
     m = np.empty((4, 4))
     r = np.empty(4)
     dx = np.empty(4)
+    piv = np.empty(4, dtype=np.int64)
     use_plane = dot(t, t) > 0.0
     step = np.inf
     prev_step = np.inf
     for it in range(max_iter + 1):
-        first_derivatives(a, y[0], y[1], p1, su1, sv1)
-        first_derivatives(b, y[2], y[3], p2, su2, sv2)
-        gap = p1 - p2
-        plane = dot(p1 - q, t) if use_plane else 0.0
+        p1, su1, sv1 = frame(a, y[0], y[1])
+        p2, su2, sv2 = frame(b, y[2], y[3])
+        gap = (p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2])
+        plane = ((p1[0] - q[0]) * t[0] + (p1[1] - q[1]) * t[1] + (p1[2] - q[2]) * t[2]) if use_plane else 0.0
         err = max(norm(gap), abs(plane))
         if it > 0 and err <= gap_tol and (step <= gap_tol or step > STAGNATION * prev_step):
             return it
@@ -303,7 +324,9 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
             m[3, 2] = 0.0
             m[3, 3] = 0.0
             r[3] = -plane
-            if not solve_small(m, r, dx):
+            if lu_factor(m, piv):
+                lu_solve(m, piv, r, dx)
+            else:
                 # a parametrisation degenerates (an apex, a pole): take the minimum-norm step instead
                 if not gap_correction(su1, sv1, su2, sv2, gap, dx):
                     return -1
@@ -313,7 +336,10 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
         for i in range(4):
             y[i] += dx[i]
         # the size of the step in space, measured on both surfaces
-        step = max(norm(su1 * dx[0] + sv1 * dx[1]), norm(su2 * dx[2] + sv2 * dx[3]))
+        step = max(norm((su1[0] * dx[0] + sv1[0] * dx[1], su1[1] * dx[0] + sv1[1] * dx[1],
+                         su1[2] * dx[0] + sv1[2] * dx[1])),
+                   norm((su2[0] * dx[2] + sv2[0] * dx[3], su2[1] * dx[2] + sv2[1] * dx[3],
+                         su2[2] * dx[2] + sv2[2] * dx[3])))
         if err <= gap_tol and step <= gap_tol:
             return it + 1
     return -1
@@ -344,15 +370,9 @@ def degeneracy(y, a, b, area_a, area_b):
     """Smallest of: sin(angle between the normals), and the relative area element sqrt(EG - F^2)/(E G)^(1/2)
     of each surface whose flag (area_a, area_b) is set. Zero at a singular point of the curve or of a
     parametrisation."""
-    p = np.empty(3)
-    su1 = np.empty(3)
-    sv1 = np.empty(3)
-    su2 = np.empty(3)
-    sv2 = np.empty(3)
-    first_derivatives(a, y[0], y[1], p, su1, sv1)
-    first_derivatives(b, y[2], y[3], p, su2, sv2)
-    t = np.empty(3)
-    value = tangent_from_normals(su1, sv1, su2, sv2, t)
+    _, su1, sv1 = frame(a, y[0], y[1])
+    _, su2, sv2 = frame(b, y[2], y[3])
+    _, value = unit_tangent(su1, sv1, su2, sv2)
     if area_a:
         value = min(value, relative_area(su1, sv1))
     if area_b:
@@ -363,15 +383,12 @@ def degeneracy(y, a, b, area_a, area_b):
 @jit
 def area_degeneracy(y, a, b, area_a, area_b):
     """Smallest relative area element of the flagged surfaces' parametrisations at y (1 if none flagged)."""
-    p = np.empty(3)
-    su = np.empty(3)
-    sv = np.empty(3)
     value = 1.0
     if area_a:
-        first_derivatives(a, y[0], y[1], p, su, sv)
+        _, su, sv = frame(a, y[0], y[1])
         value = min(value, relative_area(su, sv))
     if area_b:
-        first_derivatives(b, y[2], y[3], p, su, sv)
+        _, su, sv = frame(b, y[2], y[3])
         value = min(value, relative_area(su, sv))
     return value
 
@@ -380,12 +397,10 @@ def area_degeneracy(y, a, b, area_a, area_b):
 def relative_area(su, sv):
     """|su x sv| / (|su| |sv|) measured against the length scale of the larger derivative: zero where the
     parametrisation degenerates (a derivative vanishes or they become parallel)."""
-    n = np.empty(3)
-    cross(su, sv, n)
     big = max(dot(su, su), dot(sv, sv))
     if big == 0.0:
         return 0.0
-    return norm(n) / big
+    return norm(cross3(su, sv)) / big
 
 
 @jit
@@ -402,11 +417,9 @@ def degeneracy_slope(y, a, b, sign, h):
 @jit
 def closure_value(y, a, start, direction, offset):
     """Signed distance of M1(y) past the plane through start normal to direction, plus offset."""
-    p = np.empty(3)
-    su = np.empty(3)
-    sv = np.empty(3)
-    first_derivatives(a, y[0], y[1], p, su, sv)
-    return dot(p - start, direction) + offset
+    p, _, _ = frame(a, y[0], y[1])
+    return (p[0] - start[0]) * direction[0] + (p[1] - start[1]) * direction[1] + (p[2] - start[2]) * direction[2] \
+        + offset
 
 
 @jit
@@ -419,36 +432,40 @@ def curve_derivatives(y, a, b, sign, dy, ddy, d1, d2):
     then S_u u'' + S_v v'' = C'' - Q_i is solved in each surface's Gram system. Returns False at a
     singular point.
     """
-    e1 = np.empty((6, 3))
-    e2 = np.empty((6, 3))
-    derivatives(a, y[0], y[1], e1)
-    derivatives(b, y[2], y[3], e2)
-    if tangent_from_normals(e1[1], e1[2], e2[1], e2[2], d1) == 0.0:
+    p1, su1, sv1 = frame(a, y[0], y[1])
+    p2, su2, sv2 = frame(b, y[2], y[3])
+    t, c = unit_tangent(su1, sv1, su2, sv2)
+    if c == 0.0:
         return False
     for i in range(3):
-        d1[i] *= sign
-    gram_solve(e1[1], e1[2], d1, dy, 0)
-    gram_solve(e2[1], e2[2], d1, dy, 2)
-    q1 = e1[3] * dy[0] * dy[0] + 2.0 * e1[4] * dy[0] * dy[1] + e1[5] * dy[1] * dy[1]
-    q2 = e2[3] * dy[2] * dy[2] + 2.0 * e2[4] * dy[2] * dy[3] + e2[5] * dy[3] * dy[3]
-    n1 = np.empty(3)
-    n2 = np.empty(3)
-    cross(e1[1], e1[2], n1)
-    cross(e2[1], e2[2], n2)
-    m = np.empty((3, 3))
-    r = np.empty(3)
-    for j in range(3):
-        m[0, j] = n1[j]
-        m[1, j] = n2[j]
-        m[2, j] = d1[j]
-    r[0] = dot(n1, q1)
-    r[1] = dot(n2, q2)
-    r[2] = 0.0
-    if not solve_small(m, r, d2):
+        d1[i] = sign * t[i]
+    dy[0], dy[1], _ = gram(su1, sv1, d1)
+    dy[2], dy[3], _ = gram(su2, sv2, d1)
+    q1 = _quadratic(second(a, y[0], y[1]), dy[0], dy[1])
+    q2 = _quadratic(second(b, y[2], y[3]), dy[2], dy[3])
+    n1 = cross3(su1, sv1)
+    n2 = cross3(su2, sv2)
+    # rows n1, n2, t: C'' = (r1 (n2 x t) + r2 (t x n1)) / det with r1 = n1.q1, r2 = n2.q2 (t.C'' = 0)
+    c12 = cross3(n2, d1)
+    c20 = cross3(d1, n1)
+    det = dot(n1, c12)
+    if abs(det) <= PIVOT_EPS * norm(n1) * norm(n2):
         return False
-    gram_solve(e1[1], e1[2], d2 - q1, ddy, 0)
-    gram_solve(e2[1], e2[2], d2 - q2, ddy, 2)
+    r1 = dot(n1, q1) / det
+    r2 = dot(n2, q2) / det
+    for i in range(3):
+        d2[i] = r1 * c12[i] + r2 * c20[i]
+    ddy[0], ddy[1], _ = gram(su1, sv1, (d2[0] - q1[0], d2[1] - q1[1], d2[2] - q1[2]))
+    ddy[2], ddy[3], _ = gram(su2, sv2, (d2[0] - q2[0], d2[1] - q2[1], d2[2] - q2[2]))
     return True
+
+
+@jit
+def _quadratic(sec, du, dv):
+    """S_uu du^2 + 2 S_uv du dv + S_vv dv^2 (a 3-tuple) from sec = (S_uu, S_uv, S_vv)."""
+    return (sec[0][0] * du * du + 2.0 * sec[1][0] * du * dv + sec[2][0] * dv * dv,
+            sec[0][1] * du * du + 2.0 * sec[1][1] * du * dv + sec[2][1] * dv * dv,
+            sec[0][2] * du * du + 2.0 * sec[1][2] * du * dv + sec[2][2] * dv * dv)
 
 
 @jit
@@ -469,34 +486,32 @@ def newton_fixed_many(ys, a, b, fixed, gap_tol, max_iter, ok):
 @jit
 def newton_fixed_row(y, a, b, fixed, gap_tol, max_iter):
     """newton_fixed_many for one state y (4,), in place; True once |M1 - M2| <= gap_tol."""
-    e1 = np.empty((6, 3))
-    e2 = np.empty((6, 3))
     m = np.empty((3, 3))
     r = np.empty(3)
     dx = np.empty(3)
+    piv = np.empty(3, dtype=np.int64)
     done = False
     for _ in range(max_iter):
-        first_derivatives(a, y[0], y[1], e1[0], e1[1], e1[2])
-        first_derivatives(b, y[2], y[3], e2[0], e2[1], e2[2])
-        gap = e1[0] - e2[0]
+        p1, su1, sv1 = frame(a, y[0], y[1])
+        p2, su2, sv2 = frame(b, y[2], y[3])
+        gap = (p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2])
         if norm(gap) <= gap_tol:
             if done:
                 break
             done = True      # converged: one more step polishes to round-off
+        columns = (su1, sv1, su2, sv2)
         col = 0
         for i in range(4):
             if i == fixed:
                 continue
             for j in range(3):
-                if i < 2:
-                    m[j, col] = e1[1 + i, j]
-                else:
-                    m[j, col] = -e2[1 + i - 2, j]
+                m[j, col] = columns[i][j] if i < 2 else -columns[i][j]
             col += 1
         for j in range(3):
             r[j] = -gap[j]
-        if not solve_small(m, r, dx):
+        if not lu_factor(m, piv):
             break
+        lu_solve(m, piv, r, dx)
         col = 0
         for i in range(4):
             if i == fixed:

@@ -20,7 +20,7 @@ scipy.integrate._ivp.rk.RK45 and common.select_initial_step (the coefficients an
 import numpy as np
 
 from .._jit import jit
-from .curve import area_degeneracy, closure_value, degeneracy, dragilev_rhs
+from .curve import area_degeneracy, closure_value, degeneracy, dragilev_into, dragilev_rhs
 
 # --- status codes returned by dopri_segment ---------------------------------------------------------------
 #: Reached the end of the interval (max_length).
@@ -212,6 +212,7 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
     nfev += 1
     k = np.empty((7, n))
     y_new = np.empty(n)
+    y_stage = np.empty(n)
     err = np.empty(n)
     scale = np.empty(n)
     q = np.empty((n, 4))
@@ -238,19 +239,19 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
             # stages
             k[0] = f
             for s in range(1, 6):
-                dy = np.zeros(n)
-                for j in range(s):
-                    if A[s, j] != 0.0:
-                        for i in range(n):
-                            dy[i] += A[s, j] * k[j, i]
-                k[s] = dragilev_rhs(0.0, y + step * dy, a, b, sign, pullback)
+                for i in range(n):
+                    acc = 0.0
+                    for j in range(s):
+                        acc += A[s, j] * k[j, i]
+                    y_stage[i] = y[i] + step * acc
+                dragilev_into(y_stage, a, b, sign, pullback, k[s])
             for i in range(n):
                 acc = 0.0
                 for j in range(6):
                     acc += B[j] * k[j, i]
                 y_new[i] = y[i] + step * acc
-            f_new = dragilev_rhs(0.0, y_new, a, b, sign, pullback)
-            k[6] = f_new
+            dragilev_into(y_new, a, b, sign, pullback, k[6])
+            f_new = k[6]
             nfev += 6
             for i in range(n):
                 acc = 0.0
@@ -338,7 +339,7 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
         count += 1
         t = t_new
         y[:] = y_new
-        f = f_new
+        f[:] = f_new
         if pole_a and abs(np.cos(y[1])) < pole_guard:
             status = CHART_A
             break

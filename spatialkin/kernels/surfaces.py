@@ -69,78 +69,95 @@ def to_local(data, point, out):
 
 
 @jit
-def local_derivatives(data, u, v, loc):
-    """Local point and derivatives (6, 3): rows POINT, DU, DV, DUU, DUV, DVV."""
-    loc[:, :] = 0.0
+def local_frame(data, u, v):
+    """Local point and first derivatives (point, S_u, S_v), each a 3-tuple: no allocation (the hot path)."""
     kind = int(data[KIND])
     cu = math.cos(u)
     su = math.sin(u)
     if kind == PLANE:
-        loc[POINT, 0] = u
-        loc[POINT, 1] = v
-        loc[DU, 0] = 1.0
-        loc[DV, 1] = 1.0
-    elif kind == SPHERE or kind == TORUS:
-        if kind == SPHERE:
-            big = 0.0
-            small = data[P0]
-        else:
-            big = data[P0]
-            small = data[P1]
+        return (u, v, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)
+    if kind == SPHERE or kind == TORUS:
+        big = 0.0 if kind == SPHERE else data[P0]
+        small = data[P0] if kind == SPHERE else data[P1]
         cv = math.cos(v)
         sv = math.sin(v)
         w = big + small * cv
-        loc[POINT, 0] = w * cu
-        loc[POINT, 1] = w * su
-        loc[POINT, 2] = small * sv
-        loc[DU, 0] = -w * su
-        loc[DU, 1] = w * cu
-        loc[DV, 0] = -small * sv * cu
-        loc[DV, 1] = -small * sv * su
-        loc[DV, 2] = small * cv
-        loc[DUU, 0] = -w * cu
-        loc[DUU, 1] = -w * su
-        loc[DUV, 0] = small * sv * su
-        loc[DUV, 1] = -small * sv * cu
-        loc[DVV, 0] = -small * cv * cu
-        loc[DVV, 1] = -small * cv * su
-        loc[DVV, 2] = -small * sv
-    else:  # CYLINDER, CONE: revolution of rho(v) = P0 + P1 v
-        a = data[P0]
-        b = data[P1]
-        rho = a + b * v
-        loc[POINT, 0] = rho * cu
-        loc[POINT, 1] = rho * su
-        loc[POINT, 2] = v
-        loc[DU, 0] = -rho * su
-        loc[DU, 1] = rho * cu
-        loc[DV, 0] = b * cu
-        loc[DV, 1] = b * su
-        loc[DV, 2] = 1.0
-        loc[DUU, 0] = -rho * cu
-        loc[DUU, 1] = -rho * su
-        loc[DUV, 0] = -b * su
-        loc[DUV, 1] = b * cu
+        return (w * cu, w * su, small * sv), (-w * su, w * cu, 0.0), (-small * sv * cu, -small * sv * su, small * cv)
+    # CYLINDER, CONE: revolution of rho(v) = P0 + P1 v
+    rho = data[P0] + data[P1] * v
+    return (rho * cu, rho * su, v), (-rho * su, rho * cu, 0.0), (data[P1] * cu, data[P1] * su, 1.0)
+
+
+@jit
+def local_second(data, u, v):
+    """Local second derivatives (S_uu, S_uv, S_vv), each a 3-tuple."""
+    kind = int(data[KIND])
+    cu = math.cos(u)
+    su = math.sin(u)
+    if kind == PLANE:
+        return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+    if kind == SPHERE or kind == TORUS:
+        big = 0.0 if kind == SPHERE else data[P0]
+        small = data[P0] if kind == SPHERE else data[P1]
+        cv = math.cos(v)
+        sv = math.sin(v)
+        w = big + small * cv
+        return ((-w * cu, -w * su, 0.0), (small * sv * su, -small * sv * cu, 0.0),
+                (-small * cv * cu, -small * cv * su, -small * sv))
+    rho = data[P0] + data[P1] * v
+    b = data[P1]
+    return (-rho * cu, -rho * su, 0.0), (-b * su, b * cu, 0.0), (0.0, 0.0, 0.0)
+
+
+@jit
+def rotated(data, x):
+    """rotation @ x for a 3-tuple x, as a 3-tuple."""
+    return (data[ROT] * x[0] + data[ROT + 1] * x[1] + data[ROT + 2] * x[2],
+            data[ROT + 3] * x[0] + data[ROT + 4] * x[1] + data[ROT + 5] * x[2],
+            data[ROT + 6] * x[0] + data[ROT + 7] * x[1] + data[ROT + 8] * x[2])
+
+
+@jit
+def frame(data, u, v):
+    """Global point and first derivatives (point, S_u, S_v), each a 3-tuple (no allocation)."""
+    lp, lu, lv = local_frame(data, u, v)
+    r = rotated(data, lp)
+    return (data[ORIGIN] + r[0], data[ORIGIN + 1] + r[1], data[ORIGIN + 2] + r[2]), rotated(data, lu), rotated(data, lv)
+
+
+@jit
+def second(data, u, v):
+    """Global second derivatives (S_uu, S_uv, S_vv), each a 3-tuple."""
+    luu, luv, lvv = local_second(data, u, v)
+    return rotated(data, luu), rotated(data, luv), rotated(data, lvv)
+
+
+@jit
+def local_derivatives(data, u, v, loc):
+    """Local point and derivatives (6, 3): rows POINT, DU, DV, DUU, DUV, DVV."""
+    rows = local_frame(data, u, v) + local_second(data, u, v)
+    for i in range(6):
+        for j in range(3):
+            loc[i, j] = rows[i][j]
 
 
 @jit
 def derivatives(data, u, v, out):
     """Global point and its first and second derivatives in (u, v), written to out (6, 3)."""
-    loc = np.empty((6, 3))
-    local_derivatives(data, u, v, loc)
-    to_global(data, loc[POINT], out[POINT])
-    for row in range(1, 6):
-        rotate(data, loc[row], out[row])
+    rows = frame(data, u, v) + second(data, u, v)
+    for i in range(6):
+        for j in range(3):
+            out[i, j] = rows[i][j]
 
 
 @jit
 def first_derivatives(data, u, v, point, su, sv):
-    """Global point and first derivatives (the hot path of the right-hand side)."""
-    loc = np.empty((6, 3))
-    local_derivatives(data, u, v, loc)
-    to_global(data, loc[POINT], point)
-    rotate(data, loc[DU], su)
-    rotate(data, loc[DV], sv)
+    """Global point and first derivatives, written to point, su, sv (3,)."""
+    rows = frame(data, u, v)
+    for j in range(3):
+        point[j] = rows[0][j]
+        su[j] = rows[1][j]
+        sv[j] = rows[2][j]
 
 
 @jit

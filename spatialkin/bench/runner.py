@@ -90,8 +90,9 @@ class Row:
 
 
 def best_time(func, repeats):
-    """(best wall time in seconds, the last result) of `repeats` calls of func()."""
-    best, out = np.inf, None
+    """(best wall time in seconds, the last result) of `repeats` calls of func(), after one untimed call (numba's
+    cache loaded, first-call work done: warm timings)."""
+    best, out = np.inf, func()
     for _ in range(max(1, repeats)):
         t0 = time.perf_counter()
         out = func()

@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .._jit import jit
-from .surfaces import derivatives, first_derivatives, frame, second
+from .surfaces import frame, second
 
 #: Below this, a 3x3 or 4x4 pivot is treated as zero (relative to the matrix scale).
 PIVOT_EPS = 1e-14

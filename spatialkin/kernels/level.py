@@ -8,8 +8,8 @@ import math
 import numpy as np
 
 from .._jit import jit
-from .curve import solve_small
-from .surfaces import POINT, DU, DV, derivatives, implicit_value
+from .curve import relative_area, solve_small
+from .surfaces import frame, implicit_value
 
 #: Parameter step of the central differences, for a parameter of unit scale (angles).
 FD_STEP_GRAD = 1e-6
@@ -18,9 +18,8 @@ FD_STEP_HESS = 1e-4
 
 @jit
 def level_value(p, q, u, v):
-    loc = np.empty((6, 3))
-    derivatives(p, u, v, loc)
-    return implicit_value(q, loc[POINT])
+    point, _, _ = frame(p, u, v)
+    return implicit_value(q, point)
 
 
 @jit
@@ -80,23 +79,29 @@ def critical_newton(p, q, starts, param_scale, max_iter, out, status):
 
 
 @jit
+def steepest(p, q, u, v, h):
+    """(du, dv, speed2): G^-1 grad g at (u, v), the parameter velocity of steepest ascent, and |grad_S g|^2
+    (the squared rate of change of g per unit length on P); speed2 = -1 where P's metric degenerates."""
+    _, su, sv = frame(p, u, v)
+    e = su[0] * su[0] + su[1] * su[1] + su[2] * su[2]
+    f = su[0] * sv[0] + su[1] * sv[1] + su[2] * sv[2]
+    g = sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]
+    det = e * g - f * f
+    if det <= 0.0:
+        return 0.0, 0.0, -1.0
+    g_u = (level_value(p, q, u + h[0], v) - level_value(p, q, u - h[0], v)) / (2 * h[0])
+    g_v = (level_value(p, q, u, v + h[1]) - level_value(p, q, u, v - h[1])) / (2 * h[1])
+    du = (g * g_u - f * g_v) / det
+    dv = (e * g_v - f * g_u) / det
+    return du, dv, du * g_u + dv * g_v
+
+
+@jit
 def gradient_flow_rhs(t, x, p, q, sigma, h, saturation):
     """d(u, v)/dtau of the gradient flow of g on P, sigma * G^-1 grad g / max(|grad_S g|, saturation):
     unit speed in space where the gradient is steep, slowing smoothly into an extremum (no chattering)."""
-    loc = np.empty((6, 3))
-    derivatives(p, x[0], x[1], loc)
-    e = loc[DU, 0] ** 2 + loc[DU, 1] ** 2 + loc[DU, 2] ** 2
-    f = loc[DU, 0] * loc[DV, 0] + loc[DU, 1] * loc[DV, 1] + loc[DU, 2] * loc[DV, 2]
-    g = loc[DV, 0] ** 2 + loc[DV, 1] ** 2 + loc[DV, 2] ** 2
-    det = e * g - f * f
-    grad = np.empty(2)
-    level_gradient(p, q, x[0], x[1], h, grad)
     out = np.zeros(2)
-    if det <= 0.0:
-        return out
-    du = (g * grad[0] - f * grad[1]) / det
-    dv = (e * grad[1] - f * grad[0]) / det
-    speed2 = du * grad[0] + dv * grad[1]        # |grad_S g|^2
+    du, dv, speed2 = steepest(p, q, x[0], x[1], h)
     if speed2 <= 0.0:
         return out
     speed = max(math.sqrt(speed2), saturation)
@@ -108,29 +113,11 @@ def gradient_flow_rhs(t, x, p, q, sigma, h, saturation):
 @jit
 def surface_gradient_norm(p, q, u, v, h):
     """|grad_S g| at (u, v): the rate of change of g per unit length on P along its steepest direction."""
-    loc = np.empty((6, 3))
-    derivatives(p, u, v, loc)
-    e = loc[DU, 0] ** 2 + loc[DU, 1] ** 2 + loc[DU, 2] ** 2
-    f = loc[DU, 0] * loc[DV, 0] + loc[DU, 1] * loc[DV, 1] + loc[DU, 2] * loc[DV, 2]
-    g = loc[DV, 0] ** 2 + loc[DV, 1] ** 2 + loc[DV, 2] ** 2
-    det = e * g - f * f
-    grad = np.empty(2)
-    level_gradient(p, q, u, v, h, grad)
-    if det <= 0.0:
-        return 0.0
-    s2 = ((g * grad[0] - f * grad[1]) * grad[0] + (e * grad[1] - f * grad[0]) * grad[1]) / det
-    return math.sqrt(max(s2, 0.0))
+    return math.sqrt(max(steepest(p, q, u, v, h)[2], 0.0))
 
 
 @jit
 def relative_area_at(p, u, v):
     """|S_u x S_v| / max(|S_u|^2, |S_v|^2) of P at (u, v): zero where its parametrisation collapses."""
-    loc = np.empty((6, 3))
-    derivatives(p, u, v, loc)
-    nx = loc[DU, 1] * loc[DV, 2] - loc[DU, 2] * loc[DV, 1]
-    ny = loc[DU, 2] * loc[DV, 0] - loc[DU, 0] * loc[DV, 2]
-    nz = loc[DU, 0] * loc[DV, 1] - loc[DU, 1] * loc[DV, 0]
-    big = max(loc[DU, 0] ** 2 + loc[DU, 1] ** 2 + loc[DU, 2] ** 2, loc[DV, 0] ** 2 + loc[DV, 1] ** 2 + loc[DV, 2] ** 2)
-    if big == 0.0:
-        return 0.0
-    return math.sqrt(nx * nx + ny * ny + nz * nz) / big
+    _, su, sv = frame(p, u, v)
+    return relative_area(su, sv)

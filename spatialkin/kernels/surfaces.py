@@ -196,9 +196,12 @@ def implicit_local(data, q):
 @jit
 def implicit_value(data, point):
     """Signed implicit value at a global point (see ``implicit_local``)."""
-    q = np.empty(3)
-    to_local(data, point, q)
-    return implicit_local(data, q)
+    d0 = point[0] - data[ORIGIN]
+    d1 = point[1] - data[ORIGIN + 1]
+    d2 = point[2] - data[ORIGIN + 2]
+    return implicit_local(data, (data[ROT] * d0 + data[ROT + 3] * d1 + data[ROT + 6] * d2,
+                                 data[ROT + 1] * d0 + data[ROT + 4] * d1 + data[ROT + 7] * d2,
+                                 data[ROT + 2] * d0 + data[ROT + 5] * d1 + data[ROT + 8] * d2))
 
 
 @jit
@@ -312,9 +315,14 @@ def evaluate(data, uv, out):
 
 
 @jit
-def recharted_sphere(data, point, tangent, out):
-    """out = sphere data with its chart turned so that point is at (u, v) = (0, 0) and tangent along +u; a
-    zero tangent (not known) takes any axis normal to the radius."""
+def recharted_sphere(data, point, tangent, bend, out):
+    """out = sphere data with its chart turned so that point is at (u, v) = (0, 0).
+
+    The equator runs along the tangent; but where the curve's curvature vector `bend` (C'', zero if not
+    known) shows it bending round a small circle of angular radius below 60 degrees, the equator runs
+    through that circle's centre instead, so that a loop close to the circle stays within 60 degrees of the
+    equator (no re-charting on the way round). A zero tangent takes any axis normal to the radius.
+    """
     out[:] = data
     x = np.empty(3)
     for i in range(3):
@@ -323,7 +331,18 @@ def recharted_sphere(data, point, tangent, out):
     for i in range(3):
         x[i] /= nx
     z = np.empty(3)
-    _unit_cross(x, tangent, z)
+    z[:] = 0.0
+    k2 = bend[0] * bend[0] + bend[1] * bend[1] + bend[2] * bend[2]
+    if k2 > 0.0:
+        # the osculating circle lies on the sphere: its centre point + C''/|C''|^2 gives the circle's axis
+        c = np.empty(3)
+        for i in range(3):
+            c[i] = point[i] + bend[i] / k2 - data[ORIGIN + i]
+        nc = math.sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2])
+        if nc > 0.0 and (x[0] * c[0] + x[1] * c[1] + x[2] * c[2]) > 0.5 * nc:
+            _unit_cross(x, c, z)
+    if z[0] == 0.0 and z[1] == 0.0 and z[2] == 0.0:
+        _unit_cross(x, tangent, z)
     if z[0] == 0.0 and z[1] == 0.0 and z[2] == 0.0:
         axis = np.zeros(3)
         axis[np.argmin(np.abs(x))] = 1.0

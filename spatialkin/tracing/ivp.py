@@ -132,7 +132,7 @@ def compiled_segment(a, b, y, sign, settings, start, direction, s_arm, t_bound):
             lo[idx] = max(lo[idx], bound)
         else:
             hi[idx] = min(hi[idx], bound)
-    atol = np.ascontiguousarray(np.broadcast_to(np.asarray(settings.atol, dtype=float), (4,)))
+    atol = settings.atol
     watch = HANDOFF_MARGIN * max(WATCH_BELOW, settings.singular_tol)
     return kd.dopri_segment(np.ascontiguousarray(y, dtype=float), a, b, float(sign), settings.pullback,
                             float(t_bound),
@@ -153,6 +153,12 @@ def at_outer_edge(a, b, y, sign):
     return False
 
 
+def curvature_vector(y, a, b):
+    """C'' (3,) of the curve at the state y (charts a, b), or None at a singular point."""
+    dy, ddy, d1, d2 = np.empty(4), np.empty(4), np.empty(3), np.empty(3)
+    return d2 if kc.curve_derivatives(np.ascontiguousarray(y, dtype=float), a, b, 1.0, dy, ddy, d1, d2) else None
+
+
 def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     """Integrate one direction from point (on the curve, unit tangent N1 x N2/|.| there).
 
@@ -171,6 +177,10 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     for _ in range(MAX_SEGMENTS):
         y_prev = y
         a, b, y = charts_at(a_user, b_user, point, sign * tangent, y)
+        if ks.SPHERE in (int(a_user[ks.KIND]), int(b_user[ks.KIND])):
+            bend = curvature_vector(y, a, b)
+            if bend is not None:
+                a, b, y = charts_at(a_user, b_user, point, sign * tangent, y, bend)
         y, point, tangent, ok = project_state(y, a, b, settings)
         if not ok and branch.segments and not np.any(branch.segments[-1].normal):
             # a restart beside a singular point: pass it from the last integrated segment instead

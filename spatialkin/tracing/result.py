@@ -215,11 +215,10 @@ class Curve:
         return np.stack([surf.distance(pts) for surf in self.surfaces], axis=-1)
 
     def _measure(self):
-        worst = float(np.max(self.distances())) if len(self.points) else 0.0
+        pts = self.points
         if len(self.s) > 1 and self.length > 0:
-            mid = 0.5 * (self.s[1:] + self.s[:-1])
-            worst = max(worst, float(np.max(self.distances(self(mid)))))
-        return worst
+            pts = np.vstack([pts, self(0.5 * (self.s[1:] + self.s[:-1]))])
+        return float(np.max(self.distances(pts))) if len(pts) else 0.0
 
     def __len__(self):
         return len(self.points)

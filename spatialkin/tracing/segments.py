@@ -3,6 +3,7 @@
 A branch is integrated segment by segment (see spatialkin.tracing.ivp); each segment keeps the charts it
 was integrated in (a sphere is re-charted away from its poles) and its dense output.
 """
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -78,7 +79,7 @@ class Settings:
     """Numerical settings of one trace (absolute lengths already scaled)."""
     method: str
     rtol: float
-    atol: float
+    atol: np.ndarray        # (4,), per parameter
     gap_tol: float          # Newton target for |M1 - M2|
     scale: float            # curve length scale
     tolerance: float        # accuracy promised: tol * scale, or the round-off floor of the coordinates
@@ -89,12 +90,13 @@ class Settings:
     close: bool = True
 
 
-def recharted_sphere(data, point, tangent):
-    """Sphere data with its chart turned so that point is at (u, v) = (0, 0) and tangent along +u (any axis
-    normal to the radius where the tangent is not known, zero)."""
+def recharted_sphere(data, point, tangent, bend=None):
+    """Sphere data with its chart turned so that point is at (u, v) = (0, 0), the equator along the tangent or,
+    given the curvature vector bend (C'') of a curve bending round a small circle, through its centre (see
+    spatialkin.kernels.surfaces.recharted_sphere)."""
     new = np.empty_like(data)
     ks.recharted_sphere(data, np.ascontiguousarray(point, dtype=float), np.ascontiguousarray(tangent, dtype=float),
-                        new)
+                        np.zeros(3) if bend is None else np.ascontiguousarray(bend, dtype=float), new)
     return new
 
 
@@ -103,18 +105,20 @@ def area_flag(data):
     return int(data[ks.KIND]) not in (ks.SPHERE, ks.PLANE, ks.CYLINDER)
 
 
-def charts_at(a_user, b_user, point, tangent, y_prev=None):
+def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):
     """Charts for a new segment at point and the state there in them.
 
-    Spheres are re-charted at point (so it lies on their equator, tangent along +u); the other surfaces
-    keep their own chart and take (u, v) from y_prev (continuous u) or, without it, from the foot point.
+    Spheres are re-charted at point (so it lies on their equator, tangent along +u, or the equator through
+    the centre of the small circle the curve bends round, given its curvature vector bend); the other
+    surfaces keep their own chart and take (u, v) from y_prev (continuous u) or, without it, from the foot
+    point.
     """
     y = np.empty(4)
     charts = []
     for k, user in enumerate((a_user, b_user)):
         uv = np.empty((1, 2))
         if int(user[ks.KIND]) == ks.SPHERE:
-            data = recharted_sphere(user, point, tangent)
+            data = recharted_sphere(user, point, tangent, bend)
             ks.inverse(data, point.reshape(1, 3), uv)
         elif y_prev is not None:
             data = user
@@ -148,9 +152,8 @@ def finite_bounds(*surfaces):
     """(surface index k, bound index j, state index, bound value, is a lower bound) of every finite bound of
     the surfaces' data, j in (u_min, u_max, v_min, v_max) order."""
     for k, data in enumerate(surfaces):
-        for j in range(4):
-            bound = data[ks.BOUNDS + j]
-            if np.isfinite(bound):
+        for j, bound in enumerate(data[ks.BOUNDS:ks.BOUNDS + 4].tolist()):
+            if math.isfinite(bound):
                 yield k, j, 2 * k + j // 2, bound, j % 2 == 0
 
 

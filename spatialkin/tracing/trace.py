@@ -78,7 +78,7 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
         # angles get rtol, lengths (plane u, v; cylinder and cone v) rtol * scale
         atol = rtol * np.concatenate([parameter_units(a.data, scale), parameter_units(b.data, scale)])
     else:
-        atol = check_positive("atol", atol)
+        atol = np.full(4, check_positive("atol", atol))
     magnitude = max(scale, float(np.max(np.abs(anchor))))
     gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
     tolerance = max(tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)

@@ -24,6 +24,7 @@ from ..kinematics import serial_chain
 from ..surfaces import Sphere, Torus, check_length
 from ..tracing.start import auxiliary_starts
 from ..tracing.intersect import intersect
+from ..tracing.trace import trace
 from ..trajectory import Trajectory, time_map, to_time
 from .common import PointMotion, check_branch, check_drive
 
@@ -38,6 +39,9 @@ POSITION_TOL = 1e-14
 #: Crank angles at most this far apart (rad) are solved by continuation, each Newton started from a second
 #: order prediction off the angle before; farther ones start from the nearest dense sample.
 CONTINUATION_REACH = 0.02
+#: A requested crank angle farther than this (rad) from every dense sample of the traced component is not
+#: covered by it (the branch goes on along another component): then every component is traced.
+COVERAGE_GAP = 0.05
 #: Links of the mechanism, for points fixed to them.
 LINKS = ("crank", "coupler", "rocker_shaft", "rocker_arm")
 _Z = (0.0, 0.0, 1.0)
@@ -191,18 +195,32 @@ class LooperDrive:
             self._loops = intersect(self.torus, self.sphere)
         return self._loops
 
-    def _samples(self, branch):
-        """Dense states (M, 4) on the given branch over all loops, sorted by u1 mod 2 pi: Newton's starts, from
-        the tracer's dense output (Curve.predicted_parameters)."""
-        ys = []
-        for c in self.loops():
+    def _samples(self, branch, crank_angles):
+        """Dense states (M, 4) on the given branch, sorted by u1 mod 2 pi: Newton's starts, from the tracer's
+        dense output (Curve.predicted_parameters).
+
+        Only the component through the assembly at the first crank angle is traced (sk.trace) while it covers
+        every requested angle on the branch; otherwise every component (loops(), sk.intersect) is used."""
+        if self._loops is None:
+            first = self.assemble(float(crank_angles[0]), branch)
+            curve = trace(self.torus, self.sphere, first)
+            samples = self._branch_samples([curve], branch)
+            if len(samples) and covers(np.mod(samples[:, 0], 2 * np.pi), np.mod(crank_angles, 2 * np.pi),
+                                       COVERAGE_GAP):
+                return samples
+        samples = self._branch_samples(self.loops(), branch)
+        if not len(samples):
+            raise ValueError(f"no assembly of branch {branch} was found")
+        return samples
+
+    def _branch_samples(self, curves, branch):
+        ys = [np.empty((0, 4))]
+        for c in curves:
             if c.length == 0:
                 continue
             y = c.predicted_parameters(np.linspace(0.0, c.length, LOOP_SAMPLES))
             ys.append(y[self.branch_of(y) == branch])
-        y = np.vstack(ys) if ys else np.empty((0, 4))
-        if not len(y):
-            raise ValueError(f"no assembly of branch {branch} was found")
+        y = np.vstack(ys)
         return y[np.argsort(np.mod(y[:, 0], 2 * np.pi))]
 
     def analyse(self, branch=0, samples=3601):
@@ -220,7 +238,7 @@ class LooperDrive:
         u1 = check_drive(crank_angles, omega, branch)
         t0 = time.perf_counter()
         self._check_assemblable(np.mod(u1, 2 * np.pi))
-        samples = self._samples(branch)
+        samples = self._samples(branch, u1)
         key = np.mod(samples[:, 0], 2 * np.pi)
         target = np.mod(u1, 2 * np.pi)
         idx = np.searchsorted(key, target)
@@ -251,6 +269,17 @@ class LooperDrive:
                              f"{math.degrees(float(solved[status == 2][0, 0])):.6g} deg")
         derivatives = (dy[back], ddy[back], d1[back], d2[back])
         return LooperMotion(self, solved, omega, branch, time.perf_counter() - t0, derivatives)
+
+
+def covers(keys, angles, gap):
+    """True when every angle (mod 2 pi) lies within gap of one of the sorted keys in [0, 2 pi) (circularly)."""
+    idx = np.searchsorted(keys, angles)
+    before = keys[np.clip(idx - 1, 0, len(keys) - 1)]
+    after = keys[np.clip(idx, 0, len(keys) - 1)]
+    # the first key follows the last one round the circle
+    before = np.where(idx == 0, keys[-1] - 2 * np.pi, before)
+    after = np.where(idx == len(keys), keys[0] + 2 * np.pi, after)
+    return bool(np.all(np.minimum(angles - before, after - angles) <= gap))
 
 
 def state_derivatives(drive, states):

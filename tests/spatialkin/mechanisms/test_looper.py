@@ -198,3 +198,28 @@ def test_seed_start_and_assembly_agree_with_solve(drive):
         y = drive.assemble(1.234, branch)
         m = drive.solve([1.234], branch=branch)
         np.testing.assert_allclose(np.angle(np.exp(1j * (m.states[0] - y))), 0.0, atol=1e-9)
+
+
+def test_branch_over_two_components_uses_every_component():
+    """A crank that cannot turn fully, asked at crank angles in both of its ranges: branch 0 lies on a
+    different loop in each, so the component through the first assembly does not cover the request and
+    solve traces every component; positions match the closed form to 1e-9 mm either way."""
+    d = LooperDrive(8.0, 50.0, 30.0, rocker_frame=sk.Frame((40.0, 0.0, 60.0)))
+    (a0, a1), (b0, b1) = d.blocked_ranges
+    one_range = np.linspace(a1 + 0.05, b0 - 0.05, 50)
+    both = np.concatenate([one_range, np.mod(np.linspace(b1 + 0.05, a0 + 2 * np.pi - 0.05, 50), 2 * np.pi)])
+    for angles, every in ((one_range, False), (both, True)):
+        d._loops = None
+        for branch in (0, 1):
+            m = d.solve(angles, branch=branch)
+            assert np.max(np.abs(m.ball_center - closed_form(d, angles, branch)[1])) < 1e-9
+        assert (d._loops is not None) == every
+
+
+def test_coverage_of_crank_angles():
+    """covers(): every angle within the gap of a key, circularly (the first key follows the last)."""
+    from spatialkin.mechanisms.looper import covers
+    keys = np.array([0.01, 1.0, 1.02, 2 * np.pi - 0.01])
+    assert covers(keys, np.array([0.0, 2 * np.pi - 0.005, 1.01]), 0.02)
+    assert not covers(keys, np.array([0.5]), 0.02)
+    assert covers(keys, np.array([0.5]), 0.5)

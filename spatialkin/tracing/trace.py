@@ -243,7 +243,8 @@ def _corrected(a, b, y_all, span_of, spans, settings):
         params[mask] = user_params((a, b), y, p, seg.a, seg.b)
     for k, surf in enumerate((a, b)):
         if int(surf.data[ks.KIND]) == ks.SPHERE:
-            params[:, 2 * k] = np.unwrap(params[:, 2 * k])
+            u = params[:, 2 * k]          # unwrapped: whole turns removed from the jumps
+            u[1:] -= 2 * np.pi * np.cumsum(np.round(np.diff(u) / (2 * np.pi)))
     return points, params, raw_gap
 
 

@@ -13,13 +13,15 @@ TINY = 2.2250738585072014e-308
 
 
 @jit
-def crank_slider_law(k, h, length, branch, s, phi, dphi, ddphi, cg, sg):
+def crank_slider_law(k, h, length, branch, s, phi, dphi, ddphi, cg, sg, ck, sk):
     """Offset crank-slider (guide y = h, rod length `length`, branch 0 or 1); cg, sg: the link's direction
-    (cos, sin of gamma = ks + phi), here sin gamma = q and cos gamma = +-W/(kL) with no further trig."""
+    (cos, sin of gamma = ks + phi), here sin gamma = q and cos gamma = +-W/(kL) with no further trig; ck, sk:
+    cos ks, sin ks (the trihedron's tangent)."""
     sgn = 1.0 if branch == 0 else -1.0
     for i in range(s.size):
         ks = k * s[i]
         c, sn = math.cos(ks), math.sin(ks)
+        ck[i], sk[i] = c, sn
         u = k * h + c
         q = min(max(u / (k * length), -1.0), 1.0)
         w2 = max(k * k * length * length - u * u, 0.0)
@@ -37,12 +39,14 @@ def crank_slider_law(k, h, length, branch, s, phi, dphi, ddphi, cg, sg):
 
 
 @jit
-def crank_rocker_law(k, d, s, phi, dphi, ddphi, cg, sg):
+def crank_rocker_law(k, d, s, phi, dphi, ddphi, cg, sg, ck, sk):
     """Crank-rocker through the stone at (d, 0); d = 1/k turns uniformly. cg, sg: the link's direction,
-    gamma = atan2(cos ks, kd - sin ks)."""
+    gamma = atan2(cos ks, kd - sin ks); ck, sk: cos ks, sin ks."""
     kd = k * d
     for i in range(s.size):
         ks = k * s[i]
+        sn, c = math.sin(ks), math.cos(ks)
+        ck[i], sk[i] = c, sn
         if kd == 1.0:
             phi[i] = math.pi / 4 - ks / 2
             dphi[i] = -k / 2
@@ -50,7 +54,6 @@ def crank_rocker_law(k, d, s, phi, dphi, ddphi, cg, sg):
             cg[i] = math.cos(math.pi / 4 + ks / 2)
             sg[i] = math.sin(math.pi / 4 + ks / 2)
             continue
-        sn, c = math.sin(ks), math.cos(ks)
         big_d = 1.0 + kd * kd - 2.0 * kd * sn
         phi[i] = math.atan2(c, kd - sn) - ks
         norm = math.sqrt(big_d)
@@ -61,13 +64,12 @@ def crank_rocker_law(k, d, s, phi, dphi, ddphi, cg, sg):
 
 
 @jit
-def link_derivatives(k, s, dphi, ddphi, cgs, sgs, rho, pos, d1, d2):
-    """Points P = A + rho e of the link and P', P'' (M, R, 2) at arc lengths s (M,) with their law's
-    derivatives and the link's direction e = (cgs, sgs) (M,), for the distances rho (M, R): the trihedron
-    is computed once per s."""
-    for i in range(s.size):
-        ks = k * s[i]
-        sk, ck = math.sin(ks), math.cos(ks)
+def link_derivatives(k, dphi, ddphi, cgs, sgs, cks, sks, rho, pos, d1, d2):
+    """Points P = A + rho e of the link and P', P'' (M, R, 2) at M crank positions from their law's
+    derivatives, the link's direction e = (cgs, sgs) (M,) and the trihedron's tangent (cks, sks) = (cos ks,
+    sin ks), for the distances rho (M, R): the trihedron and the law are computed once per position."""
+    for i in range(dphi.size):
+        sk, ck = sks[i], cks[i]
         cg, sg = cgs[i], sgs[i]
         g1 = k + dphi[i]
         g1s = g1 * g1

@@ -35,10 +35,10 @@ def as_s(s):
 
 
 def kernel_law(kernel, s, *params):
-    """(phi, dphi, ddphi, cos gamma, sin gamma) shaped like s from a jitted law kernel
+    """(phi, dphi, ddphi, cos gamma, sin gamma, cos ks, sin ks) shaped like s from a jitted law kernel
     (planar.law_kernels)."""
     s = as_s(s)
-    out = np.empty((5, s.size))
+    out = np.empty((7, s.size))
     kernel(*params, np.ascontiguousarray(s).ravel(), *out)
     return tuple(o.reshape(s.shape) for o in out)
 
@@ -53,10 +53,12 @@ class Law:
         return self.evaluate_with_direction(s)[:3]
 
     def evaluate_with_direction(self, s):
-        """(phi, dphi, ddphi, cos gamma, sin gamma): the law with the link's direction gamma = ks + phi."""
+        """(phi, dphi, ddphi, cos gamma, sin gamma, cos ks, sin ks): the law with the link's direction
+        gamma = ks + phi and the trihedron's tangent tau = (cos ks, sin ks)."""
         phi, dphi, ddphi = self.evaluate(s)
-        gamma = self.k * np.asarray(s, dtype=float) + phi
-        return phi, dphi, ddphi, np.cos(gamma), np.sin(gamma)
+        ks = self.k * np.asarray(s, dtype=float)
+        gamma = ks + phi
+        return phi, dphi, ddphi, np.cos(gamma), np.sin(gamma), np.cos(ks), np.sin(ks)
 
     def gamma(self, s):
         """Angle of the link to the fixed x-axis, gamma = ks + phi (eq. (1))."""

@@ -9,8 +9,8 @@ from ..io import atomic_path
 
 #: Errors are drawn no lower than this on the log axis (an exact zero has no logarithm).
 PLOT_ERROR_FLOOR = 1e-17
-COLUMNS = ("case", "solver", "method", "rtol", "curves", "expected", "seconds", "per_curve", "error", "nfev",
-           "extra")
+COLUMNS = ("case", "solver", "method", "rtol", "curves", "expected", "seconds", "per_curve", "error",
+           "length_error", "nfev", "extra")
 
 
 def machine():
@@ -31,16 +31,20 @@ def _tol(r):
     return "-" if np.isnan(r.rtol) else f"{r.rtol:.0e}"
 
 
+def _len(r):
+    return "-" if np.isnan(r.length_error) else f"{r.length_error:.1e}"
+
+
 def table(rows):
     """The work–precision table as text lines."""
     head = (f"{'case':<13} {'solver':<11} {'method':<7} {'rtol/tol':>8} {'curves':>6} {'ms/call':>9} "
-            f"{'ms/curve':>9} {'max error':>9} {'nfev':>6}  notes")
+            f"{'ms/curve':>9} {'max error':>9} {'len err':>8} {'nfev':>6}  notes")
     lines = [head, "-" * len(head)]
     for r in rows:
         found = f"{r.curves}/{r.expected}" if r.solver not in ("LooperDrive", "closed form", "scipy root") \
             else f"{r.curves}"
         lines.append(f"{r.case:<13} {r.solver:<11} {r.method:<7} {_tol(r):>8} {found:>6} {1e3 * r.seconds:>9.3f} "
-                     f"{1e3 * r.per_curve:>9.4f} {r.error:>9.1e} {r.nfev or '':>6}  {r.extra}")
+                     f"{1e3 * r.per_curve:>9.4f} {r.error:>9.1e} {_len(r):>8} {r.nfev or '':>6}  {r.extra}")
     return lines
 
 
@@ -69,7 +73,7 @@ def write_csv(rows, path):
             w.writerow(COLUMNS)
             for r in rows:
                 w.writerow([r.case, r.solver, r.method, r.rtol, r.curves, r.expected, f"{r.seconds:.6g}",
-                            f"{r.per_curve:.6g}", f"{r.error:.3e}", r.nfev, r.extra])
+                            f"{r.per_curve:.6g}", f"{r.error:.3e}", f"{r.length_error:.3e}", r.nfev, r.extra])
 
 
 def plot(rows, path, title):

@@ -29,6 +29,8 @@ QUICK_REPEATS = 1
 MAX_NFEV_PER_CURVE = 40_000
 #: Dense evaluations per traced curve whose distances to both surfaces enter the error.
 DENSE_SAMPLES = 1000
+#: Chord-sum samples per closed curve for its geometric length (and twice as many, Richardson-extrapolated).
+LENGTH_SAMPLES = 8192
 #: Crank angles of the looper's full turn (0.1 degree steps) and the crank rate.
 LOOPER_ANGLES = 3601
 LOOPER_OMEGA = 1.0
@@ -75,6 +77,9 @@ class Row:
         Right-hand-side evaluations (tracer rows), else 0.
     extra : str
         Further measured errors (looper: velocity and acceleration, relative).
+    length_error : float
+        Largest relative error of the curves' arc length (the solver's s) against their geometric length
+        (tracer rows; nan elsewhere): what the solver's tolerance buys, as positions are exact regardless.
     """
     case: str
     solver: str
@@ -87,6 +92,7 @@ class Row:
     error: float
     nfev: int = 0
     extra: str = ""
+    length_error: float = np.nan
 
 
 def best_time(func, repeats):
@@ -108,6 +114,22 @@ def curve_error(curves, surfaces, samples=DENSE_SAMPLES):
         for p in pts:
             worst = max(worst, max(float(np.max(s.distance(p))) for s in surfaces))
     return worst
+
+
+def geometric_length(curve, n=LENGTH_SAMPLES):
+    """Length of a closed curve's point set, independent of its arc-length parameter: chord sums of n and 2n
+    dense points (each exact on both surfaces), Richardson-extrapolated (error O(n^-4))."""
+    sums = [float(np.sum(np.linalg.norm(np.diff(curve(np.linspace(0.0, curve.length, m + 1)), axis=0), axis=1)))
+            for m in (n, 2 * n)]
+    return (4.0 * sums[1] - sums[0]) / 3.0
+
+
+def length_error(curves):
+    """Largest relative error of the closed curves' length (the integrated arc length) against
+    geometric_length; nan if there is no closed curve."""
+    errs = [abs(c.length - geo) / geo for c in curves if c.closed and c.length > 0
+            for geo in (geometric_length(c),)]
+    return max(errs) if errs else np.nan
 
 
 def points_error(point_sets, surfaces):
@@ -135,7 +157,7 @@ def tracer_rows(case, rtols, repeats, methods=METHODS):
             n = sum(c.closed for c in curves)
             rows.append(Row(case.name, "trace", method, rtol, n, case.components, seconds,
                             seconds / max(1, len(curves)), curve_error(curves, (a, b)),
-                            sum(c.nfev for c in curves) // max(1, len(curves))))
+                            sum(c.nfev for c in curves) // max(1, len(curves)), length_error=length_error(curves)))
     return rows
 
 
@@ -144,7 +166,7 @@ def intersect_row(case, repeats):
     seconds, curves = best_time(lambda: intersect(case.torus, case.sphere, tol=TRACE_TOL), repeats)
     return Row(case.name, "intersect", DEFAULT_METHOD, np.nan, len(curves), case.components, seconds,
                seconds / max(1, len(curves)), curve_error(curves, (case.torus, case.sphere)),
-               sum(c.nfev for c in curves) // max(1, len(curves)))
+               sum(c.nfev for c in curves) // max(1, len(curves)), length_error=length_error(curves))
 
 
 def occ_rows(case, repeats, tols=(baselines.OCC_DEFAULT_TOL, baselines.OCC_TIGHT_TOL)):

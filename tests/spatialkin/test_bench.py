@@ -100,3 +100,19 @@ def test_bench_quick_command(tmp_path, capsys, monkeypatch):
     assert traced and all(float(r["error"]) < 1e-12 * 30 for r in traced)
     assert (tmp_path / "bench.png").stat().st_size > 0
 
+
+
+def test_length_error_against_a_circle():
+    """The geometric length (Richardson chord sums) of sphere ∩ plane matches the circle's 2 pi r to 1e-12
+    relative, whatever the solver's s; the reported length error is |length - 2 pi r| / 2 pi r to 1e-12 and
+    shrinks with rtol (what the tolerance buys)."""
+    import spatialkin as sk
+    sphere, plane = sk.Sphere(5.0), sk.Plane(sk.Frame((0.0, 0.0, 3.0)))
+    exact = 2 * np.pi * 4.0
+    errs = []
+    for rtol in (1e-5, 1e-10):
+        c = trace(sphere, plane, (4.0, 0.0, 3.0), rtol=rtol, method="RK45")
+        assert abs(runner.geometric_length(c) - exact) < 1e-12 * exact
+        errs.append(runner.length_error([c]))
+        assert abs(errs[-1] - abs(c.length - exact) / exact) < 1e-12
+    assert errs[1] < 1e-9 and errs[1] < errs[0]

@@ -69,44 +69,29 @@ def to_local(data, point, out):
 
 
 @jit
-def local_frame(data, u, v):
-    """Local point and first derivatives (point, S_u, S_v), each a 3-tuple: no allocation (the hot path)."""
+def local_rows(data, u, v):
+    """Local point and derivatives (point, S_u, S_v, S_uu, S_uv, S_vv), each a 3-tuple: no allocation (the hot
+    path; the rows a caller does not use cost a few multiplications, the trigonometry is shared)."""
     kind = int(data[KIND])
     cu = math.cos(u)
     su = math.sin(u)
+    zero = (0.0, 0.0, 0.0)
     if kind == PLANE:
-        return (u, v, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)
+        return (u, v, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), zero, zero, zero
     if kind == SPHERE or kind == TORUS:
         big = 0.0 if kind == SPHERE else data[P0]
         small = data[P0] if kind == SPHERE else data[P1]
         cv = math.cos(v)
         sv = math.sin(v)
         w = big + small * cv
-        return (w * cu, w * su, small * sv), (-w * su, w * cu, 0.0), (-small * sv * cu, -small * sv * su, small * cv)
+        return ((w * cu, w * su, small * sv), (-w * su, w * cu, 0.0), (-small * sv * cu, -small * sv * su, small * cv),
+                (-w * cu, -w * su, 0.0), (small * sv * su, -small * sv * cu, 0.0),
+                (-small * cv * cu, -small * cv * su, -small * sv))
     # CYLINDER, CONE: revolution of rho(v) = P0 + P1 v
     rho = data[P0] + data[P1] * v
-    return (rho * cu, rho * su, v), (-rho * su, rho * cu, 0.0), (data[P1] * cu, data[P1] * su, 1.0)
-
-
-@jit
-def local_second(data, u, v):
-    """Local second derivatives (S_uu, S_uv, S_vv), each a 3-tuple."""
-    kind = int(data[KIND])
-    cu = math.cos(u)
-    su = math.sin(u)
-    if kind == PLANE:
-        return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
-    if kind == SPHERE or kind == TORUS:
-        big = 0.0 if kind == SPHERE else data[P0]
-        small = data[P0] if kind == SPHERE else data[P1]
-        cv = math.cos(v)
-        sv = math.sin(v)
-        w = big + small * cv
-        return ((-w * cu, -w * su, 0.0), (small * sv * su, -small * sv * cu, 0.0),
-                (-small * cv * cu, -small * cv * su, -small * sv))
-    rho = data[P0] + data[P1] * v
     b = data[P1]
-    return (-rho * cu, -rho * su, 0.0), (-b * su, b * cu, 0.0), (0.0, 0.0, 0.0)
+    return ((rho * cu, rho * su, v), (-rho * su, rho * cu, 0.0), (b * cu, b * su, 1.0),
+            (-rho * cu, -rho * su, 0.0), (-b * su, b * cu, 0.0), zero)
 
 
 @jit
@@ -120,22 +105,22 @@ def rotated(data, x):
 @jit
 def frame(data, u, v):
     """Global point and first derivatives (point, S_u, S_v), each a 3-tuple (no allocation)."""
-    lp, lu, lv = local_frame(data, u, v)
-    r = rotated(data, lp)
-    return (data[ORIGIN] + r[0], data[ORIGIN + 1] + r[1], data[ORIGIN + 2] + r[2]), rotated(data, lu), rotated(data, lv)
+    rows = local_rows(data, u, v)
+    r = rotated(data, rows[0])
+    return (data[ORIGIN] + r[0], data[ORIGIN + 1] + r[1], data[ORIGIN + 2] + r[2]), rotated(data, rows[1]), rotated(data, rows[2])
 
 
 @jit
 def second(data, u, v):
     """Global second derivatives (S_uu, S_uv, S_vv), each a 3-tuple."""
-    luu, luv, lvv = local_second(data, u, v)
-    return rotated(data, luu), rotated(data, luv), rotated(data, lvv)
+    rows = local_rows(data, u, v)
+    return rotated(data, rows[3]), rotated(data, rows[4]), rotated(data, rows[5])
 
 
 @jit
 def local_derivatives(data, u, v, loc):
     """Local point and derivatives (6, 3): rows POINT, DU, DV, DUU, DUV, DVV."""
-    rows = local_frame(data, u, v) + local_second(data, u, v)
+    rows = local_rows(data, u, v)
     for i in range(6):
         for j in range(3):
             loc[i, j] = rows[i][j]

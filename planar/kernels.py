@@ -182,7 +182,7 @@ def factor_reduced(jac, layout, gs, piv):
         if k < ne:                                  # x_E = a - (row's coefficients) x_R
             for j in range(nr):
                 gs[k, j] = -gs[k, j]
-    return lu_factor(gs[ne:], piv)
+    return nr == 0 or lu_factor(gs[ne:], piv)           # nr = 0: all joints explicit (cranks alone)
 
 
 @jit(inline="always")

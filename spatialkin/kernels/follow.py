@@ -23,7 +23,7 @@ import numpy as np
 
 from .._jit import jit
 from .dopri import (A, B, C, E, ERROR_EXPONENT, INITIAL_CAPACITY, MAX_FACTOR, MIN_FACTOR, P, ROOT_MAX_ITER,
-                    ROOT_ULPS, SAFETY, dense_state, illinois_update, regula_falsi_point)
+                    ROOT_ULPS, SAFETY, _rms, dense_state, illinois_update, regula_falsi_point)
 
 # --- outcome of follow_segment ------------------------------------------------------------------------------
 #: Reached t_bound without an event.
@@ -36,14 +36,6 @@ LEVEL_START = 2
 RATE = 3
 #: Machine epsilon (the root search stops at ROOT_ULPS of it, as dopri's).
 EPS = 2.220446049250313e-16
-
-
-@jit
-def _scaled_rms(x, scale):
-    acc = 0.0
-    for i in range(x.shape[0]):
-        acc += (x[i] / scale[i]) ** 2
-    return np.sqrt(acc / x.shape[0])
 
 
 @jit
@@ -133,9 +125,9 @@ def follow_segment(rhs, args, y0, t0, t_bound, sign, pullback, rtol, atol, index
     f = rhs(t0, y, *args, sign, pullback)
     # initial step: scipy's select_initial_step for an error estimator of order 4
     scale = atol + np.abs(y) * rtol
-    d0, d1 = _scaled_rms(y, scale), _scaled_rms(f, scale)
+    d0, d1 = _rms(y, scale), _rms(f, scale)
     h0 = min(1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1, t_bound - t0)
-    d2 = _scaled_rms(rhs(t0 + h0, y + h0 * f, *args, sign, pullback) - f, scale) / h0
+    d2 = _rms(rhs(t0 + h0, y + h0 * f, *args, sign, pullback) - f, scale) / h0
     h1 = max(1e-6, h0 * 1e-3) if max(d1, d2) <= 1e-15 else (0.01 / max(d1, d2)) ** (1.0 / 5.0)
     h = min(100.0 * h0, h1, t_bound - t0)
     g_old = np.empty(3)
@@ -162,7 +154,7 @@ def follow_segment(rhs, args, y0, t0, t_bound, sign, pullback, rtol, atol, index
             _combine(y_new, y, step, B, k, 6)
             k[6] = rhs(t_new, y_new, *args, sign, pullback)
             _combine(err, None, step, E, k, 7)
-            error = _scaled_rms(err, atol + np.maximum(np.abs(y), np.abs(y_new)) * rtol)
+            error = _rms(err, atol + np.maximum(np.abs(y), np.abs(y_new)) * rtol)
             if error < 1.0:
                 factor = MAX_FACTOR if error == 0.0 else min(MAX_FACTOR, SAFETY * error ** ERROR_EXPONENT)
                 h = step * (min(1.0, factor) if rejected else factor)

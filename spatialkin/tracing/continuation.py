@@ -1,4 +1,5 @@
-"""Following a one-parameter family F(y) = 0 along its input coordinate, by arc length (solve_ivp).
+"""Following a one-parameter family F(y) = 0 along its input coordinate, by arc length (solve_ivp, or the
+compiled Dormand-Prince segment of spatialkin.kernels.follow with the same events).
 
 A mechanism's configuration curve: y holds the unknowns and the input (a crank angle). The curve is traced
 from an assembled state in the direction where the input grows, over one period of the input (a full
@@ -19,7 +20,7 @@ from scipy.integrate import solve_ivp
 from ..kernels import follow as kf
 from .segments import StepStates
 
-#: solve_ivp tolerance of the traced curve (a predictor: exact states come from Newton at fixed input).
+#: Integration tolerance of the traced curve (a predictor: exact states come from Newton at fixed input).
 TRACE_RTOL = 1e-10
 #: States within this distance (units of y) count as the same configuration when the curve closes.
 CLOSE_TOL = 1e-6

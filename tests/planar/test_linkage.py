@@ -236,8 +236,14 @@ def links_defining_each_other():
                     Link("3", ("A", "B"), length=50.0), Link("4", ("F", "E"), length=40.0)])
 
 
+def cranks_alone():
+    """No links: every joint explicit, nothing left for the Schur complement."""
+    return Linkage({"O": (0.0, 0.0), "Q": (5.0, 0.0)}, [Crank("1", "O", "A", 2.0), Crank("2", "Q", "B", 1.0, 0.5)],
+                   [])
+
+
 @pytest.mark.parametrize("make", [planar.examples.fnf_sixbar, four_bar_with_pin_on_the_coupler,
-                                  links_defining_each_other])
+                                  links_defining_each_other, cranks_alone])
 def test_block_elimination_solves_like_numpy(make):
     """Oracle: numpy.linalg.solve of the full J_q, at random states (the structure, not the solution, matters)."""
     mech = make()

@@ -12,6 +12,10 @@ index; cf (m, 3) float):
 A binary link is one DIST, a ternary (or larger) link one DIST between its first two joints and one RIGID
 per further joint; a driving crank is one CRANK. Every equation is quadratic or linear in the joints, so
 F''[v, v] is exact and cheap: |v_j - v_i|^2 / L for DIST, ratio^2 r (cos th, sin th) v_phi^2 for CRANK.
+
+At a fixed input the systems in J_q (Newton steps, derivatives) are solved by block elimination of the
+joints a CRANK or RIGID constraint gives explicitly (factor_reduced, solve_reduced): one LU of the Schur
+complement on the other joints and the remaining rows (the DIST constraints'; six-link: 4 x 4, not 10 x 10).
 """
 import math
 
@@ -19,6 +23,7 @@ import numpy as np
 
 from spatialkin._jit import jit
 from spatialkin.kernels.curve import lu_factor, lu_solve
+from spatialkin.kernels.follow import follow_segment
 from spatialkin.kernels.implicit import follow_rhs
 
 DIST, RIGID, CRANK = 0, 1, 2
@@ -133,53 +138,187 @@ def linkage_rhs(s, y, ci, cf, fixed, cranks, sign, pullback):
 
 
 @jit
-def solve_configurations(ys, ci, cf, fixed, tol, max_iter, d1, d2, parts, status):
-    """At each row's fixed input angle: Newton in the joints from the prediction in ys (N, n+1) until the
-    residual is below tol, then, with the same Jacobian and its LU, the derivatives along the
-    configuration curve parametrised by the input, y' = (dq/dphi, 1) and y'' = (d2q/dphi2, 0) (N, n+1)
-    from J_q q' = -F_phi, J_q q'' = -F''[y', y'], and the joints' rates per unit rate of each crank,
-    parts (N, cranks, n) = -J_q^-1 dF/dtheta_k.
+def linkage_segment(y0, t0, t_bound, sign, pullback, rtol, atol, index, levels, watch, directions, ci, cf, fixed,
+                    cranks):
+    """One arc of the configuration curve by the compiled Dormand-Prince segment
+    (spatialkin.kernels.follow.follow_segment) of linkage_rhs: trace_cycle's `segment`."""
+    return follow_segment(linkage_rhs, (ci, cf, fixed, cranks), y0, t0, t_bound, sign, pullback, rtol, atol, index,
+                          levels, watch, directions)
+
+
+# --- J_q by block elimination of the explicit joints -----------------------------------------------------------
+# A crank's pin and a rigid link's further joint are explicit: their two rows read P_j - g(other joints) = 0,
+# a unit block in P_j's columns. Ordered so that each depends only on implicit and earlier explicit joints,
+# they make J_q's explicit block unit lower triangular, and J_q x = b reduces to the Schur complement S on
+# the implicit joints' columns (the rows of the distance constraints): x_E = a + G x_R, S x_R = b_I - J_IE a,
+# with G, S (and S's LU) from the Jacobian alone. det J_q = det S, so S is singular exactly where J_q is.
+# layout = (pattern, slot, rows, cols, ne) from planar.linkage: rows (n,) the explicit joints' unit rows in
+# order, then the implicit rows; cols (n,) the matching explicit columns, then the implicit ones; ne the
+# number of explicit columns; pattern (n, 6) the columns each row couples (its own explicit joint's left out,
+# -1 padded); slot (n,) a column's position in cols (explicit) or -1 - its position among the implicit ones.
+# G (negated) and S are stacked in gs (n, n - ne): rows [0, ne) G, rows [ne, n) S.
+
+
+@jit(inline="always")
+def factor_reduced(jac, layout, gs, piv):
+    """G and S of J_q = jac[:, :n] into gs, S's LU in place (with piv); False where S (so J_q) is
+    singular."""
+    pattern, slot, rows, _, ne = layout
+    nr = gs.shape[1]
+    for k in range(rows.shape[0]):
+        r = rows[k]
+        for j in range(nr):
+            gs[k, j] = 0.0
+        for q in range(pattern.shape[1]):           # row r's coefficients on x_R
+            p = pattern[r, q]
+            if p < 0:
+                break
+            coef, u = jac[r, p], slot[p]
+            if u < 0:
+                gs[k, -u - 1] += coef
+            else:
+                for j in range(nr):
+                    gs[k, j] += coef * gs[u, j]
+        if k < ne:                                  # x_E = a - (row's coefficients) x_R
+            for j in range(nr):
+                gs[k, j] = -gs[k, j]
+    return nr == 0 or lu_factor(gs[ne:], piv)           # nr = 0: all joints explicit (cranks alone)
+
+
+@jit(inline="always")
+def solve_reduced(jac, layout, gs, piv, b, x, a, z):
+    """x = J_q^-1 b from factor_reduced's gs, piv (workspace a (n,), z (n - ne,))."""
+    pattern, slot, rows, cols, ne = layout
+    for k in range(rows.shape[0]):                  # the part of each row's unknowns known from b alone
+        r = rows[k]
+        acc = b[r]
+        for q in range(pattern.shape[1]):
+            p = pattern[r, q]
+            if p < 0:
+                break
+            if slot[p] >= 0:
+                acc -= jac[r, p] * a[slot[p]]
+        a[k] = acc
+    lu_solve(gs[ne:], piv, a[ne:], z)
+    for k in range(rows.shape[0]):
+        if k >= ne:
+            x[cols[k]] = z[k - ne]
+        else:
+            acc = a[k]
+            for j in range(z.shape[0]):
+                acc += gs[k, j] * z[j]
+            x[cols[k]] = acc
+
+
+@jit
+def workspace(n, cranks, layout):
+    """Arrays of the fixed-input solves: f, jac, dtheta, gs, piv, a, z, x."""
+    nr = n - layout[4]
+    return (np.empty(n), np.empty((n, n + 1)), np.empty((n, cranks)), np.empty((n, nr)), np.empty(nr, dtype=np.int64),
+            np.empty(n), np.empty(nr), np.empty(n))
+
+
+@jit(inline="always")
+def _solve(ws, layout, b, x):
+    """x = J_q^-1 b at the point of the last _correct."""
+    _, jac, _, gs, piv, a, z, _ = ws
+    solve_reduced(jac, layout, gs, piv, b, x, a, z)
+
+
+@jit(inline="always")
+def _correct(y, ci, cf, fixed, layout, tol, max_iter, ws):
+    """Newton in the joints at y's input, in place. Returns 0 when the residual is below tol (the workspace
+    then holds the system at y and J_q's factors), 1 when it is not within max_iter steps, 2 when J_q is
+    singular (a lock position)."""
+    f, jac, dtheta, gs, piv, _, _, step = ws
+    n = f.shape[0]
+    for _ in range(max_iter + 1):
+        linkage_system(y, ci, cf, fixed, f, jac, dtheta)
+        if not factor_reduced(jac, layout, gs, piv):
+            return 2
+        big = 0.0
+        for i in range(n):
+            big = max(big, abs(f[i]))
+        if big <= tol:
+            return 0
+        _solve(ws, layout, f, step)
+        for i in range(n):
+            y[i] -= step[i]
+    return 1
+
+
+@jit
+def correct_configuration(y, ci, cf, fixed, layout, tol, max_iter):
+    """Newton in the joints at the input y[-1], in place (status as _correct)."""
+    return _correct(y, ci, cf, fixed, layout, tol, max_iter, workspace(y.shape[0] - 1, crank_count(ci), layout))
+
+
+@jit
+def crank_count(ci):
+    """Number of CRANK constraints in ci."""
+    count = 0
+    for c in range(ci.shape[0]):
+        if ci[c, KIND] == CRANK:
+            count += 1
+    return count
+
+
+@jit
+def solve_configurations(guess, order, reach, jump, ci, cf, fixed, layout, tol, max_iter, ys, d1, d2, parts,
+                         status):
+    """At each row's fixed input angle: Newton in the joints until the residual is below tol, then, with the
+    last Jacobian's LU, the joints' rates per unit rate of each crank, parts (N, cranks, n) =
+    -J_q^-1 dF/dtheta_k, and the derivatives along the configuration curve parametrised by the input,
+    y' = (dq/dphi, 1) = (sum_k ratio_k parts_k, 1) (as F_phi = sum_k ratio_k dF/dtheta_k) and
+    y'' = (d2q/dphi2, 0) from J_q q'' = -F''[y', y'] (N, n+1).
+
+    The rows are solved in `order` (by input along the branch). A row within `reach` of the input of the row
+    solved before it starts from that row's second-order expansion q + q' h + q'' h^2 / 2 (one Newton step
+    then reaches round-off); any other row, or one whose Newton fails from there or lands further than
+    `jump` from its prediction guess (N, n+1) (the traced curve), starts from guess. Solved states go to ys.
 
     status[k]: 0 solved, 1 Newton did not converge, 2 J_q singular (a lock position)."""
-    n = ys.shape[1] - 1
+    n = guess.shape[1] - 1
     cranks = parts.shape[1]
-    f = np.empty(n)
-    jac = np.empty((n, n + 1))
-    dtheta = np.empty((n, cranks))
-    m = np.empty((n, n))
-    piv = np.empty(n, dtype=np.int64)
+    ratios = np.empty(cranks)
+    for c in range(ci.shape[0]):
+        if ci[c, KIND] == CRANK:
+            ratios[ci[c, CRANK_INDEX]] = cf[c, 1]
+    ws = workspace(n, cranks, layout)
+    dtheta = ws[2]
     rhs = np.empty(n)
-    step = np.empty(n)
     quad = np.empty(n)
-    for k in range(ys.shape[0]):
+    prev = -1
+    for k in order:
         status[k] = 1
-        for _ in range(max_iter + 1):
-            linkage_system(ys[k], ci, cf, fixed, f, jac, dtheta)
-            m[:, :] = jac[:, :n]
-            if not lu_factor(m, piv):
-                status[k] = 2
-                break
-            big = 0.0
+        if prev >= 0 and abs(guess[k, n] - ys[prev, n]) <= reach:
+            h = guess[k, n] - ys[prev, n]
             for i in range(n):
-                big = max(big, abs(f[i]))
-            if big <= tol:
-                status[k] = 0
-                break
-            lu_solve(m, piv, f, step)
-            for i in range(n):
-                ys[k, i] -= step[i]
+                ys[k, i] = ys[prev, i] + h * (d1[prev, i] + 0.5 * h * d2[prev, i])
+            ys[k, n] = guess[k, n]
+            status[k] = _correct(ys[k], ci, cf, fixed, layout, tol, max_iter, ws)
+            if status[k] == 0:
+                for i in range(n):
+                    if abs(ys[k, i] - guess[k, i]) > jump:
+                        status[k] = 1
+        if status[k] != 0:
+            ys[k] = guess[k]
+            status[k] = _correct(ys[k], ci, cf, fixed, layout, tol, max_iter, ws)
         if status[k] != 0:
             continue
+        prev = k
+        for c in range(cranks):
+            for i in range(n):
+                rhs[i] = -dtheta[i, c]
+            _solve(ws, layout, rhs, parts[k, c])
         for i in range(n):
-            rhs[i] = -jac[i, n]
-        lu_solve(m, piv, rhs, d1[k])
+            acc = 0.0
+            for c in range(cranks):
+                acc += ratios[c] * parts[k, c, i]
+            d1[k, i] = acc
         d1[k, n] = 1.0
         linkage_quadratic(ys[k], d1[k], ci, cf, fixed, quad)
         for i in range(n):
             rhs[i] = -quad[i]
-        lu_solve(m, piv, rhs, d2[k])
+        _solve(ws, layout, rhs, d2[k])
         d2[k, n] = 0.0
-        for c in range(cranks):
-            for i in range(n):
-                rhs[i] = -dtheta[i, c]
-            lu_solve(m, piv, rhs, parts[k, c])

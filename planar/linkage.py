@@ -4,10 +4,13 @@ more driving cranks geared to one input angle.
 The loop-closure equations F(q, phi) = 0 are written in natural coordinates (the moving joints' x, y;
 see planar.kernels), so a class III group (a triad) is solved as one system with no dyad decomposition.
 The configuration curve is followed along the input by arc length with spatialkin's continuation pipeline
-(solve_ivp over a jitted right-hand side), each requested input angle is then solved exactly by Newton
-from the traced prediction, and velocities and accelerations come analytically (y', y'' of the curve,
-mapped to time by the trajectory pipeline); each crank's share of the velocity is -J_q^-1 dF/dtheta_k
-theta_k' (the velocities are linear in the crank rates at a fixed position).
+(its compiled Dormand-Prince segment over the jitted right-hand side), each requested input angle is then
+solved exactly by Newton from the traced prediction (or, next to an angle solved before it, from that
+solution's second-order expansion), and velocities and accelerations come analytically (y', y'' of the
+curve, mapped to time by the trajectory pipeline); each crank's share of the velocity is
+-J_q^-1 dF/dtheta_k theta_k' (the velocities are linear in the crank rates at a fixed position). The
+systems in J_q are solved by block elimination of the explicit joints (crank pins, rigid links' further
+joints): one small LU on the joints the distance constraints couple (planar.kernels).
 
 References
 ----------
@@ -39,12 +42,16 @@ NEWTON_TOL = 1e-14
 NEWTON_ITER = 30
 #: A Newton solution further than this (mean length units) from its traced prediction is another branch.
 BRANCH_JUMP = 1e-3
+#: A requested input within this much (rad) of the one solved before it (in order along the branch) is
+#: predicted by that solution's second-order expansion, error ~ |d3q/dphi3| h^3 / 6: below the traced
+#: prediction's for such steps, so that one Newton step reaches round-off.
+TAYLOR_REACH = 0.01
 #: Largest denominator of a gear ratio (the input period is 2 pi times their least common multiple).
 MAX_DENOMINATOR = 64
 #: Input angles scanned when the linkage does not assemble at the requested one.
 SCAN_ANGLES = 36
-#: solve_ivp tolerance of the traced configuration curve: a predictor, each angle is then solved by Newton
-#: (from 1e-8 one quadratic step reaches the round-off floor).
+#: Integration tolerance of the traced configuration curve: a predictor, each angle is then solved by Newton
+#: (from 1e-8 one quadratic step reaches the round-off floor), and where the lock positions are located.
 TRACE_RTOL = 1e-8
 #: Arc-length budget of one configuration curve, per unit of input period and unknown.
 LENGTH_BUDGET = 200.0
@@ -76,6 +83,47 @@ class Link:
         if self.shape is not None:
             return np.asarray(self.shape, dtype=float)
         return np.array([[0.0, 0.0], [float(self.length), 0.0]])
+
+
+def _block_layout(ci, n):
+    """Block structure of J_q for planar.kernels.factor_reduced / solve_reduced: (pattern, slot, rows, cols,
+    explicit columns) (see there).
+
+    A crank's pin and a rigid link's further joint are explicit (defined by their constraint's two rows),
+    taken in an order where each depends only on implicit and earlier explicit joints; a joint defined twice,
+    or on a cycle of definitions, keeps only its first definition or none (its rows then count as implicit)."""
+    joints_of, defining = {}, {}
+    for kind, row, j0, j1, j2, _ in ci:
+        joints = (j0, j1) if kind != kn.RIGID else (j0, j1, j2)
+        rows = (row,) if kind == kn.DIST else (row, row + 1)
+        for r in rows:
+            joints_of[r] = [j for j in joints if j >= 0]
+        if kind != kn.DIST:
+            target = joints[-1]
+            deps = [j for j in joints[:-1] if j >= 0]
+            if target not in defining and target not in deps:
+                defining[target] = (row, deps)
+    order, pending = [], dict(defining)
+    while pending:
+        ready = [j for j, (_, deps) in pending.items() if all(d not in pending for d in deps)]
+        if not ready:                                   # a cycle of definitions: its first joint is implicit
+            pending.pop(next(iter(pending)))
+            continue
+        for j in ready:
+            order.append((j, pending.pop(j)[0]))
+    erow = [r for _, row in order for r in (row, row + 1)]
+    ecol = [c for j, _ in order for c in (2 * j, 2 * j + 1)]
+    own = {r: j for j, row in order for r in (row, row + 1)}
+    rows = erow + [r for r in range(n) if r not in erow]
+    cols = ecol + [c for c in range(n) if c not in ecol]
+    pattern = np.full((n, 6), -1, dtype=np.int64)
+    for r in range(n):
+        coupled = [c for j in joints_of[r] if j != own.get(r) for c in (2 * j, 2 * j + 1)]
+        pattern[r, :len(coupled)] = coupled
+    slot = np.empty(n, dtype=np.int64)
+    slot[cols] = np.arange(n)
+    slot[cols[len(ecol):]] = -1 - np.arange(n - len(ecol))
+    return pattern, slot, np.array(rows, dtype=np.int64), np.array(cols, dtype=np.int64), len(ecol)
 
 
 def _check_positive(name, value):
@@ -114,6 +162,7 @@ class Linkage:
         self.mean_length = float(np.mean([c.radius for c in self.cranks] + [
             np.max(np.linalg.norm(lk.local() - lk.local()[0], axis=1)) for lk in self.links]))
         self.ci, self.cf, self.fixed_xy = self._constraints()
+        self.layout = _block_layout(self.ci, 2 * len(self.moving))
         self.period = self._period()
         self.hint = None if hint is None else {k: np.asarray(v, float) for k, v in hint.items()}
         self.hint_angle = float(hint_angle)
@@ -279,12 +328,9 @@ class Linkage:
 
     def _newton(self, state):
         """Newton at the state's input angle (jitted); the solved state, or None."""
-        ys = np.array(state, dtype=float)[None, :]
-        n = ys.shape[1]
-        out = [np.empty((1, n)), np.empty((1, n)), np.empty((1, len(self.cranks), n - 1))]
-        status = np.empty(1, dtype=np.int64)
-        kn.solve_configurations(ys, self.ci, self.cf, self.fixed_xy, NEWTON_TOL, NEWTON_ITER, *out, status)
-        return ys[0] if status[0] == 0 and np.max(np.abs(ys[0] - state)) < HINT_REACH else None
+        y = np.array(state, dtype=float)
+        status = kn.correct_configuration(y, self.ci, self.cf, self.fixed_xy, self.layout, NEWTON_TOL, NEWTON_ITER)
+        return y if status == 0 and np.max(np.abs(y - state)) < HINT_REACH else None
 
     def _onto_curve(self, state, steps=4):
         """A traced state corrected onto F = 0 by minimum-norm Gauss-Newton steps (the input free, so a lock
@@ -319,7 +365,8 @@ class Linkage:
             y0 = self.assemble(self.hint_angle, assembly)
             args = (self.ci, self.cf, self.fixed_xy, len(self.cranks))
             budget = LENGTH_BUDGET * self.period * len(y0)
-            cycle = trace_cycle(kn.linkage_rhs, y0, args, self.period, budget, rtol=TRACE_RTOL)
+            cycle = trace_cycle(kn.linkage_rhs, y0, args, self.period, budget, rtol=TRACE_RTOL,
+                                segment=kn.linkage_segment)
             cycle.locks = [self._onto_curve(y) for y in cycle.locks]
             self._cycles[assembly] = cycle
         return self._cycles[assembly]
@@ -356,12 +403,12 @@ class Linkage:
                 raise LockError(self.lock_positions(assembly), angles[outside])
         guess = np.column_stack([np.interp(local, inputs, states[:, i]) for i in range(states.shape[1] - 1)]
                                 + [local])
-        ys = guess.copy()
-        m, n = ys.shape
-        d1, d2 = np.empty((m, n)), np.empty((m, n))
+        m, n = guess.shape
+        ys, d1, d2 = np.empty((m, n)), np.empty((m, n)), np.empty((m, n))
         parts = np.empty((m, len(self.cranks), n - 1))
         status = np.empty(m, dtype=np.int64)
-        kn.solve_configurations(ys, self.ci, self.cf, self.fixed_xy, NEWTON_TOL, NEWTON_ITER, d1, d2, parts,
+        kn.solve_configurations(guess, np.argsort(local, kind="stable"), TAYLOR_REACH, BRANCH_JUMP, self.ci,
+                                self.cf, self.fixed_xy, self.layout, NEWTON_TOL, NEWTON_ITER, ys, d1, d2, parts,
                                 status)
         jump = np.max(np.abs(ys - guess), axis=1)
         bad = (status != 0) | (jump > BRANCH_JUMP)

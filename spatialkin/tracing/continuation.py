@@ -1,4 +1,5 @@
-"""Following a one-parameter family F(y) = 0 along its input coordinate, by arc length (solve_ivp).
+"""Following a one-parameter family F(y) = 0 along its input coordinate, by arc length (solve_ivp, or the
+compiled Dormand-Prince segment of spatialkin.kernels.follow with the same events).
 
 A mechanism's configuration curve: y holds the unknowns and the input (a crank angle). The curve is traced
 from an assembled state in the direction where the input grows, over one period of the input (a full
@@ -16,7 +17,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-#: solve_ivp tolerance of the traced curve (a predictor: exact states come from Newton at fixed input).
+from ..kernels import follow as kf
+from .segments import StepStates
+
+#: Integration tolerance of the traced curve (a predictor: exact states come from Newton at fixed input).
 TRACE_RTOL = 1e-10
 #: States within this distance (units of y) count as the same configuration when the curve closes.
 CLOSE_TOL = 1e-6
@@ -91,7 +95,32 @@ def _event(fun, direction):
     return fun
 
 
-def trace_cycle(rhs, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL, method="DOP853"):
+def _solve_ivp_piece(rhs, args, y, s, max_length, sign, index, levels, watch, directions, rtol, method):
+    """One arc by solve_ivp up to the first event: (end, dense output, end state, outcome as
+    spatialkin.kernels.follow's)."""
+    funs = [lambda s, y, *_: y[index] - levels[0], lambda s, y, *_: y[index] - levels[1],
+            lambda s, y, *_: rhs(s, y, *args, sign, 0.0)[index]]
+    events = [_event(fun if on else lambda s, y, *_: -1.0, direction)
+              for fun, on, direction in zip(funs, watch, directions)]
+    res = solve_ivp(rhs, (s, max_length), y, method=method, rtol=rtol, atol=rtol, dense_output=True,
+                    events=events, args=(*args, sign, 1.0))
+    if res.status < 0:
+        raise ValueError(f"tracing the configuration curve failed: {res.message}")
+    fired = [kf.LEVEL_TARGET + e for e in (2, 0, 1) if res.t_events[e].size]     # a lock first
+    return res.t[-1], res.sol, res.y[:, -1], fired[0] if fired else kf.REACHED_END
+
+
+def _compiled_piece(segment, args, y, s, max_length, sign, index, levels, watch, directions, rtol):
+    """One arc by a compiled segment (spatialkin.kernels.follow.follow_segment bound to the rhs)."""
+    outcome, ts, ys, hs, qs = segment(y, s, max_length, sign, 1.0, rtol, rtol, index, levels, watch,
+                                      directions, *args)
+    if outcome == kf.STEP_FAILED:
+        raise ValueError("tracing the configuration curve failed: the step size fell below the round-off "
+                         f"floor at arc length {ts[-1]:.6g}")
+    return ts[-1], StepStates(ts, ys, hs, qs), ys[-1], outcome
+
+
+def trace_cycle(rhs, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL, method="DOP853", segment=None):
     """Trace the closed configuration curve of rhs through y0 (see the module docstring).
 
     Parameters
@@ -108,6 +137,15 @@ def trace_cycle(rhs, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL, me
         Arc length after which tracing stops with an error (the curve is bounded, so this is a budget).
     index : int
         Position of the input in y.
+    rtol : float
+        Relative and absolute tolerance of the integration.
+    method : str
+        solve_ivp's method (when no compiled segment is given).
+    segment : callable, optional
+        spatialkin.kernels.follow.follow_segment bound to rhs in a jitted wrapper,
+        ``segment(y, t0, t_bound, sign, pullback, rtol, atol, index, levels, watch, directions, *args)``:
+        the arcs are then integrated by that compiled Dormand-Prince 5(4) (scipy RK45's steps) instead of
+        solve_ivp, with the same events.
 
     Returns
     -------
@@ -127,35 +165,30 @@ def trace_cycle(rhs, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL, me
     shift = np.zeros_like(y0)
     shift[index] = period
 
-    def rate_at(s, y, *_):
-        return rhs(s, y, *args, sign, 0.0)[index]
-
     pieces, locks, lock_s = [], [], []
-    s, y, lock_direction, turns, skip_back = 0.0, y0, -1, 1, True
+    s, y, lock_direction, turns, skip_back = 0.0, y0, -1.0, 1, True
     while True:
-        target = y0[index] + turns * period
-        events = [_event(lambda s, y, *_: y[index] - target, 1),
-                  _event(lambda s, y, *_: y[index] - y0[index], 1),
-                  _event(rate_at, lock_direction)]
-        if skip_back:                       # returning needs a lock first; never re-fire where it fired
-            events[1] = _event(lambda s, y, *_: -1.0, 1)
+        levels = np.array([y0[index] + turns * period, y0[index]])
+        # returning to the start needs a lock first; never re-fire where it fired
+        watch = np.array([True, not skip_back, True])
+        directions = np.array([1.0, 1.0, lock_direction])
         skip_back = False
-        res = solve_ivp(rhs, (s, max_length), y, method=method, rtol=rtol, atol=rtol, dense_output=True,
-                        events=events, args=(*args, sign, 1.0))
-        if res.status < 0:
-            raise ValueError(f"tracing the configuration curve failed: {res.message}")
-        end = res.t[-1]
-        pieces.append((s, end, res.sol))
-        y = res.y[:, -1]
-        if res.status == 0:
+        if segment is None:
+            end, sol, y, outcome = _solve_ivp_piece(rhs, args, y, s, max_length, sign, index, levels, watch,
+                                                    directions, rtol, method)
+        else:
+            end, sol, y, outcome = _compiled_piece(segment, args, y, s, max_length, sign, index, levels, watch,
+                                                   directions, rtol)
+        pieces.append((s, end, sol))
+        if outcome == kf.REACHED_END:
             raise ValueError(f"the configuration curve did not close within arc length {max_length:.6g}")
-        if res.t_events[2].size:
-            locks.append(res.y_events[2][0])
+        if outcome == kf.RATE:
+            locks.append(y)
             lock_s.append(end)
             if len(locks) > MAX_LOCKS:
                 raise ValueError(f"more than {MAX_LOCKS} lock positions on one configuration curve")
             lock_direction = -lock_direction
-        elif res.t_events[0].size:
+        elif outcome == kf.LEVEL_TARGET:
             if np.max(np.abs(y - y0 - turns * shift)) <= CLOSE_TOL:
                 return Cycle(pieces, locks, turns * period, y0, index, lock_s)
             turns += 1

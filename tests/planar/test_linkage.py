@@ -216,3 +216,60 @@ def test_bad_input_is_rejected(mech, sol):
         sixbar(omega_ratio=math.pi)
     with pytest.raises(ValueError, match="link 3"):
         Linkage(mech.fixed, mech.cranks, [Link("3", ("A", "B"), length=-1.0)] + mech.links[1:])
+
+
+def four_bar_with_pin_on_the_coupler():
+    """A crank's pin that is also a rigid link's further joint (defined twice: the link's rows stay implicit)
+    and a crank on a moving pivot (its pin depends on an explicit joint)."""
+    return Linkage({"O": (0.0, 0.0), "F": (60.0, 0.0)},
+                   [Crank("1", "O", "A", 15.0), Crank("2", "B", "P", 5.0, ratio=2.0)],
+                   [Link("c", ("B", "C", "A"), shape=((0, 0), (40, 0), (-10, -30))),
+                    Link("r", ("F", "C"), length=45.0)])
+
+
+def links_defining_each_other():
+    """Two ternary links whose further joints define each other (D from B and C, B from D and E): a cycle,
+    so one of them stays implicit."""
+    return Linkage({"O": (0.0, 0.0), "F": (60.0, 0.0)}, [Crank("1", "O", "A", 15.0)],
+                   [Link("1", ("B", "C", "D"), shape=((0, 0), (30, 0), (10, 20))),
+                    Link("2", ("D", "E", "B"), shape=((0, 0), (25, 0), (5, -15))),
+                    Link("3", ("A", "B"), length=50.0), Link("4", ("F", "E"), length=40.0)])
+
+
+def cranks_alone():
+    """No links: every joint explicit, nothing left for the Schur complement."""
+    return Linkage({"O": (0.0, 0.0), "Q": (5.0, 0.0)}, [Crank("1", "O", "A", 2.0), Crank("2", "Q", "B", 1.0, 0.5)],
+                   [])
+
+
+@pytest.mark.parametrize("make", [planar.examples.fnf_sixbar, four_bar_with_pin_on_the_coupler,
+                                  links_defining_each_other, cranks_alone])
+def test_block_elimination_solves_like_numpy(make):
+    """Oracle: numpy.linalg.solve of the full J_q, at random states (the structure, not the solution, matters)."""
+    mech = make()
+    n = 2 * len(mech.moving)
+    rng = np.random.default_rng(7)
+    f, jac, dtheta, gs, piv, a, z, x = planar.kernels.workspace(n, len(mech.cranks), mech.layout)
+    for _ in range(20):
+        y = np.append(rng.normal(size=n), rng.uniform(0, 2 * np.pi))
+        planar.kernels.linkage_system(y, mech.ci, mech.cf, mech.fixed_xy, f, jac, dtheta)
+        assert planar.kernels.factor_reduced(jac, mech.layout, gs, piv)
+        b = rng.normal(size=n)
+        planar.kernels.solve_reduced(jac, mech.layout, gs, piv, b, x, a, z)
+        ref = np.linalg.solve(jac[:, :n], b)
+        assert np.max(np.abs(x - ref)) < 1e-14 * np.max(np.abs(ref)) * np.linalg.cond(jac[:, :n])
+
+
+def test_each_angle_is_solved_alone(mech, sol):
+    """Identity: an angle's state and derivatives do not depend on the other angles asked for (neighbours
+    predict by expansion, lone angles from the traced curve, in any order)."""
+    rng = np.random.default_rng(3)
+    pick = rng.permutation(N)[:40]
+    alone = mech.solve(PHI[pick])
+    scale = {"v": np.max(np.abs(sol.velocity("K"))), "a": np.max(np.abs(sol.acceleration("K")))}
+    for j in MOVING:
+        assert np.max(np.abs(alone.position(j) - sol.position(j)[pick])) < 1e-12
+        assert np.max(np.abs(alone.velocity(j) - sol.velocity(j)[pick])) < 1e-13 * scale["v"]
+        assert np.max(np.abs(alone.acceleration(j) - sol.acceleration(j)[pick])) < 1e-13 * scale["a"]
+    shuffled = mech.solve(PHI[::-1])
+    assert np.max(np.abs(shuffled.states[::-1] - sol.states)) < 1e-13

@@ -1,0 +1,100 @@
+"""trace_cycle with the compiled Dormand-Prince segment (spatialkin.kernels.follow) against closed forms and
+against the same method run by solve_ivp (RK45)."""
+import math
+
+import numpy as np
+import pytest
+from scipy.special import ellipe
+
+from spatialkin._jit import jit
+from spatialkin.kernels import follow as kf
+from spatialkin.kernels.implicit import follow_rhs
+from spatialkin.tracing.continuation import trace_cycle
+
+#: Tolerances: lock positions and closure against the closed forms (the trace's rtol is 1e-10); the two
+#: integrators against each other: the same method, so the same curve to well within the tolerance (not the
+#: same steps to round-off: a first step's error estimate is at round-off level, and the same arithmetic in
+#: another order sizes the next step differently).
+RTOL = 1e-10
+CLOSED_FORM_TOL = 1e-8
+SAME_CURVE_TOL = 1e-9
+
+
+@jit
+def ellipse_rhs(s, y, a, sign, pullback):
+    """F(q, phi) = q^2 + (phi / a)^2 - 1: the input reverses at phi = +-a (q = 0)."""
+    jac = np.array([[2.0 * y[0], 2.0 * y[1] / (a * a)]])
+    f = np.array([y[0] ** 2 + (y[1] / a) ** 2 - 1.0])
+    out = np.empty(2)
+    follow_rhs(jac, f, sign, pullback, out)
+    return out
+
+
+@jit
+def wave_rhs(s, y, a, sign, pullback):
+    """F(q, phi) = q - a sin(phi): a full turn of the input."""
+    jac = np.array([[1.0, -a * math.cos(y[1])]])
+    f = np.array([y[0] - a * math.sin(y[1])])
+    out = np.empty(2)
+    follow_rhs(jac, f, sign, pullback, out)
+    return out
+
+
+@jit
+def ellipse_segment(y0, t0, t_bound, sign, pullback, rtol, atol, index, levels, watch, directions, a):
+    return kf.follow_segment(ellipse_rhs, (a,), y0, t0, t_bound, sign, pullback, rtol, atol, index, levels, watch,
+                             directions)
+
+
+@jit
+def wave_segment(y0, t0, t_bound, sign, pullback, rtol, atol, index, levels, watch, directions, a):
+    return kf.follow_segment(wave_rhs, (a,), y0, t0, t_bound, sign, pullback, rtol, atol, index, levels, watch,
+                             directions)
+
+
+def traces(rhs, segment, y0, a, period):
+    compiled = trace_cycle(rhs, y0, (a,), period, 100.0, rtol=RTOL, segment=segment)
+    reference = trace_cycle(rhs, y0, (a,), period, 100.0, rtol=RTOL, method="RK45")
+    return compiled, reference
+
+
+def test_locks_of_an_ellipse_match_the_closed_form_and_solve_ivp():
+    a = 1.5
+    compiled, reference = traces(ellipse_rhs, ellipse_segment, np.array([1.0, 0.0]), a, 2 * np.pi)
+    assert len(compiled.locks) == 2 and not compiled.full_turn and compiled.period == 0.0
+    for lock, phi in zip(compiled.locks, (a, -a)):                 # met in this order from the start
+        assert abs(lock[1] - phi) < CLOSED_FORM_TOL and abs(lock[0]) < math.sqrt(CLOSED_FORM_TOL)
+    perimeter = 4 * a * ellipe(1 - 1 / a ** 2)                       # the closed curve, once round
+    assert abs(compiled.length - perimeter) < CLOSED_FORM_TOL
+    assert len(compiled.pieces) == len(reference.pieces) == 3
+    for (s0, s1, sol), (r0, r1, ref) in zip(compiled.pieces, reference.pieces):
+        assert abs(s1 - r1) < SAME_CURVE_TOL and abs(sol.ts.size - ref.ts.size) <= 2
+        s = np.linspace(s0, s1, 50)
+        np.testing.assert_allclose(sol(s), ref(s), rtol=0, atol=SAME_CURVE_TOL)
+    inputs, states = compiled.branch_samples()                       # the arc between the locks
+    assert inputs.min() > -a - CLOSED_FORM_TOL and inputs.max() < a + CLOSED_FORM_TOL
+    assert np.all(states[:, 0] > -CLOSED_FORM_TOL)
+
+
+def test_full_turn_closes_after_one_period():
+    a = 0.5
+    compiled, reference = traces(wave_rhs, wave_segment, np.array([0.0, 0.0]), a, 2 * np.pi)
+    assert compiled.full_turn and compiled.period == 2 * np.pi
+    length = 4 * math.sqrt(1 + a * a) * ellipe(a * a / (1 + a * a))      # arc length of q = a sin(phi)
+    assert abs(compiled.length - length) < CLOSED_FORM_TOL
+    assert abs(compiled.length - reference.length) < SAME_CURVE_TOL
+    s = np.linspace(0.0, compiled.length, 200)
+    y = compiled(s)
+    assert np.max(np.abs(y[:, 0] - a * np.sin(y[:, 1]))) < CLOSED_FORM_TOL
+    np.testing.assert_allclose(y, reference(s), rtol=0, atol=SAME_CURVE_TOL)
+
+
+def test_step_failure_and_end_of_interval_are_reported():
+    y0 = np.array([0.0, 0.0])
+    off = np.array([False, False, False])
+    outcome, ts, ys, hs, qs = wave_segment(y0, 0.0, 0.5, 1.0, 1.0, RTOL, RTOL, 1, np.zeros(2), off,
+                                           np.ones(3), 0.5)
+    assert outcome == kf.REACHED_END and ts[-1] == 0.5 and len(hs) == len(ts) - 1 == len(qs)
+    assert abs(ys[-1, 0] - 0.5 * math.sin(ys[-1, 1])) < CLOSED_FORM_TOL
+    with pytest.raises(ValueError, match="did not close"):
+        trace_cycle(wave_rhs, y0, (0.5,), 2 * np.pi, 1.0, rtol=RTOL, segment=wave_segment)

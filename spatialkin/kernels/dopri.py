@@ -133,6 +133,29 @@ def dense_state(t_old, h, y_old, q, t, out):
         out[i] = y_old[i] + h * (q[i, 0] * p0 + q[i, 1] * p1 + q[i, 2] * p2 + q[i, 3] * p3)
 
 
+@jit(inline="always")
+def locate_crossing(value, fn, vargs, t_old, step, y_old, q, g_lo, g_hi, out):
+    """The time where value(t, y(t), fn, vargs) crosses zero inside the step [t_old, t_old + step] (values g_lo,
+    g_hi at its ends, of opposite signs), by the Illinois method on the step's dense output (dense_state);
+    the state there is written to out. Inlined, so that a caller binds its own event function (value, and
+    the jitted fn it may call, passed apart from the tuple vargs) and stays cacheable."""
+    lo, hi = t_old, t_old + step
+    side = 0
+    for _ in range(ROOT_MAX_ITER):
+        if hi - lo <= ROOT_ULPS * 2.220446049250313e-16 * max(abs(hi), 1e-300):
+            break
+        tm = regula_falsi_point(lo, hi, g_lo, g_hi)
+        dense_state(t_old, step, y_old, q, tm, out)
+        gm = value(tm, out, fn, vargs)
+        if gm == 0.0:
+            lo = hi = tm
+            break
+        lo, hi, g_lo, g_hi, side = illinois_update(lo, hi, g_lo, g_hi, side, tm, gm,
+                                                   (gm < 0.0) == (g_lo < 0.0) and g_lo != 0.0)
+    dense_state(t_old, step, y_old, q, hi, out)
+    return hi
+
+
 @jit
 def dense_many(ts, ys, hs, qs, t, out):
     """Dense states out (M, 4) at times t (M,) from stored steps ts (n,), ys (n, 4), their lengths hs (n - 1,)
@@ -146,6 +169,12 @@ def dense_many(ts, ys, hs, qs, t, out):
         j = np.searchsorted(ts, t[k], side="right") - 1
         j = min(max(j, 0), n - 2)
         dense_state(ts[j], hs[j], ys[j], qs[j], t[k], out[k])
+
+
+@jit(inline="always")
+def _closure_at(t, y, fn, vargs):
+    s_arm, a, start, direction, offset = vargs
+    return fn(t, y, s_arm, a, start, direction, offset)
 
 
 @jit
@@ -313,21 +342,9 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
         if close:
             g_new = _closure_g(t_new, y_new, s_arm, a, start, direction, offset)
             if g_old <= 0.0 and g_new >= 0.0:
-                lo, hi, g_lo, g_hi = t, t_new, g_old, g_new
                 y_mid = np.empty(n)
-                side = 0
-                for _ in range(ROOT_MAX_ITER):
-                    if hi - lo <= ROOT_ULPS * 2.220446049250313e-16 * max(abs(hi), 1e-300):
-                        break
-                    tm = regula_falsi_point(lo, hi, g_lo, g_hi)
-                    dense_state(t, step, y, q, tm, y_mid)
-                    gm = _closure_g(tm, y_mid, s_arm, a, start, direction, offset)
-                    if gm == 0.0:
-                        lo = hi = tm
-                        break
-                    lo, hi, g_lo, g_hi, side = illinois_update(lo, hi, g_lo, g_hi, side, tm, gm, gm < 0.0)
-                t_e = hi
-                dense_state(t, step, y, q, t_e, y_mid)
+                t_e = locate_crossing(_closure_at, _closure_g, (s_arm, a, start, direction, offset), t, step, y, q,
+                                      g_old, g_new, y_mid)
                 ts[count] = t_e
                 ys[count] = y_mid
                 count += 1

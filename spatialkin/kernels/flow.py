@@ -7,19 +7,13 @@ runs solve_ivp with its event functions instead.
 import numpy as np
 
 from .._jit import jit
-from .dopri import (A, B, E, ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, P, SAFETY, dense_state, illinois_update,
-                    regula_falsi_point)
+from .dopri import A, B, E, ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, P, SAFETY, locate_crossing
 from .level import gradient_flow_rhs, level_value, relative_area_at, surface_gradient_norm
 
 #: Status codes of flow_to_level.
 HIT = 1
 NO_HIT = 0
 HANDOFF = -1
-#: Bisection-like iterations locating the level crossing, and their stopping width (ulps of the time).
-ROOT_MAX_ITER = 100
-ROOT_ULPS = 4.0
-
-
 @jit
 def _rms(x, atol, rtol, ya, yb):
     acc = 0.0
@@ -27,6 +21,11 @@ def _rms(x, atol, rtol, ya, yb):
         q = x[i] / (atol + max(abs(ya[i]), abs(yb[i])) * rtol)
         acc += q * q
     return np.sqrt(acc / x.shape[0])
+
+
+@jit(inline="always")
+def _level_at(t, y, fn, pq):
+    return fn(pq[0], pq[1], y[0], y[1])
 
 
 @jit
@@ -66,7 +65,6 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
     y_new = np.empty(n)
     err = np.empty(n)
     qm = np.empty((n, 4))
-    y_mid = np.empty(n)
     while t < t_bound:
         min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
         step_h = max(min(step_h, max_step), min_step)
@@ -133,20 +131,7 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
                     for j in range(7):
                         acc += k[j, i] * P[j, m]
                     qm[i, m] = acc
-            a, b, ga, gb = t, t_new, g_old, g_new
-            side = 0
-            for _ in range(ROOT_MAX_ITER):
-                if b - a <= ROOT_ULPS * 2.220446049250313e-16 * max(abs(b), 1e-300):
-                    break
-                tm = regula_falsi_point(a, b, ga, gb)
-                dense_state(t, step, y, qm, tm, y_mid)
-                gm = level_value(p, q, y_mid[0], y_mid[1])
-                if gm == 0.0:
-                    a = b = tm
-                    break
-                a, b, ga, gb, side = illinois_update(a, b, ga, gb, side, tm, gm,
-                                                     (gm < 0.0) == (ga < 0.0) and ga != 0.0)
-            dense_state(t, step, y, qm, b, out)
+            locate_crossing(_level_at, level_value, (p, q), t, step, y, qm, g_old, g_new, out)
             return HIT
         g_old = g_new
         t = t_new

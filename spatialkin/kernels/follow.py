@@ -22,8 +22,8 @@ control, initial step and event location reproduced here).
 import numpy as np
 
 from .._jit import jit
-from .dopri import (A, B, C, E, ERROR_EXPONENT, INITIAL_CAPACITY, MAX_FACTOR, MIN_FACTOR, P, ROOT_MAX_ITER,
-                    ROOT_ULPS, SAFETY, _rms, dense_state, illinois_update, regula_falsi_point)
+from .dopri import (A, B, C, E, ERROR_EXPONENT, INITIAL_CAPACITY, MAX_FACTOR, MIN_FACTOR, P,
+                    SAFETY, _rms, locate_crossing)
 
 # --- outcome of follow_segment ------------------------------------------------------------------------------
 #: Reached t_bound without an event.
@@ -34,8 +34,6 @@ STEP_FAILED = -1
 LEVEL_TARGET = 1
 LEVEL_START = 2
 RATE = 3
-#: Machine epsilon (the root search stops at ROOT_ULPS of it, as dopri's).
-EPS = 2.220446049250313e-16
 
 
 @jit
@@ -49,32 +47,18 @@ def _combine(out, y, h, weights, k, stages):
 
 
 @jit(inline="always")
-def _event_value(rhs, args, t, y, sign, index, levels, which):
+def _event_at(t, y, rhs, vargs):
+    """_event_value with its arguments but rhs as one tuple (for locate_crossing)."""
+    args, sign, index, levels, which = vargs
+    return _event_value(t, y, rhs, args, sign, index, levels, which)
+
+
+@jit(inline="always")
+def _event_value(t, y, rhs, args, sign, index, levels, which):
     """Value at (t, y) of event LEVEL_TARGET, LEVEL_START or RATE."""
     if which == RATE:
         return rhs(t, y, *args, sign, 0.0)[index]
     return y[index] - levels[which - LEVEL_TARGET]
-
-
-@jit(inline="always")
-def _locate(rhs, args, t_old, step, y_old, q, sign, index, levels, which, g_lo, g_hi, out):
-    """The crossing time of event `which` inside the step [t_old, t_old + step] (values g_lo, g_hi at its
-    ends, of opposite signs) by the Illinois method on the step's dense output; its state into out."""
-    lo, hi = t_old, t_old + step
-    side = 0
-    for _ in range(ROOT_MAX_ITER):
-        if hi - lo <= ROOT_ULPS * EPS * max(abs(hi), 1e-300):
-            break
-        tm = regula_falsi_point(lo, hi, g_lo, g_hi)
-        dense_state(t_old, step, y_old, q, tm, out)
-        gm = _event_value(rhs, args, tm, out, sign, index, levels, which)
-        if gm == 0.0:
-            lo = hi = tm
-            break
-        lo, hi, g_lo, g_hi, side = illinois_update(lo, hi, g_lo, g_hi, side, tm, gm,
-                                                   (gm < 0.0) == (g_lo < 0.0) and g_lo != 0.0)
-    dense_state(t_old, step, y_old, q, hi, out)
-    return hi
 
 
 @jit(inline="always")
@@ -134,7 +118,7 @@ def follow_segment(rhs, args, y0, t0, t_bound, sign, pullback, rtol, atol, index
     g_new = np.empty(3)
     for e in range(3):
         if watch[e]:
-            g_old[e] = _event_value(rhs, args, t0, y, sign, index, levels, LEVEL_TARGET + e)
+            g_old[e] = _event_value(t0, y, rhs, args, sign, index, levels, LEVEL_TARGET + e)
     k = np.empty((7, n))
     stage, y_new, err, q, y_event = np.empty(n), np.empty(n), np.empty(n), np.empty((n, 4)), np.empty(n)
     t = t0
@@ -175,12 +159,12 @@ def follow_segment(rhs, args, y0, t0, t_bound, sign, pullback, rtol, atol, index
         for e in range(3):
             if not watch[e]:
                 continue
-            g_new[e] = _event_value(rhs, args, t_new, y_new, sign, index, levels, LEVEL_TARGET + e)
+            g_new[e] = _event_value(t_new, y_new, rhs, args, sign, index, levels, LEVEL_TARGET + e)
             up = g_old[e] <= 0.0 <= g_new[e]
             down = g_old[e] >= 0.0 >= g_new[e]
             if (up and directions[e] >= 0) or (down and directions[e] <= 0):
-                t_e = _locate(rhs, args, t, step, y, q, sign, index, levels, LEVEL_TARGET + e, g_old[e], g_new[e],
-                              stage)
+                t_e = locate_crossing(_event_at, rhs, (args, sign, index, levels, LEVEL_TARGET + e), t, step, y,
+                                      q, g_old[e], g_new[e], stage)
                 if t_e < t_first:
                     first, t_first = LEVEL_TARGET + e, t_e
                     y_event[:] = stage

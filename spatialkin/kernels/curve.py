@@ -527,13 +527,18 @@ def fixed_parameter_path(ys, targets, a, b, fixed, reach, gap_tol, max_iter, dy,
     with their arc-length derivatives (as curve_derivatives with sign +1).
 
     Row k starts from a second-order Taylor prediction in the fixed parameter off the row before when the step
-    between their targets is at most reach, else from the guess ys[k] (a nearby curve state); then Newton at
-    the fixed value (newton_fixed_row). Continuation keeps each row on the branch of the one before. status[k]:
-    0 solved, 1 Newton failed, 2 a singular point (derivatives undefined).
+    between their targets is at most reach, else (or where Newton fails from the prediction) from the guess
+    ys[k] (a nearby curve state); then Newton at the fixed value (newton_fixed_row). Continuation keeps each
+    row on the branch of the one before. status[k]: 0 solved, 1 Newton failed, 2 a singular point
+    (derivatives undefined).
     """
+    guess = np.empty(4)
     for k in range(ys.shape[0]):
-        if k > 0 and status[k - 1] == 0 and abs(targets[k] - targets[k - 1]) <= reach \
-                and abs(dy[k - 1, fixed]) > 0.0:
+        guess[:] = ys[k]
+        guess[fixed] = targets[k]
+        predicted = k > 0 and status[k - 1] == 0 and abs(targets[k] - targets[k - 1]) <= reach \
+            and abs(dy[k - 1, fixed]) > 0.0
+        if predicted:
             h = targets[k] - targets[k - 1]
             rate = dy[k - 1, fixed]
             for i in range(4):
@@ -541,7 +546,11 @@ def fixed_parameter_path(ys, targets, a, b, fixed, reach, gap_tol, max_iter, dy,
                 second = (ddy[k - 1, i] * rate - dy[k - 1, i] * ddy[k - 1, fixed]) / (rate * rate * rate)
                 ys[k, i] = ys[k - 1, i] + h * first + 0.5 * h * h * second
         ys[k, fixed] = targets[k]
-        if not newton_fixed_row(ys[k], a, b, fixed, gap_tol, max_iter):
+        ok = newton_fixed_row(ys[k], a, b, fixed, gap_tol, max_iter)
+        if not ok and predicted:
+            ys[k] = guess
+            ok = newton_fixed_row(ys[k], a, b, fixed, gap_tol, max_iter)
+        if not ok:
             status[k] = 1
         elif not curve_derivatives(ys[k], a, b, 1.0, dy[k], ddy[k], d1[k], d2[k]):
             status[k] = 2

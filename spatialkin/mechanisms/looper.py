@@ -24,6 +24,7 @@ from ..kinematics import serial_chain
 from ..surfaces import Sphere, Torus, check_length
 from ..tracing.start import auxiliary_starts
 from ..tracing.intersect import intersect
+from ..tracing.result import TracingError
 from ..tracing.trace import trace
 from ..trajectory import Trajectory, time_map, to_time
 from .common import PointMotion, check_branch, check_drive
@@ -203,8 +204,10 @@ class LooperDrive:
         every requested angle on the branch; otherwise every component (loops(), sk.intersect) is used."""
         if self._loops is None:
             first = self.assemble(float(crank_angles[0]), branch)
-            curve = trace(self.torus, self.sphere, first)
-            samples = self._branch_samples([curve], branch)
+            try:
+                samples = self._branch_samples([trace(self.torus, self.sphere, first)], branch)
+            except TracingError:        # e.g. the assembly sits on a singular point: every component then
+                samples = np.empty((0, 4))
             if len(samples) and covers(np.mod(samples[:, 0], 2 * np.pi), np.mod(crank_angles, 2 * np.pi),
                                        COVERAGE_GAP):
                 return samples

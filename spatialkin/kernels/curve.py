@@ -23,13 +23,6 @@ STAGNATION = 0.25
 
 
 @jit
-def cross(a, b, out):
-    out[0] = a[1] * b[2] - a[2] * b[1]
-    out[1] = a[2] * b[0] - a[0] * b[2]
-    out[2] = a[0] * b[1] - a[1] * b[0]
-
-
-@jit
 def dot(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
@@ -82,37 +75,6 @@ def tangent_from_normals(su1, sv1, su2, sv2, t):
     for i in range(3):
         t[i] = tt[i]
     return c
-
-
-@jit
-def gram_solve(su, sv, w, out, k):
-    """gram(su, sv, w) written to out[k], out[k + 1]; returns False where the parametrisation is singular."""
-    du, dv, ok = gram(su, sv, w)
-    out[k] = du
-    out[k + 1] = dv
-    return ok
-
-
-@jit
-def solve3(m, r, x):
-    """Solve the symmetric 3x3 system m x = r by Cramer's rule; False if (nearly) singular."""
-    c00 = m[1, 1] * m[2, 2] - m[1, 2] * m[2, 1]
-    c01 = m[1, 2] * m[2, 0] - m[1, 0] * m[2, 2]
-    c02 = m[1, 0] * m[2, 1] - m[1, 1] * m[2, 0]
-    det = m[0, 0] * c00 + m[0, 1] * c01 + m[0, 2] * c02
-    scale = abs(m[0, 0]) + abs(m[1, 1]) + abs(m[2, 2])
-    if scale == 0.0 or abs(det) <= PIVOT_EPS * scale ** 3:
-        return False
-    c10 = m[0, 2] * m[2, 1] - m[0, 1] * m[2, 2]
-    c11 = m[0, 0] * m[2, 2] - m[0, 2] * m[2, 0]
-    c12 = m[0, 1] * m[2, 0] - m[0, 0] * m[2, 1]
-    c20 = m[0, 1] * m[1, 2] - m[0, 2] * m[1, 1]
-    c21 = m[0, 2] * m[1, 0] - m[0, 0] * m[1, 2]
-    c22 = m[0, 0] * m[1, 1] - m[0, 1] * m[1, 0]
-    x[0] = (c00 * r[0] + c10 * r[1] + c20 * r[2]) / det
-    x[1] = (c01 * r[0] + c11 * r[1] + c21 * r[2]) / det
-    x[2] = (c02 * r[0] + c12 * r[1] + c22 * r[2]) / det
-    return True
 
 
 @jit

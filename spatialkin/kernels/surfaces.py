@@ -136,16 +136,6 @@ def derivatives(data, u, v, out):
 
 
 @jit
-def first_derivatives(data, u, v, point, su, sv):
-    """Global point and first derivatives, written to point, su, sv (3,)."""
-    rows = frame(data, u, v)
-    for j in range(3):
-        point[j] = rows[0][j]
-        su[j] = rows[1][j]
-        sv[j] = rows[2][j]
-
-
-@jit
 def implicit_local(data, q):
     """A signed implicit value of the surface at the local point q, zero exactly on the surface.
 

@@ -133,6 +133,16 @@ def dense_state(t_old, h, y_old, q, t, out):
         out[i] = y_old[i] + h * (q[i, 0] * p0 + q[i, 1] * p1 + q[i, 2] * p2 + q[i, 3] * p3)
 
 
+@jit
+def combine(out, y, h, weights, k, stages):
+    """out = y + h * sum_j weights[j] k[j] over the first `stages` rows of k (y None: from zero)."""
+    for i in range(out.shape[0]):
+        acc = 0.0
+        for j in range(stages):
+            acc += weights[j] * k[j, i]
+        out[i] = h * acc if y is None else y[i] + h * acc
+
+
 @jit(inline="always")
 def locate_crossing(value, fn, vargs, t_old, step, y_old, q, g_lo, g_hi, out):
     """The time where value(t, y(t), fn, vargs) crosses zero inside the step [t_old, t_old + step] (values g_lo,
@@ -268,25 +278,14 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
             # stages
             k[0] = f
             for s in range(1, 6):
-                for i in range(n):
-                    acc = 0.0
-                    for j in range(s):
-                        acc += A[s, j] * k[j, i]
-                    y_stage[i] = y[i] + step * acc
+                combine(y_stage, y, step, A[s], k, s)
                 dragilev_into(y_stage, a, b, sign, pullback, k[s])
-            for i in range(n):
-                acc = 0.0
-                for j in range(6):
-                    acc += B[j] * k[j, i]
-                y_new[i] = y[i] + step * acc
+            combine(y_new, y, step, B, k, 6)
             dragilev_into(y_new, a, b, sign, pullback, k[6])
             f_new = k[6]
             nfev += 6
+            combine(err, None, step, E, k, 7)
             for i in range(n):
-                acc = 0.0
-                for j in range(7):
-                    acc += E[j] * k[j, i]
-                err[i] = acc * step
                 scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
             error_norm = _rms(err, scale)
             if error_norm < 1.0:
@@ -319,12 +318,8 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
             status = HANDOFF
             break
         # --- store the step ---
-        for i in range(n):
-            for m in range(4):
-                acc = 0.0
-                for j in range(7):
-                    acc += k[j, i] * P[j, m]
-                q[i, m] = acc
+        for m in range(4):                       # this step's dense output
+            combine(q[:, m], None, 1.0, P[:, m], k, 7)
         if count == cap:
             cap *= 2
             ts2 = np.empty(cap)

@@ -7,7 +7,7 @@ runs solve_ivp with its event functions instead.
 import numpy as np
 
 from .._jit import jit
-from .dopri import A, B, E, ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, P, SAFETY, locate_crossing
+from .dopri import A, B, E, ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, P, SAFETY, combine, locate_crossing
 from .level import gradient_flow_rhs, level_value, relative_area_at, surface_gradient_norm
 
 #: Status codes of flow_to_level.
@@ -43,7 +43,7 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
     f = gradient_flow_rhs(0.0, y, p, q, sigma, h, saturation)
     nfev = 1
     # initial step (scipy's select_initial_step, order 4)
-    zero = np.zeros(n)
+    y_stage = np.empty(n)
     d0 = _rms(y, atol, rtol, y, y)
     d1 = _rms(f, atol, rtol, y, y)
     h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
@@ -76,24 +76,13 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
             step = t_new - t
             k[0] = f
             for s in range(1, 6):
-                dy = zero.copy()
-                for j in range(s):
-                    for i in range(n):
-                        dy[i] += A[s, j] * k[j, i]
-                k[s] = gradient_flow_rhs(0.0, y + step * dy, p, q, sigma, h, saturation)
-            for i in range(n):
-                acc = 0.0
-                for j in range(6):
-                    acc += B[j] * k[j, i]
-                y_new[i] = y[i] + step * acc
+                combine(y_stage, y, step, A[s], k, s)
+                k[s] = gradient_flow_rhs(0.0, y_stage, p, q, sigma, h, saturation)
+            combine(y_new, y, step, B, k, 6)
             f_new = gradient_flow_rhs(0.0, y_new, p, q, sigma, h, saturation)
             k[6] = f_new
             nfev += 6
-            for i in range(n):
-                acc = 0.0
-                for j in range(7):
-                    acc += E[j] * k[j, i]
-                err[i] = acc * step
+            combine(err, None, step, E, k, 7)
             error_norm = _rms(err, atol, rtol, y, y_new)
             if error_norm < 1.0:
                 factor = MAX_FACTOR if error_norm == 0.0 else min(MAX_FACTOR, SAFETY * error_norm ** ERROR_EXPONENT)
@@ -125,12 +114,8 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
             # (then which comes first is solve_ivp's to decide)
             return HANDOFF if crossed else NO_HIT
         if crossed:
-            for i in range(n):
-                for m in range(4):
-                    acc = 0.0
-                    for j in range(7):
-                        acc += k[j, i] * P[j, m]
-                    qm[i, m] = acc
+            for m in range(4):                       # this step's dense output
+                combine(qm[:, m], None, 1.0, P[:, m], k, 7)
             locate_crossing(_level_at, level_value, (p, q), t, step, y, qm, g_old, g_new, out)
             return HIT
         g_old = g_new

@@ -23,7 +23,7 @@ import numpy as np
 
 from .._jit import jit
 from .dopri import (A, B, C, E, ERROR_EXPONENT, INITIAL_CAPACITY, MAX_FACTOR, MIN_FACTOR, P,
-                    SAFETY, _rms, locate_crossing)
+                    SAFETY, _rms, combine, locate_crossing)
 
 # --- outcome of follow_segment ------------------------------------------------------------------------------
 #: Reached t_bound without an event.
@@ -34,16 +34,6 @@ STEP_FAILED = -1
 LEVEL_TARGET = 1
 LEVEL_START = 2
 RATE = 3
-
-
-@jit
-def _combine(out, y, h, weights, k, stages):
-    """out = y + h * sum_j weights[j] k[j] over the first `stages` rows of k (y None: from zero)."""
-    for i in range(out.shape[0]):
-        acc = 0.0
-        for j in range(stages):
-            acc += weights[j] * k[j, i]
-        out[i] = h * acc if y is None else y[i] + h * acc
 
 
 @jit(inline="always")
@@ -133,11 +123,11 @@ def follow_segment(rhs, args, y0, t0, t_bound, sign, pullback, rtol, atol, index
             step = t_new - t
             k[0] = f
             for s in range(1, 6):                               # the Dormand-Prince stages
-                _combine(stage, y, step, A[s], k, s)
+                combine(stage, y, step, A[s], k, s)
                 k[s] = rhs(t + C[s] * step, stage, *args, sign, pullback)
-            _combine(y_new, y, step, B, k, 6)
+            combine(y_new, y, step, B, k, 6)
             k[6] = rhs(t_new, y_new, *args, sign, pullback)
-            _combine(err, None, step, E, k, 7)
+            combine(err, None, step, E, k, 7)
             error = _rms(err, atol + np.maximum(np.abs(y), np.abs(y_new)) * rtol)
             if error < 1.0:
                 factor = MAX_FACTOR if error == 0.0 else min(MAX_FACTOR, SAFETY * error ** ERROR_EXPONENT)
@@ -146,7 +136,7 @@ def follow_segment(rhs, args, y0, t0, t_bound, sign, pullback, rtol, atol, index
             h = step * max(MIN_FACTOR, SAFETY * error ** ERROR_EXPONENT)
             rejected = True
         for m in range(4):                                       # this step's dense output
-            _combine(q[:, m], None, 1.0, P[:, m], k, 7)
+            combine(q[:, m], None, 1.0, P[:, m], k, 7)
         if count == cap:
             cap *= 2
             ts, ys = np.concatenate((ts, np.empty(cap - count))), np.concatenate((ys, np.empty((cap - count, n))))

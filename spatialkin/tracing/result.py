@@ -106,17 +106,25 @@ class Curve:
         idx = np.clip(np.searchsorted(self._lo, s, side="right") - 1, 0, len(self._spans) - 1)
         return s, idx
 
+    def _span_states(self, s):
+        """(s wrapped, [(mask, span, solver states (m, 4)) per span hit]) for the flat arc lengths s."""
+        s, idx = self._locate(np.ravel(s))
+        if len(self._spans) == 1:
+            return s, [(slice(None), self._spans[0], np.ascontiguousarray(self._spans[0].states(s).T))]
+        pieces = []
+        for k in np.unique(idx):
+            mask = idx == k
+            pieces.append((mask, self._spans[k], np.ascontiguousarray(self._spans[k].states(s[mask]).T)))
+        return s, pieces
+
     def _evaluate(self, s, with_params=True):
         """Corrected states, points and tangents at s (flattened); params is None unless with_params."""
-        s, idx = self._locate(np.ravel(s))
+        s, pieces = self._span_states(s)
         points = np.empty((s.size, 3))
         tangents = np.empty((s.size, 3))
         status = np.empty(s.size, dtype=np.int64)
         params = np.empty((s.size, 4)) if with_params else None
-        for k in (np.unique(idx) if len(self._spans) > 1 else (0,)):
-            mask = idx == k if len(self._spans) > 1 else slice(None)
-            span = self._spans[k]
-            y = np.ascontiguousarray(span.states(s[mask]).T)
+        for mask, span, y in pieces:
             p, t, st = points[mask], tangents[mask], status[mask]
             kc.project_many(y, span.seg.a, span.seg.b, span.seg.normal, self._gap_tol, NEWTON_MAX_ITER, p, t, st)
             points[mask], tangents[mask], status[mask] = p, t * span.flip * span.seg.sign, st
@@ -151,12 +159,9 @@ class Curve:
         shape = np.shape(s)
         if self.length == 0:
             return np.broadcast_to(self.params[0], shape + (4,)).copy()
-        s, idx = self._locate(np.ravel(s))
+        s, pieces = self._span_states(s)
         params = np.empty((s.size, 4))
-        for k in (np.unique(idx) if len(self._spans) > 1 else (0,)):
-            mask = idx == k if len(self._spans) > 1 else slice(None)
-            span = self._spans[k]
-            y = np.ascontiguousarray(span.states(s[mask]).T)
+        for mask, span, y in pieces:
             on_a = np.empty((len(y), 3))
             ks.evaluate(span.seg.a, np.ascontiguousarray(y[:, :2]), on_a)
             params[mask] = user_params(self.surfaces, y, on_a, span.seg.a, span.seg.b)

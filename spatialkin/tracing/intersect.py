@@ -4,9 +4,9 @@ import time
 import numpy as np
 
 from ..surfaces import check_surface
-from .result import Curve, TracingError
-from .seeds import find_seeds, roles
+from .result import Curve, ExactCurve, TracingError
 from .start import locate_on_curve, newton_fixed
+from .topology import topology
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
@@ -38,15 +38,16 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     check_surface("b", b)
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
-    seeds, contacts, nodes, edge_points = find_seeds(a, b, settings.scale, tol * settings.scale)
-    curves = [contact_curve(a, b, p, settings) for p in contacts]
+    topo = topology(a, b, settings.scale, settings.tolerance)
+    curves = [contact_curve(a, b, p, settings) for p in topo.contacts]
+    curves += [ExactCurve((a, b), circle=c, tolerance=settings.tolerance) for c in topo.tangent_circles]
+    curves += [ExactCurve((a, b), segment=seg, tolerance=settings.tolerance) for seg in topo.tangent_segments]
     radius = SAME_COMPONENT * settings.scale
-    p_index = 0 if roles(a, b)[0] is a else 1
     # (point, y, on the curve): exact starts on the edges, then the seeds, located only when one is traced
-    pending = [(point, y, True) for point, y in (edge_start(a, b, point, p_index, fixed, value, settings)
-                                                 for point, fixed, value in edge_points) if y is not None]
-    if seeds:
-        seeds = np.array(seeds, dtype=float).reshape(-1, 3)
+    pending = [(point, y, True) for point, y in (edge_start(a, b, point, index, fixed, value, settings)
+                                                 for point, index, fixed, value in topo.edge_starts) if y is not None]
+    if topo.seeds:
+        seeds = np.array(topo.seeds, dtype=float).reshape(-1, 3)
         on = np.maximum(a.distance(seeds), b.distance(seeds)) <= settings.tolerance
         pending += [(seed, None, bool(exact)) for seed, exact in zip(seeds, on)]
     pending = drop_traced(pending, curves, radius)
@@ -65,7 +66,10 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
             continue            # the seed sits on a singular point: the arms' seeds trace it
         curves.append(curve)
         pending = drop_traced(pending, [curve], radius)
-    return [c for i, c in enumerate(curves) if not covered(c, curves[:i] + curves[i + 1:], radius)]
+    curves = [c for i, c in enumerate(curves) if not covered(c, curves[:i] + curves[i + 1:], radius)]
+    for c in curves:
+        c.topology = topo
+    return curves
 
 
 def drop_traced(pending, curves, radius):
@@ -110,7 +114,8 @@ def covered(curve, others, radius):
 
 
 def edge_start(a, b, point, p_index, fixed, value, settings):
-    """(point, y) on the curve exactly on the edge parameter `fixed` = value of surface p_index, or None."""
+    """(point, y) on the curve exactly on the edge parameter `fixed` = value of surface p_index (0 a, 1 b), or
+    None."""
     y = np.concatenate([a.parameters(point), b.parameters(point)])
     index = 2 * p_index + fixed
     y[index] = value

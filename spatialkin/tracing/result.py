@@ -243,3 +243,79 @@ def user_params(surfaces, y, points, a_chart, b_chart):
             ks.inverse(surf.data, np.ascontiguousarray(points), uv)
             out[:, 2 * k:2 * k + 2] = uv
     return out
+
+
+class ExactCurve(Curve):
+    """A component known in closed form: a circle or a segment along which the two surfaces touch (status
+    'tangent'; the tracer cannot follow it, its normals being parallel all along), evaluated exactly.
+
+    Parameters
+    ----------
+    surfaces : (Surface, Surface)
+    circle : (centre (3,), unit axis (3,), radius), or None
+    segment : (p0 (3,), p1 (3,)), or None
+    tolerance : float
+        The accuracy asked for, as an absolute length.
+    samples : int
+        Stored points.
+    """
+
+    def __init__(self, surfaces, circle=None, segment=None, tolerance=0.0, samples=65, status="tangent",
+                 message=""):
+        if circle is not None:
+            centre, axis, radius = (np.asarray(circle[0], dtype=float), np.asarray(circle[1], dtype=float),
+                                    float(circle[2]))
+            helper = np.eye(3)[np.argmin(np.abs(axis))]
+            e1 = np.cross(axis, helper)
+            e1 /= np.linalg.norm(e1)
+            self._shape = ("circle", centre, e1, np.cross(axis, e1), radius)
+            length, closed = 2 * np.pi * radius, True
+        else:
+            p0, p1 = (np.asarray(x, dtype=float) for x in segment)
+            length = float(np.linalg.norm(p1 - p0))
+            self._shape = ("segment", p0, (p1 - p0) / max(length, 1e-300))
+            closed = False
+        self.surfaces = surfaces
+        self.closed, self.length = closed, float(length)
+        self.status = status
+        self.message = message or ("the surfaces touch all along this " + self._shape[0])
+        self.nfev, self.wall_time = 0, 0.0
+        self.solver_gap = np.zeros(0)
+        self.nodes = np.empty((0, 3))
+        self.tolerance = tolerance
+        self._grid = None
+        self.s = np.linspace(0.0, self.length, samples)
+        _, self.points, _, self.params = self._evaluate(self.s)
+        if closed:
+            self.points[-1] = self.points[0]
+        self.max_distance = self._measure()
+
+    def _locate(self, s):
+        s = np.asarray(s, dtype=float)
+        if not np.all(np.isfinite(s)):
+            raise ValueError("s must be finite")
+        if self.closed:
+            return np.mod(s, self.length), None
+        if np.any((s < -1e-12 * max(1.0, self.length)) | (s > self.length * (1 + 1e-12) + 1e-300)):
+            raise ValueError(f"s must lie in [0, {self.length:.12g}] for this open curve")
+        return s, None
+
+    def _evaluate(self, s, with_params=True):
+        s, _ = self._locate(np.ravel(s))
+        if self._shape[0] == "circle":
+            _, centre, e1, e2, radius = self._shape
+            angle = s / radius
+            c, n = np.cos(angle)[:, None], np.sin(angle)[:, None]
+            points = centre + radius * (c * e1 + n * e2)
+            tangents = -n * e1 + c * e2
+        else:
+            _, p0, direction = self._shape
+            points = p0 + s[:, None] * direction
+            tangents = np.broadcast_to(direction, points.shape).copy()
+        params = None
+        if with_params:
+            params = np.concatenate([surf.parameters(points) for surf in self.surfaces], axis=1)
+        return s, points, tangents, params
+
+    def predicted_parameters(self, s):
+        return self.parameters(s)

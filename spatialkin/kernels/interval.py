@@ -1,0 +1,320 @@
+"""Interval arithmetic with outward rounding, and interval jets of g = F_T(S(u, v)) over parameter boxes.
+
+An interval is a 2-tuple (lo, hi) of floats. Every operation rounds outward: the exact result of the operation
+on any reals in its arguments lies in the returned interval. numba exposes no rounding modes, so each bound is
+moved one ulp outward after the round-to-nearest operation (its error is at most half an ulp); sin and cos
+(within one ulp in glibc) are widened by two.
+
+S is a surface given by its packed data (spatialkin.kernels.surfaces), T another one read through a
+polynomial implicit function F_T in T's local coordinates (smooth everywhere, unlike a signed distance):
+
+    PLANE     z
+    SPHERE    x^2 + y^2 + z^2 - R^2
+    CYLINDER  x^2 + y^2 - r^2
+    CONE      x^2 + y^2 - tan(a)^2 z^2            (the double cone)
+    TORUS     (|q|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2)   (both parts of a horn or spindle torus)
+
+A point of S in T's local coordinates is q = M s(u, v) + c, with s the local point of S, M = R_T^T R_S and
+c = R_T^T (o_S - o_T) (``relative_placement``); their own rounding is covered by a pad added to every q.
+``jet`` returns enclosures of g, g_u, g_v, g_uu, g_uv, g_vv over a box; a box of zero width gives a
+rigorous enclosure of the values at a point.
+
+References
+----------
+R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009 (outward rounding,
+natural and centred forms).
+"""
+import math
+
+import numpy as np
+
+from .._jit import jit
+from .surfaces import CONE, CYLINDER, KIND, ORIGIN, P0, P1, PLANE, ROT, SPHERE, TORUS
+
+#: Unit round-off of float64 (one ulp of 1.0).
+EPS = 2.220446049250313e-16
+#: Smallest positive subnormal: keeps a widened zero bound strictly outward.
+TINY = 5e-324
+#: ulps by which sin and cos results are widened (glibc's are within one ulp).
+TRIG_ULPS = 2.0
+#: Relative pad on the transformed point q for the rounding of M and c (a few ulps of their magnitudes).
+PLACEMENT_ULPS = 16.0
+TWO_PI = 2.0 * math.pi
+
+
+@jit
+def down(x):
+    return x - (abs(x) * EPS + TINY)
+
+
+@jit
+def up(x):
+    return x + (abs(x) * EPS + TINY)
+
+
+@jit
+def point(x):
+    return (x, x)
+
+
+@jit
+def iadd(a, b):
+    return (down(a[0] + b[0]), up(a[1] + b[1]))
+
+
+@jit
+def isub(a, b):
+    return (down(a[0] - b[1]), up(a[1] - b[0]))
+
+
+@jit
+def ineg(a):
+    return (-a[1], -a[0])
+
+
+@jit
+def imul(a, b):
+    p1 = a[0] * b[0]
+    p2 = a[0] * b[1]
+    p3 = a[1] * b[0]
+    p4 = a[1] * b[1]
+    return (down(min(min(p1, p2), min(p3, p4))), up(max(max(p1, p2), max(p3, p4))))
+
+
+@jit
+def isqr(a):
+    if a[0] >= 0.0:
+        return (down(a[0] * a[0]), up(a[1] * a[1]))
+    if a[1] <= 0.0:
+        return (down(a[1] * a[1]), up(a[0] * a[0]))
+    return (0.0, up(max(a[0] * a[0], a[1] * a[1])))
+
+
+@jit
+def iscale(a, c):
+    """c * a for a float c."""
+    if c >= 0.0:
+        return (down(c * a[0]), up(c * a[1]))
+    return (down(c * a[1]), up(c * a[0]))
+
+
+@jit
+def ishift(a, c):
+    """a + c for a float c."""
+    return (down(a[0] + c), up(a[1] + c))
+
+
+@jit
+def widen(a, r):
+    """a widened by r >= 0 on both sides."""
+    return (down(a[0] - r), up(a[1] + r))
+
+
+@jit
+def contains_zero(a):
+    return a[0] <= 0.0 <= a[1]
+
+
+@jit
+def mag(a):
+    """max |x| over a."""
+    return max(abs(a[0]), abs(a[1]))
+
+
+@jit
+def intersect(a, b):
+    """a ∩ b; lo > hi when empty."""
+    return (max(a[0], b[0]), min(a[1], b[1]))
+
+
+@jit
+def _has_multiple(lo, hi, offset):
+    """True if some offset + 2 k pi lies in [lo, hi] (conservatively: also when within round-off of it)."""
+    slack = 4.0 * EPS * (abs(lo) + abs(hi) + 1.0)
+    k = math.ceil((lo - offset - slack) / TWO_PI)
+    return offset + k * TWO_PI <= hi + slack
+
+
+@jit
+def icos(a):
+    lo, hi = a
+    if hi - lo >= TWO_PI:
+        return (-1.0, 1.0)
+    c0 = math.cos(lo)
+    c1 = math.cos(hi)
+    r0 = min(c0, c1)
+    r1 = max(c0, c1)
+    r0 -= TRIG_ULPS * EPS * abs(r0) + TINY
+    r1 += TRIG_ULPS * EPS * abs(r1) + TINY
+    if _has_multiple(lo, hi, 0.0):
+        r1 = 1.0
+    if _has_multiple(lo, hi, math.pi):
+        r0 = -1.0
+    return (max(r0, -1.0), min(r1, 1.0))
+
+
+@jit
+def isin(a):
+    lo, hi = a
+    if hi - lo >= TWO_PI:
+        return (-1.0, 1.0)
+    c0 = math.sin(lo)
+    c1 = math.sin(hi)
+    r0 = min(c0, c1)
+    r1 = max(c0, c1)
+    r0 -= TRIG_ULPS * EPS * abs(r0) + TINY
+    r1 += TRIG_ULPS * EPS * abs(r1) + TINY
+    if _has_multiple(lo, hi, 0.5 * math.pi):
+        r1 = 1.0
+    if _has_multiple(lo, hi, -0.5 * math.pi):
+        r0 = -1.0
+    return (max(r0, -1.0), min(r1, 1.0))
+
+
+ZERO = (0.0, 0.0)
+
+
+@jit
+def local_jet(data, U, V):
+    """Interval local point and derivatives of S over the box U x V: (s, s_u, s_v, s_uu, s_uv, s_vv), each a
+    3-tuple of intervals."""
+    kind = int(data[KIND])
+    z = (0.0, 0.0)
+    one = (1.0, 1.0)
+    zero3 = (z, z, z)
+    if kind == PLANE:
+        return (U, V, z), (one, z, z), (z, one, z), zero3, zero3, zero3
+    cu = icos(U)
+    su = isin(U)
+    if kind == SPHERE or kind == TORUS:
+        big = 0.0 if kind == SPHERE else data[P0]
+        small = data[P0] if kind == SPHERE else data[P1]
+        cv = icos(V)
+        sv = isin(V)
+        w = ishift(iscale(cv, small), big)
+        ssv = iscale(sv, small)
+        scv = iscale(cv, small)
+        wcu = imul(w, cu)
+        wsu = imul(w, su)
+        return ((wcu, wsu, ssv), (ineg(wsu), wcu, z), (ineg(imul(ssv, cu)), ineg(imul(ssv, su)), scv),
+                (ineg(wcu), ineg(wsu), z), (imul(ssv, su), ineg(imul(ssv, cu)), z),
+                (ineg(imul(scv, cu)), ineg(imul(scv, su)), ineg(ssv)))
+    b = data[P1]
+    rho = ishift(iscale(V, b), data[P0])
+    rcu = imul(rho, cu)
+    rsu = imul(rho, su)
+    bcu = iscale(cu, b)
+    bsu = iscale(su, b)
+    return ((rcu, rsu, V), (ineg(rsu), rcu, z), (bcu, bsu, one), (ineg(rcu), ineg(rsu), z),
+            (ineg(bsu), bcu, z), zero3)
+
+
+@jit
+def relative_placement(s_data, t_data, m, c):
+    """M = R_T^T R_S (3, 3) and c = R_T^T (o_S - o_T) (3,) into m and c; returns the pad scale (the magnitude of
+    the translation, for the rounding pad of q)."""
+    for i in range(3):
+        for j in range(3):
+            acc = 0.0
+            for k in range(3):
+                acc += t_data[ROT + 3 * k + i] * s_data[ROT + 3 * k + j]
+            m[i, j] = acc
+    mag_o = 0.0
+    for i in range(3):
+        acc = 0.0
+        for k in range(3):
+            d = s_data[ORIGIN + k] - t_data[ORIGIN + k]
+            acc += t_data[ROT + 3 * k + i] * d
+            mag_o += abs(s_data[ORIGIN + k]) + abs(t_data[ORIGIN + k])
+        c[i] = acc
+    return mag_o
+
+
+@jit
+def _apply(m, x, i):
+    """Row i of M times the interval 3-vector x."""
+    acc = iscale(x[0], m[i, 0])
+    acc = iadd(acc, iscale(x[1], m[i, 1]))
+    return iadd(acc, iscale(x[2], m[i, 2]))
+
+
+@jit
+def transform(m, x, pad):
+    """M x (a vector: no translation), each component widened by pad * (|x|_1 + 1e-300)."""
+    size = mag(x[0]) + mag(x[1]) + mag(x[2])
+    r = pad * size
+    return (widen(_apply(m, x, 0), r), widen(_apply(m, x, 1), r), widen(_apply(m, x, 2), r))
+
+
+@jit
+def idot(a, b):
+    return iadd(iadd(imul(a[0], b[0]), imul(a[1], b[1])), imul(a[2], b[2]))
+
+
+@jit
+def implicit_jet(t_data, q):
+    """(F, grad F (3 intervals), s) of T's polynomial implicit function at the interval local point q; s is the
+    torus's |q|^2 + R^2 - r^2 (unused otherwise)."""
+    kind = int(t_data[KIND])
+    z = (0.0, 0.0)
+    if kind == PLANE:
+        return q[2], (z, z, (1.0, 1.0)), z
+    x2 = isqr(q[0])
+    y2 = isqr(q[1])
+    z2 = isqr(q[2])
+    rho2 = iadd(x2, y2)
+    if kind == SPHERE:
+        f = ishift(iadd(rho2, z2), -t_data[P0] * t_data[P0])
+        return f, (iscale(q[0], 2.0), iscale(q[1], 2.0), iscale(q[2], 2.0)), z
+    if kind == CYLINDER:
+        return ishift(rho2, -t_data[P0] * t_data[P0]), (iscale(q[0], 2.0), iscale(q[1], 2.0), z), z
+    if kind == CONE:
+        t2 = t_data[P1] * t_data[P1]
+        return (isub(rho2, iscale(z2, t2)), (iscale(q[0], 2.0), iscale(q[1], 2.0), iscale(q[2], -2.0 * t2)), z)
+    big2 = t_data[P0] * t_data[P0]
+    s = ishift(iadd(rho2, z2), big2 - t_data[P1] * t_data[P1])
+    f = isub(isqr(s), iscale(rho2, 4.0 * big2))
+    s4 = iscale(s, 4.0)
+    g0 = isub(imul(s4, q[0]), iscale(q[0], 8.0 * big2))
+    g1 = isub(imul(s4, q[1]), iscale(q[1], 8.0 * big2))
+    return f, (g0, g1, imul(s4, q[2])), s
+
+
+@jit
+def hessian_form(t_data, q, s, a, b):
+    """a^T H_F b over intervals, H_F the Hessian of T's implicit function at q."""
+    kind = int(t_data[KIND])
+    if kind == PLANE:
+        return (0.0, 0.0)
+    xy = iadd(imul(a[0], b[0]), imul(a[1], b[1]))
+    if kind == SPHERE:
+        return iscale(iadd(xy, imul(a[2], b[2])), 2.0)
+    if kind == CYLINDER:
+        return iscale(xy, 2.0)
+    if kind == CONE:
+        return isub(iscale(xy, 2.0), iscale(imul(a[2], b[2]), 2.0 * t_data[P1] * t_data[P1]))
+    full = iadd(xy, imul(a[2], b[2]))
+    term = iadd(imul(iscale(s, 4.0), full), iscale(imul(idot(q, a), idot(q, b)), 8.0))
+    return isub(term, iscale(xy, 8.0 * t_data[P0] * t_data[P0]))
+
+
+@jit
+def jet(s_data, t_data, m, c, pad, cpad, U, V):
+    """Enclosures (g, g_u, g_v, g_uu, g_uv, g_vv) of g = F_T(S(u, v)) over the box U x V (intervals); pad is the
+    relative rounding pad of M, cpad the absolute one of c."""
+    x, xu, xv, xuu, xuv, xvv = local_jet(s_data, U, V)
+    q0 = transform(m, x, pad)
+    r = cpad + pad * (abs(c[0]) + abs(c[1]) + abs(c[2]))
+    q = (widen(ishift(q0[0], c[0]), r), widen(ishift(q0[1], c[1]), r), widen(ishift(q0[2], c[2]), r))
+    qu = transform(m, xu, pad)
+    qv = transform(m, xv, pad)
+    quu = transform(m, xuu, pad)
+    quv = transform(m, xuv, pad)
+    qvv = transform(m, xvv, pad)
+    f, grad, s = implicit_jet(t_data, q)
+    gu = idot(grad, qu)
+    gv = idot(grad, qv)
+    guu = iadd(hessian_form(t_data, q, s, qu, qu), idot(grad, quu))
+    guv = iadd(hessian_form(t_data, q, s, qu, qv), idot(grad, quv))
+    gvv = iadd(hessian_form(t_data, q, s, qv, qv), idot(grad, qvv))
+    return f, gu, gv, guu, guv, gvv

@@ -1,0 +1,319 @@
+"""Certified root isolation for the topology stage: zeros of g = F_T o S on parameter lines (edges and seams),
+and the points of the level g = 0 where its tangent is normal to a fixed direction d (extremes of the linear
+function d . (u, v) along the level: every closed loop of the level has one).
+
+Both are branch-and-bound subdivisions over boxes of S's parameters. A box is discarded only when an interval
+enclosure (spatialkin.kernels.interval: the natural form intersected with the centred form) excludes zero, so
+no root is ever lost; a box is kept as holding exactly one root when the interval Newton operator (lines) or
+the Krawczyk operator (the 2 x 2 system) maps it strictly into itself. Boxes that can be neither discarded nor
+verified when they reach the minimum width are returned as unresolved (singular or multiple roots: contacts,
+nodes, tangencies).
+
+Records are boxes (lo, hi per parameter) with a kind: VERIFIED (exactly one simple root inside) or UNRESOLVED.
+
+References
+----------
+R. Krawczyk, Newton-Algorithmen zur Bestimmung von Nullstellen mit Fehlerschranken, Computing 4 (1969).
+R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, ch. 8.
+"""
+import math
+
+import numpy as np
+
+from .._jit import jit
+from .interval import (contains_zero, iadd, imul, intersect, iscale, isub, jet, point)
+
+VERIFIED, UNRESOLVED = 1, 2
+#: Status of a search: completed, or stopped at its box budget (the result is then not a proof).
+DONE, OVERFLOW = 0, -1
+#: A contracted box is searched again (rather than bisected) when each side shrank to this fraction or less.
+CONTRACTION = 0.7
+#: Depth of the explicit box stack.
+STACK = 4096
+#: Newton iterations refining a root inside its verified box.
+REFINE_ITER = 30
+
+
+@jit
+def _line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, a, b):
+    """(f, f') over [a, b] of f(t) = g on the parameter line (u = t, v = value) if fixed = 1, else (value, t)."""
+    if fixed == 1:
+        j = jet(s_data, t_data, m, c, pad, cpad, (a, b), (value, value))
+        return j[0], j[1]
+    j = jet(s_data, t_data, m, c, pad, cpad, (value, value), (a, b))
+    return j[0], j[2]
+
+
+@jit
+def _recip(d):
+    """1 / d for an interval d not containing zero."""
+    lo = 1.0 / d[1]
+    hi = 1.0 / d[0]
+    return (lo - (abs(lo) * 2.220446049250313e-16 + 5e-324), hi + (abs(hi) * 2.220446049250313e-16 + 5e-324))
+
+
+@jit
+def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse, max_boxes, out, kinds):
+    """Isolate the zeros of g on a parameter line of S over [t0, t1].
+
+    A box narrower than min_width, or narrower than coarse where both g at its midpoint and g' over it
+    contain zero (g is within round-off of zero there: bisecting further cannot separate anything), is
+    returned unresolved.
+
+    Returns (number of records written to out (K, 2) and kinds (K,), status DONE or OVERFLOW, boxes visited).
+    """
+    stack = np.empty((STACK, 2))
+    top = 0
+    stack[0, 0] = t0
+    stack[0, 1] = t1
+    top = 1
+    count = 0
+    boxes = 0
+    while top > 0:
+        top -= 1
+        a = stack[top, 0]
+        b = stack[top, 1]
+        boxes += 1
+        if boxes > max_boxes:
+            return count, OVERFLOW, boxes
+        f_x, d_x = _line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, a, b)
+        if not contains_zero(f_x):
+            continue
+        mid = 0.5 * (a + b)
+        f_m, _ = _line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, mid, mid)
+        f_c = iadd(f_m, imul(d_x, isub((a, b), point(mid))))
+        if not contains_zero(intersect(f_x, f_c)):
+            continue
+        if not contains_zero(d_x):
+            n = isub(point(mid), imul(f_m, _recip(d_x)))
+            if n[0] > a and n[1] < b:
+                if count >= out.shape[0]:
+                    return count, OVERFLOW, boxes
+                out[count, 0] = n[0]
+                out[count, 1] = n[1]
+                kinds[count] = VERIFIED
+                count += 1
+                continue
+            lo = max(n[0], a)
+            hi = min(n[1], b)
+            if lo > hi:
+                continue
+            if hi - lo <= CONTRACTION * (b - a):
+                if top >= STACK:
+                    return count, OVERFLOW, boxes
+                stack[top, 0] = lo
+                stack[top, 1] = hi
+                top += 1
+                continue
+        if b - a <= min_width or (b - a <= coarse and contains_zero(f_m)):
+            if count >= out.shape[0]:
+                return count, OVERFLOW, boxes
+            out[count, 0] = a
+            out[count, 1] = b
+            kinds[count] = UNRESOLVED
+            count += 1
+            continue
+        if top + 2 > STACK:
+            return count, OVERFLOW, boxes
+        stack[top, 0] = a
+        stack[top, 1] = mid
+        stack[top + 1, 0] = mid
+        stack[top + 1, 1] = b
+        top += 2
+    return count, DONE, boxes
+
+
+@jit
+def _mid(x):
+    return 0.5 * (x[0] + x[1])
+
+
+@jit
+def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coarse, max_boxes, out, kinds):
+    """Isolate the solutions of g = 0, phi = dv g_u - du g_v = 0 (the level's tangent normal to (du, dv)) in the
+    box (u_lo, u_hi, v_lo, v_hi) of S's parameters.
+
+    min_width (2,) is the smallest width per parameter; boxes are bisected along the parameter whose width is
+    largest relative to it; a box within coarse times min_width where g at its midpoint contains zero is
+    unresolved at once (round-off: bisecting further cannot separate anything). Returns (records in out (K, 4) and kinds (K,), status, boxes visited).
+    """
+    stack = np.empty((STACK, 4))
+    for i in range(4):
+        stack[0, i] = box[i]
+    top = 1
+    count = 0
+    boxes = 0
+    while top > 0:
+        top -= 1
+        U = (stack[top, 0], stack[top, 1])
+        V = (stack[top, 2], stack[top, 3])
+        boxes += 1
+        if boxes > max_boxes:
+            return count, OVERFLOW, boxes
+        g, gu, gv, guu, guv, gvv = jet(s_data, t_data, m, c, pad, cpad, U, V)
+        if not contains_zero(g):
+            continue
+        phi = isub(iscale(gu, dv), iscale(gv, du))
+        if not contains_zero(phi):
+            continue
+        mu = _mid(U)
+        mv = _mid(V)
+        gm, gum, gvm, guum, guvm, gvvm = jet(s_data, t_data, m, c, pad, cpad, point(mu), point(mv))
+        dU = isub(U, point(mu))
+        dV = isub(V, point(mv))
+        if not contains_zero(intersect(g, iadd(gm, iadd(imul(gu, dU), imul(gv, dV))))):
+            continue
+        j10 = isub(iscale(guu, dv), iscale(guv, du))
+        j11 = isub(iscale(guv, dv), iscale(gvv, du))
+        phim = isub(iscale(gum, dv), iscale(gvm, du))
+        if not contains_zero(intersect(phi, iadd(phim, iadd(imul(j10, dU), imul(j11, dV))))):
+            continue
+        # Krawczyk: K = m - Y Phi(m) + (I - Y J(X)) (X - m), Y the inverse of the midpoint Jacobian
+        a00 = _mid(gum)
+        a01 = _mid(gvm)
+        a10 = dv * _mid(guum) - du * _mid(guvm)
+        a11 = dv * _mid(guvm) - du * _mid(gvvm)
+        det = a00 * a11 - a01 * a10
+        scale = abs(a00 * a11) + abs(a01 * a10)
+        contracted = False
+        if scale > 0.0 and abs(det) > 1e-12 * scale:
+            y00 = a11 / det
+            y01 = -a01 / det
+            y10 = -a10 / det
+            y11 = a00 / det
+            k = _krawczyk_row(y00, y01, mu, gm, phim, gu, gv, j10, j11, dU, dV, 0)
+            l = _krawczyk_row(y10, y11, mv, gm, phim, gu, gv, j10, j11, dU, dV, 1)
+            if k[0] > U[0] and k[1] < U[1] and l[0] > V[0] and l[1] < V[1]:
+                if count >= out.shape[0]:
+                    return count, OVERFLOW, boxes
+                out[count, 0] = k[0]
+                out[count, 1] = k[1]
+                out[count, 2] = l[0]
+                out[count, 3] = l[1]
+                kinds[count] = VERIFIED
+                count += 1
+                continue
+            ku = intersect(k, U)
+            kv = intersect(l, V)
+            if ku[0] > ku[1] or kv[0] > kv[1]:
+                continue
+            if (ku[1] - ku[0] <= CONTRACTION * (U[1] - U[0]) and kv[1] - kv[0] <= CONTRACTION * (V[1] - V[0])):
+                U = ku
+                V = kv
+                contracted = True
+        if contracted:
+            if top >= STACK:
+                return count, OVERFLOW, boxes
+            stack[top, 0] = U[0]
+            stack[top, 1] = U[1]
+            stack[top, 2] = V[0]
+            stack[top, 3] = V[1]
+            top += 1
+            continue
+        ru = (U[1] - U[0]) / min_width[0]
+        rv = (V[1] - V[0]) / min_width[1]
+        tiny = ru <= coarse and rv <= coarse and contains_zero(gm)
+        if (ru <= 1.0 and rv <= 1.0) or tiny:
+            if count >= out.shape[0]:
+                return count, OVERFLOW, boxes
+            out[count, 0] = U[0]
+            out[count, 1] = U[1]
+            out[count, 2] = V[0]
+            out[count, 3] = V[1]
+            kinds[count] = UNRESOLVED
+            count += 1
+            continue
+        if top + 2 > STACK:
+            return count, OVERFLOW, boxes
+        stack[top, 0] = U[0]
+        stack[top, 1] = U[1]
+        stack[top, 2] = V[0]
+        stack[top, 3] = V[1]
+        stack[top + 1, 0] = U[0]
+        stack[top + 1, 1] = U[1]
+        stack[top + 1, 2] = V[0]
+        stack[top + 1, 3] = V[1]
+        if ru >= rv:
+            stack[top, 1] = mu
+            stack[top + 1, 0] = mu
+        else:
+            stack[top, 3] = mv
+            stack[top + 1, 2] = mv
+        top += 2
+    return count, DONE, boxes
+
+
+@jit
+def _krawczyk_row(y0, y1, m_i, gm, phim, gu, gv, j10, j11, dU, dV, i):
+    """Row i of the Krawczyk operator: m_i - (Y Phi(m))_i + sum_j (delta_ij - (Y J)_ij) (X_j - m_j)."""
+    yphi = iadd(iscale(gm, y0), iscale(phim, y1))
+    a0 = iadd(iscale(gu, y0), iscale(j10, y1))        # (Y J)_i0
+    a1 = iadd(iscale(gv, y0), iscale(j11, y1))        # (Y J)_i1
+    if i == 0:
+        a0 = isub((1.0, 1.0), a0)
+        a1 = isub((0.0, 0.0), a1)
+    else:
+        a0 = isub((0.0, 0.0), a0)
+        a1 = isub((1.0, 1.0), a1)
+    return iadd(isub(point(m_i), yphi), iadd(imul(a0, dU), imul(a1, dV)))
+
+
+@jit
+def _point_jet(s_data, t_data, m, c, u, v):
+    j = jet(s_data, t_data, m, c, 0.0, 0.0, (u, u), (v, v))
+    return (_mid(j[0]), _mid(j[1]), _mid(j[2]), _mid(j[3]), _mid(j[4]), _mid(j[5]))
+
+
+@jit
+def refine_extremal(s_data, t_data, m, c, du, dv, box, uv):
+    """Newton on (g, phi) from the box centre, kept inside the box; the root into uv (2,)."""
+    u = 0.5 * (box[0] + box[1])
+    v = 0.5 * (box[2] + box[3])
+    for _ in range(REFINE_ITER):
+        g, gu, gv, guu, guv, gvv = _point_jet(s_data, t_data, m, c, u, v)
+        phi = dv * gu - du * gv
+        a10 = dv * guu - du * guv
+        a11 = dv * guv - du * gvv
+        det = gu * a11 - gv * a10
+        if det == 0.0:
+            break
+        su = (a11 * g - gv * phi) / det
+        sv = (gu * phi - a10 * g) / det
+        nu = min(max(u - su, box[0]), box[1])
+        nv = min(max(v - sv, box[2]), box[3])
+        done = nu == u and nv == v
+        u = nu
+        v = nv
+        if done:
+            break
+    uv[0] = u
+    uv[1] = v
+
+
+@jit
+def refine_line(s_data, t_data, m, c, fixed, value, a, b):
+    """Newton on g along the parameter line inside [a, b]; returns the root."""
+    t = 0.5 * (a + b)
+    for _ in range(REFINE_ITER):
+        if fixed == 1:
+            j = _point_jet(s_data, t_data, m, c, t, value)
+            f, d = j[0], j[1]
+        else:
+            j = _point_jet(s_data, t_data, m, c, value, t)
+            f, d = j[0], j[2]
+        if d == 0.0:
+            break
+        nt = min(max(t - f / d, a), b)
+        if nt == t:
+            break
+        t = nt
+    return t
+
+
+@jit
+def point_values(s_data, t_data, m, c, uv, out):
+    """(g, g_u, g_v, g_uu, g_uv, g_vv) (N, 6) at parameter points uv (N, 2) of S (float evaluation)."""
+    for k in range(uv.shape[0]):
+        j = _point_jet(s_data, t_data, m, c, uv[k, 0], uv[k, 1])
+        for i in range(6):
+            out[k, i] = j[i]

@@ -1,0 +1,551 @@
+"""The topology stage of sk.intersect: a start on every component of a ∩ b, found by a search that cannot miss one.
+
+One surface, P, keeps its parameters; the other, Q, is read through its polynomial implicit function F_Q, so
+that the intersection is the level g = F_Q(P(u, v)) = 0 on P's parameter domain (a rectangle, bounded by Q's
+extent where P is not). Every component of that level
+
+- meets an edge of a trimmed domain (P's edges; Q's edges are curves on P, searched on Q as F_P = 0),
+- or crosses a seam of a periodic parameter (the loops that wind round a cylinder, cone or torus),
+- or passes through a point where P's parametrisation collapses (a sphere's pole, a cone's or spindle torus's
+  apex: searched on small rings round it),
+- or is a closed loop inside the open rectangle, and then holds a point where its tangent is normal to a fixed
+  direction d (where the linear function d . (u, v) is largest along the loop): a root of g = 0,
+  d_v g_u - d_u g_v = 0.
+
+The roots on edges and seams and the roots of that 2 x 2 system come from interval subdivision with outward
+rounding (spatialkin.kernels.topology): a box is dropped only when an enclosure proves that it holds no root,
+and kept as one isolated root when the interval Newton or Krawczyk operator proves it; so a loop of any size
+down to the round-off of the coordinates is found. Boxes that shrink to round-off without either proof are
+singular points of the level (contacts, nodes, tangencies), classified by the Hessian of g.
+
+Special configurations are recognised first (spatialkin.tracing.placement): coincident patches raise
+CoincidentSurfacesError; surfaces of revolution about one axis meet in parallels (found on one meridian; a
+double root there is a circle of tangency); a cylinder and a surface invariant along its axis meet in lines
+along it (found on one cross-section; a double root is a line of tangency).
+
+References
+----------
+../shared/reference/ssi-notes.md: seeding from critical points, loops lost by grids.
+H. Hong, An efficient method for analyzing the topology of plane real algebraic curves, Math. Comput. Simul. 42
+(1996): the extremes of a coordinate along a curve as its critical points.
+"""
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg
+
+from ..frame import Frame
+from ..kernels import interval as ki
+from ..kernels import topology as kt
+from ..surfaces import Cone, Cylinder, Plane, Sphere, Torus
+from .placement import bounding_ball, check_not_coincident, common_axis, ruled_along
+
+#: The fixed direction d (an angle in the plane of scaled parameters) whose extremes seed the closed loops;
+#: any direction works, a generic one keeps straight pieces of the level from lying along d's normal.
+DIRECTION = 0.3091
+#: Smallest box width, relative to the coordinates' magnitude in parameter units (a few hundred ulps).
+MIN_WIDTH_ULPS = 256.0
+#: Widths up to this fraction of the searched range stop bisecting where g is within round-off of zero at the
+#: midpoint (near a multiple root, round-off hides the rest: about sqrt(eps) of the range).
+COARSE = 1e-7
+#: Box budget of one search: past it the search stops and the result is not a proof (TopologyError).
+MAX_BOXES = 400_000
+#: Records kept per search.
+MAX_RECORDS = 4096
+#: Parameter offset of the rings searched round a pole or an apex that lies on the other surface.
+RING = 1e-3
+#: Margin on the bounding ball that limits an unbounded P's domain.
+BALL_MARGIN = 1.01
+#: Unresolved boxes closer than this (relative to the scale) are one singular point.
+CLUSTER = 1e-6
+#: Eigenvalues of the Hessian of g below this fraction of the largest are zero (a degenerate singular point).
+EIGEN_RATIO = 1e-6
+#: Seeds on the arms of a node sit this far (relative to the scale) from it.
+NODE_OFFSET = 2e-2
+#: Newton iterations locating a critical point of g from an unresolved box.
+CRITICAL_ITER = 40
+#: Rank of each kind as the parametrised surface P (lower first): a torus has no singular chart, a plane as Q
+#: reads linearly.
+P_RANK = {Torus: 0, Sphere: 1, Cylinder: 2, Cone: 3, Plane: 4}
+
+
+class TopologyError(RuntimeError):
+    """The topology stage could not prove where the components are (its box budget ran out, e.g. on a
+    tangency along a curve in a placement it does not recognise); ``where`` names the search."""
+
+    def __init__(self, message, where=None):
+        super().__init__(message)
+        self.where = where
+
+
+@dataclass
+class Topology:
+    """What the topology stage found, in the surfaces' argument order (a, b).
+
+    seeds : list of ndarray (3,)        points on the curve (to round-off), at least one per curve component
+    edge_starts : list of (point, index, fixed, value)   points on an edge: surface index (0 a, 1 b), its
+                                        parameter `fixed` (0 u, 1 v) held at value
+    contacts : list of ndarray (3,)     isolated points where the surfaces touch
+    nodes : list of ndarray (3,)        points where branches cross
+    tangent_circles : list of (centre, axis, radius)     circles along which the surfaces touch
+    tangent_segments : list of (p0, p1)                  segments along which the surfaces touch
+    """
+    P: object
+    Q: object
+    mode: str
+    seeds: list = field(default_factory=list)
+    edge_starts: list = field(default_factory=list)
+    contacts: list = field(default_factory=list)
+    nodes: list = field(default_factory=list)
+    tangent_circles: list = field(default_factory=list)
+    tangent_segments: list = field(default_factory=list)
+    searches: list = field(default_factory=list)
+    boxes: int = 0
+    verified: int = 0
+    unresolved: int = 0
+    seconds: float = 0.0
+
+
+# --- roles and domains -------------------------------------------------------------------------------------
+def choose_roles(a, b, axis, ruled):
+    """(P, Q, mode): P parametrised, Q implicit; the same for (a, b) and (b, a)."""
+    if axis is not None:
+        mode = "coaxial"
+        cands = [s for s in (a, b) if not isinstance(s, Plane)]
+    elif ruled is not None:
+        return ruled, (b if ruled is a else a), "ruled"
+    else:
+        mode = "general"
+        cands = [a, b]
+    best = min(cands, key=lambda s: (P_RANK[type(s)], -s.size, tuple(s.data)))
+    return best, (b if best is a else a), mode
+
+
+def aligned(p, axis, scale):
+    """P re-placed so that its local z is the common axis (a sphere only: the others already turn about z)."""
+    if not isinstance(p, Sphere):
+        return p
+    return p.with_frame(Frame.from_z_axis(p.frame.origin, axis[1]))
+
+
+def sphere_chart(p, q, scale):
+    """A sphere P re-charted so that its poles are as far from Q as the frame's axes allow (fewer rings)."""
+    best, score = p, -1.0
+    for k in range(3):
+        axis = p.frame.rotation[:, k]
+        poles = p.frame.origin + np.outer([1.0, -1.0], axis) * p.radius
+        d = float(np.min(q.distance(poles)))
+        if d > score * (1 + 1e-9):
+            best = p if k == 2 else p.with_frame(Frame.from_z_axis(p.frame.origin, axis))
+            score = d
+    return best
+
+
+def apex_values(p):
+    """Values of v along which P's parametrisation collapses to one point (poles and apexes)."""
+    if isinstance(p, Sphere):
+        return [-0.5 * math.pi, 0.5 * math.pi]
+    if isinstance(p, Cone):
+        return [0.0]
+    if isinstance(p, Torus) and p.minor_radius >= p.major_radius:
+        v = math.acos(-p.major_radius / p.minor_radius)
+        return [v, -v] if v < math.pi else [math.pi, -math.pi]
+    return []
+
+
+def domain(p, q_ball):
+    """(box (4,) = u_lo, u_hi, v_lo, v_hi of P's domain, u periodic, v periodic)."""
+    if isinstance(p, Torus):
+        return np.array([-math.pi, math.pi, -math.pi, math.pi]), True, True
+    if isinstance(p, Sphere):
+        return np.array([-math.pi, math.pi, -0.5 * math.pi, 0.5 * math.pi]), True, False
+    (u0, u1), (v0, v1) = p.u_range, p.v_range
+    if q_ball is not None:
+        centre = p.frame.to_local(q_ball[0])
+        reach = BALL_MARGIN * q_ball[1]
+        if isinstance(p, Plane):
+            u0, u1 = max(u0, centre[0] - reach), min(u1, centre[0] + reach)
+        v0, v1 = max(v0, centre[2 if not isinstance(p, Plane) else 1] - reach), \
+            min(v1, centre[2 if not isinstance(p, Plane) else 1] + reach)
+    if isinstance(p, Plane):
+        return np.array([u0, u1, v0, v1]), False, False
+    return np.array([-math.pi, math.pi, v0, v1]), True, False
+
+
+# --- the searches ------------------------------------------------------------------------------------------
+class Reader:
+    """g = F_T o S for one ordered pair (S parametrised), with the rigorous placement of S in T's frame."""
+
+    def __init__(self, s, t):
+        self.s, self.t = s, t
+        self.m = np.empty((3, 3))
+        self.c = np.empty(3)
+        magnitude = ki.relative_placement(s.data, t.data, self.m, self.c)
+        self.pad = ki.PLACEMENT_ULPS * ki.EPS
+        self.cpad = ki.PLACEMENT_ULPS * ki.EPS * magnitude
+        self.magnitude = magnitude
+
+    def min_width(self, lo, hi):
+        """Smallest box width on [lo, hi]: MIN_WIDTH_ULPS ulps of its magnitude."""
+        return MIN_WIDTH_ULPS * ki.EPS * max(abs(lo), abs(hi), 1e-300)
+
+    def line(self, fixed, value, t0, t1, topo, name):
+        """Roots of g on the line (parameter `fixed` of S = value, the other in [t0, t1]): (verified (K,),
+        unresolved (L,)) of the other parameter."""
+        out = np.empty((MAX_RECORDS, 2))
+        kinds = np.empty(MAX_RECORDS, dtype=np.int64)
+        width = max(self.min_width(t0, t1), 1e-15 * (t1 - t0))
+        n, status, boxes = kt.line_roots(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad, int(fixed),
+                                         float(value), float(t0), float(t1), width, COARSE * (t1 - t0), MAX_BOXES,
+                                         out, kinds)
+        self._account(topo, name, status, boxes, kinds[:n])
+        roots = [kt.refine_line(self.s.data, self.t.data, self.m, self.c, int(fixed), float(value), lo, hi)
+                 for lo, hi in out[:n][kinds[:n] == kt.VERIFIED]]
+        loose = [0.5 * (lo + hi) for lo, hi in out[:n][kinds[:n] == kt.UNRESOLVED]]
+        return np.array(roots), np.array(loose)
+
+    def extremal(self, box, unit, topo):
+        """Roots of g = 0, d_v g_u - d_u g_v = 0 in the box: (verified (K, 2), unresolved (L, 2))."""
+        du, dv = math.cos(DIRECTION) / unit[0], math.sin(DIRECTION) / unit[1]
+        out = np.empty((MAX_RECORDS, 4))
+        kinds = np.empty(MAX_RECORDS, dtype=np.int64)
+        width = np.array([max(self.min_width(box[0], box[1]), 1e-15 * (box[1] - box[0])),
+                          max(self.min_width(box[2], box[3]), 1e-15 * (box[3] - box[2]))])
+        n, status, boxes = kt.extremal_points(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad, du, dv,
+                                              np.ascontiguousarray(box, dtype=float), width,
+                                              COARSE * max((box[1] - box[0]) / width[0], (box[3] - box[2]) / width[1]),
+                                              MAX_BOXES, out, kinds)
+        self._account(topo, "interior", status, boxes, kinds[:n])
+        uv = np.empty(2)
+        roots = []
+        for rec in out[:n][kinds[:n] == kt.VERIFIED]:
+            kt.refine_extremal(self.s.data, self.t.data, self.m, self.c, du, dv, rec, uv)
+            roots.append(uv.copy())
+        loose = [[0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3])] for r in out[:n][kinds[:n] == kt.UNRESOLVED]]
+        return np.array(roots).reshape(-1, 2), np.array(loose).reshape(-1, 2)
+
+    def values(self, uv):
+        """(g, g_u, g_v, g_uu, g_uv, g_vv) (N, 6) at parameter points uv (N, 2) of S."""
+        uv = np.ascontiguousarray(np.asarray(uv, dtype=float).reshape(-1, 2))
+        out = np.empty((len(uv), 6))
+        kt.point_values(self.s.data, self.t.data, self.m, self.c, uv, out)
+        return out
+
+    @staticmethod
+    def _account(topo, name, status, boxes, kinds):
+        topo.boxes += int(boxes)
+        topo.verified += int(np.sum(kinds == kt.VERIFIED))
+        topo.unresolved += int(np.sum(kinds == kt.UNRESOLVED))
+        topo.searches.append((name, int(boxes)))
+        if status == kt.OVERFLOW:
+            raise TopologyError(f"the {name} search ran out of its budget of {MAX_BOXES} boxes: the intersection "
+                                "could not be resolved there (a tangency along a curve in a placement not "
+                                "recognised as symmetric?)", where=name)
+
+
+def unit_lengths(p, scale):
+    """Length of a unit step of (u, v) of P: 1 for an angle, the scale for a length."""
+    if isinstance(p, Plane):
+        return np.array([scale, scale])
+    if isinstance(p, (Cylinder, Cone)):
+        return np.array([1.0, scale])
+    return np.ones(2)
+
+
+def topology(a, b, scale, tolerance):
+    """Start points on every component of a ∩ b (see the module docstring). Returns a Topology.
+
+    Raises
+    ------
+    CoincidentSurfacesError
+        The patches overlap in a piece of surface.
+    ValueError
+        Neither surface is bounded (nothing limits the search).
+    TopologyError
+        A search ran out of its box budget.
+    """
+    t0 = time.perf_counter()
+    check_not_coincident(a, b, scale)
+    balls = {id(a): bounding_ball(a), id(b): bounding_ball(b)}
+    if balls[id(a)] is None and balls[id(b)] is None:
+        raise ValueError(f"intersect needs a bounded pair: {type(a).__name__} and {type(b).__name__} are both "
+                         "unbounded (give a Plane u_range and v_range, a Cylinder or Cone a v_range)")
+    axis = common_axis(a, b, scale)
+    ruled = ruled_along(a, b) if axis is None else None
+    p_user, q, mode = choose_roles(a, b, axis, ruled)
+    if mode == "ruled" and balls[id(p_user)] is None and balls[id(q)] is None:
+        raise ValueError("intersect needs a bounded pair")
+    p = aligned(p_user, axis, scale) if mode == "coaxial" else p_user
+    if mode == "general" and isinstance(p, Sphere):
+        p = sphere_chart(p, q, scale)
+    topo = Topology(P=p_user, Q=q, mode=mode)
+    box, u_periodic, v_periodic = domain(p, balls[id(q)])
+    if not box[0] < box[1] or not box[2] < box[3]:
+        topo.seconds = time.perf_counter() - t0
+        return topo                                  # Q's ball misses P's trimmed domain
+    pq, qp = Reader(p, q), Reader(q, p)
+    index = {id(a): 0, id(b): 1}
+    p_index, q_index = index[id(p_user)], index[id(q)]
+    apexes = [v for v in apex_values(p) if box[2] <= v <= box[3]]
+    loose = []                                      # (surface reader, uv) of unresolved boxes
+
+    def keep(point):
+        return inside_trims(a, point, tolerance) and inside_trims(b, point, tolerance)
+
+    def add_line_roots(reader, fixed, value, t_lo, t_hi, name, surf_index, edge):
+        roots, unresolved = reader.line(fixed, value, t_lo, t_hi, topo, name)
+        for t in roots:
+            uv = (t, value) if fixed == 1 else (value, t)
+            pt = reader.s.point(*uv)
+            if keep(pt):
+                if edge:
+                    topo.edge_starts.append((pt, surf_index, fixed, value))
+                else:
+                    topo.seeds.append(pt)
+        for t in unresolved:
+            loose.append((reader, np.array((t, value) if fixed == 1 else (value, t))))
+        return roots, unresolved
+
+    if mode == "coaxial":
+        coaxial_components(p, q, pq, box, topo, keep, add_line_roots, tolerance, scale)
+    elif mode == "ruled":
+        ruled_components(p, q, pq, box, topo, tolerance, scale, add_line_roots, a, b)
+    else:
+        # edges of P's trim (not the limits set by Q's ball: no root lies there)
+        (u0, u1), (v0, v1) = p.u_range, p.v_range
+        if isinstance(p, Plane):
+            for u in (u0, u1):
+                if math.isfinite(u):
+                    add_line_roots(pq, 0, u, box[2], box[3], "edge of P", p_index, True)
+        for v in (v0, v1):
+            if math.isfinite(v) and not isinstance(p, (Sphere, Torus)):
+                add_line_roots(pq, 1, v, box[0], box[1], "edge of P", p_index, True)
+        # seams of periodic parameters
+        if u_periodic:
+            add_line_roots(pq, 0, -math.pi, box[2], box[3], "u seam", None, False)
+        if v_periodic and not any(abs(abs(v) - math.pi) < 1e-12 for v in apexes):
+            add_line_roots(pq, 1, -math.pi, box[0], box[1], "v seam", None, False)
+        # rings round poles and apexes on Q
+        for v in apexes:
+            apex = p.point(0.0, v)
+            if float(q.distance(apex)) > 1e3 * tolerance:
+                continue
+            found = 0
+            for ring in (v - RING, v + RING):
+                if box[2] <= ring <= box[3]:
+                    roots, unresolved = add_line_roots(pq, 1, ring, -math.pi, math.pi, "apex ring", None, False)
+                    found += len(roots) + len(unresolved)
+            if not found and keep(apex):
+                topo.contacts.append(apex)
+        # Q's trim edges, as curves on Q where F_P = 0
+        q_edges(q, p, qp, balls[id(p_user)], topo, add_line_roots, q_index)
+        # closed loops inside P's open domain
+        roots, unresolved = pq.extremal(box, unit_lengths(p, scale), topo)
+        for uv in roots:
+            pt = p.point(*uv)
+            if keep(pt):
+                topo.seeds.append(pt)
+        loose += [(pq, uv) for uv in unresolved]
+    classify(loose, topo, scale, tolerance, keep)
+    topo.seconds = time.perf_counter() - t0
+    return topo
+
+
+def q_edges(q, p, qp, p_ball, topo, add_line_roots, q_index):
+    """Roots of F_P on the trim edges of Q (a trimmed plane's sides, a cylinder's or cone's rims)."""
+    (u0, u1), (v0, v1) = q.u_range, q.v_range
+    if isinstance(q, Plane):
+        lo_hi = []
+        for lo, hi, k in ((v0, v1, 1), (u0, u1, 0)):
+            if (not math.isfinite(lo) or not math.isfinite(hi)) and p_ball is not None:
+                centre = q.frame.to_local(p_ball[0])[k]
+                lo, hi = max(lo, centre - BALL_MARGIN * p_ball[1]), min(hi, centre + BALL_MARGIN * p_ball[1])
+            lo_hi.append((lo, hi))
+        for u in (u0, u1):
+            if math.isfinite(u) and lo_hi[0][0] < lo_hi[0][1]:
+                add_line_roots(qp, 0, u, lo_hi[0][0], lo_hi[0][1], "edge of Q", q_index, True)
+        for v in (v0, v1):
+            if math.isfinite(v) and lo_hi[1][0] < lo_hi[1][1]:
+                add_line_roots(qp, 1, v, lo_hi[1][0], lo_hi[1][1], "edge of Q", q_index, True)
+    elif isinstance(q, (Cylinder, Cone)):
+        for v in (v0, v1):
+            if math.isfinite(v):
+                add_line_roots(qp, 1, v, -math.pi, math.pi, "edge of Q", q_index, True)
+
+
+def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, tolerance, scale):
+    """Surfaces of revolution about one axis (P's z) meet in parallels v = const of P: the roots of g on one
+    meridian. A simple root is a circle crossed transversally (traced); a multiple root where g keeps its sign
+    is a circle of tangency; a root where the parallel collapses (a pole, an apex) is a contact point."""
+    roots, unresolved = pq.line(0, -math.pi, box[2], box[3], topo, "meridian")
+    apexes = apex_values(p)
+    q_rim = isinstance(q, Plane) and (np.isfinite(q.u_range).any() or np.isfinite(q.v_range).any())
+    for v, simple in [(v, True) for v in roots] + [(v, False) for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2]))]:
+        pt = p.point(0.0, v)
+        radius = math.hypot(*p.frame.to_local(pt)[:2])
+        if radius <= 1e-9 * scale or any(abs(v - w) < 1e-12 for w in apexes):
+            if keep(pt):
+                topo.contacts.append(pt)
+            continue
+        if not simple:
+            h = 1e-6 * (box[3] - box[2])
+            side = pq.values([[-math.pi, v - h], [-math.pi, v + h]])[:, 0]
+            if side[0] * side[1] > 0 and not q_rim:
+                centre = p.frame.to_global([0.0, 0.0, p.frame.to_local(pt)[2]])
+                if keep(pt):
+                    topo.tangent_circles.append((centre, p.frame.rotation[:, 2].copy(), radius))
+                continue
+        # a circle: seed it at a point inside both trims (a trimmed plane may cut it)
+        ring = p.point(np.linspace(-math.pi, math.pi, 64, endpoint=False), np.full(64, v))
+        inside = [x for x in ring if keep(x)]
+        if inside:
+            topo.seeds.append(inside[0])
+    if q_rim:
+        q_edges(q, p, Reader(q, p), bounding_ball(p), topo, add_line_roots, None)
+
+
+def ruled_components(p, q, pq, box, topo, tolerance, scale, add_line_roots, a, b):
+    """A cylinder P and a surface invariant along its axis meet in lines u = const of P: the roots of g on one
+    cross-section. Each line is clipped to both trims; a simple root is traced, a multiple root where g keeps
+    its sign is a line of tangency."""
+    v_mid = 0.5 * (box[2] + box[3])
+    roots, unresolved = pq.line(1, v_mid, -math.pi, math.pi, topo, "cross-section")
+    for u, simple in [(u, True) for u in roots] + [(u, False) for u in merge_values(unresolved, 8 * COARSE * math.pi)]:
+        lo, hi = clip_line(p, u, box[2], box[3], q)
+        if not lo < hi:
+            continue
+        if not simple:
+            h = 1e-6
+            side = pq.values([[u - h, v_mid], [u + h, v_mid]])[:, 0]
+            if side[0] * side[1] > 0:
+                topo.tangent_segments.append((p.point(u, lo), p.point(u, hi)))
+                continue
+        topo.seeds.append(p.point(u, 0.5 * (lo + hi)))
+
+
+def clip_line(p, u, v_lo, v_hi, q):
+    """The v-interval of the line u = const of the cylinder P within [v_lo, v_hi] that lies inside Q's trim."""
+    ends = p.point(np.array([u, u]), np.array([v_lo, v_hi]))
+    lo, hi = 0.0, 1.0
+    if isinstance(q, Plane):
+        local = q.frame.to_local(ends)
+        limits = [(0, *q.u_range), (1, *q.v_range)]
+    else:
+        local = q.frame.to_local(ends)
+        limits = [(2, *q.v_range)]
+    for k, a, b in limits:
+        x0, x1 = local[0, k], local[1, k]
+        if x1 == x0:
+            if not a <= x0 <= b:
+                return 0.0, -1.0
+            continue
+        t_a, t_b = (a - x0) / (x1 - x0), (b - x0) / (x1 - x0)
+        lo, hi = max(lo, min(t_a, t_b)), min(hi, max(t_a, t_b))
+    return v_lo + lo * (v_hi - v_lo), v_lo + hi * (v_hi - v_lo)
+
+
+def merge_values(values, gap):
+    """Sorted values with runs closer than gap replaced by their mean."""
+    values = np.sort(np.asarray(values, dtype=float))
+    out, run = [], []
+    for x in values:
+        if run and x - run[-1] > gap:
+            out.append(float(np.mean(run)))
+            run = []
+        run.append(x)
+    if run:
+        out.append(float(np.mean(run)))
+    return out
+
+
+def inside_trims(surface, point, tolerance):
+    """True when the surface's foot point of `point` lies within its trims (with a slack of the tolerance)."""
+    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    if not (np.isfinite([u0, u1, v0, v1]).any()):
+        return True
+    u, v = surface.parameters(point)
+    slack = 10.0 * tolerance
+    if isinstance(surface, Plane) and not (u0 - slack <= u <= u1 + slack):
+        return False
+    if isinstance(surface, Cone):
+        slack = slack * math.cos(surface.half_angle)
+    return v0 - slack <= v <= v1 + slack
+
+
+def classify(loose, topo, scale, tolerance, keep):
+    """Unresolved boxes: each cluster is a singular point of the level (a contact, a node, a degenerate point)
+    or a double root on a line; contacts are kept, nodes seed their four arms, the rest seed where they are."""
+    clusters = []
+    for reader, uv in loose:
+        pt = reader.s.point(*uv)
+        if any(np.linalg.norm(pt - c[2]) <= CLUSTER * scale for c in clusters):
+            continue
+        clusters.append((reader, uv, pt))
+    for reader, uv, pt in clusters:
+        crit = critical_point(reader, uv)
+        if crit is None:
+            if keep(pt):
+                topo.seeds.append(pt)
+            continue
+        at = reader.s.point(*crit)
+        if float(reader.t.distance(at)) > 1e2 * tolerance:
+            if keep(pt):
+                topo.seeds.append(pt)
+            continue
+        lam, vec = hessian_eigen(reader, crit)
+        if lam is None:
+            if keep(at):
+                topo.seeds.append(at)
+            continue
+        big = max(abs(lam[0]), abs(lam[1]), 1e-300)
+        nonzero = np.abs(lam) > EIGEN_RATIO * big
+        if not keep(at):
+            continue
+        if np.all(nonzero) and lam[0] * lam[1] > 0:
+            topo.contacts.append(at)
+        elif np.all(nonzero):
+            topo.nodes.append(at)
+            ratio = math.sqrt(-lam[0] / lam[1])
+            d = reader.s.derivatives(*crit)
+            for w in (vec[:, 0] + ratio * vec[:, 1], vec[:, 0] - ratio * vec[:, 1]):
+                step = NODE_OFFSET * scale / max(np.linalg.norm(d[1] * w[0] + d[2] * w[1]), 1e-300)
+                for sense in (1.0, -1.0):
+                    arm = reader.s.point(*(crit + sense * step * w))
+                    if keep(arm):
+                        topo.seeds.append(arm)
+        else:
+            topo.seeds.append(at)
+
+
+def critical_point(reader, uv):
+    """Newton on grad g = 0 from uv; the critical point (2,), or None if Newton does not settle nearby."""
+    x = np.array(uv, dtype=float)
+    for _ in range(CRITICAL_ITER):
+        g = reader.values(x)[0]
+        hess = np.array([[g[3], g[4]], [g[4], g[5]]])
+        try:
+            step = np.linalg.solve(hess, -g[1:3])
+        except np.linalg.LinAlgError:
+            return x
+        if not np.all(np.isfinite(step)):
+            return x
+        x = x + step
+        if np.max(np.abs(step)) <= 1e-15 * max(1.0, np.max(np.abs(x))):
+            break
+    if np.max(np.abs(x - uv)) > 1e-3 * max(1.0, np.max(np.abs(uv))):
+        return None
+    return x
+
+
+def hessian_eigen(reader, uv):
+    """Eigenvalues and vectors of the Hessian of g in the metric of S at uv, or (None, None) where the metric
+    degenerates (a pole or an apex)."""
+    g = reader.values(uv)[0]
+    hess = np.array([[g[3], g[4]], [g[4], g[5]]])
+    d = reader.s.derivatives(*uv)
+    metric = np.array([[d[1] @ d[1], d[1] @ d[2]], [d[1] @ d[2], d[2] @ d[2]]])
+    if np.linalg.det(metric) <= 1e-14 * np.trace(metric) ** 2:
+        return None, None
+    return scipy.linalg.eigh(hess, metric)

@@ -54,8 +54,12 @@ COARSE = 1e-7
 MAX_BOXES = 400_000
 #: Records kept per search.
 MAX_RECORDS = 4096
-#: Parameter offset of the rings searched round a pole or an apex that lies on the other surface.
-RING = 1e-3
+#: Parameter offsets of the rings searched round a pole or an apex that lies on the other surface: far enough
+#: for a good start (the tracer then passes the apex from a clear incoming chord), and near, for the branches of
+#: a loop through the apex smaller than the first ring.
+RINGS = (2e-2, 1e-5)
+#: Starts closer than this to an apex or pole (relative to the scale) are left to the rings round it.
+APEX_CLEARANCE = 1e-7
 #: Margin on the bounding ball that limits an unbounded P's domain.
 BALL_MARGIN = 1.01
 #: Unresolved boxes closer than this (relative to the scale) are one singular point.
@@ -64,6 +68,11 @@ CLUSTER = 1e-6
 EIGEN_RATIO = 1e-6
 #: Seeds on the arms of a node sit this far (relative to the scale) from it.
 NODE_OFFSET = 2e-2
+#: Where the seams of periodic parameters are cut (offsets from -pi, tried in turn): any position proves the
+#: same, but a component lying along the seam itself (a meridian plane through a torus axis) must be avoided.
+SEAM_OFFSETS = (0.0, 0.7236, 2.2019, 4.0537, 5.3211)
+#: A seam candidate is rejected when g is below this fraction of its typical size at most of its samples.
+SEAM_FLAT = 1e-9
 #: Newton iterations locating a critical point of g from an unresolved box.
 CRITICAL_ITER = 40
 #: Rank of each kind as the parametrised surface P (lower first): a torus has no singular chart, a plane as Q
@@ -286,12 +295,19 @@ def topology(a, b, scale, tolerance):
         topo.seconds = time.perf_counter() - t0
         return topo                                  # Q's ball misses P's trimmed domain
     pq, qp = Reader(p, q), Reader(q, p)
+    if mode == "general":
+        place_seams(pq, box, u_periodic, v_periodic, apex_values(p))
     index = {id(a): 0, id(b): 1}
     p_index, q_index = index[id(p_user)], index[id(q)]
-    apexes = [v for v in apex_values(p) if box[2] <= v <= box[3]]
+    apexes = [v + 2 * math.pi * math.ceil((box[2] - v) / (2 * math.pi) - 1e-12) for v in apex_values(p)]
+    apexes = sorted({v for v in apexes if box[2] <= v <= box[3]})
     loose = []                                      # (surface reader, uv) of unresolved boxes
+    apex_points = [p.point(0.0, v) for v in apexes] if mode == "general" else []
 
     def keep(point):
+        """A start inside both trims and off the apexes (the rings round them seed their branches)."""
+        if any(np.linalg.norm(point - x) <= APEX_CLEARANCE * scale for x in apex_points):
+            return False
         return inside_trims(a, point, tolerance) and inside_trims(b, point, tolerance)
 
     def add_line_roots(reader, fixed, value, t_lo, t_hi, name, surf_index, edge):
@@ -324,33 +340,58 @@ def topology(a, b, scale, tolerance):
                 add_line_roots(pq, 1, v, box[0], box[1], "edge of P", p_index, True)
         # seams of periodic parameters
         if u_periodic:
-            add_line_roots(pq, 0, -math.pi, box[2], box[3], "u seam", None, False)
-        if v_periodic and not any(abs(abs(v) - math.pi) < 1e-12 for v in apexes):
-            add_line_roots(pq, 1, -math.pi, box[0], box[1], "v seam", None, False)
+            add_line_roots(pq, 0, box[0], box[2], box[3], "u seam", None, False)
+        if v_periodic:
+            add_line_roots(pq, 1, box[2], box[0], box[1], "v seam", None, False)
         # rings round poles and apexes on Q
+        bands = []
         for v in apexes:
             apex = p.point(0.0, v)
             if float(q.distance(apex)) > 1e3 * tolerance:
                 continue
+            bands.append((v - RINGS[-1], v + RINGS[-1]))
             found = 0
-            for ring in (v - RING, v + RING):
+            for ring in [v + sign * r for r in RINGS for sign in (-1.0, 1.0)]:
                 if box[2] <= ring <= box[3]:
-                    roots, unresolved = add_line_roots(pq, 1, ring, -math.pi, math.pi, "apex ring", None, False)
+                    roots, unresolved = add_line_roots(pq, 1, ring, box[0], box[1], "apex ring", None, False)
                     found += len(roots) + len(unresolved)
-            if not found and keep(apex):
+            if not found and inside_trims(a, apex, tolerance) and inside_trims(b, apex, tolerance):
                 topo.contacts.append(apex)
         # Q's trim edges, as curves on Q where F_P = 0
         q_edges(q, p, qp, balls[id(p_user)], topo, add_line_roots, q_index)
         # closed loops inside P's open domain
-        roots, unresolved = pq.extremal(box, unit_lengths(p, scale), topo)
-        for uv in roots:
-            pt = p.point(*uv)
-            if keep(pt):
-                topo.seeds.append(pt)
-        loose += [(pq, uv) for uv in unresolved]
+        # (less the thin bands round apexes on Q: a branch through the apex crosses the ring at the band's edge;
+        # inside the band g and the extremal condition may vanish all along the apex line)
+        for lo, hi in split_range(box[2], box[3], bands):
+            roots, unresolved = pq.extremal(np.array([box[0], box[1], lo, hi]), unit_lengths(p, scale), topo)
+            for uv in roots:
+                pt = p.point(*uv)
+                if keep(pt):
+                    topo.seeds.append(pt)
+            loose += [(pq, uv) for uv in unresolved]
     classify(loose, topo, scale, tolerance, keep)
     topo.seconds = time.perf_counter() - t0
     return topo
+
+
+def place_seams(reader, box, u_periodic, v_periodic, apexes):
+    """Cut the periodic parameters' seams (box is changed in place) where g does not vanish all along them."""
+    uu, vv = np.meshgrid(np.linspace(box[0], box[1], 9), np.linspace(box[2], box[3], 9))
+    typical = float(np.max(np.abs(reader.values(np.column_stack([uu.ravel(), vv.ravel()]))[:, 0])))
+    t = np.linspace(0.0, 1.0, 17)
+    for k, periodic in ((0, u_periodic), (1, v_periodic)):
+        if not periodic:
+            continue
+        lo, hi = box[2 - 2 * k], box[3 - 2 * k]
+        for offset in SEAM_OFFSETS:
+            value = -math.pi + offset
+            if k == 1 and any(abs(math.remainder(value - v, 2 * math.pi)) < 1e-9 for v in apexes):
+                continue
+            other = lo + t * (hi - lo)
+            uv = np.column_stack([np.full_like(t, value), other] if k == 0 else [other, np.full_like(t, value)])
+            if np.mean(np.abs(reader.values(uv)[:, 0]) <= SEAM_FLAT * typical) < 0.5:
+                break
+        box[2 * k], box[2 * k + 1] = value, value + 2 * math.pi
 
 
 def q_edges(q, p, qp, p_ball, topo, add_line_roots, q_index):
@@ -444,6 +485,14 @@ def clip_line(p, u, v_lo, v_hi, q):
         t_a, t_b = (a - x0) / (x1 - x0), (b - x0) / (x1 - x0)
         lo, hi = max(lo, min(t_a, t_b)), min(hi, max(t_a, t_b))
     return v_lo + lo * (v_hi - v_lo), v_lo + hi * (v_hi - v_lo)
+
+
+def split_range(lo, hi, bands):
+    """[lo, hi] less the open bands (lo_k, hi_k): a list of (lo, hi)."""
+    pieces = [(lo, hi)]
+    for b_lo, b_hi in bands:
+        pieces = [q for a, b in pieces for q in ((a, min(b, b_lo)), (max(a, b_hi), b)) if q[0] < q[1]]
+    return pieces
 
 
 def merge_values(values, gap):

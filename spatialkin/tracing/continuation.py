@@ -67,8 +67,12 @@ class Cycle:
         return not self.locks
 
     def __call__(self, s):
-        """States (N, n+1) at arc lengths s (N,) in [0, length]."""
+        """States (N, n+1) at arc lengths s (N,) in [0, length] (within round-off of its ends: clamped)."""
         s = np.asarray(s, dtype=float)
+        slack = 1e-9 * max(1.0, self.length)
+        if np.any(~np.isfinite(s)) or np.any((s < -slack) | (s > self.length + slack)):
+            raise ValueError(f"s must lie in [0, {self.length:.12g}]")
+        s = np.clip(s, 0.0, self.length)
         out = np.empty((s.size, self.start.size))
         for s0, s1, sol in self.pieces:
             mask = (s >= s0) & (s <= s1)

@@ -6,6 +6,7 @@ import numpy as np
 from ..surfaces import check_surface
 from .result import Curve, ExactCurve, TracingError
 from .start import locate_on_curve, newton_fixed
+from .certificate import certify as attach_certificates
 from .topology import topology
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
@@ -14,25 +15,43 @@ SAME_COMPONENT = 1e-6
 
 
 def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol=None, max_length=None,
-              singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK):
+              singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK, certify=False):
     """Every component of a ∩ b.
 
-    Start points come from the critical points of one surface's implicit function read on the other
-    (spatialkin.tracing.seeds); each component is traced once by ``trace`` and seeds on it are skipped.
+    Start points come from the topology stage (spatialkin.tracing.topology: an interval subdivision of one
+    surface's parameter domain that provably finds a start on every component); each component is traced
+    once by ``trace`` and the starts on it are skipped. The result does not depend on the argument order
+    (curves come longest first), on translation or on scale.
 
     Parameters
     ----------
     a, b : Surface
+        Trimmed or not; at least one of them bounded (a sphere, a torus, or a trimmed plane, cylinder or cone).
     tol : float
         Accuracy of every returned point, relative to the scene scale (see ``trace``).
     method, rtol, atol, max_length, singular_tol, pullback
         As in ``trace``.
+    certify : bool
+        Attach ``curve.certificate`` (spatialkin.tracing.certificate.Certificate) to every curve: what the
+        search proved, and a proven radius round every stored point (needs the ``certify`` extra,
+        python-flint).
 
     Returns
     -------
     list of Curve
-        Closed loops, open curves (ending at singular points or edges) and single contact points
-        (status 'contact', length 0); empty when the surfaces do not meet.
+        Closed loops, open curves (ending exactly on a trim edge, status 'boundary', or at a singular point),
+        single contact points (status 'contact', length 0) and circles or segments along which the surfaces
+        touch (status 'tangent', spatialkin.tracing.result.ExactCurve); empty when the surfaces do not meet.
+
+    Raises
+    ------
+    CoincidentSurfacesError
+        The two patches overlap in a piece of surface (the same sphere twice, coaxial equal cylinders, coplanar
+        planes whose rectangles overlap).
+    ValueError
+        Both surfaces unbounded, or bad arguments.
+    TopologyError
+        The search could not resolve the intersection within its budget (it never returns a guess instead).
     """
     check_surface("a", a)
     check_surface("b", b)
@@ -67,8 +86,11 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         curves.append(curve)
         pending = drop_traced(pending, [curve], radius)
     curves = [c for i, c in enumerate(curves) if not covered(c, curves[:i] + curves[i + 1:], radius)]
+    curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
     for c in curves:
         c.topology = topo
+    if certify:
+        attach_certificates(a, b, curves, topo)
     return curves
 
 

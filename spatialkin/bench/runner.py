@@ -12,6 +12,8 @@ import numpy as np
 
 from ..mechanisms import LooperDrive
 from ..tracing.intersect import intersect
+from ..tracing.start import scene_scale
+from ..tracing.topology import topology
 from ..tracing.trace import DEFAULT_METHOD, METHODS, trace
 from . import baselines
 from .cases import looper_closed_form, torus_sphere_cases
@@ -161,12 +163,29 @@ def tracer_rows(case, rtols, repeats, methods=METHODS):
     return rows
 
 
-def intersect_row(case, repeats):
-    """sk.intersect at its defaults: every component, seeding included."""
-    seconds, curves = best_time(lambda: intersect(case.torus, case.sphere, tol=TRACE_TOL), repeats)
-    return Row(case.name, "intersect", DEFAULT_METHOD, np.nan, len(curves), case.components, seconds,
-               seconds / max(1, len(curves)), curve_error(curves, (case.torus, case.sphere)),
-               sum(c.nfev for c in curves) // max(1, len(curves)), length_error=length_error(curves))
+def intersect_rows(case, repeats):
+    """sk.intersect at its defaults (every component, the topology stage included; its share in the notes),
+    and with certify=True (the arb Krawczyk radius of every stored point)."""
+    pair = (case.torus, case.sphere)
+    seconds, curves = best_time(lambda: intersect(*pair, tol=TRACE_TOL), repeats)
+    found = curves[0].topology if curves else None
+    topo_seconds, _ = best_time(lambda: topology(*pair, scene_scale(*pair), TRACE_TOL * scene_scale(*pair)),
+                                repeats)
+    note = f"topology {1e3 * topo_seconds:.2f} ms ({100 * topo_seconds / seconds:.0f}%)"
+    if found is not None:
+        note += f", {found.boxes} boxes"
+    rows = [Row(case.name, "intersect", DEFAULT_METHOD, np.nan, len(curves), case.components, seconds,
+                seconds / max(1, len(curves)), curve_error(curves, pair),
+                sum(c.nfev for c in curves) // max(1, len(curves)), length_error=length_error(curves), extra=note)]
+    try:
+        c_seconds, c_curves = best_time(lambda: intersect(*pair, tol=TRACE_TOL, certify=True), 1)
+    except ImportError:
+        return rows                     # python-flint (the certify extra) not installed
+    bound = max(c.certificate.max_distance_bound for c in c_curves) if c_curves else np.nan
+    rows.append(Row(case.name, "certified", DEFAULT_METHOD, np.nan, len(c_curves), case.components, c_seconds,
+                    c_seconds / max(1, len(c_curves)), curve_error(c_curves, pair), 0,
+                    extra=f"{c_seconds / seconds:.0f}x intersect; proven distance <= {bound:.1e}"))
+    return rows
 
 
 def occ_rows(case, repeats, tols=(baselines.OCC_DEFAULT_TOL, baselines.OCC_TIGHT_TOL)):
@@ -268,7 +287,7 @@ def run_all(quick=False, echo=print):
     for case in cases:
         echo(f"... {case.name}")
         rows += tracer_rows(case, rtols, repeats)
-        rows.append(intersect_row(case, repeats))
+        rows += intersect_rows(case, repeats)
         rows += occ_rows(case, repeats)
     echo("... looper drive")
     rows += looper_rows(repeats)

@@ -526,7 +526,7 @@ def inside_trims(surface, point, tolerance):
 def classify(loose, topo, scale, tolerance, keep):
     """Unresolved boxes: each cluster is a singular point of the level (a contact, a node, a degenerate point)
     or a double root on a line; contacts are kept, nodes seed their four arms, the rest seed where they are."""
-    clusters = []
+    clusters, done = [], []
     for reader, uv in loose:
         pt = reader.s.point(*uv)
         if any(np.linalg.norm(pt - c[2]) <= CLUSTER * scale for c in clusters):
@@ -539,6 +539,9 @@ def classify(loose, topo, scale, tolerance, keep):
                 topo.seeds.append(pt)
             continue
         at = reader.s.point(*crit)
+        if any(np.linalg.norm(at - x) <= CLUSTER * scale for x in done):
+            continue                                 # the same singular point, reached from another box
+        done.append(at)
         if float(reader.t.distance(at)) > 1e2 * tolerance:
             if keep(pt):
                 topo.seeds.append(pt)

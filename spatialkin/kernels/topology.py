@@ -30,6 +30,9 @@ DONE, OVERFLOW = 0, -1
 CONTRACTION = 0.7
 #: Depth of the explicit box stack.
 STACK = 4096
+#: Boxes are bisected at this fraction of their width, not at the middle: a root at a round number (a symmetric
+#: placement's v = 0) would otherwise sit on a bisection point, on the edge of two boxes, and verify in neither.
+SPLIT = 0.4860679774997897
 #: Newton iterations refining a root inside its verified box.
 REFINE_ITER = 30
 
@@ -115,9 +118,10 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
             continue
         if top + 2 > STACK:
             return count, OVERFLOW, boxes
+        cut = a + SPLIT * (b - a)
         stack[top, 0] = a
-        stack[top, 1] = mid
-        stack[top + 1, 0] = mid
+        stack[top, 1] = cut
+        stack[top + 1, 0] = cut
         stack[top + 1, 1] = b
         top += 2
     return count, DONE, boxes
@@ -234,11 +238,13 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         stack[top + 1, 2] = V[0]
         stack[top + 1, 3] = V[1]
         if ru >= rv:
-            stack[top, 1] = mu
-            stack[top + 1, 0] = mu
+            cut = U[0] + SPLIT * (U[1] - U[0])
+            stack[top, 1] = cut
+            stack[top + 1, 0] = cut
         else:
-            stack[top, 3] = mv
-            stack[top + 1, 2] = mv
+            cut = V[0] + SPLIT * (V[1] - V[0])
+            stack[top, 3] = cut
+            stack[top + 1, 2] = cut
         top += 2
     return count, DONE, boxes
 

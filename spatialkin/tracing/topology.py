@@ -325,7 +325,7 @@ def topology(a, b, scale, tolerance):
         return roots, unresolved
 
     if mode == "coaxial":
-        coaxial_components(p, q, pq, box, topo, keep, add_line_roots, tolerance, scale)
+        coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index)
     elif mode == "ruled":
         ruled_components(p, q, pq, box, topo, tolerance, scale, add_line_roots, a, b)
     else:
@@ -416,7 +416,7 @@ def q_edges(q, p, qp, p_ball, topo, add_line_roots, q_index):
                 add_line_roots(qp, 1, v, -math.pi, math.pi, "edge of Q", q_index, True)
 
 
-def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, tolerance, scale):
+def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index):
     """Surfaces of revolution about one axis (P's z) meet in parallels v = const of P: the roots of g on one
     meridian. A simple root is a circle crossed transversally (traced); a multiple root where g keeps its sign
     is a circle of tangency; a root where the parallel collapses (a pole, an apex) is a contact point."""
@@ -431,6 +431,9 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, tolerance, sca
                 topo.contacts.append(pt)
             continue
         if not simple:
+            v = double_root(pq, 0, -math.pi, v)
+            pt = p.point(0.0, v)
+            radius = math.hypot(*p.frame.to_local(pt)[:2])
             h = 1e-6 * (box[3] - box[2])
             side = pq.values([[-math.pi, v - h], [-math.pi, v + h]])[:, 0]
             if side[0] * side[1] > 0 and not q_rim:
@@ -444,7 +447,7 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, tolerance, sca
         if inside:
             topo.seeds.append(inside[0])
     if q_rim:
-        q_edges(q, p, Reader(q, p), bounding_ball(p), topo, add_line_roots, None)
+        q_edges(q, p, Reader(q, p), bounding_ball(p), topo, add_line_roots, q_index)
 
 
 def ruled_components(p, q, pq, box, topo, tolerance, scale, add_line_roots, a, b):
@@ -458,12 +461,29 @@ def ruled_components(p, q, pq, box, topo, tolerance, scale, add_line_roots, a, b
         if not lo < hi:
             continue
         if not simple:
+            u = double_root(pq, 1, v_mid, u)
             h = 1e-6
             side = pq.values([[u - h, v_mid], [u + h, v_mid]])[:, 0]
             if side[0] * side[1] > 0:
                 topo.tangent_segments.append((p.point(u, lo), p.point(u, hi)))
                 continue
         topo.seeds.append(p.point(u, 0.5 * (lo + hi)))
+
+
+def double_root(reader, fixed, value, t):
+    """A multiple root of g on a parameter line, refined from t as the zero of its derivative along the line
+    (Newton); t itself where that does not settle within 1e-5 of it."""
+    x = t
+    for _ in range(CRITICAL_ITER):
+        g = reader.values([x, value] if fixed == 1 else [value, x])[0]
+        d1, d2 = (g[1], g[3]) if fixed == 1 else (g[2], g[5])
+        if d2 == 0.0:
+            break
+        step = d1 / d2
+        x -= step
+        if abs(step) <= 1e-15 * max(1.0, abs(x)):
+            break
+    return x if abs(x - t) <= 1e-5 * max(1.0, abs(t)) else t
 
 
 def clip_line(p, u, v_lo, v_hi, q):

@@ -1,0 +1,196 @@
+"""The topology stage of sk.intersect on the cases that used to lose components, and its special configurations.
+Oracles: closed-form circles, lines and lengths; exact distance functions (oracles.py)."""
+import math
+
+import numpy as np
+import pytest
+from oracles import random_rotation
+
+import spatialkin as sk
+from spatialkin.tracing import topology as tp
+
+TOL = 1e-10
+
+
+def lengths(curves):
+    return sorted(round(c.length, 6) for c in curves)
+
+
+def on_both(curves, a, b):
+    """Largest distance of stored points and 200 dense evaluations per curve to either surface."""
+    worst = 0.0
+    for c in curves:
+        pts = c.points if c.length == 0 else np.vstack([c.points, c(np.linspace(0, c.length, 200))])
+        worst = max(worst, float(np.max(a.distance(pts))), float(np.max(b.distance(pts))))
+    return worst
+
+
+def test_reproduce_shaft_through_a_ball():
+    """Sphere(10) and Cylinder(5) about one axis: two circles of radius 5 (length 10 pi), in either order, with
+    the axis moved, tilted, or the sphere off-centre along it."""
+    for frame in (sk.Frame(), sk.Frame((1.0, 2.0, 3.0)), sk.Frame((0, 0, 0), sk.rotation_about((1, 1, 0), 0.7))):
+        sphere = sk.Sphere(10.0, sk.Frame(frame.to_global([0, 0, 1.5])))
+        cylinder = sk.Cylinder(5.0, frame, v_range=(-12, 12))
+        for a, b in ((sphere, cylinder), (cylinder, sphere)):
+            curves = sk.intersect(a, b, TOL)
+            assert lengths(curves) == [round(10 * math.pi, 6)] * 2
+            assert all(c.closed for c in curves) and on_both(curves, a, b) < 1e-13
+
+
+def test_reproduce_sphere_plane_and_cone_sphere():
+    """Plane z = 3 cuts Sphere(10) in a circle of radius sqrt(91); a 30-degree cone cuts Sphere(5) in a circle of
+    radius 2.5."""
+    curves = sk.intersect(sk.Sphere(10.0), sk.Plane(sk.Frame((0, 0, 3))))
+    assert lengths(curves) == [round(2 * math.pi * math.sqrt(91), 6)]
+    curves = sk.intersect(sk.Cone(np.radians(30), v_range=(0, 10)), sk.Sphere(5.0))
+    assert lengths(curves) == [round(2 * math.pi * 2.5, 6)]
+
+
+def test_sphere_cut_round_its_own_pole_axis():
+    """Plane z = 0.3 on Sphere(1) and two equal spheres one above the other: one circle each, whatever the
+    sphere's frame (tilted by 1e-8 or not)."""
+    for tilt in (0.0, 1e-8, 0.4):
+        sphere = sk.Sphere(1.0, sk.Frame((0, 0, 0), sk.rotation_about((1, 0, 0), tilt)))
+        assert lengths(sk.intersect(sphere, sk.Plane(sk.Frame((0, 0, 0.3))))) == \
+            [round(2 * math.pi * math.sqrt(1 - 0.09), 6)]
+        other = sk.Sphere(1.0, sk.Frame((0, 0, 1.2)))
+        assert lengths(sk.intersect(sphere, other)) == [round(2 * math.pi * math.sqrt(1 - 0.36), 6)]
+
+
+def test_coincident_patches_raise():
+    """The same sphere twice, the same torus twice, coaxial equal cylinders, coplanar overlapping planes: a typed
+    error; coplanar planes whose rectangles do not overlap meet nowhere."""
+    tilt = sk.Frame((1, 2, 3), sk.rotation_about((1, 0, 0), 0.3))
+    pairs = [(sk.Sphere(1.0), sk.Sphere(1.0)), (sk.Torus(2, 0.5, tilt), sk.Torus(2, 0.5, tilt)),
+             (sk.Cylinder(1.0, v_range=(0, 2)), sk.Cylinder(1.0, v_range=(1, 3))),
+             (sk.Plane(u_range=(0, 1), v_range=(0, 1)), sk.Plane(u_range=(0.5, 2), v_range=(0.5, 2)))]
+    for a, b in pairs:
+        with pytest.raises(sk.CoincidentSurfacesError, match="same"):
+            sk.intersect(a, b)
+    assert sk.intersect(sk.Plane(u_range=(0, 1), v_range=(0, 1)), sk.Plane(u_range=(2, 3), v_range=(0, 1))) == []
+
+
+def test_tangency_along_a_circle_and_a_line():
+    """Torus(2, 0.5) with the plane z = 0.5 touches along the circle of radius 2; Sphere(1.5) with Cylinder(1.5)
+    along the equator; Cylinder(1) with the plane x = 1 along a segment of the trimmed length. Each is one
+    component with status 'tangent', on both surfaces to round-off."""
+    cases = [(sk.Torus(2.0, 0.5), sk.Plane(sk.Frame((0, 0, 0.5))), 4 * math.pi, True),
+             (sk.Sphere(1.5), sk.Cylinder(1.5, v_range=(-2, 2)), 3 * math.pi, True),
+             (sk.Cylinder(1.0, v_range=(-2, 2)),
+              sk.Plane(sk.Frame((1, 0, 0), sk.rotation_about((0, 1, 0), math.pi / 2))), 4.0, False)]
+    for a, b, length, closed in cases:
+        for x, y in ((a, b), (b, a)):
+            curves = sk.intersect(x, y)
+            assert len(curves) == 1 and curves[0].status == "tangent" and curves[0].closed == closed
+            assert abs(curves[0].length - length) < 1e-12 and on_both(curves, x, y) < 1e-14
+
+
+def test_trim_of_either_surface_is_respected():
+    """A torus and a small plane patch far from it meet nowhere; a patch cutting one tube gives open curves
+    that end exactly on the patch's edges and lie on the patch."""
+    torus = sk.Torus(2.0, 0.5)
+    assert sk.intersect(torus, sk.Plane(u_range=(5, 6), v_range=(5, 6))) == []
+    patch = sk.Plane(u_range=(1.0, 3.0), v_range=(-0.2, 0.2))               # cuts the tube at u ~ 0 only
+    for a, b in ((torus, patch), (patch, torus)):
+        curves = sk.intersect(a, b, TOL)
+        assert len(curves) == 2 and all(c.status == "boundary" for c in curves)
+        for c in curves:
+            local = c.points
+            assert np.all(np.abs(local[:, 1]) <= 0.2 + 1e-12) and np.all((local[:, 0] > 1.0) & (local[:, 0] < 3.0))
+            assert abs(abs(local[0, 1]) - 0.2) < 1e-12 and abs(abs(local[-1, 1]) - 0.2) < 1e-12
+
+
+def test_bounded_pair_accepted_in_either_order():
+    """An untrimmed cone with a trimmed cylinder about its axis: two circles, in either order; two unbounded
+    surfaces: a ValueError naming the need for bounds."""
+    cone, cylinder = sk.Cone(1.0), sk.Cylinder(0.5, v_range=(-3, 3))
+    r = 0.5
+    for a, b in ((cone, cylinder), (cylinder, cone)):
+        assert lengths(sk.intersect(a, b)) == [round(2 * math.pi * r, 6)] * 2
+    with pytest.raises(ValueError, match="bounded"):
+        sk.intersect(sk.Cone(1.0), sk.Cylinder(0.5))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_invariant_under_order_translation_and_scale(seed):
+    """A general torus–cylinder scene: the same component lengths in either order and scaled by 1e-4 and 1e4
+    (relative 1e-9), and moved 1e5 from the origin (relative 1e-6: the integrated arc length there carries the
+    round-off of coordinates of size 1e5 in every step)."""
+    rng = np.random.default_rng(seed)
+    rot, rot2 = random_rotation(rng), random_rotation(rng)
+    base = None
+    for scale, shift in ((1.0, 0.0), (1.0, 1e5), (1e-4, 0.0), (1e4, 0.0), (1e-4, 1e5)):
+        torus = sk.Torus(2.0 * scale, 0.6 * scale, sk.Frame(np.full(3, shift), rot))
+        cyl = sk.Cylinder(0.5 * scale, sk.Frame(shift + scale * np.array([2.0, 0.3, 0.1]), rot2),
+                          v_range=(-4 * scale, 4 * scale))
+        for a, b in ((torus, cyl), (cyl, torus)):
+            found = sorted(c.length / scale for c in sk.intersect(a, b))
+            if base is None:
+                base = found
+                assert found
+            assert len(found) == len(base)
+            np.testing.assert_allclose(found, base, rtol=1e-6 if shift else 1e-9)
+
+
+def test_tiny_loop_and_contact_near_one():
+    """A plane 1e-12 (relative) below the top of a sphere cuts a loop of radius sqrt(2e-12); at the top itself it
+    touches in one contact point; a little above, nothing."""
+    sphere = sk.Sphere(1.0, sk.Frame((0, 0, 0), sk.rotation_about((1, 1, 1), 0.5)))
+    for dz, expect in ((-1e-12, "closed"), (0.0, "contact"), (1e-9, None)):
+        plane = sk.Plane(sk.Frame((0.3, 0.1, 1.0 + dz)))
+        curves = sk.intersect(sphere, plane)
+        if expect is None:
+            assert curves == []
+            continue
+        assert len(curves) == 1 and curves[0].status == expect
+        if expect == "closed":
+            z = 1.0 + dz                                # as stored: 1 - z is exact, z itself rounded
+            radius = math.sqrt((1.0 - z) * (1.0 + z))
+            # the integrated length is accurate to about rtol times the scale (1e-10), not relative to the loop
+            assert abs(curves[0].length - 2 * math.pi * radius) < 1e-10
+            # on both surfaces to round-off; along the plane only to round-off / sin(angle of the normals)
+            assert curves[0].max_distance < 1e-15
+            spread = np.linalg.norm(curves[0].points - plane.frame.origin * [0, 0, 1], axis=1) - radius
+            assert np.max(np.abs(spread)) < 1e-15 / radius
+
+
+def test_loops_winding_round_a_cylinder_and_a_torus():
+    """A tilted plane through a cylinder: one ellipse winding round it; a plane through the torus axis: two
+    meridian circles (one lies along the default seam u = pi)."""
+    cyl = sk.Cylinder(1.0, v_range=(-5, 5))
+    plane = sk.Plane(sk.Frame((0, 0, 0.5), sk.rotation_about((1, 0, 0), 0.6)))
+    curves = sk.intersect(cyl, plane)
+    assert len(curves) == 1 and curves[0].closed
+    a, b = 1.0 / math.cos(0.6), 1.0                   # ellipse semi-axes
+    h = ((a - b) / (a + b)) ** 2
+    ramanujan = math.pi * (a + b) * (1 + 3 * h / (10 + math.sqrt(4 - 3 * h)))
+    assert abs(curves[0].length - ramanujan) < 1e-8 * ramanujan
+    curves = sk.intersect(sk.Torus(3.0, 1.0), sk.Plane(sk.Frame.from_z_axis((0, 0, 0), (0, 1, 0))))
+    assert lengths(curves) == [round(2 * math.pi, 6)] * 2
+
+
+def test_certificate_radii_hold_the_true_points():
+    """certify=True: every stored point of sphere ∩ plane has a finite radius, and the true circle (closed form)
+    passes within radius * sqrt(3) of it; the certificate counts the components."""
+    pytest.importorskip("flint")
+    sphere = sk.Sphere(2.0, sk.Frame((1.0, -1.0, 0.5)))
+    plane = sk.Plane(sk.Frame((0, 0, 1.2), sk.rotation_about((0, 1, 0), 0.3)))
+    curves = sk.intersect(sphere, plane, certify=True)
+    assert len(curves) == 1
+    cert = curves[0].certificate
+    assert cert.components == 1 and cert.all_points_proven and cert.max_distance_bound < 1e-12
+    n = plane.frame.rotation[:, 2]
+    d = (sphere.center - plane.frame.origin) @ n
+    centre, radius = sphere.center - d * n, math.sqrt(4.0 - d * d)
+    pts = curves[0].points
+    off = pts - centre
+    dist = np.hypot(off @ n, np.linalg.norm(off - np.outer(off @ n, n), axis=1) - radius)
+    assert np.all(dist <= cert.radii * math.sqrt(3) + 1e-15)
+    assert "radii" in type(cert).__doc__ and "Not proven" in type(cert).__doc__
+
+
+def test_search_budget_is_a_typed_error(monkeypatch):
+    """A search that runs out of boxes raises TopologyError naming it, never a partial answer."""
+    monkeypatch.setattr(tp, "MAX_BOXES", 5)
+    with pytest.raises(sk.TopologyError, match="budget"):
+        sk.intersect(sk.Torus(2.0, 0.5), sk.Cylinder(0.4, sk.Frame((2.0, 0.1, 0.0)), v_range=(-2, 2)))

@@ -424,6 +424,8 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
     apexes = apex_values(p)
     q_rim = isinstance(q, Plane) and (np.isfinite(q.u_range).any() or np.isfinite(q.v_range).any())
     for v, simple in [(v, True) for v in roots] + [(v, False) for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2]))]:
+        if not simple:
+            v = double_root(pq, 0, -math.pi, v)
         pt = p.point(0.0, v)
         radius = math.hypot(*p.frame.to_local(pt)[:2])
         if radius <= 1e-9 * scale or any(abs(v - w) < 1e-12 for w in apexes):
@@ -431,9 +433,6 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
                 topo.contacts.append(pt)
             continue
         if not simple:
-            v = double_root(pq, 0, -math.pi, v)
-            pt = p.point(0.0, v)
-            radius = math.hypot(*p.frame.to_local(pt)[:2])
             h = 1e-6 * (box[3] - box[2])
             side = pq.values([[-math.pi, v - h], [-math.pi, v + h]])[:, 0]
             if side[0] * side[1] > 0 and not q_rim:

@@ -1,4 +1,5 @@
 """sk.intersect: every component of the intersection of two surfaces, each once."""
+import dataclasses
 import time
 
 import numpy as np
@@ -58,8 +59,11 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
     topo = topology(a, b, settings.scale, settings.tolerance)
+    settings = dataclasses.replace(settings, nodes=np.array(topo.nodes + topo.apexes).reshape(-1, 3))
     curves = [contact_curve(a, b, p, settings) for p in topo.contacts]
     curves += [ExactCurve((a, b), circle=c, tolerance=settings.tolerance) for c in topo.tangent_circles]
+    curves += [ExactCurve((a, b), circle=c, tolerance=settings.tolerance, status="closed",
+                          message="a circle about the surfaces' common axis, in closed form") for c in topo.circles]
     curves += [ExactCurve((a, b), segment=seg, tolerance=settings.tolerance) for seg in topo.tangent_segments]
     radius = SAME_COMPONENT * settings.scale
     # (point, y, on the curve): exact starts on the edges, then the seeds, located only when one is traced
@@ -85,7 +89,11 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
             continue            # the seed sits on a singular point: the arms' seeds trace it
         curves.append(curve)
         pending = drop_traced(pending, [curve], radius)
-    curves = [c for i, c in enumerate(curves) if not covered(c, curves[:i] + curves[i + 1:], radius)]
+    kept = []
+    for i, c in enumerate(curves):          # of two copies of one piece, the first is kept
+        if not covered(c, kept + curves[i + 1:], radius):
+            kept.append(c)
+    curves = kept
     curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
     for c in curves:
         c.topology = topo

@@ -34,6 +34,9 @@ CLOSURE_COSINE = 0.9
 #: this is a singular point: the node itself (where N1 x N2 flips) or, on a path a gap's width beside it,
 #: the turn onto the other branch (a branch jump), which is never taken.
 NODE_SUSPECT = 1e-4
+#: A minimum of the sine below NODE_SUSPECT is a node only within this distance (relative to the scale) of a
+#: singular point proven by the topology stage (when the trace comes from sk.intersect).
+KNOWN_NODE = 1e-3
 #: Where Newton fails with the normals closer to parallel than this (sine), the branch ends at a singular point.
 NEWTON_NEAR_SINGULAR = 1e-3
 #: A singular point (a node where branches cross, the apex of a spindle or horn torus or a cone) is
@@ -56,6 +59,15 @@ FALLBACK_METHOD = "DOP853"
 HANDOFF_MARGIN = 2.0
 #: At most this many segments in one branch (each ends at an event): bounds the work on pathological input.
 MAX_SEGMENTS = 10_000
+
+
+def known_node(point, settings):
+    """True unless the topology stage has proven where the singular points are and none is near point (then a
+    narrow waist between two branches is not a node: the branch goes round it)."""
+    if settings.nodes is None:
+        return True
+    nodes = np.asarray(settings.nodes).reshape(-1, 3)
+    return bool(len(nodes)) and float(np.min(np.linalg.norm(nodes - point, axis=1))) <= KNOWN_NODE * settings.scale
 
 
 def make_events(a, b, settings, sign, start, direction, s_arm):
@@ -263,7 +275,8 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             y = res.y_events[hit][0].copy()
             kc.curve_frame(y, a, b, point, tangent)
             singular = kind in ("singular", "apex") or (
-                kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT)
+                kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT
+                and known_node(point, settings))
             if singular:
                 jump = jump_across(branch, seg, res.t_events[hit][0], y, settings)
                 if jump is None:

@@ -246,8 +246,9 @@ def user_params(surfaces, y, points, a_chart, b_chart):
 
 
 class ExactCurve(Curve):
-    """A component known in closed form: a circle or a segment along which the two surfaces touch (status
-    'tangent'; the tracer cannot follow it, its normals being parallel all along), evaluated exactly.
+    """A component known in closed form, evaluated exactly: a circle or a segment along which the two surfaces
+    touch (status 'tangent'; the tracer cannot follow it, its normals being parallel all along), or a circle
+    about the common axis of two surfaces of revolution (status 'closed').
 
     Parameters
     ----------

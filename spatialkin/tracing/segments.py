@@ -88,6 +88,7 @@ class Settings:
     max_length: float
     max_step: float
     close: bool = True
+    nodes: np.ndarray = None  # (K, 3) singular points proven by the topology stage, or None when not known
 
 
 def recharted_sphere(data, point, tangent, bend=None):

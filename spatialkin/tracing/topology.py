@@ -98,7 +98,9 @@ class Topology:
                                         parameter `fixed` (0 u, 1 v) held at value
     contacts : list of ndarray (3,)     isolated points where the surfaces touch
     nodes : list of ndarray (3,)        points where branches cross
+    apexes : list of ndarray (3,)       apexes and poles of P that lie on Q
     tangent_circles : list of (centre, axis, radius)     circles along which the surfaces touch
+    circles : list of (centre, axis, radius)             circles crossed transversally (coaxial placements)
     tangent_segments : list of (p0, p1)                  segments along which the surfaces touch
     """
     P: object
@@ -109,7 +111,9 @@ class Topology:
     contacts: list = field(default_factory=list)
     nodes: list = field(default_factory=list)
     tangent_circles: list = field(default_factory=list)
+    circles: list = field(default_factory=list)
     tangent_segments: list = field(default_factory=list)
+    apexes: list = field(default_factory=list)
     searches: list = field(default_factory=list)
     boxes: int = 0
     verified: int = 0
@@ -350,6 +354,7 @@ def topology(a, b, scale, tolerance):
             if float(q.distance(apex)) > 1e3 * tolerance:
                 continue
             bands.append((v - RINGS[-1], v + RINGS[-1]))
+            topo.apexes.append(apex)
             found = 0
             for ring in [v + sign * r for r in RINGS for sign in (-1.0, 1.0)]:
                 if box[2] <= ring <= box[3]:
@@ -437,10 +442,18 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
             side = pq.values([[-math.pi, v - h], [-math.pi, v + h]])[:, 0]
             if side[0] * side[1] > 0 and not q_rim:
                 centre = p.frame.to_global([0.0, 0.0, p.frame.to_local(pt)[2]])
-                if keep(pt):
+                if keep(pt) and not any(np.linalg.norm(centre - c) <= 1e-9 * scale and abs(radius - r) <= 1e-9 * scale
+                                        for c, _, r in topo.tangent_circles):
                     topo.tangent_circles.append((centre, p.frame.rotation[:, 2].copy(), radius))
                 continue
-        # a circle: seed it at a point inside both trims (a trimmed plane may cut it)
+        if not q_rim:
+            # a parallel crossed transversally, in closed form (traced, its parameters would move linearly in
+            # s, and the solver's error estimate, zero, would let one step lap a small circle)
+            centre = p.frame.to_global([0.0, 0.0, p.frame.to_local(pt)[2]])
+            if keep(pt):
+                topo.circles.append((centre, p.frame.rotation[:, 2].copy(), radius))
+            continue
+        # an arc of a circle cut by a trimmed plane: seed it at a point inside both trims
         ring = p.point(np.linspace(-math.pi, math.pi, 64, endpoint=False), np.full(64, v))
         inside = [x for x in ring if keep(x)]
         if inside:
@@ -464,7 +477,9 @@ def ruled_components(p, q, pq, box, topo, tolerance, scale, add_line_roots, a, b
             h = 1e-6
             side = pq.values([[u - h, v_mid], [u + h, v_mid]])[:, 0]
             if side[0] * side[1] > 0:
-                topo.tangent_segments.append((p.point(u, lo), p.point(u, hi)))
+                ends = (p.point(u, lo), p.point(u, hi))
+                if not any(np.linalg.norm(ends[0] - e[0]) <= 1e-9 * scale for e in topo.tangent_segments):
+                    topo.tangent_segments.append(ends)
                 continue
         topo.seeds.append(p.point(u, 0.5 * (lo + hi)))
 

@@ -12,6 +12,7 @@ import tempfile
 
 import numpy as np
 
+from ..export import polylines
 from ..io import atomic_path
 from ..tracing.result import Curve
 from . import geometry as geo
@@ -148,7 +149,7 @@ class Scene:
         return self._add(name, "surface", mesh, {"color": color, "opacity": opacity})
 
     def add_curve(self, curve, name=None, color_by="s", speed=None, radius=None, color=None, cmap="viridis",
-                  clim=None, scalar_bar=True):
+                  clim=None, scalar_bar=True, chord_tol=None):
         """Add a traced curve (or any polyline) drawn as a tube.
 
         Parameters
@@ -167,6 +168,8 @@ class Scene:
             Range of the colour map (share one between curves to compare them); default the curve's own.
         scalar_bar : bool
             Show a colour bar titled '<name>: <color_by>'.
+        chord_tol : float, optional
+            Chord height of the polyline drawn for a traced curve (default 1e-6 of its extent).
 
         Returns
         -------
@@ -175,8 +178,9 @@ class Scene:
         if color_by not in COLOR_MODES:
             raise ValueError(f"color_by must be one of {COLOR_MODES}, got {color_by!r}")
         if isinstance(curve, Curve):
-            points = geo.check_points("curve.points", curve.points)
-            s = np.asarray(curve.s, dtype=float)
+            # a dense polyline spaced by the chord height, never the solver's steps
+            (s, points, _), = polylines(curve, chord_tol)
+            points = geo.check_points("curve.points", points)
         else:
             points = geo.check_points("curve", curve)
             s = geo.chord_length(points)
@@ -185,6 +189,8 @@ class Scene:
         data = polyline(points)
         data.point_data[S_ARRAY] = s
         if speed is not None:
+            if isinstance(curve, Curve):         # given at the curve's own points: onto the dense polyline
+                speed = np.interp(s, curve.s, geo.check_scalars("speed", speed, len(curve.s)))
             data.point_data[SPEED_ARRAY] = geo.check_scalars("speed", speed, len(points))
         style = {"color_by": color_by, "radius": geo.check_positive("radius", radius, allow_none=True),
                  "color": color, "cmap": cmap, "clim": _check_clim(clim), "scalar_bar": bool(scalar_bar)}

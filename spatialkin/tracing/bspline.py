@@ -9,6 +9,8 @@ References
 ----------
 L. Piegl, W. Tiller, The NURBS Book, 2nd ed., Springer 1997: blossoms and control points (ch. 2, 5).
 """
+import math
+
 import numpy as np
 from scipy.interpolate import BSpline
 
@@ -25,6 +27,9 @@ SAFETY = 0.9
 INITIAL_SPANS = 8
 #: Rounds of refinement (each halves every span still above the tolerance).
 MAX_ROUNDS = 40
+#: Halving the spans cuts a quintic's error about 64-fold; two rounds in a row that do not halve the largest
+#: deviation have met the round-off of the curve's points: the tolerance cannot be reached.
+STALL = 0.5
 #: Most knots of one spline.
 MAX_KNOTS = 100_000
 
@@ -114,7 +119,7 @@ def fit(evaluate, x0, x1, tol, periodic=False, initial=None):
         rows = [cache[v] for v in xs]
         return tuple(np.array([r[i] for r in rows]) for i in range(3))
 
-    checked = 0
+    checked, stalled, previous = 0, 0, math.inf
     for _ in range(MAX_ROUNDS):
         p, a, c = data(knots)
         spline = hermite_bspline(knots, p, a, c, periodic)
@@ -135,8 +140,11 @@ def fit(evaluate, x0, x1, tol, periodic=False, initial=None):
             spline.deviation = float(dev.max())
             spline.checked = checked
             return spline
+        worst = float(dev.max())
+        stalled = stalled + 1 if worst > STALL * previous else 0
+        previous = worst
         mids = 0.5 * (knots[:-1] + knots[1:])[bad]
-        if len(knots) + len(mids) > MAX_KNOTS or np.min(np.diff(knots)[bad]) <= 1e-12 * (abs(x1) + abs(x0) + 1):
+        if stalled >= 2 or len(knots) + len(mids) > MAX_KNOTS or np.min(np.diff(knots)[bad]) <= 1e-12 * (abs(x1) + abs(x0) + 1):
             break
         knots = np.sort(np.r_[knots, mids])
     raise SplineToleranceError(f"a B-spline within {tol:.3g} was not reached (measured {dev.max():.3g} with "

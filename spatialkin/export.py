@@ -7,6 +7,7 @@ written with its own knots and control points (degree 5).
 
 DXF needs ezdxf and STEP needs OpenCascade (cadquery-ocp): both in the ``cad`` extra.
 """
+import contextlib
 import math
 import os
 from xml.sax.saxutils import escape
@@ -196,11 +197,26 @@ def write_step(path, curves, tol=SPLINE_TOL):
         curve = Geom_BSplineCurve(poles, knots, mults, int(sp.k))
         builder.Add(compound, BRepBuilderAPI_MakeEdge(curve).Edge())
     writer = STEPControl_Writer()
-    writer.Transfer(compound, STEPControl_AsIs)
-    with atomic_path(path) as tmp:
+    with atomic_path(path) as tmp, _quiet_stdout():
+        writer.Transfer(compound, STEPControl_AsIs)
         if writer.Write(tmp) != IFSelect_RetDone:
             raise OSError(f"OpenCascade could not write {os.path.basename(path)}")
     return path
+
+
+@contextlib.contextmanager
+def _quiet_stdout():
+    """OpenCascade prints its transfer statistics on the process's standard output: send them to /dev/null."""
+    import sys
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        with open(os.devnull, "w") as null:
+            os.dup2(null.fileno(), 1)
+            yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
 
 
 #: Writers by file suffix.

@@ -23,6 +23,7 @@ from ..kernels import curve as kc
 from ..kinematics import serial_chain
 from ..surfaces import Sphere, Torus, check_length
 from ..tracing.start import auxiliary_starts
+from ..tracing.bspline import fit as fit_spline
 from ..tracing.intersect import intersect
 from ..tracing.result import TracingError
 from ..tracing.trace import trace
@@ -363,6 +364,40 @@ class LooperMotion:
     @property
     def looper_tip(self):
         return self.point(self.drive.looper_link, self.drive.looper_tip)
+
+    def path_bspline(self, which="ball", tol=1e-8):
+        """The path of the ball centre ('ball') or the looper tip ('tip') as a C2 quintic B-spline in the crank
+        angle (rad), over the requested crank angles' range, within tol times the mechanism's scale (the
+        smaller of the torus and sphere sizes), measured against exact solutions of the drive.
+
+        Built from exact positions and their first and second derivatives in the crank angle (the velocity and
+        acceleration at omega = 1) at its knots, refined until the measured distance to the path is below
+        0.9 tol x scale (spatialkin.tracing.bspline.fit); periodic when the range is a full turn.
+
+        Returns
+        -------
+        scipy.interpolate.BSpline
+            ``deviation`` (mm, or the drive's length unit) and ``checked`` as in ``Curve.to_bspline``.
+        """
+        if which not in ("ball", "tip"):
+            raise ValueError(f"which must be 'ball' or 'tip', got {which!r}")
+        tol = float(tol)
+        if not math.isfinite(tol) or tol <= 0:
+            raise ValueError(f"tol must be a positive finite number, got {tol!r}")
+        lo, hi = float(np.min(self.crank_angle)), float(np.max(self.crank_angle))
+        if not hi > lo:
+            raise ValueError("a path B-spline needs at least two distinct crank angles")
+        full = hi - lo >= 2 * math.pi * (1 - 1e-12)
+
+        def evaluate(theta):
+            m = self.drive.solve(theta, omega=1.0, branch=self.branch)
+            if which == "ball":
+                return m.ball_center, m.ball_velocity, m.ball_acceleration
+            tip = m.looper_tip
+            return tip.position, tip.velocity, tip.acceleration
+
+        scale = min(self.drive.torus.size, self.drive.sphere.size)
+        return fit_spline(evaluate, lo, lo + 2 * math.pi if full else hi, tol * scale, periodic=full)
 
     def angular_velocity(self, link):
         """Angular velocity (N, 3) of a link in fixed axes."""

@@ -143,7 +143,8 @@ def splines(curves, tol=SPLINE_TOL):
     return out
 
 
-def _need(module):
+def require(module):
+    """Import an optional CAD module, or raise ImportError naming the extra that provides it."""
     try:
         return __import__(module)
     except ImportError:
@@ -152,7 +153,7 @@ def _need(module):
 
 def write_dxf(path, curves, tol=SPLINE_TOL, layer="CURVES"):
     """DXF (R2010) with one 3-D SPLINE entity per curve: the B-spline's own degree, knots and control points."""
-    ezdxf = _need("ezdxf")
+    ezdxf = require("ezdxf")
     doc = ezdxf.new("R2010")
     msp = doc.modelspace()
     doc.layers.add(layer)
@@ -166,7 +167,7 @@ def write_dxf(path, curves, tol=SPLINE_TOL, layer="CURVES"):
 
 def write_step(path, curves, tol=SPLINE_TOL):
     """STEP (AP214) of the B-spline curves as edges, through OpenCascade (the ``cad`` extra)."""
-    _need("OCP")
+    require("OCP")
     from OCP.BRep import BRep_Builder
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
     from OCP.Geom import Geom_BSplineCurve

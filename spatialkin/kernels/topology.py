@@ -128,6 +128,15 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
 
 
 @jit
+def _put(arr, row, U, V):
+    """arr[row] = (U lo, U hi, V lo, V hi)."""
+    arr[row, 0] = U[0]
+    arr[row, 1] = U[1]
+    arr[row, 2] = V[0]
+    arr[row, 3] = V[1]
+
+
+@jit
 def _mid(x):
     return 0.5 * (x[0] + x[1])
 
@@ -190,10 +199,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             if k[0] > U[0] and k[1] < U[1] and l[0] > V[0] and l[1] < V[1]:
                 if count >= out.shape[0]:
                     return count, OVERFLOW, boxes
-                out[count, 0] = k[0]
-                out[count, 1] = k[1]
-                out[count, 2] = l[0]
-                out[count, 3] = l[1]
+                _put(out, count, k, l)
                 kinds[count] = VERIFIED
                 count += 1
                 continue
@@ -208,10 +214,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         if contracted:
             if top >= STACK:
                 return count, OVERFLOW, boxes
-            stack[top, 0] = U[0]
-            stack[top, 1] = U[1]
-            stack[top, 2] = V[0]
-            stack[top, 3] = V[1]
+            _put(stack, top, U, V)
             top += 1
             continue
         ru = (U[1] - U[0]) / min_width[0]
@@ -220,23 +223,14 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         if (ru <= 1.0 and rv <= 1.0) or tiny:
             if count >= out.shape[0]:
                 return count, OVERFLOW, boxes
-            out[count, 0] = U[0]
-            out[count, 1] = U[1]
-            out[count, 2] = V[0]
-            out[count, 3] = V[1]
+            _put(out, count, U, V)
             kinds[count] = UNRESOLVED
             count += 1
             continue
         if top + 2 > STACK:
             return count, OVERFLOW, boxes
-        stack[top, 0] = U[0]
-        stack[top, 1] = U[1]
-        stack[top, 2] = V[0]
-        stack[top, 3] = V[1]
-        stack[top + 1, 0] = U[0]
-        stack[top + 1, 1] = U[1]
-        stack[top + 1, 2] = V[0]
-        stack[top + 1, 3] = V[1]
+        _put(stack, top, U, V)
+        _put(stack, top + 1, U, V)
         if ru >= rv:
             cut = U[0] + SPLIT * (U[1] - U[0])
             stack[top, 1] = cut

@@ -7,7 +7,7 @@ runs solve_ivp with its event functions instead.
 import numpy as np
 
 from .._jit import jit
-from .dopri import A, B, E, ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, P, SAFETY, combine, locate_crossing
+from .dopri import A, B, E, ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, P, SAFETY, combine, copy_into, locate_crossing
 from .level import gradient_flow_rhs, level_value, relative_area_at, surface_gradient_norm
 
 #: Status codes of flow_to_level.
@@ -74,13 +74,13 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
                 return NO_HIT          # solve_ivp's budget or step failure: no seed either
             t_new = min(t + step_h, t_bound)
             step = t_new - t
-            k[0] = f
+            copy_into(k[0], f)
             for s in range(1, 6):
                 combine(y_stage, y, step, A[s], k, s)
-                k[s] = gradient_flow_rhs(0.0, y_stage, p, q, sigma, h, saturation)
+                copy_into(k[s], gradient_flow_rhs(0.0, y_stage, p, q, sigma, h, saturation))
             combine(y_new, y, step, B, k, 6)
             f_new = gradient_flow_rhs(0.0, y_new, p, q, sigma, h, saturation)
-            k[6] = f_new
+            copy_into(k[6], f_new)
             nfev += 6
             combine(err, None, step, E, k, 7)
             error_norm = _rms(err, atol, rtol, y, y_new)
@@ -120,6 +120,6 @@ def flow_to_level(x0, p, q, sigma, h, saturation, t_bound, max_step, rtol, atol,
             return HIT
         g_old = g_new
         t = t_new
-        y[:] = y_new
+        copy_into(y, y_new)
         f = f_new
     return NO_HIT

@@ -68,11 +68,24 @@ def branch_points(drive):
     return sorted(out)
 
 
+def clear_all_round(drive, samples=3601):
+    """True when the coupler's circle crosses the rocker sphere transversally at every crank angle (assembly
+    margin above CLEARANCE x size all round). Then the two assemblies are smooth functions of the crank angle:
+    a dead position (u1' = 0) or a branch point (N1 || N2) needs the circle tangent to the sphere, where the
+    distance from the rocker centre along the circle is extreme, that is a zero margin. So neither exists
+    and no loop needs tracing to show it."""
+    angles = np.linspace(0.0, 2 * np.pi, samples)
+    return bool(np.min(drive.assembly_margin(angles)) > CLEARANCE * drive.size)
+
+
 def analyse(drive, branch=0, samples=3601):
     """LooperAnalysis of a LooperDrive on one branch."""
-    dead = dead_positions(drive)
-    meets = branch_points(drive)
     blocked = drive.blocked_ranges
+    if not blocked and clear_all_round(drive, samples):
+        dead, meets = [], []        # nothing to find: the loops (sk.intersect) are not traced
+    else:
+        dead = dead_positions(drive)
+        meets = branch_points(drive)
     turns = not blocked and not dead
     angles = np.linspace(0.0, 2 * np.pi, samples)
     if not turns:       # keep clear of the blocked ranges, where the two branches merge

@@ -1,12 +1,38 @@
-"""Command line: ``spatialkin looper --out DIR [--config FILE.toml]`` (the main job) and ``spatialkin demo``
-(torus ∩ sphere of the looper, every component) and ``spatialkin bench [--out DIR] [--quick]`` (speed against
-error: work–precision table, goal ratios, CSV and PNG).
+"""Command line: ``spatialkin looper --out DIR [--config FILE.toml]`` (the main job), ``spatialkin demo``
+(torus ∩ sphere of the looper, every component), ``spatialkin bench [--out DIR] [--quick]`` (speed against
+error: work–precision table, goal ratios, CSV and PNG) and ``spatialkin --version``.
+
+Every bad input ends in one line on stderr and exit status 2.
 """
 import argparse
+import math
 import sys
 import time
 
 import numpy as np
+
+#: Exceptions that mean bad input or a situation the user must change (one line, exit 2), never a traceback.
+USER_ERRORS = (ValueError, TypeError, OSError, KeyError, RuntimeError)
+#: The line printed when the numerical kernels compile (first run after an install, or a cleared cache).
+COMPILING = ("spatialkin: compiling the numerical kernels this run needs (first run after install; numba caches "
+             "them, later runs start at once) ...")
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """argparse with its errors on one line (no usage block) and exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: {message} (see {self.prog.split()[0]} --help)\n")
+
+
+def positive_float(text):
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    if not (math.isfinite(x) and x > 0):
+        raise argparse.ArgumentTypeError(f"must be positive and finite, got {text!r}")
+    return x
 
 
 def reference_pair():
@@ -35,41 +61,58 @@ def demo(args):
 
 def looper(args):
     from .looper_job import run
-    try:
-        run(args.out, args.config)
-    except (ValueError, OSError) as err:
-        print(f"spatialkin looper: {err}", file=sys.stderr)
-        return 2
+    run(args.out, args.config)
     return 0
 
 
 def bench(args):
     from .bench import run
-    try:
-        run(args.out, quick=args.quick)
-    except (ValueError, OSError, RuntimeError) as err:
-        print(f"spatialkin bench: {err}", file=sys.stderr)
-        return 2
+    run(args.out, quick=args.quick)
     return 0
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(prog="spatialkin", description=__doc__)
-    sub = parser.add_subparsers(dest="command", required=True)
-    p_looper = sub.add_parser("looper", help="the looper drive over a full crank turn: CSV, plot, summary")
+def parser():
+    from . import __version__
+    from .looper_job import keys_help
+    top = OneLineParser(prog="spatialkin", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    top.add_argument("--version", action="version", version=f"spatialkin {__version__}")
+    sub = top.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
+    p_looper = sub.add_parser("looper", help="the looper drive over a crank turn at machine speed: CSV, JSON record, "
+                              "pictures, summary", formatter_class=argparse.RawDescriptionHelpFormatter,
+                              description="The looper drive over a crank turn at machine speed. Writes "
+                              "looper_motion.csv (units in the header, angles in degrees), looper_run.json "
+                              "(geometry, speed, branch, versions, measured errors), looper_cyclogram.png, "
+                              "looper_transmission.png, looper_speed.png and looper_3d.png, and prints a "
+                              "summary.", epilog=keys_help())
     p_looper.add_argument("--out", required=True, help="output folder (created if missing)")
-    p_looper.add_argument("--config", default=None, help="TOML file overriding the reference geometry")
+    p_looper.add_argument("--config", default=None, help="TOML file overriding the built-in drive (keys below)")
     p_looper.set_defaults(func=looper)
     p_demo = sub.add_parser("demo", help="trace torus ∩ sphere of the looper drive and print the components")
-    p_demo.add_argument("--tol", type=float, default=1e-10, help="accuracy relative to the scene scale")
+    p_demo.add_argument("--tol", type=positive_float, default=1e-10,
+                        help="accuracy relative to the scene scale (positive; default 1e-10)")
     p_demo.set_defaults(func=demo)
     p_bench = sub.add_parser("bench", help="speed against error: every solve_ivp method and tolerance, "
                              "OpenCascade (if installed), the looper against a per-angle root solve")
     p_bench.add_argument("--out", default=None, help="folder for bench.csv and bench.png (created if missing)")
     p_bench.add_argument("--quick", action="store_true", help="a short run: two cases, two tolerances, one repeat")
     p_bench.set_defaults(func=bench)
-    args = parser.parse_args(argv)
-    return args.func(args)
+    return top
+
+
+def main(argv=None):
+    args = parser().parse_args(argv)
+    from numba.core import event
+
+    from ._jit import announce_compilation
+    listener = announce_compilation(lambda: print(COMPILING, file=sys.stderr, flush=True))
+    try:
+        return args.func(args)
+    except USER_ERRORS as err:
+        message = " ".join(str(err).split()) or type(err).__name__
+        print(f"spatialkin {args.command}: {message}", file=sys.stderr)
+        return 2
+    finally:
+        event.unregister("numba:compile", listener)
 
 
 if __name__ == "__main__":

@@ -52,7 +52,7 @@ DEFAULTS = {key: value[0] for key, value in KEYS.items()}
 ROTATION_HELP = (
     "rotation forms in a frame table: rotation = [[..], [..], [..]] (3x3, columns = local x, y, z; "
     f"re-orthonormalised when max |R^T R - I| <= {ROTATION_TOL:g}); axis_angle = {{ axis = [x, y, z], "
-    "angle_deg = a }}; z_axis = [x, y, z] with optional x_hint = [x, y, z] (x = hint made normal to z). "
+    "angle_deg = a }; z_axis = [x, y, z] with optional x_hint = [x, y, z] (x = hint made normal to z). "
     "z_axis alone fixes the angles by the physical drive: the crank's u1 = 0 points from its shaft towards "
     "the rocker centre; the rocker shaft is turned to the sense of (crank axis x (P2 - O1)) and its u2 = 0 is "
     "the crank's u1 = 0 direction made normal to it, so the same drive gives the same angles however its "

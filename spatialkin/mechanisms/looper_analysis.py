@@ -39,6 +39,15 @@ class LooperAnalysis:
     transmission_angle: np.ndarray = field(repr=False)
     min_transmission: tuple = (0.0, 0.0)
 
+    def __repr__(self):
+        deg = np.degrees
+        angles = lambda xs: "[" + ", ".join(f"{deg(x):.4f}" for x in xs) + "]"      # noqa: E731
+        return (f"LooperAnalysis(turns_fully={self.turns_fully}, dead_positions={angles(self.dead_positions)} deg, "
+                f"branch_points={angles(self.branch_points)} deg, blocked_ranges="
+                f"[{', '.join(angles(r) for r in self.blocked_ranges)}] deg, "
+                f"u2_range={angles(self.u2_range)} deg, v2_range={angles(self.v2_range)} deg, "
+                f"min_transmission={deg(self.min_transmission[0]):.3f} deg at {deg(self.min_transmission[1]):.2f} deg)")
+
 
 def dead_positions(drive):
     """Crank angles where u1' changes sign along any traced loop of torus ∩ sphere."""

@@ -6,6 +6,7 @@ Every bad input ends in one line on stderr and exit status 2.
 """
 import argparse
 import math
+import os
 import sys
 import time
 
@@ -16,6 +17,11 @@ USER_ERRORS = (ValueError, TypeError, OSError, KeyError, RuntimeError)
 #: The line printed when the numerical kernels compile (first run after an install, or a cleared cache).
 COMPILING = ("spatialkin: compiling the numerical kernels this run needs (first run after install; numba caches "
              "them, later runs start at once) ...")
+
+
+#: The line printed when the looper job's kernels are not compiled yet (see spatialkin.firstrun).
+FIRST_RUN = ("spatialkin: first run after install: the kernels run as plain Python this time (same numbers) while "
+             "a background process compiles them into numba's cache for the next runs")
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -60,6 +66,11 @@ def demo(args):
 
 
 def looper(args):
+    from . import firstrun
+    if os.environ.get(firstrun.ENV, "interpret") != "compile" and not firstrun.ready():
+        started = firstrun.start_background()
+        print(FIRST_RUN + (" (started)" if started else " (already under way)"), file=sys.stderr, flush=True)
+        return firstrun.run_interpreted(args.argv)
     from .looper_job import run
     run(args.out, args.config)
     return 0
@@ -100,7 +111,9 @@ def parser():
 
 
 def main(argv=None):
+    argv = list(sys.argv[1:] if argv is None else argv)
     args = parser().parse_args(argv)
+    args.argv = argv
     from numba.core import event
 
     from ._jit import announce_compilation

@@ -286,7 +286,7 @@ def run(out_dir, config_path=None, echo=print):
     motion = drive.solve(angles, omega=omega, branch=branch)
     t_solve = time.perf_counter() - t_solve
     tip = motion.looper_tip
-    analysis = drive.analyse(branch=branch)
+    analysis = drive.analyse(branch=branch, motion=motion)
     # measured errors: exact distances of C to both surfaces; C by the coupler chain against the rocker chain
     on_torus = float(drive.torus.distance(motion.ball_center).max())
     on_sphere = float(drive.sphere.distance(motion.ball_center).max())

@@ -233,10 +233,12 @@ class LooperDrive:
         y = np.vstack(ys)
         return y[np.argsort(np.mod(y[:, 0], 2 * np.pi))]
 
-    def analyse(self, branch=0, samples=3601):
-        """What a designer needs to know: see spatialkin.mechanisms.looper_analysis.LooperAnalysis."""
+    def analyse(self, branch=0, samples=3601, motion=None):
+        """What a designer needs to know: see spatialkin.mechanisms.looper_analysis.LooperAnalysis. The
+        transmission angle is given over `samples` crank angles, or over those of `motion` (a LooperMotion of
+        this drive and branch, reused)."""
         from .looper_analysis import analyse
-        return analyse(self, branch, samples)
+        return analyse(self, branch, samples, motion)
 
     def solve(self, crank_angles, omega=1.0, branch=0):
         """Motion at exactly the given crank angles, the crank turning at the constant rate omega.

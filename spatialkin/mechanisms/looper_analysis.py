@@ -87,8 +87,10 @@ def clear_all_round(drive, samples=3601):
     return bool(np.min(drive.assembly_margin(angles)) > CLEARANCE * drive.size)
 
 
-def analyse(drive, branch=0, samples=3601):
-    """LooperAnalysis of a LooperDrive on one branch."""
+def analyse(drive, branch=0, samples=3601, motion=None):
+    """LooperAnalysis of a LooperDrive on one branch; the transmission angle over `samples` crank angles of a
+    turn (those clear of the blocked ranges), or over the crank angles of a given motion of this drive and
+    branch (reused, not solved again)."""
     blocked = drive.blocked_ranges
     if not blocked and clear_all_round(drive, samples):
         dead, meets = [], []        # nothing to find: the loops (sk.intersect) are not traced
@@ -96,10 +98,14 @@ def analyse(drive, branch=0, samples=3601):
         dead = dead_positions(drive)
         meets = branch_points(drive)
     turns = not blocked and not dead
-    angles = np.linspace(0.0, 2 * np.pi, samples)
-    if not turns:       # keep clear of the blocked ranges, where the two branches merge
-        angles = angles[drive.assembly_margin(angles) > CLEARANCE * drive.size]
-    motion = drive.solve(angles, branch=branch)
+    if motion is None:
+        angles = np.linspace(0.0, 2 * np.pi, samples)
+        if not turns:       # keep clear of the blocked ranges, where the two branches merge
+            angles = angles[drive.assembly_margin(angles) > CLEARANCE * drive.size]
+        motion = drive.solve(angles, branch=branch)
+    elif motion.drive is not drive or motion.branch != branch:
+        raise ValueError("motion must be a motion of this drive on the analysed branch")
+    angles = motion.crank_angle
     coupler = motion.links()["coupler"]
     line = motion.ball_center - coupler.origin
     pin_axis = coupler.rotation[:, :, 1]

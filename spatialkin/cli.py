@@ -20,8 +20,8 @@ COMPILING = ("spatialkin: compiling the numerical kernels this run needs (first 
 
 
 #: The line printed when the looper job's kernels are not compiled yet (see spatialkin.firstrun).
-FIRST_RUN = ("spatialkin: first run after install: the kernels run as plain Python this time (same numbers) while "
-             "a background process compiles them into numba's cache for the next runs")
+FIRST_RUN = ("spatialkin: first run after install: the kernels run as plain Python this time (same numbers); "
+             "a background process then compiles them into numba's cache (about a minute) for the next runs")
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -68,9 +68,10 @@ def demo(args):
 def looper(args):
     from . import firstrun
     if os.environ.get(firstrun.ENV, "interpret") != "compile" and not firstrun.ready():
-        started = firstrun.start_background()
-        print(FIRST_RUN + (" (started)" if started else " (already under way)"), file=sys.stderr, flush=True)
-        return firstrun.run_interpreted(args.argv)
+        print(FIRST_RUN, file=sys.stderr, flush=True)
+        status = firstrun.run_interpreted(args.argv)
+        firstrun.start_background()         # after the run, so that it does not compete with it
+        return status
     from .looper_job import run
     run(args.out, args.config)
     return 0

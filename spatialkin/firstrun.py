@@ -5,8 +5,8 @@ needs a few dozen kernels, about half a minute of compiling on a 2-core machine,
 whole job's numerics with the same kernels as plain Python (SPATIALKIN_DISABLE_JIT: the same arithmetic in
 the same order, so the same numbers; the job's table is bitwise the same here). So when the kernels the
 looper job needs are not cached yet, ``spatialkin looper`` runs this once as plain Python in a child process
-and, beside it, starts ``python -m spatialkin.firstrun``: a background process that compiles exactly those
-kernels (it runs the job's numerics on the reference drive) into numba's cache, then writes a stamp naming
+and, when it is done, starts ``python -m spatialkin.firstrun``: a background process (lowest priority) that
+compiles exactly those kernels (it runs the job's numerics on the reference drive) into numba's cache, then writes a stamp naming
 the cache index of every kernel it compiled. Later runs find the stamp and every index in place and run
 compiled.
 
@@ -25,7 +25,7 @@ ENV = "SPATIALKIN_FIRST_RUN"
 STAMP_NAME = "spatialkin-kernels-ready.json"
 LOCK_NAME = "spatialkin-kernels-compiling.lock"
 #: Scheduling priority of the background warm-up (added niceness).
-BACKGROUND_NICENESS = 10
+BACKGROUND_NICENESS = 19
 #: A lock older than this (s) is from a warm-up that died: it is taken over.
 STALE_LOCK_S = 900.0
 
@@ -108,7 +108,7 @@ def start_background():
         return False
     env = {**os.environ, ENV: "compile"}
     env.pop("SPATIALKIN_DISABLE_JIT", None)
-    subprocess.Popen([sys.executable, "-m", "spatialkin.firstrun", lock], env=env, start_new_session=True,
+    subprocess.Popen([sys.executable, "-P", "-m", "spatialkin.firstrun", lock], env=env, start_new_session=True,
                      stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     return True
 
@@ -116,7 +116,7 @@ def start_background():
 def run_interpreted(argv):
     """Run the command line argv in a child process with the kernels as plain Python; its exit status."""
     env = {**os.environ, "SPATIALKIN_DISABLE_JIT": "1", ENV: "compile"}
-    return subprocess.call([sys.executable, "-m", "spatialkin.cli", *argv], env=env)
+    return subprocess.call([sys.executable, "-P", "-m", "spatialkin.cli", *argv], env=env)
 
 
 def warm_up():

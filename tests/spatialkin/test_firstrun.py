@@ -1,0 +1,81 @@
+"""The first run after an install (spatialkin.firstrun): when the cache is ready, the line while kernels
+compile, and the interpreted run giving the same table as the compiled one (oracle: the compiled job)."""
+import json
+import os
+import sys
+
+import numpy as np
+import pytest
+
+from spatialkin import _jit, firstrun
+from spatialkin.cli import FIRST_RUN, main
+
+
+def test_ready_needs_a_stamp_of_this_version_with_every_index_newer_than_its_source(tmp_path, monkeypatch):
+    monkeypatch.setattr(firstrun, "cache_folder", lambda: str(tmp_path))
+    assert not firstrun.ready()
+    source, index = tmp_path / "k.py", tmp_path / "k.nbi"
+    source.write_text("x")
+    index.write_text("i")
+    os.utime(source, (1000, 1000))
+    stamp = {"versions": firstrun._versions(), "indexes": [[str(index), str(source)]]}
+    (tmp_path / firstrun.STAMP_NAME).write_text(json.dumps(stamp))
+    assert firstrun.ready()
+    os.utime(source, None)                  # the source edited after the warm-up: stale
+    os.utime(index, (1000, 1000))
+    assert not firstrun.ready()
+    os.utime(index, None)
+    index.unlink()                          # the cache cleared
+    assert not firstrun.ready()
+    stamp["versions"] = {**stamp["versions"], "numba": "0.0"}
+    (tmp_path / firstrun.STAMP_NAME).write_text(json.dumps(stamp))
+    assert not firstrun.ready()
+
+
+def test_cold_cache_takes_the_interpreted_path(monkeypatch, capsys):
+    calls = []
+    monkeypatch.setenv(firstrun.ENV, "interpret")
+    monkeypatch.setattr(firstrun, "ready", lambda: False)
+    monkeypatch.setattr(firstrun, "start_background", lambda: calls.append("background") or True)
+    monkeypatch.setattr(firstrun, "run_interpreted", lambda argv: calls.append(argv) or 0)
+    assert main(["looper", "--out", "somewhere"]) == 0
+    assert calls == [["looper", "--out", "somewhere"], "background"]     # the warm-up starts after the run
+    assert FIRST_RUN in capsys.readouterr().err
+
+
+def test_interpreted_run_gives_the_compiled_table(tmp_path):
+    cfg = tmp_path / "coarse.toml"
+    cfg.write_text("step_deg = 1.0\n")
+    assert main(["looper", "--out", str(tmp_path / "compiled"), "--config", str(cfg)]) == 0
+    assert firstrun.run_interpreted(["looper", "--out", str(tmp_path / "plain"), "--config", str(cfg)]) == 0
+    a = np.loadtxt(tmp_path / "compiled" / "looper_motion.csv", delimiter=",", skiprows=1)
+    b = np.loadtxt(tmp_path / "plain" / "looper_motion.csv", delimiter=",", skiprows=1)
+    # the same arithmetic in the same order: bitwise equal here; allow round-off should a libm differ
+    np.testing.assert_allclose(b, a, rtol=1e-13, atol=1e-13 * np.max(np.abs(a)))
+
+
+@pytest.mark.skipif(_jit.JIT_DISABLED, reason="no compiling with jit off")
+def test_a_line_when_the_first_kernel_compiles():
+    said = []
+    listener = _jit.announce_compilation(lambda: said.append(1))
+    try:
+        space = {"__name__": "spatialkin._first_compile_probe"}
+        exec("def probe(x):\n    return x + 1.0\n\ndef probe2(x):\n    return x * 2.0\n", space)
+        assert _jit.jit(cache=False)(space["probe"])(1.0) == 2.0
+        assert _jit.jit(cache=False)(space["probe2"])(1.0) == 2.0
+    finally:
+        from numba.core import event
+        event.unregister("numba:compile", listener)
+    assert said == [1]                      # once, however many kernels compile
+
+
+def test_import_compiles_nothing():
+    """A fresh interpreter imports spatialkin, planar and the job without a single compile event."""
+    import subprocess
+    code = ("from numba.core import event\nhits = []\n"
+            "class L(event.Listener):\n    def on_start(self, e): hits.append(1)\n    def on_end(self, e): pass\n"
+            "event.register('numba:compile', L())\n"
+            "import spatialkin, planar, spatialkin.looper_job, spatialkin.mechanisms, spatialkin.cli\n"
+            "print(len(hits))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "0"

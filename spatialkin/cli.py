@@ -74,6 +74,8 @@ def looper(args):
         return status
     from .looper_job import run
     run(args.out, args.config)
+    if not firstrun.ready():                # compiled here (SPATIALKIN_FIRST_RUN=compile): stamp the cache
+        firstrun.write_stamp()
     return 0
 
 

@@ -133,14 +133,28 @@ def warm_up():
     motion.looper_tip
     partial = LooperDrive(8.0, 50.0, 30.0, rocker_frame=drive.rocker_frame.__class__((40.0, 0.0, 60.0)))
     partial.analyse(branch=0, samples=361)
-    indexes = [[d._cache._cache_file._index_path, d.py_func.__code__.co_filename] for d in _dispatchers()
-               if d.signatures]
+    write_stamp()
+
+
+def write_stamp():
+    """Stamp the cache as ready: the index of every kernel compiled (or loaded) in this process."""
     folder = cache_folder()
+    if folder is None:
+        return
+    try:
+        indexes = [[d._cache._cache_file._index_path, d.py_func.__code__.co_filename] for d in _dispatchers()
+                   if d.signatures]
+    except AttributeError:              # numba's cache layout changed: no stamp, the next run compiles
+        return
     path = os.path.join(folder, STAMP_NAME)
     tmp = f"{path}.{os.getpid()}.tmp"
-    with open(tmp, "w") as f:
-        json.dump({"versions": _versions(), "indexes": indexes}, f)
-    os.replace(tmp, path)
+    try:
+        with open(tmp, "w") as f:
+            json.dump({"versions": _versions(), "indexes": indexes}, f)
+        os.replace(tmp, path)
+    except OSError:                     # a read-only cache: numba itself then uses another folder
+        if os.path.exists(tmp):
+            os.remove(tmp)
 
 
 if __name__ == "__main__":

@@ -12,6 +12,8 @@ JOINT_NAMES = ("O1 crank shaft", "A crank pin (crank 1 = O1A)", "C ball joint", 
 TIP_NAME = "T looper tip"
 #: Link names drawn at the middle of each link.
 LINK_NAMES = {"coupler": "coupler 2", "rocker_arm": "rocker arm 3", "looper": "looper"}
+#: Colour maps of the ball centre's and the looper tip's paths in a labelled picture (told apart at a glance).
+PATH_CMAPS = ("winter", "autumn")
 #: Consecutive crank angles further apart than this many times their median step leave a gap in the paths.
 GAP_STEPS = 1.5
 #: Lower-left corners of the two colour bars (fractions of the window) in a labelled picture.
@@ -86,7 +88,7 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
             bar = f"{title}: speed [{speed_unit}]" if color_by == "speed" else f"{title}: arc length s"
             scene.add_curve(position, name=f"{name}_path", color_by=color_by, speed=speed * factor,
                             bar_title=bar, bar_position=BAR_POSITIONS[j],
-                            cmap="viridis" if name == "ball" else "plasma", breaks=breaks)
+                            cmap=PATH_CMAPS[j], breaks=breaks)
         else:
             scene.add_curve(position, name=f"{name}_path", color_by=color_by, speed=speed, clim=clim,
                             scalar_bar=name == "tip" or clim is None, breaks=breaks)
@@ -97,7 +99,11 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
         joints[0] = links["crank_shaft"][0]
         points = np.vstack([joints, links["looper"][-1:],
                             [0.5 * (links[k][0] + links[k][-1]) if k != "looper" else links[k][1] for k in LINK_NAMES]])
-        scene.add_labels(points, [*JOINT_NAMES, TIP_NAME, *LINK_NAMES.values()], name="names")
+        # each path named at its point farthest from where its point is drawn now
+        paths = [(motion.ball_center, joints[2], "path of C"), (tip.position, links["looper"][-1], "path of T")]
+        path_points = [p[int(np.argmax(np.linalg.norm(p - now, axis=1)))] for p, now, _ in paths]
+        scene.add_labels(np.vstack([points, path_points]),
+                         [*JOINT_NAMES, TIP_NAME, *LINK_NAMES.values(), *(name for _, _, name in paths)], name="names")
     if count:
         every = np.unique(np.linspace(0, len(motion.crank_angle) - 1, count).round().astype(int))
         longest = max(np.max(np.linalg.norm(motion.ball_velocity, axis=1)),

@@ -12,6 +12,7 @@ compiled.
 
 ``SPATIALKIN_FIRST_RUN=compile`` turns this off (kernels compile in the foreground, with a line saying so).
 """
+import hashlib
 import json
 import os
 import subprocess
@@ -62,9 +63,15 @@ def cache_folder():
         return None
 
 
+def source_hash(path):
+    """sha256 of a kernel module's source, numba's own freshness stamp of its cache index."""
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
 def ready():
-    """True when a warm-up finished for this version and every cache index it wrote is still there and newer
-    than its kernel's source (numba's own test for a stale index); also True where this cannot be known."""
+    """True when a warm-up finished for these versions and every cache index it named is still there, for the
+    same kernel source (its hash); also True where this cannot be known (jit off, numba's layout unknown)."""
     folder = cache_folder()
     if folder is None:
         return True
@@ -73,14 +80,15 @@ def ready():
             stamp = json.load(f)
     except (OSError, ValueError):
         return False
-    if stamp.get("versions") != _versions():
+    if not isinstance(stamp, dict) or stamp.get("versions") != _versions():
         return False
-    for index, source in stamp.get("indexes", []):
-        try:
-            if os.path.getmtime(index) < os.path.getmtime(source):
+    hashes = {}
+    try:
+        for index, source, digest in stamp.get("indexes", []):
+            if not os.path.exists(index) or hashes.setdefault(source, source_hash(source)) != digest:
                 return False
-        except OSError:
-            return False
+    except (OSError, ValueError, TypeError, AttributeError):     # gone, or a stamp of another layout
+        return False
     return True
 
 
@@ -142,8 +150,13 @@ def write_stamp():
     if folder is None:
         return
     try:
-        indexes = [[d._cache._cache_file._index_path, d.py_func.__code__.co_filename] for d in _dispatchers()
-                   if d.signatures]
+        sources = {}
+        indexes = []
+        for d in _dispatchers():
+            if d.signatures:
+                source = d.py_func.__code__.co_filename
+                indexes.append([d._cache._cache_file._index_path, source,
+                                sources.setdefault(source, source_hash(source))])
     except AttributeError:              # numba's cache layout changed: no stamp, the next run compiles
         return
     path = os.path.join(folder, STAMP_NAME)

@@ -272,12 +272,9 @@ def run(out_dir, config_path=None, echo=print):
     """Run the job; returns the LooperMotion. Every file is written whole or not at all."""
     t0 = time.perf_counter()
     config = load_config(config_path)
-    unit = config["length_unit"]
-    si = METRES_PER_UNIT[unit]
     drive = build(config)
     branch = int(config["branch"])
     omega = config["speed_rpm"] * 2 * np.pi / 60.0
-    step = math.radians(config["step_deg"])
     angles = reachable_angles(drive, config["step_deg"])
     if len(angles) < 2:
         raise ValueError("the crank can reach no range of angles wider than the table's step (the coupler's "
@@ -285,75 +282,119 @@ def run(out_dir, config_path=None, echo=print):
     t_solve = time.perf_counter()
     motion = drive.solve(angles, omega=omega, branch=branch)
     t_solve = time.perf_counter() - t_solve
-    tip = motion.looper_tip
     analysis = drive.analyse(branch=branch, motion=motion)
-    # measured errors: exact distances of C to both surfaces; C by the coupler chain against the rocker chain
-    on_torus = float(drive.torus.distance(motion.ball_center).max())
-    on_sphere = float(drive.sphere.distance(motion.ball_center).max())
-    chains = float(np.abs(motion.point("coupler", (drive.coupler_length, 0, 0)).position
-                          - motion.point("rocker_arm", (drive.rocker_length, 0, 0)).position).max())
-    deg = np.degrees
-    table = np.column_stack([deg(angles), angles / omega, motion.ball_center, motion.ball_velocity,
-                             motion.ball_acceleration, deg(motion.rocker_angles), deg(motion.rocker_rates),
-                             deg(motion.rocker_accelerations), tip.position, tip.velocity, tip.acceleration])
+    found = findings(drive, motion, analysis, math.radians(config["step_deg"]))
+
     os.makedirs(out_dir, exist_ok=True)
     paths = {name: os.path.join(out_dir, name) for name in ("looper_motion.csv", "looper_run.json") + FIGURES}
     with atomic_path(paths["looper_motion.csv"]) as tmp:
-        np.savetxt(tmp, table, delimiter=",", header=",".join(columns(unit)), comments="", fmt="%.15g")
+        np.savetxt(tmp, table(motion), delimiter=",", header=",".join(columns(config["length_unit"])),
+                   comments="", fmt="%.15g")
+    for line in summary(config, drive, motion, analysis, found):
+        echo(line)
+    t_fig = time.perf_counter()
+    write_figures(paths, config, motion, analysis, found)
+    t_fig = time.perf_counter() - t_fig
+    t_picture = time.perf_counter()
+    picture_3d(motion, paths["looper_3d.png"], config["picture_crank_angle_deg"], config["length_unit"],
+               config["speed_rpm"])
+    t_picture = time.perf_counter() - t_picture
+    times = {"solve": t_solve, "figures": t_fig, "picture_3d": t_picture, "job": time.perf_counter() - t0}
+    with atomic_path(paths["looper_run.json"]) as tmp:
+        with open(tmp, "w") as f:
+            json.dump(record(config, drive, motion, analysis, found, times), f, indent=1)
+    echo(f"time: solve {1e3 * t_solve:.1f} ms, figures {t_fig:.2f} s, 3-D picture {t_picture:.2f} s, whole job "
+         f"{time.perf_counter() - t0:.2f} s")
+    echo(f"wrote {', '.join(paths[n] for n in ('looper_motion.csv', 'looper_run.json') + FIGURES)}")
+    return motion
 
+
+def table(motion):
+    """The CSV's rows (see columns): angles in degrees, time at the motion's crank speed."""
+    deg = np.degrees
+    tip = motion.looper_tip
+    return np.column_stack([deg(motion.crank_angle), motion.crank_angle / motion.omega, motion.ball_center,
+                            motion.ball_velocity, motion.ball_acceleration, deg(motion.rocker_angles),
+                            deg(motion.rocker_rates), deg(motion.rocker_accelerations), tip.position, tip.velocity,
+                            tip.acceleration])
+
+
+def findings(drive, motion, analysis, step):
+    """What the summary and the record report, from the solved motion (angles in degrees, lengths in the
+    drive's unit, peaks at the motion's crank speed as (value, crank angle in deg))."""
+    deg = np.degrees
+    angles = motion.crank_angle
+    tip = motion.looper_tip
     u2, v2 = deg(motion.rocker_angles.T)
     u2_span, v2_span = figs.angle_span(u2), figs.angle_span(v2)
-    ranges = crank_ranges(angles, step)
-    speed = {name: np.linalg.norm(x, axis=1) for name, x in
+    u2_seen = figs.on_span(u2, u2_span)
+    at_lo, at_hi = float(deg(angles[int(np.argmin(u2_seen))])), float(deg(angles[int(np.argmax(u2_seen))]))
+    peaks = {name: _peak(np.linalg.norm(x, axis=1), angles) for name, x in
              (("ball_v", motion.ball_velocity), ("ball_a", motion.ball_acceleration),
               ("tip_v", tip.velocity), ("tip_a", tip.acceleration))}
-    peaks = {name: _peak(values, angles) for name, values in speed.items()}
     rates = {name: _peak(np.abs(deg(x)), angles) for name, x in
              (("u2_dot", motion.rocker_rates[:, 0]), ("v2_dot", motion.rocker_rates[:, 1]),
               ("u2_ddot", motion.rocker_accelerations[:, 0]), ("v2_ddot", motion.rocker_accelerations[:, 1]))}
-    u2_seen = figs.on_span(u2, u2_span)
-    k_lo, k_hi = int(np.argmin(u2_seen)), int(np.argmax(u2_seen))
-    at_lo, at_hi = float(deg(angles[k_lo])), float(deg(angles[k_hi]))
-    forward = (at_hi - at_lo) % 360.0
-    mu, mu_at = deg(analysis.min_transmission)
+    # measured errors: exact distances of C to both surfaces; C by the coupler chain against the rocker chain
+    errors = {"C_to_torus": float(drive.torus.distance(motion.ball_center).max()),
+              "C_to_sphere": float(drive.sphere.distance(motion.ball_center).max()),
+              "coupler_vs_rocker_chain": float(np.abs(
+                  motion.point("coupler", (drive.coupler_length, 0, 0)).position
+                  - motion.point("rocker_arm", (drive.rocker_length, 0, 0)).position).max())}
+    return {"ranges": crank_ranges(angles, step), "step": step, "u2_span": u2_span, "v2_span": v2_span,
+            "u2_least_at": at_lo, "u2_greatest_at": at_hi, "forward": (at_hi - at_lo) % 360.0,
+            "peaks": peaks, "rates": rates, "errors": errors,
+            "min_transmission": tuple(float(x) for x in deg(analysis.min_transmission))}
 
-    # --- the summary ---
-    echo(f"looper drive: crank {drive.crank_radius:g} {unit}, coupler {drive.coupler_length:g} {unit}, rocker "
-         f"{drive.rocker_length:g} {unit}; branch {motion.branch}; {config['speed_rpm']:g} rpm ({omega:.4g} rad/s, "
-         f"{60e3 / config['speed_rpm']:.4g} ms per turn); {len(angles)} crank angles")
+
+def summary(config, drive, motion, analysis, found):
+    """The printed summary, line by line."""
+    deg = np.degrees
+    unit, rpm, si = config["length_unit"], config["speed_rpm"], METRES_PER_UNIT[config["length_unit"]]
+    lines = [f"looper drive: crank {drive.crank_radius:g} {unit}, coupler {drive.coupler_length:g} {unit}, rocker "
+             f"{drive.rocker_length:g} {unit}; branch {motion.branch}; {rpm:g} rpm ({motion.omega:.4g} rad/s, "
+             f"{60e3 / rpm:.4g} ms per turn); {len(motion)} crank angles"]
     if analysis.turns_fully:
-        echo("crank: turns fully (no dead position, no branch point)")
+        lines.append("crank: turns fully (no dead position, no branch point)")
     else:
-        echo("crank: cannot turn fully; it reaches (and rocks within) " + _ranges_text(ranges) + " deg; "
-             f"branch {branch} analysed there, {CLEARANCE:g} x size clear of the dead positions")
-        echo("dead positions at crank angles " + ", ".join(f"{deg(x):.4f}" for x in analysis.dead_positions)
-             + " deg" + ("; blocked: " + _ranges_text(analysis.blocked_ranges) + " deg"
-                         if analysis.blocked_ranges else ""))
-        echo("note: at a dead position the crank cannot be driven at constant speed; speeds and accelerations "
-             "at machine speed grow without bound towards it")
+        lines.append("crank: cannot turn fully; it reaches (and rocks within) " + _ranges_text(found["ranges"])
+                     + f" deg; branch {motion.branch} analysed there, {CLEARANCE:g} x size clear of the dead positions")
+        lines.append("dead positions at crank angles " + ", ".join(f"{deg(x):.4f}" for x in analysis.dead_positions)
+                     + " deg" + ("; blocked: " + _ranges_text(analysis.blocked_ranges) + " deg"
+                                 if analysis.blocked_ranges else ""))
+        lines.append("note: at a dead position the crank cannot be driven at constant speed; speeds and "
+                     "accelerations at machine speed grow without bound towards it")
     if analysis.branch_points:
-        echo("assembly branches meet at crank angles "
-             + ", ".join(f"{deg(x):.4f}" for x in analysis.branch_points) + " deg")
-    echo(f"rocker swing: u2 {u2_span[0]:.3f}..{u2_span[1]:.3f} deg ({u2_span[1] - u2_span[0]:.3f} deg), "
-         f"v2 {v2_span[0]:.3f}..{v2_span[1]:.3f} deg ({v2_span[1] - v2_span[0]:.3f} deg)")
+        lines.append("assembly branches meet at crank angles "
+                     + ", ".join(f"{deg(x):.4f}" for x in analysis.branch_points) + " deg")
+    (u_lo, u_hi), (v_lo, v_hi) = found["u2_span"], found["v2_span"]
+    lines.append(f"rocker swing: u2 {u_lo:.3f}..{u_hi:.3f} deg ({u_hi - u_lo:.3f} deg), "
+                 f"v2 {v_lo:.3f}..{v_hi:.3f} deg ({v_hi - v_lo:.3f} deg)")
+    timing = f"timing: u2 least at crank {found['u2_least_at']:.1f} deg, greatest at {found['u2_greatest_at']:.1f} deg"
     if analysis.turns_fully:
-        echo(f"timing: u2 least at crank {at_lo:.1f} deg, greatest at {at_hi:.1f} deg: forward stroke {forward:.1f} "
-             f"deg of crank ({forward / 360 * 60e3 / config['speed_rpm']:.3g} ms), return {360 - forward:.1f} deg")
-    else:
-        echo(f"timing: u2 least at crank {at_lo:.1f} deg, greatest at {at_hi:.1f} deg")
+        forward = found["forward"]
+        timing += (f": forward stroke {forward:.1f} deg of crank ({forward / 360 * 60e3 / rpm:.3g} ms), return "
+                   f"{360 - forward:.1f} deg")
+    lines.append(timing)
     for label, v, a in (("ball centre C", "ball_v", "ball_a"), ("looper tip", "tip_v", "tip_a")):
-        (vmax, vat), (amax, aat) = peaks[v], peaks[a]
-        echo(f"at {config['speed_rpm']:g} rpm, {label}: peak speed {vmax * si:.4g} m/s (crank {vat:.1f} deg), peak "
-             f"acceleration {amax * si:.4g} m/s^2 = {amax * si / STANDARD_GRAVITY:.4g} g (crank {aat:.1f} deg)")
-    echo(f"at {config['speed_rpm']:g} rpm, rocker: peak |du2/dt| {rates['u2_dot'][0]:.4g} deg/s, |dv2/dt| "
-         f"{rates['v2_dot'][0]:.4g} deg/s, |d2u2/dt2| {rates['u2_ddot'][0]:.4g} deg/s^2, |d2v2/dt2| "
-         f"{rates['v2_ddot'][0]:.4g} deg/s^2")
-    echo(f"smallest transmission angle {mu:.2f} deg at crank angle {mu_at:.1f} deg")
-    echo(f"measured error: C to torus {on_torus:.2e} {unit}, to sphere {on_sphere:.2e} {unit}, coupler vs rocker "
-         f"chain {chains:.2e} {unit}")
+        (vmax, vat), (amax, aat) = found["peaks"][v], found["peaks"][a]
+        lines.append(f"at {rpm:g} rpm, {label}: peak speed {vmax * si:.4g} m/s (crank {vat:.1f} deg), peak "
+                     f"acceleration {amax * si:.4g} m/s^2 = {amax * si / STANDARD_GRAVITY:.4g} g (crank {aat:.1f} deg)")
+    rates = found["rates"]
+    lines.append(f"at {rpm:g} rpm, rocker: peak |du2/dt| {rates['u2_dot'][0]:.4g} deg/s, |dv2/dt| "
+                 f"{rates['v2_dot'][0]:.4g} deg/s, |d2u2/dt2| {rates['u2_ddot'][0]:.4g} deg/s^2, |d2v2/dt2| "
+                 f"{rates['v2_ddot'][0]:.4g} deg/s^2")
+    mu, mu_at = found["min_transmission"]
+    lines.append(f"smallest transmission angle {mu:.2f} deg at crank angle {mu_at:.1f} deg")
+    e = found["errors"]
+    lines.append(f"measured error: C to torus {e['C_to_torus']:.2e} {unit}, to sphere {e['C_to_sphere']:.2e} {unit}, "
+                 f"coupler vs rocker chain {e['coupler_vs_rocker_chain']:.2e} {unit}")
+    return lines
 
-    # --- the figures ---
-    t_fig = time.perf_counter()
+
+def write_figures(paths, config, motion, analysis, found):
+    """The cyclogram, transmission and speed figures (PNG, each written whole or not at all)."""
+    unit, step = config["length_unit"], found["step"]
     marks = {"dead": list(analysis.dead_positions), "branch": list(analysis.branch_points),
              "blocked": list(analysis.blocked_ranges)}
     for name, draw in (("looper_cyclogram.png", lambda p: figs.cyclogram(motion, p, unit, marks, step)),
@@ -361,13 +402,15 @@ def run(out_dir, config_path=None, echo=print):
                        ("looper_speed.png", lambda p: figs.speed(motion, p, unit, config["speed_rpm"], step))):
         with atomic_path(paths[name]) as tmp:
             draw(tmp)
-    t_fig = time.perf_counter() - t_fig
-    t_picture = time.perf_counter()
-    picture_3d(motion, paths["looper_3d.png"], config["picture_crank_angle_deg"], unit, config["speed_rpm"])
-    t_picture = time.perf_counter() - t_picture
 
-    record = {
-        "length_unit": unit,
+
+def record(config, drive, motion, analysis, found, times):
+    """The run's record (looper_run.json): geometry, speed, branch, ranges, analysis, peaks, errors, versions."""
+    deg = np.degrees
+    si = METRES_PER_UNIT[config["length_unit"]]
+    mu, mu_at = found["min_transmission"]
+    return {
+        "length_unit": config["length_unit"],
         "geometry": {"crank_radius": drive.crank_radius, "coupler_length": drive.coupler_length,
                      "rocker_length": drive.rocker_length,
                      "crank_frame": {"origin": drive.crank_frame.origin.tolist(),
@@ -375,35 +418,26 @@ def run(out_dir, config_path=None, echo=print):
                      "rocker_frame": {"origin": drive.rocker_frame.origin.tolist(),
                                       "rotation": drive.rocker_frame.rotation.tolist()},
                      "looper_link": drive.looper_link, "looper_tip": drive.looper_tip.tolist()},
-        "speed": {"rpm": config["speed_rpm"], "omega_rad_per_s": omega, "turn_ms": 60e3 / config["speed_rpm"]},
-        "branch": branch, "step_deg": config["step_deg"], "rows": len(angles),
-        "crank_ranges_deg": [[deg(a), deg(b)] for a, b in ranges],
+        "speed": {"rpm": config["speed_rpm"], "omega_rad_per_s": motion.omega, "turn_ms": 60e3 / config["speed_rpm"]},
+        "branch": motion.branch, "step_deg": config["step_deg"], "rows": len(motion),
+        "crank_ranges_deg": [[deg(a), deg(b)] for a, b in found["ranges"]],
         "analysis": {"turns_fully": analysis.turns_fully,
                      "dead_positions_deg": deg(analysis.dead_positions).tolist(),
                      "branch_points_deg": deg(analysis.branch_points).tolist(),
                      "blocked_ranges_deg": [[deg(a), deg(b)] for a, b in analysis.blocked_ranges],
-                     "u2_range_deg": list(u2_span), "v2_range_deg": list(v2_span),
-                     "u2_least_at_crank_deg": at_lo, "u2_greatest_at_crank_deg": at_hi,
-                     "min_transmission_angle_deg": float(mu), "min_transmission_at_crank_deg": float(mu_at)},
+                     "u2_range_deg": list(found["u2_span"]), "v2_range_deg": list(found["v2_span"]),
+                     "u2_least_at_crank_deg": found["u2_least_at"], "u2_greatest_at_crank_deg": found["u2_greatest_at"],
+                     "min_transmission_angle_deg": mu, "min_transmission_at_crank_deg": mu_at},
         "peaks_at_machine_speed": {
-            **{f"{k}_{'m_per_s' if k.endswith('v') else 'm_per_s2'}": [p[0] * si, p[1]] for k, p in peaks.items()},
-            **{f"{k}_{'deg_per_s' if k.endswith('dot') and 'dd' not in k else 'deg_per_s2'}": list(p)
-               for k, p in rates.items()},
+            **{f"{k}_{'m_per_s' if k.endswith('v') else 'm_per_s2'}": [p[0] * si, p[1]]
+               for k, p in found["peaks"].items()},
+            **{f"{k}_{'deg_per_s2' if k.endswith('ddot') else 'deg_per_s'}": list(p) for k, p in found["rates"].items()},
             "note": "[value, crank angle in deg]"},
-        "measured_error": {"C_to_torus": on_torus, "C_to_sphere": on_sphere, "coupler_vs_rocker_chain": chains,
-                           "unit": unit},
-        "time_s": {"solve": t_solve, "figures": t_fig, "picture_3d": t_picture,
-                   "job": time.perf_counter() - t0},
+        "measured_error": {**found["errors"], "unit": config["length_unit"]},
+        "time_s": times,
         "versions": _versions(),
         "files": ["looper_motion.csv", *FIGURES],
     }
-    with atomic_path(paths["looper_run.json"]) as tmp:
-        with open(tmp, "w") as f:
-            json.dump(record, f, indent=1)
-    echo(f"time: solve {1e3 * t_solve:.1f} ms, figures {t_fig:.2f} s, 3-D picture {t_picture:.2f} s, whole job "
-         f"{time.perf_counter() - t0:.2f} s")
-    echo(f"wrote {', '.join(paths[n] for n in ('looper_motion.csv', 'looper_run.json') + FIGURES)}")
-    return motion
 
 
 def picture_3d(motion, path, crank_angle_deg=60.0, unit="mm", speed_rpm=None):

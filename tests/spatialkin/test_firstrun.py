@@ -11,22 +11,22 @@ from spatialkin import _jit, firstrun
 from spatialkin.cli import FIRST_RUN, main
 
 
-def test_ready_needs_a_stamp_of_this_version_with_every_index_newer_than_its_source(tmp_path, monkeypatch):
+def test_ready_needs_a_stamp_of_these_versions_naming_every_index_of_the_same_source(tmp_path, monkeypatch):
     monkeypatch.setattr(firstrun, "cache_folder", lambda: str(tmp_path))
     assert not firstrun.ready()
     source, index = tmp_path / "k.py", tmp_path / "k.nbi"
-    source.write_text("x")
+    source.write_text("x = 1\n")
     index.write_text("i")
-    os.utime(source, (1000, 1000))
-    stamp = {"versions": firstrun._versions(), "indexes": [[str(index), str(source)]]}
+    stamp = {"versions": firstrun._versions(), "indexes": [[str(index), str(source), firstrun.source_hash(source)]]}
     (tmp_path / firstrun.STAMP_NAME).write_text(json.dumps(stamp))
     assert firstrun.ready()
-    os.utime(source, None)                  # the source edited after the warm-up: stale
-    os.utime(index, (1000, 1000))
+    source.write_text("x = 2\n")                  # the kernel edited after the warm-up: its index is stale
     assert not firstrun.ready()
-    os.utime(index, None)
-    index.unlink()                          # the cache cleared
+    source.write_text("x = 1\n")                  # back to the same source (numba compares content, not time)
+    assert firstrun.ready()
+    index.unlink()                                # the cache cleared
     assert not firstrun.ready()
+    index.write_text("i")
     stamp["versions"] = {**stamp["versions"], "numba": "0.0"}
     (tmp_path / firstrun.STAMP_NAME).write_text(json.dumps(stamp))
     assert not firstrun.ready()

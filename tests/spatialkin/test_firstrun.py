@@ -1,7 +1,6 @@
 """The first run after an install (spatialkin.firstrun): when the cache is ready, the line while kernels
 compile, and the interpreted run giving the same table as the compiled one (oracle: the compiled job)."""
 import json
-import os
 import sys
 
 import numpy as np

@@ -211,3 +211,21 @@ def test_angle_span_on_the_circle():
     assert angle_span(np.array([77.8, 114.9, 90.0])) == (77.8, 114.9)
     lo, hi = angle_span(np.array([170.0, 179.0, -179.0, -170.0]))
     assert (lo, hi) == (170.0, 190.0)
+
+
+def test_the_same_drive_in_metres_gives_the_same_si_figures(tmp_path):
+    """Oracle: scale invariance. The reference drive typed in metres (and its rocker shaft reversed) reports
+    the same peaks in m/s and m/s^2 and the same angles as in millimetres."""
+    records = []
+    for unit, k, frame in (("mm", 1.0, "z_axis = [0, 1, 0]"), ("m", 1e-3, "z_axis = [0, -1, 0]")):
+        cfg = tmp_path / f"{unit}.toml"
+        cfg.write_text(f'length_unit = "{unit}"\nstep_deg = 1.0\ncrank_radius = {8 * k}\ncoupler_length = {50 * k}\n'
+                       f"rocker_length = {30 * k}\nlooper_tip = [{40 * k}, 0.0, {12 * k}]\n"
+                       f"rocker_frame = {{ origin = [{6 * k}, 0.0, {75 * k}], {frame} }}\n")
+        assert main(["looper", "--out", str(tmp_path / unit), "--config", str(cfg)]) == 0
+        records.append(json.loads((tmp_path / unit / "looper_run.json").read_text()))
+    mm, m = records
+    for key, value in mm["peaks_at_machine_speed"].items():
+        if key != "note":
+            np.testing.assert_allclose(m["peaks_at_machine_speed"][key], value, rtol=1e-9, err_msg=key)
+    np.testing.assert_allclose(m["analysis"]["u2_range_deg"], mm["analysis"]["u2_range_deg"], rtol=0, atol=1e-9)

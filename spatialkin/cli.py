@@ -68,9 +68,13 @@ def demo(args):
 def looper(args):
     from . import firstrun
     if os.environ.get(firstrun.ENV, "interpret") != "compile" and not firstrun.ready():
+        from .looper_job import build, load_config
+        build(load_config(args.config))     # bad input: its one line here, before any other
+        os.makedirs(args.out, exist_ok=True)
         print(FIRST_RUN, file=sys.stderr, flush=True)
         status = firstrun.run_interpreted(args.argv)
-        firstrun.start_background()         # after the run, so that it does not compete with it
+        if status == 0:
+            firstrun.start_background()     # after the run, so that it does not compete with it
         return status
     from .looper_job import run
     run(args.out, args.config)
@@ -127,6 +131,9 @@ def main(argv=None):
         message = " ".join(str(err).split()) or type(err).__name__
         print(f"spatialkin {args.command}: {message}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print(f"spatialkin {args.command}: interrupted", file=sys.stderr)
+        return 130
     finally:
         event.unregister("numba:compile", listener)
 

@@ -31,15 +31,22 @@ def test_ready_needs_a_stamp_of_these_versions_naming_every_index_of_the_same_so
     assert not firstrun.ready()
 
 
-def test_cold_cache_takes_the_interpreted_path(monkeypatch, capsys):
+def test_cold_cache_takes_the_interpreted_path(monkeypatch, capsys, tmp_path):
     calls = []
     monkeypatch.setenv(firstrun.ENV, "interpret")
     monkeypatch.setattr(firstrun, "ready", lambda: False)
     monkeypatch.setattr(firstrun, "start_background", lambda: calls.append("background") or True)
     monkeypatch.setattr(firstrun, "run_interpreted", lambda argv: calls.append(argv) or 0)
-    assert main(["looper", "--out", "somewhere"]) == 0
-    assert calls == [["looper", "--out", "somewhere"], "background"]     # the warm-up starts after the run
+    out = str(tmp_path / "somewhere")
+    assert main(["looper", "--out", out]) == 0
+    assert calls == [["looper", "--out", out], "background"]     # the warm-up starts after the run
     assert FIRST_RUN in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"                   # bad input on a first run: still its one line, nothing started
+    bad.write_text("crank_radius = -1\n")
+    calls.clear()
+    assert main(["looper", "--out", out, "--config", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert calls == [] and len(err.strip().splitlines()) == 1 and "crank_radius" in err
 
 
 def test_interpreted_run_gives_the_compiled_table(tmp_path):

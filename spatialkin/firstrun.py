@@ -6,9 +6,9 @@ whole job's numerics with the same kernels as plain Python (SPATIALKIN_DISABLE_J
 the same order, so the same numbers; the job's table is bitwise the same here). So when the kernels the
 looper job needs are not cached yet, ``spatialkin looper`` runs this once as plain Python in a child process
 and, when it is done, starts ``python -m spatialkin.firstrun``: a background process (lowest priority) that
-compiles exactly those kernels (it runs the job's numerics on the reference drive) into numba's cache, then writes a stamp naming
-the cache index of every kernel it compiled. Later runs find the stamp and every index in place and run
-compiled.
+compiles exactly those kernels (it runs the job's numerics on the reference drive) into numba's cache, then
+writes a stamp naming the cache index of every kernel it compiled. Later runs find the stamp and every index
+in place (for the same kernel sources) and run compiled.
 
 ``SPATIALKIN_FIRST_RUN=compile`` turns this off (kernels compile in the foreground, with a line saying so).
 """

@@ -431,7 +431,8 @@ def record(config, drive, motion, analysis, found, times):
         "peaks_at_machine_speed": {
             **{f"{k}_{'m_per_s' if k.endswith('v') else 'm_per_s2'}": [p[0] * si, p[1]]
                for k, p in found["peaks"].items()},
-            **{f"{k}_{'deg_per_s2' if k.endswith('ddot') else 'deg_per_s'}": list(p) for k, p in found["rates"].items()},
+            **{f"{k}_{'deg_per_s2' if k.endswith('ddot') else 'deg_per_s'}": list(p)
+               for k, p in found["rates"].items()},
             "note": "[value, crank angle in deg]"},
         "measured_error": {**found["errors"], "unit": config["length_unit"]},
         "time_s": times,

@@ -13,7 +13,8 @@ class PointMotion:
     acceleration: np.ndarray
 
     def __repr__(self):
-        return (f"PointMotion({len(self.position)} positions, |v| max {np.max(np.linalg.norm(self.velocity, axis=-1)):.6g}, "
+        speed = np.max(np.linalg.norm(self.velocity, axis=-1))
+        return (f"PointMotion({len(self.position)} positions, |v| max {speed:.6g}, "
                 f"|a| max {np.max(np.linalg.norm(self.acceleration, axis=-1)):.6g})")
 
 

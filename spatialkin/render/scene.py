@@ -457,8 +457,8 @@ def _draw(plotter, item, mesh):
                 bar.update(position_x=style["bar_position"][0], position_y=style["bar_position"][1],
                            width=BAR_WIDTH, height=BAR_HEIGHT, vertical=False, title_font_size=BAR_FONT_SIZE,
                            label_font_size=BAR_FONT_SIZE, n_labels=BAR_LABELS, fmt="%.3g", color="black")
-            plotter.add_mesh(mesh, scalars=mode, cmap=style["cmap"], clim=style["clim"], show_scalar_bar=style["scalar_bar"],
-                             scalar_bar_args=bar, name=item.name)
+            plotter.add_mesh(mesh, scalars=mode, cmap=style["cmap"], clim=style["clim"],
+                             show_scalar_bar=style["scalar_bar"], scalar_bar_args=bar, name=item.name)
             if style.get("bar_position") is not None and style["scalar_bar"]:
                 # VTK draws a horizontal bar's title over its tick labels: the title goes above, as text
                 plotter.scalar_bars[bar["title"]].SetTitle("")

@@ -67,8 +67,9 @@ class Cycle:
         return not self.locks
 
     def __call__(self, s):
-        """States (N, n+1) at arc lengths s (N,) in [0, length]."""
-        s = np.asarray(s, dtype=float)
+        """States (N, n+1) at arc lengths s (N,) in [0, length]; an s a round-off outside is taken at the
+        nearer end (it was left uninitialised: np.empty's garbage)."""
+        s = np.clip(np.asarray(s, dtype=float), 0.0, self.length)
         out = np.empty((s.size, self.start.size))
         for s0, s1, sol in self.pieces:
             mask = (s >= s0) & (s <= s1)

@@ -28,7 +28,7 @@ from ..tracing.intersect import intersect
 from ..tracing.result import TracingError
 from ..tracing.trace import trace
 from ..trajectory import Trajectory, time_map, to_time
-from .common import PointMotion, check_branch, check_drive
+from .common import PointMotion, angle_range_text, check_branch, check_drive
 
 #: Crank angles sampled when checking where the mechanism can be assembled.
 ASSEMBLY_SAMPLES = 3600
@@ -104,6 +104,13 @@ class LooperDrive:
                          for lo, hi in ranges_of(grid, margin < 0)
                          for step in [grid[1] - grid[0]]]
         self._loops = None
+
+    def __repr__(self):
+        tip = ", ".join(f"{x:g}" for x in self.looper_tip)
+        return (f"LooperDrive(crank_radius={self.crank_radius:g}, coupler_length={self.coupler_length:g}, "
+                f"rocker_length={self.rocker_length:g}, crank_frame={self.crank_frame!r}, "
+                f"rocker_frame={self.rocker_frame!r}, looper_tip=({tip}), looper_link={self.looper_link!r})"
+                + (f"  # blocked crank ranges: {len(self._blocked)}" if self._blocked else ""))
 
     @classmethod
     def reference(cls):
@@ -227,10 +234,12 @@ class LooperDrive:
         y = np.vstack(ys)
         return y[np.argsort(np.mod(y[:, 0], 2 * np.pi))]
 
-    def analyse(self, branch=0, samples=3601):
-        """What a designer needs to know: see spatialkin.mechanisms.looper_analysis.LooperAnalysis."""
+    def analyse(self, branch=0, samples=3601, motion=None):
+        """What a designer needs to know: see spatialkin.mechanisms.looper_analysis.LooperAnalysis. The
+        transmission angle is given over `samples` crank angles, or over those of `motion` (a LooperMotion of
+        this drive and branch, reused)."""
         from .looper_analysis import analyse
-        return analyse(self, branch, samples)
+        return analyse(self, branch, samples, motion)
 
     def solve(self, crank_angles, omega=1.0, branch=0):
         """Motion at exactly the given crank angles, the crank turning at the constant rate omega.
@@ -360,6 +369,15 @@ class LooperMotion:
         if local.shape != (3,) or not np.all(np.isfinite(local)):
             raise ValueError(f"local must be a finite point (3,), got {local!r}")
         return PointMotion(*self.links()[link].point(local))
+
+    def __len__(self):
+        return len(self.crank_angle)
+
+    def __repr__(self):
+        return (f"LooperMotion({len(self)} crank angles {angle_range_text(self.crank_angle)}, branch {self.branch}, "
+                f"omega {self.omega:g} rad/s; u2 {angle_range_text(self.rocker_angles[:, 0])}, "
+                f"v2 {angle_range_text(self.rocker_angles[:, 1])}; ball |v| max "
+                f"{np.max(np.linalg.norm(self.ball_velocity, axis=1)):.6g})")
 
     @property
     def looper_tip(self):

@@ -233,3 +233,39 @@ def test_bad_input_names_the_argument(pair):
 def _motion_of_three():
     from spatialkin.mechanisms import LooperDrive
     return LooperDrive.reference().solve([0.0, 1.0, 2.0])
+
+
+def test_labelled_looper_scene_names_joints_links_and_paths(motion, testing_theme):
+    """labels=True: one label per joint, the tip, each named link and each path, placed exactly at those
+    points (oracle: geometry.looper_links); a colour bar per path in m/s (speeds = |v| x 1e-3 for mm)."""
+    from spatialkin.render import geometry as geo
+    from spatialkin.render.looper import JOINT_NAMES, LINK_NAMES, TIP_NAME
+    scene = looper_scene(motion, 30, labels=True, unit="mm", title="t", theme=testing_theme)
+    assert scene.title == "t" and scene.axes
+    names = scene.data("names")
+    labels = scene._item("names").style["labels"]
+    assert labels[:4] == list(JOINT_NAMES) and TIP_NAME in labels and set(LINK_NAMES.values()) <= set(labels)
+    links, joints = geo.looper_links(motion, 30)
+    np.testing.assert_allclose(names.points[1:4], joints[1:4], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(names.points[4], links["looper"][-1], rtol=0, atol=1e-12)
+    ball = scene._item("ball_path").style
+    assert "m/s" in ball["bar_title"] and ball["bar_position"] is not None
+    np.testing.assert_allclose(scene.data("ball_path").point_data["speed"],
+                               1e-3 * np.linalg.norm(motion.ball_velocity, axis=1), rtol=1e-15)
+    img = scene.image()
+    assert img.shape[:2] == (400, 400) and img.std() > 5.0
+
+
+def test_path_with_gaps_is_drawn_in_pieces():
+    """polyline(points, breaks): one line per piece, none across a break (oracle: the cell sizes)."""
+    from spatialkin.render.scene import polyline
+    pts = np.random.default_rng(1).normal(size=(10, 3))
+    lines = polyline(pts, breaks=[4, 9]).lines          # pieces 0-3, 4-8, and 9 alone (left out)
+    assert list(lines) == [4, 0, 1, 2, 3, 5, 4, 5, 6, 7, 8]
+    assert list(polyline(pts).lines) == [10, *range(10)]
+
+
+def test_labels_need_one_text_per_point():
+    scene = Scene()
+    with pytest.raises(ValueError, match="labels"):
+        scene.add_labels(np.zeros((2, 3)), ["one"])

@@ -42,6 +42,7 @@ KEYS = {
     "looper_link": ("rocker_arm", "-", "link carrying the looper: rocker_arm or rocker_shaft"),
     "looper_tip": ([40.0, 0.0, 12.0], "length", "looper tip in the looper link's frame (rocker arm: x from P2 to C)"),
     "picture_crank_angle_deg": (60.0, "deg", "crank angle at which the 3-D picture draws the links"),
+    "cad_tolerance": (1e-5, "length", "largest distance of the CAD B-splines (DXF, STEP) from the exact paths"),
     "crank_frame": ({"origin": [0.0, 0.0, 0.0]}, "length",
                     "table: origin (crank shaft point O1) and one rotation form (local z = shaft); u1 from local x"),
     "rocker_frame": ({"origin": [6.0, 0.0, 75.0], "rotation": [[1, 0, 0], [0, 0, 1], [0, -1, 0]]}, "length",
@@ -59,6 +60,8 @@ ROTATION_HELP = (
     "axes are typed.")
 #: The 3-D picture: its size in pixels.
 PICTURE_SIZE = (900, 1000)
+#: The paths of the ball centre and the looper tip as B-splines: DXF always, STEP with the cad extra.
+CAD_FILES = ("looper_paths.dxf", "looper_paths.step")
 #: Figures written by the job, besides the table and the record.
 FIGURES = ("looper_cyclogram.png", "looper_transmission.png", "looper_speed.png", "looper_3d.png")
 
@@ -178,7 +181,7 @@ def load_config(path=None):
         if unknown:
             raise ValueError(f"{path}: unknown keys {sorted(unknown)}; allowed: {sorted(DEFAULTS)}")
         config.update(user)
-    for key in ("crank_radius", "coupler_length", "rocker_length", "speed_rpm"):
+    for key in ("crank_radius", "coupler_length", "rocker_length", "speed_rpm", "cad_tolerance"):
         config[key] = _number(key, config[key], positive=True)
     step = _number("step_deg", config["step_deg"])
     if not (0 < step <= 1.0):
@@ -299,14 +302,53 @@ def run(out_dir, config_path=None, echo=print):
     picture_3d(motion, paths["looper_3d.png"], config["picture_crank_angle_deg"], config["length_unit"],
                config["speed_rpm"])
     t_picture = time.perf_counter() - t_picture
-    times = {"solve": t_solve, "figures": t_fig, "picture_3d": t_picture, "job": time.perf_counter() - t0}
+    t_cad = time.perf_counter()
+    written = list(FIGURES) + write_cad(out_dir, drive, motion, config, math.radians(config["step_deg"]), echo)
+    t_cad = time.perf_counter() - t_cad
+    times = {"solve": t_solve, "figures": t_fig, "picture_3d": t_picture, "cad": t_cad,
+             "job": time.perf_counter() - t0}
     with atomic_path(paths["looper_run.json"]) as tmp:
         with open(tmp, "w") as f:
             json.dump(record(config, drive, motion, analysis, found, times), f, indent=1)
-    echo(f"time: solve {1e3 * t_solve:.1f} ms, figures {t_fig:.2f} s, 3-D picture {t_picture:.2f} s, whole job "
-         f"{time.perf_counter() - t0:.2f} s")
-    echo(f"wrote {', '.join(paths[n] for n in ('looper_motion.csv', 'looper_run.json') + FIGURES)}")
+    echo(f"time: solve {1e3 * t_solve:.1f} ms, figures {t_fig:.2f} s, 3-D picture {t_picture:.2f} s, CAD paths "
+         f"{t_cad:.2f} s, whole job {time.perf_counter() - t0:.2f} s")
+    echo(f"wrote {', '.join(os.path.join(out_dir, n) for n in ['looper_motion.csv', 'looper_run.json'] + written)}")
     return motion
+
+
+def path_splines(drive, motion, tol, step):
+    """B-splines (crank angle in rad) of the ball-centre and tip paths over each reachable crank range, within
+    tol (length) of the exact paths: [(name, range index, BSpline)]."""
+    scale = min(drive.torus.size, drive.sphere.size)
+    out = []
+    ranges = crank_ranges(motion.crank_angle, step)
+    for k, (a, b) in enumerate(ranges):
+        full = len(ranges) == 1 and a == 0.0 and b >= 2 * np.pi - step / 2
+        b = b + 2 * np.pi if b < a else b
+        part = motion if full else drive.solve(np.linspace(a, b, 16), omega=motion.omega, branch=motion.branch)
+        for which in ("ball", "tip"):
+            out.append((which, k, part.path_bspline(which, tol / scale)))
+    return out
+
+
+def write_cad(out_dir, drive, motion, config, step, echo=print):
+    """looper_paths.dxf (always) and looper_paths.step (with the cad extra; a line names it otherwise): the
+    ball-centre and tip paths as B-splines within config['cad_tolerance']. Returns the names written."""
+    from .export import write_dxf, write_step
+    splines = path_splines(drive, motion, config["cad_tolerance"], step)
+    curves = [sp for _, _, sp in splines]
+    written = []
+    for name, writer in zip(CAD_FILES, (write_dxf, write_step)):
+        try:
+            writer(os.path.join(out_dir, name), curves)
+            written.append(name)
+        except ImportError as err:
+            echo(f"not written: {name} ({err})")
+    worst = max(sp.deviation for sp in curves)
+    echo(f"CAD paths: {len(curves)} B-splines (ball centre, looper tip), degree 5, "
+         f"{sum(len(sp.c) for sp in curves)} control points, within {worst:.2g} {config['length_unit']} of the "
+         "exact paths (measured)")
+    return written
 
 
 def table(motion):
@@ -437,7 +479,7 @@ def record(config, drive, motion, analysis, found, times):
         "measured_error": {**found["errors"], "unit": config["length_unit"]},
         "time_s": times,
         "versions": _versions(),
-        "files": ["looper_motion.csv", *FIGURES],
+        "files": ["looper_motion.csv", *FIGURES, *CAD_FILES],
     }
 
 

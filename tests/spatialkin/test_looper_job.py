@@ -229,3 +229,28 @@ def test_the_same_drive_in_metres_gives_the_same_si_figures(tmp_path):
         if key != "note":
             np.testing.assert_allclose(m["peaks_at_machine_speed"][key], value, rtol=1e-9, err_msg=key)
     np.testing.assert_allclose(m["analysis"]["u2_range_deg"], mm["analysis"]["u2_range_deg"], rtol=0, atol=1e-9)
+
+
+def test_cad_paths_read_back(reference_run):
+    """looper_paths.dxf holds the ball-centre and tip paths of the full turn as two degree-5 splines within
+    cad_tolerance (1e-5 mm) of the table's exact positions (at 3601 crank angles, nearest point of a dense
+    evaluation of the DXF spline, by ezdxf)."""
+    ezdxf = pytest.importorskip("ezdxf")
+    out, header, table, record = reference_run
+    splines = list(ezdxf.readfile(out / "looper_paths.dxf").modelspace().query("SPLINE"))
+    assert len(splines) == 2 and all(sp.dxf.degree == 5 for sp in splines)
+    tip_cols = [header.index(f"tip_{c}_mm") for c in "xyz"]
+    for sp, cols in zip(splines, ([header.index(f"{c}_mm") for c in "xyz"], tip_cols)):
+        tool = sp.construction_tool()
+        knots = list(sp.knots)
+        lo, hi = knots[5], np.nextafter(knots[-6], 0.0)              # ezdxf evaluates inside [lo, hi)
+        theta = np.clip(np.radians(table[::10, 0]), lo, hi)
+        exact = table[::10, cols]
+        at = np.array([tuple(tool.point(t)) for t in theta])
+        tangent = np.array([tuple(tool.derivative(t, 1)[1]) for t in theta])
+        foot = np.clip(theta - np.einsum("ij,ij->i", at - exact, tangent) / np.einsum("ij,ij->i", tangent, tangent),
+                       lo, hi)
+        near = np.array([tuple(tool.point(t)) for t in foot])       # the spline point nearest each exact one
+        assert np.max(np.linalg.norm(near - exact, axis=1)) < 1e-5
+    if "looper_paths.step" not in record["files"] or not (out / "looper_paths.step").exists():
+        pytest.skip("OpenCascade (the cad extra) not installed")

@@ -37,8 +37,9 @@ EPS = 2.220446049250313e-16
 TINY = 5e-324
 #: ulps by which sin and cos results are widened (glibc's are within one ulp).
 TRIG_ULPS = 2.0
-#: Relative pad on the transformed point q for the rounding of M and c (a few ulps of their magnitudes).
-PLACEMENT_ULPS = 16.0
+#: Relative pad on the transformed point q for the rounding of M and c: each entry of M is a sum of three
+#: products of entries at most 1 (error below 3 ulps), c a rotated difference of origins (likewise).
+PLACEMENT_ULPS = 4.0
 TWO_PI = 2.0 * math.pi
 HALF_PI = 0.5 * math.pi
 #: |HALF_PI - pi/2| is below 1e-16 (pi/2 rounded to a double); twice that covers the subtraction too.

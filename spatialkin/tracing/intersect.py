@@ -3,6 +3,7 @@ import dataclasses
 import time
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from ..surfaces import check_surface
 from .result import Curve, ExactCurve, TracingError
@@ -126,7 +127,7 @@ def near_curve(curve, points, radius):
     ask = np.ones(len(points), dtype=bool)
     if curve.length > 0 and len(curve.points) > 1:
         reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
-        ask = np.min(np.linalg.norm(curve.points[None, :, :] - points[:, None, :], axis=2), axis=1) <= reach
+        ask = cKDTree(curve.points).query(points, distance_upper_bound=reach)[0] <= reach
         if ask.any():
             out[ask] = curve.near_points(points[ask]) <= radius
             ask &= ~out

@@ -1,5 +1,6 @@
 """sk.Curve: one traced component of an intersection, with dense evaluation corrected onto both surfaces."""
 import numpy as np
+from scipy.spatial import cKDTree
 
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
@@ -180,10 +181,10 @@ class Curve:
         if self.length == 0:
             return np.zeros(len(flat)).reshape(pts.shape[:-1]), np.linalg.norm(flat - self.points[0], axis=1).reshape(pts.shape[:-1])
         grid, dense = self._closest_grid()
-        gaps = np.linalg.norm(dense[None, :, :] - flat[:, None, :], axis=2)
         # refine the few nearest samples (not only the nearest: the curve may pass close to itself)
         k = min(CLOSEST_CANDIDATES, len(grid))
-        cand = grid[np.argpartition(gaps, k - 1, axis=1)[:, :k]].ravel()
+        idx = cKDTree(dense).query(flat, k=k)[1].reshape(len(flat), k)
+        cand = grid[idx].ravel()
         s, dist = self._foot_points(np.repeat(flat, k, axis=0), cand, CLOSEST_NEWTON_STEPS)
         best = np.argmin(dist.reshape(-1, k), axis=1)
         s, dist = s.reshape(-1, k)[np.arange(len(flat)), best], dist.reshape(-1, k)[np.arange(len(flat)), best]
@@ -196,7 +197,7 @@ class Curve:
         pts = np.asarray(points, dtype=float).reshape(-1, 3)
         if self.length == 0 or len(self.points) < 2:
             return np.linalg.norm(pts - self.points[0], axis=1)
-        nearest = np.argmin(np.linalg.norm(self.points[None, :, :] - pts[:, None, :], axis=2), axis=1)
+        nearest = cKDTree(self.points).query(pts)[1]
         return self._foot_points(pts, self.s[nearest], CLOSEST_NEWTON_STEPS)[1]
 
     def _foot_points(self, pts, s, steps):

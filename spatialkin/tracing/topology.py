@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg
+from scipy.optimize import brentq
 
 from ..frame import Frame
 from ..kernels import interval as ki
@@ -66,6 +67,9 @@ BALL_MARGIN = 1.01
 CLUSTER = 1e-6
 #: A critical point is on the level when g's enclosure there, widened this many times its width, holds zero.
 ON_LEVEL = 4.0
+#: Half-width (relative to the searched range) of the interval round an unresolved cluster on a line whose end
+#: values tell a simple root (sign change) from a multiple one.
+CLUSTER_SIDE = 1e-6
 #: Eigenvalues of the Hessian of g below this fraction of the largest are zero (a degenerate singular point).
 EIGEN_RATIO = 1e-6
 #: Seeds on the arms of a node sit this far (relative to the scale) from it.
@@ -369,8 +373,9 @@ def topology(a, b, scale, tolerance):
                 if box[2] <= ring <= box[3]:
                     roots, unresolved = add_line_roots(pq, 1, ring, box[0], box[1], "apex ring", None, False)
                     found += len(roots) + len(unresolved)
-            if not found and inside_trims(a, apex, tolerance) and inside_trims(b, apex, tolerance):
-                topo.contacts.append(apex)
+            if (not found and pq.on_level((0.0, v)) and inside_trims(a, apex, tolerance)
+                    and inside_trims(b, apex, tolerance)):
+                topo.contacts.append(apex)           # on Q to round-off, with no branch round it
         # Q's trim edges, as curves on Q where F_P = 0
         q_edges(q, p, qp, balls[id(p_user)], topo, add_line_roots, q_index)
         # closed loops inside P's open domain
@@ -437,9 +442,18 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
     roots, unresolved = pq.line(0, -math.pi, box[2], box[3], topo, "meridian")
     apexes = apex_values(p)
     q_rim = isinstance(q, Plane) and (np.isfinite(q.u_range).any() or np.isfinite(q.v_range).any())
-    for v, simple in [(v, True) for v in roots] + [(v, False) for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2]))]:
-        if not simple:
-            v = double_root(pq, 0, -math.pi, v)
+    found = [(v, True) for v in roots]
+    for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2])):
+        # a cluster across which g changes sign is a simple root blurred by round-off (a tiny parallel near a
+        # pole); one across which it keeps its sign is a multiple root (a tangency)
+        h = CLUSTER_SIDE * (box[3] - box[2])
+        lo, hi = max(v - h, box[2]), min(v + h, box[3])
+        side = pq.values([[-math.pi, lo], [-math.pi, hi]])[:, 0]
+        if side[0] * side[1] < 0:
+            found.append((brentq(lambda x: pq.values([-math.pi, x])[0, 0], lo, hi, xtol=1e-15), True))
+        else:
+            found.append((double_root(pq, 0, -math.pi, v), False))
+    for v, simple in found:
         pt = p.point(0.0, v)
         radius = math.hypot(*p.frame.to_local(pt)[:2])
         if radius <= 1e-9 * scale or any(abs(v - w) < 1e-12 for w in apexes):
@@ -447,9 +461,7 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
                 topo.contacts.append(pt)
             continue
         if not simple:
-            h = 1e-6 * (box[3] - box[2])
-            side = pq.values([[-math.pi, v - h], [-math.pi, v + h]])[:, 0]
-            if side[0] * side[1] > 0 and not q_rim:
+            if not q_rim:
                 centre = p.frame.to_global([0.0, 0.0, p.frame.to_local(pt)[2]])
                 if keep(pt) and not any(np.linalg.norm(centre - c) <= 1e-9 * scale and abs(radius - r) <= 1e-9 * scale
                                         for c, _, r in topo.tangent_circles):

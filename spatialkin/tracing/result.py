@@ -11,6 +11,10 @@ from .segments import NEWTON_MAX_ITER
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.
 DUPLICATE_SPACING = 1e-9
+#: Inside a jump across a node or an apex, a Newton-corrected point farther than this fraction of the jump from
+#: the interpolated one has strayed (to another branch, or off through a degenerate chart): the interpolated
+#: point on the chords through the node is used instead (within about jump^2 x curvature of the branches).
+JUMP_STRAY = 0.5
 #: Newton steps in arc length refining the nearest samples in Curve.closest, and how many are refined.
 CLOSEST_NEWTON_STEPS = 4
 CLOSEST_CANDIDATES = 6
@@ -129,11 +133,35 @@ class Curve:
         params = np.empty((s.size, 4)) if with_params else None
         for mask, span, y in pieces:
             p, t, st = points[mask], tangents[mask], status[mask]
+            jump = bool(np.any(span.seg.normal))
+            if jump:                      # across a node or an apex: its two chords, if Newton strays
+                guess = self._jump_chords(span, s[mask])
             kc.project_many(y, span.seg.a, span.seg.b, span.seg.normal, self._gap_tol, NEWTON_MAX_ITER, p, t, st)
+            if jump:
+                stray = (st < 0) | (np.linalg.norm(p - guess, axis=1) > JUMP_STRAY * (span.hi - span.lo))
+                p[stray] = guess[stray]
+                t[stray] = span.seg.normal / np.linalg.norm(span.seg.normal)
             points[mask], tangents[mask], status[mask] = p, t * span.flip * span.seg.sign, st
             if with_params:
                 params[mask] = user_params(self.surfaces, y, p, span.seg.a, span.seg.b)
         return s, points, tangents, params
+
+    def _jump_chords(self, span, s):
+        """Points (M, 3) at arc lengths s of a jump span on the chords from its start to the node (or apex)
+        passed and on to its end (one straight chord where no node is near): the curve's two branches there
+        are nearly straight, whatever the charts do at the node."""
+        sol = span.seg.sol
+        ends = np.empty((2, 3))
+        ks.evaluate(span.seg.a, np.ascontiguousarray(np.stack([sol.y0[:2], sol.y1[:2]])), ends)
+        w = np.clip((span.shift + span.flip * np.asarray(s, dtype=float)) / sol.length, 0.0, 1.0)[:, None]
+        if len(self.nodes):
+            node = self.nodes[np.argmin(np.linalg.norm(self.nodes - ends.mean(axis=0), axis=1))]
+            first, second = np.linalg.norm(node - ends[0]), np.linalg.norm(ends[1] - node)
+            if first + second <= 2.0 * max(np.linalg.norm(ends[1] - ends[0]), 1e-300) and first > 0 and second > 0:
+                d = w * (first + second)
+                return np.where(d <= first, ends[0] + (node - ends[0]) * (d / first),
+                                node + (ends[1] - node) * ((d - first) / second))
+        return ends[0] * (1 - w) + ends[1] * w
 
     def __call__(self, s):
         """Points (..., 3) on the curve at arc lengths s (...,), corrected onto both surfaces."""

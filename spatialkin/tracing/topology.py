@@ -376,6 +376,13 @@ def topology(a, b, scale, tolerance):
             if (not found and pq.on_level((0.0, v)) and inside_trims(a, apex, tolerance)
                     and inside_trims(b, apex, tolerance)):
                 topo.contacts.append(apex)           # on Q to round-off, with no branch round it
+        # Q's own apexes on P: singular points of the curve (known, so that the tracer's jumps pass them exactly)
+        for v in apex_values(q):
+            if isinstance(q, Sphere):
+                continue
+            apex = q.point(0.0, v)
+            if float(p.distance(apex)) <= 1e3 * tolerance and qp.on_level((0.0, v)):
+                topo.apexes.append(apex)
         # Q's trim edges, as curves on Q where F_P = 0
         q_edges(q, p, qp, balls[id(p_user)], topo, add_line_roots, q_index)
         # closed loops inside P's open domain

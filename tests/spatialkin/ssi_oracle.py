@@ -923,10 +923,11 @@ def oracle(a, b, truth=None, n=GRID):
 # ----------------------------------------------------------------------------------------------------------
 # returned curves: dense points, components
 # ----------------------------------------------------------------------------------------------------------
-def dense_points(curve, scale, spacing=1e-3, max_points=100000, sag=5e-8):
+def dense_points(curve, scale, spacing=1e-3, max_points=100000, sag=5e-8, rounds=4, split=64):
     """Dense evaluations of a returned curve (its own points for a contact point): uniform in arc length,
-    then refined where the curve bends so that chords stay within sag x scale of the arc (the polyline
-    stands for the curve in the distance checks)."""
+    then refined (a few rounds, each splitting an interval at most `split` times) where the polyline turns,
+    so that chords stay within about sag x scale of the arc, kinks at nodes included (the polyline stands
+    for the curve in the distance checks)."""
     length = float(curve.length)
     pts = np.asarray(curve.points, dtype=float).reshape(-1, 3)
     if length <= 0 or curve.status == "contact":
@@ -934,27 +935,34 @@ def dense_points(curve, scale, spacing=1e-3, max_points=100000, sag=5e-8):
     m = int(np.clip(length / (spacing * scale), 200, 40000))
     s = np.linspace(0.0, length, m)
     x = np.asarray(curve(s), dtype=float).reshape(-1, 3)
-    step = np.linalg.norm(np.diff(x, axis=0), axis=1)
-    t = np.diff(x, axis=0) / np.maximum(step, 1e-300)[:, None]
-    turn = np.arccos(np.clip(np.sum(t[1:] * t[:-1], axis=1), -1.0, 1.0))
-    kappa = np.zeros(len(step))
-    k_mid = turn / np.maximum(0.5 * (step[1:] + step[:-1]), 1e-300)
-    kappa[1:] = np.maximum(kappa[1:], k_mid)
-    kappa[:-1] = np.maximum(kappa[:-1], k_mid)
-    h_needed = np.sqrt(8.0 * sag * scale / np.maximum(kappa, 1e-300))
-    extra = np.ceil(step / h_needed).astype(int) - 1
-    extra = np.clip(extra, 0, 1000)
-    if extra.sum() == 0:
-        return x
-    budget = max_points - m
-    if extra.sum() > budget:
-        extra = np.floor(extra * budget / extra.sum()).astype(int)
-    idx = np.repeat(np.arange(len(extra)), extra)                      # interval of each new point
-    first = np.cumsum(extra) - extra
-    k = np.arange(len(idx)) - np.repeat(first, extra) + 1              # 1..extra[i] within interval i
-    more = s[idx] + (s[idx + 1] - s[idx]) * k / (extra[idx] + 1)
-    s2 = np.sort(np.concatenate([s, more]))
-    return np.asarray(curve(s2), dtype=float).reshape(-1, 3)
+    for _ in range(rounds):
+        step = np.linalg.norm(np.diff(x, axis=0), axis=1)
+        t = np.diff(x, axis=0) / np.maximum(step, 1e-300)[:, None]
+        turn = np.arccos(np.clip(np.sum(t[1:] * t[:-1], axis=1), -1.0, 1.0))
+        k_mid = turn / np.maximum(0.5 * (step[1:] + step[:-1]), 1e-300)
+        kappa = np.zeros(len(step))
+        kappa[1:] = np.maximum(kappa[1:], k_mid)
+        kappa[:-1] = np.maximum(kappa[:-1], k_mid)
+        h_needed = np.sqrt(8.0 * sag * scale / np.maximum(kappa, 1e-300))
+        extra = np.clip(np.ceil(step / h_needed).astype(int) - 1, 0, split)
+        extra[step <= 1e-3 * sag * scale] = 0
+        budget = max_points - len(s)
+        if extra.sum() == 0 or budget <= 0:
+            break
+        if extra.sum() > budget:
+            extra = np.floor(extra * budget / extra.sum()).astype(int)
+        idx = np.repeat(np.arange(len(extra)), extra)                  # interval of each new point
+        first = np.cumsum(extra) - extra
+        k = np.arange(len(idx)) - np.repeat(first, extra) + 1          # 1..extra[i] within interval i
+        more = s[idx] + (s[idx + 1] - s[idx]) * k / (extra[idx] + 1)
+        if len(more) == 0:
+            break
+        xm = np.asarray(curve(more), dtype=float).reshape(-1, 3)
+        s = np.concatenate([s, more])
+        x = np.vstack([x, xm])
+        order = np.argsort(s, kind="stable")
+        s, x = s[order], x[order]
+    return x
 
 
 def segment_distances(P0, P1, Q0, Q1):

@@ -5,7 +5,7 @@ B-spline (scipy.interpolate.BSpline, e.g. ``curve.to_bspline(tol)`` or a mechani
 ``to_bspline``); a polyline is spaced by a chord-height tolerance (never the solver's steps), a B-spline is
 written with its own knots and control points (degree 5).
 
-DXF needs ezdxf and STEP needs OpenCascade (cadquery-ocp): both in the ``cad`` extra.
+DXF needs ezdxf (a dependency); STEP needs OpenCascade (cadquery-ocp), the ``cad`` extra.
 """
 import contextlib
 import math

@@ -143,3 +143,12 @@ def test_looper_paths_as_bsplines():
         assert np.max(np.linalg.norm(approx - foot, axis=1)) <= 1e-9 * scale
     with pytest.raises(ValueError, match="which"):
         motion.path_bspline("crank")
+
+
+def test_step_without_opencascade_names_the_extra(tmp_path, looper_pair, monkeypatch):
+    """With OpenCascade missing, write_step raises ImportError naming the cad extra and writes nothing."""
+    import sys
+    monkeypatch.setitem(sys.modules, "OCP", None)
+    with pytest.raises(ImportError, match=r"spatialkin\[cad\]"):
+        write_step(tmp_path / "c.step", looper_pair[2])
+    assert not os.listdir(tmp_path)

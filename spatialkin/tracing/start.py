@@ -19,9 +19,12 @@ AUX_SAMPLES = 720
 
 def scene_scale(a, b):
     """Length scale of an intersection: the smaller characteristic length of the two surfaces, ignoring
-    planes (which have none); for two planes, the smaller half-diagonal of their trimmed rectangles (1 where
-    neither is trimmed on both sides)."""
-    sizes = [s.size for s in (a, b) if int(s.data[ks.KIND]) != ks.PLANE]
+    planes and untrimmed cones (which have none); without one, the smaller half-diagonal of the trimmed
+    planes' rectangles (1 where there is none)."""
+    def sized(s):          # a plane has no size, nor has an untrimmed cone (no length in its shape)
+        kind = int(s.data[ks.KIND])
+        return kind != ks.PLANE and not (kind == ks.CONE and not np.all(np.isfinite(s.v_range)))
+    sizes = [s.size for s in (a, b) if sized(s)]
     if sizes:
         return min(sizes)
     spans = [0.5 * np.hypot(s.u_range[1] - s.u_range[0], s.v_range[1] - s.v_range[0]) for s in (a, b)]

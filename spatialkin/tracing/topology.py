@@ -456,7 +456,8 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
         h = CLUSTER_SIDE * (box[3] - box[2])
         lo, hi = max(v - h, box[2]), min(v + h, box[3])
         side = pq.values([[-math.pi, lo], [-math.pi, hi]])[:, 0]
-        if side[0] * side[1] < 0:
+        clear = not pq.on_level((-math.pi, lo)) and not pq.on_level((-math.pi, hi))
+        if clear and side[0] * side[1] < 0:
             found.append((brentq(lambda x: pq.values([-math.pi, x])[0, 0], lo, hi, xtol=1e-15), True))
         else:
             found.append((double_root(pq, 0, -math.pi, v), False))

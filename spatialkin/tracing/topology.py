@@ -66,7 +66,7 @@ BALL_MARGIN = 1.01
 #: Unresolved boxes closer than this (relative to the scale) are one singular point.
 CLUSTER = 1e-6
 #: A critical point is on the level when g's enclosure there, widened this many times its width, holds zero.
-ON_LEVEL = 4.0
+ON_LEVEL = 1.0
 #: Half-width (relative to the searched range) of the interval round an unresolved cluster on a line whose end
 #: values tell a simple root (sign change) from a multiple one.
 CLUSTER_SIDE = 1e-6

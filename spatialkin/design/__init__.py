@@ -9,7 +9,11 @@ the motion by the implicit function theorem, synthesis to targets, tolerance ana
 
 No pyvista and no matplotlib here: pictures are in spatialkin.render.design.
 """
+from .fit import FitResult, Targets
 from .looper import LooperDesign
 from .params import PARAMETERS
+from .sensitivity import Sensitivities
+from .sweep import OUTPUTS, grid_space, random_space, sweep
 
-__all__ = ["LooperDesign", "PARAMETERS"]
+__all__ = ["FitResult", "LooperDesign", "OUTPUTS", "PARAMETERS", "Sensitivities", "Targets", "grid_space",
+           "random_space", "sweep"]

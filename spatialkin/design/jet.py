@@ -227,10 +227,14 @@ def matvec(m, v):
 def _mul(c, d):
     """Product of coefficient arrays (..., T, Q) in R[t, eps]/(t**T, eps_i eps_j), broadcasting the leading
     dimensions (a jitted kernel on the flattened arrays)."""
-    shape = np.broadcast_shapes(c.shape, d.shape)
+    shape = c.shape if c.shape == d.shape else np.broadcast_shapes(c.shape, d.shape)
     flat = (-1,) + shape[-2:]
-    c = np.ascontiguousarray(np.broadcast_to(c, shape)).reshape(flat)
-    d = np.ascontiguousarray(np.broadcast_to(d, shape)).reshape(flat)
+    if c.shape != shape:
+        c = np.broadcast_to(c, shape)
+    if d.shape != shape:
+        d = np.broadcast_to(d, shape)
+    c = np.ascontiguousarray(c).reshape(flat)
+    d = np.ascontiguousarray(d).reshape(flat)
     out = np.empty_like(c)
     jet_product(c, d, out)
     return out.reshape(shape)

@@ -230,7 +230,7 @@ def kinematic_outputs(closure, states, omega):
         for k, suffix in enumerate(("position", "velocity", "acceleration")):
             out[(name, suffix)] = (omega ** k * jet.d_du(k), omega ** k * jet.d_dp(k))
     out["mu"] = (mu.d_du(0), mu.d_dp(0))
-    out["u2_jet"] = u2
+    out["jets"] = (u1, v1, u2, v2)
     return out
 
 
@@ -272,15 +272,18 @@ def sensitivities(design, crank_angles, omega=1.0, free=None, turning=True):
         for suffix, name in zip(("position", "velocity", "acceleration"), triple):
             kw[name], kw["d_" + name] = out[(link, suffix)]
     if turning:
-        kw.update(turning_outputs(drive, closure, motion.states[:, 0], out["u2_jet"], omega))
+        kw.update(turning_outputs(drive, closure, out["jets"]))
         kw.update(margin_outputs(closure))
     return Sensitivities(**kw)
 
 
-def turning_outputs(drive, closure, angles, u2, omega):
+def turning_outputs(drive, closure, jets):
     """The rocker's turning points (u2' = 0, its dead positions), each refined by Newton from the sampled
     crank angles, with the swing between them. The derivative of a turning point's crank angle is
-    -d(u2')/dp / u2''; that of u2 there is du2/dp (u2' = 0: the envelope theorem)."""
+    -d(u2')/dp / u2''; that of u2 there is du2/dp (u2' = 0: the envelope theorem).
+
+    jets: the jets (u1, v1, u2, v2) (N,) of a full turn of samples in increasing crank angle."""
+    u2 = jets[2]
     rate = u2.d_du(1)
     nfree = len(closure.free)
     i = np.nonzero(rate[:-1] * rate[1:] < 0)[0]
@@ -288,17 +291,27 @@ def turning_outputs(drive, closure, angles, u2, omega):
         empty = np.empty((0, nfree))
         return dict(turning_points=np.empty(0), d_turning_points=empty, turning_u2=np.empty(0),
                     d_turning_u2=empty, swing=float("nan"), d_swing=np.full(nfree, np.nan))
-    w = rate[i] / (rate[i] - rate[i + 1])
-    phi = (1 - w) * angles[i] + w * angles[i + 1]
-    for _ in range(TURNING_NEWTON_STEPS + 1):
-        states = drive.solve(phi, omega=omega, branch=closure.design.branch).states
-        jet = closure.solve(states)[2]
-        step = jet.d_du(1) / jet.d_du(2)
-        phi = phi - step
-    d_phi = -jet.d_dp(1) / jet.d_du(2)[:, None]
-    value, d_value = jet.d_du(0), jet.d_dp(0)
+    near = np.where(np.abs(rate[i]) < np.abs(rate[i + 1]), i, i + 1)
+    ys = np.stack([j.value[near] for j in jets], axis=-1)
+    tangent = np.stack([j.d_du(1)[near] for j in jets], axis=-1)
+    curvature = np.stack([j.d_du(2)[near] for j in jets], axis=-1)
+    step = -u2.d_du(1)[near] / u2.d_du(2)[near]
+    for _ in range(TURNING_NEWTON_STEPS):
+        # second-order prediction along the curve, then Newton at the fixed crank angle onto torus ∩ sphere
+        predicted = ys + tangent * step[:, None] + 0.5 * curvature * (step ** 2)[:, None]
+        states = drive._at_crank_angles(predicted)
+        if states is None:
+            raise ValueError("Newton at fixed crank angle failed at a turning point of the rocker")
+        jet = closure.solve(states)
+        ys = states
+        tangent = np.stack([j.d_du(1) for j in jet], axis=-1)
+        curvature = np.stack([j.d_du(2) for j in jet], axis=-1)
+        step = -jet[2].d_du(1) / jet[2].d_du(2)
+    u2 = jet[2]
+    d_phi = -u2.d_dp(1) / u2.d_du(2)[:, None]
+    value, d_value = u2.d_du(0), u2.d_dp(0)
     hi, lo = int(np.argmax(value)), int(np.argmin(value))
-    return dict(turning_points=states[:, 0], d_turning_points=d_phi, turning_u2=value, d_turning_u2=d_value,
+    return dict(turning_points=ys[:, 0], d_turning_points=d_phi, turning_u2=value, d_turning_u2=d_value,
                 swing=float(value[hi] - value[lo]), d_swing=d_value[hi] - d_value[lo])
 
 

@@ -54,6 +54,10 @@ def bench(args):
 
 
 def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["design"]:      # spatialkin design --targets FILE.toml (spatialkin/design/cli.py)
+        from .design.cli import main_design
+        return main_design(argv[1:])
     parser = argparse.ArgumentParser(prog="spatialkin", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
     p_looper = sub.add_parser("looper", help="the looper drive over a full crank turn: CSV, plot, summary")

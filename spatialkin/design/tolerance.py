@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .params import check_names
+from .params import ANGLES, check_names
 
 #: Monte-Carlo samples by default.
 MC_SAMPLES = 200
@@ -57,18 +57,23 @@ class ToleranceResult:
     failed: int = 0
 
     def table(self):
-        """A plain-text table: per parameter the linear contributions, then linear against Monte-Carlo."""
-        head = f"{'parameter':<16}{'sigma':>10}{'tip RMS max':>13}" + "".join(f"{s + ' std':>22}" for s in SCALARS)
+        """A plain-text table: per parameter the linear contributions, then linear against Monte-Carlo.
+        Angles in degrees (marked), lengths in the drive's unit."""
+        unit = {"swing": math.degrees(1), "min_transmission": math.degrees(1), "assembly_margin": 1.0}
+        label = {"swing": "swing std [deg]", "min_transmission": "min transm. std [deg]",
+                 "assembly_margin": "assembly margin std"}
+        head = f"{'parameter':<17}{'sigma':>12}{'tip RMS max':>13}" + "".join(f"{label[s]:>23}" for s in SCALARS)
         lines = [head, "-" * len(head)]
         for k, name in enumerate(self.names):
-            row = f"{name:<16}{self.sigma[k]:>10.4g}{self.tip_rms_by_parameter[:, k].max():>13.4g}"
-            row += "".join(f"{self.scalars[s][3][k]:>22.4g}" for s in SCALARS)
+            sigma = f"{math.degrees(self.sigma[k]):.4g} deg" if name in ANGLES else f"{self.sigma[k]:.4g}"
+            row = f"{name:<17}{sigma:>12}{self.tip_rms_by_parameter[:, k].max():>13.4g}"
+            row += "".join(f"{unit[s] * self.scalars[s][3][k]:>23.4g}" for s in SCALARS)
             lines.append(row)
         lines.append("-" * len(head))
-        lin = f"{'all, linear':<16}{'':>10}{self.tip_rms_linear.max():>13.4g}"
-        lin += "".join(f"{self.scalars[s][1]:>22.4g}" for s in SCALARS)
-        mc = f"{'all, Monte-Carlo':<16}{len(self.mc_tips):>10d}{self.tip_rms_mc.max():>13.4g}"
-        mc += "".join(f"{self.scalars[s][2]:>22.4g}" for s in SCALARS)
+        lin = f"{'all, linear':<17}{'':>12}{self.tip_rms_linear.max():>13.4g}"
+        lin += "".join(f"{unit[s] * self.scalars[s][1]:>23.4g}" for s in SCALARS)
+        mc = f"{'all, Monte-Carlo':<17}{f'{len(self.mc_tips)} runs':>12}{self.tip_rms_mc.max():>13.4g}"
+        mc += "".join(f"{unit[s] * self.scalars[s][2]:>23.4g}" for s in SCALARS)
         lines += [lin, mc]
         if self.failed:
             lines.append(f"{self.failed} Monte-Carlo samples could not be assembled over the turn (left out)")

@@ -6,12 +6,10 @@ import numpy as np
 ENVELOPE_SIGMAS = 3.0
 
 
-def _pyplot():
-    import matplotlib
-    if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.backend_inline"):
-        matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
+def _figure(size):
+    """A matplotlib Figure outside pyplot (no global state, no backend switch; notebooks display it)."""
+    from matplotlib.figure import Figure
+    return Figure(figsize=size)
 
 
 def path_plane(points):
@@ -39,7 +37,6 @@ def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS):
     matplotlib.figure.Figure
     """
     from ..io import atomic_path
-    plt = _pyplot()
     e1, e2 = path_plane(result.tip)
     centre = result.tip.mean(axis=0)
     xy = np.column_stack([(result.tip - centre) @ e1, (result.tip - centre) @ e2])
@@ -48,7 +45,8 @@ def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS):
     normal2 /= np.linalg.norm(normal2, axis=1, keepdims=True)
     normal3 = normal2[:, :1] * e1 + normal2[:, 1:] * e2                           # (N, 3)
     sigma_n = np.sqrt(np.einsum("ni,nij,nj->n", normal3, result.tip_covariance, normal3))
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(11, 4.6))
+    fig = _figure((11, 4.6))
+    ax, ax2 = fig.subplots(1, 2)
     for tips in result.mc_tips[:100]:
         ax.plot((tips - centre) @ e1, (tips - centre) @ e2, color="0.75", lw=0.5)
     ax.plot(*xy.T, color="C0", lw=1.5, label="nominal tip path")
@@ -91,13 +89,13 @@ def sweep_figure(table, x, y, output, path=None):
         Write a PNG there (atomically).
     """
     from ..io import atomic_path
-    plt = _pyplot()
     for name in (x, y, output):
         if name not in (table.dtype.names if hasattr(table, "dtype") and table.dtype.names else table.columns):
             raise ValueError(f"{name!r} is not a column of the table")
     cols = {k: np.asarray(table[k]) for k in (x, y, output, "ok")}
     ok = cols["ok"].astype(bool)
-    fig, ax = plt.subplots(figsize=(6, 4.6))
+    fig = _figure((6, 4.6))
+    ax = fig.subplots()
     sc = ax.scatter(cols[x][ok], cols[y][ok], c=cols[output][ok], s=18, cmap="viridis")
     ax.scatter(cols[x][~ok], cols[y][~ok], marker="x", color="C3", s=14, label="failed")
     fig.colorbar(sc, ax=ax, label=output)

@@ -132,6 +132,12 @@ class LooperDesign:
         angles = np.linspace(0.0, 2 * np.pi, TURN_SAMPLES) if crank_angles is None else crank_angles
         return sensitivities(self, angles, omega, None if free is None else check_names(free), turning)
 
+    def dead_positions(self, free=None):
+        """The crank's dead positions (K,) (rad) of a drive that cannot turn fully and their exact derivatives
+        (K, P); empty when the crank turns fully. See spatialkin.design.sensitivity.dead_positions."""
+        from .sensitivity import dead_positions
+        return dead_positions(self, None if free is None else check_names(free))
+
     def fit(self, targets, free=None, **options):
         """Fit the free parameters to targets; see spatialkin.design.fit.fit."""
         from .fit import fit

@@ -315,26 +315,58 @@ def turning_outputs(drive, closure, jets):
                 swing=float(value[hi] - value[lo]), d_swing=d_value[hi] - d_value[lo])
 
 
-def margin_outputs(closure, samples=ASSEMBLY_SAMPLES):
-    """The smallest assembly margin over a full turn (see LooperDrive.assembly_margin) and its derivative
-    (taken at the sampled argmin)."""
-    nfree = len(closure.free)
-    p = Closure(closure.design, closure.free, orders=1).p
-    u1 = np.linspace(0.0, 2 * np.pi, samples, endpoint=False)
-    rot = closure.crank_rotation
+def margin_jet(closure, u1):
+    """The assembly margin (see LooperDrive.assembly_margin) at crank angles u1 (a Jet (N,)) as a jet: how far
+    the rocker length lies inside the range of distances from the rocker centre to the coupler's circle."""
+    p = closure.p
     rel_origin = Jet.stack([p["rocker_x"], p["rocker_y"], p["rocker_z"]], axis=-1) - closure.crank_origin
-    q = matvec(rot.T, rel_origin)                                            # rocker centre, crank frame
-    radial = np.stack([np.cos(u1), np.sin(u1), np.zeros_like(u1)], axis=-1)
-    axis = np.stack([-np.sin(u1), np.cos(u1), np.zeros_like(u1)], axis=-1)
-    rel = Jet(q.coef[None]) - Jet(radial[..., None, None] * p["crank_radius"].coef)
-    h = (rel * axis).sum(-1)
-    inplane_vec = rel - Jet(axis[..., None, None] * h.coef[:, None])
+    q = matvec(closure.crank_rotation.T, rel_origin)                        # rocker centre, crank frame
+    c, s = u1.cos(), u1.sin()
+    zero = 0.0 * u1
+    radial = Jet.stack([c, s, zero], axis=-1)
+    axis = Jet.stack([-s, c, zero], axis=-1)
+    rel = Jet(q.coef[None]) - radial * Jet(p["crank_radius"].coef[None])
+    h = dot(rel, axis)
+    inplane_vec = rel - axis * Jet(h.coef[:, None])
     inplane = dot(inplane_vec, inplane_vec).sqrt()
     r1, R2 = p["coupler_length"], p["rocker_length"]
     d_min = ((inplane - r1) * (inplane - r1) + h * h).sqrt()
     d_max = ((inplane + r1) * (inplane + r1) + h * h).sqrt()
     a, b = R2 - d_min, d_max - R2
-    margin = np.where((a.value < b.value)[:, None, None], a.coef, b.coef)
-    k = int(np.argmin(margin[:, 0, 0]))
-    assert margin.shape[-1] == nfree + 1
-    return dict(assembly_margin=float(margin[k, 0, 0]), d_assembly_margin=margin[k, 0, 1:])
+    return Jet(np.where((a.value < b.value)[:, None, None], a.coef, b.coef))
+
+
+def margin_outputs(closure, samples=ASSEMBLY_SAMPLES):
+    """The smallest assembly margin over a full turn and its derivative (taken at the sampled argmin)."""
+    plain = Closure(closure.design, closure.free, orders=1)
+    u1 = Jet.constant(np.linspace(0.0, 2 * np.pi, samples, endpoint=False), 1, len(closure.free))
+    margin = margin_jet(plain, u1)
+    k = int(np.argmin(margin.value))
+    return dict(assembly_margin=float(margin.value[k]), d_assembly_margin=margin.d_dp(0)[k])
+
+
+def dead_positions(design, free=None):
+    """The crank's dead positions of a drive that cannot turn fully, with their exact derivatives.
+
+    There the coupler's circle touches the rocker sphere (the assembly margin m(u1, p) is zero, the two
+    assembly branches meet and the crank reverses): the ends of LooperDrive.blocked_ranges. By the implicit
+    function theorem on m(u1*, p) = 0, du1*/dp = -m_p / m_u1.
+
+    Parameters
+    ----------
+    design : LooperDesign
+    free : tuple of str, optional
+        Parameters to differentiate by; default design.free.
+
+    Returns
+    -------
+    angles : (K,) crank angles (rad, in [0, 2 pi)); empty when the crank turns fully
+    d_angles : (K, P)
+    """
+    free = design.free if free is None else tuple(free)
+    edges = np.array([a for pair in design.drive().blocked_ranges for a in pair], dtype=float)
+    closure = Closure(design, free, orders=2)
+    if not len(edges):
+        return edges, np.empty((0, len(free)))
+    margin = margin_jet(closure, Jet.variable(edges, 2, len(free), t=True))
+    return edges, -margin.d_dp(0) / margin.d_du(1)[:, None]

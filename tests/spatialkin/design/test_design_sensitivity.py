@@ -112,3 +112,18 @@ def test_bad_input_names_the_argument(kwargs, word):
         LooperDesign(LooperDesign.reference().values, **kwargs)
     with pytest.raises(ValueError, match="values"):
         LooperDesign({**LooperDesign.reference().values, "crank_radius": -1.0})
+
+
+def test_dead_positions_of_a_crank_that_cannot_turn_fully(design):
+    """A rocker 25.5 long: the crank rocks between two dead positions; their derivatives against central
+    differences (1e-6 relative) and against the drive's own blocked range (same angles, 1e-12)."""
+    short = design.replace(rocker_length=25.5)
+    angles, d_angles = short.dead_positions()
+    (lo, hi), = short.drive().blocked_ranges
+    assert np.allclose(angles, [lo, hi], atol=1e-12)
+    assert design.dead_positions()[0].shape == (0,)
+    for k, name in enumerate(PARAMETERS):
+        plus = short.replace(**{name: short.values[name] + FD_STEP}).dead_positions()[0]
+        minus = short.replace(**{name: short.values[name] - FD_STEP}).dead_positions()[0]
+        fd = (plus - minus) / (2 * FD_STEP)
+        assert np.max(np.abs(fd - d_angles[:, k])) <= FD_TOL * max(1.0, np.max(np.abs(d_angles)))

@@ -171,8 +171,9 @@ class Sensitivities:
     rocker_angles, rocker_rates, rocker_accelerations : (N, 2) (u2, v2); d_*: (N, 2, P)
     transmission_angle : (N,); d_transmission_angle : (N, P)
     min_transmission : float, the smallest over the crank angles; d_min_transmission : (P,) (at the argmin)
-    turning_points : (K,) crank angles where u2' = 0 (the rocker's dead positions), refined by Newton;
-        d_turning_points : (K, P)
+    turning_points : (K,) crank angles where u2' = 0 (the rocker's dead positions, where it reverses),
+        refined by Newton; d_turning_points : (K, P). The crank's own dead positions (a drive that cannot
+        turn fully) are LooperDesign.dead_positions().
     turning_u2 : (K,) u2 there; d_turning_u2 : (K, P)
     swing : float, max - min of u2 over the turn (between turning points); d_swing : (P,)
     assembly_margin : float, the smallest assembly margin over a full turn (length; > 0: assemblable at
@@ -299,7 +300,7 @@ def turning_outputs(drive, closure, jets):
     for _ in range(TURNING_NEWTON_STEPS):
         # second-order prediction along the curve, then Newton at the fixed crank angle onto torus ∩ sphere
         predicted = ys + tangent * step[:, None] + 0.5 * curvature * (step ** 2)[:, None]
-        states = drive._at_crank_angles(predicted)
+        states = drive._at_crank_angles(predicted)     # the drive's own Newton at fixed u1 (jitted kernel)
         if states is None:
             raise ValueError("Newton at fixed crank angle failed at a turning point of the rocker")
         jet = closure.solve(states)

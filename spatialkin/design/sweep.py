@@ -125,6 +125,16 @@ def evaluate_chunk(base, names, rows, outputs, samples):
     return results
 
 
+def _result(future, rows, width):
+    """A finished task's rows; when the task itself failed (a worker died, a cluster error), its geometries
+    become failed rows with the reason, so the rest of the run is kept."""
+    try:
+        return future.result()
+    except Exception as err:
+        reason = f"worker failed: {type(err).__name__}: {err}"[:REASON_WIDTH]
+        return [(False, reason, [math.nan] * width)] * rows
+
+
 def _portable(design):
     return {"values": dict(design.values), "looper_link": design.looper_link, "branch": design.branch,
             "crank_frame": (design.crank_frame.origin.tolist(), design.crank_frame.rotation.tolist())}
@@ -207,7 +217,7 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
             index = {f.key: k for k, f in enumerate(futures)}
             for future in as_completed(futures):
                 k = index[future.key]
-                done[k] = future.result()
+                done[k] = _result(future, len(chunks[k]), len(outputs))
                 if bar is not None:
                     bar.update(len(chunks[k]))
         elif processes == 0:
@@ -224,7 +234,7 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
                            for k, c in enumerate(chunks)}
                 for future in concurrent.futures.as_completed(futures):
                     k = futures[future]
-                    done[k] = future.result()
+                    done[k] = _result(future, len(chunks[k]), len(outputs))
                     if bar is not None:
                         bar.update(len(chunks[k]))
     finally:

@@ -74,3 +74,16 @@ def test_bad_input_names_the_argument(kwargs, word):
     args.update(kwargs)
     with pytest.raises(ValueError, match=word):
         sweep(**args)
+
+
+def test_a_failed_task_becomes_failed_rows():
+    """A task that raises (a dead worker, a cluster error) gives rows with the reason instead of ending the
+    run."""
+    import concurrent.futures
+
+    from spatialkin.design.sweep import _result
+
+    future = concurrent.futures.Future()
+    future.set_exception(RuntimeError("the worker died"))
+    rows = _result(future, 3, 2)
+    assert len(rows) == 3 and all(not ok and "the worker died" in reason for ok, reason, _ in rows)

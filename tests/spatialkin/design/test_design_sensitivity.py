@@ -127,3 +127,23 @@ def test_dead_positions_of_a_crank_that_cannot_turn_fully(design):
         minus = short.replace(**{name: short.values[name] - FD_STEP}).dead_positions()[0]
         fd = (plus - minus) / (2 * FD_STEP)
         assert np.max(np.abs(fd - d_angles[:, k])) <= FD_TOL * max(1.0, np.max(np.abs(d_angles)))
+
+
+def test_tilted_crank_frame_and_shaft_link():
+    """A crank frame turned and moved, the looper on the rocker shaft: values equal the drive's (1e-12
+    relative) and one derivative equals its central difference (1e-6 relative)."""
+    import spatialkin as sk
+    crank = sk.Frame((1.0, -2.0, 0.5), sk.rotation_about((1, 1, 0), 0.2))
+    drive = LooperDrive(8.0, 50.0, 30.0, crank, sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1, 0, 0), -1.5)),
+                        looper_tip=(30.0, 5.0, 10.0), looper_link="rocker_shaft")
+    design = LooperDesign.from_drive(drive, free=("rocker_rx", "tip_y"))
+    s = design.sensitivities(ANGLES, turning=False)
+    tip = drive.solve(ANGLES).looper_tip
+    for ours, theirs in ((s.tip, tip.position), (s.tip_velocity, tip.velocity),
+                         (s.tip_acceleration, tip.acceleration)):
+        assert np.max(np.abs(ours - theirs)) <= 1e-12 * np.max(np.abs(theirs))
+    rx = design.values["rocker_rx"]
+    plus = design.replace(rocker_rx=rx + FD_STEP).sensitivities(ANGLES, turning=False)
+    minus = design.replace(rocker_rx=rx - FD_STEP).sensitivities(ANGLES, turning=False)
+    fd = (plus.tip_acceleration - minus.tip_acceleration) / (2 * FD_STEP)
+    assert np.max(np.abs(fd - s.d_tip_acceleration[..., 0])) <= FD_TOL * np.max(np.abs(fd))

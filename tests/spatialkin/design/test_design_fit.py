@@ -61,3 +61,15 @@ def test_bounds_on_transmission_and_assembly_hold(true):
 def test_bad_targets_name_the_argument(true, targets, word):
     with pytest.raises(ValueError, match=word):
         true.fit(targets, free=("crank_radius",))
+
+
+@pytest.mark.parametrize("min_margin", [None, 0.0])
+def test_fit_never_ends_on_a_drive_that_stops_turning(min_margin):
+    """A 5 deg swing asks for a rocker so short that the crank could not turn fully (below about 26.3 mm):
+    the fit stops at the edge, on a drive that still assembles at every crank angle (with the default margin
+    bound, 1 % of the size = 0.88, held to 0.05)."""
+    design = LooperDesign.reference()
+    fitted = design.fit(Targets(swing=math.radians(5.0), min_margin=min_margin), free=("rocker_length",))
+    assert fitted.design.drive().blocked_ranges == []
+    assert fitted.achieved["assembly_margin"] > (0.0 if min_margin == 0.0 else 0.88 - 0.05)
+    assert fitted.achieved["swing"] < math.radians(37.0)

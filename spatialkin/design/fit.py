@@ -10,7 +10,8 @@ Targets (all optional, at least one of the first three):
   turns fully, at every crank angle (a margin above zero rules out dead positions of the crank).
 Bounds enter as one-sided quadratic penalties (hinge residuals), active only when violated. A trial geometry
 that cannot be assembled over the full turn gives non-finite residuals, which least_squares ('trf') rejects by
-shrinking its trust region: so the fit never returns a drive that stops turning.
+shrinking its trust region: so the fit never returns a drive that stops turning (nor one within CLEARANCE of
+that).
 """
 import math
 from dataclasses import dataclass, field
@@ -27,6 +28,12 @@ FIT_SAMPLES = 721
 WEIGHTS = {"tip": 1.0, "swing": 1.0, "timing": 1.0, "transmission": 100.0, "margin": 100.0}
 #: Default lower bound on the assembly margin, relative to the drive's size (R1 + r1 + R2).
 MARGIN_FRACTION = 0.01
+#: A trial geometry whose assembly margin over the turn is below this (relative to the size) is rejected
+#: outright, whatever the targets: so close to a dead position the two assembly branches nearly touch, the
+#: drive barely turns, and tracing its nearly tangent torus ∩ sphere costs seconds instead of milliseconds.
+CLEARANCE = 5e-4
+#: Crank angles sampled for that check.
+CLEARANCE_SAMPLES = 3600
 _DEG = math.pi / 180
 
 
@@ -155,10 +162,19 @@ class _Problem:
         if key != self._key:
             self._key = key
             try:
-                self._value = self._residuals(self.design.replace(x, free=self.free))
+                trial = self.design.replace(x, free=self.free)
+                self._check_clearance(trial)
+                self._value = self._residuals(trial)
             except ValueError:        # cannot be assembled over the full turn, or a branch point: rejected
                 self._value = (np.full(self.m, np.nan), np.full((self.m, len(self.free)), np.nan), None)
         return self._value
+
+    @staticmethod
+    def _check_clearance(design):
+        drive = design.drive()
+        grid = np.linspace(0.0, 2 * np.pi, CLEARANCE_SAMPLES, endpoint=False)
+        if np.min(drive.assembly_margin(grid)) < CLEARANCE * drive.size:
+            raise ValueError("the drive is within CLEARANCE of a dead position")
 
     def _residuals(self, design):
         t, w = self.targets, self.w

@@ -242,8 +242,8 @@ def sensitivities(design, crank_angles, omega=1.0, free=None, turning=True):
     ----------
     design : LooperDesign
     crank_angles : array_like (N,)
-        Crank angles (rad). For the swing, turning points and the smallest transmission angle they should
-        sample a full turn (those are taken over these angles, turning points refined by Newton).
+        Crank angles (rad). With turning=True they must increase and should sample a full turn: the swing,
+        the turning points (refined by Newton) and the smallest transmission angle are taken over them.
     omega : float
         Crank rate (rad per unit time).
     free : tuple of str, optional
@@ -258,6 +258,9 @@ def sensitivities(design, crank_angles, omega=1.0, free=None, turning=True):
     free = design.free if free is None else free
     drive = design.drive()
     angles = np.atleast_1d(np.asarray(crank_angles, dtype=float))
+    if turning and (angles.ndim != 1 or len(angles) < 3 or np.any(np.diff(angles) <= 0)):
+        raise ValueError("crank_angles must increase (at least 3, over a full turn) to find the turning points; "
+                         "pass turning=False for arbitrary angles")
     motion = drive.solve(angles, omega=omega, branch=design.branch)
     closure = Closure(design, free)
     out = kinematic_outputs(closure, motion.states, omega)

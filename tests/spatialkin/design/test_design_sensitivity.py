@@ -147,3 +147,9 @@ def test_tilted_crank_frame_and_shaft_link():
     minus = design.replace(rocker_rx=rx - FD_STEP).sensitivities(ANGLES, turning=False)
     fd = (plus.tip_acceleration - minus.tip_acceleration) / (2 * FD_STEP)
     assert np.max(np.abs(fd - s.d_tip_acceleration[..., 0])) <= FD_TOL * np.max(np.abs(fd))
+
+
+def test_turning_points_need_increasing_angles(design):
+    with pytest.raises(ValueError, match="crank_angles"):
+        design.sensitivities(ANGLES[::-1])
+    design.sensitivities(ANGLES[::-1][:5], turning=False)

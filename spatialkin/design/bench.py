@@ -101,8 +101,8 @@ def design_bench(quick=False, echo=print):
     count = 40 if quick else SWEEP_GEOMETRIES
     srows = sweep_rows(design, count)
     echo("")
-    echo(f"sweep throughput: {count} random geometries (5 parameters within ±{100 * SWEEP_REACH:g} %), 361 crank angles "
-         "each, outputs swing, min_transmission, assembly_margin (wall time includes starting the pool; the "
+    echo(f"sweep throughput: {count} random geometries (5 parameters within ±{100 * SWEEP_REACH:g} %), "
+         "361 crank angles each, outputs swing, min_transmission, assembly_margin (wall time includes starting the pool; the "
          "forkserver that the workers fork from is started before timing)")
     echo(f"{'workers':<18}{'geometries':>11}{'time [s]':>10}{'geom/s':>9}{'failed':>8}")
     for label, n, dt, rate, failed in srows:

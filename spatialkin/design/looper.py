@@ -1,6 +1,4 @@
 """LooperDesign: a looper drive as a vector of named design parameters with bounds, some of them free."""
-import math
-
 import numpy as np
 
 from ..frame import Frame

@@ -249,13 +249,12 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
         table["ok"][m], table["reason"][m] = ok, reason
         for o, v in zip(outputs, values):
             table[o][m] = v
-    if as_frame is None:
-        try:
-            import pandas  # noqa: F401
-            as_frame = True
-        except ImportError:
-            as_frame = False
-    if as_frame:
+    if as_frame is False:
+        return table
+    try:
         import pandas
-        return pandas.DataFrame.from_records(table)
-    return table
+    except ImportError:
+        if as_frame:
+            raise ValueError("as_frame=True needs pandas (pip install pandas)") from None
+        return table
+    return pandas.DataFrame.from_records(table)

@@ -1,6 +1,4 @@
 """Product of truncated Taylor polynomials in R[t, eps]/(t**T, eps_i eps_j) (see spatialkin.design.jet)."""
-import numpy as np
-
 from .._jit import jit
 
 

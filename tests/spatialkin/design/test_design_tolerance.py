@@ -45,7 +45,8 @@ def test_uniform_half_width_is_sigma_times_root_three():
 @pytest.mark.parametrize("kwargs, word", [(dict(tolerances={}), "tolerances"),
                                           (dict(tolerances={"crank_radius": -1}), "tolerances"),
                                           (dict(tolerances={"crank": 0.1}), "tolerances"),
-                                          (dict(tolerances={"crank_radius": 0.1}, distribution="beta"), "distribution")])
+                                          (dict(tolerances={"crank_radius": 0.1}, distribution="beta"),
+                                           "distribution")])
 def test_bad_input_names_the_argument(kwargs, word):
     with pytest.raises(ValueError, match=word):
         LooperDesign.reference().tolerance(**kwargs)

@@ -185,7 +185,8 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
     progress : bool
         Show a progress bar (if tqdm is installed).
     as_frame : bool, optional
-        Return a pandas DataFrame (default: when pandas is installed) instead of a numpy structured array.
+        True: a pandas DataFrame (ValueError without pandas); False: a numpy structured array; None (default):
+        a DataFrame when pandas is installed, else the structured array.
 
     Returns
     -------

@@ -67,7 +67,10 @@ def to_toml(config, comment=None):
 def read_targets(path):
     """(start design, Targets) from a targets TOML file."""
     with open(path, "rb") as f:
-        table = tomllib.load(f)
+        try:
+            table = tomllib.load(f)
+        except tomllib.TOMLDecodeError as err:
+            raise ValueError(f"{path}: {err}") from None
     design_table = table.pop("design", {})
     if not isinstance(design_table, dict):
         raise ValueError(f"{path}: [design] must be a table")
@@ -107,7 +110,7 @@ def main_design(argv=None):
             with open(tmp, "w", encoding="utf-8") as f:
                 f.write(to_toml(config, comment=f"looper drive fitted by spatialkin design to {args.targets}\n"
                                                 f"free: {', '.join(design.free)}"))
-    except (ValueError, OSError, tomllib.TOMLDecodeError) as err:
+    except (ValueError, OSError) as err:
         print(f"spatialkin design: {err}", file=sys.stderr)
         return 2
     a = fitted.achieved

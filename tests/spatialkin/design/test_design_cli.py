@@ -46,3 +46,19 @@ def test_bad_targets_file_is_an_error_naming_it(tmp_path, capsys):
     assert main(["design", "--targets", str(path)]) == 2
     assert "free" in capsys.readouterr().err
     assert not (tmp_path / "targets_fitted.toml").exists()
+
+
+def test_start_from_a_config_and_fit_tip_points(tmp_path):
+    """The start is a looper config with a wrong crank radius; tip points of the reference drive bring it
+    back (1e-8)."""
+    reference = LooperDesign.reference()
+    angles = np.radians([0.0, 90.0, 180.0, 270.0])
+    tips = reference.sensitivities(angles, turning=False).tip
+    (tmp_path / "start.toml").write_text("crank_radius = 8.6\n")
+    text = '[design]\nfree = ["crank_radius"]\nstart = "start.toml"\n'
+    for a, p in zip(np.degrees(angles), tips):
+        text += f"[[tip]]\ncrank_angle_deg = {float(a)!r}\npoint = {[float(x) for x in p]!r}\n"
+    (tmp_path / "t.toml").write_text(text)
+    assert main(["design", "--targets", str(tmp_path / "t.toml")]) == 0
+    config = load_config(str(tmp_path / "t_fitted.toml"))
+    assert abs(config["crank_radius"] - 8.0) < 1e-8

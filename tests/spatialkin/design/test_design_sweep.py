@@ -87,3 +87,9 @@ def test_a_failed_task_becomes_failed_rows():
     future.set_exception(RuntimeError("the worker died"))
     rows = _result(future, 3, 2)
     assert len(rows) == 3 and all(not ok and "the worker died" in reason for ok, reason, _ in rows)
+
+
+def test_progress_bar(capsys):
+    pytest.importorskip("tqdm")
+    sweep({"crank_radius": [8.0, 9.0]}, ("swing",), processes=0, progress=True, as_frame=False)
+    assert "2/2" in capsys.readouterr().err

@@ -48,6 +48,10 @@ class Law:
 
     k = 1.0
 
+    def __repr__(self):
+        names = [n for n in ("k", "e", "L", "d", "side", "branch") if n in vars(self)]
+        return f"{type(self).__name__}(" + ", ".join(f"{n}={getattr(self, n)!r}" for n in names) + ")"
+
     def evaluate(self, s):
         """(phi, dphi, ddphi), arrays shaped like s."""
         return self.evaluate_with_direction(s)[:3]

@@ -15,10 +15,10 @@ References
 ----------
 Seed 000; ../shared/reference/frenet-planar.md (eqs. (2)-(4), (11)).
 """
-import math
 
 import numpy as np
 
+from spatialkin.mechanisms.common import check_omega
 from spatialkin.trajectory import Trajectory, time_map
 
 from . import law_kernels as lk
@@ -35,12 +35,14 @@ class DrivenLink:
     def __init__(self, law, omega=1.0):
         if not isinstance(law, Law):
             raise TypeError(f"law must be a planar law (CrankSlider, CrankRocker, ...), got {type(law).__name__}")
-        if not math.isfinite(omega) or omega == 0:
-            raise ValueError(f"omega must be finite and non-zero, got {omega!r}")
+        omega = check_omega(omega)
         self.law = law
         self.omega = float(omega)
         self.k = law.k
         self.speed = self.omega / self.k          # V, the pin's speed
+
+    def __repr__(self):
+        return f"DrivenLink({self.law!r}, omega={self.omega:g})"
 
     def trajectory(self, s, rho):
         """Trajectory (the spatial side's pipeline) of the points (s, rho), broadcast together: the law is

@@ -24,6 +24,7 @@ from fractions import Fraction
 import numpy as np
 from scipy.optimize import least_squares
 
+from spatialkin.mechanisms.common import check_omega
 from spatialkin.tracing.continuation import trace_cycle
 from . import kernels as kn
 from .linkage_motion import LinkageMotion, LockError
@@ -358,6 +359,12 @@ class Linkage:
                 f"closest configuration found misses {names[worst]} by {abs(f[worst]):.4g}{also}")
 
     # --- motion ----------------------------------------------------------------------------------
+    def __repr__(self):
+        links = ", ".join(f"{link.name}({'-'.join(link.joints)})" for link in self.links)
+        cranks = ", ".join(f"{c.name}({c.pivot}-{c.pin}, ratio {c.ratio:g})" for c in self.cranks)
+        return (f"Linkage(fixed {sorted(self.fixed)}, cranks [{cranks}], links [{links}], "
+                f"moving joints {list(self.moving)})")
+
     def cycle(self, assembly=None):
         """The configuration curve through the chosen assembly at hint_angle (cached): see
         spatialkin.tracing.continuation.Cycle."""
@@ -387,8 +394,7 @@ class Linkage:
         angles = np.atleast_1d(np.asarray(crank_angles, dtype=float))
         if angles.ndim != 1 or angles.size == 0 or not np.all(np.isfinite(angles)):
             raise ValueError("crank_angles must be a finite, non-empty 1-D array")
-        if not (math.isfinite(omega) and omega != 0):
-            raise ValueError(f"omega must be finite and non-zero, got {omega!r}")
+        omega = check_omega(omega)
         cycle = self.cycle(assembly)
         inputs, states = cycle.branch_samples()
         order = np.argsort(inputs)

@@ -66,6 +66,12 @@ class LinkageMotion:
         crank_rates = np.array([c.ratio for c in linkage.cranks]) * omega
         self._parts = parts.reshape(m, len(linkage.cranks), -1, 2) * ell * crank_rates[None, :, None, None]
 
+    def __repr__(self):
+        a = np.degrees(self.crank_angles)
+        joints = list(self.linkage.fixed) + list(self.linkage.moving)
+        return (f"LinkageMotion({len(self)} input angles {a.min():.6g}..{a.max():.6g} deg, omega {self.omega:g}; "
+                f"joints {joints})")
+
     def __len__(self):
         return len(self.crank_angles)
 

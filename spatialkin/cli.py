@@ -1,12 +1,44 @@
-"""Command line: ``spatialkin looper --out DIR [--config FILE.toml]`` (the main job) and ``spatialkin demo``
-(torus ∩ sphere of the looper, every component) and ``spatialkin bench [--out DIR] [--quick]`` (speed against
-error: work–precision table, goal ratios, CSV and PNG).
+"""Command line: ``spatialkin looper --out DIR [--config FILE.toml]`` (the main job), ``spatialkin demo``
+(torus ∩ sphere of the looper, every component), ``spatialkin bench [--out DIR] [--quick]`` (speed against
+error: work–precision table, goal ratios, CSV and PNG) and ``spatialkin --version``.
+
+Every bad input ends in one line on stderr and exit status 2.
 """
 import argparse
+import math
+import os
 import sys
 import time
 
 import numpy as np
+
+#: Exceptions that mean bad input or a situation the user must change (one line, exit 2), never a traceback.
+USER_ERRORS = (ValueError, TypeError, OSError, KeyError, RuntimeError)
+#: The line printed when the numerical kernels compile (first run after an install, or a cleared cache).
+COMPILING = ("spatialkin: compiling the numerical kernels this run needs (first run after install; numba caches "
+             "them, later runs start at once) ...")
+
+
+#: The line printed when the looper job's kernels are not compiled yet (see spatialkin.firstrun).
+FIRST_RUN = ("spatialkin: first run after install: the kernels run as plain Python this time (same numbers); "
+             "a background process then compiles them into numba's cache (about a minute) for the next runs")
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """argparse with its errors on one line (no usage block) and exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: {message} (see {self.prog.split()[0]} --help)\n")
+
+
+def positive_float(text):
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    if not (math.isfinite(x) and x > 0):
+        raise argparse.ArgumentTypeError(f"must be positive and finite, got {text!r}")
+    return x
 
 
 def reference_pair():
@@ -34,46 +66,79 @@ def demo(args):
 
 
 def looper(args):
+    from . import firstrun
+    if os.environ.get(firstrun.ENV, "interpret") != "compile" and not firstrun.ready():
+        from .looper_job import build, load_config
+        build(load_config(args.config))     # bad input: its one line here, before any other
+        os.makedirs(args.out, exist_ok=True)
+        print(FIRST_RUN, file=sys.stderr, flush=True)
+        status = firstrun.run_interpreted(args.argv)
+        if status == 0:
+            firstrun.start_background()     # after the run, so that it does not compete with it
+        return status
     from .looper_job import run
-    try:
-        run(args.out, args.config)
-    except (ValueError, OSError) as err:
-        print(f"spatialkin looper: {err}", file=sys.stderr)
-        return 2
+    run(args.out, args.config)
+    if not firstrun.ready():                # compiled here (SPATIALKIN_FIRST_RUN=compile): stamp the cache
+        firstrun.write_stamp()
     return 0
 
 
 def bench(args):
     from .bench import run
-    try:
-        run(args.out, quick=args.quick)
-    except (ValueError, OSError, RuntimeError) as err:
-        print(f"spatialkin bench: {err}", file=sys.stderr)
-        return 2
+    run(args.out, quick=args.quick)
     return 0
 
 
-def main(argv=None):
-    argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] == ["design"]:      # spatialkin design --targets FILE.toml (spatialkin/design/cli.py)
-        from .design.cli import main_design
-        return main_design(argv[1:])
-    parser = argparse.ArgumentParser(prog="spatialkin", description=__doc__)
-    sub = parser.add_subparsers(dest="command", required=True)
-    p_looper = sub.add_parser("looper", help="the looper drive over a full crank turn: CSV, plot, summary")
+def parser():
+    from . import __version__
+    from .looper_job import keys_help
+    top = OneLineParser(prog="spatialkin", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    top.add_argument("--version", action="version", version=f"spatialkin {__version__}")
+    sub = top.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
+    p_looper = sub.add_parser("looper", help="the looper drive over a crank turn at machine speed: CSV, JSON record, "
+                              "pictures, summary", formatter_class=argparse.RawDescriptionHelpFormatter,
+                              description="The looper drive over a crank turn at machine speed. Writes "
+                              "looper_motion.csv (units in the header, angles in degrees), looper_run.json "
+                              "(geometry, speed, branch, versions, measured errors), looper_cyclogram.png, "
+                              "looper_transmission.png, looper_speed.png and looper_3d.png, and prints a "
+                              "summary.", epilog=keys_help())
     p_looper.add_argument("--out", required=True, help="output folder (created if missing)")
-    p_looper.add_argument("--config", default=None, help="TOML file overriding the reference geometry")
+    p_looper.add_argument("--config", default=None, help="TOML file overriding the built-in drive (keys below)")
     p_looper.set_defaults(func=looper)
     p_demo = sub.add_parser("demo", help="trace torus ∩ sphere of the looper drive and print the components")
-    p_demo.add_argument("--tol", type=float, default=1e-10, help="accuracy relative to the scene scale")
+    p_demo.add_argument("--tol", type=positive_float, default=1e-10,
+                        help="accuracy relative to the scene scale (positive; default 1e-10)")
     p_demo.set_defaults(func=demo)
     p_bench = sub.add_parser("bench", help="speed against error: every solve_ivp method and tolerance, "
                              "OpenCascade (if installed), the looper against a per-angle root solve")
     p_bench.add_argument("--out", default=None, help="folder for bench.csv and bench.png (created if missing)")
     p_bench.add_argument("--quick", action="store_true", help="a short run: two cases, two tolerances, one repeat")
     p_bench.set_defaults(func=bench)
-    args = parser.parse_args(argv)
-    return args.func(args)
+    return top
+
+
+def main(argv=None):
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv[:1] == ["design"]:      # spatialkin design --targets FILE.toml (spatialkin/design/cli.py)
+        from .design.cli import main_design
+        return main_design(argv[1:])
+    args = parser().parse_args(argv)
+    args.argv = argv
+    from numba.core import event
+
+    from ._jit import announce_compilation
+    listener = announce_compilation(lambda: print(COMPILING, file=sys.stderr, flush=True))
+    try:
+        return args.func(args)
+    except USER_ERRORS as err:
+        message = " ".join(str(err).split()) or type(err).__name__
+        print(f"spatialkin {args.command}: {message}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"spatialkin {args.command}: interrupted", file=sys.stderr)
+        return 130
+    finally:
+        event.unregister("numba:compile", listener)
 
 
 if __name__ == "__main__":

@@ -27,6 +27,9 @@ class LinkState:
         self.velocity, self.acceleration = velocity, acceleration
         self.omega, self.alpha = omega, alpha
 
+    def __repr__(self):
+        return f"LinkState({len(self.origin)} positions: origin, rotation, velocity, acceleration, omega, alpha)"
+
     def point(self, local):
         """(position, velocity, acceleration) (N, 3) each of a point fixed to the link, local (3,)."""
         r = self.rotation @ np.asarray(local, dtype=float)

@@ -53,6 +53,13 @@ class Trajectory:
         self.sddot = np.asarray(sddot, dtype=float)
         self.velocity, self.acceleration = to_time(self.d1, self.d2, self.sdot, self.sddot)
 
+    def __len__(self):
+        return len(self.position)
+
+    def __repr__(self):
+        return (f"Trajectory({len(self)} points in {self.position.shape[-1]}-D, speed "
+                f"{self.speed.min():.6g}..{self.speed.max():.6g})")
+
     @property
     def speed(self):
         return np.linalg.norm(self.velocity, axis=-1)

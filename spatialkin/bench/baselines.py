@@ -69,6 +69,21 @@ def occ_intersect(torus, sphere, tol, repeats):
     return best, curves
 
 
+def occ_splines(torus, sphere, tol):
+    """GeomAPI_IntSS's result curves at tolerance tol as (poles, degree, sampled points (OCC_SAMPLES, 3)) each."""
+    from OCP.GeomAPI import GeomAPI_IntSS
+    geom_t, geom_s = occ_surfaces(torus, sphere)
+    inter = GeomAPI_IntSS(geom_t, geom_s, tol)
+    out = []
+    for i in range(1, inter.NbLines() + 1):
+        line = inter.Line(i)
+        ts = np.linspace(line.FirstParameter(), line.LastParameter(), OCC_SAMPLES)
+        pts = np.array([[p.X(), p.Y(), p.Z()] for p in (line.Value(float(t)) for t in ts)])
+        poles = line.NbPoles() if hasattr(line, "NbPoles") else 0
+        out.append((poles, line.Degree() if hasattr(line, "Degree") else 0, pts))
+    return out
+
+
 # --- the looper drive solved per crank angle, as a user would without spatialkin ------------------------
 def _torus_terms(drive, u1, v1):
     """Torus point and its partial derivatives in (u1, v1) up to second order, crank frame (numpy)."""

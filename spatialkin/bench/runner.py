@@ -188,6 +188,26 @@ def intersect_rows(case, repeats):
     return rows
 
 
+def spline_rows(case):
+    """B-splines of the components: OpenCascade's (GeomAPI_IntSS at its default tolerance: poles, measured
+    error) beside curve.to_bspline at the same deviation (control points, measured deviation, time)."""
+    if not baselines.occ_available():
+        return []
+    pair = (case.torus, case.sphere)
+    curves = intersect(*pair, tol=TRACE_TOL)
+    occ = baselines.occ_splines(*pair, baselines.OCC_DEFAULT_TOL)
+    scale = scene_scale(*pair)
+    rows = []
+    for poles, degree, pts in occ:
+        error = points_error([pts], pair)
+        curve = min(curves, key=lambda c: float(np.min(c.closest(pts[:8])[1])))
+        seconds, spline = best_time(lambda: curve.to_bspline(error / scale), 1)
+        rows.append(Row(case.name, "B-spline", "-", error / scale, len(spline.c), poles, seconds, seconds,
+                        spline.deviation, extra=f"ours {len(spline.c)} control points (degree 5) at "
+                        f"{spline.deviation:.1e} vs OCC {poles} poles (degree {degree}) at {error:.1e}"))
+    return rows
+
+
 def occ_rows(case, repeats, tols=(baselines.OCC_DEFAULT_TOL, baselines.OCC_TIGHT_TOL)):
     """GeomAPI_IntSS at its default and a tight tolerance (empty when OCP is not installed)."""
     if not baselines.occ_available():
@@ -288,6 +308,7 @@ def run_all(quick=False, echo=print):
         echo(f"... {case.name}")
         rows += tracer_rows(case, rtols, repeats)
         rows += intersect_rows(case, repeats)
+        rows += spline_rows(case)
         rows += occ_rows(case, repeats)
     echo("... looper drive")
     rows += looper_rows(repeats)

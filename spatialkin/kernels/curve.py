@@ -319,7 +319,8 @@ def project_many(ys, a, b, normal, gap_tol, max_iter, points, tangents, status):
     for k in range(ys.shape[0]):
         curve_frame(ys[k], a, b, q, t)
         if fixed:
-            t[:] = normal
+            for i in range(3):
+                t[i] = normal[i]
         status[k] = project_to_curve(ys[k], a, b, q, t, gap_tol, max_iter)
         curve_frame(ys[k], a, b, points[k], tangents[k])
         if fixed and dot(tangents[k], normal) < 0.0:
@@ -496,7 +497,8 @@ def fixed_parameter_path(ys, targets, a, b, fixed, reach, gap_tol, max_iter, dy,
     """
     guess = np.empty(4)
     for k in range(ys.shape[0]):
-        guess[:] = ys[k]
+        for i in range(4):
+            guess[i] = ys[k, i]
         guess[fixed] = targets[k]
         predicted = k > 0 and status[k - 1] == 0 and abs(targets[k] - targets[k - 1]) <= reach \
             and abs(dy[k - 1, fixed]) > 0.0
@@ -510,7 +512,8 @@ def fixed_parameter_path(ys, targets, a, b, fixed, reach, gap_tol, max_iter, dy,
         ys[k, fixed] = targets[k]
         ok = newton_fixed_row(ys[k], a, b, fixed, gap_tol, max_iter)
         if not ok and predicted:
-            ys[k] = guess
+            for i in range(4):
+                ys[k, i] = guess[i]
             ok = newton_fixed_row(ys[k], a, b, fixed, gap_tol, max_iter)
         if not ok:
             status[k] = 1

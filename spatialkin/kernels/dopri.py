@@ -91,9 +91,13 @@ def _initial_step(y0, f0, a, b, sign, pullback, t_bound, max_step, rtol, atol):
     else:
         h0 = 0.01 * d0 / d1
     h0 = min(h0, t_bound)
-    y1 = y0 + h0 * f0
+    y1 = np.empty(n)
+    for i in range(n):
+        y1[i] = y0[i] + h0 * f0[i]
     f1 = dragilev_rhs(0.0, y1, a, b, sign, pullback)
-    d2 = _rms(f1 - f0, scale) / h0
+    for i in range(n):
+        f1[i] -= f0[i]
+    d2 = _rms(f1, scale) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
@@ -143,6 +147,14 @@ def combine(out, y, h, weights, k, stages):
         out[i] = h * acc if y is None else y[i] + h * acc
 
 
+@jit
+def copy_into(out, x):
+    """out[i] = x[i] for 1-D arrays (an element loop: numba's array-to-array slice assignment compiles its
+    shape-mismatch message, string formatting and all, into every kernel that uses it)."""
+    for i in range(out.shape[0]):
+        out[i] = x[i]
+
+
 @jit(inline="always")
 def locate_crossing(value, fn, vargs, t_old, step, y_old, q, g_lo, g_hi, out):
     """The time where value(t, y(t), fn, vargs) crosses zero inside the step [t_old, t_old + step] (values g_lo,
@@ -174,7 +186,7 @@ def dense_many(ts, ys, hs, qs, t, out):
     n = ts.shape[0]
     for k in range(t.shape[0]):
         if n < 2:
-            out[k, :] = ys[0]
+            copy_into(out[k], ys[0])
             continue
         j = np.searchsorted(ts, t[k], side="right") - 1
         j = min(max(j, 0), n - 2)
@@ -241,7 +253,7 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
     qs = np.empty((cap, n, 4))
     hs = np.empty(cap)
     ts[0] = 0.0
-    ys[0] = y0
+    copy_into(ys[0], y0)
     count = 1
     y = y0.copy()
     f = dragilev_rhs(0.0, y, a, b, sign, pullback)
@@ -276,7 +288,7 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
                 t_new = t_bound
             step = t_new - t
             # stages
-            k[0] = f
+            copy_into(k[0], f)
             for s in range(1, 6):
                 combine(y_stage, y, step, A[s], k, s)
                 dragilev_into(y_stage, a, b, sign, pullback, k[s])
@@ -326,12 +338,16 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
             ys2 = np.empty((cap, n))
             qs2 = np.empty((cap, n, 4))
             hs2 = np.empty(cap)
-            hs2[:count - 1] = hs[:count - 1]
-            ts2[:count] = ts[:count]
-            ys2[:count] = ys[:count]
-            qs2[:count - 1] = qs[:count - 1]
+            for j in range(count):
+                ts2[j] = ts[j]
+                copy_into(ys2[j], ys[j])
+                if j < count - 1:
+                    hs2[j] = hs[j]
+                    for i in range(n):
+                        copy_into(qs2[j, i], qs[j, i])
             ts, ys, qs, hs = ts2, ys2, qs2, hs2
-        qs[count - 1] = q
+        for i in range(n):
+            copy_into(qs[count - 1, i], q[i])
         hs[count - 1] = step
         # --- closure crossing (upwards) within this step ---
         if close:
@@ -341,17 +357,17 @@ def dopri_segment(y0, a, b, sign, pullback, t_bound, rtol, atol, max_step, max_n
                 t_e = locate_crossing(_closure_at, _closure_g, (s_arm, a, start, direction, offset), t, step, y, q,
                                       g_old, g_new, y_mid)
                 ts[count] = t_e
-                ys[count] = y_mid
+                copy_into(ys[count], y_mid)
                 count += 1
                 status = CLOSURE
                 break
             g_old = g_new
         ts[count] = t_new
-        ys[count] = y_new
+        copy_into(ys[count], y_new)
         count += 1
         t = t_new
-        y[:] = y_new
-        f[:] = f_new
+        copy_into(y, y_new)
+        copy_into(f, f_new)
         if pole_a and abs(np.cos(y[1])) < pole_guard:
             status = CHART_A
             break

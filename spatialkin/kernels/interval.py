@@ -37,9 +37,13 @@ EPS = 2.220446049250313e-16
 TINY = 5e-324
 #: ulps by which sin and cos results are widened (glibc's are within one ulp).
 TRIG_ULPS = 2.0
-#: Relative pad on the transformed point q for the rounding of M and c (a few ulps of their magnitudes).
-PLACEMENT_ULPS = 16.0
+#: Relative pad on the transformed point q for the rounding of M and c: each entry of M is a sum of three
+#: products of entries at most 1 (error below 3 ulps), c a rotated difference of origins (likewise).
+PLACEMENT_ULPS = 4.0
 TWO_PI = 2.0 * math.pi
+HALF_PI = 0.5 * math.pi
+#: |HALF_PI - pi/2| is below 1e-16 (pi/2 rounded to a double); twice that covers the subtraction too.
+HALF_PI_ERROR = 2e-16
 
 
 @jit
@@ -155,20 +159,9 @@ def icos(a):
 
 @jit
 def isin(a):
-    lo, hi = a
-    if hi - lo >= TWO_PI:
-        return (-1.0, 1.0)
-    c0 = math.sin(lo)
-    c1 = math.sin(hi)
-    r0 = min(c0, c1)
-    r1 = max(c0, c1)
-    r0 -= TRIG_ULPS * EPS * abs(r0) + TINY
-    r1 += TRIG_ULPS * EPS * abs(r1) + TINY
-    if _has_multiple(lo, hi, 0.5 * math.pi):
-        r1 = 1.0
-    if _has_multiple(lo, hi, -0.5 * math.pi):
-        r0 = -1.0
-    return (max(r0, -1.0), min(r1, 1.0))
+    """sin over a as cos over a - pi/2 (the float pi/2 is within 1e-16 of the true one, and cos is
+    1-Lipschitz: the shifted interval is widened by that)."""
+    return icos(widen((a[0] - HALF_PI, a[1] - HALF_PI), HALF_PI_ERROR))
 
 
 ZERO = (0.0, 0.0)

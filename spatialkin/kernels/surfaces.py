@@ -298,7 +298,8 @@ def recharted_sphere(data, point, tangent, bend, out):
     through that circle's centre instead, so that a loop close to the circle stays within 60 degrees of the
     equator (no re-charting on the way round). A zero tangent takes any axis normal to the radius.
     """
-    out[:] = data
+    for i in range(out.shape[0]):
+        out[i] = data[i]
     x = np.empty(3)
     for i in range(3):
         x[i] = point[i] - data[ORIGIN + i]
@@ -320,7 +321,11 @@ def recharted_sphere(data, point, tangent, bend, out):
         _unit_cross(x, tangent, z)
     if z[0] == 0.0 and z[1] == 0.0 and z[2] == 0.0:
         axis = np.zeros(3)
-        axis[np.argmin(np.abs(x))] = 1.0
+        smallest = 0                           # the first axis where |x| is least (as np.argmin)
+        for i in range(1, 3):
+            if abs(x[i]) < abs(x[smallest]):
+                smallest = i
+        axis[smallest] = 1.0
         _unit_cross(x, axis, z)
     y = np.empty(3)
     _unit_cross(z, x, y)

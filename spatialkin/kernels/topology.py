@@ -30,6 +30,10 @@ DONE, OVERFLOW = 0, -1
 CONTRACTION = 0.7
 #: Depth of the explicit box stack.
 STACK = 4096
+#: Below the coarse width a box stops bisecting when g is within round-off of zero at its midpoint and its
+#: gradient moves g across the box by less than FLAT times that round-off (a singular point or a multiple
+#: root: bisecting cannot separate anything); a regular crossing of the level goes on to a proof.
+FLAT = 8.0
 #: Boxes are bisected at this fraction of their width, not at the middle: a root at a round number (a symmetric
 #: placement's v = 0) would otherwise sit on a bisection point, on the edge of two boxes, and verify in neither.
 SPLIT = 0.4860679774997897
@@ -59,9 +63,9 @@ def _recip(d):
 def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse, max_boxes, out, kinds):
     """Isolate the zeros of g on a parameter line of S over [t0, t1].
 
-    A box narrower than min_width, or narrower than coarse where both g at its midpoint and g' over it
-    contain zero (g is within round-off of zero there: bisecting further cannot separate anything), is
-    returned unresolved.
+    A box narrower than min_width, or narrower than coarse where g at its midpoint is within round-off of zero
+    and g' moves it by less than FLAT times that round-off across the box (a multiple root: bisecting cannot
+    separate anything), is returned unresolved.
 
     Returns (number of records written to out (K, 2) and kinds (K,), status DONE or OVERFLOW, boxes visited).
     """
@@ -108,7 +112,9 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
                 stack[top, 1] = hi
                 top += 1
                 continue
-        if b - a <= min_width or (b - a <= coarse and contains_zero(f_m)):
+        flat = contains_zero(f_m) and abs(_mid(_line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, mid, mid)[1])) \
+            * (b - a) <= FLAT * (f_m[1] - f_m[0])
+        if b - a <= min_width or (b - a <= coarse and flat):
             if count >= out.shape[0]:
                 return count, OVERFLOW, boxes
             out[count, 0] = a
@@ -128,6 +134,15 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
 
 
 @jit
+def _put(arr, row, U, V):
+    """arr[row] = (U lo, U hi, V lo, V hi)."""
+    arr[row, 0] = U[0]
+    arr[row, 1] = U[1]
+    arr[row, 2] = V[0]
+    arr[row, 3] = V[1]
+
+
+@jit
 def _mid(x):
     return 0.5 * (x[0] + x[1])
 
@@ -138,8 +153,8 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
     box (u_lo, u_hi, v_lo, v_hi) of S's parameters.
 
     min_width (2,) is the smallest width per parameter; boxes are bisected along the parameter whose width is
-    largest relative to it; a box within coarse times min_width where g at its midpoint contains zero is
-    unresolved at once (round-off: bisecting further cannot separate anything). Returns (records in out (K, 4) and kinds (K,), status, boxes visited).
+    largest relative to it; a box within coarse times min_width where g at its midpoint is within round-off of
+    zero and its gradient moves g by less than FLAT times that across the box is unresolved at once (round-off: bisecting further cannot separate anything). Returns (records in out (K, 4) and kinds (K,), status, boxes visited).
     """
     stack = np.empty((STACK, 4))
     for i in range(4):
@@ -190,10 +205,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             if k[0] > U[0] and k[1] < U[1] and l[0] > V[0] and l[1] < V[1]:
                 if count >= out.shape[0]:
                     return count, OVERFLOW, boxes
-                out[count, 0] = k[0]
-                out[count, 1] = k[1]
-                out[count, 2] = l[0]
-                out[count, 3] = l[1]
+                _put(out, count, k, l)
                 kinds[count] = VERIFIED
                 count += 1
                 continue
@@ -208,35 +220,24 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         if contracted:
             if top >= STACK:
                 return count, OVERFLOW, boxes
-            stack[top, 0] = U[0]
-            stack[top, 1] = U[1]
-            stack[top, 2] = V[0]
-            stack[top, 3] = V[1]
+            _put(stack, top, U, V)
             top += 1
             continue
         ru = (U[1] - U[0]) / min_width[0]
         rv = (V[1] - V[0]) / min_width[1]
-        tiny = ru <= coarse and rv <= coarse and contains_zero(gm)
+        tiny = (ru <= coarse and rv <= coarse and contains_zero(gm)
+                and abs(a00) * (U[1] - U[0]) + abs(a01) * (V[1] - V[0]) <= FLAT * (gm[1] - gm[0]))
         if (ru <= 1.0 and rv <= 1.0) or tiny:
             if count >= out.shape[0]:
                 return count, OVERFLOW, boxes
-            out[count, 0] = U[0]
-            out[count, 1] = U[1]
-            out[count, 2] = V[0]
-            out[count, 3] = V[1]
+            _put(out, count, U, V)
             kinds[count] = UNRESOLVED
             count += 1
             continue
         if top + 2 > STACK:
             return count, OVERFLOW, boxes
-        stack[top, 0] = U[0]
-        stack[top, 1] = U[1]
-        stack[top, 2] = V[0]
-        stack[top, 3] = V[1]
-        stack[top + 1, 0] = U[0]
-        stack[top + 1, 1] = U[1]
-        stack[top + 1, 2] = V[0]
-        stack[top + 1, 3] = V[1]
+        _put(stack, top, U, V)
+        _put(stack, top + 1, U, V)
         if ru >= rv:
             cut = U[0] + SPLIT * (U[1] - U[0])
             stack[top, 1] = cut
@@ -323,3 +324,9 @@ def point_values(s_data, t_data, m, c, uv, out):
         j = _point_jet(s_data, t_data, m, c, uv[k, 0], uv[k, 1])
         for i in range(6):
             out[k, i] = j[i]
+
+
+@jit
+def level_enclosure(s_data, t_data, m, c, pad, cpad, u, v):
+    """(lo, hi): a rigorous enclosure of g at the point (u, v) (its round-off and the placement's)."""
+    return jet(s_data, t_data, m, c, pad, cpad, (u, u), (v, v))[0]

@@ -23,11 +23,12 @@ from ..kernels import curve as kc
 from ..kinematics import serial_chain
 from ..surfaces import Sphere, Torus, check_length
 from ..tracing.start import auxiliary_starts
+from ..tracing.bspline import fit as fit_spline
 from ..tracing.intersect import intersect
 from ..tracing.result import TracingError
 from ..tracing.trace import trace
 from ..trajectory import Trajectory, time_map, to_time
-from .common import PointMotion, check_branch, check_drive
+from .common import PointMotion, angle_range_text, check_branch, check_drive
 
 #: Crank angles sampled when checking where the mechanism can be assembled.
 ASSEMBLY_SAMPLES = 3600
@@ -103,6 +104,13 @@ class LooperDrive:
                          for lo, hi in ranges_of(grid, margin < 0)
                          for step in [grid[1] - grid[0]]]
         self._loops = None
+
+    def __repr__(self):
+        tip = ", ".join(f"{x:g}" for x in self.looper_tip)
+        return (f"LooperDrive(crank_radius={self.crank_radius:g}, coupler_length={self.coupler_length:g}, "
+                f"rocker_length={self.rocker_length:g}, crank_frame={self.crank_frame!r}, "
+                f"rocker_frame={self.rocker_frame!r}, looper_tip=({tip}), looper_link={self.looper_link!r})"
+                + (f"  # blocked crank ranges: {len(self._blocked)}" if self._blocked else ""))
 
     @classmethod
     def reference(cls):
@@ -226,10 +234,12 @@ class LooperDrive:
         y = np.vstack(ys)
         return y[np.argsort(np.mod(y[:, 0], 2 * np.pi))]
 
-    def analyse(self, branch=0, samples=3601):
-        """What a designer needs to know: see spatialkin.mechanisms.looper_analysis.LooperAnalysis."""
+    def analyse(self, branch=0, samples=3601, motion=None):
+        """What a designer needs to know: see spatialkin.mechanisms.looper_analysis.LooperAnalysis. The
+        transmission angle is given over `samples` crank angles, or over those of `motion` (a LooperMotion of
+        this drive and branch, reused)."""
         from .looper_analysis import analyse
-        return analyse(self, branch, samples)
+        return analyse(self, branch, samples, motion)
 
     def solve(self, crank_angles, omega=1.0, branch=0):
         """Motion at exactly the given crank angles, the crank turning at the constant rate omega.
@@ -360,9 +370,52 @@ class LooperMotion:
             raise ValueError(f"local must be a finite point (3,), got {local!r}")
         return PointMotion(*self.links()[link].point(local))
 
+    def __len__(self):
+        return len(self.crank_angle)
+
+    def __repr__(self):
+        return (f"LooperMotion({len(self)} crank angles {angle_range_text(self.crank_angle)}, branch {self.branch}, "
+                f"omega {self.omega:g} rad/s; u2 {angle_range_text(self.rocker_angles[:, 0])}, "
+                f"v2 {angle_range_text(self.rocker_angles[:, 1])}; ball |v| max "
+                f"{np.max(np.linalg.norm(self.ball_velocity, axis=1)):.6g})")
+
     @property
     def looper_tip(self):
         return self.point(self.drive.looper_link, self.drive.looper_tip)
+
+    def path_bspline(self, which="ball", tol=1e-8):
+        """The path of the ball centre ('ball') or the looper tip ('tip') as a C2 quintic B-spline in the crank
+        angle (rad), over the requested crank angles' range, within tol times the mechanism's scale (the
+        smaller of the torus and sphere sizes), measured against exact solutions of the drive.
+
+        Built from exact positions and their first and second derivatives in the crank angle (the velocity and
+        acceleration at omega = 1) at its knots, refined until the measured distance to the path is below
+        0.9 tol x scale (spatialkin.tracing.bspline.fit); periodic when the range is a full turn.
+
+        Returns
+        -------
+        scipy.interpolate.BSpline
+            ``deviation`` (mm, or the drive's length unit) and ``checked`` as in ``Curve.to_bspline``.
+        """
+        if which not in ("ball", "tip"):
+            raise ValueError(f"which must be 'ball' or 'tip', got {which!r}")
+        tol = float(tol)
+        if not math.isfinite(tol) or tol <= 0:
+            raise ValueError(f"tol must be a positive finite number, got {tol!r}")
+        lo, hi = float(np.min(self.crank_angle)), float(np.max(self.crank_angle))
+        if not hi > lo:
+            raise ValueError("a path B-spline needs at least two distinct crank angles")
+        full = hi - lo >= 2 * math.pi * (1 - 1e-12)
+
+        def evaluate(theta):
+            m = self.drive.solve(theta, omega=1.0, branch=self.branch)
+            if which == "ball":
+                return m.ball_center, m.ball_velocity, m.ball_acceleration
+            tip = m.looper_tip
+            return tip.position, tip.velocity, tip.acceleration
+
+        scale = min(self.drive.torus.size, self.drive.sphere.size)
+        return fit_spline(evaluate, lo, lo + 2 * math.pi if full else hi, tol * scale, periodic=full)
 
     def angular_velocity(self, link):
         """Angular velocity (N, 3) of a link in fixed axes."""

@@ -39,6 +39,15 @@ class LooperAnalysis:
     transmission_angle: np.ndarray = field(repr=False)
     min_transmission: tuple = (0.0, 0.0)
 
+    def __repr__(self):
+        deg = np.degrees
+        angles = lambda xs: "[" + ", ".join(f"{deg(x):.4f}" for x in xs) + "]"      # noqa: E731
+        return (f"LooperAnalysis(turns_fully={self.turns_fully}, dead_positions={angles(self.dead_positions)} deg, "
+                f"branch_points={angles(self.branch_points)} deg, blocked_ranges="
+                f"[{', '.join(angles(r) for r in self.blocked_ranges)}] deg, "
+                f"u2_range={angles(self.u2_range)} deg, v2_range={angles(self.v2_range)} deg, "
+                f"min_transmission={deg(self.min_transmission[0]):.3f} deg at {deg(self.min_transmission[1]):.2f} deg)")
+
 
 def dead_positions(drive):
     """Crank angles where u1' changes sign along any traced loop of torus ∩ sphere."""
@@ -68,16 +77,35 @@ def branch_points(drive):
     return sorted(out)
 
 
-def analyse(drive, branch=0, samples=3601):
-    """LooperAnalysis of a LooperDrive on one branch."""
-    dead = dead_positions(drive)
-    meets = branch_points(drive)
-    blocked = drive.blocked_ranges
-    turns = not blocked and not dead
+def clear_all_round(drive, samples=3601):
+    """True when the coupler's circle crosses the rocker sphere transversally at every crank angle (assembly
+    margin above CLEARANCE x size all round). Then the two assemblies are smooth functions of the crank angle:
+    a dead position (u1' = 0) or a branch point (N1 || N2) needs the circle tangent to the sphere, where the
+    distance from the rocker centre along the circle is extreme, that is a zero margin. So neither exists
+    and no loop needs tracing to show it."""
     angles = np.linspace(0.0, 2 * np.pi, samples)
-    if not turns:       # keep clear of the blocked ranges, where the two branches merge
-        angles = angles[drive.assembly_margin(angles) > CLEARANCE * drive.size]
-    motion = drive.solve(angles, branch=branch)
+    return bool(np.min(drive.assembly_margin(angles)) > CLEARANCE * drive.size)
+
+
+def analyse(drive, branch=0, samples=3601, motion=None):
+    """LooperAnalysis of a LooperDrive on one branch; the transmission angle over `samples` crank angles of a
+    turn (those clear of the blocked ranges), or over the crank angles of a given motion of this drive and
+    branch (reused, not solved again)."""
+    blocked = drive.blocked_ranges
+    if not blocked and clear_all_round(drive, samples):
+        dead, meets = [], []        # nothing to find: the loops (sk.intersect) are not traced
+    else:
+        dead = dead_positions(drive)
+        meets = branch_points(drive)
+    turns = not blocked and not dead
+    if motion is None:
+        angles = np.linspace(0.0, 2 * np.pi, samples)
+        if not turns:       # keep clear of the blocked ranges, where the two branches merge
+            angles = angles[drive.assembly_margin(angles) > CLEARANCE * drive.size]
+        motion = drive.solve(angles, branch=branch)
+    elif motion.drive is not drive or motion.branch != branch:
+        raise ValueError("motion must be a motion of this drive on the analysed branch")
+    angles = motion.crank_angle
     coupler = motion.links()["coupler"]
     line = motion.ball_center - coupler.origin
     pin_axis = coupler.rotation[:, :, 1]

@@ -13,7 +13,7 @@ from ..kinematics import serial_chain
 from ..surfaces import check_length
 from ..tracing.continuation import trace_cycle
 from ..trajectory import time_map, to_time
-from .common import PointMotion, check_branch, check_drive
+from .common import PointMotion, angle_range_text, check_branch, check_drive
 
 #: solve_ivp tolerance of the configuration-curve trace (a predictor: positions are solved by Newton).
 TRACE_RTOL = 1e-10
@@ -55,6 +55,11 @@ class RSSR:
         self.params = p
         self.size = self.crank_radius + self.coupler_length + self.rocker_radius
         self._cycles = {}
+
+    def __repr__(self):
+        return (f"RSSR(crank_radius={self.crank_radius:g}, coupler_length={self.coupler_length:g}, "
+                f"rocker_radius={self.rocker_radius:g}, crank_frame={self.crank_frame!r}, "
+                f"rocker_frame={self.rocker_frame!r})")
 
     def residual(self, phi, psi):
         """F and its gradient (2,) at one (phi, psi)."""
@@ -109,6 +114,13 @@ class RSSR:
 
 
 class RSSRMotion:
+    def __len__(self):
+        return len(self.crank_angle)
+
+    def __repr__(self):
+        return (f"RSSRMotion({len(self)} crank angles {angle_range_text(self.crank_angle)}, omega {self.omega:g}; "
+                f"rocker {angle_range_text(self.rocker_angle)})")
+
     """RSSR motion at given crank angles: crank_angle, rocker_angle, rocker_rate, rocker_acceleration (N,),
     crank_pin and ball_center (PointMotion, fixed axes)."""
 
@@ -119,6 +131,7 @@ class RSSRMotion:
         kl.implicit_curve_derivatives(mech.params, xs, sign, d1, d2, ok)
         sdot, sddot = time_map(d1[:, 0], d2[:, 0], omega)
         rates, accels = to_time(d1, d2, sdot, sddot)
+        self.omega = float(omega)
         self.crank_angle, self.rocker_angle = xs[:, 0], xs[:, 1]
         self.rocker_rate, self.rocker_acceleration = rates[:, 1], accels[:, 1]
         crank, = serial_chain(mech.crank_frame.origin, mech.crank_frame.rotation, [((0, 0, 0), _Z)],

@@ -2,11 +2,30 @@
 optionally the torus and sphere the ball centre runs on and velocity arrows."""
 import numpy as np
 
+from . import geometry as geo
+from ..units import METRES_PER_UNIT
 from .scene import ARROW_FRACTION, Scene
 
+#: Names drawn beside the joints (shaft centre, crank pin, ball centre, rocker centre) and the looper tip.
+JOINT_NAMES = ("O1 crank shaft", "A crank pin (crank 1 = O1A)", "C ball joint", "P2 rocker centre")
+#: The crank shaft's name sits at the lower end of its drawn axis (the crank pin's name sits by O1).
+TIP_NAME = "T looper tip"
+#: Link names drawn at the middle of each link.
+LINK_NAMES = {"coupler": "coupler 2", "rocker_arm": "rocker arm 3", "looper": "looper"}
+#: Colour maps of the ball centre's and the looper tip's paths in a labelled picture (told apart at a glance).
+PATH_CMAPS = ("winter", "autumn")
+#: Consecutive crank angles further apart than this many times their median step leave a gap in the paths.
+GAP_STEPS = 1.5
+#: Lower-left corners of the two colour bars (fractions of the window) in a labelled picture.
+BAR_POSITIONS = ((0.05, 0.03), (0.55, 0.03))
+#: Camera of a labelled picture: looking at the middle of the mechanism from this direction (fixed axes),
+#: z up, zoomed so that the mechanism fills the frame between the title and the colour bars.
+LABELLED_VIEW = (1.0, -0.75, 0.45)
+LABELLED_ZOOM = 0.95
 
 
-def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed", **scene_args):
+def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed", labels=False, unit=None,
+                 **scene_args):
     """A Scene of the looper drive.
 
     Parameters
@@ -22,8 +41,14 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
         length scale for both); 0 for none.
     color_by : {'speed', 's', None}
         Colour of the two paths: speed |v| of the point, arc length, or plain.
+    labels : bool
+        A picture to read at a glance: joints and links named, an axes marker, and a colour bar per path
+        titled with its quantity and unit (speeds in m/s when `unit` is mm, cm, m or in), each path on its own
+        colour scale; the camera closer. Give a title through scene_args.
+    unit : str, optional
+        The drive's length unit, for the colour bars' titles.
     **scene_args
-        Passed to Scene (window_size, theme, camera_position, zoom).
+        Passed to Scene (window_size, theme, camera_position, zoom, title, axes).
 
     Returns
     -------
@@ -34,6 +59,16 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
     count = int(velocities)
     if count != velocities or count < 0:
         raise ValueError(f"velocities must be a non-negative integer (arrows per path), got {velocities!r}")
+    if labels:
+        scene_args.setdefault("axes", True)
+        scene_args.setdefault("zoom", LABELLED_ZOOM)
+        if "camera_position" not in scene_args:
+            links, joints = geo.looper_links(motion, index)
+            pts = np.vstack([joints, *links.values(), motion.ball_center, motion.looper_tip.position])
+            centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+            view = np.asarray(LABELLED_VIEW) / np.linalg.norm(LABELLED_VIEW)
+            reach = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
+            scene_args["camera_position"] = [tuple(centre + 3 * reach * view), tuple(centre), (0.0, 0.0, 1.0)]
     scene = Scene(**scene_args)
     drive = motion.drive
     if surfaces:
@@ -42,11 +77,33 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
     tip = motion.looper_tip
     speeds = [np.linalg.norm(motion.ball_velocity, axis=1), np.linalg.norm(tip.velocity, axis=1)]
     lo, hi = min(map(np.min, speeds)), max(map(np.max, speeds))
-    clim = (lo, hi) if color_by == "speed" and hi > lo else None        # one colour scale for both paths
-    for name, position, speed in (("ball", motion.ball_center, speeds[0]), ("tip", tip.position, speeds[1])):
-        scene.add_curve(position, name=f"{name}_path", color_by=color_by, speed=speed, clim=clim,
-                        scalar_bar=name == "tip" or clim is None)
+    clim = (lo, hi) if color_by == "speed" and hi > lo and not labels else None   # one colour scale for both
+    factor, speed_unit = (METRES_PER_UNIT[unit], "m/s") if unit in METRES_PER_UNIT else (1.0, f"{unit or 'length'}/s")
+    # a crank that cannot turn fully: no path drawn across the crank ranges it cannot reach
+    step = np.diff(motion.crank_angle)
+    breaks = (np.nonzero(np.abs(step) > GAP_STEPS * np.median(np.abs(step)))[0] + 1) if len(step) else []
+    for j, (name, title, position, speed) in enumerate((("ball", "ball centre C", motion.ball_center, speeds[0]),
+                                                        ("tip", "looper tip T", tip.position, speeds[1]))):
+        if labels:
+            bar = f"{title}: speed [{speed_unit}]" if color_by == "speed" else f"{title}: arc length s"
+            scene.add_curve(position, name=f"{name}_path", color_by=color_by, speed=speed * factor,
+                            bar_title=bar, bar_position=BAR_POSITIONS[j],
+                            cmap=PATH_CMAPS[j], breaks=breaks)
+        else:
+            scene.add_curve(position, name=f"{name}_path", color_by=color_by, speed=speed, clim=clim,
+                            scalar_bar=name == "tip" or clim is None, breaks=breaks)
     scene.add_looper(motion, index, name="looper")
+    if labels:
+        links, joints = geo.looper_links(motion, index)
+        joints = joints.copy()
+        joints[0] = links["crank_shaft"][0]
+        points = np.vstack([joints, links["looper"][-1:],
+                            [0.5 * (links[k][0] + links[k][-1]) if k != "looper" else links[k][1] for k in LINK_NAMES]])
+        # each path named at its point farthest from where its point is drawn now
+        paths = [(motion.ball_center, joints[2], "path of C"), (tip.position, links["looper"][-1], "path of T")]
+        path_points = [p[int(np.argmax(np.linalg.norm(p - now, axis=1)))] for p, now, _ in paths]
+        scene.add_labels(np.vstack([points, path_points]),
+                         [*JOINT_NAMES, TIP_NAME, *LINK_NAMES.values(), *(name for _, _, name in paths)], name="names")
     if count:
         every = np.unique(np.linspace(0, len(motion.crank_angle) - 1, count).round().astype(int))
         longest = max(np.max(np.linalg.norm(motion.ball_velocity, axis=1)),

@@ -12,6 +12,7 @@ import tempfile
 
 import numpy as np
 
+from ..export import polylines
 from ..io import atomic_path
 from ..tracing.result import Curve
 from . import geometry as geo
@@ -41,6 +42,11 @@ COLOR_MODES = ("s", "speed", None)
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf")
 #: Colours of the mechanism's parts.
 LINK_COLOR, JOINT_COLOR, SHAFT_COLOR = "#4d4d4d", "#b8860b", "#9e9e9e"
+#: Text: title, labels and colour bars (points), a horizontal bar's size (fractions of the window) and ticks.
+TITLE_FONT_SIZE, LABEL_FONT_SIZE, BAR_FONT_SIZE = 14, 13, 13
+BAR_WIDTH, BAR_HEIGHT, BAR_LABELS, BAR_TITLE_SIZE = 0.38, 0.07, 5, 11
+#: Where the orientation marker goes (fractions of the window: x0, y0, x1, y1): lower right, above colour bars.
+AXES_VIEWPORT = (0.82, 0.13, 1.0, 0.31)
 #: File suffixes of screenshot() and export().
 IMAGE_SUFFIXES = (".png",)
 EXPORT_SUFFIXES = (".vtm", ".vtp", ".ply")
@@ -70,6 +76,10 @@ class Scene:
         Camera zoom after fitting the scene (> 1 moves closer).
     off_screen : bool
         Render without a window (default); False lets ``plotter().show()`` open one.
+    title : str, optional
+        A title along the picture's upper edge.
+    axes : bool
+        Draw an orientation marker (the x, y, z axes, lower left).
 
     Examples
     --------
@@ -79,7 +89,8 @@ class Scene:
     >>> scene.screenshot("curves.png"); scene.export("curves.vtm")
     """
 
-    def __init__(self, window_size=None, theme=None, camera_position="iso", zoom=1.0, off_screen=True):
+    def __init__(self, window_size=None, theme=None, camera_position="iso", zoom=1.0, off_screen=True, title=None,
+                 axes=False):
         if window_size is not None:
             try:
                 w, h = (int(x) for x in window_size)
@@ -93,7 +104,13 @@ class Scene:
         self.camera_position = camera_position
         self.zoom = geo.check_positive("zoom", zoom)
         self.off_screen = bool(off_screen)
+        self.title = None if title is None else str(title)
+        self.axes = bool(axes)
         self._items = []
+
+    def __repr__(self):
+        size = "x".join(map(str, self.window_size or WINDOW_SIZE))
+        return f"Scene({size}, items={self.names}" + (f", title={self.title!r}" if self.title else "") + ")"
 
     # --- what is in the scene ---------------------------------------------------------------------
     @property
@@ -148,14 +165,14 @@ class Scene:
         return self._add(name, "surface", mesh, {"color": color, "opacity": opacity})
 
     def add_curve(self, curve, name=None, color_by="s", speed=None, radius=None, color=None, cmap="viridis",
-                  clim=None, scalar_bar=True):
+                  clim=None, scalar_bar=True, bar_title=None, bar_position=None, breaks=(), chord_tol=None):
         """Add a traced curve (or any polyline) drawn as a tube.
 
         Parameters
         ----------
         curve : sk.Curve or array_like (N, 3)
-            A traced curve (its points and arc lengths ``curve.s``) or points of a path (arc length then
-            the cumulative chord length).
+            A traced curve (drawn by a dense polyline of its exact points, spaced by `chord_tol`, with their
+            arc lengths) or points of a path (arc length then the cumulative chord length).
         color_by : {'s', 'speed', None}
             Colour the tube by arc length, by `speed`, or plainly (`color`).
         speed : array_like (N,), optional
@@ -166,7 +183,16 @@ class Scene:
         clim : (float, float), optional
             Range of the colour map (share one between curves to compare them); default the curve's own.
         scalar_bar : bool
-            Show a colour bar titled '<name>: <color_by>'.
+            Show a colour bar titled '<name>: <color_by>' (or bar_title).
+        bar_title : str, optional
+            The colour bar's title (give the quantity and its unit).
+        bar_position : (float, float), optional
+            Lower-left corner of a horizontal colour bar, as fractions of the window (pyvista's default
+            place otherwise); give each curve its own to keep bars apart.
+        breaks : sequence of int
+            Indices of points that start a new piece (a path with gaps: nothing is drawn across them).
+        chord_tol : float, optional
+            Chord height of the polyline drawn for a traced curve (default 1e-6 of its extent).
 
         Returns
         -------
@@ -175,20 +201,38 @@ class Scene:
         if color_by not in COLOR_MODES:
             raise ValueError(f"color_by must be one of {COLOR_MODES}, got {color_by!r}")
         if isinstance(curve, Curve):
-            points = geo.check_points("curve.points", curve.points)
-            s = np.asarray(curve.s, dtype=float)
+            # a dense polyline spaced by the chord height, never the solver's steps
+            (s, points, _), = polylines(curve, chord_tol)
+            points = geo.check_points("curve.points", points)
         else:
             points = geo.check_points("curve", curve)
             s = geo.chord_length(points)
         if color_by == "speed" and speed is None:
             raise ValueError("speed must be given (one value per point) for color_by='speed'")
-        data = polyline(points)
+        data = polyline(points, breaks)
         data.point_data[S_ARRAY] = s
         if speed is not None:
+            if isinstance(curve, Curve):         # given at the curve's own points: onto the dense polyline
+                speed = np.interp(s, curve.s, geo.check_scalars("speed", speed, len(curve.s)))
             data.point_data[SPEED_ARRAY] = geo.check_scalars("speed", speed, len(points))
         style = {"color_by": color_by, "radius": geo.check_positive("radius", radius, allow_none=True),
-                 "color": color, "cmap": cmap, "clim": _check_clim(clim), "scalar_bar": bool(scalar_bar)}
+                 "color": color, "cmap": cmap, "clim": _check_clim(clim), "scalar_bar": bool(scalar_bar),
+                 "bar_title": None if bar_title is None else str(bar_title),
+                 "bar_position": None if bar_position is None else tuple(float(x) for x in bar_position)}
         return self._add(name, "curve", data, style)
+
+    def add_labels(self, points, labels, name=None, color="black"):
+        """Add text labels (names of joints or links) at points (N, 3), drawn always visible.
+
+        Returns
+        -------
+        str : the item's name.
+        """
+        points = geo.check_points("points", points)
+        labels = [str(x) for x in labels]
+        if len(labels) != len(points):
+            raise ValueError(f"labels must give one text per point ({len(points)}), got {len(labels)}")
+        return self._add(name, "labels", pyvista().PolyData(points), {"labels": labels, "color": color})
 
     def add_arrows(self, points, vectors, scale=None, name=None, color=None):
         """Add arrows (velocity or acceleration glyphs) at points.
@@ -269,6 +313,10 @@ class Scene:
         plotter.camera_position = self.camera_position
         plotter.reset_camera()
         plotter.camera.zoom(self.zoom)
+        if self.title:
+            plotter.add_text(self.title, position="upper_edge", font_size=TITLE_FONT_SIZE, color="black")
+        if self.axes:
+            plotter.add_axes(line_width=3, labels_off=False, viewport=AXES_VIEWPORT)
         return plotter
 
     def image(self):
@@ -338,12 +386,15 @@ def default_theme():
     return theme
 
 
-def polyline(points):
-    """A pyvista PolyData of points (N, 3) joined by one polyline in order."""
+def polyline(points, breaks=()):
+    """A pyvista PolyData of points (N, 3) joined in order: one polyline, or one per piece when breaks lists
+    the indices where a new piece starts (pieces of a single point are left out)."""
     pv = pyvista()
     data = pv.PolyData(np.asarray(points, dtype=float))
-    if len(points) > 1:
-        data.lines = np.concatenate([[len(points)], np.arange(len(points))])
+    edges = [0, *sorted(int(b) for b in breaks if 0 < int(b) < len(points)), len(points)]
+    cells = [np.concatenate([[b - a], np.arange(a, b)]) for a, b in zip(edges[:-1], edges[1:]) if b - a > 1]
+    if cells:
+        data.lines = np.concatenate(cells)
     return data
 
 
@@ -375,7 +426,7 @@ def arrows(data, scale):
 def _drawn(item, size):
     """The geometry drawn for an item in a scene of the given extent."""
     style = item.style
-    if item.kind == "surface":
+    if item.kind in ("surface", "labels"):
         return item.data
     if item.kind == "curve":
         return tube(item.data, style["radius"] or TUBE_FRACTION * size)
@@ -407,8 +458,23 @@ def _draw(plotter, item, mesh):
         if mode is None:
             plotter.add_mesh(mesh, color=style["color"], name=item.name)
         else:
-            plotter.add_mesh(mesh, scalars=mode, cmap=style["cmap"], clim=style["clim"], show_scalar_bar=style["scalar_bar"],
-                             scalar_bar_args={"title": f"{item.name}: {mode}"}, name=item.name)
+            bar = {"title": style.get("bar_title") or f"{item.name}: {mode}"}
+            if style.get("bar_position") is not None:
+                bar.update(position_x=style["bar_position"][0], position_y=style["bar_position"][1],
+                           width=BAR_WIDTH, height=BAR_HEIGHT, vertical=False, title_font_size=BAR_FONT_SIZE,
+                           label_font_size=BAR_FONT_SIZE, n_labels=BAR_LABELS, fmt="%.3g", color="black")
+            plotter.add_mesh(mesh, scalars=mode, cmap=style["cmap"], clim=style["clim"],
+                             show_scalar_bar=style["scalar_bar"], scalar_bar_args=bar, name=item.name)
+            if style.get("bar_position") is not None and style["scalar_bar"]:
+                # VTK draws a horizontal bar's title over its tick labels: the title goes above, as text
+                plotter.scalar_bars[bar["title"]].SetTitle("")
+                width, height = plotter.window_size
+                x, y = style["bar_position"]
+                plotter.add_text(bar["title"], position=(int(x * width), int((y + BAR_HEIGHT) * height)),
+                                 font_size=BAR_TITLE_SIZE, color="black", name=f"{item.name}/bar_title")
+    elif item.kind == "labels":
+        plotter.add_point_labels(mesh, style["labels"], font_size=LABEL_FONT_SIZE, text_color=style["color"],
+                                 point_size=0, shape_opacity=0.55, always_visible=True, name=item.name)
     elif item.kind == "arrows":
         plotter.add_mesh(mesh, color=style["color"], name=item.name)
     else:

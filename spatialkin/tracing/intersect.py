@@ -3,6 +3,7 @@ import dataclasses
 import time
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from ..surfaces import check_surface
 from .result import Curve, ExactCurve, TracingError
@@ -13,6 +14,8 @@ from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGU
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
 SAME_COMPONENT = 1e-6
+#: A node the tracer passed is the proven singular point within this distance (relative to the scale).
+SNAP = 1e-2
 
 
 def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol=None, max_length=None,
@@ -87,6 +90,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
             curve = trace_from(a, b, point, y, settings, time.perf_counter())
         except TracingError:
             continue            # the seed sits on a singular point: the arms' seeds trace it
+        snap_nodes(curve, settings.nodes, settings.scale)
         curves.append(curve)
         pending = drop_traced(pending, [curve], radius)
     kept = []
@@ -100,6 +104,17 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     if certify:
         attach_certificates(a, b, curves, topo)
     return curves
+
+
+def snap_nodes(curve, known, scale):
+    """Replace each node the tracer located (to about its jump's accuracy) by the singular point the topology
+    stage proved there (Newton on grad g, or an apex), when one lies within SNAP x scale."""
+    if not len(curve.nodes) or known is None or not len(known):
+        return
+    for k, node in enumerate(curve.nodes):
+        d = np.linalg.norm(known - node, axis=1)
+        if d.min() <= SNAP * scale:
+            curve.nodes[k] = known[np.argmin(d)]
 
 
 def drop_traced(pending, curves, radius):
@@ -126,7 +141,7 @@ def near_curve(curve, points, radius):
     ask = np.ones(len(points), dtype=bool)
     if curve.length > 0 and len(curve.points) > 1:
         reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
-        ask = np.min(np.linalg.norm(curve.points[None, :, :] - points[:, None, :], axis=2), axis=1) <= reach
+        ask = cKDTree(curve.points).query(points, distance_upper_bound=reach)[0] <= reach
         if ask.any():
             out[ask] = curve.near_points(points[ask]) <= radius
             ask &= ~out

@@ -274,7 +274,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             kind, info = kinds[hit]
             y = res.y_events[hit][0].copy()
             kc.curve_frame(y, a, b, point, tangent)
-            singular = kind in ("singular", "apex") or (
+            singular = kind == "singular" or (kind == "apex" and known_node(point, settings)) or (
                 kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT
                 and known_node(point, settings))
             if singular:

@@ -88,10 +88,15 @@ def common_axis(a, b, scale):
     return (point, direction) if ok else None
 
 
-def ruled_along(a, b):
-    """The cylinder (a or b) along whose axis the other surface is invariant (a plane parallel to the axis, or a
-    cylinder with a parallel axis), or None: then the intersection is made of lines along that axis."""
+def ruled_along(a, b, scale=1.0):
+    """The cylinder or cone (a or b) whose rulings the other surface respects, or None: a cylinder and a plane
+    parallel to its axis or a cylinder with a parallel axis (invariant along the axis), a cone and a plane
+    through its apex (invariant under scaling about it). Then the intersection is made of whole rulings."""
     for p, q in ((a, b), (b, a)):
+        if isinstance(p, Cone) and isinstance(q, Plane):
+            if abs((p.frame.origin - q.frame.origin) @ q.frame.rotation[:, 2]) <= SAME * scale:
+                return p
+            continue
         if not isinstance(p, Cylinder):
             continue
         axis = p.frame.rotation[:, 2]

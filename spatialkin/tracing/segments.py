@@ -98,6 +98,7 @@ def recharted_sphere(data, point, tangent, bend=None):
     new = np.empty_like(data)
     ks.recharted_sphere(data, np.ascontiguousarray(point, dtype=float), np.ascontiguousarray(tangent, dtype=float),
                         np.zeros(3) if bend is None else np.ascontiguousarray(bend, dtype=float), new)
+    new.flags.writeable = False     # read-only as every Surface's data: one compiled specialisation of the kernels
     return new
 
 

@@ -19,9 +19,14 @@ AUX_SAMPLES = 720
 
 def scene_scale(a, b):
     """Length scale of an intersection: the smaller characteristic length of the two surfaces, ignoring
-    planes (which have none)."""
+    planes (which have none); for two planes, the smaller half-diagonal of their trimmed rectangles (1 where
+    neither is trimmed on both sides)."""
     sizes = [s.size for s in (a, b) if int(s.data[ks.KIND]) != ks.PLANE]
-    return min(sizes) if sizes else 1.0
+    if sizes:
+        return min(sizes)
+    spans = [0.5 * np.hypot(s.u_range[1] - s.u_range[0], s.v_range[1] - s.v_range[0]) for s in (a, b)]
+    spans = [x for x in spans if np.isfinite(x)]
+    return min(spans) if spans else 1.0
 
 
 def parameter_units(data, scale):

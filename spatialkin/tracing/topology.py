@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg
+from scipy.optimize import brentq
 
 from ..frame import Frame
 from ..kernels import interval as ki
@@ -64,6 +65,11 @@ APEX_CLEARANCE = 1e-7
 BALL_MARGIN = 1.01
 #: Unresolved boxes closer than this (relative to the scale) are one singular point.
 CLUSTER = 1e-6
+#: A critical point is on the level when g's enclosure there, widened this many times its width, holds zero.
+ON_LEVEL = 4.0
+#: Half-width (relative to the searched range) of the interval round an unresolved cluster on a line whose end
+#: values tell a simple root (sign change) from a multiple one.
+CLUSTER_SIDE = 1e-6
 #: Eigenvalues of the Hessian of g below this fraction of the largest are zero (a degenerate singular point).
 EIGEN_RATIO = 1e-6
 #: Seeds on the arms of a node sit this far (relative to the scale) from it.
@@ -239,6 +245,13 @@ class Reader:
         loose = [[0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3])] for r in out[:n][kinds[:n] == kt.UNRESOLVED]]
         return np.array(roots).reshape(-1, 2), np.array(loose).reshape(-1, 2)
 
+    def on_level(self, uv):
+        """True when g at uv is zero within its round-off (a rigorous enclosure, widened ON_LEVEL times)."""
+        lo, hi = kt.level_enclosure(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
+                                    float(uv[0]), float(uv[1]))
+        width = hi - lo
+        return lo - ON_LEVEL * width <= 0.0 <= hi + ON_LEVEL * width
+
     def values(self, uv):
         """(g, g_u, g_v, g_uu, g_uv, g_vv) (N, 6) at parameter points uv (N, 2) of S."""
         uv = np.ascontiguousarray(np.asarray(uv, dtype=float).reshape(-1, 2))
@@ -286,7 +299,7 @@ def topology(a, b, scale, tolerance):
         raise ValueError(f"intersect needs a bounded pair: {type(a).__name__} and {type(b).__name__} are both "
                          "unbounded (give a Plane u_range and v_range, a Cylinder or Cone a v_range)")
     axis = common_axis(a, b, scale)
-    ruled = ruled_along(a, b) if axis is None else None
+    ruled = ruled_along(a, b, scale) if axis is None else None
     p_user, q, mode = choose_roles(a, b, axis, ruled)
     if mode == "ruled" and balls[id(p_user)] is None and balls[id(q)] is None:
         raise ValueError("intersect needs a bounded pair")
@@ -360,8 +373,16 @@ def topology(a, b, scale, tolerance):
                 if box[2] <= ring <= box[3]:
                     roots, unresolved = add_line_roots(pq, 1, ring, box[0], box[1], "apex ring", None, False)
                     found += len(roots) + len(unresolved)
-            if not found and inside_trims(a, apex, tolerance) and inside_trims(b, apex, tolerance):
-                topo.contacts.append(apex)
+            if (not found and pq.on_level((0.0, v)) and inside_trims(a, apex, tolerance)
+                    and inside_trims(b, apex, tolerance)):
+                topo.contacts.append(apex)           # on Q to round-off, with no branch round it
+        # Q's own apexes on P: singular points of the curve (known, so that the tracer's jumps pass them exactly)
+        for v in apex_values(q):
+            if isinstance(q, Sphere):
+                continue
+            apex = q.point(0.0, v)
+            if float(p.distance(apex)) <= 1e3 * tolerance and qp.on_level((0.0, v)):
+                topo.apexes.append(apex)
         # Q's trim edges, as curves on Q where F_P = 0
         q_edges(q, p, qp, balls[id(p_user)], topo, add_line_roots, q_index)
         # closed loops inside P's open domain
@@ -428,9 +449,18 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
     roots, unresolved = pq.line(0, -math.pi, box[2], box[3], topo, "meridian")
     apexes = apex_values(p)
     q_rim = isinstance(q, Plane) and (np.isfinite(q.u_range).any() or np.isfinite(q.v_range).any())
-    for v, simple in [(v, True) for v in roots] + [(v, False) for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2]))]:
-        if not simple:
-            v = double_root(pq, 0, -math.pi, v)
+    found = [(v, True) for v in roots]
+    for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2])):
+        # a cluster across which g changes sign is a simple root blurred by round-off (a tiny parallel near a
+        # pole); one across which it keeps its sign is a multiple root (a tangency)
+        h = CLUSTER_SIDE * (box[3] - box[2])
+        lo, hi = max(v - h, box[2]), min(v + h, box[3])
+        side = pq.values([[-math.pi, lo], [-math.pi, hi]])[:, 0]
+        if side[0] * side[1] < 0:
+            found.append((brentq(lambda x: pq.values([-math.pi, x])[0, 0], lo, hi, xtol=1e-15), True))
+        else:
+            found.append((double_root(pq, 0, -math.pi, v), False))
+    for v, simple in found:
         pt = p.point(0.0, v)
         radius = math.hypot(*p.frame.to_local(pt)[:2])
         if radius <= 1e-9 * scale or any(abs(v - w) < 1e-12 for w in apexes):
@@ -438,9 +468,7 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
                 topo.contacts.append(pt)
             continue
         if not simple:
-            h = 1e-6 * (box[3] - box[2])
-            side = pq.values([[-math.pi, v - h], [-math.pi, v + h]])[:, 0]
-            if side[0] * side[1] > 0 and not q_rim:
+            if not q_rim:
                 centre = p.frame.to_global([0.0, 0.0, p.frame.to_local(pt)[2]])
                 if keep(pt) and not any(np.linalg.norm(centre - c) <= 1e-9 * scale and abs(radius - r) <= 1e-9 * scale
                                         for c, _, r in topo.tangent_circles):
@@ -463,10 +491,11 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
 
 
 def ruled_components(p, q, pq, box, topo, tolerance, scale, add_line_roots, a, b):
-    """A cylinder P and a surface invariant along its axis meet in lines u = const of P: the roots of g on one
-    cross-section. Each line is clipped to both trims; a simple root is traced, a multiple root where g keeps
+    """A cylinder or cone P and a surface that respects its rulings meet in rulings u = const of P (straight
+    segments, through the apex for a cone): the roots of g on one cross-section. Each line is clipped to both trims; a simple root is traced, a multiple root where g keeps
     its sign is a line of tangency."""
-    v_mid = 0.5 * (box[2] + box[3])
+    # a cross-section off the apex (a cone's rulings all pass through it): halfway along the longer side
+    v_mid = 0.5 * (box[2] + box[3]) if isinstance(p, Cylinder) else 0.5 * max(box[2], box[3], key=abs)
     roots, unresolved = pq.line(1, v_mid, -math.pi, math.pi, topo, "cross-section")
     for u, simple in [(u, True) for u in roots] + [(u, False) for u in merge_values(unresolved, 8 * COARSE * math.pi)]:
         lo, hi = clip_line(p, u, box[2], box[3], q)
@@ -477,11 +506,12 @@ def ruled_components(p, q, pq, box, topo, tolerance, scale, add_line_roots, a, b
             h = 1e-6
             side = pq.values([[u - h, v_mid], [u + h, v_mid]])[:, 0]
             if side[0] * side[1] > 0:
-                ends = (p.point(u, lo), p.point(u, hi))
+                ends = (p.point(u, lo), p.point(u, hi))          # a straight segment (through a cone's apex)
                 if not any(np.linalg.norm(ends[0] - e[0]) <= 1e-9 * scale for e in topo.tangent_segments):
                     topo.tangent_segments.append(ends)
                 continue
-        topo.seeds.append(p.point(u, 0.5 * (lo + hi)))
+        # a start off the apex, where the ruling is regular
+        topo.seeds.append(p.point(u, v_mid if lo < v_mid < hi else 0.5 * (lo + hi)))
 
 
 def double_root(reader, fixed, value, t):
@@ -576,7 +606,9 @@ def classify(loose, topo, scale, tolerance, keep):
         if any(np.linalg.norm(at - x) <= CLUSTER * scale for x in done):
             continue                                 # the same singular point, reached from another box
         done.append(at)
-        if float(reader.t.distance(at)) > 1e2 * tolerance:
+        if not reader.on_level(crit):
+            # a critical point off the level (a tiny loop's centre, a waist): the extremal roots seed what is
+            # there; this box's centre is a start too
             if keep(pt):
                 topo.seeds.append(pt)
             continue

@@ -134,12 +134,13 @@ def test_looper_job_writes_what_it_promises(tmp_path):
     assert main(["looper", "--out", str(out)]) == 0
     table = np.loadtxt(out / "looper_motion.csv", delimiter=",", skiprows=1)
     header = (out / "looper_motion.csv").read_text().splitlines()[0].split(",")
-    assert header[:10] == ["crank_angle", "x", "y", "z", "vx", "vy", "vz", "ax", "ay", "az"]
+    assert header[:5] == ["crank_angle_deg", "time_s", "x_mm", "y_mm", "z_mm"]
     assert table.shape[0] >= 361 and table.shape[1] == len(header)
     drive = LooperDrive.reference()
-    _, c = closed_form(drive, table[:, 0], 0)
-    assert np.max(np.abs(table[:, 1:4] - c)) < 1e-9
-    assert (out / "looper_speed.png").stat().st_size > 1000
+    _, c = closed_form(drive, np.radians(table[:, 0]), 0)
+    assert np.max(np.abs(table[:, 2:5] - c)) < 1e-9
+    for name in ("looper_speed.png", "looper_cyclogram.png", "looper_transmission.png"):
+        assert (out / name).stat().st_size > 1000
     assert not [p for p in os.listdir(out) if p.startswith(".tmp-")]
     from PIL import Image
 

@@ -25,30 +25,40 @@ def test_import_spatialkin_does_not_import_pyvista():
 
 
 def test_tube_carries_the_curves_arc_length(pair):
-    """Identity: the tube's points around curve point i carry s = curve.s[i] and lie at the tube radius
-    from it (1e-9 relative); the caps carry the end values."""
+    """Identity: the tube's points around polyline point i carry its s and lie at the tube radius from it (1e-9
+    relative); the caps carry the end values."""
     curve = pair[2][0]
     scene = Scene()
     scene.add_curve(curve, name="c", radius=0.5)
     tube = scene.meshes()["c"]
-    n, sides = len(curve), scene_module.TUBE_SIDES
+    line = scene.data("c")
+    n, sides = line.n_points, scene_module.TUBE_SIDES
+    s_line = np.asarray(line.point_data["s"])
     s = np.asarray(tube.point_data["s"])
-    assert np.array_equal(s[:n * sides].reshape(n, sides), np.repeat(curve.s[:, None], sides, axis=1))
-    assert set(s[n * sides:]) <= {curve.s[0], curve.s[-1]}
-    gap = np.linalg.norm(np.asarray(tube.points[:n * sides]).reshape(n, sides, 3) - curve.points[:, None], axis=2)
+    assert np.array_equal(s[:n * sides].reshape(n, sides), np.repeat(s_line[:, None], sides, axis=1))
+    assert set(s[n * sides:]) <= {s_line[0], s_line[-1]}
+    gap = np.linalg.norm(np.asarray(tube.points[:n * sides]).reshape(n, sides, 3) - np.asarray(line.points)[:, None],
+                         axis=2)
     np.testing.assert_allclose(gap, 0.5, rtol=1e-9)
 
 
-def test_curve_data_keeps_points_and_speed(pair):
-    curve = pair[2][1]
+def test_curve_drawn_as_a_dense_polyline_with_its_speed(pair):
+    """A traced curve is drawn by a polyline of exact curve points (on both surfaces to 1e-12) at its own arc
+    lengths, spaced by the chord height (every chord's midpoint within it of the curve), never the solver's
+    steps; a speed given at the curve's points is interpolated onto it (oracle: numpy.interp)."""
+    torus, sphere, curves = pair
+    curve = curves[1]
     speed = np.linspace(1.0, 2.0, len(curve))
     scene = Scene()
-    scene.add_curve(curve, name="c", color_by="speed", speed=speed)
+    chord = 1e-4
+    scene.add_curve(curve, name="c", color_by="speed", speed=speed, chord_tol=chord)
     data = scene.data("c")
-    assert np.array_equal(np.asarray(data.points), curve.points)
-    assert np.array_equal(np.asarray(data.point_data["speed"]), speed)
-    tube = scene.meshes()["c"]
-    assert set(np.asarray(tube.point_data["speed"])) <= set(speed)
+    pts, s = np.asarray(data.points), np.asarray(data.point_data["s"])
+    assert len(pts) > len(curve) and s[0] == 0 and abs(s[-1] - curve.length) < 1e-12
+    assert max(torus.distance(pts).max(), sphere.distance(pts).max()) < 1e-12
+    mid = curve(0.5 * (s[1:] + s[:-1]))
+    assert np.max(np.linalg.norm(mid - 0.5 * (pts[1:] + pts[:-1]), axis=1)) <= chord
+    np.testing.assert_allclose(np.asarray(data.point_data["speed"]), np.interp(s, curve.s, speed), rtol=1e-12)
 
 
 def test_path_arc_length_is_the_chord_length():
@@ -116,16 +126,17 @@ def test_export_reads_back(tmp_path, pair):
     scene = Scene()
     scene.add_surface(sphere, name="sphere", resolution=(24, 12))
     scene.add_curve(curves[0], name="loop")
+    n = scene.data("loop").n_points
     scene.export(tmp_path / "loop.vtp", name="loop")
     back = pyvista.read(tmp_path / "loop.vtp")
-    assert back.n_points == len(curves[0])
-    np.testing.assert_array_equal(np.asarray(back.point_data["s"]), curves[0].s)
+    assert back.n_points == n
+    np.testing.assert_array_equal(np.asarray(back.point_data["s"]), np.asarray(scene.data("loop").point_data["s"]))
     scene.export(tmp_path / "scene.vtm")
     multi = pyvista.read(tmp_path / "scene.vtm")
     assert list(multi.keys()) == ["sphere", "loop"]
-    assert multi["sphere"].n_points == scene.data("sphere").n_points and multi["loop"].n_points == len(curves[0])
+    assert multi["sphere"].n_points == scene.data("sphere").n_points and multi["loop"].n_points == n
     scene.export(tmp_path / "scene.vtm")                      # again: the blocks' folder is replaced
-    assert pyvista.read(tmp_path / "scene.vtm")["loop"].n_points == len(curves[0])
+    assert pyvista.read(tmp_path / "scene.vtm")["loop"].n_points == n
     scene.export(tmp_path / "sphere.ply", name="sphere")
     assert pyvista.read(tmp_path / "sphere.ply").n_points == scene.data("sphere").n_points
     scene.export(tmp_path / "tubes.ply", tubes=True)
@@ -222,3 +233,39 @@ def test_bad_input_names_the_argument(pair):
 def _motion_of_three():
     from spatialkin.mechanisms import LooperDrive
     return LooperDrive.reference().solve([0.0, 1.0, 2.0])
+
+
+def test_labelled_looper_scene_names_joints_links_and_paths(motion, testing_theme):
+    """labels=True: one label per joint, the tip, each named link and each path, placed exactly at those
+    points (oracle: geometry.looper_links); a colour bar per path in m/s (speeds = |v| x 1e-3 for mm)."""
+    from spatialkin.render import geometry as geo
+    from spatialkin.render.looper import JOINT_NAMES, LINK_NAMES, TIP_NAME
+    scene = looper_scene(motion, 30, labels=True, unit="mm", title="t", theme=testing_theme)
+    assert scene.title == "t" and scene.axes
+    names = scene.data("names")
+    labels = scene._item("names").style["labels"]
+    assert labels[:4] == list(JOINT_NAMES) and TIP_NAME in labels and set(LINK_NAMES.values()) <= set(labels)
+    links, joints = geo.looper_links(motion, 30)
+    np.testing.assert_allclose(names.points[1:4], joints[1:4], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(names.points[4], links["looper"][-1], rtol=0, atol=1e-12)
+    ball = scene._item("ball_path").style
+    assert "m/s" in ball["bar_title"] and ball["bar_position"] is not None
+    np.testing.assert_allclose(scene.data("ball_path").point_data["speed"],
+                               1e-3 * np.linalg.norm(motion.ball_velocity, axis=1), rtol=1e-15)
+    img = scene.image()
+    assert img.shape[:2] == (400, 400) and img.std() > 5.0
+
+
+def test_path_with_gaps_is_drawn_in_pieces():
+    """polyline(points, breaks): one line per piece, none across a break (oracle: the cell sizes)."""
+    from spatialkin.render.scene import polyline
+    pts = np.random.default_rng(1).normal(size=(10, 3))
+    lines = polyline(pts, breaks=[4, 9]).lines          # pieces 0-3, 4-8, and 9 alone (left out)
+    assert list(lines) == [4, 0, 1, 2, 3, 5, 4, 5, 6, 7, 8]
+    assert list(polyline(pts).lines) == [10, *range(10)]
+
+
+def test_labels_need_one_text_per_point():
+    scene = Scene()
+    with pytest.raises(ValueError, match="labels"):
+        scene.add_labels(np.zeros((2, 3)), ["one"])

@@ -1,0 +1,154 @@
+"""Exports read back: CSV, VTK polydata, DXF splines, STEP B-spline edges; looper paths as B-splines.
+Oracles: the surfaces' exact distance functions, the curve's own dense evaluation, the B-spline written."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import spatialkin as sk
+from spatialkin.export import dense_polyline, export_curves, write_csv, write_dxf, write_step, write_vtp
+from spatialkin.mechanisms import LooperDrive
+
+
+@pytest.fixture(scope="module")
+def looper_pair():
+    torus = sk.Torus(8.0, 50.0)
+    sphere = sk.Sphere(30.0, sk.Frame((6, 0, 75), sk.rotation_about((1, 0, 0), -np.pi / 2)))
+    return torus, sphere, sk.intersect(torus, sphere)
+
+
+def no_temporaries(folder):
+    return not [f for f in os.listdir(folder) if f.startswith(".tmp-")]
+
+
+def test_dense_polyline_meets_the_chord_height():
+    """A circle of radius 2 at chord height 1e-6: every chord midpoint within 1e-6 of the circle point at the
+    mid-parameter, and about pi / sqrt(2 h / r) points (no more than twice that)."""
+    def circle(t):
+        return np.stack([2 * np.cos(t), 2 * np.sin(t), 0 * t], 1)
+    x, pts = dense_polyline(circle, 0.0, 2 * math.pi, 1e-6)
+    mid = circle(0.5 * (x[1:] + x[:-1]))
+    assert np.max(np.linalg.norm(mid - 0.5 * (pts[1:] + pts[:-1]), axis=1)) <= 1e-6
+    assert len(x) <= 2 * math.pi / math.sqrt(8e-6 / 2.0) * 2
+
+
+def test_csv_and_vtp_read_back(tmp_path, looper_pair):
+    """CSV: a header with units, rows (curve, s, x, y, z) on both surfaces to 1e-12; VTP: float64 points, one
+    line cell per curve, closed lines ending on their first point, s and curve arrays."""
+    pyvista = pytest.importorskip("pyvista")
+    torus, sphere, curves = looper_pair
+    write_csv(tmp_path / "c.csv", curves, unit="mm")
+    with open(tmp_path / "c.csv") as fh:
+        assert fh.readline().strip() == "curve,s [mm],x [mm],y [mm],z [mm]"
+    rows = np.loadtxt(tmp_path / "c.csv", delimiter=",", skiprows=1)
+    assert set(rows[:, 0]) == {0.0, 1.0}
+    assert max(torus.distance(rows[:, 2:]).max(), sphere.distance(rows[:, 2:]).max()) < 1e-12
+    for k, c in enumerate(curves):
+        s = rows[rows[:, 0] == k, 1]
+        np.testing.assert_allclose(c(s), rows[rows[:, 0] == k, 2:], atol=1e-12)
+    write_vtp(tmp_path / "c.vtp", curves)
+    back = pyvista.read(tmp_path / "c.vtp")
+    assert back.points.dtype == np.float64 and back.n_lines == 2 and back.n_points == len(rows)
+    np.testing.assert_array_equal(np.asarray(back.points), rows[:, 2:])
+    np.testing.assert_array_equal(np.asarray(back.point_data["s"]), rows[:, 1])
+    lines = back.lines
+    first = lines[1:1 + lines[0]]
+    assert first[0] == first[-1]                           # closed: the line ends on its first point
+    assert no_temporaries(tmp_path)
+
+
+def test_dxf_splines_read_back(tmp_path, looper_pair):
+    """One SPLINE per curve with the B-spline's degree, knots and control points; ezdxf's own evaluation of it
+    lies within 1e-9 x scale of the curve (Curve.closest)."""
+    ezdxf = pytest.importorskip("ezdxf")
+    _, _, curves = looper_pair
+    write_dxf(tmp_path / "c.dxf", curves, tol=1e-9)
+    entities = list(ezdxf.readfile(tmp_path / "c.dxf").modelspace().query("SPLINE"))
+    assert len(entities) == 2
+    for entity, curve in zip(entities, curves):
+        sp = curve.to_bspline(1e-9)
+        assert entity.dxf.degree == 5 and len(entity.control_points) == len(sp.c)
+        np.testing.assert_allclose(np.asarray(entity.knots), sp.t, rtol=0, atol=0)
+        tool = entity.construction_tool()
+        u = np.linspace(sp.t[5], sp.t[-6], 200)
+        pts = np.array([tuple(tool.point(x)) for x in u])
+        assert np.max(curve.closest(pts)[1]) <= 1e-9 * 30.0
+    assert no_temporaries(tmp_path)
+
+
+def test_step_read_back(tmp_path, looper_pair):
+    """STEP through OpenCascade: one edge per curve, read back and sampled by BRepAdaptor, within 1e-9 x scale
+    of the curve."""
+    pytest.importorskip("OCP")
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.STEPControl import STEPControl_Reader
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+    _, _, curves = looper_pair
+    write_step(tmp_path / "c.step", curves, tol=1e-9)
+    reader = STEPControl_Reader()
+    reader.ReadFile(str(tmp_path / "c.step"))
+    reader.TransferRoots()
+    explorer = TopExp_Explorer(reader.OneShape(), TopAbs_EDGE)
+    edges = []
+    while explorer.More():
+        edges.append(BRepAdaptor_Curve(TopoDS.Edge(explorer.Current()) if hasattr(TopoDS, "Edge")
+                                       else TopoDS.Edge_s(explorer.Current())))
+        explorer.Next()
+    assert len(edges) == 2
+    for adaptor in edges:
+        u = np.linspace(adaptor.FirstParameter(), adaptor.LastParameter(), 200)
+        pts = np.array([[p.X(), p.Y(), p.Z()] for p in (adaptor.Value(x) for x in u)])
+        assert min(np.max(c.closest(pts)[1]) for c in curves) <= 1e-9 * 30.0
+    assert no_temporaries(tmp_path)
+
+
+def test_export_by_suffix_and_errors(tmp_path, looper_pair):
+    _, _, curves = looper_pair
+    export_curves(tmp_path / "a.csv", curves[0])
+    with pytest.raises(ValueError, match="suffix|end in"):
+        export_curves(tmp_path / "a.obj", curves)
+    with pytest.raises(TypeError, match="curves"):
+        export_curves(tmp_path / "a.csv", [np.zeros(3)])
+    with pytest.raises(ValueError, match="chord_tol"):
+        write_csv(tmp_path / "b.csv", curves, chord_tol=-1.0)
+    assert not os.path.exists(tmp_path / "b.csv") and no_temporaries(tmp_path)
+
+
+def test_looper_paths_as_bsplines():
+    """Ball centre and looper tip of the reference drive over a full turn: periodic splines within 1e-9 x
+    scale of the exact path (distance of spline samples to a dense exact polyline, refined by one Newton step
+    in the crank angle), and the spline at the knots equals the solved positions (Hermite data)."""
+    drive = LooperDrive.reference()
+    theta = np.linspace(0, 2 * np.pi, 721)
+    motion = drive.solve(theta)
+    scale = min(drive.torus.size, drive.sphere.size)
+    for which in ("ball", "tip"):
+        sp = motion.path_bspline(which, 1e-9)
+        assert sp.extrapolate == "periodic" and sp.deviation <= 1e-9 * scale
+        knots = np.unique(sp.t)
+        exact = drive.solve(knots)
+        ref = exact.ball_center if which == "ball" else exact.looper_tip.position
+        np.testing.assert_allclose(sp(knots), ref, atol=1e-12 * scale)
+        u = np.linspace(0, 2 * np.pi, 3001)
+        at = drive.solve(u)
+        pos = at.ball_center if which == "ball" else at.looper_tip.position
+        vel = at.ball_velocity if which == "ball" else at.looper_tip.velocity
+        approx = sp(u)
+        u_foot = u + np.einsum("ij,ij->i", approx - pos, vel) / np.einsum("ij,ij->i", vel, vel)
+        foot = drive.solve(np.mod(u_foot, 2 * np.pi))
+        foot = foot.ball_center if which == "ball" else foot.looper_tip.position
+        assert np.max(np.linalg.norm(approx - foot, axis=1)) <= 1e-9 * scale
+    with pytest.raises(ValueError, match="which"):
+        motion.path_bspline("crank")
+
+
+def test_step_without_opencascade_names_the_extra(tmp_path, looper_pair, monkeypatch):
+    """With OpenCascade missing, write_step raises ImportError naming the cad extra and writes nothing."""
+    import sys
+    monkeypatch.setitem(sys.modules, "OCP", None)
+    with pytest.raises(ImportError, match=r"spatialkin\[cad\]"):
+        write_step(tmp_path / "c.step", looper_pair[2])
+    assert not os.listdir(tmp_path)

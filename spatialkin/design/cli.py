@@ -37,6 +37,9 @@ from .looper import LooperDesign
 
 #: Keys of the [design] table.
 DESIGN_KEYS = {"free", "start", "bounds"}
+#: Keys of a looper config that the fitted geometry replaces (the start's other keys are kept).
+GEOMETRY_KEYS = {"crank_radius", "coupler_length", "rocker_length", "looper_tip", "looper_link", "branch",
+                 "crank_frame", "rocker_frame"}
 
 
 def toml_value(value):
@@ -65,7 +68,7 @@ def to_toml(config, comment=None):
 
 
 def read_targets(path):
-    """(start design, Targets) from a targets TOML file."""
+    """(start design, Targets, job settings of the start config to carry over) from a targets TOML file."""
     with open(path, "rb") as f:
         try:
             table = tomllib.load(f)
@@ -79,18 +82,21 @@ def read_targets(path):
         raise ValueError(f"{path}: [design] has unknown keys {sorted(unknown)}; allowed {sorted(DESIGN_KEYS)}")
     if "free" not in design_table:
         raise ValueError(f"{path}: [design] needs free = [parameter names]")
+    job = {}
     if "start" in design_table:
         from ..looper_job import build, load_config
         start = os.path.join(os.path.dirname(os.path.abspath(path)), design_table["start"])
         config = load_config(start)
         drive = build(config)
         design = LooperDesign.from_drive(drive, branch=int(config["branch"]))
+        with open(start, "rb") as f:      # the start's own job settings (unit, speed, step, ...) carry over
+            job = {k: v for k, v in tomllib.load(f).items() if k not in GEOMETRY_KEYS}
     else:
         design = LooperDesign.reference()
     bounds = design_table.get("bounds")
     design = LooperDesign(design.values, design_table["free"], bounds, design.crank_frame, design.looper_link,
                           design.branch)
-    return design, Targets.from_dict(table)
+    return design, Targets.from_dict(table), job
 
 
 def main_design(argv=None):
@@ -103,9 +109,9 @@ def main_design(argv=None):
     args = parser.parse_args(argv)
     out = args.out or os.path.splitext(args.targets)[0] + "_fitted.toml"
     try:
-        design, targets = read_targets(args.targets)
+        design, targets, job = read_targets(args.targets)
         fitted = design.fit(targets)
-        config = fitted.design.to_config()
+        config = fitted.design.to_config(**job)
         with atomic_path(out) as tmp:
             with open(tmp, "w", encoding="utf-8") as f:
                 f.write(to_toml(config, comment=f"looper drive fitted by spatialkin design to {args.targets}\n"

@@ -54,7 +54,7 @@ def test_start_from_a_config_and_fit_tip_points(tmp_path):
     reference = LooperDesign.reference()
     angles = np.radians([0.0, 90.0, 180.0, 270.0])
     tips = reference.sensitivities(angles, turning=False).tip
-    (tmp_path / "start.toml").write_text("crank_radius = 8.6\n")
+    (tmp_path / "start.toml").write_text("crank_radius = 8.6\nstep_deg = 0.5\n")
     text = '[design]\nfree = ["crank_radius"]\nstart = "start.toml"\n'
     for a, p in zip(np.degrees(angles), tips):
         text += f"[[tip]]\ncrank_angle_deg = {float(a)!r}\npoint = {[float(x) for x in p]!r}\n"
@@ -62,3 +62,4 @@ def test_start_from_a_config_and_fit_tip_points(tmp_path):
     assert main(["design", "--targets", str(tmp_path / "t.toml")]) == 0
     config = load_config(str(tmp_path / "t_fitted.toml"))
     assert abs(config["crank_radius"] - 8.0) < 1e-8
+    assert config["step_deg"] == 0.5                     # the start's job settings carry over

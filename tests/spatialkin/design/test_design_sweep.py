@@ -93,3 +93,13 @@ def test_progress_bar(capsys):
     pytest.importorskip("tqdm")
     sweep({"crank_radius": [8.0, 9.0]}, ("swing",), processes=0, progress=True, as_frame=False)
     assert "2/2" in capsys.readouterr().err
+
+
+def test_workers_fork_when_the_main_script_is_no_file(monkeypatch):
+    """A script piped on stdin (__main__.__file__ = '<stdin>'): a forkserver's workers would fail re-running
+    it, so the pool forks this process instead."""
+    import sys
+
+    from spatialkin.design.sweep import _context
+    monkeypatch.setattr(sys.modules["__main__"], "__file__", "<stdin>", raising=False)
+    assert _context().get_start_method() == "fork"

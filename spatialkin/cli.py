@@ -119,6 +119,9 @@ def parser():
 
 def main(argv=None):
     argv = list(sys.argv[1:] if argv is None else argv)
+    if argv[:1] == ["design"]:      # spatialkin design --targets FILE.toml (spatialkin/design/cli.py)
+        from .design.cli import main_design
+        return main_design(argv[1:])
     args = parser().parse_args(argv)
     args.argv = argv
     from numba.core import event

@@ -1,0 +1,267 @@
+"""Sweeps: evaluate thousands of looper geometries (a full crank turn each) on local processes or a Dask
+cluster; a geometry that fails is a row with the reason, never a lost run.
+
+    from spatialkin.design import LooperDesign, sweep, grid_space
+    space = grid_space(crank_radius=np.linspace(6, 10, 20), rocker_length=np.linspace(25, 35, 20))
+    table = sweep(space, ("swing", "min_transmission"), base=LooperDesign.reference())
+    table = sweep(space, ("swing",), client=distributed.Client(...))        # on a Dask cluster
+"""
+import concurrent.futures
+import itertools
+import math
+import multiprocessing
+import os
+import sys
+
+import numpy as np
+
+from .looper import LooperDesign
+from .params import PARAMETERS, check_names
+
+#: Scalar outputs a sweep can compute per geometry (angles in rad, lengths in the drive's unit, time in 1/omega).
+OUTPUTS = {
+    "swing": "max u2 - min u2 over the turn (turning points refined by Newton)",
+    "u2_min": "smallest rocker angle u2", "u2_max": "largest rocker angle u2",
+    "v2_min": "smallest rocker angle v2", "v2_max": "largest rocker angle v2",
+    "u2_max_at": "crank angle of the u2 maximum", "u2_min_at": "crank angle of the u2 minimum",
+    "min_transmission": "smallest transmission angle (sampled)",
+    "min_transmission_at": "crank angle of the smallest transmission angle",
+    "assembly_margin": "smallest assembly margin over the turn (> 0: assembles everywhere)",
+    "tip_path_length": "length of the looper tip's path over the turn (polyline of the samples)",
+    "tip_speed_max": "largest looper-tip speed", "tip_acceleration_max": "largest looper-tip acceleration",
+    "ball_speed_max": "largest ball-centre speed", "ball_acceleration_max": "largest ball-centre acceleration",
+}
+#: Crank angles sampled per geometry by default (1 deg steps, both ends).
+SWEEP_SAMPLES = 361
+#: Geometries per task sent to a worker (amortises the task overhead).
+CHUNK = 16
+#: Width of the 'reason' column (characters).
+REASON_WIDTH = 160
+
+
+def grid_space(**axes):
+    """The Cartesian product of parameter axes: {name: (M,)} with M = product of the axes' lengths."""
+    if not axes:
+        raise ValueError("grid_space needs at least one axis name=values")
+    check_names(tuple(axes), "axes")
+    values = [np.atleast_1d(np.asarray(v, dtype=float)) for v in axes.values()]
+    rows = np.array(list(itertools.product(*values)), dtype=float).reshape(-1, len(values))
+    return {name: rows[:, k] for k, name in enumerate(axes)}
+
+
+def random_space(design, n, names=None, seed=0):
+    """n geometries drawn uniformly within the design's bounds: {name: (n,)} for names (default design.free)."""
+    names = design.free if names is None else check_names(names, "names")
+    if not (isinstance(n, (int, np.integer)) and n > 0):
+        raise ValueError(f"n must be a positive integer, got {n!r}")
+    rng = np.random.default_rng(seed)
+    return {name: rng.uniform(*design.bounds[name], size=n) for name in names}
+
+
+def check_space(space):
+    """(names, values (M, K)) of a space {name: (M,)}; ValueError naming 'space'."""
+    if not isinstance(space, dict) or not space:
+        raise ValueError("space must be a non-empty dict {parameter: values (M,)}")
+    names = tuple(space)
+    unknown = [n for n in names if n not in PARAMETERS]
+    if unknown:
+        raise ValueError(f"space: unknown design parameters {unknown}; known {list(PARAMETERS)}")
+    cols = [np.atleast_1d(np.asarray(space[n], dtype=float)) for n in names]
+    if any(c.ndim != 1 or len(c) != len(cols[0]) for c in cols):
+        raise ValueError("space: every parameter needs a 1-D array of the same length")
+    return names, np.column_stack(cols)
+
+
+def evaluate(design, outputs, samples=SWEEP_SAMPLES):
+    """The scalar outputs {name: float} of one geometry (one drive.solve over the turn)."""
+    from .sensitivity import sensitivities
+    angles = np.linspace(0.0, 2 * np.pi, samples)
+    turning = any(o in ("swing", "u2_max_at", "u2_min_at", "assembly_margin") for o in outputs)
+    s = sensitivities(design, angles, free=(), turning=turning)
+    u2, v2 = s.rocker_angles.T
+    out = {}
+    for name in outputs:
+        if name == "swing":
+            out[name] = s.swing
+        elif name in ("u2_min", "u2_max", "v2_min", "v2_max"):
+            arr = u2 if name.startswith("u2") else v2
+            if name.startswith("u2") and len(s.turning_u2):
+                arr = np.concatenate([arr, s.turning_u2])
+            out[name] = float(arr.min() if name.endswith("min") else arr.max())
+        elif name in ("u2_max_at", "u2_min_at"):
+            if len(s.turning_u2) < 2:
+                out[name] = math.nan
+            else:
+                k = np.argmax(s.turning_u2) if name == "u2_max_at" else np.argmin(s.turning_u2)
+                out[name] = float(np.mod(s.turning_points[k], 2 * np.pi))
+        elif name == "min_transmission":
+            out[name] = s.min_transmission
+        elif name == "min_transmission_at":
+            out[name] = float(angles[np.argmin(s.transmission_angle)])
+        elif name == "assembly_margin":
+            out[name] = s.assembly_margin
+        elif name == "tip_path_length":
+            out[name] = float(np.sum(np.linalg.norm(np.diff(s.tip, axis=0), axis=1)))
+        else:
+            arr = {"tip_speed_max": s.tip_velocity, "tip_acceleration_max": s.tip_acceleration,
+                   "ball_speed_max": s.ball_velocity, "ball_acceleration_max": s.ball_acceleration}[name]
+            out[name] = float(np.max(np.linalg.norm(arr, axis=1)))
+    return out
+
+
+def evaluate_chunk(base, names, rows, outputs, samples):
+    """Worker task: rows (m, K) of parameter values on top of base (a dict from _portable) ->
+    list of (ok, reason, output values)."""
+    from ..frame import Frame
+    results = []
+    for row in rows:
+        try:
+            values = dict(base["values"], **dict(zip(names, map(float, row))))
+            design = LooperDesign(values, crank_frame=Frame(*base["crank_frame"]), looper_link=base["looper_link"],
+                                  branch=base["branch"])
+            out = evaluate(design, outputs, samples)
+            results.append((True, "", [out[o] for o in outputs]))
+        except Exception as err:       # a failed geometry is a row with its reason
+            results.append((False, f"{type(err).__name__}: {err}"[:REASON_WIDTH], [math.nan] * len(outputs)))
+    return results
+
+
+def _result(future, rows, width):
+    """A finished task's rows; when the task itself failed (a worker died, a cluster error), its geometries
+    become failed rows with the reason, so the rest of the run is kept."""
+    try:
+        return future.result()
+    except Exception as err:
+        reason = f"worker failed: {type(err).__name__}: {err}"[:REASON_WIDTH]
+        return [(False, reason, [math.nan] * width)] * rows
+
+
+def _portable(design):
+    return {"values": dict(design.values), "looper_link": design.looper_link, "branch": design.branch,
+            "crank_frame": (design.crank_frame.origin.tolist(), design.crank_frame.rotation.tolist())}
+
+
+def _context():
+    """Worker processes forked from a server that has imported spatialkin once (its jitted kernels loaded),
+    so a pool starts in milliseconds instead of a fresh interpreter per worker; spawn where there is no
+    forkserver. A forkserver's or spawned worker re-runs the parent's main script, so when that is no file
+    (a script piped on stdin) the workers are plain forks of this process."""
+    methods = multiprocessing.get_all_start_methods()
+    main_file = getattr(sys.modules.get("__main__"), "__file__", None)
+    if main_file is not None and not os.path.isfile(main_file) and "fork" in methods:
+        return multiprocessing.get_context("fork")
+    if "forkserver" in methods:
+        ctx = multiprocessing.get_context("forkserver")
+        ctx.set_forkserver_preload([__package__ + "._warm"])
+        return ctx
+    return multiprocessing.get_context("spawn")
+
+
+def _progress(total, enabled):
+    if enabled:
+        try:
+            from tqdm.auto import tqdm
+            return tqdm(total=total, unit="geometry", desc="sweep")
+        except ImportError:
+            pass
+    return None
+
+
+def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), client=None, base=None,
+          processes=None, samples=SWEEP_SAMPLES, chunk=CHUNK, progress=True, as_frame=None):
+    """Evaluate every geometry of a design space over a full crank turn.
+
+    Parameters
+    ----------
+    space : dict
+        {parameter name: values (M,)}: row m is one geometry, the other parameters taken from base
+        (see grid_space, random_space).
+    outputs : sequence of str
+        Names from OUTPUTS (scalars per geometry).
+    client : dask.distributed.Client, optional
+        Run the tasks on this Dask cluster; default: local processes (concurrent.futures).
+    base : LooperDesign, optional
+        The geometry the space varies (default LooperDesign.reference()).
+    processes : int, optional
+        Local worker processes (default os.cpu_count()); 0 runs in this process.
+    samples : int
+        Crank angles per geometry (a full turn, both ends).
+    chunk : int
+        Geometries per task.
+    progress : bool
+        Show a progress bar (if tqdm is installed).
+    as_frame : bool, optional
+        True: a pandas DataFrame (ValueError without pandas); False: a numpy structured array; None (default):
+        a DataFrame when pandas is installed, else the structured array.
+
+    Returns
+    -------
+    numpy structured array or pandas.DataFrame (M rows)
+        The swept parameters, the outputs, 'ok' (bool) and 'reason' (str, empty when ok).
+    """
+    names, rows = check_space(space)
+    outputs = tuple([outputs] if isinstance(outputs, str) else outputs)
+    bad = [o for o in outputs if o not in OUTPUTS]
+    if bad or not outputs:
+        raise ValueError(f"outputs: unknown {bad}; known {sorted(OUTPUTS)}")
+    if not (isinstance(samples, (int, np.integer)) and samples >= 3):
+        raise ValueError(f"samples must be an integer >= 3, got {samples!r}")
+    if not (isinstance(chunk, (int, np.integer)) and chunk >= 1):
+        raise ValueError(f"chunk must be a positive integer, got {chunk!r}")
+    base = LooperDesign.reference() if base is None else base
+    if not isinstance(base, LooperDesign):
+        raise ValueError(f"base must be a LooperDesign, got {type(base).__name__}")
+    portable = _portable(base)
+    chunks = [rows[i:i + chunk] for i in range(0, len(rows), chunk)]
+    args = (portable, names)
+    done = [None] * len(chunks)
+    bar = _progress(len(rows), progress)
+    try:
+        if client is not None:
+            from distributed import as_completed
+            futures = client.map(evaluate_chunk, [args[0]] * len(chunks), [names] * len(chunks), chunks,
+                                 [outputs] * len(chunks), [samples] * len(chunks), pure=False)
+            index = {f.key: k for k, f in enumerate(futures)}
+            for future in as_completed(futures):
+                k = index[future.key]
+                done[k] = _result(future, len(chunks[k]), len(outputs))
+                if bar is not None:
+                    bar.update(len(chunks[k]))
+        elif processes == 0:
+            for k, c in enumerate(chunks):
+                done[k] = evaluate_chunk(portable, names, c, outputs, samples)
+                if bar is not None:
+                    bar.update(len(c))
+        else:
+            if processes is not None and not (isinstance(processes, (int, np.integer)) and processes > 0):
+                raise ValueError(f"processes must be a positive integer or 0, got {processes!r}")
+            workers = processes or os.cpu_count() or 1
+            with concurrent.futures.ProcessPoolExecutor(workers, mp_context=_context()) as pool:
+                futures = {pool.submit(evaluate_chunk, portable, names, c, outputs, samples): k
+                           for k, c in enumerate(chunks)}
+                for future in concurrent.futures.as_completed(futures):
+                    k = futures[future]
+                    done[k] = _result(future, len(chunks[k]), len(outputs))
+                    if bar is not None:
+                        bar.update(len(chunks[k]))
+    finally:
+        if bar is not None:
+            bar.close()
+    results = [r for part in done for r in part]
+    dtype = [(n, "f8") for n in names] + [(o, "f8") for o in outputs] + [("ok", "?"), ("reason", f"U{REASON_WIDTH}")]
+    table = np.zeros(len(rows), dtype=dtype)
+    for k, n in enumerate(names):
+        table[n] = rows[:, k]
+    for m, (ok, reason, values) in enumerate(results):
+        table["ok"][m], table["reason"][m] = ok, reason
+        for o, v in zip(outputs, values):
+            table[o][m] = v
+    if as_frame is False:
+        return table
+    try:
+        import pandas
+    except ImportError:
+        if as_frame:
+            raise ValueError("as_frame=True needs pandas (pip install pandas)") from None
+        return table
+    return pandas.DataFrame.from_records(table)

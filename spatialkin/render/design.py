@@ -1,0 +1,110 @@
+"""Pictures of spatialkin.design's results with matplotlib (presentation layer): the tip-path tolerance
+envelope, and a sweep's outputs over two swept parameters."""
+import numpy as np
+
+#: Half-width of the drawn envelope in standard deviations.
+ENVELOPE_SIGMAS = 3.0
+
+
+def _figure(size):
+    """A matplotlib Figure outside pyplot (no global state, no backend switch; notebooks display it)."""
+    from matplotlib.figure import Figure
+    return Figure(figsize=size)
+
+
+def path_plane(points):
+    """Two orthonormal axes (3,), (3,) spanning the plane that fits the points (N, 3) best (PCA)."""
+    centred = points - points.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    return vt[0], vt[1]
+
+
+def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS):
+    """The looper tip's path with its tolerance envelope: left, the path in its best-fit plane with the
+    Monte-Carlo paths and the linear +-sigmas band (normal to the path, in that plane); right, the RMS
+    deviation of the tip against the crank angle, linear and Monte-Carlo.
+
+    Parameters
+    ----------
+    result : spatialkin.design.tolerance.ToleranceResult
+    path : str, optional
+        Write a PNG there (atomically); otherwise only return the figure.
+    sigmas : float
+        Half-width of the envelope in standard deviations.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from ..io import atomic_path
+    e1, e2 = path_plane(result.tip)
+    centre = result.tip.mean(axis=0)
+    xy = np.column_stack([(result.tip - centre) @ e1, (result.tip - centre) @ e2])
+    tangent = np.gradient(xy, axis=0)
+    normal2 = np.column_stack([-tangent[:, 1], tangent[:, 0]])
+    normal2 /= np.linalg.norm(normal2, axis=1, keepdims=True)
+    normal3 = normal2[:, :1] * e1 + normal2[:, 1:] * e2                           # (N, 3)
+    sigma_n = np.sqrt(np.einsum("ni,nij,nj->n", normal3, result.tip_covariance, normal3))
+    fig = _figure((11, 4.6))
+    ax, ax2 = fig.subplots(1, 2)
+    for tips in result.mc_tips[:100]:
+        ax.plot((tips - centre) @ e1, (tips - centre) @ e2, color="0.75", lw=0.5)
+    ax.plot(*xy.T, color="C0", lw=1.5, label="nominal tip path")
+    for sign in (1, -1):
+        band = xy + sign * sigmas * sigma_n[:, None] * normal2
+        ax.plot(*band.T, color="C3", lw=1.0, ls="--",
+                label=f"linear ±{sigmas:g}σ envelope" if sign == 1 else None)
+    ax.plot([], [], color="0.75", lw=0.5, label=f"Monte-Carlo ({len(result.mc_tips)})")
+    ax.set_aspect("equal")
+    ax.set_xlabel("along the path's main axis")
+    ax.set_ylabel("across")
+    ax.legend(loc="best", fontsize=8)
+    ax.set_title("looper tip path (best-fit plane)")
+    deg = np.degrees(result.crank_angles)
+    ax2.plot(deg, result.tip_rms_linear, color="C3", label="linear (sensitivities)")
+    ax2.plot(deg, result.tip_rms_mc, color="k", ls=":", label="Monte-Carlo")
+    ax2.set_xlabel("crank angle u1 [deg]")
+    ax2.set_ylabel("RMS tip deviation")
+    ax2.set_xlim(0, 360)
+    ax2.grid(True, alpha=0.3)
+    ax2.legend(fontsize=8)
+    ax2.set_title("how far the tip strays")
+    fig.tight_layout()
+    if path is not None:
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=100, format="png")
+    return fig
+
+
+def sweep_figure(table, x, y, output, path=None):
+    """An output of a sweep over two swept parameters as a scatter coloured by the output; failed geometries
+    as crosses.
+
+    Parameters
+    ----------
+    table : numpy structured array or pandas.DataFrame (from spatialkin.design.sweep)
+    x, y, output : str
+        Column names.
+    path : str, optional
+        Write a PNG there (atomically).
+    """
+    from ..io import atomic_path
+    for name in (x, y, output):
+        if name not in (table.dtype.names if hasattr(table, "dtype") and table.dtype.names else table.columns):
+            raise ValueError(f"{name!r} is not a column of the table")
+    cols = {k: np.asarray(table[k]) for k in (x, y, output, "ok")}
+    ok = cols["ok"].astype(bool)
+    fig = _figure((6, 4.6))
+    ax = fig.subplots()
+    sc = ax.scatter(cols[x][ok], cols[y][ok], c=cols[output][ok], s=18, cmap="viridis")
+    ax.scatter(cols[x][~ok], cols[y][~ok], marker="x", color="C3", s=14, label="failed")
+    fig.colorbar(sc, ax=ax, label=output)
+    ax.set_xlabel(x)
+    ax.set_ylabel(y)
+    if np.any(~ok):
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    if path is not None:
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=100, format="png")
+    return fig

@@ -1,0 +1,65 @@
+"""spatialkin design --targets FILE.toml writes a config the main job accepts, whose drive meets the targets."""
+import math
+
+import numpy as np
+
+from spatialkin.cli import main
+from spatialkin.design import LooperDesign
+from spatialkin.looper_job import build, load_config
+
+TARGETS = """
+[design]
+free = ["crank_radius", "rocker_length", "rocker_y", "rocker_rz"]
+[design.bounds]
+crank_radius = [5.0, 12.0]
+
+[rocker]
+swing_deg = 40.0
+u2_max_at_deg = 5.0
+u2_min_at_deg = 185.0
+
+[limits]
+min_transmission_deg = 60.0
+"""
+
+
+def test_design_command_writes_a_config_the_main_job_accepts(tmp_path, capsys):
+    path = tmp_path / "targets.toml"
+    path.write_text(TARGETS)
+    out = tmp_path / "fitted.toml"
+    assert main(["design", "--targets", str(path), "--out", str(out)]) == 0
+    assert "wrote" in capsys.readouterr().out
+    config = load_config(str(out))
+    design = LooperDesign.from_drive(build(config))
+    turn = design.sensitivities(np.linspace(0, 2 * np.pi, 721), turning=True)
+    assert abs(math.degrees(turn.swing) - 40.0) < 1e-8
+    u2 = turn.turning_u2
+    assert abs(math.remainder(math.degrees(turn.turning_points[np.argmax(u2)]) - 5.0, 360)) < 1e-8
+    assert abs(math.remainder(math.degrees(turn.turning_points[np.argmin(u2)]) - 185.0, 360)) < 1e-8
+    assert math.degrees(turn.min_transmission) > 60.0 - 0.05
+    assert not list(tmp_path.glob(".tmp-*"))              # written atomically
+
+
+def test_bad_targets_file_is_an_error_naming_it(tmp_path, capsys):
+    path = tmp_path / "targets.toml"
+    path.write_text('[design]\nfree = ["crank"]\n[rocker]\nswing_deg = 30.0\n')
+    assert main(["design", "--targets", str(path)]) == 2
+    assert "free" in capsys.readouterr().err
+    assert not (tmp_path / "targets_fitted.toml").exists()
+
+
+def test_start_from_a_config_and_fit_tip_points(tmp_path):
+    """The start is a looper config with a wrong crank radius; tip points of the reference drive bring it
+    back (1e-8)."""
+    reference = LooperDesign.reference()
+    angles = np.radians([0.0, 90.0, 180.0, 270.0])
+    tips = reference.sensitivities(angles, turning=False).tip
+    (tmp_path / "start.toml").write_text("crank_radius = 8.6\nstep_deg = 0.5\n")
+    text = '[design]\nfree = ["crank_radius"]\nstart = "start.toml"\n'
+    for a, p in zip(np.degrees(angles), tips):
+        text += f"[[tip]]\ncrank_angle_deg = {float(a)!r}\npoint = {[float(x) for x in p]!r}\n"
+    (tmp_path / "t.toml").write_text(text)
+    assert main(["design", "--targets", str(tmp_path / "t.toml")]) == 0
+    config = load_config(str(tmp_path / "t_fitted.toml"))
+    assert abs(config["crank_radius"] - 8.0) < 1e-8
+    assert config["step_deg"] == 0.5                     # the start's job settings carry over

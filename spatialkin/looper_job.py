@@ -309,7 +309,9 @@ def run(out_dir, config_path=None, echo=print):
              "job": time.perf_counter() - t0}
     with atomic_path(paths["looper_run.json"]) as tmp:
         with open(tmp, "w") as f:
-            json.dump(record(config, drive, motion, analysis, found, times), f, indent=1)
+            rec = record(config, drive, motion, analysis, found, times)
+            rec["files"] = ["looper_motion.csv", *written]         # what this run wrote (STEP needs the extra)
+            json.dump(rec, f, indent=1)
     echo(f"time: solve {1e3 * t_solve:.1f} ms, figures {t_fig:.2f} s, 3-D picture {t_picture:.2f} s, CAD paths "
          f"{t_cad:.2f} s, whole job {time.perf_counter() - t0:.2f} s")
     echo(f"wrote {', '.join(os.path.join(out_dir, n) for n in ['looper_motion.csv', 'looper_run.json'] + written)}")

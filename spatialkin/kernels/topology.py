@@ -143,6 +143,16 @@ def _put(arr, row, U, V):
 
 
 @jit
+def _record(out, kinds, count, U, V, kind):
+    """Write record `count` (the box U x V and its kind); False when out is full."""
+    if count >= out.shape[0]:
+        return False
+    _put(out, count, U, V)
+    kinds[count] = kind
+    return True
+
+
+@jit
 def _mid(x):
     return 0.5 * (x[0] + x[1])
 
@@ -203,10 +213,8 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             k = _krawczyk_row(y00, y01, mu, gm, phim, gu, gv, j10, j11, dU, dV, 0)
             l = _krawczyk_row(y10, y11, mv, gm, phim, gu, gv, j10, j11, dU, dV, 1)
             if k[0] > U[0] and k[1] < U[1] and l[0] > V[0] and l[1] < V[1]:
-                if count >= out.shape[0]:
+                if not _record(out, kinds, count, k, l, VERIFIED):
                     return count, OVERFLOW, boxes
-                _put(out, count, k, l)
-                kinds[count] = VERIFIED
                 count += 1
                 continue
             ku = intersect(k, U)
@@ -228,10 +236,8 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         tiny = (ru <= coarse and rv <= coarse and contains_zero(gm)
                 and abs(a00) * (U[1] - U[0]) + abs(a01) * (V[1] - V[0]) <= FLAT * (gm[1] - gm[0]))
         if (ru <= 1.0 and rv <= 1.0) or tiny:
-            if count >= out.shape[0]:
+            if not _record(out, kinds, count, U, V, UNRESOLVED):
                 return count, OVERFLOW, boxes
-            _put(out, count, U, V)
-            kinds[count] = UNRESOLVED
             count += 1
             continue
         if top + 2 > STACK:

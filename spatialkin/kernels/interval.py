@@ -26,7 +26,6 @@ natural and centred forms).
 """
 import math
 
-import numpy as np
 
 from .._jit import jit
 from .surfaces import CONE, CYLINDER, KIND, ORIGIN, P0, P1, PLANE, ROT, SPHERE, TORUS

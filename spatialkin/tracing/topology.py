@@ -142,14 +142,14 @@ def choose_roles(a, b, axis, ruled):
     return best, (b if best is a else a), mode
 
 
-def aligned(p, axis, scale):
+def aligned(p, axis):
     """P re-placed so that its local z is the common axis (a sphere only: the others already turn about z)."""
     if not isinstance(p, Sphere):
         return p
     return p.with_frame(Frame.from_z_axis(p.frame.origin, axis[1]))
 
 
-def sphere_chart(p, q, scale):
+def sphere_chart(p, q):
     """A sphere P re-charted so that its poles are as far from Q as the frame's axes allow (fewer rings)."""
     best, score = p, -1.0
     for k in range(3):
@@ -303,9 +303,9 @@ def topology(a, b, scale, tolerance):
     p_user, q, mode = choose_roles(a, b, axis, ruled)
     if mode == "ruled" and balls[id(p_user)] is None and balls[id(q)] is None:
         raise ValueError("intersect needs a bounded pair")
-    p = aligned(p_user, axis, scale) if mode == "coaxial" else p_user
+    p = aligned(p_user, axis) if mode == "coaxial" else p_user
     if mode == "general" and isinstance(p, Sphere):
-        p = sphere_chart(p, q, scale)
+        p = sphere_chart(p, q)
     topo = Topology(P=p_user, Q=q, mode=mode)
     box, u_periodic, v_periodic = domain(p, balls[id(q)])
     if not box[0] < box[1] or not box[2] < box[3]:
@@ -344,7 +344,7 @@ def topology(a, b, scale, tolerance):
     if mode == "coaxial":
         coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index)
     elif mode == "ruled":
-        ruled_components(p, q, pq, box, topo, tolerance, scale, add_line_roots, a, b)
+        ruled_components(p, q, pq, box, topo, scale)
     else:
         # edges of P's trim (not the limits set by Q's ball: no root lies there)
         (u0, u1), (v0, v1) = p.u_range, p.v_range
@@ -384,7 +384,7 @@ def topology(a, b, scale, tolerance):
             if float(p.distance(apex)) <= 1e3 * tolerance and qp.on_level((0.0, v)):
                 topo.apexes.append(apex)
         # Q's trim edges, as curves on Q where F_P = 0
-        q_edges(q, p, qp, balls[id(p_user)], topo, add_line_roots, q_index)
+        q_edges(q, qp, balls[id(p_user)], add_line_roots, q_index)
         # closed loops inside P's open domain
         # (less the thin bands round apexes on Q: a branch through the apex crosses the ring at the band's edge;
         # inside the band g and the extremal condition may vanish all along the apex line)
@@ -395,7 +395,7 @@ def topology(a, b, scale, tolerance):
                 if keep(pt):
                     topo.seeds.append(pt)
             loose += [(pq, uv) for uv in unresolved]
-    classify(loose, topo, scale, tolerance, keep)
+    classify(loose, topo, scale, keep)
     topo.seconds = time.perf_counter() - t0
     return topo
 
@@ -420,7 +420,7 @@ def place_seams(reader, box, u_periodic, v_periodic, apexes):
         box[2 * k], box[2 * k + 1] = value, value + 2 * math.pi
 
 
-def q_edges(q, p, qp, p_ball, topo, add_line_roots, q_index):
+def q_edges(q, qp, p_ball, add_line_roots, q_index):
     """Roots of F_P on the trim edges of Q (a trimmed plane's sides, a cylinder's or cone's rims)."""
     (u0, u1), (v0, v1) = q.u_range, q.v_range
     if isinstance(q, Plane):
@@ -488,10 +488,10 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
         if inside:
             topo.seeds.append(inside[0])
     if q_rim:
-        q_edges(q, p, Reader(q, p), bounding_ball(p), topo, add_line_roots, q_index)
+        q_edges(q, Reader(q, p), bounding_ball(p), add_line_roots, q_index)
 
 
-def ruled_components(p, q, pq, box, topo, tolerance, scale, add_line_roots, a, b):
+def ruled_components(p, q, pq, box, topo, scale):
     """A cylinder or cone P and a surface that respects its rulings meet in rulings u = const of P (straight
     segments, through the apex for a cone): the roots of g on one cross-section. Each line is clipped to both trims; a simple root is traced, a multiple root where g keeps
     its sign is a line of tangency."""
@@ -588,7 +588,7 @@ def inside_trims(surface, point, tolerance):
     return v0 - slack <= v <= v1 + slack
 
 
-def classify(loose, topo, scale, tolerance, keep):
+def classify(loose, topo, scale, keep):
     """Unresolved boxes: each cluster is a singular point of the level (a contact, a node, a degenerate point)
     or a double root on a line; contacts are kept, nodes seed their four arms, the rest seed where they are."""
     clusters, done = [], []

@@ -48,6 +48,9 @@ from .placement import bounding_ball, check_not_coincident, common_axis, ruled_a
 DIRECTION = 0.3091
 #: Smallest box width, relative to the coordinates' magnitude in parameter units (a few hundred ulps).
 MIN_WIDTH_ULPS = 256.0
+#: Points of a searched line probed first: where g is zero within round-off at all of them, the line itself
+#: lies on the other surface (it is not searched, it is a piece of the curve).
+LINE_PROBES = 9
 #: Widths up to this fraction of the searched range stop bisecting where g is within round-off of zero at the
 #: midpoint (near a multiple root, round-off hides the rest: about sqrt(eps) of the range).
 COARSE = 1e-7
@@ -328,6 +331,13 @@ def topology(a, b, scale, tolerance):
         return inside_trims(a, point, tolerance) and inside_trims(b, point, tolerance)
 
     def add_line_roots(reader, fixed, value, t_lo, t_hi, name, surf_index, edge):
+        along = np.linspace(t_lo, t_hi, LINE_PROBES)
+        probes = [(t, value) if fixed == 1 else (value, t) for t in along]
+        if all(reader.on_level(uv) for uv in probes):
+            # the whole line lies on the other surface (a patch's edge in the other plane, a rim on it): it
+            # is a piece of the intersection itself; starts on it, inside both trims, trace it
+            topo.seeds += [pt for pt in (reader.s.point(*uv) for uv in probes[1:-1]) if keep(pt)]
+            return np.empty(0), np.empty(0)
         roots, unresolved = reader.line(fixed, value, t_lo, t_hi, topo, name)
         for t in roots:
             uv = (t, value) if fixed == 1 else (value, t)

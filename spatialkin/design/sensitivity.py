@@ -290,12 +290,15 @@ def turning_outputs(drive, closure, jets):
     u2 = jets[2]
     rate = u2.d_du(1)
     nfree = len(closure.free)
-    i = np.nonzero(rate[:-1] * rate[1:] < 0)[0]
-    if not len(i):
+    # sign changes between consecutive samples where the rate is not exactly zero; a sample where it is (a
+    # turning point right on a sample, as a fit to a target timing puts it) lies inside such a bracket
+    nz = np.nonzero(rate)[0]
+    j = np.nonzero(rate[nz[:-1]] * rate[nz[1:]] < 0)[0]
+    if not len(j):
         empty = np.empty((0, nfree))
         return dict(turning_points=np.empty(0), d_turning_points=empty, turning_u2=np.empty(0),
                     d_turning_u2=empty, swing=float("nan"), d_swing=np.full(nfree, np.nan))
-    near = np.where(np.abs(rate[i]) < np.abs(rate[i + 1]), i, i + 1)
+    near = np.array([a + int(np.argmin(np.abs(rate[a:b + 1]))) for a, b in zip(nz[j], nz[j + 1])])
     ys = np.stack([j.value[near] for j in jets], axis=-1)
     tangent = np.stack([j.d_du(1)[near] for j in jets], axis=-1)
     curvature = np.stack([j.d_du(2)[near] for j in jets], axis=-1)

@@ -19,7 +19,7 @@ def path_plane(points):
     return vt[0], vt[1]
 
 
-def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS):
+def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS, unit="mm"):
     """The looper tip's path with its tolerance envelope: left, the path in its best-fit plane with the
     Monte-Carlo paths and the linear +-sigmas band (normal to the path, in that plane); right, the RMS
     deviation of the tip against the crank angle, linear and Monte-Carlo.
@@ -31,6 +31,8 @@ def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS):
         Write a PNG there (atomically); otherwise only return the figure.
     sigmas : float
         Half-width of the envelope in standard deviations.
+    unit : str
+        The design's length unit, for the labels.
 
     Returns
     -------
@@ -56,15 +58,15 @@ def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS):
                 label=f"linear ±{sigmas:g}σ envelope" if sign == 1 else None)
     ax.plot([], [], color="0.75", lw=0.5, label=f"Monte-Carlo ({len(result.mc_tips)})")
     ax.set_aspect("equal")
-    ax.set_xlabel("along the path's main axis")
-    ax.set_ylabel("across")
+    ax.set_xlabel(f"along the path's main axis [{unit}]")
+    ax.set_ylabel(f"across [{unit}]")
     ax.legend(loc="best", fontsize=8)
     ax.set_title("looper tip path (best-fit plane)")
     deg = np.degrees(result.crank_angles)
     ax2.plot(deg, result.tip_rms_linear, color="C3", label="linear (sensitivities)")
     ax2.plot(deg, result.tip_rms_mc, color="k", ls=":", label="Monte-Carlo")
     ax2.set_xlabel("crank angle u1 [deg]")
-    ax2.set_ylabel("RMS tip deviation")
+    ax2.set_ylabel(f"RMS tip deviation [{unit}]")
     ax2.set_xlim(0, 360)
     ax2.grid(True, alpha=0.3)
     ax2.legend(fontsize=8)
@@ -76,7 +78,22 @@ def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS):
     return fig
 
 
-def sweep_figure(table, x, y, output, path=None):
+#: Columns of a sweep table that are angles (radians in the table, drawn in degrees).
+ANGLES = {"swing", "u2_min", "u2_max", "v2_min", "v2_max", "u2_max_at", "u2_min_at", "min_transmission",
+          "min_transmission_at", "rocker_rx", "rocker_ry", "rocker_rz"}
+#: Columns that are rates at the design's omega (1 rad/s unless set): per second.
+RATES = {"tip_speed_max": "/s", "ball_speed_max": "/s", "tip_acceleration_max": "/s^2",
+         "ball_acceleration_max": "/s^2"}
+
+
+def _with_unit(name, values, unit):
+    """(values to draw, axis label with its unit) of a sweep column."""
+    if name in ANGLES:
+        return np.degrees(values), f"{name} [deg]"
+    return values, f"{name} [{unit}{RATES.get(name, '')}]"
+
+
+def sweep_figure(table, x, y, output, path=None, unit="mm"):
     """An output of a sweep over two swept parameters as a scatter coloured by the output; failed geometries
     as crosses.
 
@@ -84,9 +101,11 @@ def sweep_figure(table, x, y, output, path=None):
     ----------
     table : numpy structured array or pandas.DataFrame (from spatialkin.design.sweep)
     x, y, output : str
-        Column names.
+        Column names (angles drawn in degrees).
     path : str, optional
         Write a PNG there (atomically).
+    unit : str
+        The design's length unit, for the labels.
     """
     from ..io import atomic_path
     for name in (x, y, output):
@@ -96,11 +115,12 @@ def sweep_figure(table, x, y, output, path=None):
     ok = cols["ok"].astype(bool)
     fig = _figure((6, 4.6))
     ax = fig.subplots()
-    sc = ax.scatter(cols[x][ok], cols[y][ok], c=cols[output][ok], s=18, cmap="viridis")
-    ax.scatter(cols[x][~ok], cols[y][~ok], marker="x", color="C3", s=14, label="failed")
-    fig.colorbar(sc, ax=ax, label=output)
-    ax.set_xlabel(x)
-    ax.set_ylabel(y)
+    (xs, x_label), (ys, y_label), (cs, c_label) = (_with_unit(k, cols[k], unit) for k in (x, y, output))
+    sc = ax.scatter(xs[ok], ys[ok], c=cs[ok], s=18, cmap="viridis")
+    ax.scatter(xs[~ok], ys[~ok], marker="x", color="C3", s=14, label="failed")
+    fig.colorbar(sc, ax=ax, label=c_label)
+    ax.set_xlabel(x_label)
+    ax.set_ylabel(y_label)
     if np.any(~ok):
         ax.legend(fontsize=8)
     fig.tight_layout()

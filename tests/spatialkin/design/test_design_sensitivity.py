@@ -153,3 +153,19 @@ def test_turning_points_need_increasing_angles(design):
     with pytest.raises(ValueError, match="crank_angles"):
         design.sensitivities(ANGLES[::-1])
     design.sensitivities(ANGLES[::-1][:5], turning=False)
+
+
+def test_turning_point_right_on_a_sample_is_found():
+    """A fit to target timings puts a turning point exactly on a sampled crank angle (u2' = 0.0 there); the swing
+    still comes from both turning points and matches an independent fine solve of the drive (1e-9 rad)."""
+    import math
+    from spatialkin.design import LooperDesign, Targets
+    from spatialkin.design.sensitivity import sensitivities
+    design = LooperDesign.reference(free=("crank_radius", "rocker_length", "rocker_y", "rocker_rz"))
+    fitted = design.fit(Targets(swing=math.radians(40.0), timing=np.radians([5.0, 185.0])))
+    d = fitted.design.replace(crank_radius=8.0, rocker_length=31.0)
+    turn = sensitivities(d, np.linspace(0.0, 2 * np.pi, 361), free=(), turning=True)
+    assert len(turn.turning_points) == 2
+    motion = d.drive().solve(np.radians(np.arange(0.0, 360.0001, 0.01)))
+    u2 = motion.rocker_angles[:, 0]
+    assert abs(turn.swing - (u2.max() - u2.min())) < 1e-9

@@ -18,7 +18,7 @@ from scipy.integrate import solve_ivp
 from ..kernels import curve as kc
 from ..kernels import dopri as kd
 from ..kernels import surfaces as ks
-from .segments import (EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, BudgetExceeded, Segment, StepStates,
+from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, BudgetExceeded, Segment, StepStates,
                        area_flag, budgeted, charts_at, finite_bounds, newton_fixed, project_state)
 from .singular import APEX_GUARD, closes_within_jump, jump_across, take_jump
 
@@ -105,9 +105,9 @@ def make_events(a, b, settings, sign, start, direction, s_arm):
     events.append(minimum)
     kinds.append(("minimum", None))
 
-    for k, j, idx, bound, lower in finite_bounds(a, b):
-        def edge(s, y, *_, idx=idx, bound=bound, lower=lower):
-            return y[idx] - bound if lower else bound - y[idx]
+    for k, j, idx, bound, lower, slack in finite_bounds(a, b):
+        def edge(s, y, *_, idx=idx, bound=bound, lower=lower, slack=slack):
+            return (y[idx] - bound if lower else bound - y[idx]) + slack
         edge.terminal, edge.direction = True, -1
         events.append(edge)
         kinds.append(("boundary", (k, j)))
@@ -139,11 +139,11 @@ def compiled_segment(a, b, y, sign, settings, start, direction, s_arm, t_bound):
     """One segment by the compiled integrator over local arc length [0, t_bound], the closure armed past s_arm:
     (status, ts, ys (n, 4), hs, qs, nfev), see kd.dopri_segment."""
     lo, hi = np.full(4, -np.inf), np.full(4, np.inf)
-    for _, _, idx, bound, lower in finite_bounds(a, b):
+    for _, _, idx, bound, lower, slack in finite_bounds(a, b):
         if lower:
-            lo[idx] = max(lo[idx], bound)
+            lo[idx] = max(lo[idx], bound - slack)
         else:
-            hi[idx] = min(hi[idx], bound)
+            hi[idx] = min(hi[idx], bound + slack)
     atol = settings.atol
     watch = HANDOFF_MARGIN * max(WATCH_BELOW, settings.singular_tol)
     return kd.dopri_segment(np.ascontiguousarray(y, dtype=float), a, b, float(sign), settings.pullback,
@@ -155,12 +155,13 @@ def compiled_segment(a, b, y, sign, settings, start, direction, s_arm, t_bound):
 
 
 def at_outer_edge(a, b, y, sign):
-    """True where y lies on (or past) an edge of a trimmed surface and the direction of travel leaves it."""
+    """True where y lies on (or past) an edge of a trimmed surface and the direction of travel leaves it (a curve
+    running along the edge does not leave it)."""
     dy = kc.dragilev_rhs(0.0, y, a, b, sign, 0.0)
-    for _, _, idx, bound, lower in finite_bounds(a, b):
+    for k, _, idx, bound, lower, _ in finite_bounds(a, b):
         inside = y[idx] - bound if lower else bound - y[idx]
         rate = dy[idx] if lower else -dy[idx]
-        if inside <= EDGE_TOL * max(1.0, abs(bound)) and rate < 0:
+        if inside <= EDGE_TOL * max(1.0, abs(bound)) and rate < -EDGE_RATE * np.hypot(dy[2 * k], dy[2 * k + 1]):
             return True
     return False
 

@@ -15,6 +15,10 @@ DUPLICATE_SPACING = 1e-9
 #: the interpolated one has strayed (to another branch, or off through a degenerate chart): the interpolated
 #: point on the chords through the node is used instead (within about jump^2 x curvature of the branches).
 JUMP_STRAY = 0.5
+#: ... or farther than this fraction of its distance from the node passed (it went to the other branch).
+NODE_STRAY = 0.2
+#: ... and within this fraction of the jump from the node, the branch is interpolated (see Curve._jump_points).
+NODE_ANCHOR = 0.05
 #: Newton steps in arc length refining the nearest samples in Curve.closest, and how many are refined.
 CLOSEST_NEWTON_STEPS = 4
 CLOSEST_CANDIDATES = 6
@@ -133,35 +137,85 @@ class Curve:
         params = np.empty((s.size, 4)) if with_params else None
         for mask, span, y in pieces:
             p, t, st = points[mask], tangents[mask], status[mask]
-            jump = bool(np.any(span.seg.normal))
-            if jump:                      # across a node or an apex: its two chords, if Newton strays
-                guess = self._jump_chords(span, s[mask])
-            kc.project_many(y, span.seg.a, span.seg.b, span.seg.normal, self._gap_tol, NEWTON_MAX_ITER, p, t, st)
-            if jump:
-                stray = (st < 0) | (np.linalg.norm(p - guess, axis=1) > JUMP_STRAY * (span.hi - span.lo))
-                p[stray] = guess[stray]
-                t[stray] = span.seg.normal / np.linalg.norm(span.seg.normal)
+            if np.any(span.seg.normal):   # across a node or an apex
+                self._jump_points(span, s[mask], y, p, t, st)
+            else:
+                kc.project_many(y, span.seg.a, span.seg.b, span.seg.normal, self._gap_tol, NEWTON_MAX_ITER, p, t, st)
             points[mask], tangents[mask], status[mask] = p, t * span.flip * span.seg.sign, st
             if with_params:
                 params[mask] = user_params(self.surfaces, y, p, span.seg.a, span.seg.b)
         return s, points, tangents, params
 
+    def _jump_points(self, span, s, y, p, t, st):
+        """Points of a jump span (across a node or an apex) at arc lengths s, written to y, p, t, st: Newton from
+        the chords through the node, in the plane normal to the chord of each side (the branch's own side of
+        the node: the other branch crosses that plane about |s - s_node| x sin(crossing angle) away). A point
+        farther than JUMP_STRAY x jump from its chord point (a degenerate chart at an apex), or than NODE_STRAY
+        x its distance from the node (the other branch, where Newton's system is singular), has strayed: the
+        chord point stands for it. Within NODE_ANCHOR x jump of the node, where Newton's error grows like
+        round-off / distance, the branch is the parabola through the node and two Newton points farther out."""
+        a, b = span.seg.a, span.seg.b
+        guess, side, chords, near, node = self._jump_chords(span, s)
+        set_states(y, guess, a, b)
+        self._project_sides(y, a, b, side, chords, p, t, st)
+        moved = np.linalg.norm(p - guess, axis=1)
+        stray = (st < 0) | (moved > JUMP_STRAY * (span.hi - span.lo)) | (moved > NODE_STRAY * near)
+        p[stray] = guess[stray]
+        t[stray] = chords[side[stray]]
+        anchor = NODE_ANCHOR * (span.hi - span.lo)
+        close = near < anchor
+        if node is not None and close.any():
+            for half in np.unique(side[close]):
+                rows = close & (side == half)
+                sign = 1.0 if half else -1.0
+                at = node + sign * chords[half] * np.array([[anchor], [2.0 * anchor]])
+                ya = np.repeat(y[rows][:1], 2, axis=0)
+                set_states(ya, at, a, b)
+                pa, ta, sa = np.empty((2, 3)), np.empty((2, 3)), np.empty(2, np.int64)
+                kc.project_many(ya, a, b, chords[half], self._gap_tol, NEWTON_MAX_ITER, pa, ta, sa)
+                if np.any(sa < 0):
+                    continue
+                r = near[rows][:, None] / anchor           # the parabola node + c1 r + c2 r^2 through pa at 1, 2
+                c2 = 0.5 * (pa[1] - node) - (pa[0] - node)
+                c1 = pa[0] - node - c2
+                p[rows] = node + c1 * r + c2 * r * r
+                t[rows] = sign * (c1 + 2.0 * c2 * r)
+                t[rows] /= np.linalg.norm(t[rows], axis=1)[:, None]
+                y[rows] = set_states(y[rows], p[rows], a, b)
+        direction = span.seg.normal
+        t[np.sum(t * direction, axis=1) < 0] *= -1.0
+
+    def _project_sides(self, y, a, b, side, chords, p, t, st):
+        """Newton in the plane normal to each side's chord (rows of side 0 and 1), in place."""
+        for half in np.unique(side):
+            rows = side == half
+            n = int(rows.sum())
+            yh, ph, th, sh = y[rows], np.empty((n, 3)), np.empty((n, 3)), np.empty(n, np.int64)
+            kc.project_many(yh, a, b, chords[half], self._gap_tol, NEWTON_MAX_ITER, ph, th, sh)
+            y[rows], p[rows], t[rows], st[rows] = yh, ph, th, sh
+
     def _jump_chords(self, span, s):
-        """Points (M, 3) at arc lengths s of a jump span on the chords from its start to the node (or apex)
-        passed and on to its end (one straight chord where no node is near): the curve's two branches there
-        are nearly straight, whatever the charts do at the node."""
+        """(points (M, 3), side (M,) in {0, 1}, unit chord directions (2, 3), distances (M,) of the points from the
+        node (inf without one), the node (3,) or None) at arc lengths s of a jump span: on
+        the chords from its start to the node (or apex) passed and on to its end (one straight chord where no
+        node is near): the curve's two branches there are nearly straight, whatever the charts do at the node."""
         sol = span.seg.sol
         ends = np.empty((2, 3))
         ks.evaluate(span.seg.a, np.ascontiguousarray(np.stack([sol.y0[:2], sol.y1[:2]])), ends)
         w = np.clip((span.shift + span.flip * np.asarray(s, dtype=float)) / sol.length, 0.0, 1.0)[:, None]
+        straight = span.seg.normal / np.linalg.norm(span.seg.normal)
         if len(self.nodes):
             node = self.nodes[np.argmin(np.linalg.norm(self.nodes - ends.mean(axis=0), axis=1))]
             first, second = np.linalg.norm(node - ends[0]), np.linalg.norm(ends[1] - node)
             if first + second <= 2.0 * max(np.linalg.norm(ends[1] - ends[0]), 1e-300) and first > 0 and second > 0:
                 d = w * (first + second)
-                return np.where(d <= first, ends[0] + (node - ends[0]) * (d / first),
-                                node + (ends[1] - node) * ((d - first) / second))
-        return ends[0] * (1 - w) + ends[1] * w
+                chords = np.stack([(node - ends[0]) / first, (ends[1] - node) / second])
+                side = (d[:, 0] > first).astype(np.int64)
+                return (np.where(d <= first, ends[0] + (node - ends[0]) * (d / first),
+                                 node + (ends[1] - node) * ((d - first) / second)), side, chords,
+                        np.abs(d[:, 0] - first), node)
+        return (ends[0] * (1 - w) + ends[1] * w, np.zeros(len(w), dtype=np.int64), np.stack([straight, straight]),
+                np.full(len(w), np.inf), None)
 
     def __call__(self, s):
         """Points (..., 3) on the curve at arc lengths s (...,), corrected onto both surfaces."""
@@ -307,6 +361,21 @@ class Curve:
         kind = "closed" if self.closed else f"open ({self.status})"
         return (f"Curve({kind}, length={self.length:.6g}, points={len(self.points)}, "
                 f"max_distance={self.max_distance:.2e})")
+
+
+def set_states(y, points, a, b):
+    """Rows of the states y (M, 4) moved to the foot parameters of points (M, 3) on the charts a, b (angles kept
+    within pi of the old ones); returns y."""
+    uv = np.empty((len(points), 2))
+    for k, data in enumerate((a, b)):
+        ks.inverse(data, np.ascontiguousarray(points), uv)
+        d = uv - y[:, 2 * k:2 * k + 2]
+        kind = int(data[ks.KIND])
+        for j in range(2):
+            if kind != ks.PLANE and (j == 0 or kind in (ks.SPHERE, ks.TORUS)):   # an angular parameter
+                d[:, j] = np.mod(d[:, j] + np.pi, 2.0 * np.pi) - np.pi
+        y[:, 2 * k:2 * k + 2] += d
+    return y
 
 
 def user_params(surfaces, y, points, a_chart, b_chart):

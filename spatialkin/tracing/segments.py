@@ -17,6 +17,12 @@ from ..kernels import surfaces as ks
 POLE_GUARD = 0.5
 #: A parameter this close to a bound (relative) counts as on the edge.
 EDGE_TOL = 1e-12
+#: A curve running along an edge drifts across it by round-off: an edge stops the integration only this many
+#: ulp (of the parameter's range) past it, and the end is then snapped onto the edge.
+EDGE_ULPS = 64
+#: A curve on an edge leaves the surface when the edge parameter decreases faster than this (relative to the
+#: speed of that surface's parameters); slower is a curve running along the edge.
+EDGE_RATE = 1e-9
 #: Newton iterations allowed for one projection onto the curve.
 NEWTON_MAX_ITER = 12
 #: At most this many right-hand-side evaluations in one segment (a stalled integration ends the branch).
@@ -151,12 +157,16 @@ def budgeted(rhs, limit=None):
 
 
 def finite_bounds(*surfaces):
-    """(surface index k, bound index j, state index, bound value, is a lower bound) of every finite bound of
-    the surfaces' data, j in (u_min, u_max, v_min, v_max) order."""
+    """(surface index k, bound index j, state index, bound value, is a lower bound, slack) of every finite bound
+    of the surfaces' data, j in (u_min, u_max, v_min, v_max) order. slack is EDGE_ULPS ulp of the parameter's
+    range: the round-off by which a curve lying along the edge may cross it."""
     for k, data in enumerate(surfaces):
-        for j, bound in enumerate(data[ks.BOUNDS:ks.BOUNDS + 4].tolist()):
+        bounds = data[ks.BOUNDS:ks.BOUNDS + 4].tolist()
+        for j, bound in enumerate(bounds):
             if math.isfinite(bound):
-                yield k, j, 2 * k + j // 2, bound, j % 2 == 0
+                pair = [x for x in bounds[2 * (j // 2):2 * (j // 2) + 2] if math.isfinite(x)]
+                size = max(max(abs(x) for x in pair), max(pair) - min(pair))
+                yield k, j, 2 * k + j // 2, bound, j % 2 == 0, EDGE_ULPS * np.spacing(size)
 
 
 def newton_fixed(a, b, y, fixed, gap_tol, max_iter=30):

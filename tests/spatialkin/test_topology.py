@@ -100,6 +100,48 @@ def test_trim_of_either_surface_is_respected():
             assert abs(abs(local[0, 1]) - 0.2) < 1e-12 and abs(abs(local[-1, 1]) - 0.2) < 1e-12
 
 
+def test_curve_running_along_a_patch_edge_is_traced_whole():
+    """A unit square patch standing on a plane along its edge u = 1 (turned about that edge): the intersection
+    is the whole edge, length 1 exactly, in either order (the edge event of the square does not stop a curve
+    that runs along the edge; round-off carries it across by ~1e-17)."""
+    turn = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])   # about y, through x = 1
+    rot = random_rotation(np.random.default_rng(5))
+    square = sk.Plane(sk.Frame(rot @ np.array([1.0, 0.0, 1.0]), rot @ turn), u_range=(0.0, 1.0), v_range=(0.0, 1.0))
+    floor = sk.Plane(sk.Frame(np.zeros(3), rot), u_range=(-1.0, 3.0), v_range=(-1.0, 2.0))
+    for a, b in ((square, floor), (floor, square)):
+        curves = sk.intersect(a, b, TOL)
+        assert len(curves) == 1 and curves[0].status == "boundary"
+        assert abs(curves[0].length - 1.0) < 1e-12
+        ends = np.sort((curves[0].points[[0, -1]] @ rot)[:, 1])          # local y of the ends: 0 and 1
+        assert np.allclose(ends, [0.0, 1.0], atol=1e-12)
+
+
+def test_dense_points_pass_exactly_through_a_node():
+    """Oblique Steinmetz curve (equal cylinders, axes crossing at 50 degrees): the two ellipses lie in the planes
+    normal to e1 - e2 and e1 + e2; dense evaluations within 1e-5 of a node stay on their own ellipse's plane
+    (within 1e-9; they used to land on the other branch, 4e-6 off)."""
+    rot = random_rotation(np.random.default_rng(11))
+    e1 = rot[:, 2]
+    tilt = rot @ np.array([[1.0, 0.0, 0.0], [0.0, math.cos(0.87), -math.sin(0.87)], [0.0, math.sin(0.87), math.cos(0.87)]])
+    o = np.array([0.3, -0.2, 0.5])
+    c1, c2 = sk.Cylinder(1.0, sk.Frame(o, rot), v_range=(-4, 4)), sk.Cylinder(1.0, sk.Frame(o, tilt), v_range=(-4, 4))
+    e2 = tilt[:, 2]
+    normals = [(e1 - e2) / np.linalg.norm(e1 - e2), (e1 + e2) / np.linalg.norm(e1 + e2)]
+    curves = sk.intersect(c1, c2, TOL)
+    assert len(curves) == 2
+    for c in curves:
+        assert len(c.nodes) == 2
+        plane = min(normals, key=lambda n: np.abs((c(np.linspace(0, c.length, 50)) - o) @ n).max())
+        s = np.linspace(0, c.length, 20001)
+        p = c(s)
+        for node in c.nodes:
+            near = s[np.argmin(np.linalg.norm(p - node, axis=1))]
+            fine = near + np.linspace(-1e-3, 1e-3, 20001)
+            at = fine[np.argmin(np.linalg.norm(c(fine) - node, axis=1))]       # within 5e-8 of the node
+            local = c(at + np.concatenate([-np.geomspace(1e-5, 1e-12, 30), [0.0], np.geomspace(1e-12, 1e-5, 30)]))
+            assert np.abs((local - o) @ plane).max() < 1e-9
+
+
 def test_bounded_pair_accepted_in_either_order():
     """An untrimmed cone with a trimmed cylinder about its axis: two circles, in either order; two unbounded
     surfaces: a ValueError naming the need for bounds."""

@@ -54,17 +54,12 @@ KNOWN_FAILURES = {
     "contact/sphere-torus/r1-in": "arc length of a loop through a near-contact waist agrees to 6e-8 (not 1e-8) "
                                   "between argument orders (the tracer's integrated s)",
     "contact/sphere-cylinder/node-out": "arc length through a near-node waist agrees to 1.9e-8 between orders",
-    "contact/plane-plane/edge-at": "an edge of one plane patch lying in the other plane: the piece along the edge "
-                                   "is found, but traced 2.7e-3 x scale short in one argument order (the "
-                                   "tracer's edge event on a curve running along the edge)",
     "tiny/sphere-cylinder/1e-06": "a near-tangent loop of 1e-6 x scale: lengths agree to 3e-4 between orders "
                                   "(its points are fixed only to round-off / sin of the normals' angle, 1e-6)",
     "tiny/sphere-torus/1e-06": "as tiny/sphere-cylinder: near-tangent loop lengths agree to 2.5e-4",
     "tiny/cylinder-torus/1e-06": "as tiny/sphere-cylinder: near-tangent loop lengths agree to 6.4e-4",
     "tiny/torus-torus/1e-06": "a loop of depth 1.8e-13 under a torus's quartic implicit function is within its "
                               "round-off: returned as a contact point",
-    "steinmetz/cylinder-cylinder/oblique-1": "the traced curves pass 1.5e-6 x scale beside the node they report "
-                                             "(the tracer's node location)",
 }
 
 QUICK = os.environ.get("SSI_STRESS_QUICK", "") == "1"

@@ -12,6 +12,7 @@ import numpy as np
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
 from ..surfaces import check_surface
+from .arclength import remeasure_branch
 from .ivp import integrate_branch
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from .result import Curve, Span, TracingError, user_params, DUPLICATE_SPACING
@@ -158,14 +159,15 @@ def trace_from(a, b, point, y, settings, t_start):
         raise TracingError(f"start {point.tolist()} is a singular point of the intersection "
                            f"(normals parallel, sin = {sin_normals:.2g}): no tangent to follow",
                            where=point, status="singular")
-    forward = integrate_branch(a.data, b.data, point, tangent, y, 1.0, settings)
+    forward = remeasure_branch(integrate_branch(a.data, b.data, point, tangent, y, 1.0, settings), settings.gap_tol)
     nfev = forward.nfev
     if forward.status == "closed":
         branches = [(forward, 1.0, 0.0)]
         closed, length = True, forward.length
         status, message = "closed", forward.message
     else:
-        backward = integrate_branch(a.data, b.data, point, tangent, y, -1.0, settings)
+        backward = remeasure_branch(integrate_branch(a.data, b.data, point, tangent, y, -1.0, settings),
+                                    settings.gap_tol)
         nfev += backward.nfev
         if backward.status == "closed":
             branches = [(backward, 1.0, 0.0)]

@@ -51,9 +51,6 @@ REPORT_EXAMPLES = 6         # failing cases listed per family in the summary
 #: Cases that fail today, each with what fails and why (reported in the summary; they do not fail the test, a
 #: new failure does). Measured on 2026-11-23: 514 of 522 cases pass.
 KNOWN_FAILURES = {
-    "contact/sphere-torus/r1-in": "arc length of a loop through a near-contact waist agrees to 6e-8 (not 1e-8) "
-                                  "between argument orders (the tracer's integrated s)",
-    "contact/sphere-cylinder/node-out": "arc length through a near-node waist agrees to 1.9e-8 between orders",
     "tiny/sphere-cylinder/1e-06": "a near-tangent loop of 1e-6 x scale: lengths agree to 3e-4 between orders "
                                   "(its points are fixed only to round-off / sin of the normals' angle, 1e-6)",
     "tiny/sphere-torus/1e-06": "as tiny/sphere-cylinder: near-tangent loop lengths agree to 2.5e-4",

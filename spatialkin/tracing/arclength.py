@@ -10,6 +10,7 @@ again on finer chords, and the segment's time is re-mapped so that s is the corr
 import numpy as np
 
 from ..kernels import curve as kc
+from ..kernels import surfaces as ks
 from .segments import NEWTON_MAX_ITER, StepStates
 
 #: Only segments where the normals' sine falls below this are checked: elsewhere the path's tangent is off the
@@ -18,9 +19,17 @@ from .segments import NEWTON_MAX_ITER, StepStates
 CHECK_BELOW = 1e-2
 
 #: A step is cut into at most 2**MAX_DEPTH chords, halving until the Richardson estimate changes by less than
-#: this fraction of the step.
+#: this fraction of the step ...
 MEASURE_RTOL = 1e-13
 MAX_DEPTH = 12
+#: ... but no chord shorter than the points' own uncertainty d (NOISE_ULPS ulp of the coordinates / the normals'
+#: sine) divided by sqrt(2 NOISE_RTOL): a chord between two points each off by d adds up to d^2 / (2 chord) to
+#: the length. Where the floor stops the halving, the last estimate stands if it had settled to SETTLED_RTOL;
+#: otherwise the step keeps the solver's time (a tiny near-tangent loop, whose points are fixed only to ~1e-10
+#: of its 3e-6 length: measured there on short chords, it came out 55% longer).
+NOISE_ULPS = 1
+NOISE_RTOL = 1e-9
+SETTLED_RTOL = 1e-9
 
 
 class RemappedStates:
@@ -53,17 +62,22 @@ def richardson(points_ends, points_mid):
     return two + (two - one) / 3.0
 
 
-def measure_step(seg, t0, t1, gap_tol):
-    """Arc length of the corrected curve over solver times [t0, t1], by chords halved until Richardson settles."""
-    previous = None
+def measure_step(seg, t0, t1, gap_tol, shortest):
+    """Arc length of the corrected curve over solver times [t0, t1], by chords halved until Richardson settles
+    (None when a chord would be shorter than `shortest` before that, or Newton fails)."""
+    previous, change = None, np.inf
     for depth in range(1, MAX_DEPTH + 1):
+        if (t1 - t0) / 2 ** depth < shortest:
+            return previous if change <= SETTLED_RTOL * (t1 - t0) else None
         t = np.linspace(t0, t1, 2 ** depth + 1)
         p, st = corrected_points(seg, t, gap_tol)
         if np.any(st < 0):
             return None
         value = float(richardson(p[::2], p[1::2]).sum())
-        if previous is not None and abs(value - previous) <= MEASURE_RTOL * (t1 - t0):
-            return value
+        if previous is not None:
+            change = abs(value - previous)
+            if change <= MEASURE_RTOL * (t1 - t0):
+                return value
         previous = value
     return previous
 
@@ -74,12 +88,17 @@ def remeasure_segment(seg, gap_tol):
     t = np.asarray(seg.t, dtype=float)
     if len(t) < 2 or np.any(seg.normal) or isinstance(seg.sol, StepStates):
         return float(seg.s1 - seg.s0)
-    y = np.asarray(seg.y, dtype=float)
-    if min(kc.degeneracy(np.ascontiguousarray(y[:, i]), seg.a, seg.b, 0, 0) for i in range(y.shape[1])) >= CHECK_BELOW:
+    y = np.ascontiguousarray(np.asarray(seg.y, dtype=float).T)
+    sine = min(kc.degeneracy(y[i], seg.a, seg.b, 0, 0) for i in range(len(y)))
+    if sine >= CHECK_BELOW:
         return float(seg.s1 - seg.s0)
+    points = np.empty((len(y), 3))
+    ks.evaluate(seg.a, np.ascontiguousarray(y[:, :2]), points)
+    noise = NOISE_ULPS * np.finfo(float).eps * float(np.abs(points).max()) / max(sine, 1e-300)
+    shortest = noise / np.sqrt(2.0 * NOISE_RTOL)
     lengths = np.diff(t)
     for i in np.nonzero(lengths > 0)[0]:
-        value = measure_step(seg, t[i], t[i + 1], gap_tol)
+        value = measure_step(seg, t[i], t[i + 1], gap_tol, shortest)
         if value is not None:
             lengths[i] = value
     t_new = np.concatenate([[0.0], np.cumsum(lengths)])

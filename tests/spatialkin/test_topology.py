@@ -224,6 +224,28 @@ def test_tiny_loop_and_contact_near_one():
             assert np.max(np.abs(spread)) < 1e-15 / radius
 
 
+def test_tiny_loop_under_a_quartic_is_a_loop():
+    """Two coplanar tori whose outer equators overlap by 2e-13 (x their tube radius): a loop of ~2.5e-6 where
+    the torus's quartic implicit function is only 1e-12 deep (within its rigorous enclosure of zero, which used
+    to make it a contact). Truth: the loop through the two equators' crossing, length by the 40-digit oracle of
+    the stress test; agreement within its conditioning, 2 pi x 4 ulp / sin(normals' angle) (~1e-3 relative)."""
+    from ssi_mp import loop_length
+    b1, s1, b2, s2, depth = 1.2, 0.4, 1.0, 0.35, 2.5e-13
+    rot = random_rotation(np.random.default_rng(3))
+    t1 = sk.Torus(b1, s1, sk.Frame(np.zeros(3), rot))
+    t2 = sk.Torus(b2, s2, sk.Frame(rot @ np.array([b1 + s1 + b2 + s2 - depth, 0.0, 0.0]), rot))
+    touch = rot @ np.array([b1 + s1, 0.0, 0.0])
+    ring = touch + 1.2e-6 * np.stack([rot @ np.array([0.0, math.cos(a), math.sin(a)])
+                                      for a in np.linspace(0, 2 * math.pi, 12, endpoint=False)])
+    exact, _, sine = loop_length(t1, t2, ring)
+    bound = 2 * math.pi * 4 * np.finfo(float).eps * np.abs(ring).max() / sine
+    for a, b in ((t1, t2), (t2, t1)):
+        curves = sk.intersect(a, b, TOL)
+        assert len(curves) == 1 and curves[0].status == "closed"
+        assert abs(curves[0].length - exact) < bound
+        assert np.linalg.norm(curves[0].points - touch, axis=1).max() < 3e-6
+
+
 def test_loops_winding_round_a_cylinder_and_a_torus():
     """A tilted plane through a cylinder: one ellipse winding round it; a plane through the torus axis: two
     meridian circles (one lies along the default seam u = pi)."""

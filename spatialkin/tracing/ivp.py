@@ -54,11 +54,6 @@ MINIMUM_ARM = 1e-9
 #: hard cases to.
 COMPILED = "compiled"
 FALLBACK_METHOD = "DOP853"
-#: The hard cases it hands over run at rtol and atol times this (not below FALLBACK_RTOL_FLOOR): where the
-#: normals' sine is small the path's tangent errs by (drift / sine), and the solver's time overshoots the arc
-#: length by the square of that (6e-8 of a loop through a 4e-5 waist at rtol 1e-10; 1e-11 at 1e-13).
-FALLBACK_TIGHTEN = 1e-3
-FALLBACK_RTOL_FLOOR = 1e-13
 #: The compiled integrator hands over to solve_ivp this many times before a watched threshold (the sine's
 #: WATCH_BELOW or the singular tolerance, APEX_GUARD), so that solve_ivp's events see the whole approach.
 HANDOFF_MARGIN = 2.0
@@ -249,13 +244,9 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         else:
             events, kinds = make_events(a, b, settings, sign, start, direction, s_arm - s)
             try:
-                method, rtol, atol = settings.method, settings.rtol, settings.atol
-                if method == COMPILED:
-                    method = FALLBACK_METHOD
-                    tighter = max(FALLBACK_TIGHTEN, FALLBACK_RTOL_FLOOR / rtol)
-                    rtol, atol = rtol * min(tighter, 1.0), atol * min(tighter, 1.0)
+                method = FALLBACK_METHOD if settings.method == COMPILED else settings.method
                 res = solve_ivp(budgeted(kc.dragilev_rhs), (0.0, settings.max_length - s), y, method=method,
-                                rtol=rtol, atol=atol, dense_output=True, events=events,
+                                rtol=settings.rtol, atol=settings.atol, dense_output=True, events=events,
                                 args=(a, b, sign, settings.pullback), max_step=settings.max_step)
             except BudgetExceeded:
                 branch.status = "failed"

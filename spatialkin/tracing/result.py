@@ -6,7 +6,7 @@ from ..kernels import curve as kc
 from ..kernels import surfaces as ks
 from .bspline import fit as fit_spline
 from .curvature import curvature_vectors
-from .segments import NEWTON_MAX_ITER
+from .segments import NEWTON_MAX_ITER, area_flag
 
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.
@@ -19,6 +19,8 @@ JUMP_STRAY = 0.5
 NODE_STRAY = 0.2
 #: ... and within this fraction of the jump from the node, the branch is interpolated (see Curve._jump_points).
 NODE_ANCHOR = 0.05
+#: ... unless a parametrisation degenerates there (relative area element below this at the anchors).
+ANCHOR_APEX_CLEAR = 1e-2
 #: Newton steps in arc length refining the nearest samples in Curve.closest, and how many are refined.
 CLOSEST_NEWTON_STEPS = 4
 CLOSEST_CANDIDATES = 6
@@ -173,8 +175,10 @@ class Curve:
                 set_states(ya, at, a, b)
                 pa, ta, sa = np.empty((2, 3)), np.empty((2, 3)), np.empty(2, np.int64)
                 kc.project_many(ya, a, b, chords[half], self._gap_tol, NEWTON_MAX_ITER, pa, ta, sa)
-                if np.any(sa < 0):
-                    continue
+                flags = (area_flag(a), area_flag(b))
+                if np.any(sa < 0) or (any(flags) and min(kc.area_degeneracy(ya[i], a, b, *flags)
+                                                         for i in range(2)) < ANCHOR_APEX_CLEAR):
+                    continue                       # beside an apex (a horn torus's cusp): Newton's points stand
                 r = near[rows][:, None] / anchor           # the parabola node + c1 r + c2 r^2 through pa at 1, 2
                 c2 = 0.5 * (pa[1] - node) - (pa[0] - node)
                 c1 = pa[0] - node - c2

@@ -110,6 +110,8 @@ def remeasure_segment(seg, gap_tol):
 def remeasure_branch(branch, gap_tol):
     """Re-measure every solver segment of a branch (see remeasure_segment) and shift the segments' arc lengths,
     the nodes passed and the branch's length to match."""
+    if CHECK_BELOW <= 0.0:
+        return branch                     # switched off: no segment would be checked
     old_knots, new_knots = [0.0], [0.0]
     s = 0.0
     for seg in branch.segments:

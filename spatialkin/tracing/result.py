@@ -167,6 +167,7 @@ class Curve:
         anchor = NODE_ANCHOR * (span.hi - span.lo)
         close = near < anchor
         if node is not None and close.any():
+            flags = (area_flag(a), area_flag(b))
             for half in np.unique(side[close]):
                 rows = close & (side == half)
                 sign = 1.0 if half else -1.0
@@ -175,7 +176,6 @@ class Curve:
                 set_states(ya, at, a, b)
                 pa, ta, sa = np.empty((2, 3)), np.empty((2, 3)), np.empty(2, np.int64)
                 kc.project_many(ya, a, b, chords[half], self._gap_tol, NEWTON_MAX_ITER, pa, ta, sa)
-                flags = (area_flag(a), area_flag(b))
                 if np.any(sa < 0) or (any(flags) and min(kc.area_degeneracy(ya[i], a, b, *flags)
                                                          for i in range(2)) < ANCHOR_APEX_CLEAR):
                     continue                       # beside an apex (a horn torus's cusp): Newton's points stand

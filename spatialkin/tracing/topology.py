@@ -252,10 +252,14 @@ class Reader:
         loose = [[0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3])] for r in out[:n][kinds[:n] == kt.UNRESOLVED]]
         return np.array(roots).reshape(-1, 2), np.array(loose).reshape(-1, 2)
 
+    def enclosure(self, uv):
+        """(lo, hi): a rigorous enclosure of g at the parameter point uv of S."""
+        return kt.level_enclosure(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
+                                  float(uv[0]), float(uv[1]))
+
     def on_level(self, uv):
         """True when g at uv is zero within its round-off (a rigorous enclosure, widened ON_LEVEL times)."""
-        lo, hi = kt.level_enclosure(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
-                                    float(uv[0]), float(uv[1]))
+        lo, hi = self.enclosure(uv)
         width = hi - lo
         return lo - ON_LEVEL * width <= 0.0 <= hi + ON_LEVEL * width
 
@@ -660,33 +664,23 @@ def tiny_loop_start(reader, crit, lam, vec):
     """A point of the loop round an extremum of g whose value is within g's rigorous enclosure of zero but, in
     floating point, of the sign that puts a loop round it (a minimum below zero, a maximum above), by more than
     LOOP_FLOOR of the enclosure's width (which overestimates round-off; a true contact's g is a few ulp): the
-    root of g on the flattest eigen-direction, bracketed round the quadratic prediction and bisected. None if
+    root of g on the flattest eigen-direction, bracketed round the quadratic prediction (brentq). None if
     g does not change sign there (then it is a contact)."""
     g0 = float(reader.values(crit)[0][0])
-    lo, hi = kt.level_enclosure(reader.s.data, reader.t.data, reader.m, reader.c, reader.pad, reader.cpad,
-                                float(crit[0]), float(crit[1]))
+    lo, hi = reader.enclosure(crit)
     if g0 * lam[0] >= 0.0 or abs(g0) < LOOP_FLOOR * (hi - lo):
         return None
     k = int(np.argmin(np.abs(lam)))
     w = vec[:, k]
     guess = math.sqrt(2.0 * abs(g0) / abs(lam[k]))
-    inside, outside = 0.0, None
+    def along(t):
+        return float(reader.values(crit + t * w)[0][0])
+    inside = 0.0
     for t in guess * np.geomspace(0.25, 16.0, 13):
-        if reader.values(crit + t * w)[0][0] * g0 <= 0.0:
-            outside = t
-            break
+        if along(t) * g0 <= 0.0:
+            return reader.s.point(*(crit + brentq(along, inside, t, xtol=1e-300, rtol=4 * np.finfo(float).eps) * w))
         inside = t
-    if outside is None:
-        return None
-    for _ in range(80):
-        mid = 0.5 * (inside + outside)
-        if mid in (inside, outside):
-            break
-        if reader.values(crit + mid * w)[0][0] * g0 > 0.0:
-            inside = mid
-        else:
-            outside = mid
-    return reader.s.point(*(crit + outside * w))
+    return None
 
 
 def critical_point(reader, uv):

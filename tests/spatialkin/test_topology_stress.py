@@ -59,10 +59,9 @@ KNOWN_FAILURES = {
     "contact/sphere-cylinder/node-out": "arc length through a near-node waist agrees to 1.9e-8 between orders "
                                         "(the waist re-measure of tracing/arclength.py is off: see there)",
     "contact/sphere-torus/r1-in": "arc length of a loop through a 4e-5 (normals' sine) waist agrees to 5.6e-8 "
-                                  "between argument orders: the solver's time overshoots there, and the "
-                                  "corrected curve cannot be measured on chords longer than its points' "
-                                  "uncertainty (rtol 1e-13 in the hand-over fixes it, 1.3e-11, but changed "
-                                  "which way a horn torus's cusp is passed, so it is not used)",
+                                  "between argument orders: the solver's time overshoots there (the waist "
+                                  "re-measure of tracing/arclength.py is off; rtol 1e-13 in the hand-over "
+                                  "fixes it, 1.3e-11, but changed which way a horn torus's cusp is passed)",
 }
 
 QUICK = os.environ.get("SSI_STRESS_QUICK", "") == "1"

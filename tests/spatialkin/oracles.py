@@ -63,3 +63,21 @@ def torus_sphere_components(big, small, c, rho):
     if r2 < rho < r3:
         return 2
     return 1
+
+
+def looper_closed_form(drive, u1, branch):
+    """Looper drive: (v1, C) at crank angles u1 (N,) from the coupler circle cut by the rocker sphere,
+    A cos v1 + B sin v1 + C0 = 0; branch 0 is the root
+    where |C - P2| grows with v1 (v1 = atan2(B, A) - arccos(-C0 / sqrt(A^2 + B^2)))."""
+    rot, o1 = drive.crank_frame.rotation, drive.crank_frame.origin
+    q = rot.T @ (drive.rocker_frame.origin - o1)
+    big, small, rho = drive.crank_radius, drive.coupler_length, drive.rocker_length
+    qr = q[0] * np.cos(u1) + q[1] * np.sin(u1)
+    a = 2 * small * (big - qr)
+    b = -2 * small * q[2] * np.ones_like(u1)
+    c0 = big ** 2 + small ** 2 + q @ q - 2 * big * qr - rho ** 2
+    spread = np.arccos(-c0 / np.hypot(a, b))
+    v1 = np.arctan2(b, a) + (-spread if branch == 0 else spread)
+    w = big + small * np.cos(v1)
+    local = np.stack([w * np.cos(u1), w * np.sin(u1), small * np.sin(v1)], axis=-1)
+    return v1, o1 + local @ rot.T

@@ -1,11 +1,12 @@
 """The looper job as a designer runs it: units and machine speed, the JSON record, partial-turn drives,
 rotation forms in the TOML, one-line errors, --help and --version. Oracles: the closed form per crank angle
-(tests/spatialkin/mechanisms/test_looper.py), the scaling of velocities with the crank speed (v ~ omega,
+(tests/spatialkin/oracles.py), the scaling of velocities with the crank speed (v ~ omega,
 a ~ omega^2), the blocked crank ranges' exact edges, and the reference rotation."""
 import json
 
 import numpy as np
 import pytest
+from oracles import looper_closed_form
 
 import spatialkin as sk
 from spatialkin.cli import main
@@ -20,21 +21,6 @@ SCALING_TOL = 1e-12
 DEAD_TOL = 1e-5
 #: Same physical drive typed differently: angles agree to round-off (deg).
 SAME_ANGLES_TOL = 1e-9
-
-
-def closed_form_c(drive, u1):
-    """Ball centre C (N, 3) on branch 0 at crank angles u1: the coupler circle cut by the rocker sphere,
-    A cos v1 + B sin v1 + C0 = 0 (as tests/spatialkin/mechanisms/test_looper.py)."""
-    rot, o1 = drive.crank_frame.rotation, drive.crank_frame.origin
-    q = rot.T @ (drive.rocker_frame.origin - o1)
-    big, small, rho = drive.crank_radius, drive.coupler_length, drive.rocker_length
-    qr = q[0] * np.cos(u1) + q[1] * np.sin(u1)
-    a = 2 * small * (big - qr)
-    b = -2 * small * q[2] * np.ones_like(u1)
-    c0 = big ** 2 + small ** 2 + q @ q - 2 * big * qr - rho ** 2
-    v1 = np.arctan2(b, a) - np.arccos(-c0 / np.hypot(a, b))
-    w = big + small * np.cos(v1)
-    return o1 + np.stack([w * np.cos(u1), w * np.sin(u1), small * np.sin(v1)], axis=-1) @ rot.T
 
 
 @pytest.fixture(scope="module")
@@ -56,7 +42,7 @@ def test_table_has_units_degrees_and_machine_speed(reference_run):
     u1 = np.radians(table[:, col["crank_angle_deg"]])
     np.testing.assert_allclose(table[:, col["time_s"]], u1 / omega, rtol=SCALING_TOL, atol=0)
     drive = LooperDrive.reference()
-    assert np.max(np.abs(table[:, [col["x_mm"], col["y_mm"], col["z_mm"]]] - closed_form_c(drive, u1))) < POSITION_TOL
+    assert np.max(np.abs(table[:, [col["x_mm"], col["y_mm"], col["z_mm"]]] - looper_closed_form(drive, u1, 0)[1])) < POSITION_TOL
     # oracle: velocities scale with omega, accelerations with omega^2 (constant crank speed)
     unit = drive.solve(u1, omega=1.0)
     v = table[:, [col["vx_mm_per_s"], col["vy_mm_per_s"], col["vz_mm_per_s"]]]
@@ -115,7 +101,7 @@ def test_partial_turn_drive_is_analysed_over_its_reachable_ranges(tmp_path, caps
     table = np.loadtxt(out / "looper_motion.csv", delimiter=",", skiprows=1)
     u1 = np.radians(table[:, 0])
     assert np.all(drive.assembly_margin(u1) > 0)            # rows only where the drive assembles
-    assert np.max(np.abs(table[:, 2:5] - closed_form_c(drive, u1))) < POSITION_TOL
+    assert np.max(np.abs(table[:, 2:5] - looper_closed_form(drive, u1, 0)[1])) < POSITION_TOL
     assert len(record["crank_ranges_deg"]) == 2            # [318.6, 41.4] through 0, and [154.6, 205.4]
     for name in record["files"]:
         assert (out / name).stat().st_size > 1000

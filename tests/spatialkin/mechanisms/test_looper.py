@@ -4,26 +4,10 @@ import os
 
 import numpy as np
 import pytest
+from oracles import looper_closed_form
 
 import spatialkin as sk
 from spatialkin.mechanisms import LooperDrive
-
-
-def closed_form(drive, u1, branch):
-    """(v1, C) at crank angles u1 (N,) from the coupler circle cut by the rocker sphere; branch 0 is the root
-    where |C - P2| grows with v1 (v1 = atan2(B, A) - arccos(-C0 / sqrt(A^2 + B^2)))."""
-    rot, o1 = drive.crank_frame.rotation, drive.crank_frame.origin
-    q = rot.T @ (drive.rocker_frame.origin - o1)
-    big, small, rho = drive.crank_radius, drive.coupler_length, drive.rocker_length
-    qr = q[0] * np.cos(u1) + q[1] * np.sin(u1)
-    a = 2 * small * (big - qr)
-    b = -2 * small * q[2] * np.ones_like(u1)
-    c0 = big ** 2 + small ** 2 + q @ q - 2 * big * qr - rho ** 2
-    spread = np.arccos(-c0 / np.hypot(a, b))
-    v1 = np.arctan2(b, a) + (-spread if branch == 0 else spread)
-    w = big + small * np.cos(v1)
-    local = np.stack([w * np.cos(u1), w * np.sin(u1), small * np.sin(v1)], axis=-1)
-    return v1, o1 + local @ rot.T
 
 
 def five_point(f, x, h):
@@ -48,11 +32,11 @@ def test_full_turn_matches_closed_form(drive, branch):
     u1 = np.linspace(0.0, 2 * np.pi, 721)
     m = drive.solve(u1, omega=omega, branch=branch)
     np.testing.assert_array_equal(m.crank_angle, u1)
-    v1, c = closed_form(drive, u1, branch)
+    v1, c = looper_closed_form(drive, u1, branch)
     assert np.max(np.abs(m.ball_center - c)) < 1e-9
     assert np.max(np.abs(np.angle(np.exp(1j * (m.coupler_angle - v1))))) < 1e-11
     # time derivatives: d/dt = omega d/du1
-    d1, d2 = five_point(lambda x: closed_form(drive, x, branch)[1], u1, 3e-3)   # FD error ~1e-9 relative
+    d1, d2 = five_point(lambda x: looper_closed_form(drive, x, branch)[1], u1, 3e-3)   # FD error ~1e-9 relative
     vel, acc = omega * d1, omega ** 2 * d2
     assert np.max(np.abs(m.ball_velocity - vel)) < 1e-8 * np.max(np.abs(vel))
     assert np.max(np.abs(m.ball_acceleration - acc)) < 1e-8 * np.max(np.abs(acc))
@@ -137,7 +121,7 @@ def test_looper_job_writes_what_it_promises(tmp_path):
     assert header[:5] == ["crank_angle_deg", "time_s", "x_mm", "y_mm", "z_mm"]
     assert table.shape[0] >= 361 and table.shape[1] == len(header)
     drive = LooperDrive.reference()
-    _, c = closed_form(drive, np.radians(table[:, 0]), 0)
+    _, c = looper_closed_form(drive, np.radians(table[:, 0]), 0)
     assert np.max(np.abs(table[:, 2:5] - c)) < 1e-9
     for name in ("looper_speed.png", "looper_cyclogram.png", "looper_transmission.png"):
         assert (out / name).stat().st_size > 1000
@@ -213,7 +197,7 @@ def test_branch_over_two_components_uses_every_component():
         d._loops = None
         for branch in (0, 1):
             m = d.solve(angles, branch=branch)
-            assert np.max(np.abs(m.ball_center - closed_form(d, angles, branch)[1])) < 1e-9
+            assert np.max(np.abs(m.ball_center - looper_closed_form(d, angles, branch)[1])) < 1e-9
         assert (d._loops is not None) == every
 
 

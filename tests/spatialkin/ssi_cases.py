@@ -26,7 +26,7 @@ closed-form samples' distances to both surfaces before Newton polishing.
 import os
 import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -880,7 +880,6 @@ def contact_family(rng):
 
 def _torus_sphere_critical_point(big, small, c, k):
     """The critical point of the distance to c on the torus that belongs to sorted critical radius k."""
-    rc = np.hypot(c[0], c[1])
     ang = np.arctan2(c[1], c[0])
     cands = []
     for side in (1, -1):
@@ -1090,6 +1089,15 @@ def trimmed_family(rng):
     def rect(c, half):
         return (c[0] - half[0], c[0] + half[0]), (c[1] - half[1], c[1] + half[1])
 
+    def perpendicular_patch(o, Rm, spin, c, radius):
+        """A random rectangle (sides and centre in units of radius) in the plane z = c of the frame (o, Rm), and
+        the circle of that radius about the z axis in it (closed)."""
+        half = rng.uniform(0.2, 1.2, 2) * radius
+        centre = rng.uniform(-1.2, 1.2, 2) * radius
+        ur, vr = rect(centre, half)
+        pl = sk.Plane(F(o + c * Rm[:, 2], spin), u_range=ur, v_range=vr)
+        return pl, [(circle_points(o + c * Rm[:, 2], Rm[:, 2], radius, 20000), True)]
+
     made = {}
 
     def want(key, n):
@@ -1137,11 +1145,7 @@ def trimmed_family(rng):
             r = rng.uniform(0.4, 1.2)
             cyl = sk.Cylinder(r, F(o, Rm), v_range=(-1.0, 1.0))
             c = rng.uniform(-0.9, 0.9)
-            half = rng.uniform(0.2, 1.2, 2) * r
-            centre = rng.uniform(-1.2, 1.2, 2) * r
-            ur, vr = rect(centre, half)
-            pl = sk.Plane(F(o + c * Rm[:, 2], spin), u_range=ur, v_range=vr)
-            curves = [(circle_points(o + c * Rm[:, 2], Rm[:, 2], r, 20000), True)]
+            pl, curves = perpendicular_patch(o, Rm, spin, c, r)
             ok = add(f"plane-cylinder/perp-{made.get(kind_, 0)}", cyl, pl, curves, r, attempt)
         elif kind_ == "cyl-par":
             r = rng.uniform(0.4, 1.2)
@@ -1163,11 +1167,7 @@ def trimmed_family(rng):
             cone = sk.Cone(a_, F(o, Rm), v_range=(-1.5, 1.5))
             c = rng.uniform(0.3, 1.3) * rng.choice([-1, 1])
             rr = abs(c) * np.tan(a_)
-            half = rng.uniform(0.2, 1.2, 2) * rr
-            centre = rng.uniform(-1.2, 1.2, 2) * rr
-            ur, vr = rect(centre, half)
-            pl = sk.Plane(F(o + c * Rm[:, 2], spin), u_range=ur, v_range=vr)
-            curves = [(circle_points(o + c * Rm[:, 2], Rm[:, 2], rr, 20000), True)]
+            pl, curves = perpendicular_patch(o, Rm, spin, c, rr)
             ok = add(f"plane-cone/perp-{made.get(kind_, 0)}", pl, cone, curves, rr, attempt)
         elif kind_ == "planes":
             R2 = rand_rot(rng)

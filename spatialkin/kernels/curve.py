@@ -439,6 +439,44 @@ def curve_derivatives_many(ys, a, b, sign, dy, ddy, d1, d2, ok):
 
 
 @jit
+def curve_speed_many(ys, a, b, sign, pullback, gap_tol, max_iter, speed):
+    """Speed along the curve, per unit solver time, of the curve point C beside M1(y) for each state row of ys
+    (N, 4) the integrator passes (off the curve by its round-off, far more beside a near-node waist, where the
+    two surfaces nearly touch and a tiny gap lets M1 slide along the curve's normal).
+
+    C is the Newton projection of y in the plane through M1 normal to the tangent there; its speed is
+    (T . M1') / (1 - K . (M1 - C)), T and K the unit tangent and curvature vector at C, M1' the integrated
+    velocity (the right-hand side with its pull-back): the foot point of a point beside a curve moves at that
+    rate. speed[k] = -1 where Newton fails or C is singular."""
+    dy = np.empty(4)
+    yc = np.empty(4)
+    q = np.empty(3)
+    t = np.empty(3)
+    d1y = np.empty(4)
+    d2y = np.empty(4)
+    d1 = np.empty(3)
+    d2 = np.empty(3)
+    for k in range(ys.shape[0]):
+        y = ys[k]
+        dragilev_into(y, a, b, sign, pullback, dy)
+        m, su, sv = frame(a, y[0], y[1])
+        curve_frame(y, a, b, q, t)
+        for i in range(4):
+            yc[i] = y[i]
+        if project_to_curve(yc, a, b, q, t, gap_tol, max_iter) < 0 or \
+                not curve_derivatives(yc, a, b, sign, d1y, d2y, d1, d2):
+            speed[k] = -1.0
+            continue
+        c, _, _ = frame(a, yc[0], yc[1])
+        along = 0.0
+        bend = 0.0
+        for i in range(3):
+            along += d1[i] * (su[i] * dy[0] + sv[i] * dy[1])
+            bend += d2[i] * (m[i] - c[i])
+        speed[k] = abs(along) / (1.0 - bend) if bend < 0.5 else -1.0
+
+
+@jit
 def newton_fixed_many(ys, a, b, fixed, gap_tol, max_iter, ok):
     """Newton on M1(u1, v1) - M2(u2, v2) = 0 for the three parameters other than ys[k, fixed], in place
     for each row of ys (N, 4); ok[k] True once |M1 - M2| <= gap_tol (then one more step is taken)."""

@@ -159,7 +159,8 @@ def trace_from(a, b, point, y, settings, t_start):
         raise TracingError(f"start {point.tolist()} is a singular point of the intersection "
                            f"(normals parallel, sin = {sin_normals:.2g}): no tangent to follow",
                            where=point, status="singular")
-    forward = remeasure_branch(integrate_branch(a.data, b.data, point, tangent, y, 1.0, settings), settings.gap_tol)
+    forward = remeasure_branch(integrate_branch(a.data, b.data, point, tangent, y, 1.0, settings),
+                               settings.pullback, settings.gap_tol)
     nfev = forward.nfev
     if forward.status == "closed":
         branches = [(forward, 1.0, 0.0)]
@@ -167,7 +168,7 @@ def trace_from(a, b, point, y, settings, t_start):
         status, message = "closed", forward.message
     else:
         backward = remeasure_branch(integrate_branch(a.data, b.data, point, tangent, y, -1.0, settings),
-                                    settings.gap_tol)
+                                    settings.pullback, settings.gap_tol)
         nfev += backward.nfev
         if backward.status == "closed":
             branches = [(backward, 1.0, 0.0)]

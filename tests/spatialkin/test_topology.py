@@ -143,14 +143,12 @@ def test_dense_points_pass_exactly_through_a_node():
             assert np.abs((local - o) @ plane).max() < 1e-9
 
 
-@pytest.mark.xfail(strict=True, reason="the waist re-measure (tracing/arclength.py) is off: it broke two "
-                   "plane-torus cases; one loop is 5e-9 off quadrature")
 def test_arc_length_through_a_near_node_waist():
     """Two perpendicular cylinders of radii 1 and 1 - 1e-8 (axes crossing): two loops, each passing twice
     through a waist 1e-8 wide beside the Steinmetz nodes. Closed form of a loop, psi in [0, 2 pi):
     (sqrt(r^2 - r2^2 sin^2 psi), r2 sin psi, r2 cos psi); its length by adaptive quadrature (scipy.quad).
     Every loop, in either order, has that length to 1e-10 relative (the solver's time overshot it by up to
-    6e-8 through the waists before the corrected curve was measured there)."""
+    6e-8 through the waists before the curve's speed was measured there: tracing/arclength.py)."""
     from scipy.integrate import quad
     r, r2 = 1.0, 1.0 - 1e-8
 

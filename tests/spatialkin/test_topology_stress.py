@@ -54,15 +54,8 @@ CASE_TIMEOUT = 120          # seconds per sk.intersect call
 REPORT_EXAMPLES = 6         # failing cases listed per family in the summary
 
 #: Cases that fail today, each with what fails and why (reported in the summary; they do not fail the test, a
-#: new failure does). Measured on 2026-11-23: 520 of 522 cases pass.
-KNOWN_FAILURES = {
-    "contact/sphere-cylinder/node-out": "arc length through a near-node waist agrees to 1.9e-8 between orders "
-                                        "(the waist re-measure of tracing/arclength.py is off: see there)",
-    "contact/sphere-torus/r1-in": "arc length of a loop through a 4e-5 (normals' sine) waist agrees to 5.6e-8 "
-                                  "between argument orders: the solver's time overshoots there (the waist "
-                                  "re-measure of tracing/arclength.py is off; rtol 1e-13 in the hand-over "
-                                  "fixes it, 1.3e-11, but changed which way a horn torus's cusp is passed)",
-}
+#: new failure does). Measured on 2026-11-23: all 522 cases pass.
+KNOWN_FAILURES = {}
 
 QUICK = os.environ.get("SSI_STRESS_QUICK", "") == "1"
 ONLY = os.environ.get("SSI_STRESS_ONLY", "")

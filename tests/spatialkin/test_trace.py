@@ -210,3 +210,23 @@ def test_open_curve_evaluation_outside_is_an_error():
     c = sk.intersect(cylinder, plane)[0]
     with pytest.raises(ValueError, match="s must lie"):
         c(c.length + 1.0)
+
+
+def test_curve_speed_of_a_point_beside_the_curve():
+    """kernels.curve.curve_speed_many on the plane z = 0 and the unit sphere (the unit circle), with M1 on the
+    plane at radius 1 + d beside the circle and M2 on the equator: the integrated velocity is the unit tangent
+    (no pull-back), and the foot point on the circle moves at 1 / (1 + d) (similar arcs). Oracle: that closed
+    form, to 1e-13."""
+    from spatialkin.kernels import curve as kc
+    from spatialkin.kernels import surfaces as ks
+    plane, sphere = sk.Plane(), sk.Sphere(1.0)
+    for d in (0.0, 1e-7, 1e-3, -2e-2):
+        for angle in (0.3, 2.0):
+            on_circle = np.array([[np.cos(angle), np.sin(angle), 0.0]])
+            uv_plane, uv_sphere = np.empty((1, 2)), np.empty((1, 2))
+            ks.inverse(plane.data, (1.0 + d) * on_circle, uv_plane)
+            ks.inverse(sphere.data, on_circle, uv_sphere)
+            y = np.ascontiguousarray(np.hstack([uv_plane, uv_sphere]))
+            speed = np.empty(1)
+            kc.curve_speed_many(y, plane.data, sphere.data, 1.0, 0.0, 1e-14, 30, speed)
+            assert speed[0] == pytest.approx(1.0 / (1.0 + d), rel=1e-13, abs=0.0)

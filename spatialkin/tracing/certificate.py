@@ -3,6 +3,8 @@ import math
 
 import numpy as np
 
+from .status import TANGENT
+
 #: Python extra that provides the ball arithmetic of the certified path.
 EXTRA = "spatialkin[certify]"
 
@@ -60,17 +62,18 @@ class Certificate:
                 f"points proven {proven}/{self.radii.size}, max distance <= {self.max_distance_bound:.2e})")
 
 
-def certify(a, b, curves, topology):
-    """Attach a Certificate to each curve (radii from arb Krawczyk tests on the stored points)."""
+def certificates(a, b, curves, topology):
+    """The Certificate of each curve (CurveResults of every component found: radii from arb Krawczyk tests on the
+    stored points)."""
     try:
         from .certify_points import certify_points
     except ImportError as err:          # python-flint missing
         raise ImportError(f"certify=True needs python-flint: pip install '{EXTRA}' ({err})") from None
+    out = []
     for curve in curves:
-        if curve.length == 0 or curve.status == "tangent":
+        if curve.length == 0 or curve.status == TANGENT:
             radii = np.full(len(curve.points), math.inf)
         else:
-            tangents = curve.tangent(curve.s)
-            radii = certify_points(a, b, curve.points, tangents)
-        curve.certificate = Certificate(radii, topology, len(curves))
-    return curves
+            radii = certify_points(a, b, curve.points, curve.sol.tangent(curve.s))
+        out.append(Certificate(radii, topology, len(curves)))
+    return out

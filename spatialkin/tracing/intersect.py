@@ -6,16 +6,17 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ..surfaces import check_surface
-from .result import Curve, ExactCurve, TracingError
+from .dense import CLOSEST_NEWTON_STEPS
+from .exact import contact_point, exact_curve
+from .result import Curve, TracingError
 from .start import locate_on_curve, newton_fixed
-from .certificate import certify as attach_certificates
+from .certificate import certificates
+from .status import CONTACT
 from .topology import topology
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
 SAME_COMPONENT = 1e-6
-#: A node the tracer passed is the proven singular point within this distance (relative to the scale).
-SNAP = 1e-2
 
 
 def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol=None, max_length=None,
@@ -45,7 +46,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     list of Curve
         Closed loops, open curves (ending exactly on a trim edge, status 'boundary', or at a singular point),
         single contact points (status 'contact', length 0) and circles or segments along which the surfaces
-        touch (status 'tangent', spatialkin.tracing.result.ExactCurve); empty when the surfaces do not meet.
+        touch (status 'tangent', in closed form: spatialkin.tracing.exact); empty when the surfaces do not meet.
 
     Raises
     ------
@@ -63,11 +64,11 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
     topo = topology(a, b, settings.scale, settings.tolerance)
     settings = dataclasses.replace(settings, nodes=np.array(topo.nodes + topo.apexes).reshape(-1, 3))
-    curves = [contact_curve(a, b, p, settings) for p in topo.contacts]
-    curves += [ExactCurve((a, b), circle=c, tolerance=settings.tolerance) for c in topo.tangent_circles]
-    curves += [ExactCurve((a, b), circle=c, tolerance=settings.tolerance, status="closed",
-                          message="a circle about the surfaces' common axis, in closed form") for c in topo.circles]
-    curves += [ExactCurve((a, b), segment=seg, tolerance=settings.tolerance) for seg in topo.tangent_segments]
+    # the components as CurveResults (each made a Curve once, complete, at the end)
+    curves = [contact_point((a, b), p, settings.tolerance) for p in topo.contacts]
+    curves += [exact_curve((a, b), settings.tolerance, circle=c) for c in topo.tangent_circles]
+    curves += [exact_curve((a, b), settings.tolerance, circle=c, event="axis_circle") for c in topo.circles]
+    curves += [exact_curve((a, b), settings.tolerance, segment=seg) for seg in topo.tangent_segments]
     radius = SAME_COMPONENT * settings.scale
     # (point, y, on the curve): exact starts on the edges, then the seeds, located only when one is traced
     pending = [(point, y, True) for point, y in (edge_start(a, b, point, index, fixed, value, settings)
@@ -90,7 +91,6 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
             curve = trace_from(a, b, point, y, settings, time.perf_counter())
         except TracingError:
             continue            # the seed sits on a singular point: the arms' seeds trace it
-        snap_nodes(curve, settings.nodes, settings.scale)
         curves.append(curve)
         pending = drop_traced(pending, [curve], radius)
     kept = []
@@ -99,22 +99,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
             kept.append(c)
     curves = kept
     curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
-    for c in curves:
-        c.topology = topo
-    if certify:
-        attach_certificates(a, b, curves, topo)
-    return curves
-
-
-def snap_nodes(curve, known, scale):
-    """Replace each node the tracer located (to about its jump's accuracy) by the singular point the topology
-    stage proved there (Newton on grad g, or an apex), when one lies within SNAP x scale."""
-    if not len(curve.nodes) or known is None or not len(known):
-        return
-    for k, node in enumerate(curve.nodes):
-        d = np.linalg.norm(known - node, axis=1)
-        if d.min() <= SNAP * scale:
-            curve.nodes[k] = known[np.argmin(d)]
+    proofs = certificates(a, b, curves, topo) if certify else [None] * len(curves)
+    return [Curve(dataclasses.replace(c, topology=topo, certificate=proof)) for c, proof in zip(curves, proofs)]
 
 
 def drop_traced(pending, curves, radius):
@@ -132,29 +118,30 @@ def drop_traced(pending, curves, radius):
 
 
 def near_curve(curve, points, radius):
-    """Mask (M,) of the points (M, 3) lying within radius of the curve. A point farther than radius plus half
-    the longest step from every stored point is farther than radius from the curve (each arc between two
-    stored points lies within half its length of one of them); a point within radius of a foot point found
-    from the nearest stored point is near; Curve.closest decides the rest."""
+    """Mask (M,) of the points (M, 3) lying within radius of the curve (a CurveResult). A point farther than radius
+    plus half the longest step from every stored point is farther than radius from the curve (each arc between
+    two stored points lies within half its length of one of them); a point within radius of a foot point found
+    by Newton in s from the nearest stored point is near; the closest point decides the rest."""
     points = np.asarray(points, dtype=float).reshape(-1, 3)
     out = np.zeros(len(points), dtype=bool)
     ask = np.ones(len(points), dtype=bool)
     if curve.length > 0 and len(curve.points) > 1:
         reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
-        ask = cKDTree(curve.points).query(points, distance_upper_bound=reach)[0] <= reach
+        gap, nearest = cKDTree(curve.points).query(points, distance_upper_bound=reach)
+        ask = gap <= reach
         if ask.any():
-            out[ask] = curve.near_points(points[ask]) <= radius
+            out[ask] = curve.sol.foot_points(points[ask], curve.s[nearest[ask]], CLOSEST_NEWTON_STEPS)[1] <= radius
             ask &= ~out
     if ask.any():
-        out[ask] = curve.closest(points[ask])[1] <= radius
+        out[ask] = curve.sol.closest(points[ask])[1] <= radius
     return out
 
 
 def covered(curve, others, radius):
     """True for an open curve lying wholly on another curve (a piece of a component traced again)."""
-    if curve.closed or curve.status == "contact":
+    if curve.closed or curve.status == CONTACT:
         return False
-    return any(other.length >= curve.length and np.max(other.closest(curve.points)[1]) <= radius
+    return any(other.length >= curve.length and np.max(other.sol.closest(curve.points)[1]) <= radius
                for other in others)
 
 
@@ -169,11 +156,3 @@ def edge_start(a, b, point, p_index, fixed, value, settings):
         return None
     return a.point(y[0], y[1]), y
 
-
-def contact_curve(a, b, point, settings):
-    """A component that is a single point where the surfaces touch."""
-    y = np.concatenate([a.parameters(point), b.parameters(point)]).reshape(1, 4)
-    curve = Curve((a, b), point.reshape(1, 3), np.zeros(1), y, False, 0.0, "contact",
-                  f"the surfaces touch at {point.tolist()}", [], settings.gap_tol)
-    curve.tolerance = settings.tolerance
-    return curve

@@ -72,7 +72,7 @@ class StepStates:
 class Branch:
     """Result of integrating one direction from a start point."""
     segments: list = field(default_factory=list)
-    status: str = "max_length"   # 'closed', 'singular', 'boundary', 'max_length', 'failed'
+    status: str = "max_length"   # 'closed' or an end status (spatialkin.tracing.status.END_PRECEDENCE)
     message: str = ""
     length: float = 0.0
     nfev: int = 0

@@ -58,8 +58,7 @@ def locate_on_curve(a, b, guess, gap_tol, y_guess=None):
     t = np.empty(3)
     kc.curve_frame(y, a_chart, b_chart, p1, t)
     if iters < 0 or not np.all(np.isfinite(p1)):
-        raise TracingError(f"no intersection point found near start {guess.tolist()}: "
-                           "Newton on M1 = M2 did not converge", where=guess, status="no_start")
+        raise TracingError.of("no_start", where=guess, point=guess.tolist())
     y_user = y.copy()
     for k, surf in enumerate((a, b)):
         if int(surf.data[ks.KIND]) == ks.SPHERE:

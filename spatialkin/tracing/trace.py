@@ -15,8 +15,10 @@ from ..surfaces import check_surface
 from .arclength import remeasure_branch
 from .ivp import integrate_branch
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
-from .result import Curve, Span, TracingError, user_params, DUPLICATE_SPACING
+from .dense import Span, TracedSolution
+from .result import Curve, CurveResult, TracingError, user_params, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
+from .status import CLOSED, open_outcome
 
 # --- defaults -----------------------------------------------------------------------------------------
 #: Relative tolerance of solve_ivp on (u1, v1, u2, v2): sets how far a step may stray before the Newton
@@ -37,8 +39,9 @@ ROUNDOFF_ULPS = 64
 #: solve_ivp's methods, and "compiled": the compiled Dormand–Prince 5(4) of spatialkin.kernels.dopri (scipy's
 #: RK45 steps without the per-step Python work), handing hard cases to solve_ivp's DOP853.
 METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", "compiled")
-#: Status precedence when the two ends of an open curve differ.
-STATUS_ORDER = ("failed", "singular", "boundary", "max_length")
+#: A node the tracer passed is the proven singular point (Settings.nodes) within this distance (relative to the
+#: scale).
+SNAP = 1e-2
 
 
 def check_positive(name, value):
@@ -146,39 +149,37 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor)
     point, y = start_point(a, b, start, settings.gap_tol)
-    return trace_from(a, b, point, y, settings, t_start)
+    return Curve(trace_from(a, b, point, y, settings, t_start))
 
 
 def trace_from(a, b, point, y, settings, t_start):
-    """Trace both directions from a point on the curve and assemble the Curve."""
+    """Trace both directions from a point on the curve: the CurveResult of the component, with its dense
+    output."""
     tangent = np.empty(3)
     p = np.empty(3)
     a_chart, b_chart, y_chart = charts_at(a.data, b.data, point, np.zeros(3), y)
     sin_normals = kc.curve_frame(y_chart, a_chart, b_chart, p, tangent)
     if sin_normals < settings.singular_tol:
-        raise TracingError(f"start {point.tolist()} is a singular point of the intersection "
-                           f"(normals parallel, sin = {sin_normals:.2g}): no tangent to follow",
-                           where=point, status="singular")
+        raise TracingError.of("singular_start", where=point, point=point.tolist(), sin=sin_normals)
     forward = remeasure_branch(integrate_branch(a.data, b.data, point, tangent, y, 1.0, settings),
                                settings.pullback, settings.gap_tol)
     nfev = forward.nfev
-    if forward.status == "closed":
+    if forward.status == CLOSED:
         branches = [(forward, 1.0, 0.0)]
         closed, length = True, forward.length
-        status, message = "closed", forward.message
+        status, message = CLOSED, forward.message
     else:
         backward = remeasure_branch(integrate_branch(a.data, b.data, point, tangent, y, -1.0, settings),
                                     settings.pullback, settings.gap_tol)
         nfev += backward.nfev
-        if backward.status == "closed":
+        if backward.status == CLOSED:
             branches = [(backward, 1.0, 0.0)]
             closed, length = True, backward.length
-            status, message = "closed", backward.message
+            status, message = CLOSED, backward.message
         else:
             branches = [(backward, -1.0, backward.length), (forward, 1.0, backward.length)]
             closed, length = False, backward.length + forward.length
-            status = min((backward.status, forward.status), key=STATUS_ORDER.index)
-            message = f"start end: {backward.message}; finish end: {forward.message}"
+            status, message = open_outcome(backward.status, backward.message, forward.status, forward.message)
     spans, ys, ss, charts = [], [], [], []
     for branch, flip, offset in branches:
         pieces = []
@@ -199,8 +200,7 @@ def trace_from(a, b, point, y, settings, t_start):
             ys.append(y_pts[order])
             charts.append(np.full(len(order), len(spans) - 1))
     if not ss:
-        raise TracingError(f"nothing could be traced from {point.tolist()}: {message}", where=point,
-                           status=status)
+        raise TracingError.of("nothing_traced", where=point, status=status, point=point.tolist(), message=message)
     s_all = np.concatenate(ss)
     y_all = np.ascontiguousarray(np.concatenate(ys))
     span_of = np.concatenate(charts)
@@ -215,14 +215,27 @@ def trace_from(a, b, point, y, settings, t_start):
         points = np.vstack([points, points[:1]])
         params = np.vstack([params, _closing_params(a, b, params[0], params[-1])])
         s_all = np.append(s_all, length)
-    curve = Curve((a, b), points, s_all, params, closed, length, status, message, spans, settings.gap_tol,
-                  nfev=nfev, wall_time=0.0)
-    curve.solver_gap = raw_gap
-    curve.tolerance = settings.tolerance
-    nodes = [p for branch, _, _ in branches for _, p in branch.nodes]
-    curve.nodes = np.array(nodes).reshape(-1, 3)
-    curve.wall_time = time.perf_counter() - t_start
-    return curve
+    nodes = snapped_nodes([p for branch, _, _ in branches for _, p in branch.nodes], settings)
+    sol = TracedSolution(surfaces=(a, b), spans=spans, nodes=nodes, gap_tol=settings.gap_tol, length=length,
+                         closed=closed, knots=s_all)
+    return CurveResult(points=points, s=s_all, params=params, closed=closed, length=length, status=status,
+                       message=message, tolerance=settings.tolerance, sol=sol, nodes=nodes, solver_gap=raw_gap,
+                       nfev=nfev, wall_time=time.perf_counter() - t_start)
+
+
+def snapped_nodes(located, settings):
+    """The nodes (K, 3) the tracer located (to about its jump's accuracy), each replaced by the singular point the
+    topology stage proved there (Newton on grad g, or an apex; settings.nodes, when known), if one lies within
+    SNAP x scale."""
+    nodes = np.array(located).reshape(-1, 3)
+    known = settings.nodes
+    if known is None or not len(known):
+        return nodes
+    for k, node in enumerate(nodes):
+        d = np.linalg.norm(known - node, axis=1)
+        if d.min() <= SNAP * settings.scale:
+            nodes[k] = known[np.argmin(d)]
+    return nodes
 
 
 def _corrected(a, b, y_all, span_of, spans, settings):

@@ -1,0 +1,127 @@
+"""Components known in closed form: a circle or a segment along which the two surfaces touch (status 'tangent'; the
+tracer cannot follow them, the normals being parallel all along), a circle about the common axis of two surfaces of
+revolution (status 'closed'), a single point where they touch (status 'contact'). Each is a CurveResult whose dense
+output evaluates the closed form exactly.
+"""
+import numpy as np
+
+from .dense import CurveSolution
+from .result import CurveResult
+from .status import outcome
+
+#: Stored points of a circle or a segment in closed form.
+EXACT_SAMPLES = 65
+
+
+class ExactSolution(CurveSolution):
+    """Closed-form dense output: subclasses give the points and unit tangents (``at``) and the curvature vectors
+    (``bend``); the parameters are the surfaces' own (Surface.parameters) of the exact points."""
+
+    def at(self, s):
+        """(points (M, 3), unit tangents (M, 3)) at the wrapped arc lengths s (M,)."""
+        raise NotImplementedError
+
+    def bend(self, points):
+        """Curvature vectors (M, 3) at the points (M, 3) of the curve."""
+        raise NotImplementedError
+
+    def evaluate(self, s, with_params=True):
+        s = self.wrap(np.ravel(s))
+        points, tangents = self.at(s)
+        params = None
+        if with_params:
+            params = np.concatenate([surf.parameters(points) for surf in self.surfaces], axis=1)
+        return s, points, tangents, params
+
+    def derivatives(self, s):
+        """(points, unit tangents, curvature vectors) (..., 3) at s, in closed form."""
+        shape = np.shape(s)
+        _, points, tangents, _ = self.evaluate(s, with_params=False)
+        return tuple(x.reshape(shape + (3,)) for x in (points, tangents, self.bend(points)))
+
+
+class CircleSolution(ExactSolution):
+    """The circle of the given centre (3,), unit axis (3,) and radius, from the point centre + radius e1 (e1 normal
+    to the axis, along the coordinate axis least aligned with it) counterclockwise about the axis."""
+
+    shape = "circle"
+
+    def __init__(self, surfaces, centre, axis, radius, samples=EXACT_SAMPLES):
+        self.centre, axis, self.radius = np.asarray(centre, dtype=float), np.asarray(axis, dtype=float), float(radius)
+        helper = np.eye(3)[np.argmin(np.abs(axis))]
+        e1 = np.cross(axis, helper)
+        self.e1 = e1 / np.linalg.norm(e1)
+        self.e2 = np.cross(axis, self.e1)
+        length = 2 * np.pi * self.radius
+        super().__init__(surfaces, length, True, np.linspace(0.0, length, samples))
+
+    def at(self, s):
+        angle = s / self.radius
+        c, n = np.cos(angle)[:, None], np.sin(angle)[:, None]
+        return self.centre + self.radius * (c * self.e1 + n * self.e2), -n * self.e1 + c * self.e2
+
+    def bend(self, points):
+        return -(points - self.centre) / self.radius ** 2
+
+
+class SegmentSolution(ExactSolution):
+    """The segment from p0 (3,) to p1 (3,)."""
+
+    shape = "segment"
+
+    def __init__(self, surfaces, p0, p1, samples=EXACT_SAMPLES):
+        self.p0, p1 = (np.asarray(x, dtype=float) for x in (p0, p1))
+        length = float(np.linalg.norm(p1 - self.p0))
+        self.direction = (p1 - self.p0) / max(length, 1e-300)
+        super().__init__(surfaces, length, False, np.linspace(0.0, length, samples))
+
+    def at(self, s):
+        return self.p0 + s[:, None] * self.direction, np.broadcast_to(self.direction, (len(s), 3)).copy()
+
+    def bend(self, points):
+        return np.zeros_like(points)
+
+
+class PointSolution(ExactSolution):
+    """A single point (3,): every arc length is at it; it has no tangent nor curvature (NaN)."""
+
+    shape = "point"
+
+    def __init__(self, surfaces, point):
+        self.point = np.asarray(point, dtype=float)
+        super().__init__(surfaces, 0.0, False, np.zeros(1))
+
+    def wrap(self, s):
+        return np.zeros(np.shape(s))
+
+    def at(self, s):
+        return np.broadcast_to(self.point, (len(s), 3)).copy(), np.full((len(s), 3), np.nan)
+
+    def bend(self, points):
+        return np.full(np.shape(points), np.nan)
+
+    def closest(self, points):
+        pts = np.asarray(points, dtype=float)
+        return np.zeros(pts.shape[:-1]), np.linalg.norm(pts - self.point, axis=-1)
+
+
+def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent"):
+    """The CurveResult of a circle (centre (3,), unit axis (3,), radius) or a segment (p0 (3,), p1 (3,)) in closed
+    form; `event` is 'tangent' (the surfaces touch all along it) or 'axis_circle' (a circle about their common
+    axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve."""
+    sol = CircleSolution(surfaces, *circle) if circle is not None else SegmentSolution(surfaces, *segment)
+    _, points, _, params = sol.evaluate(sol.knots)
+    if sol.closed:
+        points[-1] = points[0]
+    status, message = outcome(event, shape=sol.shape)
+    return CurveResult(points=points, s=sol.knots, params=params, closed=sol.closed, length=sol.length,
+                       status=status, message=message, tolerance=tolerance, sol=sol)
+
+
+def contact_point(surfaces, point, tolerance):
+    """The CurveResult of a single point (3,) where the surfaces touch (status 'contact', length 0)."""
+    point = np.asarray(point, dtype=float)
+    sol = PointSolution(surfaces, point)
+    status, message = outcome("contact", point=point.tolist())
+    return CurveResult(points=point.reshape(1, 3), s=np.zeros(1), params=sol.parameters(np.zeros(1)), closed=False,
+                       length=0.0, status=status, message=message, tolerance=tolerance, sol=sol)

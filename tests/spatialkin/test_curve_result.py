@@ -1,0 +1,102 @@
+"""sk.Curve as a result built once (spatialkin.tracing.result): a read-only view of a CurveResult record and its
+dense output, distances to the surfaces measured lazily; the status table (spatialkin.tracing.status); the
+closed-form components (spatialkin.tracing.exact). Oracles: the surfaces' closed-form distances, a circle's and a
+point's closed forms."""
+import dataclasses
+
+import numpy as np
+import pytest
+
+import spatialkin as sk
+from spatialkin.tracing import status as st
+from spatialkin.tracing.result import RECORD_FIELDS, CurveResult
+
+#: Round-off slack of a closed-form comparison (unit-size scenes).
+ROUND_OFF = 1e-14
+
+
+@pytest.fixture(scope="module")
+def looper_curve():
+    """A closed loop of the seed's torus ∩ sphere, traced from a point."""
+    torus, sphere = sk.Torus(8.0, 50.0), sk.Sphere(30.0, sk.Frame((20.0, 0.0, 40.0)))
+    return sk.trace(torus, sphere, (20.0, 0.0, 10.0)), (torus, sphere)
+
+
+def test_attributes_are_read_only_views_of_the_record(looper_curve):
+    curve, _ = looper_curve
+    assert isinstance(curve.result, CurveResult)
+    for name in RECORD_FIELDS:
+        assert getattr(curve, name) is getattr(curve.result, name)
+        with pytest.raises(AttributeError):
+            setattr(curve, name, None)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        curve.result.status = st.FAILED
+    with pytest.raises(TypeError, match="CurveResult"):
+        sk.Curve(curve.points)
+    assert curve.topology is None and curve.certificate is None        # sk.trace: no search, nothing certified
+
+
+def test_max_distance_is_measured_on_first_access(looper_curve):
+    """Not at construction; then the largest closed-form distance of the points and the midpoints to either
+    surface (the spindle torus of major radius R < minor radius r: its meridian circles about (+-R, 0) in the
+    (rho, z) half-plane, | |(rho -+ R, z)| - r |; sphere: | |p - c| - R |)."""
+    curve, (torus, sphere) = looper_curve
+    fresh = sk.Curve(curve.result)
+    assert "max_distance" not in vars(fresh)
+    mid = fresh(0.5 * (fresh.s[1:] + fresh.s[:-1]))
+    pts = np.vstack([fresh.points, mid])
+    rho = np.hypot(pts[:, 0], pts[:, 1])
+    on_torus = np.minimum(*(np.abs(np.hypot(rho + shift, pts[:, 2]) - 50.0) for shift in (-8.0, 8.0)))
+    on_sphere = np.abs(np.linalg.norm(pts - (20.0, 0.0, 40.0), axis=1) - 30.0)
+    expected = max(on_torus.max(), on_sphere.max())
+    assert abs(fresh.max_distance - expected) <= ROUND_OFF * 60.0
+    assert "max_distance" in vars(fresh) and fresh.max_distance < fresh.tolerance
+
+
+def test_every_status_is_in_the_table_and_the_docstring():
+    sphere = sk.Sphere(1.0)
+    scenes = {
+        st.CONTACT: sk.intersect(sphere, sk.Sphere(1.0, sk.Frame((2.0, 0.0, 0.0)))),
+        st.TANGENT: sk.intersect(sphere, sk.Cylinder(1.0, v_range=(-2.0, 2.0))),
+        st.BOUNDARY: sk.intersect(sphere, sk.Plane(frame=sk.Frame((0.0, 0.0, 0.5)), u_range=(-0.3, 2.0),
+                                                   v_range=(-2.0, 2.0))),
+        st.CLOSED: sk.intersect(sphere, sk.Cylinder(0.5, v_range=(-2.0, 2.0))),
+    }
+    for status, curves in scenes.items():
+        assert curves and all(c.status == status for c in curves), status
+    boundary = scenes[st.BOUNDARY][0]
+    assert boundary.message.startswith("start end: ") and "; finish end: " in boundary.message
+    contact = scenes[st.CONTACT][0]
+    assert contact.message == st.outcome("contact", point=contact.points[0].tolist())[1]
+    for status in st.CURVE_STATUSES:
+        assert f"``'{status}'``" in sk.Curve.__doc__
+    assert set(st.END_PRECEDENCE) <= set(st.CURVE_STATUSES) and set(st.MEANINGS) >= set(st.CURVE_STATUSES)
+
+
+def test_tracing_errors_carry_a_status_of_the_table():
+    with pytest.raises(sk.TracingError) as info:
+        sk.trace(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((5.0, 0.0, 0.0))), (2.5, 0.0, 0.0))
+    assert info.value.status == st.NO_START and str(info.value).startswith("no intersection point found near")
+    with pytest.raises(ValueError, match="unknown status"):
+        sk.TracingError("x", status="nonsense")
+    record = dataclasses.asdict(sk.intersect(sk.Sphere(1.0), sk.Cylinder(0.5, v_range=(-2.0, 2.0)))[0].result)
+    with pytest.raises(ValueError, match="status"):
+        CurveResult(**{**record, "status": st.NO_START})           # a TracingError's status, not a curve's
+
+
+def test_closed_form_components():
+    """A contact is one point at every s; a tangent circle is the circle, its curvature vector -(p - c) / r^2."""
+    contact = sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((2.0, 0.0, 0.0))))[0]
+    np.testing.assert_array_equal(contact([0.0, 3.0]), contact.points[[0, 0]])
+    np.testing.assert_allclose(contact.points[0], (1.0, 0.0, 0.0), atol=ROUND_OFF)
+    s, d = contact.closest([[1.0, 2.0, 0.0]])
+    assert s[0] == 0.0 and abs(d[0] - 2.0) <= ROUND_OFF
+    np.testing.assert_array_equal(contact.parameters(0.0), contact.params[0])
+    circle = sk.intersect(sk.Sphere(1.0), sk.Cylinder(1.0, v_range=(-2.0, 2.0)))[0]
+    s = np.linspace(0.0, circle.length, 7)
+    points, tangents, bend = circle.derivatives(s)
+    np.testing.assert_allclose(np.linalg.norm(points[:, :2], axis=1), 1.0, atol=ROUND_OFF)
+    np.testing.assert_allclose(points[:, 2], 0.0, atol=ROUND_OFF)
+    np.testing.assert_allclose(np.einsum("ij,ij->i", tangents, points), 0.0, atol=ROUND_OFF)
+    np.testing.assert_allclose(bend, -points, atol=ROUND_OFF)
+    assert circle.points[-1].tolist() == circle.points[0].tolist() and abs(circle.length - 2 * np.pi) <= ROUND_OFF

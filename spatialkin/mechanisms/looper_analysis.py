@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..kernels import curve as kc
+from ..tracing.status import SINGULAR
 
 #: Samples per traced loop when looking for dead positions.
 LOOP_SAMPLES = 4096
@@ -72,7 +73,7 @@ def branch_points(drive):
     """Crank angles at the ends of traced loops that stop at a singular point (N1 || N2)."""
     out = []
     for c in drive.loops():
-        if c.status == "singular":
+        if c.status == SINGULAR:
             out += [float(np.mod(c.params[k, 0], 2 * np.pi)) for k in (0, -1)]
     return sorted(out)
 

@@ -155,4 +155,3 @@ def edge_start(a, b, point, p_index, fixed, value, settings):
     if y is None:
         return None
     return a.point(y[0], y[1]), y
-

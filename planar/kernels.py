@@ -23,7 +23,8 @@ import numpy as np
 
 from spatialkin._jit import jit
 from spatialkin.kernels.curve import lu_factor, lu_solve
-from spatialkin.kernels.follow import follow_segment
+from spatialkin.kernels.follow import follow_events, follow_fun
+from spatialkin.kernels.rk import advance
 from spatialkin.kernels.implicit import follow_rhs
 
 DIST, RIGID, CRANK = 0, 1, 2
@@ -138,12 +139,22 @@ def linkage_rhs(s, y, ci, cf, fixed, cranks, sign, pullback):
 
 
 @jit
-def linkage_segment(y0, t0, t_bound, sign, pullback, rtol, atol, index, levels, watch, directions, ci, cf, fixed,
-                    cranks):
-    """One arc of the configuration curve by the compiled Dormand-Prince segment
-    (spatialkin.kernels.follow.follow_segment) of linkage_rhs: trace_cycle's `segment`."""
-    return follow_segment(linkage_rhs, (ci, cf, fixed, cranks), y0, t0, t_bound, sign, pullback, rtol, atol, index,
-                          levels, watch, directions)
+def linkage_fun(t, y, args, out):
+    """linkage_rhs for the Runge-Kutta engine (spatialkin.kernels.follow)."""
+    follow_fun(linkage_rhs, t, y, args, out)
+
+
+@jit
+def linkage_events(t, y, args, eargs, active, out):
+    """The continuation events of linkage_rhs (spatialkin.kernels.follow)."""
+    follow_events(linkage_rhs, t, y, args, eargs, active, out)
+
+
+@jit
+def linkage_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, args, eargs):
+    """spatialkin.kernels.rk.advance bound to linkage_fun and linkage_events."""
+    return advance(linkage_fun, linkage_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
+                   max_steps, max_nfev, g, active)
 
 
 # --- J_q by block elimination of the explicit joints -----------------------------------------------------------

@@ -4,7 +4,7 @@ more driving cranks geared to one input angle.
 The loop-closure equations F(q, phi) = 0 are written in natural coordinates (the moving joints' x, y;
 see planar.kernels), so a class III group (a triad) is solved as one system with no dyad decomposition.
 The configuration curve is followed along the input by arc length with spatialkin's continuation pipeline
-(its compiled Dormand-Prince segment over the jitted right-hand side), each requested input angle is then
+(solve_ivp with the compiled engine over the jitted right-hand side), each requested input angle is then
 solved exactly by Newton from the traced prediction (or, next to an angle solved before it, from that
 solution's second-order expansion), and velocities and accelerations come analytically (y', y'' of the
 curve, mapped to time by the trajectory pipeline); each crank's share of the velocity is
@@ -25,7 +25,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from spatialkin.mechanisms.common import check_omega
-from spatialkin.tracing.continuation import trace_cycle
+from spatialkin.tracing.continuation import CurveKernels, trace_cycle
 from . import kernels as kn
 from .linkage_motion import LinkageMotion, LockError
 
@@ -56,6 +56,8 @@ SCAN_ANGLES = 36
 TRACE_RTOL = 1e-8
 #: Arc-length budget of one configuration curve, per unit of input period and unknown.
 LENGTH_BUDGET = 200.0
+#: The configuration curve's kernels for the continuation.
+LINKAGE_KERNELS = CurveKernels(kn.linkage_rhs, kn.linkage_events, kn.linkage_advance)
 
 
 @dataclass(frozen=True)
@@ -372,8 +374,7 @@ class Linkage:
             y0 = self.assemble(self.hint_angle, assembly)
             args = (self.ci, self.cf, self.fixed_xy, len(self.cranks))
             budget = LENGTH_BUDGET * self.period * len(y0)
-            cycle = trace_cycle(kn.linkage_rhs, y0, args, self.period, budget, rtol=TRACE_RTOL,
-                                segment=kn.linkage_segment)
+            cycle = trace_cycle(LINKAGE_KERNELS, y0, args, self.period, budget, rtol=TRACE_RTOL)
             cycle.locks = [self._onto_curve(y) for y in cycle.locks]
             self._cycles[assembly] = cycle
         return self._cycles[assembly]

@@ -12,6 +12,8 @@ import math
 import numpy as np
 
 from .._jit import jit
+from .follow import follow_events, follow_fun
+from .rk import advance
 
 O1, T1, A, O2, T2, C, L = 0, 3, 12, 13, 16, 25, 26
 PARAMS_SIZE = 27
@@ -69,6 +71,25 @@ def implicit_curve_rhs(s, x, params, sign, pullback):
     out[0] = -sign * grad[1] / g - pullback * f * grad[0] / g2
     out[1] = sign * grad[0] / g - pullback * f * grad[1] / g2
     return out
+
+
+@jit
+def rssr_fun(t, y, args, out):
+    """implicit_curve_rhs for the Runge-Kutta engine (spatialkin.kernels.follow)."""
+    follow_fun(implicit_curve_rhs, t, y, args, out)
+
+
+@jit
+def rssr_events(t, y, args, eargs, active, out):
+    """The continuation events of implicit_curve_rhs (spatialkin.kernels.follow)."""
+    follow_events(implicit_curve_rhs, t, y, args, eargs, active, out)
+
+
+@jit
+def rssr_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, args, eargs):
+    """spatialkin.kernels.rk.advance bound to rssr_fun and rssr_events."""
+    return advance(rssr_fun, rssr_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
+                   max_steps, max_nfev, g, active)
 
 
 @jit

@@ -11,7 +11,7 @@ from ..frame import Frame
 from ..kernels import linkage as kl
 from ..kinematics import serial_chain
 from ..surfaces import check_length
-from ..tracing.continuation import trace_cycle
+from ..tracing.continuation import CurveKernels, trace_cycle
 from ..trajectory import time_map, to_time
 from .common import PointMotion, angle_range_text, check_branch, check_drive
 
@@ -24,6 +24,8 @@ ASSEMBLY_SAMPLES = 720
 #: Newton tolerance on F (length^2) relative to the mechanism size squared.
 RESIDUAL_TOL = 1e-15
 _Z = (0.0, 0.0, 1.0)
+#: The configuration curve's kernels for the continuation.
+RSSR_KERNELS = CurveKernels(kl.implicit_curve_rhs, kl.rssr_events, kl.rssr_advance)
 
 
 class RSSR:
@@ -93,7 +95,7 @@ class RSSR:
         """The configuration curve over one crank turn, traced by arc length (a continuation Cycle)."""
         if branch not in self._cycles:
             x0 = self.assemble(0.0, branch)
-            cycle = trace_cycle(kl.implicit_curve_rhs, x0, (self.params,), 2 * np.pi,
+            cycle = trace_cycle(RSSR_KERNELS, x0, (self.params,), 2 * np.pi,
                                 LENGTH_BUDGET * 2 * np.pi, index=0, rtol=TRACE_RTOL)
             if cycle.locks:
                 raise ValueError("the crank of this RSSR cannot turn fully: dead position at crank angle "

@@ -16,10 +16,11 @@ quadrature of the closed form), from 2.1e-8 and 1.7e-9.
 import numpy as np
 
 from ..kernels import curve as kc
-from .segments import NEWTON_MAX_ITER, StepStates
+from .segments import NEWTON_MAX_ITER
 
 #: Only segments where the normals' sine falls below this are measured: elsewhere M1 stays within
-#: (gap / sine) < 1e-8 of the curve and the path's excess length is below round-off.
+#: (gap / sine) < 1e-8 of the curve and the path's excess length is below round-off. The compiled method
+#: hands over to solve_ivp's DOP853 above it, so its segments are never measured.
 CHECK_BELOW = 1e-2
 #: Gauss–Legendre nodes per solver step (4, 8 and 16 agree to 5e-12 on the near-node above).
 NODES = 8
@@ -57,7 +58,7 @@ def remeasure_segment(seg, pullback, gap_tol):
     """Re-map the time of a solver segment that comes near a waist (normals' sine below CHECK_BELOW) to the
     curve's arc length. Returns the segment's new length (its old one when it was not measured)."""
     t = np.asarray(seg.t, dtype=float)
-    if len(t) < 2 or np.any(seg.normal) or isinstance(seg.sol, StepStates):
+    if len(t) < 2 or np.any(seg.normal) or seg.compiled:     # the compiled method hands over well above
         return float(seg.s1 - seg.s0)
     y = np.ascontiguousarray(np.asarray(seg.y, dtype=float).T)
     if min(kc.degeneracy(row, seg.a, seg.b, 0, 0) for row in y) >= CHECK_BELOW:

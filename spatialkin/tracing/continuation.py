@@ -1,5 +1,5 @@
-"""Following a one-parameter family F(y) = 0 along its input coordinate, by arc length (solve_ivp, or the
-compiled Dormand-Prince segment of spatialkin.kernels.follow with the same events).
+"""Following a one-parameter family F(y) = 0 along its input coordinate, by arc length (solve_ivp with the
+compiled engine, spatialkin.tracing.ode.CompiledRK45, or any solve_ivp method, with the same jitted events).
 
 A mechanism's configuration curve: y holds the unknowns and the input (a crank angle). The curve is traced
 from an assembled state in the direction where the input grows, over one period of the input (a full
@@ -9,19 +9,21 @@ through them until the closed curve returns to the start. The lock positions are
 the input's rate along the curve.
 
 The right-hand side is any jitted ``rhs(s, y, *args, sign, pullback)`` whose tangent orientation is
-intrinsic (``spatialkin.kernels.implicit``), so the tangent carries through turning points.
+intrinsic (``spatialkin.kernels.implicit``), so the tangent carries through turning points; its events and
+the engine bound to it are the system's kernels (``CurveKernels``, spatialkin.kernels.follow).
 """
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ..kernels import follow as kf
-from .segments import StepStates
+from .ode import COMPILED, BudgetExceeded, Event, System, integrate
 
 #: Integration tolerance of the traced curve (a predictor: exact states come from Newton at fixed input).
 TRACE_RTOL = 1e-10
+#: Right-hand-side evaluations allowed for one arc (between two events): every call ends in bounded time.
+ARC_MAX_EVALUATIONS = 2_000_000
 #: States within this distance (units of y) count as the same configuration when the curve closes.
 CLOSE_TOL = 1e-6
 #: Rate of the input along the curve below which a start state counts as a lock position.
@@ -94,43 +96,44 @@ class Cycle:
         return ys[:, self.index], ys
 
 
-def _event(fun, direction):
-    fun.terminal, fun.direction = True, direction
-    return fun
+@dataclass(frozen=True)
+class CurveKernels:
+    """The jitted kernels of a configuration curve (spatialkin.kernels.follow): ``rhs(s, y, *args, sign,
+    pullback)``, and the events and the compiled engine bound to it (``events``, ``advance``)."""
+    rhs: object
+    events: object
+    advance: object
 
 
-def _solve_ivp_piece(rhs, args, y, s, max_length, sign, index, levels, watch, directions, rtol, method):
-    """One arc by solve_ivp up to the first event: (end, dense output, end state, outcome as
-    spatialkin.kernels.follow's)."""
-    funs = [lambda s, y, *_: y[index] - levels[0], lambda s, y, *_: y[index] - levels[1],
-            lambda s, y, *_: rhs(s, y, *args, sign, 0.0)[index]]
-    events = [_event(fun if on else lambda s, y, *_: -1.0, direction)
-              for fun, on, direction in zip(funs, watch, directions)]
-    res = solve_ivp(rhs, (s, max_length), y, method=method, rtol=rtol, atol=rtol, dense_output=True,
-                    events=events, args=(*args, sign, 1.0))
+#: Event of spatialkin.kernels.follow that ends an arc, checked in this order (a lock first).
+OUTCOME_ORDER = (kf.RATE, kf.LEVEL_TARGET, kf.LEVEL_START)
+#: No event: the arc reached max_length.
+REACHED_END = -1
+
+
+def _arc(kernels, args, y, s, max_length, sign, index, levels, watch, directions, rtol, method):
+    """One arc by solve_ivp up to the first event: (end, dense output, end state, the event or REACHED_END)."""
+    system = System(kernels.rhs, kernels.events, kernels.advance, (*args, sign, 1.0),
+                    np.array([index, levels[0], levels[1]], dtype=float), kf.COUNT)
+    events = [Event(system, e, directions[e]) for e in range(kf.COUNT) if watch[e]]
+    try:
+        res = integrate(system, (s, max_length), y, method, events, rtol, rtol, max_nfev=ARC_MAX_EVALUATIONS)
+    except BudgetExceeded as err:
+        raise ValueError(f"tracing the configuration curve stalled after arc length {s:.6g}: {err}") from None
     if res.status < 0:
-        raise ValueError(f"tracing the configuration curve failed: {res.message}")
-    fired = [kf.LEVEL_TARGET + e for e in (2, 0, 1) if res.t_events[e].size]     # a lock first
-    return res.t[-1], res.sol, res.y[:, -1], fired[0] if fired else kf.REACHED_END
+        raise ValueError(f"tracing the configuration curve failed after arc length {res.t[-1]:.6g}: {res.message}")
+    fired = {event.index for event, te in zip(events, res.t_events) if te.size}
+    outcome = next((e for e in OUTCOME_ORDER if e in fired), REACHED_END)
+    return res.t[-1], res.sol, res.y[:, -1], outcome
 
 
-def _compiled_piece(segment, args, y, s, max_length, sign, index, levels, watch, directions, rtol):
-    """One arc by a compiled segment (spatialkin.kernels.follow.follow_segment bound to the rhs)."""
-    outcome, ts, ys, hs, qs = segment(y, s, max_length, sign, 1.0, rtol, rtol, index, levels, watch,
-                                      directions, *args)
-    if outcome == kf.STEP_FAILED:
-        raise ValueError("tracing the configuration curve failed: the step size fell below the round-off "
-                         f"floor at arc length {ts[-1]:.6g}")
-    return ts[-1], StepStates(ts, ys, hs, qs), ys[-1], outcome
-
-
-def trace_cycle(rhs, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL, method="DOP853", segment=None):
+def trace_cycle(kernels, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL, method=COMPILED):
     """Trace the closed configuration curve of rhs through y0 (see the module docstring).
 
     Parameters
     ----------
-    rhs : callable
-        ``rhs(s, y, *args, sign, pullback)``, jitted.
+    kernels : CurveKernels
+        ``rhs(s, y, *args, sign, pullback)`` and the events and engine bound to it, jitted.
     y0 : ndarray (n+1,)
         A state on the curve.
     args : tuple
@@ -144,12 +147,8 @@ def trace_cycle(rhs, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL, me
     rtol : float
         Relative and absolute tolerance of the integration.
     method : str
-        solve_ivp's method (when no compiled segment is given).
-    segment : callable, optional
-        spatialkin.kernels.follow.follow_segment bound to rhs in a jitted wrapper,
-        ``segment(y, t0, t_bound, sign, pullback, rtol, atol, index, levels, watch, directions, *args)``:
-        the arcs are then integrated by that compiled Dormand-Prince 5(4) (scipy RK45's steps) instead of
-        solve_ivp, with the same events.
+        'compiled' (spatialkin.tracing.ode.CompiledRK45: scipy RK45's steps in compiled code) or a solve_ivp
+        method.
 
     Returns
     -------
@@ -162,7 +161,7 @@ def trace_cycle(rhs, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL, me
     """
     y0 = np.asarray(y0, dtype=float)
     index = index % y0.size
-    rate = rhs(0.0, y0, *args, 1.0, 0.0)[index]
+    rate = kernels.rhs(0.0, y0, *args, 1.0, 0.0)[index]
     if abs(rate) < LOCK_RATE:
         raise ValueError("the start state is a lock position (the input cannot move there)")
     sign = 1.0 if rate > 0 else -1.0
@@ -177,14 +176,10 @@ def trace_cycle(rhs, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL, me
         watch = np.array([True, not skip_back, True])
         directions = np.array([1.0, 1.0, lock_direction])
         skip_back = False
-        if segment is None:
-            end, sol, y, outcome = _solve_ivp_piece(rhs, args, y, s, max_length, sign, index, levels, watch,
-                                                    directions, rtol, method)
-        else:
-            end, sol, y, outcome = _compiled_piece(segment, args, y, s, max_length, sign, index, levels, watch,
-                                                   directions, rtol)
+        end, sol, y, outcome = _arc(kernels, args, y, s, max_length, sign, index, levels, watch, directions,
+                                    rtol, method)
         pieces.append((s, end, sol))
-        if outcome == kf.REACHED_END:
+        if outcome == REACHED_END:
             raise ValueError(f"the configuration curve did not close within arc length {max_length:.6g}")
         if outcome == kf.RATE:
             locks.append(y)

@@ -13,13 +13,13 @@ At every segment start the state is projected back onto the curve by Newton, and
 carries a pull-back term, so the gap between the surfaces stays flat however long the branch is.
 """
 import numpy as np
-from scipy.integrate import solve_ivp
 
+from ..kernels import branch_ode as kb
 from ..kernels import curve as kc
-from ..kernels import dopri as kd
 from ..kernels import surfaces as ks
-from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, BudgetExceeded, Segment, StepStates,
-                       area_flag, budgeted, charts_at, finite_bounds, newton_fixed, project_state)
+from .ode import COMPILED, BudgetExceeded, Event, System, integrate, step_points
+from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment, area_flag,
+                       charts_at, finite_bounds, newton_fixed, project_state)
 from .singular import APEX_GUARD, closes_within_jump, jump_across, take_jump
 
 # --- named limits -------------------------------------------------------------------------------------
@@ -39,9 +39,6 @@ NODE_SUSPECT = 1e-4
 KNOWN_NODE = 1e-3
 #: Where Newton fails with the normals closer to parallel than this (sine), the branch ends at a singular point.
 NEWTON_NEAR_SINGULAR = 1e-3
-#: A singular point (a node where branches cross, the apex of a spindle or horn torus or a cone) is
-#: passed by a jump of this length (relative to the curve scale) along the incoming direction, then Newton
-#: The relative area element of a parametrisation below which its apex is jumped (not a pole: spheres are
 #: Arc-length step (relative to the curve scale) of the difference that gives the slope of that sine.
 SLOPE_STEP = 1e-7
 #: Minima are watched only where the sine is below this, and counted once its slope (times the scale)
@@ -50,13 +47,13 @@ WATCH_BELOW = 1e-2
 SLOPE_FLOOR = 1e-6
 #: The minimum event is armed only this far (relative to the scale) into a segment.
 MINIMUM_ARM = 1e-9
-#: settings.method of the compiled integrator (spatialkin.kernels.dopri), and the solve_ivp method it hands
-#: hard cases to.
-COMPILED = "compiled"
+#: The solve_ivp method the compiled one (spatialkin.tracing.ode.CompiledRK45) hands hard cases to.
 FALLBACK_METHOD = "DOP853"
 #: The compiled integrator hands over to solve_ivp this many times before a watched threshold (the sine's
 #: WATCH_BELOW or the singular tolerance, APEX_GUARD), so that solve_ivp's events see the whole approach.
 HANDOFF_MARGIN = 2.0
+#: The events that end the compiled method's segments before a hard case.
+HANDOFF_EVENTS = np.isin(np.arange(kb.COUNT), (kb.HANDOFF_SINE, kb.HANDOFF_AREA))
 #: At most this many segments in one branch (each ends at an event): bounds the work on pathological input.
 MAX_SEGMENTS = 10_000
 
@@ -70,88 +67,67 @@ def known_node(point, settings):
     return bool(len(nodes)) and float(np.min(np.linalg.norm(nodes - point, axis=1))) <= KNOWN_NODE * settings.scale
 
 
-def make_events(a, b, settings, sign, start, direction, s_arm):
-    """The event functions of one segment, in a fixed order: singular, minimum, boundaries, poles, closure."""
-    events, kinds = [], []
-    flag_a, flag_b = area_flag(a), area_flag(b)
-    sing_tol = settings.singular_tol
+def segment_system(a, b, settings, sign, start, direction, s_arm):
+    """The System of one segment (charts a, b; the closure armed past s_arm) with its event parameters."""
+    ep = np.zeros(kb.P_SIZE)
+    ep[kb.P_SINGULAR_TOL] = settings.singular_tol
+    ep[kb.P_FLAG_A], ep[kb.P_FLAG_B] = area_flag(a), area_flag(b)
+    ep[kb.P_APEX_GUARD] = APEX_GUARD
+    ep[kb.P_SLOPE_STEP] = SLOPE_STEP * settings.scale
+    ep[kb.P_SLOPE_FLOOR] = SLOPE_FLOOR / settings.scale
+    ep[kb.P_MINIMUM_ARM] = MINIMUM_ARM * settings.scale
+    ep[kb.P_WATCH_BELOW] = WATCH_BELOW
+    ep[kb.P_HANDOFF_SINE] = HANDOFF_MARGIN * max(WATCH_BELOW, settings.singular_tol)
+    ep[kb.P_HANDOFF_AREA] = HANDOFF_MARGIN * APEX_GUARD
+    for _, _, idx, bound, lower, slack in finite_bounds(a, b):
+        j = 2 * idx + (0 if lower else 1)
+        ep[kb.P_BOUND + j], ep[kb.P_SLACK + j] = bound, slack
+    ep[kb.P_POLE_GUARD] = POLE_GUARD
+    ep[kb.P_CLOSURE_ARM] = s_arm
+    ep[kb.P_CLOSURE_OFFSET] = CLOSURE_OFFSET * settings.scale
+    ep[kb.P_START:kb.P_START + 3] = start
+    ep[kb.P_DIRECTION:kb.P_DIRECTION + 3] = direction
+    return System(kc.dragilev_rhs, kb.branch_events, kb.branch_advance, (a, b, float(sign), settings.pullback), ep,
+                  kb.COUNT)
 
-    def singular(s, y, *_):
-        return kc.degeneracy(y, a, b, 0, 0) - sing_tol
-    singular.terminal, singular.direction = True, -1
-    events.append(singular)
-    kinds.append(("singular", None))
 
-    if flag_a or flag_b:
-        def apex(s, y, *_):
-            return kc.area_degeneracy(y, a, b, flag_a, flag_b) - APEX_GUARD
-        apex.terminal, apex.direction = True, -1
-        events.append(apex)
-        kinds.append(("apex", None))
-
-    h = SLOPE_STEP * settings.scale
-
-    floor = SLOPE_FLOOR / settings.scale
-
-    arm = MINIMUM_ARM * settings.scale
-
-    def minimum(s, y, *_):
-        if s <= arm:
-            return 1.0          # not at the segment's start, which may be the minimum just found
-        if kc.degeneracy(y, a, b, 0, 0) > WATCH_BELOW:
-            return -1.0
-        return kc.degeneracy_slope(y, a, b, sign, h) - floor
-    minimum.terminal, minimum.direction = True, 1
-    events.append(minimum)
-    kinds.append(("minimum", None))
-
-    for k, j, idx, bound, lower, slack in finite_bounds(a, b):
-        def edge(s, y, *_, idx=idx, bound=bound, lower=lower, slack=slack):
-            return (y[idx] - bound if lower else bound - y[idx]) + slack
-        edge.terminal, edge.direction = True, -1
-        events.append(edge)
-        kinds.append(("boundary", (k, j)))
-
+def segment_events(system, a, b, settings, compiled):
+    """(Events, kinds) of one segment, in a fixed order: singular, apex, minimum (or, for the compiled method,
+    the hand-over to solve_ivp's method before either), boundaries, poles, closure."""
+    ep = system.eargs
+    flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
+    plan = ([(kb.HANDOFF_SINE, -1, ("handoff", None))] + ([(kb.HANDOFF_AREA, -1, ("handoff", None))] if flagged else [])
+            if compiled else
+            [(kb.SINGULAR, -1, ("singular", None))] + ([(kb.APEX, -1, ("apex", None))] if flagged else [])
+            + [(kb.MINIMUM, 1, ("minimum", None))])
+    for k, j, idx, _, lower, _ in finite_bounds(a, b):
+        plan.append((kb.EDGE + 2 * idx + (0 if lower else 1), -1, ("boundary", (k, j))))
     for k, data in enumerate((a, b)):
         if int(data[ks.KIND]) == ks.SPHERE:
-            iv = 2 * k + 1
-
-            def pole(s, y, *_, iv=iv):
-                return abs(np.cos(y[iv])) - POLE_GUARD
-            pole.terminal, pole.direction = True, -1
-            events.append(pole)
-            kinds.append(("chart", k))
-
+            plan.append((kb.POLE_A + k, -1, ("chart", k)))
     if settings.close:
-        offset = CLOSURE_OFFSET * settings.scale
-
-        def closure(s, y, *_):
-            if s <= s_arm:
-                return 1.0
-            return kc.closure_value(y, a, start, direction, offset)
-        closure.terminal, closure.direction = True, 1
-        events.append(closure)
-        kinds.append(("closure", None))
-    return events, kinds
+        plan.append((kb.CLOSURE, 1, ("closure", None)))
+    return [Event(system, i, d) for i, d, _ in plan], [kind for _, _, kind in plan]
 
 
-def compiled_segment(a, b, y, sign, settings, start, direction, s_arm, t_bound):
-    """One segment by the compiled integrator over local arc length [0, t_bound], the closure armed past s_arm:
-    (status, ts, ys (n, 4), hs, qs, nfev), see kd.dopri_segment."""
-    lo, hi = np.full(4, -np.inf), np.full(4, np.inf)
-    for _, _, idx, bound, lower, slack in finite_bounds(a, b):
-        if lower:
-            lo[idx] = max(lo[idx], bound - slack)
-        else:
-            hi[idx] = min(hi[idx], bound + slack)
-    atol = settings.atol
-    watch = HANDOFF_MARGIN * max(WATCH_BELOW, settings.singular_tol)
-    return kd.dopri_segment(np.ascontiguousarray(y, dtype=float), a, b, float(sign), settings.pullback,
-                            float(t_bound),
-                            settings.rtol, atol, settings.max_step, SEGMENT_MAX_EVALUATIONS, settings.close, start,
-                            direction, CLOSURE_OFFSET * settings.scale, s_arm, watch, area_flag(a), area_flag(b),
-                            HANDOFF_MARGIN * APEX_GUARD, lo, hi, int(a[ks.KIND]) == ks.SPHERE,
-                            int(b[ks.KIND]) == ks.SPHERE, POLE_GUARD)
+def back_to_last_step(branch, seg):
+    """Cut the branch's last segment back to its last RK step before its end: (state, arc length) there."""
+    keep = int(np.searchsorted(seg.t, seg.t[-1], side="left")) - 1
+    if branch.segments and branch.segments[-1] is seg:
+        branch.segments.pop()
+    if keep <= 0:
+        return seg.y[:, 0].copy(), seg.s0
+    seg.t, seg.y = seg.t[:keep + 1], seg.y[:, :keep + 1]
+    seg.s1 = seg.s0 + seg.t[-1]
+    branch.segments.append(seg)
+    return seg.y[:, -1].copy(), seg.s1
+
+
+def near_hard_case(system, y):
+    """True where the compiled method's hand-over events are already past their levels at y."""
+    g = system.event_values(0.0, y, HANDOFF_EVENTS)
+    return bool(g[kb.HANDOFF_SINE] <= 0.0 or (system.eargs[kb.P_FLAG_A] or system.eargs[kb.P_FLAG_B])
+                and g[kb.HANDOFF_AREA] <= 0.0)
 
 
 def at_outer_edge(a, b, y, sign):
@@ -215,91 +191,79 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if at_outer_edge(a, b, y, sign):
             branch.status, branch.message = "boundary", f"starts on an edge, leaving the surface, at s = {s:.6g}"
             break
-        if compiled:
-            status, ts, ys, hs, qs, nfev = compiled_segment(a, b, y, sign, settings, start, direction, s_arm - s,
-                                                             settings.max_length - s)
-            branch.nfev += nfev
-            seg = Segment(s0=s, s1=s + ts[-1], sign=sign, sol=StepStates(ts, ys, hs, qs), a=a, b=b, t=ts,
-                          y=np.ascontiguousarray(ys.T))
-            if ts[-1] > 0:
-                branch.segments.append(seg)
-            s = seg.s1
-            y = ys[-1].copy()
+        system = segment_system(a, b, settings, sign, start, direction, s_arm - s)
+        if compiled and near_hard_case(system, y):
+            compiled = False             # a hard case ahead: solve_ivp's method and the fine events from here on
+        events, kinds = segment_events(system, a, b, settings, compiled)
+        method = COMPILED if compiled else (FALLBACK_METHOD if settings.method == COMPILED else settings.method)
+        try:
+            res = integrate(system, (0.0, settings.max_length - s), y, method, events, settings.rtol, settings.atol,
+                            settings.max_step, SEGMENT_MAX_EVALUATIONS)
+        except BudgetExceeded:
+            branch.status = "failed"
+            branch.message = (f"integration stalled after s = {s:.6g} ({SEGMENT_MAX_EVALUATIONS} "
+                              f"right-hand-side evaluations in one segment), near point {point.tolist()}")
+            break
+        branch.nfev += res.nfev
+        ts, ys = step_points(res)
+        seg = Segment(s0=s, s1=s + ts[-1], sign=sign, sol=res.sol, a=a, b=b, t=ts, y=ys, compiled=compiled)
+        if ts[-1] > 0:
+            branch.segments.append(seg)
+        s = seg.s1
+        y = ys[:, -1].copy()
+        if res.status == -1:
+            if compiled:
+                compiled = False         # the step size collapsed: solve_ivp's method from here on
+                kc.curve_frame(y, a, b, point, tangent)
+                continue
+            if kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT:
+                branch.status = "singular"
+                branch.message = f"singular point (normals parallel) near s = {s:.6g}"
+            else:
+                branch.status, branch.message = "failed", f"solve_ivp failed at s = {s:.6g}: {res.message}"
+            break
+        if res.status == 0:
+            branch.status = "max_length"
+            branch.message = f"stopped at max_length = {settings.max_length:.6g} without closing"
+            break
+        hit = next(i for i, te in enumerate(res.t_events) if te.size)
+        kind, info = kinds[hit]
+        y = res.y_events[hit][0].copy()
+        kc.curve_frame(y, a, b, point, tangent)
+        if kind == "handoff":
+            compiled = False
+            continue
+        if kind == "boundary" and compiled:
+            # the edge is located by solve_ivp's method, from the last step before it (its dense output is the
+            # more accurate where the end is snapped onto the edge)
+            y, s = back_to_last_step(branch, seg)
             kc.curve_frame(y, a, b, point, tangent)
-            if status == kd.BUDGET:
-                branch.status = "failed"
-                branch.message = (f"integration stalled after s = {s:.6g} ({SEGMENT_MAX_EVALUATIONS} right-hand-side "
-                                  f"evaluations in one segment), near point {point.tolist()}")
+            compiled = False
+            continue
+        singular = kind == "singular" or (kind == "apex" and known_node(point, settings)) or (
+            kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT
+            and known_node(point, settings))
+        if singular:
+            jump = jump_across(branch, seg, res.t_events[hit][0], y, settings)
+            if jump is None:
+                branch.status = "singular"
+                what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
+                        if kind == "apex" else "singular point (branches cross or the surfaces touch)")
+                branch.message = (f"{what}, not passed, at s = {s:.6g}, point {point.tolist()}, sin of the "
+                                  f"normals' angle {kc.degeneracy(y, a, b, 0, 0):.2g}")
                 break
-            if status == kd.DONE:
-                branch.status = "max_length"
-                branch.message = f"stopped at max_length = {settings.max_length:.6g} without closing"
-                break
-            if status in (kd.HANDOFF, kd.FAILED):
-                compiled = False         # a hard case ahead: solve_ivp and its event functions from here on
-                continue
-            if status in (kd.CHART_A, kd.CHART_B):
-                continue
-            kind, info = "closure", None
-        else:
-            events, kinds = make_events(a, b, settings, sign, start, direction, s_arm - s)
-            try:
-                method = FALLBACK_METHOD if settings.method == COMPILED else settings.method
-                res = solve_ivp(budgeted(kc.dragilev_rhs), (0.0, settings.max_length - s), y, method=method,
-                                rtol=settings.rtol, atol=settings.atol, dense_output=True, events=events,
-                                args=(a, b, sign, settings.pullback), max_step=settings.max_step)
-            except BudgetExceeded:
-                branch.status = "failed"
-                branch.message = (f"integration stalled after s = {s:.6g} ({SEGMENT_MAX_EVALUATIONS} "
-                                  f"right-hand-side evaluations in one segment), near point {point.tolist()}")
-                break
-            branch.nfev += res.nfev
-            seg = Segment(s0=s, s1=s + (res.t[-1] if res.t.size else 0.0), sign=sign, sol=res.sol, a=a, b=b,
-                          t=res.t, y=res.y)
-            if res.t.size and res.t[-1] > 0:
-                branch.segments.append(seg)
-            s = seg.s1
-            y = res.y[:, -1].copy() if res.t.size else y
-            if res.status == -1:
-                if kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT:
-                    branch.status = "singular"
-                    branch.message = f"singular point (normals parallel) near s = {s:.6g}"
-                else:
-                    branch.status, branch.message = "failed", f"solve_ivp failed at s = {s:.6g}: {res.message}"
-                break
-            if res.status == 0:
-                branch.status = "max_length"
-                branch.message = f"stopped at max_length = {settings.max_length:.6g} without closing"
-                break
-            hit = next(i for i, te in enumerate(res.t_events) if te.size)
-            kind, info = kinds[hit]
-            y = res.y_events[hit][0].copy()
-            kc.curve_frame(y, a, b, point, tangent)
-            singular = kind == "singular" or (kind == "apex" and known_node(point, settings)) or (
-                kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT
-                and known_node(point, settings))
-            if singular:
-                jump = jump_across(branch, seg, res.t_events[hit][0], y, settings)
-                if jump is None:
-                    branch.status = "singular"
-                    what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
-                            if kind == "apex" else "singular point (branches cross or the surfaces touch)")
-                    branch.message = (f"{what}, not passed, at s = {s:.6g}, point {point.tolist()}, sin of the "
-                                      "normals' "
-                                      f"angle {kc.degeneracy(y, a, b, 0, 0):.2g}")
-                    break
-                sign, y, point, tangent = take_jump(branch, seg, y, jump)
-                s = branch.segments[-1].s1
-                closing = closes_within_jump(branch.segments[-1], start, direction, CLOSURE_COSINE)
-                if closing is not None:
-                    branch.status = "closed"
-                    branch.message = f"closed on its start, within a jump, after s = {closing:.12g}"
-                    branch.length = closing
-                    branch.end_state = y
-                    return branch
-                continue
-            if kind in ("minimum", "chart"):
-                continue
+            sign, y, point, tangent = take_jump(branch, seg, y, jump)
+            s = branch.segments[-1].s1
+            closing = closes_within_jump(branch.segments[-1], start, direction, CLOSURE_COSINE)
+            if closing is not None:
+                branch.status = "closed"
+                branch.message = f"closed on its start, within a jump, after s = {closing:.12g}"
+                branch.length = closing
+                branch.end_state = y
+                return branch
+            continue
+        if kind in ("minimum", "chart"):
+            continue
         if kind == "closure":
             yp, p_e, t_e, _ = project_state(y, a, b, settings)
             close_enough = np.linalg.norm(p_e - start) <= radius

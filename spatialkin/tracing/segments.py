@@ -9,7 +9,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..kernels import curve as kc
-from ..kernels import dopri as kd
 from ..kernels import surfaces as ks
 
 # --- named limits -------------------------------------------------------------------------------------
@@ -41,6 +40,7 @@ class Segment:
     t: np.ndarray        # solver step points (local t)
     y: np.ndarray        # states at the step points (4, n)
     normal: np.ndarray = field(default_factory=lambda: np.zeros(3))   # fixed correction plane (jumps)
+    compiled: bool = False   # integrated by the compiled method (never beside a hard case)
 
 
 class LinearStates:
@@ -52,20 +52,6 @@ class LinearStates:
     def __call__(self, t):
         w = np.clip(np.asarray(t, dtype=float) / self.length, 0.0, 1.0)
         return self.y0[:, None] * (1 - w) + self.y1[:, None] * w if np.ndim(t) else self.y0 * (1 - w) + self.y1 * w
-
-
-class StepStates:
-    """Dense output of a compiled segment (spatialkin.kernels.dopri): the RK45 polynomial of each step, called
-    like scipy's OdeSolution: sol(t) is (4,) for a scalar t, (4, n) for an array."""
-
-    def __init__(self, ts, ys, hs, qs):
-        self.ts, self.ys, self.hs, self.qs = ts, ys, hs, qs
-
-    def __call__(self, t):
-        tt = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
-        out = np.empty((tt.size, self.ys.shape[1]))
-        kd.dense_many(self.ts, self.ys, self.hs, self.qs, tt, out)
-        return out[0] if np.ndim(t) == 0 else out.T
 
 
 @dataclass
@@ -137,23 +123,6 @@ def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):
         y[2 * k:2 * k + 2] = uv[0]
         charts.append(data)
     return charts[0], charts[1], y
-
-
-class BudgetExceeded(Exception):
-    """An integration used up its right-hand-side evaluations."""
-
-
-def budgeted(rhs, limit=None):
-    """rhs wrapped so that it raises BudgetExceeded after `limit` calls (bounded time on any input)."""
-    limit = SEGMENT_MAX_EVALUATIONS if limit is None else limit
-    calls = [0]
-
-    def wrapped(t, y, *args):
-        calls[0] += 1
-        if calls[0] > limit:
-            raise BudgetExceeded
-        return rhs(t, y, *args)
-    return wrapped
 
 
 def finite_bounds(*surfaces):

@@ -28,7 +28,7 @@ DEFAULT_RTOL = 1e-10
 DEFAULT_SINGULAR_TOL = 1e-7
 #: Pull-back rate times the curve scale: the gap decays like exp(-PULLBACK * s / scale).
 DEFAULT_PULLBACK = 1.0
-#: The integrator: the compiled Dormand–Prince 5(4) (solve_ivp DOP853 for hard cases), or a solve_ivp method.
+#: The integrator: solve_ivp with the compiled Dormand–Prince 5(4) (DOP853 for hard cases), or a solve_ivp method.
 DEFAULT_METHOD = "compiled"
 #: Without a max_length, a branch may run this many times 2 pi times the larger surface extent.
 MAX_LENGTH_TURNS = 32
@@ -36,8 +36,8 @@ MAX_LENGTH_TURNS = 32
 GAP_FRACTION = 1e-2
 #: ... but never below this many ulps of the coordinates' magnitude (round-off floor).
 ROUNDOFF_ULPS = 64
-#: solve_ivp's methods, and "compiled": the compiled Dormand–Prince 5(4) of spatialkin.kernels.dopri (scipy's
-#: RK45 steps without the per-step Python work), handing hard cases to solve_ivp's DOP853.
+#: solve_ivp's methods, and "compiled": solve_ivp with spatialkin.tracing.ode.CompiledRK45 (scipy's RK45 steps,
+#: many per solver step in compiled code), handing hard cases to solve_ivp's DOP853.
 METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", "compiled")
 #: A node the tracer passed is the proven singular point (Settings.nodes) within this distance (relative to the
 #: scale).
@@ -118,8 +118,8 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
         Accuracy asked of every returned point and every dense evaluation, relative to the scene scale (the
         smaller characteristic length of the two surfaces): distance to both surfaces <= tol * scale.
     method : str
-        'compiled' (default): the compiled Dormand–Prince 5(4) of spatialkin.kernels.dopri, scipy's RK45 steps
-        without per-step Python work, handing singular points, apexes and edges to solve_ivp's DOP853; or a
+        'compiled' (default): solve_ivp with spatialkin.tracing.ode.CompiledRK45 (scipy's RK45 steps, many per
+        solver step in compiled code), handing singular points and apexes to solve_ivp's DOP853; or a
         solve_ivp method ('DOP853', 'RK45', ...) for the whole curve.
     rtol, atol : float
         solve_ivp tolerances on (u1, v1, u2, v2); atol defaults to rtol for angles and rtol * scale for lengths.

@@ -1,0 +1,107 @@
+"""The intersection branch as a system of the Runge–Kutta engine: Dragilev's right-hand side and its events.
+
+Every event of a branch segment is one entry of the vector ``branch_events`` writes, in this fixed order; a
+segment switches on the ones it watches. The same values serve the compiled engine (spatialkin.kernels.rk)
+and solve_ivp's own methods (spatialkin.tracing.ode.Event reads one entry).
+
+The event parameters are one float array ``ep`` laid out by the P_* indices below, plus the chart data of the
+two surfaces in ``args = (a, b, sign, pullback)``.
+"""
+import numpy as np
+
+from .._jit import jit
+from . import rk
+from .curve import area_degeneracy, closure_value, degeneracy, degeneracy_slope, dragilev_into
+
+# --- events, in order (each value falls or rises through zero) -----------------------------------------------
+#: The normals' sine falls below the singular tolerance.
+SINGULAR = 0
+#: A flagged parametrisation's relative area element falls below the apex guard.
+APEX = 1
+#: A local minimum of the normals' sine (below the watch level), where its slope rises through the floor.
+MINIMUM = 2
+#: The compiled method hands over to a solve_ivp method: the sine or the area element nears a hard case.
+HANDOFF_SINE = 3
+HANDOFF_AREA = 4
+#: Parameter bounds: EDGE + 2 * index + (0 lower, 1 upper), index in (u1, v1, u2, v2).
+EDGE = 5
+#: A sphere's chart nears its pole (surface a, surface b).
+POLE_A = 13
+POLE_B = 14
+#: The closure plane behind the start is crossed upwards (past the arming length).
+CLOSURE = 15
+COUNT = 16
+
+# --- layout of ep ----------------------------------------------------------------------------------------
+P_SINGULAR_TOL = 0
+P_FLAG_A = 1
+P_FLAG_B = 2
+P_APEX_GUARD = 3
+P_SLOPE_STEP = 4
+P_SLOPE_FLOOR = 5
+P_MINIMUM_ARM = 6
+P_WATCH_BELOW = 7
+P_HANDOFF_SINE = 8
+P_HANDOFF_AREA = 9
+P_BOUND = 10            # 8 entries, as the EDGE events
+P_SLACK = 18            # 8 entries
+P_POLE_GUARD = 26
+P_CLOSURE_ARM = 27
+P_CLOSURE_OFFSET = 28
+P_START = 29            # 3 entries
+P_DIRECTION = 32        # 3 entries
+P_SIZE = 35
+
+
+@jit
+def branch_fun(t, y, args, out):
+    """dy/ds of the branch (Dragilev's right-hand side with its pull-back), args = (a, b, sign, pullback)."""
+    a, b, sign, pullback = args
+    dragilev_into(y, a, b, sign, pullback, out)
+
+
+@jit
+def branch_event(i, t, y, args, ep):
+    """Value of event i at (t, y)."""
+    a, b, sign, _ = args
+    if i == SINGULAR:
+        return degeneracy(y, a, b, 0, 0) - ep[P_SINGULAR_TOL]
+    if i == APEX or i == HANDOFF_AREA:
+        guard = ep[P_APEX_GUARD] if i == APEX else ep[P_HANDOFF_AREA]
+        return area_degeneracy(y, a, b, int(ep[P_FLAG_A]), int(ep[P_FLAG_B])) - guard
+    if i == MINIMUM:
+        if t <= ep[P_MINIMUM_ARM]:
+            return 1.0          # not at the segment's start, which may be the minimum just found
+        if degeneracy(y, a, b, 0, 0) > ep[P_WATCH_BELOW]:
+            return -1.0
+        return degeneracy_slope(y, a, b, sign, ep[P_SLOPE_STEP]) - ep[P_SLOPE_FLOOR]
+    if i == HANDOFF_SINE:
+        return degeneracy(y, a, b, 0, 0) - ep[P_HANDOFF_SINE]
+    if EDGE <= i < EDGE + 8:
+        j = i - EDGE
+        idx = j // 2
+        inside = y[idx] - ep[P_BOUND + j] if j % 2 == 0 else ep[P_BOUND + j] - y[idx]
+        return inside + ep[P_SLACK + j]
+    if i == POLE_A:
+        return abs(np.cos(y[1])) - ep[P_POLE_GUARD]
+    if i == POLE_B:
+        return abs(np.cos(y[3])) - ep[P_POLE_GUARD]
+    if i == CLOSURE:
+        if t <= ep[P_CLOSURE_ARM]:
+            return 1.0
+        return closure_value(y, a, ep[P_START:P_START + 3], ep[P_DIRECTION:P_DIRECTION + 3], ep[P_CLOSURE_OFFSET])
+    return 1.0
+
+
+@jit
+def branch_events(t, y, args, ep, active, out):
+    """Values of the active events at (t, y) into out (COUNT,) (inactive entries: 1)."""
+    for i in range(out.shape[0]):
+        out[i] = branch_event(i, t, y, args, ep) if active[i] else 1.0
+
+
+@jit
+def branch_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, args, ep):
+    """spatialkin.kernels.rk.advance bound to branch_fun and branch_events."""
+    return rk.advance(branch_fun, branch_events, args, ep, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
+                      max_steps, max_nfev, g, active)

@@ -1,0 +1,188 @@
+"""Every curve integrated by solve_ivp: the compiled engine as an OdeSolver, events written once.
+
+``CompiledRK45`` is a ``scipy.integrate.OdeSolver``: ``solve_ivp(fun, span, y0, method=CompiledRK45,
+system=system, ...)``. One of its steps runs many RK45 steps inside compiled code (spatialkin.kernels.rk) and
+stops at the first internal step over which one of the events it is given changes sign, so solve_ivp sees the
+crossing and locates it on the step's dense output, as it does for its own methods. The steps are scipy RK45's.
+
+A ``System`` carries a curve's jitted kernels: the right-hand side in solve_ivp's form, the vector of its
+event values, and ``advance`` (the engine bound to both). An ``Event`` is one entry of that vector as solve_ivp
+wants an event function (``terminal``, ``direction``), so the same jitted event values serve CompiledRK45 and
+solve_ivp's own methods (DOP853 for the hard cases).
+
+References
+----------
+scipy.integrate._ivp.base.OdeSolver and DenseOutput (the interface), ivp.solve_ivp (event location).
+"""
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import DenseOutput, OdeSolver, solve_ivp
+
+from ..kernels import rk
+
+#: Most RK45 steps one CompiledRK45 step takes (solve_ivp's per-step Python work is paid once per this many).
+STEPS_PER_CALL = 256
+#: The compiled method's name in settings and in method= arguments.
+COMPILED = "compiled"
+#: Evaluation budget standing for none.
+NO_BUDGET = 2 ** 62
+
+
+class BudgetExceeded(Exception):
+    """An integration used up its right-hand-side evaluations."""
+
+
+@dataclass(frozen=True)
+class System:
+    """The jitted kernels of one curve and their parameters.
+
+    Attributes
+    ----------
+    rhs : callable
+        ``rhs(t, y, *args)`` -> dy/dt (n,), for solve_ivp's methods.
+    events : callable
+        ``events(t, y, args, eargs, active, out)``: the event values (n_events,) into out.
+    advance : callable
+        spatialkin.kernels.rk.advance bound to the system's kernels:
+        ``advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, args, eargs)``.
+    args, eargs : tuple or ndarray
+        Parameters of the right-hand side and of the events.
+    n_events : int
+    """
+    rhs: object
+    events: object
+    advance: object
+    args: tuple
+    eargs: object
+    n_events: int
+
+    def event_values(self, t, y, active):
+        out = np.empty(self.n_events)
+        self.events(t, np.ascontiguousarray(y, dtype=float), self.args, self.eargs, active, out)
+        return out
+
+
+class Event:
+    """Event `index` of a System as a solve_ivp event function (terminal by default)."""
+
+    def __init__(self, system, index, direction, terminal=True):
+        self.system, self.index, self.direction, self.terminal = system, int(index), float(direction), terminal
+        self._only = np.zeros(system.n_events, dtype=np.bool_)
+        self._only[self.index] = True
+
+    def __call__(self, t, y, *_):
+        return float(self.system.event_values(t, y, self._only)[self.index])
+
+
+class StepsDense(DenseOutput):
+    """Dense output of one CompiledRK45 step: the RK45 polynomial of each of its internal steps."""
+
+    def __init__(self, ts, ys, qs):
+        super().__init__(ts[0], ts[-1])
+        self.ts, self.ys, self.qs = ts, ys, qs
+        self.hs = np.diff(ts)
+
+    def _call_impl(self, t):
+        tt = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
+        out = np.empty((tt.size, self.ys.shape[1]))
+        rk.dense_many(self.ts, self.ys, self.hs, self.qs, tt, out)
+        return out[0] if np.ndim(t) == 0 else out.T
+
+
+class CompiledRK45(OdeSolver):
+    """scipy's RK45 run in compiled code, many steps per solver step, stopping where an event changes sign.
+
+    Options (through solve_ivp): ``system`` (System, required), ``watch`` (the Event list given to solve_ivp as
+    its events, so that a step stops at their crossings), ``rtol``, ``atol``, ``max_step``, ``first_step``, ``max_nfev``
+    (BudgetExceeded past it), ``steps_per_call``. Forward in t only.
+    """
+
+    def __init__(self, fun, t0, y0, t_bound, vectorized=False, system=None, watch=(), rtol=1e-3, atol=1e-6,
+                 max_step=np.inf, first_step=None, max_nfev=None, steps_per_call=STEPS_PER_CALL, **extraneous):
+        if extraneous:
+            raise TypeError(f"CompiledRK45 got unexpected options {sorted(extraneous)}")
+        if not isinstance(system, System):
+            raise TypeError("CompiledRK45 needs system=spatialkin.tracing.ode.System(...)")
+        super().__init__(fun, t0, y0, t_bound, vectorized)
+        if self.direction < 0:
+            raise ValueError("CompiledRK45 integrates forward in t only (t_bound < t0)")
+        if not (max_step > 0):
+            raise ValueError(f"max_step must be positive, got {max_step!r}")
+        self.system = system
+        self.rtol = float(rtol)
+        self.atol = np.ascontiguousarray(np.broadcast_to(np.asarray(atol, dtype=float), (self.n,)))
+        self.max_step = float(max_step)
+        self.max_nfev = NO_BUDGET if max_nfev is None else int(max_nfev)
+        self.steps_per_call = int(steps_per_call)
+        self.active = np.zeros(system.n_events, dtype=np.bool_)
+        for event in watch:
+            self.active[event.index] = True
+        self.y = np.array(self.y, dtype=float)
+        self.f = np.empty(self.n)
+        self.g = system.event_values(self.t, self.y, self.active)
+        self.h = 0.0 if first_step is None else float(first_step)
+        self.fresh = True
+        self.failed = None
+        self._dense = None
+
+    def _step_impl(self):
+        if self.failed is not None:
+            return False, self.failed
+        y = self.y.copy()
+        status, t, h, nfev, ts, ys, qs = self.system.advance(
+            self.t, y, self.f, self.h, self.fresh, self.t_bound, self.rtol, self.atol, self.max_step,
+            self.steps_per_call, self.max_nfev - self.nfev, self.g, self.active, self.system.args,
+            self.system.eargs)
+        self.fresh = False
+        self.nfev += nfev
+        if status == rk.BUDGET:
+            raise BudgetExceeded(f"{self.nfev} right-hand-side evaluations")
+        if status == rk.STEP_FAILED:
+            self.failed = "Required step size is less than spacing between numbers."
+            if len(ts) < 2:
+                return False, self.failed
+        self.t_old, self.t, self.y, self.h = self.t, t, y, h
+        self._dense = StepsDense(ts, ys, qs)
+        return True, None
+
+    def _dense_output_impl(self):
+        return self._dense
+
+
+def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, max_nfev=None):
+    """solve_ivp on a System with dense output and the given Events: by CompiledRK45 (method COMPILED), or a
+    solve_ivp method whose right-hand side raises BudgetExceeded past max_nfev evaluations."""
+    if method == COMPILED:
+        return solve_ivp(system.rhs, t_span, y0, method=CompiledRK45, rtol=rtol, atol=atol, dense_output=True,
+                         events=events, args=system.args, max_step=max_step, system=system, watch=events,
+                         max_nfev=max_nfev)
+    return solve_ivp(budgeted(system.rhs, max_nfev), t_span, y0, method=method, rtol=rtol, atol=atol,
+                     dense_output=True, events=events, args=system.args, max_step=max_step)
+
+
+def budgeted(rhs, limit=None):
+    """rhs wrapped so that it raises BudgetExceeded after `limit` calls (None: no limit)."""
+    if limit is None:
+        return rhs
+    calls = [0]
+
+    def wrapped(t, y, *args):
+        calls[0] += 1
+        if calls[0] > limit:
+            raise BudgetExceeded(f"{limit} right-hand-side evaluations")
+        return rhs(t, y, *args)
+    return wrapped
+
+
+def step_points(res):
+    """(t (m,), y (n, m)) of every RK step of a solve_ivp result with dense output, up to its end (a terminal
+    event's time is the last point): a CompiledRK45 step's internal steps, otherwise res.t and res.y."""
+    interpolants = getattr(res.sol, "interpolants", None) if res.sol is not None else None
+    if not interpolants or not isinstance(interpolants[0], StepsDense):
+        return res.t, res.y
+    ts = np.concatenate([interpolants[0].ts[:1]] + [d.ts[1:] for d in interpolants])
+    ys = np.concatenate([interpolants[0].ys[:1]] + [d.ys[1:] for d in interpolants])
+    keep = ts < res.t[-1]
+    return (np.concatenate([ts[keep], res.t[-1:]]),
+            np.ascontiguousarray(np.concatenate([ys[keep], res.y[:, -1:].T]).T))

@@ -20,6 +20,7 @@ from ..kernels import surfaces as ks
 from .ode import COMPILED, BudgetExceeded, Event, System, integrate, step_points
 from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment, area_flag,
                        charts_at, finite_bounds, newton_fixed, project_state)
+from .status import outcome
 from .singular import APEX_GUARD, closes_within_jump, jump_across, take_jump
 
 # --- named limits -------------------------------------------------------------------------------------
@@ -182,14 +183,13 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if not ok:
             sin_normals = kc.degeneracy(y, a, b, 0, 0)
             if sin_normals < NEWTON_NEAR_SINGULAR:
-                branch.status = "singular"
-                branch.message = (f"singular point (normals nearly parallel, sin = {sin_normals:.2g}; Newton "
-                                  f"cannot separate the branches) at s = {s:.6g}, point {point.tolist()}")
+                branch.status, branch.message = outcome("newton_singular", sin=sin_normals, s=s,
+                                                        point=point.tolist())
             else:
-                branch.status, branch.message = "failed", f"Newton correction failed at s = {s:.6g}"
+                branch.status, branch.message = outcome("newton_failed", s=s)
             break
         if at_outer_edge(a, b, y, sign):
-            branch.status, branch.message = "boundary", f"starts on an edge, leaving the surface, at s = {s:.6g}"
+            branch.status, branch.message = outcome("leaves_edge", s=s)
             break
         system = segment_system(a, b, settings, sign, start, direction, s_arm - s)
         if compiled and near_hard_case(system, y):
@@ -200,9 +200,8 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             res = integrate(system, (0.0, settings.max_length - s), y, method, events, settings.rtol, settings.atol,
                             settings.max_step, SEGMENT_MAX_EVALUATIONS)
         except BudgetExceeded:
-            branch.status = "failed"
-            branch.message = (f"integration stalled after s = {s:.6g} ({SEGMENT_MAX_EVALUATIONS} "
-                              f"right-hand-side evaluations in one segment), near point {point.tolist()}")
+            branch.status, branch.message = outcome("stalled", s=s, budget=SEGMENT_MAX_EVALUATIONS,
+                                                    point=point.tolist())
             break
         branch.nfev += res.nfev
         ts, ys = step_points(res)
@@ -217,14 +216,12 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 kc.curve_frame(y, a, b, point, tangent)
                 continue
             if kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT:
-                branch.status = "singular"
-                branch.message = f"singular point (normals parallel) near s = {s:.6g}"
+                branch.status, branch.message = outcome("solver_singular", s=s)
             else:
-                branch.status, branch.message = "failed", f"solve_ivp failed at s = {s:.6g}: {res.message}"
+                branch.status, branch.message = outcome("solver_failed", s=s, message=res.message)
             break
         if res.status == 0:
-            branch.status = "max_length"
-            branch.message = f"stopped at max_length = {settings.max_length:.6g} without closing"
+            branch.status, branch.message = outcome("max_length", max_length=settings.max_length)
             break
         hit = next(i for i, te in enumerate(res.t_events) if te.size)
         kind, info = kinds[hit]
@@ -246,18 +243,16 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if singular:
             jump = jump_across(branch, seg, res.t_events[hit][0], y, settings)
             if jump is None:
-                branch.status = "singular"
                 what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
                         if kind == "apex" else "singular point (branches cross or the surfaces touch)")
-                branch.message = (f"{what}, not passed, at s = {s:.6g}, point {point.tolist()}, sin of the "
-                                  f"normals' angle {kc.degeneracy(y, a, b, 0, 0):.2g}")
+                branch.status, branch.message = outcome("not_passed", what=what, s=s, point=point.tolist(),
+                                                        sin=kc.degeneracy(y, a, b, 0, 0))
                 break
             sign, y, point, tangent = take_jump(branch, seg, y, jump)
             s = branch.segments[-1].s1
             closing = closes_within_jump(branch.segments[-1], start, direction, CLOSURE_COSINE)
             if closing is not None:
-                branch.status = "closed"
-                branch.message = f"closed on its start, within a jump, after s = {closing:.12g}"
+                branch.status, branch.message = outcome("closed_in_jump", s=closing)
                 branch.length = closing
                 branch.end_state = y
                 return branch
@@ -269,8 +264,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             close_enough = np.linalg.norm(p_e - start) <= radius
             if close_enough and float(np.dot(sign * t_e, direction)) >= CLOSURE_COSINE:
                 remaining = float(np.dot(start - p_e, sign * t_e))
-                branch.status = "closed"
-                branch.message = f"closed on its start after s = {s + remaining:.12g}"
+                branch.status, branch.message = outcome("closed", s=s + remaining)
                 branch.length = s + remaining
                 branch.end_state = yp
                 return branch
@@ -280,8 +274,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             k, j = info
             name = "ab"[k]
             which = ("u_min", "u_max", "v_min", "v_max")[j]
-            branch.status = "boundary"
-            branch.message = f"reached the edge {which} of surface {name} at s = {s:.6g}"
+            branch.status, branch.message = outcome("edge", edge=which, surface=name, s=s)
             edge_state = y.copy()
             edge_state[2 * k + j // 2] = (a, b)[k][ks.BOUNDS + j]
             snapped = newton_fixed(a, b, edge_state, 2 * k + j // 2, settings.gap_tol)
@@ -290,7 +283,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 seg.y[:, -1] = y
             break
     else:
-        branch.status, branch.message = "failed", f"more than {MAX_SEGMENTS} segments"
+        branch.status, branch.message = outcome("too_many_segments", count=MAX_SEGMENTS)
     branch.length = s
     branch.end_state = y
     return branch

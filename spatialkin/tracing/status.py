@@ -50,6 +50,22 @@ MESSAGES = {
                                  "sin = {sin:.2g}): no tangent to follow"),
     "nothing_traced": (None, "nothing could be traced from {point}: {message}"),
     "no_start": (NO_START, "no intersection point found near start {point}: Newton on M1 = M2 did not converge"),
+    # the ends of a branch (spatialkin.tracing.ivp)
+    "closed": (CLOSED, "closed on its start after s = {s:.12g}"),
+    "closed_in_jump": (CLOSED, "closed on its start, within a jump, after s = {s:.12g}"),
+    "edge": (BOUNDARY, "reached the edge {edge} of surface {surface} at s = {s:.6g}"),
+    "leaves_edge": (BOUNDARY, "starts on an edge, leaving the surface, at s = {s:.6g}"),
+    "max_length": (MAX_LENGTH, "stopped at max_length = {max_length:.6g} without closing"),
+    "newton_singular": (SINGULAR, "singular point (normals nearly parallel, sin = {sin:.2g}; Newton cannot separate "
+                                  "the branches) at s = {s:.6g}, point {point}"),
+    "not_passed": (SINGULAR, "{what}, not passed, at s = {s:.6g}, point {point}, sin of the normals' angle "
+                             "{sin:.2g}"),
+    "solver_singular": (SINGULAR, "singular point (normals parallel) near s = {s:.6g}"),
+    "newton_failed": (FAILED, "Newton correction failed at s = {s:.6g}"),
+    "stalled": (FAILED, "integration stalled after s = {s:.6g} ({budget} right-hand-side evaluations in one "
+                        "segment), near point {point}"),
+    "solver_failed": (FAILED, "solve_ivp failed at s = {s:.6g}: {message}"),
+    "too_many_segments": (FAILED, "more than {count} segments"),
 }
 
 

@@ -102,6 +102,19 @@ def dense_state(t_old, h, y_old, q, t, out):
 
 
 @jit
+def dense_at(ts, ys, hs, qs, t):
+    """The dense state (n,) at one time t (dense_many for a scalar)."""
+    out = np.empty(ys.shape[1])
+    m = ts.shape[0]
+    if m < 2:
+        copy_into(out, ys[0])
+        return out
+    j = min(max(np.searchsorted(ts, t, side="right") - 1, 0), m - 2)
+    dense_state(ts[j], hs[j], ys[j], qs[j], t, out)
+    return out
+
+
+@jit
 def dense_many(ts, ys, hs, qs, t, out):
     """Dense states out (M, n) at times t (M,) from stored steps ts (m,), ys (m, n), their lengths hs (m - 1,)
     and qs (m - 1, n, 4); outside [ts[0], ts[-1]] the first or last step's polynomial is extended (as scipy's

@@ -57,8 +57,9 @@ class System:
     eargs: object
     n_events: int
 
-    def event_values(self, t, y, active):
-        out = np.empty(self.n_events)
+    def event_values(self, t, y, active, out=None):
+        """The values (n_events,) of the active events at (t, y) (into out when given)."""
+        out = np.empty(self.n_events) if out is None else out
         self.events(t, np.ascontiguousarray(y, dtype=float), self.args, self.eargs, active, out)
         return out
 
@@ -70,9 +71,12 @@ class Event:
         self.system, self.index, self.direction, self.terminal = system, int(index), float(direction), terminal
         self._only = np.zeros(system.n_events, dtype=np.bool_)
         self._only[self.index] = True
+        self._out = np.empty(system.n_events)
 
     def __call__(self, t, y, *_):
-        return float(self.system.event_values(t, y, self._only)[self.index])
+        system = self.system
+        system.events(t, y, system.args, system.eargs, self._only, self._out)
+        return self._out[self.index]
 
 
 class StepsDense(DenseOutput):
@@ -84,6 +88,8 @@ class StepsDense(DenseOutput):
         self.hs = np.diff(ts)
 
     def _call_impl(self, t):
+        if np.ndim(t) == 0:
+            return rk.dense_at(self.ts, self.ys, self.hs, self.qs, float(t))
         tt = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
         out = np.empty((tt.size, self.ys.shape[1]))
         rk.dense_many(self.ts, self.ys, self.hs, self.qs, tt, out)

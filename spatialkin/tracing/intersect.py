@@ -5,11 +5,11 @@ import time
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..surfaces import check_surface
 from .result import Curve, ExactCurve, TracingError
 from .start import locate_on_curve, newton_fixed
 from .certificate import certify as attach_certificates
 from .topology import topology
+from .traits import check_surface
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.

@@ -21,6 +21,7 @@ from ..kernels import surfaces as ks
 from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, BudgetExceeded, Segment, StepStates,
                        area_flag, budgeted, charts_at, finite_bounds, newton_fixed, project_state)
 from .singular import APEX_GUARD, closes_within_jump, jump_across, take_jump
+from .traits import traits
 
 # --- named limits -------------------------------------------------------------------------------------
 #: The closure plane is put this far (relative to the curve scale) behind the start, so that the start
@@ -113,7 +114,7 @@ def make_events(a, b, settings, sign, start, direction, s_arm):
         kinds.append(("boundary", (k, j)))
 
     for k, data in enumerate((a, b)):
-        if int(data[ks.KIND]) == ks.SPHERE:
+        if traits(data).recharts:
             iv = 2 * k + 1
 
             def pole(s, y, *_, iv=iv):
@@ -150,8 +151,8 @@ def compiled_segment(a, b, y, sign, settings, start, direction, s_arm, t_bound):
                             float(t_bound),
                             settings.rtol, atol, settings.max_step, SEGMENT_MAX_EVALUATIONS, settings.close, start,
                             direction, CLOSURE_OFFSET * settings.scale, s_arm, watch, area_flag(a), area_flag(b),
-                            HANDOFF_MARGIN * APEX_GUARD, lo, hi, int(a[ks.KIND]) == ks.SPHERE,
-                            int(b[ks.KIND]) == ks.SPHERE, POLE_GUARD)
+                            HANDOFF_MARGIN * APEX_GUARD, lo, hi, traits(a).recharts,
+                            traits(b).recharts, POLE_GUARD)
 
 
 def at_outer_edge(a, b, y, sign):
@@ -190,7 +191,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     for _ in range(MAX_SEGMENTS):
         y_prev = y
         a, b, y = charts_at(a_user, b_user, point, sign * tangent, y)
-        if ks.SPHERE in (int(a_user[ks.KIND]), int(b_user[ks.KIND])):
+        if traits(a_user).recharts or traits(b_user).recharts:
             bend = curvature_vector(y, a, b)
             if bend is not None:
                 a, b, y = charts_at(a_user, b_user, point, sign * tangent, y, bend)

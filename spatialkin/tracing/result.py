@@ -7,6 +7,7 @@ from ..kernels import surfaces as ks
 from .bspline import fit as fit_spline
 from .curvature import curvature_vectors
 from .segments import NEWTON_MAX_ITER, area_flag
+from .traits import traits
 
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.
@@ -374,9 +375,8 @@ def set_states(y, points, a, b):
     for k, data in enumerate((a, b)):
         ks.inverse(data, np.ascontiguousarray(points), uv)
         d = uv - y[:, 2 * k:2 * k + 2]
-        kind = int(data[ks.KIND])
-        for j in range(2):
-            if kind != ks.PLANE and (j == 0 or kind in (ks.SPHERE, ks.TORUS)):   # an angular parameter
+        for j, angle in enumerate(traits(data).angular):
+            if angle:
                 d[:, j] = np.mod(d[:, j] + np.pi, 2.0 * np.pi) - np.pi
         y[:, 2 * k:2 * k + 2] += d
     return y

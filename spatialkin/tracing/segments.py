@@ -109,8 +109,8 @@ def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):
 
     Surfaces whose traits re-chart (spheres) are re-charted at point (so it lies on their equator, tangent along
     +u, or the equator through the centre of the small circle the curve bends round, given its curvature vector
-    bend); the other surfaces keep their own chart and take (u, v) from y_prev (continuous u) or, without it, from the foot
-    point.
+    bend); the other surfaces keep their own chart and take (u, v) from y_prev (continuous u) or, without it,
+    from the foot point.
     """
     y = np.empty(4)
     charts = []

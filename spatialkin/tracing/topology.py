@@ -456,10 +456,10 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
 
 
 def ruled_components(p, q, pq, box, topo, scale):
-    """A cylinder or cone P and a surface that respects its rulings meet in rulings u = const of P (straight
-    segments, through the apex for a cone): the roots of g on one cross-section. Each line is clipped to both trims; a simple root is traced, a multiple root where g keeps
-    its sign is a line of tangency."""
-    # a cross-section off the apex (a cone's rulings all pass through it): halfway along the longer side
+    """A ruled P (a cylinder or cone) and a surface that respects its rulings meet in rulings u = const of P
+    (straight segments, through the apex for a cone): the roots of g on one cross-section (P's traits choose it:
+    off a cone's apex, through which all its rulings pass). Each line is clipped to both trims; a simple root is
+    traced, a multiple root where g keeps its sign is a line of tangency."""
     v_mid = traits(p).cross_section(box[2], box[3])
     roots, unresolved = pq.line(1, v_mid, -math.pi, math.pi, topo, "cross-section")
     for u, simple in [(u, True) for u in roots] + [(u, False) for u in merge_values(unresolved, 8 * COARSE * math.pi)]:

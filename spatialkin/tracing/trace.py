@@ -237,7 +237,7 @@ def _corrected(a, b, y_all, span_of, spans, settings):
         points[mask] = p
         params[mask] = user_params((a, b), y, p, seg.a, seg.b)
     for k, surf in enumerate((a, b)):
-        if traits(surf).recharts:         # parameters from the points: u jumps by whole turns
+        if traits(surf).recharts:         # its parameters come from the points
             u = params[:, 2 * k]          # unwrapped: whole turns removed from the jumps
             u[1:] -= 2 * np.pi * np.cumsum(np.round(np.diff(u) / (2 * np.pi)))
     return points, params, raw_gap

@@ -5,7 +5,8 @@ on any reals in its arguments lies in the returned interval. numba exposes no ro
 moved one ulp outward after the round-to-nearest operation (its error is at most half an ulp); sin and cos
 (within one ulp in glibc) are widened by two.
 
-S is a surface given by its packed data (spatialkin.kernels.surfaces), T another one read through a
+S is a surface given by its packed data (spatialkin.kernels.surfaces; the branches below are by its geometry
+code), T another one read through a
 polynomial implicit function F_T in T's local coordinates (smooth everywhere, unlike a signed distance):
 
     PLANE     z
@@ -28,7 +29,7 @@ import math
 
 
 from .._jit import jit
-from .surfaces import CONE, CYLINDER, KIND, ORIGIN, P0, P1, PLANE, ROT, SPHERE, TORUS
+from .surfaces import CONE, CYLINDER, GEOMETRY, ORIGIN, P0, P1, PLANE, ROT, SPHERE, TORUS
 
 #: Unit round-off of float64 (one ulp of 1.0).
 EPS = 2.220446049250313e-16
@@ -170,17 +171,17 @@ ZERO = (0.0, 0.0)
 def local_jet(data, U, V):
     """Interval local point and derivatives of S over the box U x V: (s, s_u, s_v, s_uu, s_uv, s_vv), each a
     3-tuple of intervals."""
-    kind = int(data[KIND])
+    geometry = int(data[GEOMETRY])
     z = (0.0, 0.0)
     one = (1.0, 1.0)
     zero3 = (z, z, z)
-    if kind == PLANE:
+    if geometry == PLANE:
         return (U, V, z), (one, z, z), (z, one, z), zero3, zero3, zero3
     cu = icos(U)
     su = isin(U)
-    if kind == SPHERE or kind == TORUS:
-        big = 0.0 if kind == SPHERE else data[P0]
-        small = data[P0] if kind == SPHERE else data[P1]
+    if geometry == SPHERE or geometry == TORUS:
+        big = 0.0 if geometry == SPHERE else data[P0]
+        small = data[P0] if geometry == SPHERE else data[P1]
         cv = icos(V)
         sv = isin(V)
         w = ishift(iscale(cv, small), big)
@@ -247,20 +248,20 @@ def idot(a, b):
 def implicit_jet(t_data, q):
     """(F, grad F (3 intervals), s) of T's polynomial implicit function at the interval local point q; s is the
     torus's |q|^2 + R^2 - r^2 (unused otherwise)."""
-    kind = int(t_data[KIND])
+    geometry = int(t_data[GEOMETRY])
     z = (0.0, 0.0)
-    if kind == PLANE:
+    if geometry == PLANE:
         return q[2], (z, z, (1.0, 1.0)), z
     x2 = isqr(q[0])
     y2 = isqr(q[1])
     z2 = isqr(q[2])
     rho2 = iadd(x2, y2)
-    if kind == SPHERE:
+    if geometry == SPHERE:
         f = ishift(iadd(rho2, z2), -t_data[P0] * t_data[P0])
         return f, (iscale(q[0], 2.0), iscale(q[1], 2.0), iscale(q[2], 2.0)), z
-    if kind == CYLINDER:
+    if geometry == CYLINDER:
         return ishift(rho2, -t_data[P0] * t_data[P0]), (iscale(q[0], 2.0), iscale(q[1], 2.0), z), z
-    if kind == CONE:
+    if geometry == CONE:
         t2 = t_data[P1] * t_data[P1]
         return (isub(rho2, iscale(z2, t2)), (iscale(q[0], 2.0), iscale(q[1], 2.0), iscale(q[2], -2.0 * t2)), z)
     big2 = t_data[P0] * t_data[P0]
@@ -275,15 +276,15 @@ def implicit_jet(t_data, q):
 @jit
 def hessian_form(t_data, q, s, a, b):
     """a^T H_F b over intervals, H_F the Hessian of T's implicit function at q."""
-    kind = int(t_data[KIND])
-    if kind == PLANE:
+    geometry = int(t_data[GEOMETRY])
+    if geometry == PLANE:
         return (0.0, 0.0)
     xy = iadd(imul(a[0], b[0]), imul(a[1], b[1]))
-    if kind == SPHERE:
+    if geometry == SPHERE:
         return iscale(iadd(xy, imul(a[2], b[2])), 2.0)
-    if kind == CYLINDER:
+    if geometry == CYLINDER:
         return iscale(xy, 2.0)
-    if kind == CONE:
+    if geometry == CONE:
         return isub(iscale(xy, 2.0), iscale(imul(a[2], b[2]), 2.0 * t_data[P1] * t_data[P1]))
     full = iadd(xy, imul(a[2], b[2]))
     term = iadd(imul(iscale(s, 4.0), full), iscale(imul(idot(q, a), idot(q, b)), 8.0))

@@ -3,8 +3,11 @@
 A placed surface is packed into one float64 array (its *data*), so that one jitted function serves every
 kind of surface and every pair of them:
 
-    data[KIND]            kind code (PLANE, SPHERE, CYLINDER, CONE, TORUS)
+    data[KIND]            kind code: the key of the surface's traits (spatialkin.tracing.traits); the
+                          built-in kinds use their geometry codes
     data[P0], data[P1]    shape parameters (see below)
+    data[GEOMETRY]        geometry code (PLANE, SPHERE, CYLINDER, CONE, TORUS): the parametrisation and the
+                          implicit function these kernels (and spatialkin.kernels.interval) evaluate
     data[ORIGIN:+3]       frame origin in global coordinates
     data[ROT:+9]          frame rotation, row-major; its columns are the local x, y, z axes
     data[BOUNDS:+4]       u_min, u_max, v_min, v_max (infinite where unbounded)
@@ -18,7 +21,9 @@ Local parametrisations (x, y, z in the surface frame):
     CONE      (v tan a cos u, v tan a sin u, v)   apex at the origin  P1 = tan a
 
 The sphere is the torus with R = 0, and the cylinder and cone are both the revolution of the line
-rho(v) = P0 + P1 v, so three parametrisations cover the five kinds.
+rho(v) = P0 + P1 v, so three parametrisations cover the five geometries. The geometries are a closed set
+compiled here: a surface kind with a new geometry needs its branch in these kernels and in
+spatialkin.kernels.interval; a kind over an existing geometry (another chart, trim or set of traits) needs none.
 
 References
 ----------
@@ -32,10 +37,10 @@ import numpy as np
 from .._jit import jit
 
 # --- layout of the data array -------------------------------------------------------------------------
-KIND, P0, P1, ORIGIN, ROT, BOUNDS = 0, 1, 2, 4, 7, 16
+KIND, P0, P1, GEOMETRY, ORIGIN, ROT, BOUNDS = 0, 1, 2, 3, 4, 7, 16
 DATA_SIZE = 20
 
-# --- kind codes ---------------------------------------------------------------------------------------
+# --- geometry codes (also the kind codes of the built-in kinds) ---------------------------------------------------------------------------------------
 PLANE, SPHERE, CYLINDER, CONE, TORUS = 0, 1, 2, 3, 4
 
 # --- rows of the derivative block returned by ``derivatives`` ----------------------------------------
@@ -72,15 +77,15 @@ def to_local(data, point, out):
 def local_rows(data, u, v):
     """Local point and derivatives (point, S_u, S_v, S_uu, S_uv, S_vv), each a 3-tuple: no allocation (the hot
     path; the rows a caller does not use cost a few multiplications, the trigonometry is shared)."""
-    kind = int(data[KIND])
+    geometry = int(data[GEOMETRY])
     cu = math.cos(u)
     su = math.sin(u)
     zero = (0.0, 0.0, 0.0)
-    if kind == PLANE:
+    if geometry == PLANE:
         return (u, v, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), zero, zero, zero
-    if kind == SPHERE or kind == TORUS:
-        big = 0.0 if kind == SPHERE else data[P0]
-        small = data[P0] if kind == SPHERE else data[P1]
+    if geometry == SPHERE or geometry == TORUS:
+        big = 0.0 if geometry == SPHERE else data[P0]
+        small = data[P0] if geometry == SPHERE else data[P1]
         cv = math.cos(v)
         sv = math.sin(v)
         w = big + small * cv
@@ -143,13 +148,13 @@ def implicit_local(data, q):
     for a horn or spindle torus it is the product of the signed distances to the two circles of the
     meridian plane, which vanishes on both the outer (apple) and inner (lemon) parts.
     """
-    kind = int(data[KIND])
-    if kind == PLANE:
+    geometry = int(data[GEOMETRY])
+    if geometry == PLANE:
         return q[2]
-    if kind == SPHERE:
+    if geometry == SPHERE:
         return math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) - data[P0]
     rho = math.sqrt(q[0] * q[0] + q[1] * q[1])
-    if kind == TORUS:
+    if geometry == TORUS:
         big = data[P0]
         small = data[P1]
         outer = math.sqrt((rho - big) ** 2 + q[2] * q[2]) - small
@@ -180,32 +185,15 @@ def implicit_value(data, point):
 
 
 @jit
-def size(data):
-    """Characteristic length of the surface (radius, outer radius of a torus; 1 for a plane)."""
-    kind = int(data[KIND])
-    if kind == TORUS:
-        return data[P0] + data[P1]
-    if kind == SPHERE or kind == CYLINDER:
-        return data[P0]
-    if kind == CONE:
-        lo = data[BOUNDS + 2]
-        hi = data[BOUNDS + 3]
-        if math.isfinite(lo) and math.isfinite(hi):
-            return max(abs(lo), abs(hi)) * math.sqrt(1.0 + data[P1] * data[P1])
-        return 1.0
-    return 1.0
-
-
-@jit
 def distance_local(data, q):
     """Exact unsigned distance from the local point q to the (untrimmed) surface."""
-    kind = int(data[KIND])
-    if kind == PLANE:
+    geometry = int(data[GEOMETRY])
+    if geometry == PLANE:
         return abs(q[2])
-    if kind == SPHERE:
+    if geometry == SPHERE:
         return abs(math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) - data[P0])
     rho = math.sqrt(q[0] * q[0] + q[1] * q[1])
-    if kind == TORUS:
+    if geometry == TORUS:
         big = data[P0]
         small = data[P1]
         d_outer = abs(math.sqrt((rho - big) ** 2 + q[2] * q[2]) - small)
@@ -234,18 +222,18 @@ def inverse_local(data, q, uv):
 
     Exact foot point for every kind; u is in (-pi, pi].
     """
-    kind = int(data[KIND])
-    if kind == PLANE:
+    geometry = int(data[GEOMETRY])
+    if geometry == PLANE:
         uv[0] = q[0]
         uv[1] = q[1]
         return
     theta = math.atan2(q[1], q[0])
     rho = math.sqrt(q[0] * q[0] + q[1] * q[1])
-    if kind == SPHERE:
+    if geometry == SPHERE:
         uv[0] = theta
         uv[1] = math.atan2(q[2], rho)
         return
-    if kind == TORUS:
+    if geometry == TORUS:
         big = data[P0]
         small = data[P1]
         d_outer = abs(math.sqrt((rho - big) ** 2 + q[2] * q[2]) - small)

@@ -4,7 +4,8 @@ import math
 
 import numpy as np
 
-from ..surfaces import Cone, Cylinder, Plane, Sphere, Surface, Torus
+from ..surfaces import Surface
+from ..tracing.traits import traits
 
 #: Default grid of a surface: samples along u and along v.
 SURFACE_RESOLUTION = (96, 48)
@@ -56,17 +57,9 @@ def chord_length(points):
 
 
 def natural_domain(surface):
-    """((u_lo, u_hi), (v_lo, v_hi)) of a surface's own chart, infinite where the surface is unbounded."""
-    full = (-math.pi, math.pi)
-    if isinstance(surface, Torus):
-        return full, full
-    if isinstance(surface, Sphere):
-        return full, (-math.pi / 2, math.pi / 2)
-    if isinstance(surface, (Cylinder, Cone)):
-        return full, surface.v_range
-    if isinstance(surface, Plane):
-        return surface.u_range, surface.v_range
-    raise ValueError(f"surface: no parameter domain known for {type(surface).__name__}")
+    """((u_lo, u_hi), (v_lo, v_hi)) of a surface's own chart, infinite where the surface is unbounded (its
+    traits' natural domain)."""
+    return traits(surface).natural_domain(surface)
 
 
 def _check_range(name, value, default):

@@ -21,7 +21,7 @@ import flint
 import numpy as np
 from flint import arb, arb_mat
 
-from ..surfaces import Cone, Cylinder, Plane, Sphere, Surface, Torus
+from .traits import UnknownSurfaceKindError, check_surface, traits
 
 __all__ = ["implicit_arb", "certify_points", "PRECISION_BITS"]
 
@@ -43,37 +43,21 @@ RADIUS_CAP_FRACTION = 1e-3
 
 
 class _ArbSurface:
-    """A surface's frame and shape parameters as exact arb balls, at the working precision of its creation."""
+    """A surface's frame and its implicit function's constants (its traits' arb_coefficients) as exact arb balls,
+    at the working precision of its creation."""
 
-    __slots__ = ("kind", "rot", "origin", "c0", "c1", "c2")
+    __slots__ = ("traits", "rot", "origin", "coefficients")
 
     def __init__(self, surface):
-        if not isinstance(surface, Surface):
-            raise TypeError(f"surface must be a spatialkin surface, got {type(surface).__name__}")
+        try:
+            self.traits = traits(type(surface))
+        except UnknownSurfaceKindError:
+            raise TypeError(f"surface must be a spatialkin surface, got {type(surface).__name__}") from None
         rot = np.asarray(surface.frame.rotation, dtype=float)
         # float64 -> arb is exact; rot[i][j] is R_ij, column j = local axis j in global coordinates
         self.rot = [[arb(float(rot[i, j])) for j in range(3)] for i in range(3)]
         self.origin = [arb(float(v)) for v in surface.frame.origin]
-        self.c0 = self.c1 = self.c2 = None
-        if isinstance(surface, Plane):
-            self.kind = "plane"
-        elif isinstance(surface, Sphere):
-            self.kind = "sphere"
-            self.c0 = arb(surface.radius) ** 2
-        elif isinstance(surface, Cylinder):
-            self.kind = "cylinder"
-            self.c0 = arb(surface.radius) ** 2
-        elif isinstance(surface, Cone):
-            self.kind = "cone"
-            self.c0 = arb(surface.half_angle).tan() ** 2          # t^2, t = tan(half_angle), a ball
-        elif isinstance(surface, Torus):
-            self.kind = "torus"
-            big, small = arb(surface.major_radius), arb(surface.minor_radius)
-            self.c0 = big * big - small * small                   # R^2 - r^2
-            self.c1 = 4 * big * big                               # 4 R^2
-            self.c2 = 8 * big * big                               # 8 R^2
-        else:
-            raise TypeError(f"no implicit function for {type(surface).__name__}")
+        self.coefficients = self.traits.arb_coefficients(surface, arb)
 
     def evaluate(self, x, with_value=True):
         """(F, [dF/dx_i]) at the arb 3-vector x (global); F is None unless with_value."""
@@ -83,34 +67,15 @@ class _ArbSurface:
         qx = rot[0][0] * d0 + rot[1][0] * d1 + rot[2][0] * d2
         qy = rot[0][1] * d0 + rot[1][1] * d1 + rot[2][1] * d2
         qz = rot[0][2] * d0 + rot[1][2] * d1 + rot[2][2] * d2
-        kind = self.kind
-        value = None
-        if kind == "plane":
-            return (qz if with_value else None), [rot[0][2], rot[1][2], rot[2][2]]
-        if kind == "sphere":
-            if with_value:
-                value = qx * qx + qy * qy + qz * qz - self.c0
-            gx, gy, gz = 2 * qx, 2 * qy, 2 * qz
-        elif kind == "cylinder":
-            if with_value:
-                value = qx * qx + qy * qy - self.c0
-            gx, gy = 2 * qx, 2 * qy
-            gz = None
-        elif kind == "cone":
-            if with_value:
-                value = qx * qx + qy * qy - self.c0 * (qz * qz)
-            gx, gy, gz = 2 * qx, 2 * qy, -2 * self.c0 * qz
-        else:  # torus: (|q|^2 + R^2 - r^2)^2 - 4 R^2 (qx^2 + qy^2)
-            w = qx * qx + qy * qy + qz * qz + self.c0
-            if with_value:
-                value = w * w - self.c1 * (qx * qx + qy * qy)
-            radial = 4 * w - self.c2
-            gx, gy, gz = radial * qx, radial * qy, 4 * w * qz
-        # gradient in global coordinates: R grad_q
-        if gz is None:
-            grad = [rot[i][0] * gx + rot[i][1] * gy for i in range(3)]
-        else:
-            grad = [rot[i][0] * gx + rot[i][1] * gy + rot[i][2] * gz for i in range(3)]
+        value, local = self.traits.arb_local(self.coefficients, (qx, qy, qz), with_value)
+        # gradient in global coordinates: R grad_q (the terms of identically vanishing derivatives left out)
+        grad = []
+        for i in range(3):
+            acc = None
+            for k, g in enumerate(local):
+                if g is not None:
+                    acc = rot[i][k] * g if acc is None else acc + rot[i][k] * g
+            grad.append(acc)
         return value, grad
 
 
@@ -246,9 +211,8 @@ def certify_points(a, b, points, tangents, radius0=None, *, max_radius=None, pre
     .. [2] R. E. Moore, R. B. Kearfott, M. J. Cloud, *Introduction to Interval Analysis*, SIAM, 2009, sec. 8.2
        (the Krawczyk method) and sec. 8.4 (existence and uniqueness tests).
     """
-    for name, surface in (("a", a), ("b", b)):
-        if not isinstance(surface, Surface):
-            raise TypeError(f"{name} must be a spatialkin surface, got {type(surface).__name__}")
+    check_surface("a", a)
+    check_surface("b", b)
     pts = _check_points("points", points)
     tans = _check_points("tangents", tangents)
     if tans.shape[0] != pts.shape[0]:

@@ -3,45 +3,19 @@
 Differentiating grad F(C(s)) . C'(s) = 0 along the curve gives grad F . C'' = -C'^T (hess F) C' for each
 surface, and C'' is normal to C': three linear equations for the curvature vector C'' at each point.
 """
-import math
-
 import numpy as np
 
-from ..surfaces import Cone, Cylinder, Plane, Sphere
+from .traits import traits
 
 
 def implicit_jets(surface, points):
     """(F (N,), grad F (N, 3), hess F (N, 3, 3)) of the surface's polynomial implicit function at global points
-    (N, 3): plane z, sphere |q|^2 - R^2, cylinder x^2 + y^2 - r^2, cone x^2 + y^2 - tan(a)^2 z^2, torus
-    (|q|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2), q the local point."""
+    (N, 3): its traits' local jets (plane z, sphere |q|^2 - R^2, cylinder x^2 + y^2 - r^2, cone
+    x^2 + y^2 - tan(a)^2 z^2, torus (|q|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2), q the local point) turned to global
+    coordinates."""
     rot = surface.frame.rotation
     q = (np.asarray(points, dtype=float) - surface.frame.origin) @ rot
-    n = len(q)
-    grad = np.zeros((n, 3))
-    hess = np.zeros((n, 3, 3))
-    r2 = q[:, 0] ** 2 + q[:, 1] ** 2
-    if isinstance(surface, Plane):
-        value = q[:, 2]
-        grad[:, 2] = 1.0
-    elif isinstance(surface, (Sphere, Cylinder, Cone)):
-        if isinstance(surface, Sphere):
-            diag, value = np.array([2.0, 2.0, 2.0]), r2 + q[:, 2] ** 2 - surface.radius ** 2
-        elif isinstance(surface, Cylinder):
-            diag, value = np.array([2.0, 2.0, 0.0]), r2 - surface.radius ** 2
-        else:
-            t2 = math.tan(surface.half_angle) ** 2
-            diag, value = np.array([2.0, 2.0, -2.0 * t2]), r2 - t2 * q[:, 2] ** 2
-        grad = q * diag
-        hess[:] = np.diag(diag)
-    else:
-        big2, small2 = surface.major_radius ** 2, surface.minor_radius ** 2
-        s = r2 + q[:, 2] ** 2 + big2 - small2
-        value = s * s - 4 * big2 * r2
-        grad = 4 * s[:, None] * q
-        grad[:, :2] -= 8 * big2 * q[:, :2]
-        hess = 4 * s[:, None, None] * np.eye(3) + 8 * q[:, :, None] * q[:, None, :]
-        hess[:, 0, 0] -= 8 * big2
-        hess[:, 1, 1] -= 8 * big2
+    value, grad, hess = traits(surface).implicit_jets(surface, q)
     return value, grad @ rot.T, np.einsum("ij,njk,lk->nil", rot, hess, rot)
 
 

@@ -5,7 +5,6 @@ import time
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..surfaces import check_surface
 from .dense import CLOSEST_NEWTON_STEPS
 from .exact import contact_point, exact_curve
 from .result import Curve, TracingError
@@ -13,6 +12,7 @@ from .start import locate_on_curve, newton_fixed
 from .certificate import certificates
 from .status import CONTACT
 from .topology import topology
+from .traits import check_surface
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.

@@ -22,6 +22,7 @@ from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS,
                        charts_at, finite_bounds, newton_fixed, project_state)
 from .status import outcome
 from .singular import APEX_GUARD, closes_within_jump, jump_across, take_jump
+from .traits import traits
 
 # --- named limits -------------------------------------------------------------------------------------
 #: The closure plane is put this far (relative to the curve scale) behind the start, so that the start
@@ -104,7 +105,7 @@ def segment_events(system, a, b, settings, compiled):
     for k, j, idx, _, lower, _ in finite_bounds(a, b):
         plan.append((kb.EDGE + 2 * idx + (0 if lower else 1), -1, ("boundary", (k, j))))
     for k, data in enumerate((a, b)):
-        if int(data[ks.KIND]) == ks.SPHERE:
+        if traits(data).recharts:
             plan.append((kb.POLE_A + k, -1, ("chart", k)))
     if settings.close:
         plan.append((kb.CLOSURE, 1, ("closure", None)))
@@ -167,7 +168,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     for _ in range(MAX_SEGMENTS):
         y_prev = y
         a, b, y = charts_at(a_user, b_user, point, sign * tangent, y)
-        if ks.SPHERE in (int(a_user[ks.KIND]), int(b_user[ks.KIND])):
+        if traits(a_user).recharts or traits(b_user).recharts:
             bend = curvature_vector(y, a, b)
             if bend is not None:
                 a, b, y = charts_at(a_user, b_user, point, sign * tangent, y, bend)

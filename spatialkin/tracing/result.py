@@ -10,6 +10,7 @@ import numpy as np
 from ..kernels import surfaces as ks
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome
+from .traits import traits
 
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.
@@ -237,9 +238,8 @@ def set_states(y, points, a, b):
     for k, data in enumerate((a, b)):
         ks.inverse(data, np.ascontiguousarray(points), uv)
         d = uv - y[:, 2 * k:2 * k + 2]
-        kind = int(data[ks.KIND])
-        for j in range(2):
-            if kind != ks.PLANE and (j == 0 or kind in (ks.SPHERE, ks.TORUS)):   # an angular parameter
+        for j, angle in enumerate(traits(data).angular):
+            if angle:
                 d[:, j] = np.mod(d[:, j] + np.pi, 2.0 * np.pi) - np.pi
         y[:, 2 * k:2 * k + 2] += d
     return y

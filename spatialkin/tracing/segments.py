@@ -10,9 +10,11 @@ import numpy as np
 
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
+from .traits import traits
 
 # --- named limits -------------------------------------------------------------------------------------
-#: A sphere is re-charted when |cos(latitude)| falls below this (latitude beyond 60 degrees).
+#: A re-charting surface (a sphere) is re-charted when |cos(latitude)| falls below this (latitude beyond 60
+#: degrees).
 POLE_GUARD = 0.5
 #: A parameter this close to a bound (relative) counts as on the edge.
 EDGE_TOL = 1e-12
@@ -83,36 +85,26 @@ class Settings:
     nodes: np.ndarray = None  # (K, 3) singular points proven by the topology stage, or None when not known
 
 
-def recharted_sphere(data, point, tangent, bend=None):
-    """Sphere data with its chart turned so that point is at (u, v) = (0, 0), the equator along the tangent or,
-    given the curvature vector bend (C'') of a curve bending round a small circle, through its centre (see
-    spatialkin.kernels.surfaces.recharted_sphere)."""
-    new = np.empty_like(data)
-    ks.recharted_sphere(data, np.ascontiguousarray(point, dtype=float), np.ascontiguousarray(tangent, dtype=float),
-                        np.zeros(3) if bend is None else np.ascontiguousarray(bend, dtype=float), new)
-    new.flags.writeable = False     # read-only as every Surface's data: one compiled specialisation of the kernels
-    return new
-
-
 def area_flag(data):
-    """Whether a degenerate parametrisation of this surface ends a branch (spheres are re-charted)."""
-    return int(data[ks.KIND]) not in (ks.SPHERE, ks.PLANE, ks.CYLINDER)
+    """Whether a degenerate parametrisation of this surface ends a branch (its traits' area watch)."""
+    return traits(data).area_watch
 
 
 def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):
     """Charts for a new segment at point and the state there in them.
 
-    Spheres are re-charted at point (so it lies on their equator, tangent along +u, or the equator through
-    the centre of the small circle the curve bends round, given its curvature vector bend); the other
-    surfaces keep their own chart and take (u, v) from y_prev (continuous u) or, without it, from the foot
-    point.
+    Surfaces whose traits re-chart (spheres) are re-charted at point (so it lies on their equator, tangent along
+    +u, or the equator through the centre of the small circle the curve bends round, given its curvature vector
+    bend); the other surfaces keep their own chart and take (u, v) from y_prev (continuous u) or, without it,
+    from the foot point.
     """
     y = np.empty(4)
     charts = []
     for k, user in enumerate((a_user, b_user)):
         uv = np.empty((1, 2))
-        if int(user[ks.KIND]) == ks.SPHERE:
-            data = recharted_sphere(user, point, tangent, bend)
+        kind = traits(user)
+        if kind.recharts:
+            data = kind.rechart(user, point, tangent, bend)
             ks.inverse(data, point.reshape(1, 3), uv)
         elif y_prev is not None:
             data = user

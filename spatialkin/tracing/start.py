@@ -12,6 +12,7 @@ from ..kernels import surfaces as ks
 from .segments import NEWTON_MAX_ITER, charts_at
 from .segments import newton_fixed as data_newton_fixed
 from .result import TracingError
+from .traits import traits
 
 #: Samples of an auxiliary parameter line when looking for its crossings with the other surface.
 AUX_SAMPLES = 720
@@ -21,10 +22,7 @@ def scene_scale(a, b):
     """Length scale of an intersection: the smaller characteristic length of the two surfaces, ignoring
     planes and untrimmed cones (which have none); without one, the smaller half-diagonal of the trimmed
     planes' rectangles (1 where there is none)."""
-    def sized(s):          # a plane has no size, nor has an untrimmed cone (no length in its shape)
-        kind = int(s.data[ks.KIND])
-        return kind != ks.PLANE and not (kind == ks.CONE and not np.all(np.isfinite(s.v_range)))
-    sizes = [s.size for s in (a, b) if sized(s)]
+    sizes = [x for x in (traits(s).scale_length(s) for s in (a, b)) if x is not None]
     if sizes:
         return min(sizes)
     spans = [0.5 * np.hypot(s.u_range[1] - s.u_range[0], s.v_range[1] - s.v_range[0]) for s in (a, b)]
@@ -35,13 +33,7 @@ def scene_scale(a, b):
 def parameter_units(data, scale):
     """Length of a unit step in (u, v) (2,): 1 for an angle, scale for a length (plane u and v, the axial v
     of a cylinder or cone). Sets absolute tolerances and difference steps per parameter."""
-    kind = int(data[ks.KIND])
-    units = np.ones(2)
-    if kind == ks.PLANE:
-        units[:] = scale
-    elif kind in (ks.CYLINDER, ks.CONE):
-        units[1] = scale
-    return units
+    return traits(data).parameter_units(scale)
 
 
 def locate_on_curve(a, b, guess, gap_tol, y_guess=None):
@@ -61,7 +53,7 @@ def locate_on_curve(a, b, guess, gap_tol, y_guess=None):
         raise TracingError.of("no_start", where=guess, point=guess.tolist())
     y_user = y.copy()
     for k, surf in enumerate((a, b)):
-        if int(surf.data[ks.KIND]) == ks.SPHERE:
+        if traits(surf).recharts:
             y_user[2 * k:2 * k + 2] = surf.parameters(p1)
     return p1, y_user
 

@@ -37,11 +37,10 @@ import numpy as np
 import scipy.linalg
 from scipy.optimize import brentq
 
-from ..frame import Frame
 from ..kernels import interval as ki
 from ..kernels import topology as kt
-from ..surfaces import Cone, Cylinder, Plane, Sphere, Torus
 from .placement import bounding_ball, check_not_coincident, common_axis, ruled_along
+from .traits import traits
 
 #: The fixed direction d (an angle in the plane of scaled parameters) whose extremes seed the closed loops;
 #: any direction works, a generic one keeps straight pieces of the level from lying along d's normal.
@@ -88,9 +87,6 @@ SEAM_OFFSETS = (0.0, 0.7236, 2.2019, 4.0537, 5.3211)
 SEAM_FLAT = 1e-9
 #: Newton iterations locating a critical point of g from an unresolved box.
 CRITICAL_ITER = 40
-#: Rank of each kind as the parametrised surface P (lower first): a torus has no singular chart, a plane as Q
-#: reads linearly.
-P_RANK = {Torus: 0, Sphere: 1, Cylinder: 2, Cone: 3, Plane: 4}
 
 
 class TopologyError(RuntimeError):
@@ -136,68 +132,41 @@ class Topology:
 
 # --- roles and domains -------------------------------------------------------------------------------------
 def choose_roles(a, b, axis, ruled):
-    """(P, Q, mode): P parametrised, Q implicit; the same for (a, b) and (b, a)."""
+    """(P, Q, mode): P parametrised, Q implicit; the same for (a, b) and (b, a). Coaxial: P has parallels."""
     if axis is not None:
         mode = "coaxial"
-        cands = [s for s in (a, b) if not isinstance(s, Plane)]
+        cands = [s for s in (a, b) if traits(s).has_parallels]
     elif ruled is not None:
         return ruled, (b if ruled is a else a), "ruled"
     else:
         mode = "general"
         cands = [a, b]
-    best = min(cands, key=lambda s: (P_RANK[type(s)], -s.size, tuple(s.data)))
+    best = min(cands, key=lambda s: (traits(s).rank, -s.size, tuple(s.data)))
     return best, (b if best is a else a), mode
 
 
-def aligned(p, axis):
-    """P re-placed so that its local z is the common axis (a sphere only: the others already turn about z)."""
-    if not isinstance(p, Sphere):
-        return p
-    return p.with_frame(Frame.from_z_axis(p.frame.origin, axis[1]))
-
-
-def sphere_chart(p, q):
-    """A sphere P re-charted so that its poles are as far from Q as the frame's axes allow (fewer rings)."""
-    best, score = p, -1.0
-    for k in range(3):
-        axis = p.frame.rotation[:, k]
-        poles = p.frame.origin + np.outer([1.0, -1.0], axis) * p.radius
-        d = float(np.min(q.distance(poles)))
-        if d > score * (1 + 1e-9):
-            best = p if k == 2 else p.with_frame(Frame.from_z_axis(p.frame.origin, axis))
-            score = d
-    return best
-
-
-def apex_values(p):
-    """Values of v along which P's parametrisation collapses to one point (poles and apexes)."""
-    if isinstance(p, Sphere):
-        return [-0.5 * math.pi, 0.5 * math.pi]
-    if isinstance(p, Cone):
-        return [0.0]
-    if isinstance(p, Torus) and p.minor_radius >= p.major_radius:
-        v = math.acos(-p.major_radius / p.minor_radius)
-        return [v, -v] if v < math.pi else [math.pi, -math.pi]
-    return []
-
-
 def domain(p, q_ball):
-    """(box (4,) = u_lo, u_hi, v_lo, v_hi of P's domain, u periodic, v periodic)."""
-    if isinstance(p, Torus):
-        return np.array([-math.pi, math.pi, -math.pi, math.pi]), True, True
-    if isinstance(p, Sphere):
-        return np.array([-math.pi, math.pi, -0.5 * math.pi, 0.5 * math.pi]), True, False
-    (u0, u1), (v0, v1) = p.u_range, p.v_range
+    """(box (4,) = u_lo, u_hi, v_lo, v_hi of P's domain, u periodic, v periodic): P's natural domain, a length
+    parameter where it is unbounded limited by Q's bounding ball."""
+    kind = traits(p)
+    ranges = [list(r) for r in kind.natural_domain(p)]
     if q_ball is not None:
         centre = p.frame.to_local(q_ball[0])
         reach = BALL_MARGIN * q_ball[1]
-        if isinstance(p, Plane):
-            u0, u1 = max(u0, centre[0] - reach), min(u1, centre[0] + reach)
-        v0, v1 = max(v0, centre[2 if not isinstance(p, Plane) else 1] - reach), \
-            min(v1, centre[2 if not isinstance(p, Plane) else 1] + reach)
-    if isinstance(p, Plane):
-        return np.array([u0, u1, v0, v1]), False, False
-    return np.array([-math.pi, math.pi, v0, v1]), True, False
+        for j, axis in enumerate(kind.parameter_axes):
+            if axis is not None:
+                ranges[j] = [max(ranges[j][0], centre[axis] - reach), min(ranges[j][1], centre[axis] + reach)]
+    return np.array([*ranges[0], *ranges[1]]), kind.periodic[0], kind.periodic[1]
+
+
+def limited_range(surface, j, ball):
+    """The trims of parameter j of a surface, an unbounded length limited by the other surface's ball."""
+    lo, hi = traits(surface).natural_domain(surface)[j]
+    axis = traits(surface).parameter_axes[j]
+    if axis is not None and (not math.isfinite(lo) or not math.isfinite(hi)) and ball is not None:
+        centre = surface.frame.to_local(ball[0])[axis]
+        lo, hi = max(lo, centre - BALL_MARGIN * ball[1]), min(hi, centre + BALL_MARGIN * ball[1])
+    return lo, hi
 
 
 # --- the searches ------------------------------------------------------------------------------------------
@@ -282,15 +251,6 @@ class Reader:
                                 "recognised as symmetric?)", where=name)
 
 
-def unit_lengths(p, scale):
-    """Length of a unit step of (u, v) of P: 1 for an angle, the scale for a length."""
-    if isinstance(p, Plane):
-        return np.array([scale, scale])
-    if isinstance(p, (Cylinder, Cone)):
-        return np.array([1.0, scale])
-    return np.ones(2)
-
-
 def topology(a, b, scale, tolerance):
     """Start points on every component of a ∩ b (see the module docstring). Returns a Topology.
 
@@ -314,9 +274,9 @@ def topology(a, b, scale, tolerance):
     p_user, q, mode = choose_roles(a, b, axis, ruled)
     if mode == "ruled" and balls[id(p_user)] is None and balls[id(q)] is None:
         raise ValueError("intersect needs a bounded pair")
-    p = aligned(p_user, axis) if mode == "coaxial" else p_user
-    if mode == "general" and isinstance(p, Sphere):
-        p = sphere_chart(p, q)
+    p = traits(p_user).aligned(p_user, axis) if mode == "coaxial" else p_user
+    if mode == "general":
+        p = traits(p).general_chart(p, q)
     topo = Topology(P=p_user, Q=q, mode=mode)
     box, u_periodic, v_periodic = domain(p, balls[id(q)])
     if not box[0] < box[1] or not box[2] < box[3]:
@@ -324,10 +284,10 @@ def topology(a, b, scale, tolerance):
         return topo                                  # Q's ball misses P's trimmed domain
     pq, qp = Reader(p, q), Reader(q, p)
     if mode == "general":
-        place_seams(pq, box, u_periodic, v_periodic, apex_values(p))
+        place_seams(pq, box, u_periodic, v_periodic, traits(p).collapse_lines(p))
     index = {id(a): 0, id(b): 1}
     p_index, q_index = index[id(p_user)], index[id(q)]
-    apexes = [v + 2 * math.pi * math.ceil((box[2] - v) / (2 * math.pi) - 1e-12) for v in apex_values(p)]
+    apexes = [v + 2 * math.pi * math.ceil((box[2] - v) / (2 * math.pi) - 1e-12) for v in traits(p).collapse_lines(p)]
     apexes = sorted({v for v in apexes if box[2] <= v <= box[3]})
     loose = []                                      # (surface reader, uv) of unresolved boxes
     apex_points = [p.point(0.0, v) for v in apexes] if mode == "general" else []
@@ -365,14 +325,10 @@ def topology(a, b, scale, tolerance):
         ruled_components(p, q, pq, box, topo, scale)
     else:
         # edges of P's trim (not the limits set by Q's ball: no root lies there)
-        (u0, u1), (v0, v1) = p.u_range, p.v_range
-        if isinstance(p, Plane):
-            for u in (u0, u1):
-                if math.isfinite(u):
-                    add_line_roots(pq, 0, u, box[2], box[3], "edge of P", p_index, True)
-        for v in (v0, v1):
-            if math.isfinite(v) and not isinstance(p, (Sphere, Torus)):
-                add_line_roots(pq, 1, v, box[0], box[1], "edge of P", p_index, True)
+        for j, trim in enumerate((p.u_range, p.v_range)):
+            for bound in trim:
+                if math.isfinite(bound):
+                    add_line_roots(pq, j, bound, box[2 - 2 * j], box[3 - 2 * j], "edge of P", p_index, True)
         # seams of periodic parameters
         if u_periodic:
             add_line_roots(pq, 0, box[0], box[2], box[3], "u seam", None, False)
@@ -394,10 +350,9 @@ def topology(a, b, scale, tolerance):
             if (not found and pq.on_level((0.0, v)) and inside_trims(a, apex, tolerance)
                     and inside_trims(b, apex, tolerance)):
                 topo.contacts.append(apex)           # on Q to round-off, with no branch round it
-        # Q's own apexes on P: singular points of the curve (known, so that the tracer's jumps pass them exactly)
-        for v in apex_values(q):
-            if isinstance(q, Sphere):
-                continue
+        # Q's own apexes on P: singular points of the curve (known, so that the tracer's jumps pass them exactly;
+        # a chart's poles are no points of the curve's kind)
+        for v in traits(q).apexes(q):
             apex = q.point(0.0, v)
             if float(p.distance(apex)) <= 1e3 * tolerance and qp.on_level((0.0, v)):
                 topo.apexes.append(apex)
@@ -407,7 +362,8 @@ def topology(a, b, scale, tolerance):
         # (less the thin bands round apexes on Q: a branch through the apex crosses the ring at the band's edge;
         # inside the band g and the extremal condition may vanish all along the apex line)
         for lo, hi in split_range(box[2], box[3], bands):
-            roots, unresolved = pq.extremal(np.array([box[0], box[1], lo, hi]), unit_lengths(p, scale), topo)
+            roots, unresolved = pq.extremal(np.array([box[0], box[1], lo, hi]), traits(p).parameter_units(scale),
+                                            topo)
             for uv in roots:
                 pt = p.point(*uv)
                 if keep(pt):
@@ -439,25 +395,15 @@ def place_seams(reader, box, u_periodic, v_periodic, apexes):
 
 
 def q_edges(q, qp, p_ball, add_line_roots, q_index):
-    """Roots of F_P on the trim edges of Q (a trimmed plane's sides, a cylinder's or cone's rims)."""
-    (u0, u1), (v0, v1) = q.u_range, q.v_range
-    if isinstance(q, Plane):
-        lo_hi = []
-        for lo, hi, k in ((v0, v1, 1), (u0, u1, 0)):
-            if (not math.isfinite(lo) or not math.isfinite(hi)) and p_ball is not None:
-                centre = q.frame.to_local(p_ball[0])[k]
-                lo, hi = max(lo, centre - BALL_MARGIN * p_ball[1]), min(hi, centre + BALL_MARGIN * p_ball[1])
-            lo_hi.append((lo, hi))
-        for u in (u0, u1):
-            if math.isfinite(u) and lo_hi[0][0] < lo_hi[0][1]:
-                add_line_roots(qp, 0, u, lo_hi[0][0], lo_hi[0][1], "edge of Q", q_index, True)
-        for v in (v0, v1):
-            if math.isfinite(v) and lo_hi[1][0] < lo_hi[1][1]:
-                add_line_roots(qp, 1, v, lo_hi[1][0], lo_hi[1][1], "edge of Q", q_index, True)
-    elif isinstance(q, (Cylinder, Cone)):
-        for v in (v0, v1):
-            if math.isfinite(v):
-                add_line_roots(qp, 1, v, -math.pi, math.pi, "edge of Q", q_index, True)
+    """Roots of F_P on the trim edges of Q (a trimmed plane's sides, a cylinder's or cone's rims), each edge over
+    the other parameter's range (limited by P's ball where it is an unbounded length)."""
+    for j, trim in enumerate((q.u_range, q.v_range)):
+        if not any(math.isfinite(bound) for bound in trim):
+            continue
+        lo, hi = limited_range(q, 1 - j, p_ball)
+        for bound in trim:
+            if math.isfinite(bound) and lo < hi:
+                add_line_roots(qp, j, bound, lo, hi, "edge of Q", q_index, True)
 
 
 def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index):
@@ -465,8 +411,8 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
     meridian. A simple root is a circle crossed transversally (traced); a multiple root where g keeps its sign
     is a circle of tangency; a root where the parallel collapses (a pole, an apex) is a contact point."""
     roots, unresolved = pq.line(0, -math.pi, box[2], box[3], topo, "meridian")
-    apexes = apex_values(p)
-    q_rim = isinstance(q, Plane) and (np.isfinite(q.u_range).any() or np.isfinite(q.v_range).any())
+    apexes = traits(p).collapse_lines(p)
+    q_rim = traits(q).trim_breaks_revolution(q)
     found = [(v, True) for v in roots]
     for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2])):
         # a cluster across which g changes sign is a simple root blurred by round-off (a tiny parallel near a
@@ -510,11 +456,11 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
 
 
 def ruled_components(p, q, pq, box, topo, scale):
-    """A cylinder or cone P and a surface that respects its rulings meet in rulings u = const of P (straight
-    segments, through the apex for a cone): the roots of g on one cross-section. Each line is clipped to both trims; a simple root is traced, a multiple root where g keeps
-    its sign is a line of tangency."""
-    # a cross-section off the apex (a cone's rulings all pass through it): halfway along the longer side
-    v_mid = 0.5 * (box[2] + box[3]) if isinstance(p, Cylinder) else 0.5 * max(box[2], box[3], key=abs)
+    """A ruled P (a cylinder or cone) and a surface that respects its rulings meet in rulings u = const of P
+    (straight segments, through the apex for a cone): the roots of g on one cross-section (P's traits choose it:
+    off a cone's apex, through which all its rulings pass). Each line is clipped to both trims; a simple root is
+    traced, a multiple root where g keeps its sign is a line of tangency."""
+    v_mid = traits(p).cross_section(box[2], box[3])
     roots, unresolved = pq.line(1, v_mid, -math.pi, math.pi, topo, "cross-section")
     for u, simple in [(u, True) for u in roots] + [(u, False) for u in merge_values(unresolved, 8 * COARSE * math.pi)]:
         lo, hi = clip_line(p, u, box[2], box[3], q)
@@ -550,15 +496,13 @@ def double_root(reader, fixed, value, t):
 
 
 def clip_line(p, u, v_lo, v_hi, q):
-    """The v-interval of the line u = const of the cylinder P within [v_lo, v_hi] that lies inside Q's trim."""
+    """The v-interval of the line u = const of the ruled P within [v_lo, v_hi] that lies inside Q's trim (the
+    trims of Q's length parameters, each along its local axis)."""
     ends = p.point(np.array([u, u]), np.array([v_lo, v_hi]))
     lo, hi = 0.0, 1.0
-    if isinstance(q, Plane):
-        local = q.frame.to_local(ends)
-        limits = [(0, *q.u_range), (1, *q.v_range)]
-    else:
-        local = q.frame.to_local(ends)
-        limits = [(2, *q.v_range)]
+    local = q.frame.to_local(ends)
+    limits = [(axis, *trim) for axis, trim in zip(traits(q).parameter_axes, (q.u_range, q.v_range))
+              if axis is not None]
     for k, a, b in limits:
         x0, x1 = local[0, k], local[1, k]
         if x1 == x0:
@@ -598,12 +542,10 @@ def inside_trims(surface, point, tolerance):
     if not (np.isfinite([u0, u1, v0, v1]).any()):
         return True
     u, v = surface.parameters(point)
-    slack = 10.0 * tolerance
-    if isinstance(surface, Plane) and not (u0 - slack <= u <= u1 + slack):
+    u_slack, v_slack = traits(surface).trim_slack(surface, 10.0 * tolerance)
+    if not (u0 - u_slack <= u <= u1 + u_slack):
         return False
-    if isinstance(surface, Cone):
-        slack = slack * math.cos(surface.half_angle)
-    return v0 - slack <= v <= v1 + slack
+    return v0 - v_slack <= v <= v1 + v_slack
 
 
 def classify(loose, topo, scale, keep):

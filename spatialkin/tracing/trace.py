@@ -11,7 +11,6 @@ import numpy as np
 
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
-from ..surfaces import check_surface
 from .arclength import remeasure_branch
 from .ivp import integrate_branch
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
@@ -19,6 +18,7 @@ from .dense import Span, TracedSolution
 from .result import Curve, CurveResult, TracingError, user_params, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
 from .status import CLOSED, open_outcome
+from .traits import check_surface, traits
 
 # --- defaults -----------------------------------------------------------------------------------------
 #: Relative tolerance of solve_ivp on (u1, v1, u2, v2): sets how far a step may stray before the Newton
@@ -52,16 +52,8 @@ def check_positive(name, value):
 
 
 def extent(surface):
-    """A length that bounds the surface (inf for an untrimmed plane, cylinder or cone)."""
-    kind = int(surface.data[ks.KIND])
-    if kind in (ks.SPHERE, ks.TORUS):
-        return surface.size
-    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
-    if kind == ks.PLANE:
-        return math.hypot(u1 - u0, v1 - v0)
-    if kind == ks.CYLINDER:
-        return max(surface.size, v1 - v0)
-    return max(abs(v0), abs(v1)) * math.sqrt(1.0 + surface.data[ks.P1] ** 2)
+    """A length that bounds the surface (inf for an untrimmed plane, cylinder or cone): its traits' extent."""
+    return traits(surface).extent(surface)
 
 
 def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor):
@@ -258,7 +250,7 @@ def _corrected(a, b, y_all, span_of, spans, settings):
         points[mask] = p
         params[mask] = user_params((a, b), y, p, seg.a, seg.b)
     for k, surf in enumerate((a, b)):
-        if int(surf.data[ks.KIND]) == ks.SPHERE:
+        if traits(surf).recharts:         # its parameters come from the points
             u = params[:, 2 * k]          # unwrapped: whole turns removed from the jumps
             u[1:] -= 2 * np.pi * np.cumsum(np.round(np.diff(u) / (2 * np.pi)))
     return points, params, raw_gap
@@ -269,8 +261,6 @@ def _closing_params(a, b, first, last):
     so that they continue the last point's."""
     out = first.copy()
     for i in range(4):
-        surf = (a, b)[i // 2]
-        periodic = (i % 2 == 0 and int(surf.data[ks.KIND]) != ks.PLANE) or (i % 2 == 1 and surf.periodic_v)
-        if periodic:
+        if traits((a, b)[i // 2]).periodic[i % 2]:
             out[i] = first[i] + 2 * np.pi * np.round((last[i] - first[i]) / (2 * np.pi))
     return out

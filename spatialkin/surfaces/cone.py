@@ -1,0 +1,111 @@
+"""The circular double cone (optionally trimmed along its axis) and its traits."""
+import math
+
+import numpy as np
+
+from ..kernels import surfaces as ks
+from ..tracing.placement import parallel
+from ..tracing.traits import ANGLE, LENGTH, SCALING, SurfaceTraits, register
+from .base import Surface, check_length, own_axis, quadric_jets
+from .cylinder import axial_trims_overlap
+
+
+class Cone(Surface):
+    """Circular double cone with its apex at frame.origin about the local z axis:
+    M(u, v) = frame(v tan(a) cos u, v tan(a) sin u, v), a the half angle; the apex (v = 0) is a singular
+    point of the surface. v_range optionally trims it along the axis.
+    """
+
+    def __init__(self, half_angle, frame=None, v_range=None):
+        a = check_length("half_angle", half_angle)
+        if a >= math.pi / 2:
+            raise ValueError(f"half_angle must lie in (0, pi/2), got {a}")
+        self.half_angle = a
+        super().__init__(frame, 0.0, math.tan(a), v_range=v_range)
+
+    def with_frame(self, frame):
+        return Cone(self.half_angle, frame, self.v_range)
+
+    def _describe(self):
+        return f"half_angle={self.half_angle}, v_range={self.v_range}"
+
+
+class ConeTraits(SurfaceTraits):
+    """u a periodic angle, v the length along the local z axis; the chart collapses at the apex (v = 0), a
+    singular point of the surface (the area watch is on); its length comes only from its trims; made of straight
+    lines through the apex."""
+
+    code = geometry = ks.CONE
+    name = "cone"
+    rank = 3
+    units = (ANGLE, LENGTH)
+    periodic = (True, False)
+    parameter_axes = (None, 2)
+    compact = False
+    recharts = False
+    area_watch = True
+    has_parallels = True
+
+    def size(self, surface):
+        """The slant length to the farther rim when trimmed on both sides, else 1."""
+        lo, hi = surface.v_range
+        if math.isfinite(lo) and math.isfinite(hi):
+            return max(abs(lo), abs(hi)) * math.sqrt(1.0 + surface.data[ks.P1] * surface.data[ks.P1])
+        return 1.0
+
+    def scale_length(self, surface):
+        return float(self.size(surface)) if np.all(np.isfinite(surface.v_range)) else None
+
+    def extent(self, surface):
+        v0, v1 = surface.v_range
+        return max(abs(v0), abs(v1)) * math.sqrt(1.0 + surface.data[ks.P1] ** 2)
+
+    def bounding_ball(self, surface):
+        v0, v1 = surface.v_range
+        if not np.all(np.isfinite([v0, v1])):
+            return None
+        half = 0.5 * (v1 - v0)
+        t = math.tan(surface.half_angle)
+        return surface.frame.to_global([0.0, 0.0, 0.5 * (v0 + v1)]), math.hypot(t * max(abs(v0), abs(v1)), half)
+
+    def trim_slack(self, surface, slack):
+        return slack, slack * math.cos(surface.half_angle)
+
+    def apexes(self, surface):
+        return [0.0]
+
+    def symmetry(self, surface):
+        return own_axis(surface)
+
+    def ruling(self, surface):
+        return SCALING, surface.frame.origin
+
+    def cross_section(self, v_lo, v_hi):
+        """Halfway along the longer side of the apex."""
+        return 0.5 * max(v_lo, v_hi, key=abs)
+
+    def same_surface(self, a, b, tol, same):
+        return (abs(a.half_angle - b.half_angle) <= same
+                and parallel(a.frame.rotation[:, 2], b.frame.rotation[:, 2], same)
+                and np.linalg.norm(a.frame.origin - b.frame.origin) <= tol)
+
+    def trims_overlap(self, a, b):
+        return axial_trims_overlap(a, b)
+
+    def implicit_jets(self, surface, q):
+        """F = x^2 + y^2 - tan(a)^2 z^2 (the double cone)."""
+        t2 = math.tan(surface.half_angle) ** 2
+        value = q[:, 0] ** 2 + q[:, 1] ** 2 - t2 * q[:, 2] ** 2
+        return quadric_jets(q, np.array([2.0, 2.0, -2.0 * t2]), value)
+
+    def arb_coefficients(self, surface, arb):
+        return (arb(surface.half_angle).tan() ** 2,)          # t^2, t = tan(half_angle), a ball
+
+    def arb_local(self, coefficients, q, with_value):
+        qx, qy, qz = q
+        c0 = coefficients[0]
+        value = qx * qx + qy * qy - c0 * (qz * qz) if with_value else None
+        return value, (2 * qx, 2 * qy, -2 * c0 * qz)
+
+
+register(Cone, ConeTraits())

@@ -1,0 +1,98 @@
+"""The circular cylinder (optionally trimmed along its axis) and its traits."""
+import math
+
+import numpy as np
+
+from ..kernels import surfaces as ks
+from ..tracing.placement import on_line, parallel
+from ..tracing.traits import ANGLE, LENGTH, TRANSLATION, SurfaceTraits, register
+from .base import Surface, check_length, own_axis, quadric_jets
+
+
+class Cylinder(Surface):
+    """Circular cylinder of the given radius about the local z axis: M(u, v) = frame(r cos u, r sin u, v).
+
+    v_range optionally trims it along the axis.
+    """
+
+    def __init__(self, radius, frame=None, v_range=None):
+        self.radius = check_length("radius", radius)
+        super().__init__(frame, self.radius, 0.0, v_range=v_range)
+
+    def with_frame(self, frame):
+        return Cylinder(self.radius, frame, self.v_range)
+
+    def _describe(self):
+        return f"radius={self.radius}, v_range={self.v_range}"
+
+
+class CylinderTraits(SurfaceTraits):
+    """u a periodic angle, v the length along the local z axis (trimmed or unbounded); a surface of revolution
+    about its axis made of straight lines along it."""
+
+    code = geometry = ks.CYLINDER
+    name = "cylinder"
+    rank = 2
+    units = (ANGLE, LENGTH)
+    periodic = (True, False)
+    parameter_axes = (None, 2)
+    compact = False
+    recharts = False
+    area_watch = False
+    has_parallels = True
+
+    def size(self, surface):
+        return surface.radius
+
+    def extent(self, surface):
+        v0, v1 = surface.v_range
+        return max(surface.size, v1 - v0)
+
+    def bounding_ball(self, surface):
+        v0, v1 = surface.v_range
+        if not np.all(np.isfinite([v0, v1])):
+            return None
+        half = 0.5 * (v1 - v0)
+        return surface.frame.to_global([0.0, 0.0, 0.5 * (v0 + v1)]), math.hypot(surface.radius, half)
+
+    def symmetry(self, surface):
+        return own_axis(surface)
+
+    def ruling(self, surface):
+        return TRANSLATION, surface.frame.rotation[:, 2]
+
+    def keeps_translation(self, surface, direction, same):
+        return parallel(direction, surface.frame.rotation[:, 2], same)
+
+    def same_surface(self, a, b, tol, same):
+        za = a.frame.rotation[:, 2]
+        return (abs(a.radius - b.radius) <= tol and parallel(za, b.frame.rotation[:, 2], same)
+                and on_line(b.frame.origin, a.frame.origin, za, tol))
+
+    def trims_overlap(self, a, b):
+        return axial_trims_overlap(a, b)
+
+    def implicit_jets(self, surface, q):
+        """F = x^2 + y^2 - r^2."""
+        value = q[:, 0] ** 2 + q[:, 1] ** 2 - surface.radius ** 2
+        return quadric_jets(q, np.array([2.0, 2.0, 0.0]), value)
+
+    def arb_coefficients(self, surface, arb):
+        return (arb(surface.radius) ** 2,)
+
+    def arb_local(self, coefficients, q, with_value):
+        qx, qy, _ = q
+        value = qx * qx + qy * qy - coefficients[0] if with_value else None
+        return value, (2 * qx, 2 * qy, None)
+
+
+def axial_trims_overlap(a, b):
+    """For one cylinder or cone given twice: the axial trims overlap (b's rim mapped to a's axial coordinate)."""
+    flip = float(a.frame.rotation[:, 2] @ b.frame.rotation[:, 2]) < 0
+    lo_b, hi_b = b.v_range
+    shift = float(a.frame.to_local(b.frame.origin)[2])
+    lo_b, hi_b = (shift - hi_b, shift - lo_b) if flip else (shift + lo_b, shift + hi_b)
+    return max(lo_b, a.v_range[0]) < min(hi_b, a.v_range[1])
+
+
+register(Cylinder, CylinderTraits())

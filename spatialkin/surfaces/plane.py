@@ -1,0 +1,122 @@
+"""The plane (optionally trimmed to a rectangle) and its traits."""
+import math
+
+import numpy as np
+
+from ..kernels import surfaces as ks
+from ..tracing.placement import parallel
+from ..tracing.traits import LENGTH, NORMAL, SurfaceTraits, register
+from .base import Surface
+
+#: Coplanar rectangles are compared on a grid of this many samples per side of one of them.
+OVERLAP_SAMPLES = 64
+#: Infinite trims are clipped at this many times the other rectangle's magnitude for that grid.
+OVERLAP_REACH = 1e6
+
+
+class Plane(Surface):
+    """Plane through frame.origin spanned by the local x and y axes: M(u, v) = frame(u, v, 0).
+
+    u_range and v_range optionally trim it to a rectangle.
+    """
+
+    def __init__(self, frame=None, u_range=None, v_range=None):
+        super().__init__(frame, u_range=u_range, v_range=v_range)
+
+    def with_frame(self, frame):
+        return Plane(frame, self.u_range, self.v_range)
+
+    def _describe(self):
+        return f"u_range={self.u_range}, v_range={self.v_range}"
+
+
+class PlaneTraits(SurfaceTraits):
+    """u and v lengths along the local x and y axes, never periodic; no size of its own (it has no length in its
+    shape); a surface of revolution about any line along its normal, and invariant under scaling about any of its
+    points and translation along it."""
+
+    code = geometry = ks.PLANE
+    name = "plane"
+    rank = 4                        # read linearly as the implicit surface Q: the last choice of P
+    units = (LENGTH, LENGTH)
+    periodic = (False, False)
+    parameter_axes = (0, 1)
+    compact = False
+    recharts = False
+    area_watch = False
+    has_parallels = False
+
+    def size(self, surface):
+        return 1.0
+
+    def scale_length(self, surface):
+        return None
+
+    def extent(self, surface):
+        (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+        return math.hypot(u1 - u0, v1 - v0)
+
+    def bounding_ball(self, surface):
+        (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+        if not np.all(np.isfinite([u0, u1, v0, v1])):
+            return None
+        return surface.frame.to_global([0.5 * (u0 + u1), 0.5 * (v0 + v1), 0.0]), 0.5 * math.hypot(u1 - u0, v1 - v0)
+
+    def symmetry(self, surface):
+        return NORMAL, surface.frame.rotation[:, 2]
+
+    def trim_breaks_revolution(self, surface):
+        return bool(np.isfinite(surface.u_range).any() or np.isfinite(surface.v_range).any())
+
+    def keeps_translation(self, surface, direction, same):
+        return abs(surface.frame.rotation[:, 2] @ direction) <= same
+
+    def keeps_scaling(self, surface, centre, tol):
+        return abs((centre - surface.frame.origin) @ surface.frame.rotation[:, 2]) <= tol
+
+    def same_surface(self, a, b, tol, same):
+        za = a.frame.rotation[:, 2]
+        return (parallel(za, b.frame.rotation[:, 2], same)
+                and abs((b.frame.origin - a.frame.origin) @ za) <= tol)
+
+    def trims_overlap(self, a, b):
+        """b's rectangle, turned in a's plane: its bounding box first, then a grid of its inside."""
+        corners = []
+        (u0, u1), (v0, v1) = b.u_range, b.v_range
+        big = 1e300
+        for u in (max(u0, -big), min(u1, big)):
+            for v in (max(v0, -big), min(v1, big)):
+                corners.append(b.frame.to_global([u, v, 0.0]))
+        local = a.frame.to_local(np.array(corners))[:, :2]
+        lo, hi = local.min(axis=0), local.max(axis=0)
+        if (lo[0] >= a.u_range[1] or hi[0] <= a.u_range[0] or lo[1] >= a.v_range[1] or hi[1] <= a.v_range[0]):
+            return False
+        return rectangles_overlap(a, b)
+
+    def implicit_jets(self, surface, q):
+        """F = q_z."""
+        grad = np.zeros((len(q), 3))
+        grad[:, 2] = 1.0
+        return q[:, 2], grad, np.zeros((len(q), 3, 3))
+
+    def arb_coefficients(self, surface, arb):
+        return ()
+
+    def arb_local(self, coefficients, q, with_value):
+        return (q[2] if with_value else None), (None, None, 1)
+
+
+def rectangles_overlap(a, b, samples=OVERLAP_SAMPLES):
+    """Two coplanar trimmed rectangles share an area: a grid of b's rectangle has a point strictly inside a's."""
+    (u0, u1), (v0, v1) = b.u_range, b.v_range
+    big = OVERLAP_REACH * max(1.0, *[abs(x) for x in (*a.u_range, *a.v_range) if np.isfinite(x)])
+    u0, u1, v0, v1 = max(u0, -big), min(u1, big), max(v0, -big), min(v1, big)
+    uu, vv = np.meshgrid(np.linspace(u0, u1, samples)[1:-1], np.linspace(v0, v1, samples)[1:-1])
+    pts = b.frame.to_global(np.stack([uu.ravel(), vv.ravel(), np.zeros(uu.size)], axis=1))
+    loc = a.frame.to_local(pts)
+    inside = ((loc[:, 0] > a.u_range[0]) & (loc[:, 0] < a.u_range[1]) & (loc[:, 1] > a.v_range[0])
+              & (loc[:, 1] < a.v_range[1]))
+    return bool(inside.any())
+
+
+register(Plane, PlaneTraits())

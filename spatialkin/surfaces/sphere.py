@@ -1,0 +1,110 @@
+"""The sphere and its traits."""
+import math
+
+import numpy as np
+
+from ..frame import Frame
+from ..kernels import surfaces as ks
+from ..tracing.traits import ANGLE, FULL_TURN, POINT, SurfaceTraits, register
+from .base import Surface, check_length, quadric_jets
+
+#: The latitudes of the poles, where the chart (u longitude, v latitude) collapses.
+POLES = (-0.5 * math.pi, 0.5 * math.pi)
+
+
+class Sphere(Surface):
+    """Sphere of the given radius centred at frame.origin; local z is the pole axis of (u, v).
+
+    M(u, v) = frame(R cos v cos u, R cos v sin u, R sin v); u longitude, v latitude.
+    """
+
+    def __init__(self, radius, frame=None):
+        self.radius = check_length("radius", radius)
+        super().__init__(frame, self.radius)
+
+    @property
+    def center(self):
+        return self.frame.origin
+
+    def with_frame(self, frame):
+        return Sphere(self.radius, frame)
+
+    def _describe(self):
+        return f"radius={self.radius}"
+
+
+class SphereTraits(SurfaceTraits):
+    """Compact; u a periodic angle, v the latitude. Its chart collapses at the poles of a smooth surface, so the
+    tracer turns the chart at every segment start (``rechart``) and never reaches them; it turns about any line
+    through its centre."""
+
+    code = geometry = ks.SPHERE
+    name = "sphere"
+    rank = 1
+    units = (ANGLE, ANGLE)
+    periodic = (True, False)
+    parameter_axes = (None, None)
+    compact = True
+    recharts = True
+    area_watch = False              # re-charted: its poles are never on a segment
+    has_parallels = True
+
+    def size(self, surface):
+        return surface.radius
+
+    def bounding_ball(self, surface):
+        return surface.frame.origin.copy(), surface.radius
+
+    def natural_domain(self, surface):
+        return FULL_TURN, POLES
+
+    def rechart(self, data, point, tangent, bend=None):
+        """Sphere data with its chart turned so that point is at (u, v) = (0, 0), the equator along the tangent or,
+        given the curvature vector bend (C'') of a curve bending round a small circle, through its centre (see
+        spatialkin.kernels.surfaces.recharted_sphere)."""
+        new = np.empty_like(data)
+        ks.recharted_sphere(data, np.ascontiguousarray(point, dtype=float),
+                            np.ascontiguousarray(tangent, dtype=float),
+                            np.zeros(3) if bend is None else np.ascontiguousarray(bend, dtype=float), new)
+        new.flags.writeable = False     # read-only as every Surface's data: one compiled specialisation of the kernels
+        return new
+
+    def poles(self, surface):
+        return list(POLES)
+
+    def general_chart(self, p, q):
+        """The sphere with its poles as far from Q as the frame's axes allow (fewer rings round them)."""
+        best, score = p, -1.0
+        for k in range(3):
+            axis = p.frame.rotation[:, k]
+            poles = p.frame.origin + np.outer([1.0, -1.0], axis) * p.radius
+            d = float(np.min(q.distance(poles)))
+            if d > score * (1 + 1e-9):
+                best = p if k == 2 else p.with_frame(Frame.from_z_axis(p.frame.origin, axis))
+                score = d
+        return best
+
+    def symmetry(self, surface):
+        return POINT, surface.frame.origin
+
+    def aligned(self, surface, axis):
+        return surface.with_frame(Frame.from_z_axis(surface.frame.origin, axis[1]))
+
+    def same_surface(self, a, b, tol, same):
+        return np.linalg.norm(a.frame.origin - b.frame.origin) <= tol and abs(a.radius - b.radius) <= tol
+
+    def implicit_jets(self, surface, q):
+        """F = |q|^2 - R^2."""
+        value = q[:, 0] ** 2 + q[:, 1] ** 2 + q[:, 2] ** 2 - surface.radius ** 2
+        return quadric_jets(q, np.array([2.0, 2.0, 2.0]), value)
+
+    def arb_coefficients(self, surface, arb):
+        return (arb(surface.radius) ** 2,)
+
+    def arb_local(self, coefficients, q, with_value):
+        qx, qy, qz = q
+        value = qx * qx + qy * qy + qz * qz - coefficients[0] if with_value else None
+        return value, (2 * qx, 2 * qy, 2 * qz)
+
+
+register(Sphere, SphereTraits())

@@ -1,0 +1,99 @@
+"""The torus (ring, horn or spindle) and its traits."""
+import math
+
+import numpy as np
+
+from ..kernels import surfaces as ks
+from ..tracing.placement import parallel
+from ..tracing.traits import ANGLE, SurfaceTraits, register
+from .base import Surface, check_length, own_axis
+
+
+class Torus(Surface):
+    """Torus about the local z axis: ring (minor < major), horn (minor = major) or spindle (minor > major).
+
+    M(u, v) = frame((R + r cos v) cos u, (R + r cos v) sin u, r sin v); u around the axis, v around the tube.
+    """
+
+    def __init__(self, major_radius, minor_radius, frame=None):
+        self.major_radius = check_length("major_radius", major_radius)
+        self.minor_radius = check_length("minor_radius", minor_radius)
+        super().__init__(frame, self.major_radius, self.minor_radius)
+
+    @property
+    def shape(self):
+        """'ring', 'horn' or 'spindle'."""
+        if self.minor_radius < self.major_radius:
+            return "ring"
+        return "horn" if self.minor_radius == self.major_radius else "spindle"
+
+    def with_frame(self, frame):
+        return Torus(self.major_radius, self.minor_radius, frame)
+
+    def _describe(self):
+        return f"major_radius={self.major_radius}, minor_radius={self.minor_radius}"
+
+
+class TorusTraits(SurfaceTraits):
+    """Compact, both parameters periodic angles; a horn or spindle torus collapses to its apexes on the axis
+    (the area watch is on for every torus)."""
+
+    code = geometry = ks.TORUS
+    name = "torus"
+    rank = 0                        # no collapsing chart: the first choice of parametrised surface
+    units = (ANGLE, ANGLE)
+    periodic = (True, True)
+    parameter_axes = (None, None)
+    compact = True
+    recharts = False
+    area_watch = True
+    has_parallels = True
+
+    def size(self, surface):
+        return surface.major_radius + surface.minor_radius
+
+    def bounding_ball(self, surface):
+        return surface.frame.origin.copy(), surface.major_radius + surface.minor_radius
+
+    def apexes(self, surface):
+        """The tube's points on the axis (horn, spindle): v = +-acos(-R/r), at pi for the horn."""
+        if surface.minor_radius < surface.major_radius:
+            return []
+        v = math.acos(-surface.major_radius / surface.minor_radius)
+        return [v, -v] if v < math.pi else [math.pi, -math.pi]
+
+    def symmetry(self, surface):
+        return own_axis(surface)
+
+    def same_surface(self, a, b, tol, same):
+        return (abs(a.major_radius - b.major_radius) <= tol and abs(a.minor_radius - b.minor_radius) <= tol
+                and parallel(a.frame.rotation[:, 2], b.frame.rotation[:, 2], same)
+                and np.linalg.norm(a.frame.origin - b.frame.origin) <= tol)
+
+    def implicit_jets(self, surface, q):
+        """F = (|q|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) (both parts of a horn or spindle torus)."""
+        r2 = q[:, 0] ** 2 + q[:, 1] ** 2
+        big2, small2 = surface.major_radius ** 2, surface.minor_radius ** 2
+        s = r2 + q[:, 2] ** 2 + big2 - small2
+        value = s * s - 4 * big2 * r2
+        grad = 4 * s[:, None] * q
+        grad[:, :2] -= 8 * big2 * q[:, :2]
+        hess = 4 * s[:, None, None] * np.eye(3) + 8 * q[:, :, None] * q[:, None, :]
+        hess[:, 0, 0] -= 8 * big2
+        hess[:, 1, 1] -= 8 * big2
+        return value, grad, hess
+
+    def arb_coefficients(self, surface, arb):
+        big, small = arb(surface.major_radius), arb(surface.minor_radius)
+        return big * big - small * small, 4 * big * big, 8 * big * big          # R^2 - r^2, 4 R^2, 8 R^2
+
+    def arb_local(self, coefficients, q, with_value):
+        c0, c1, c2 = coefficients
+        qx, qy, qz = q
+        w = qx * qx + qy * qy + qz * qz + c0
+        value = w * w - c1 * (qx * qx + qy * qy) if with_value else None
+        radial = 4 * w - c2
+        return value, (radial * qx, radial * qy, 4 * w * qz)
+
+
+register(Torus, TorusTraits())

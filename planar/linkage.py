@@ -25,7 +25,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from spatialkin.mechanisms.common import check_omega
-from spatialkin.tracing.continuation import CurveKernels, trace_cycle
+from spatialkin.continuation import CurveKernels, trace_cycle
 from . import kernels as kn
 from .linkage_motion import LinkageMotion, LockError
 
@@ -369,7 +369,7 @@ class Linkage:
 
     def cycle(self, assembly=None):
         """The configuration curve through the chosen assembly at hint_angle (cached): see
-        spatialkin.tracing.continuation.Cycle."""
+        spatialkin.continuation.Cycle."""
         if assembly not in self._cycles:
             y0 = self.assemble(self.hint_angle, assembly)
             args = (self.ci, self.cf, self.fixed_xy, len(self.cranks))

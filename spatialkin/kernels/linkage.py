@@ -13,6 +13,7 @@ import numpy as np
 
 from .._jit import jit
 from .follow import follow_events, follow_fun
+from .implicit import follow_rhs
 from .rk import advance
 
 O1, T1, A, O2, T2, C, L = 0, 3, 12, 13, 16, 25, 26
@@ -58,18 +59,15 @@ def rssr_residual(params, x, grad, hess):
 
 @jit
 def implicit_curve_rhs(s, x, params, sign, pullback):
-    """Arc-length Cauchy problem of the planar implicit curve F(x) = 0: x' = sign (-F_2, F_1)/|grad F|, plus
-    the pull-back -pullback F grad F/|grad F|^2."""
+    """Arc-length Cauchy problem of the planar implicit curve F(x) = 0 (spatialkin.kernels.implicit.follow_rhs
+    with J = grad F): x' = sign (-F_2, F_1)/|grad F|, minus the pull-back pullback F grad F/|grad F|^2."""
     grad = np.empty(2)
     hess = np.empty((2, 2))
-    f = rssr_residual(params, x, grad, hess)
-    g2 = grad[0] * grad[0] + grad[1] * grad[1]
+    f = np.array([rssr_residual(params, x, grad, hess)])
+    jac = np.empty((1, 2))
+    jac[0, 0], jac[0, 1] = grad[0], grad[1]
     out = np.zeros(2)
-    if g2 == 0.0:
-        return out
-    g = math.sqrt(g2)
-    out[0] = -sign * grad[1] / g - pullback * f * grad[0] / g2
-    out[1] = sign * grad[0] / g - pullback * f * grad[1] / g2
+    follow_rhs(jac, f, sign, pullback, out)
     return out
 
 

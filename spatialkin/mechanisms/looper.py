@@ -19,6 +19,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..frame import Frame
+from ..continuation import solve_at
 from ..kernels import curve as kc
 from ..kinematics import serial_chain
 from ..surfaces import Sphere, Torus, check_length
@@ -252,24 +253,12 @@ class LooperDrive:
         t0 = time.perf_counter()
         self._check_assemblable(np.mod(u1, 2 * np.pi))
         samples = self._samples(branch, u1)
-        key = np.mod(samples[:, 0], 2 * np.pi)
-        target = np.mod(u1, 2 * np.pi)
-        idx = np.searchsorted(key, target)
-        lo, hi = np.clip(idx - 1, 0, len(key) - 1), np.clip(idx, 0, len(key) - 1)
-        near = np.where(np.abs(key[lo] - target) <= np.abs(key[hi] - target), lo, hi)
-        # the angles in increasing order, each Newton started by continuation from the one before (when it is
-        # within CONTINUATION_REACH) or else from the nearest sample
-        order = np.argsort(target, kind="stable")
-        ys = np.ascontiguousarray(samples[near[order]])
-        n = len(ys)
-        dy, ddy, d1, d2 = np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 3)), np.empty((n, 3))
-        status = np.empty(n, dtype=np.int64)
-        kc.fixed_parameter_path(ys, np.ascontiguousarray(u1[order]), self.torus.data, self.sphere.data, 0,
-                                CONTINUATION_REACH, POSITION_TOL * self.size, NEWTON_MAX_ITER, dy, ddy, d1, d2,
-                                status)
-        back = np.empty(n, dtype=np.int64)
-        back[order] = np.arange(n)
-        solved, status = ys[back], status[back]
+        # the nearest sample predicts (the states hold angles that wrap between samples); the angles are solved
+        # in increasing order, each Newton started by continuation from the one before when it is within
+        # CONTINUATION_REACH
+        solved, status, dy, ddy, d1, d2 = solve_at(u1, np.mod(samples[:, 0], 2 * np.pi), samples,
+                                                   self._fixed_crank_path, index=0, period=2 * np.pi,
+                                                   how="nearest")
         if np.any(status == 1):
             raise ValueError("Newton at fixed crank angle failed: the crank angles are too close to a dead "
                              "position or a branch point")
@@ -280,8 +269,18 @@ class LooperDrive:
         if np.any(status == 2):
             raise ValueError("a singular point of torus ∩ sphere (the branches meet) lies at crank angle "
                              f"{math.degrees(float(solved[status == 2][0, 0])):.6g} deg")
-        derivatives = (dy[back], ddy[back], d1[back], d2[back])
-        return LooperMotion(self, solved, omega, branch, time.perf_counter() - t0, derivatives)
+        return LooperMotion(self, solved, omega, branch, time.perf_counter() - t0, (dy, ddy, d1, d2))
+
+    def _fixed_crank_path(self, ys):
+        """(states, status, y', y'', C', C'') by Newton at the fixed crank angles of ys (N, 4), sorted by crank
+        angle, each started from the one before within CONTINUATION_REACH (solve_at's corrector)."""
+        n = len(ys)
+        dy, ddy, d1, d2 = np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 3)), np.empty((n, 3))
+        status = np.empty(n, dtype=np.int64)
+        kc.fixed_parameter_path(ys, np.ascontiguousarray(ys[:, 0]), self.torus.data, self.sphere.data, 0,
+                                CONTINUATION_REACH, POSITION_TOL * self.size, NEWTON_MAX_ITER, dy, ddy, d1, d2,
+                                status)
+        return ys, status, dy, ddy, d1, d2
 
 
 def covers(keys, angles, gap):

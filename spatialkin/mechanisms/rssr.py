@@ -11,7 +11,7 @@ from ..frame import Frame
 from ..kernels import linkage as kl
 from ..kinematics import serial_chain
 from ..surfaces import check_length
-from ..tracing.continuation import CurveKernels, trace_cycle
+from ..continuation import CurveKernels, solve_at, trace_cycle
 from ..trajectory import time_map, to_time
 from .common import PointMotion, angle_range_text, check_branch, check_drive
 
@@ -107,12 +107,15 @@ class RSSR:
         """Motion at exactly the given crank angles; see RSSRMotion."""
         phi = check_drive(crank_angles, omega, branch)
         inputs, path = self.cycle(branch).branch_samples()
-        local = inputs[0] + np.mod(phi - inputs[0], 2 * np.pi)
-        psi = np.interp(local, inputs, path[:, 1])
-        xs = self._newton(np.column_stack([phi, psi]))
+        xs, = solve_at(phi, inputs, path, self._correct, index=0, period=2 * np.pi)
+        return RSSRMotion(self, xs, 1.0, omega)
+
+    def _correct(self, guess):
+        """(states,): Newton at fixed crank angle from the predictions (solve_at's corrector)."""
+        xs = self._newton(guess)
         if xs is None:
             raise ValueError("Newton at fixed crank angle failed")
-        return RSSRMotion(self, xs, 1.0, omega)
+        return (xs,)
 
 
 class RSSRMotion:

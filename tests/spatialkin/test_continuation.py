@@ -10,7 +10,7 @@ from spatialkin._jit import jit
 from spatialkin.kernels import follow as kf
 from spatialkin.kernels.implicit import follow_rhs
 from spatialkin.kernels.rk import advance
-from spatialkin.tracing.continuation import CurveKernels, trace_cycle
+from spatialkin.continuation import CurveKernels, trace_cycle
 
 #: Tolerances: lock positions and closure against the closed forms (the trace's rtol is 1e-10); the two
 #: integrators against each other: the same method, so the same curve to well within the tolerance (not the

@@ -18,7 +18,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..kernels import follow as kf
-from .ode import COMPILED, BudgetExceeded, Event, System, integrate
+from ..tracing.ode import COMPILED, BudgetExceeded, Event, System, integrate
+from ..tracing.result import TracingError
+from ..tracing.status import MAX_LENGTH, SINGULAR
 
 #: Integration tolerance of the traced curve (a predictor: exact states come from Newton at fixed input).
 TRACE_RTOL = 1e-10
@@ -34,6 +36,11 @@ MAX_PERIODS = 6
 #: Samples per unit arc length of the dense representation used for predictions (and at least this many).
 SAMPLES_PER_LENGTH = 256
 MIN_SAMPLES = 2048
+
+
+class ContinuationError(TracingError, ValueError):
+    """A configuration curve that cannot be traced or solved: a TracingError (``where``: the state, ``status``
+    from spatialkin.tracing.status), and a ValueError as the mechanisms raise for input they cannot move."""
 
 
 @dataclass
@@ -119,9 +126,10 @@ def _arc(kernels, args, y, s, max_length, sign, index, levels, watch, directions
     try:
         res = integrate(system, (s, max_length), y, method, events, rtol, rtol, max_nfev=ARC_MAX_EVALUATIONS)
     except BudgetExceeded as err:
-        raise ValueError(f"tracing the configuration curve stalled after arc length {s:.6g}: {err}") from None
+        raise ContinuationError(f"tracing the configuration curve stalled after arc length {s:.6g}: {err}", y) from None
     if res.status < 0:
-        raise ValueError(f"tracing the configuration curve failed after arc length {res.t[-1]:.6g}: {res.message}")
+        raise ContinuationError(f"tracing the configuration curve failed after arc length {res.t[-1]:.6g}: "
+                                f"{res.message}", res.y[:, -1])
     fired = {event.index for event, te in zip(events, res.t_events) if te.size}
     outcome = next((e for e in OUTCOME_ORDER if e in fired), REACHED_END)
     return res.t[-1], res.sol, res.y[:, -1], outcome
@@ -156,14 +164,14 @@ def trace_cycle(kernels, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL
 
     Raises
     ------
-    ValueError
+    ContinuationError
         When y0 is itself a lock position, or the curve does not close within max_length.
     """
     y0 = np.asarray(y0, dtype=float)
     index = index % y0.size
     rate = kernels.rhs(0.0, y0, *args, 1.0, 0.0)[index]
     if abs(rate) < LOCK_RATE:
-        raise ValueError("the start state is a lock position (the input cannot move there)")
+        raise ContinuationError("the start state is a lock position (the input cannot move there)", y0, SINGULAR)
     sign = 1.0 if rate > 0 else -1.0
     shift = np.zeros_like(y0)
     shift[index] = period
@@ -180,23 +188,26 @@ def trace_cycle(kernels, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL
                                     rtol, method)
         pieces.append((s, end, sol))
         if outcome == REACHED_END:
-            raise ValueError(f"the configuration curve did not close within arc length {max_length:.6g}")
+            raise ContinuationError(f"the configuration curve did not close within arc length {max_length:.6g}",
+                                    y, MAX_LENGTH)
         if outcome == kf.RATE:
             locks.append(y)
             lock_s.append(end)
             if len(locks) > MAX_LOCKS:
-                raise ValueError(f"more than {MAX_LOCKS} lock positions on one configuration curve")
+                raise ContinuationError(f"more than {MAX_LOCKS} lock positions on one configuration curve", y)
             lock_direction = -lock_direction
         elif outcome == kf.LEVEL_TARGET:
             if np.max(np.abs(y - y0 - turns * shift)) <= CLOSE_TOL:
                 return Cycle(pieces, locks, turns * period, y0, index, lock_s)
             turns += 1
             if turns > MAX_PERIODS:
-                raise ValueError(f"the configuration curve did not close within {MAX_PERIODS} input periods")
+                raise ContinuationError(f"the configuration curve did not close within {MAX_PERIODS} input periods", y,
+                                        MAX_LENGTH)
         elif np.max(np.abs(y - y0)) <= CLOSE_TOL:
             return Cycle(pieces, locks, 0.0, y0, index, lock_s)
         else:
             skip_back = True
         s = end
         if not math.isfinite(s) or s >= max_length:
-            raise ValueError(f"the configuration curve did not close within arc length {max_length:.6g}")
+            raise ContinuationError(f"the configuration curve did not close within arc length {max_length:.6g}",
+                                    y, MAX_LENGTH)

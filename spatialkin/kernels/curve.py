@@ -129,17 +129,6 @@ def lu_solve(m, piv, r, x):
 
 
 @jit
-def solve_small(m, r, x):
-    """Solve the n x n system m x = r by LU with partial pivoting (m overwritten). Returns False if a pivot
-    vanishes relative to the largest entry."""
-    piv = np.empty(r.shape[0], dtype=np.int64)
-    if not lu_factor(m, piv):
-        return False
-    lu_solve(m, piv, r, x)
-    return True
-
-
-@jit
 def min_norm_step(su1, sv1, su2, sv2, gap):
     """(step, ok): the minimum-norm Gauss-Newton step (4-tuple) in (u1, v1, u2, v2) that removes the gap
     M1 - M2 to first order, -J^T (J J^T)^-1 gap with J = [su1, sv1, -su2, -sv2], its columns first scaled to

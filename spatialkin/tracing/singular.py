@@ -13,10 +13,13 @@ from ..kernels import surfaces as ks
 from .segments import NEWTON_MAX_ITER, LinearStates, Segment, area_flag
 
 # --- named limits -------------------------------------------------------------------------------------
+#: A singular point (a node where branches cross, the apex of a spindle or horn torus or a cone) is passed by a
+#: jump of this length (relative to the curve scale) along the incoming direction, then Newton lands the point
 #: in the plane normal to it; the jump's dense output is corrected in that plane.
 JUMP_LENGTH = 1e-3
 #: Longest jump (relative to the curve scale), reached by doubling where the landing is still beside an apex.
 MAX_JUMP = 0.1
+#: The relative area element of a parametrisation below which its apex is jumped (not a pole: spheres are
 #: re-charted well before).
 APEX_GUARD = 2e-4
 #: After a jump the point must lie within this fraction of the jump of the straight continuation.

@@ -9,6 +9,7 @@ import pytest
 from oracles import looper_closed_form
 
 import spatialkin as sk
+from spatialkin import reference
 from spatialkin.cli import main
 from spatialkin.looper_figures import angle_span
 from spatialkin.looper_job import DEFAULT_SPEED_RPM, KEYS, ROTATION_TOL, build, load_config
@@ -59,8 +60,9 @@ def test_table_has_units_degrees_and_machine_speed(reference_run):
 def test_record_holds_geometry_speed_versions_errors(reference_run):
     out, _, table, record = reference_run
     g = record["geometry"]
-    assert (g["crank_radius"], g["coupler_length"], g["rocker_length"]) == (8.0, 50.0, 30.0)
-    np.testing.assert_allclose(g["rocker_frame"]["origin"], [6.0, 0.0, 75.0])
+    assert (g["crank_radius"], g["coupler_length"], g["rocker_length"]) == (
+        reference.CRANK_RADIUS, reference.COUPLER_LENGTH, reference.ROCKER_LENGTH)
+    np.testing.assert_allclose(g["rocker_frame"]["origin"], reference.ROCKER_CENTRE)
     assert record["speed"]["rpm"] == DEFAULT_SPEED_RPM and record["branch"] == 0 and record["length_unit"] == "mm"
     assert set(record["versions"]) >= {"spatialkin", "numpy", "scipy", "numba", "python"}
     assert max(record["measured_error"][k] for k in ("C_to_torus", "C_to_sphere", "coupler_vs_rocker_chain")) < 1e-12

@@ -7,6 +7,7 @@ import pytest
 from oracles import looper_closed_form
 
 import spatialkin as sk
+from spatialkin import reference
 from spatialkin.mechanisms import LooperDrive
 
 
@@ -96,8 +97,8 @@ def test_mechanism_that_cannot_be_assembled():
     ({"rocker_length": np.nan}, "rocker_length"), ({"looper_link": "crank"}, "looper_link"),
 ])
 def test_bad_arguments(kwargs, name):
-    args = dict(crank_radius=8.0, coupler_length=50.0, rocker_length=30.0,
-                rocker_frame=sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1, 0, 0), -np.pi / 2)))
+    args = dict(crank_radius=reference.CRANK_RADIUS, coupler_length=reference.COUPLER_LENGTH,
+                rocker_length=reference.ROCKER_LENGTH, rocker_frame=reference.rocker_frame())
     args.update(kwargs)
     with pytest.raises(ValueError, match=name):
         LooperDrive(**args)

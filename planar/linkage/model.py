@@ -2,7 +2,7 @@
 more driving cranks geared to one input angle.
 
 The loop-closure equations F(q, phi) = 0 are written in natural coordinates (the moving joints' x, y;
-see planar.kernels), so a class III group (a triad) is solved as one system with no dyad decomposition.
+see planar.linkage.kernels), so a class III group (a triad) is solved as one system with no dyad decomposition.
 The configuration curve is followed along the input by arc length with spatialkin's continuation pipeline
 (its compiled Dormand-Prince segment over the jitted right-hand side), each requested input angle is then
 solved exactly by Newton from the traced prediction (or, next to an angle solved before it, from that
@@ -10,7 +10,7 @@ solution's second-order expansion), and velocities and accelerations come analyt
 curve, mapped to time by the trajectory pipeline); each crank's share of the velocity is
 -J_q^-1 dF/dtheta_k theta_k' (the velocities are linear in the crank rates at a fixed position). The
 systems in J_q are solved by block elimination of the explicit joints (crank pins, rigid links' further
-joints): one small LU on the joints the distance constraints couple (planar.kernels).
+joints): one small LU on the joints the distance constraints couple (planar.linkage.kernels).
 
 References
 ----------
@@ -24,10 +24,11 @@ from fractions import Fraction
 import numpy as np
 from scipy.optimize import least_squares
 
-from spatialkin.mechanisms.common import check_omega
 from spatialkin.tracing.continuation import trace_cycle
+from spatialkin.validation import check_angles, check_omega, check_positive
+
 from . import kernels as kn
-from .linkage_motion import LinkageMotion, LockError
+from .motion import LinkageMotion, LockError
 
 #: Random starts of the assembly search at one input angle (deterministic seed).
 ASSEMBLY_STARTS = 200
@@ -87,7 +88,7 @@ class Link:
 
 
 def _block_layout(ci, n):
-    """Block structure of J_q for planar.kernels.factor_reduced / solve_reduced: (pattern, slot, rows, cols,
+    """Block structure of J_q for kernels.factor_reduced / solve_reduced: (pattern, slot, rows, cols,
     explicit columns) (see there).
 
     A crank's pin and a rigid link's further joint are explicit (defined by their constraint's two rows),
@@ -125,13 +126,6 @@ def _block_layout(ci, n):
     slot[cols] = np.arange(n)
     slot[cols[len(ecol):]] = -1 - np.arange(n - len(ecol))
     return pattern, slot, np.array(rows, dtype=np.int64), np.array(cols, dtype=np.int64), len(ecol)
-
-
-def _check_positive(name, value):
-    value = float(value)
-    if not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be a finite positive length, got {value!r}")
-    return value
 
 
 class Linkage:
@@ -173,7 +167,7 @@ class Linkage:
     def _moving_joints(self):
         names = []
         for c in self.cranks:
-            _check_positive(f"crank {c.name} radius", c.radius)
+            check_positive(f"crank {c.name} radius", c.radius)
             if not (math.isfinite(c.ratio) and c.ratio != 0 and math.isfinite(c.phase)):
                 raise ValueError(f"crank {c.name}: ratio must be finite and non-zero, phase finite")
             for j in (c.pivot, c.pin):
@@ -187,11 +181,11 @@ class Linkage:
             if lk.shape is None:
                 if lk.length is None:
                     raise ValueError(f"link {lk.name}: give shape (joint coordinates) or length")
-                _check_positive(f"link {lk.name} length", lk.length)
+                check_positive(f"link {lk.name} length", lk.length)
             shape = lk.local()
             if shape.shape != (len(lk.joints), 2) or not np.all(np.isfinite(shape)):
                 raise ValueError(f"link {lk.name}: shape must be finite ({len(lk.joints)}, 2)")
-            _check_positive(f"link {lk.name} distance {lk.joints[0]}-{lk.joints[1]}",
+            check_positive(f"link {lk.name} distance {lk.joints[0]}-{lk.joints[1]}",
                             np.linalg.norm(shape[1] - shape[0]))
             for j in lk.joints:
                 if j not in self.fixed and j not in names:
@@ -391,9 +385,7 @@ class Linkage:
         LockError
             When a requested angle lies beyond a lock position of the assembly.
         """
-        angles = np.atleast_1d(np.asarray(crank_angles, dtype=float))
-        if angles.ndim != 1 or angles.size == 0 or not np.all(np.isfinite(angles)):
-            raise ValueError("crank_angles must be a finite, non-empty 1-D array")
+        angles = check_angles("crank_angles", crank_angles)
         omega = check_omega(omega)
         cycle = self.cycle(assembly)
         inputs, states = cycle.branch_samples()

@@ -1,6 +1,6 @@
 """A planar linkage's drawing as DXF: links as lines, joints and the cranks' pin circles as circles, joint paths
-as dense polylines (spaced by a chord height, from exact solutions), written atomically with ezdxf (the
-``cad`` extra of spatialkin)."""
+as dense polylines (spaced by a chord height, from exact solutions), written atomically with ezdxf (a
+dependency of spatialkin)."""
 import numpy as np
 
 from spatialkin.export import atomic_path, dense_polyline, require

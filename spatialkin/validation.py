@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 __all__ = ["ORTHONORMAL_TOL", "check_real", "check_positive", "check_nonnegative", "check_count", "check_omega",
-           "check_choice", "check_range", "check_finite", "check_vector", "check_points", "check_scalars", "check_angles",
+           "check_choice", "check_range", "check_finite", "check_vector", "check_points", "check_angles",
            "check_frame"]
 
 #: Largest accepted deviation of R^T R from the identity (entrywise), for a rotation given in floats.
@@ -107,12 +107,14 @@ def check_finite(name, value):
 
 
 def check_vector(name, value, length=3):
-    """value as a finite float array of shape (length,), or ValueError naming the argument."""
+    """value as a finite float array of shape (length,): a point or a direction, or one value per point of a
+    polyline; or ValueError naming the argument (and its first entry that is not finite)."""
     arr = np.asarray(value, dtype=float)
     if arr.shape != (length,):
         raise ValueError(f"{name} must have shape ({length},), got {arr.shape}")
     if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite, got {arr.tolist()}")
+        bad = int(np.argmax(~np.isfinite(arr)))
+        raise ValueError(f"{name} must be finite: entry {bad} is {arr[bad]}")
     return arr
 
 
@@ -129,16 +131,6 @@ def check_points(name, value, count=None, allow_empty=False):
         bad = int(np.argmax(~np.all(np.isfinite(pts), axis=1)))
         raise ValueError(f"{name} must be finite: row {bad} is {pts[bad].tolist()}")
     return pts
-
-
-def check_scalars(name, value, count):
-    """Finite scalars (count,) as a float array (one value per point), or ValueError naming the argument."""
-    arr = np.asarray(value, dtype=float)
-    if arr.shape != (count,):
-        raise ValueError(f"{name} must have shape ({count},) (one value per point), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite: index {int(np.argmax(~np.isfinite(arr)))} is not")
-    return arr
 
 
 def check_angles(name, values):

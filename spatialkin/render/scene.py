@@ -15,7 +15,7 @@ import numpy as np
 from ..export import polylines
 from ..io import atomic_path
 from ..tracing.result import Curve
-from ..validation import check_choice, check_points, check_positive, check_range, check_scalars
+from ..validation import check_choice, check_points, check_positive, check_range, check_vector
 from . import geometry as geo
 from ._backend import pyvista
 
@@ -213,8 +213,8 @@ class Scene:
         data.point_data[S_ARRAY] = s
         if speed is not None:
             if isinstance(curve, Curve):         # given at the curve's own points: onto the dense polyline
-                speed = np.interp(s, curve.s, check_scalars("speed", speed, len(curve.s)))
-            data.point_data[SPEED_ARRAY] = check_scalars("speed", speed, len(points))
+                speed = np.interp(s, curve.s, check_vector("speed", speed, len(curve.s)))
+            data.point_data[SPEED_ARRAY] = check_vector("speed", speed, len(points))
         style = {"color_by": color_by, "radius": check_positive("radius", radius, allow_none=True),
                  "color": color, "cmap": cmap, "clim": _check_clim(clim), "scalar_bar": bool(scalar_bar),
                  "bar_title": None if bar_title is None else str(bar_title),

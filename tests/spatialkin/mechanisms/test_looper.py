@@ -43,6 +43,16 @@ def test_full_turn_matches_closed_form(drive, branch):
     assert np.max(np.abs(m.ball_acceleration - acc)) < 1e-8 * np.max(np.abs(acc))
 
 
+def test_reference_drive_is_built_on_the_reference_pair(drive):
+    """Identity oracle: LooperDrive.reference() places exactly the surfaces of spatialkin.reference (the one
+    definition of the reference geometry), and its rocker frame turns local z onto +y."""
+    torus, sphere = reference.looper_pair()
+    np.testing.assert_array_equal(drive.torus.data, torus.data)
+    np.testing.assert_array_equal(drive.sphere.data, sphere.data)
+    np.testing.assert_allclose(drive.rocker_frame.rotation[:, 2], (0.0, 1.0, 0.0), atol=1e-15)
+    np.testing.assert_array_equal(drive.looper_tip, reference.LOOPER_TIP)
+
+
 def test_reference_branches_and_swing(drive):
     """The reference (looper-drive.md): branch 0 has v1 in about 107-114 deg, u2 in 77.8-115 deg,
     v2 within +-18.3 deg; branch 1 near v1 = 76 deg."""

@@ -1,7 +1,7 @@
 """Frames: an origin and a proper rotation that place a surface or a link in global coordinates."""
 import numpy as np
 
-from .validation import check_frame, check_vector
+from .validation import check_frame, check_real, check_vector
 
 
 def rotation_about(axis, angle):
@@ -10,8 +10,7 @@ def rotation_about(axis, angle):
     n = np.linalg.norm(k)
     if n == 0:
         raise ValueError("axis must be a non-zero vector")
-    if not np.isfinite(angle):
-        raise ValueError(f"angle must be finite, got {angle}")
+    check_real("angle", angle, finite=True)
     k = k / n
     kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
     return np.eye(3) + np.sin(angle) * kx + (1 - np.cos(angle)) * (kx @ kx)

@@ -89,14 +89,14 @@ def test_summary_states_units(tmp_path):
         assert needle in text, needle
 
 
-def test_partial_turn_drive_is_analysed_over_its_reachable_ranges(tmp_path, capsys):
+def test_partial_turn_drive_is_analysed_over_its_reachable_ranges(tmp_path, capsys, blocked_drive):
     cfg = tmp_path / "rocking.toml"
-    cfg.write_text("rocker_frame = { origin = [40.0, 0.0, 60.0] }\nstep_deg = 0.5\n")
+    cfg.write_text("rocker_frame = { origin = [40.0, 0.0, 60.0] }\nstep_deg = 0.5\n")      # blocked_drive typed
     out = tmp_path / "out"
     assert main(["looper", "--out", str(out), "--config", str(cfg)]) == 0
     assert "dead positions at crank angles" in capsys.readouterr().out
     record = json.loads((out / "looper_run.json").read_text())
-    drive = LooperDrive(8.0, 50.0, 30.0, rocker_frame=sk.Frame((40.0, 0.0, 60.0)))
+    drive = blocked_drive
     edges = np.degrees(sorted(x for rng in drive.blocked_ranges for x in rng))
     assert not record["analysis"]["turns_fully"]
     np.testing.assert_allclose(record["analysis"]["dead_positions_deg"], edges, atol=np.degrees(DEAD_TOL))

@@ -11,14 +11,14 @@ Times are the best of several warm runs (numba compiled and cached beforehand); 
 side by side in one process.
 """
 import math
-import time
 
 import numpy as np
 from scipy.optimize import root
 
-from . import examples, kernels as kn
-from .laws import CrankSlider
-from .link import DrivenLink
+from spatialkin.bench import best_time
+
+from .frenet import CrankSlider, DrivenLink
+from .linkage import examples, kernels as kn
 
 SLIDER = dict(k=0.5, e=1.0, L=4.0)
 SLIDER_POSITIONS = 3600
@@ -26,17 +26,6 @@ SIXBAR_POSITIONS = 3601
 REPEATS = 7
 #: Newton / root tolerance of the per-angle solve (scaled units, as the linkage's own Newton).
 ROOT_TOL = 1e-14
-
-
-def best_time(run, repeats=REPEATS):
-    """(best wall time in s, last result) of run() after one warm-up call."""
-    out = run()
-    best = math.inf
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = run()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 # --- (a) crank-slider -----------------------------------------------------------------------------
@@ -141,8 +130,7 @@ def slider_case(n=SLIDER_POSITIONS, repeats=REPEATS):
 def sixbar_ours(phi):
     """run() -> motion of a freshly built six-link (assembly, traced cycle, Newton, derivatives)."""
     def run():
-        sol = examples.fnf_sixbar().solve(phi)
-        return sol
+        return examples.fnf_sixbar().solve(phi)
     return run
 
 

@@ -5,12 +5,10 @@ error: work–precision table, goal ratios, CSV and PNG) and ``spatialkin --vers
 Every bad input ends in one line on stderr and exit status 2.
 """
 import argparse
-import math
 import os
 import sys
 import time
 
-import numpy as np
 
 #: Exceptions that mean bad input or a situation the user must change (one line, exit 2), never a traceback.
 USER_ERRORS = (ValueError, TypeError, OSError, KeyError, RuntimeError)
@@ -32,30 +30,23 @@ class OneLineParser(argparse.ArgumentParser):
 
 
 def positive_float(text):
+    """argparse type of a positive finite number (a tolerance)."""
+    from .validation import check_positive
     try:
-        x = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
-    if not (math.isfinite(x) and x > 0):
-        raise argparse.ArgumentTypeError(f"must be positive and finite, got {text!r}")
-    return x
-
-
-def reference_pair():
-    """The looper drive's surfaces (reference geometry of ../shared/reference/looper-drive.md, mm)."""
-    import spatialkin as sk
-    torus = sk.Torus(8.0, 50.0)                                   # crank radius, coupler length
-    sphere = sk.Sphere(30.0, sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1, 0, 0), -np.pi / 2)))
-    return torus, sphere
+        return check_positive("the value", text)
+    except ValueError as err:
+        raise argparse.ArgumentTypeError(str(err)) from None
 
 
 def demo(args):
     t0 = time.perf_counter()
     import spatialkin as sk
-    torus, sphere = reference_pair()
-    curves = sk.intersect(torus, sphere, tol=args.tol)
+    from . import reference as ref
+    curves = sk.intersect(*ref.looper_pair(), tol=args.tol)
     total = time.perf_counter() - t0
-    print(f"torus(R=8, r=50) ∩ sphere(R=30, centre (6, 0, 75)): {len(curves)} component(s)")
+    centre = ", ".join(f"{x:g}" for x in ref.ROCKER_CENTRE)
+    print(f"torus(R={ref.CRANK_RADIUS:g}, r={ref.COUPLER_LENGTH:g}) ∩ sphere(R={ref.ROCKER_LENGTH:g}, centre "
+          f"({centre})): {len(curves)} component(s)")
     print(f"{'#':>2} {'kind':>8} {'length':>14} {'points':>7} {'max dist':>10} {'rhs evals':>9} {'time [ms]':>9}")
     for k, c in enumerate(curves):
         kind = "closed" if c.closed else c.status

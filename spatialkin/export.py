@@ -5,10 +5,10 @@ B-spline (scipy.interpolate.BSpline, e.g. ``curve.to_bspline(tol)`` or a mechani
 ``to_bspline``); a polyline is spaced by a chord-height tolerance (never the solver's steps), a B-spline is
 written with its own knots and control points (degree 5).
 
-DXF needs ezdxf (a dependency); STEP needs OpenCascade (cadquery-ocp), the ``cad`` extra.
+DXF needs ezdxf (a dependency); STEP needs OpenCascade (cadquery-ocp), the ``cad`` extra. The helpers
+``dense_polyline``, ``require`` and ``atomic_path`` are public for other exporters (planar's DXF drawings).
 """
 import contextlib
-import math
 import os
 from xml.sax.saxutils import escape
 
@@ -16,6 +16,10 @@ import numpy as np
 from scipy.interpolate import BSpline
 
 from .io import atomic_path
+from .validation import check_positive
+
+__all__ = ["atomic_path", "dense_polyline", "export_curves", "polylines", "require", "splines", "write_csv",
+           "write_dxf", "write_step", "write_vtp"]
 
 #: The extra that provides ezdxf and OpenCascade.
 CAD_EXTRA = "spatialkin[cad]"
@@ -70,10 +74,7 @@ def _chord_tol(pts, chord_tol):
     if chord_tol is None:
         extent = float(np.linalg.norm(np.ptp(pts, axis=0))) if len(pts) else 1.0
         return CHORD_FRACTION * max(extent, 1e-300)
-    chord_tol = float(chord_tol)
-    if not math.isfinite(chord_tol) or chord_tol <= 0:
-        raise ValueError(f"chord_tol must be a positive finite length, got {chord_tol!r}")
-    return chord_tol
+    return check_positive("chord_tol", chord_tol)
 
 
 def polylines(curves, chord_tol=None):

@@ -139,7 +139,8 @@ def warm_up():
     drive.analyse(branch=0, samples=361)
     drive.torus.distance(motion.ball_center), drive.sphere.distance(motion.ball_center)
     motion.looper_tip
-    partial = LooperDrive(8.0, 50.0, 30.0, rocker_frame=drive.rocker_frame.__class__((40.0, 0.0, 60.0)))
+    partial = LooperDrive(drive.crank_radius, drive.coupler_length, drive.rocker_length,
+                          rocker_frame=drive.rocker_frame.__class__((40.0, 0.0, 60.0)))
     partial.analyse(branch=0, samples=361)
     write_stamp()
 

@@ -1,40 +1,7 @@
 """Frames: an origin and a proper rotation that place a surface or a link in global coordinates."""
 import numpy as np
 
-#: Largest accepted deviation of R^T R from the identity (entrywise), for a rotation given in floats.
-ORTHONORMAL_TOL = 1e-9
-
-
-def check_vector(name, value, length=3):
-    """Return value as a finite float array of the given length, or raise ValueError naming it."""
-    arr = np.asarray(value, dtype=float)
-    if arr.shape != (length,):
-        raise ValueError(f"{name} must have shape ({length},), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite, got {arr.tolist()}")
-    return arr
-
-
-def check_frame(origin, rotation):
-    """Validate and return (origin (3,), rotation (3, 3)) as float arrays.
-
-    Raises
-    ------
-    ValueError
-        If either is not finite, has the wrong shape, or rotation is not orthonormal and right-handed.
-    """
-    origin = check_vector("origin", origin)
-    rot = np.asarray(rotation, dtype=float)
-    if rot.shape != (3, 3):
-        raise ValueError(f"rotation must have shape (3, 3), got {rot.shape}")
-    if not np.all(np.isfinite(rot)):
-        raise ValueError("rotation must be finite")
-    deviation = np.max(np.abs(rot.T @ rot - np.eye(3)))
-    if deviation > ORTHONORMAL_TOL:
-        raise ValueError(f"rotation must be orthonormal: max |R^T R - I| = {deviation:.3g} > {ORTHONORMAL_TOL}")
-    if np.linalg.det(rot) < 0:
-        raise ValueError("rotation must be right-handed (det = +1), got a reflection (det = -1)")
-    return origin, rot
+from .validation import check_frame, check_real, check_vector
 
 
 def rotation_about(axis, angle):
@@ -43,8 +10,7 @@ def rotation_about(axis, angle):
     n = np.linalg.norm(k)
     if n == 0:
         raise ValueError("axis must be a non-zero vector")
-    if not np.isfinite(angle):
-        raise ValueError(f"angle must be finite, got {angle}")
+    check_real("angle", angle, finite=True)
     k = k / n
     kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
     return np.eye(3) + np.sin(angle) * kx + (1 - np.cos(angle)) * (kx @ kx)

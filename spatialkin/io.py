@@ -3,6 +3,8 @@ import os
 import tempfile
 from contextlib import contextmanager
 
+__all__ = ["atomic_path"]
+
 
 @contextmanager
 def atomic_path(path):

@@ -15,11 +15,13 @@ import tomllib
 import numpy as np
 
 from . import looper_figures as figs
+from . import reference as ref
 from .frame import Frame, rotation_about, rotation_to_z
 from .io import atomic_path
 from .mechanisms import LooperDrive
 from .mechanisms.looper_analysis import CLEARANCE
 from .units import METRES_PER_UNIT, STANDARD_GRAVITY
+from .validation import check_choice, check_positive, check_real
 
 #: Crank speed of the built-in drive: industrial blind-stitch machines sew about 1500-3000 stitches per
 #: minute with one looper-crank turn per stitch; 2000 rpm is a usual working speed.
@@ -30,22 +32,24 @@ ROTATION_TOL = 1e-5
 #: An x_hint (or a derived zero direction) shorter than this after removing its part along z is parallel to z.
 PARALLEL_TOL = 1e-9
 
-#: key: (default, unit, meaning) -- the keys a looper TOML file may hold.
+#: The reference rocker rotation as a user types it in the TOML: the exact quarter turn (integer entries).
+REFERENCE_ROTATION = np.rint(ref.rocker_rotation()).astype(int).tolist()
+#: key: (default, unit, meaning) -- the keys a looper TOML file may hold (defaults: the reference drive).
 KEYS = {
     "length_unit": ("mm", "-", "unit of every length below: mm, cm, m or in"),
-    "crank_radius": (8.0, "length", "R1, crank pin axis to crank shaft"),
-    "coupler_length": (50.0, "length", "r1, ball centre C to crank pin axis"),
-    "rocker_length": (30.0, "length", "R2, ball centre C to rocker centre P2"),
+    "crank_radius": (ref.CRANK_RADIUS, "length", "R1, crank pin axis to crank shaft"),
+    "coupler_length": (ref.COUPLER_LENGTH, "length", "r1, ball centre C to crank pin axis"),
+    "rocker_length": (ref.ROCKER_LENGTH, "length", "R2, ball centre C to rocker centre P2"),
     "speed_rpm": (DEFAULT_SPEED_RPM, "rpm", "crank speed (machine speed; one turn per stitch)"),
     "branch": (0, "-", "assembly branch, 0 or 1"),
     "step_deg": (0.1, "deg", "crank-angle step of the table, in (0, 1]"),
     "looper_link": ("rocker_arm", "-", "link carrying the looper: rocker_arm or rocker_shaft"),
-    "looper_tip": ([40.0, 0.0, 12.0], "length", "looper tip in the looper link's frame (rocker arm: x from P2 to C)"),
+    "looper_tip": (list(ref.LOOPER_TIP), "length", "looper tip in the looper link's frame (rocker arm: x from P2 to C)"),
     "picture_crank_angle_deg": (60.0, "deg", "crank angle at which the 3-D picture draws the links"),
     "cad_tolerance": (1e-5, "length", "largest distance of the CAD B-splines (DXF, STEP) from the exact paths"),
     "crank_frame": ({"origin": [0.0, 0.0, 0.0]}, "length",
                     "table: origin (crank shaft point O1) and one rotation form (local z = shaft); u1 from local x"),
-    "rocker_frame": ({"origin": [6.0, 0.0, 75.0], "rotation": [[1, 0, 0], [0, 0, 1], [0, -1, 0]]}, "length",
+    "rocker_frame": ({"origin": list(ref.ROCKER_CENTRE), "rotation": REFERENCE_ROTATION}, "length",
                      "table: origin (rocker centre P2) and one rotation form (local z = rocker shaft)"),
 }
 DEFAULTS = {key: value[0] for key, value in KEYS.items()}
@@ -79,10 +83,7 @@ def keys_help():
 def _number(name, value, positive=False):
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValueError(f"{name} must be a number, got {value!r}")
-    x = float(value)
-    if not math.isfinite(x) or (positive and x <= 0):
-        raise ValueError(f"{name} must be {'positive and ' if positive else ''}finite, got {value!r}")
-    return x
+    return check_positive(name, value) if positive else check_real(name, value, finite=True)
 
 
 def _vector(name, value):
@@ -187,12 +188,11 @@ def load_config(path=None):
     if not (0 < step <= 1.0):
         raise ValueError(f"step_deg must lie in (0, 1] so that a turn has at least 361 rows, got {step}")
     config["picture_crank_angle_deg"] = _number("picture_crank_angle_deg", config["picture_crank_angle_deg"])
-    if config["branch"] not in (0, 1) or isinstance(config["branch"], bool):
+    check_choice("branch", config["branch"], (0, 1))
+    if isinstance(config["branch"], bool):
         raise ValueError(f"branch must be 0 or 1, got {config['branch']!r}")
-    if config["length_unit"] not in METRES_PER_UNIT:
-        raise ValueError(f"length_unit must be one of {sorted(METRES_PER_UNIT)}, got {config['length_unit']!r}")
-    if config["looper_link"] not in ("rocker_arm", "rocker_shaft"):
-        raise ValueError(f"looper_link must be 'rocker_arm' or 'rocker_shaft', got {config['looper_link']!r}")
+    check_choice("length_unit", config["length_unit"], sorted(METRES_PER_UNIT))
+    check_choice("looper_link", config["looper_link"], ("rocker_arm", "rocker_shaft"))
     config["looper_tip"] = _vector("looper_tip", config["looper_tip"]).tolist()
     return config
 

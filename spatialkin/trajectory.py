@@ -11,6 +11,8 @@ both produce and consume this.
 """
 import numpy as np
 
+__all__ = ["Trajectory", "time_map", "to_time"]
+
 
 def time_map(driver_d1, driver_d2, omega):
     """(ds/dt, d2s/dt2) (N,) for a driver coordinate with s-derivatives driver_d1, driver_d2 (N,) turning at

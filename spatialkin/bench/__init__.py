@@ -10,9 +10,10 @@ import os
 from importlib.metadata import entry_points
 
 from . import runner
+from .runner import best_time
 from .report import goal_lines, machine, plot, table, write_csv
 
-__all__ = ["run"]
+__all__ = ["run", "best_time"]
 #: Entry-point group of bench plug-ins: callables (quick, echo) that print their own cases.
 PLUGIN_GROUP = "spatialkin.bench"
 

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..frame import Frame, rotation_about
+from ..reference import looper_pair
 from ..surfaces import Sphere, Torus
 
 #: Relative distance of the near-tangent case's sphere radius from a critical radius (two loops almost touch).
@@ -92,13 +93,6 @@ def count_components(big, small, c, rho):
     if rho < r1 or rho > r4:
         return 0
     return 2 if r2 < rho < r3 else 1
-
-
-def looper_pair():
-    """The looper drive's torus (crank radius 8, coupler 50) and sphere (rocker 30 about (6, 0, 75)), mm."""
-    torus = Torus(8.0, 50.0)
-    sphere = Sphere(30.0, Frame((6.0, 0.0, 75.0), rotation_about((1, 0, 0), -np.pi / 2)))
-    return torus, sphere
 
 
 def ring_case(name, rho_of_radii):

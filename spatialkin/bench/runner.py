@@ -46,9 +46,8 @@ GOAL_OCC_RATIO = 10.0
 GOAL_LOOPER_RATIO = 20.0
 GOAL_STARTUP_SECONDS = 2.0
 #: The first result a user sees: import and intersect the looper's pair, in a fresh interpreter.
-STARTUP_SCRIPT = ("import numpy as np, spatialkin as sk; t = sk.Torus(8.0, 50.0); "
-                  "s = sk.Sphere(30.0, sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1, 0, 0), -np.pi / 2))); "
-                  "c = sk.intersect(t, s); assert len(c) == 2")
+STARTUP_SCRIPT = ("import spatialkin as sk; from spatialkin.reference import looper_pair; "
+                  "c = sk.intersect(*looper_pair()); assert len(c) == 2")
 
 
 @dataclass

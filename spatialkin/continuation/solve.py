@@ -37,7 +37,7 @@ def predict(local, sample_inputs, sample_states, index, how="linear"):
 
 
 def solve_at(inputs, sample_inputs, sample_states, correct, index=-1, period=None, reach=None, how="linear",
-             outside=None):
+             outside=None, wrapped=False):
     """Exact states at the given inputs.
 
     Parameters
@@ -61,6 +61,9 @@ def solve_at(inputs, sample_inputs, sample_states, correct, index=-1, period=Non
         ... and ``outside(mask)`` gives the exception raised for them (mask over the requested inputs).
     how : str
         'linear' or 'nearest' (PREDICTIONS).
+    wrapped : bool
+        The predictions' input column holds the wrapped input (for a corrector that compares the inputs of
+        neighbours), not the requested one.
 
     Returns
     -------
@@ -74,7 +77,8 @@ def solve_at(inputs, sample_inputs, sample_states, correct, index=-1, period=Non
         if beyond.any():
             raise outside(beyond)
     guess = predict(local, sample_inputs, sample_states, index, how)
-    guess[:, index] = inputs            # the input exactly as asked (the system is periodic in it)
+    if not wrapped:
+        guess[:, index] = inputs        # the input exactly as asked (the system is periodic in it)
     order = np.argsort(local, kind="stable")
     back = np.empty_like(order)
     back[order] = np.arange(len(order))

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
+from ..validation import check_positive, check_real
 from .params import check_names
 
 #: Crank angles sampled over a full turn for swing, timing and the transmission angle during a fit.
@@ -67,12 +68,10 @@ class Targets:
                 or not np.all(np.isfinite(self.tip_angles)):
             raise ValueError("tip targets: tip_angles (K,) and tip_points (K, 3) must be finite and match, got "
                              f"{self.tip_angles.shape} and {self.tip_points.shape}")
-        for name in ("swing", "min_transmission", "min_margin"):
-            v = getattr(self, name)
-            if v is not None and not math.isfinite(float(v)):
-                raise ValueError(f"targets: {name} must be finite, got {v!r}")
-        if self.swing is not None and self.swing <= 0:
-            raise ValueError(f"targets: swing must be positive, got {self.swing}")
+        for name in ("min_transmission", "min_margin"):
+            if getattr(self, name) is not None:
+                check_real(f"targets: {name}", getattr(self, name), finite=True)
+        check_positive("targets: swing", self.swing, allow_none=True)
         if self.timing is not None:
             t = np.asarray(self.timing, dtype=float)
             if t.shape != (2,) or not np.all(np.isfinite(t)):

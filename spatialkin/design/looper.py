@@ -3,6 +3,7 @@ import numpy as np
 
 from ..frame import Frame
 from ..mechanisms import LooperDrive
+from ..validation import check_choice
 from .params import (PARAMETERS, angles_from_rotation, check_names, check_values, default_bounds,
                      rotation_from_angles)
 
@@ -53,10 +54,8 @@ class LooperDesign:
         self.crank_frame = crank_frame if crank_frame is not None else Frame()
         if not isinstance(self.crank_frame, Frame):
             raise ValueError(f"crank_frame must be a spatialkin.Frame, got {type(crank_frame).__name__}")
-        if looper_link not in ("rocker_arm", "rocker_shaft"):
-            raise ValueError(f"looper_link must be 'rocker_arm' or 'rocker_shaft', got {looper_link!r}")
-        if branch not in (0, 1):
-            raise ValueError(f"branch must be 0 or 1, got {branch!r}")
+        check_choice("looper_link", looper_link, ("rocker_arm", "rocker_shaft"))
+        check_choice("branch", branch, (0, 1))
         self.looper_link, self.branch = looper_link, branch
         self._drive = None
 

@@ -17,6 +17,8 @@ import math
 
 import numpy as np
 
+from ..validation import check_positive, check_real
+
 #: Every design parameter, in the order of the design vector.
 PARAMETERS = ("crank_radius", "coupler_length", "rocker_length", "rocker_x", "rocker_y", "rocker_z",
               "rocker_rx", "rocker_ry", "rocker_rz", "tip_x", "tip_y", "tip_z")
@@ -88,13 +90,6 @@ def check_values(values, argument="values"):
         raise ValueError(f"{argument}: missing {missing}, unknown {unknown}")
     out = {}
     for n in PARAMETERS:
-        try:
-            v = float(values[n])
-        except (TypeError, ValueError):
-            raise ValueError(f"{argument}: {n} must be a number, got {values[n]!r}") from None
-        if not math.isfinite(v):
-            raise ValueError(f"{argument}: {n} must be finite, got {v}")
-        if n in LENGTHS and v <= 0:
-            raise ValueError(f"{argument}: {n} must be positive, got {v}")
-        out[n] = v
+        name = f"{argument}: {n}"
+        out[n] = check_positive(name, values[n]) if n in LENGTHS else check_real(name, values[n], finite=True)
     return out

@@ -15,6 +15,7 @@ import sys
 
 import numpy as np
 
+from ..validation import check_count
 from .looper import LooperDesign
 from .params import PARAMETERS, check_names
 
@@ -52,8 +53,7 @@ def grid_space(**axes):
 def random_space(design, n, names=None, seed=0):
     """n geometries drawn uniformly within the design's bounds: {name: (n,)} for names (default design.free)."""
     names = design.free if names is None else check_names(names, "names")
-    if not (isinstance(n, (int, np.integer)) and n > 0):
-        raise ValueError(f"n must be a positive integer, got {n!r}")
+    check_count("n", n)
     rng = np.random.default_rng(seed)
     return {name: rng.uniform(*design.bounds[name], size=n) for name in names}
 
@@ -204,10 +204,8 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
     bad = [o for o in outputs if o not in OUTPUTS]
     if bad or not outputs:
         raise ValueError(f"outputs: unknown {bad}; known {sorted(OUTPUTS)}")
-    if not (isinstance(samples, (int, np.integer)) and samples >= 3):
-        raise ValueError(f"samples must be an integer >= 3, got {samples!r}")
-    if not (isinstance(chunk, (int, np.integer)) and chunk >= 1):
-        raise ValueError(f"chunk must be a positive integer, got {chunk!r}")
+    check_count("samples", samples, 3)
+    check_count("chunk", chunk)
     base = LooperDesign.reference() if base is None else base
     if not isinstance(base, LooperDesign):
         raise ValueError(f"base must be a LooperDesign, got {type(base).__name__}")
@@ -233,8 +231,8 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
                 if bar is not None:
                     bar.update(len(c))
         else:
-            if processes is not None and not (isinstance(processes, (int, np.integer)) and processes > 0):
-                raise ValueError(f"processes must be a positive integer or 0, got {processes!r}")
+            if processes is not None:
+                check_count("processes", processes, 0)
             workers = processes or os.cpu_count() or 1
             with concurrent.futures.ProcessPoolExecutor(workers, mp_context=_context()) as pool:
                 futures = {pool.submit(evaluate_chunk, portable, names, c, outputs, samples): k

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..validation import check_choice, check_count, check_positive
 from .params import ANGLES, check_names
 
 #: Monte-Carlo samples by default.
@@ -104,13 +105,9 @@ def tolerance(design, tolerances, distribution="normal", samples=MC_SAMPLES, cra
     if not isinstance(tolerances, dict) or not tolerances:
         raise ValueError("tolerances must be a non-empty dict {parameter: tolerance}")
     names = check_names(tuple(tolerances), "tolerances")
-    if distribution not in DISTRIBUTIONS:
-        raise ValueError(f"distribution must be one of {DISTRIBUTIONS}, got {distribution!r}")
-    width = np.array([float(tolerances[n]) for n in names])
-    if not np.all(np.isfinite(width)) or np.any(width <= 0):
-        raise ValueError(f"tolerances must be positive and finite, got {dict(zip(names, width.tolist()))}")
-    if not (isinstance(samples, (int, np.integer)) and samples >= 0):
-        raise ValueError(f"samples must be a non-negative integer, got {samples!r}")
+    check_choice("distribution", distribution, DISTRIBUTIONS)
+    width = np.array([check_positive(f"tolerances: {n}", tolerances[n]) for n in names])
+    check_count("samples", samples, 0)
     sigma = width if distribution == "normal" else width / math.sqrt(3.0)
     angles = np.linspace(0.0, 2 * np.pi, TOLERANCE_SAMPLES) if crank_angles is None \
         else np.asarray(crank_angles, dtype=float)

@@ -4,6 +4,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..validation import check_angles, check_choice, check_omega
+
 
 @dataclass(repr=False)
 class PointMotion:
@@ -26,20 +28,9 @@ def angle_range_text(values):
     return f"{math.degrees(float(values.min())):.6g}..{math.degrees(float(values.max())):.6g} deg"
 
 
-def check_omega(omega):
-    """omega as a finite, non-zero float, or ValueError naming it."""
-    try:
-        value = float(omega)
-    except (TypeError, ValueError):
-        raise ValueError(f"omega must be a real number (rad per unit time), got {omega!r}") from None
-    if not math.isfinite(value) or value == 0:
-        raise ValueError(f"omega must be finite and non-zero, got {omega!r}")
-    return value
-
-
 def check_branch(branch):
-    if branch not in (0, 1):
-        raise ValueError(f"branch must be 0 or 1, got {branch!r}")
+    """The assembly branch, 0 or 1, or ValueError naming it."""
+    return check_choice("branch", branch, (0, 1))
 
 
 def check_drive(crank_angles, omega, branch):
@@ -47,17 +38,3 @@ def check_drive(crank_angles, omega, branch):
     check_branch(branch)
     check_omega(omega)
     return check_angles("crank_angles", crank_angles)
-
-
-def check_angles(name, values):
-    """Angles as a finite 1-D float array (a scalar is one angle), or ValueError naming the argument (also for
-    an empty one: a motion has at least one position)."""
-    try:
-        angles = np.atleast_1d(np.asarray(values, dtype=float))
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be real numbers (radians), got {values!r}") from None
-    if angles.ndim != 1 or not np.all(np.isfinite(angles)):
-        raise ValueError(f"{name} must be a finite 1-D array")
-    if angles.size == 0:
-        raise ValueError(f"{name} is empty: give at least one angle")
-    return angles

@@ -22,13 +22,15 @@ from ..frame import Frame
 from ..continuation import solve_at
 from ..kernels import curve as kc
 from ..kinematics import serial_chain
-from ..surfaces import Sphere, Torus, check_length
+from .. import reference as ref
+from ..surfaces import Sphere, Torus
 from ..tracing.start import auxiliary_starts
 from ..tracing.bspline import fit as fit_spline
 from ..tracing.intersect import intersect
 from ..tracing.result import TracingError
 from ..tracing.trace import trace
 from ..trajectory import Trajectory, time_map, to_time
+from ..validation import check_choice, check_positive, check_vector
 from .common import PointMotion, angle_range_text, check_branch, check_drive
 
 #: Crank angles sampled when checking where the mechanism can be assembled.
@@ -79,20 +81,16 @@ class LooperDrive:
 
     def __init__(self, crank_radius, coupler_length, rocker_length, crank_frame=None, rocker_frame=None,
                  looper_tip=(0.0, 0.0, 0.0), looper_link="rocker_arm"):
-        self.crank_radius = check_length("crank_radius", crank_radius)
-        self.coupler_length = check_length("coupler_length", coupler_length)
-        self.rocker_length = check_length("rocker_length", rocker_length)
+        self.crank_radius = check_positive("crank_radius", crank_radius)
+        self.coupler_length = check_positive("coupler_length", coupler_length)
+        self.rocker_length = check_positive("rocker_length", rocker_length)
         self.crank_frame = crank_frame if crank_frame is not None else Frame()
         self.rocker_frame = rocker_frame if rocker_frame is not None else Frame()
         for name, f in (("crank_frame", self.crank_frame), ("rocker_frame", self.rocker_frame)):
             if not isinstance(f, Frame):
                 raise TypeError(f"{name} must be a spatialkin.Frame, got {type(f).__name__}")
-        if looper_link not in ("rocker_arm", "rocker_shaft"):
-            raise ValueError(f"looper_link must be 'rocker_arm' or 'rocker_shaft', got {looper_link!r}")
-        self.looper_link = looper_link
-        self.looper_tip = np.asarray(looper_tip, dtype=float)
-        if self.looper_tip.shape != (3,) or not np.all(np.isfinite(self.looper_tip)):
-            raise ValueError(f"looper_tip must be a finite point (3,), got {looper_tip!r}")
+        self.looper_link = check_choice("looper_link", looper_link, ("rocker_arm", "rocker_shaft"))
+        self.looper_tip = check_vector("looper_tip", looper_tip)
         self.torus = Torus(self.crank_radius, self.coupler_length, self.crank_frame)
         self.sphere = Sphere(self.rocker_length, self.rocker_frame)
         self.size = self.crank_radius + self.coupler_length + self.rocker_length
@@ -116,9 +114,9 @@ class LooperDrive:
     @classmethod
     def reference(cls):
         """The reference geometry of ../shared/reference/looper-drive.md (mm), looper tip 40 mm along the
-        rocker arm and 12 mm off it."""
-        return cls(8.0, 50.0, 30.0, Frame(), Frame((6.0, 0.0, 75.0), _rotation_x(-np.pi / 2)),
-                   looper_tip=(40.0, 0.0, 12.0))
+        rocker arm and 12 mm off it: spatialkin.reference."""
+        return cls(ref.CRANK_RADIUS, ref.COUPLER_LENGTH, ref.ROCKER_LENGTH, Frame(), ref.rocker_frame(),
+                   looper_tip=ref.LOOPER_TIP)
 
     # --- assembly ---------------------------------------------------------------------------------
     def assembly_margin(self, crank_angles):
@@ -362,11 +360,8 @@ class LooperMotion:
     def point(self, link, local):
         """PointMotion of a point fixed to a link ('crank', 'coupler', 'rocker_shaft', 'rocker_arm'),
         given in that link's frame (coupler: x from the pin axis to C; rocker arm: x from P2 to C)."""
-        if link not in LINKS:
-            raise ValueError(f"link must be one of {LINKS}, got {link!r}")
-        local = np.asarray(local, dtype=float)
-        if local.shape != (3,) or not np.all(np.isfinite(local)):
-            raise ValueError(f"local must be a finite point (3,), got {local!r}")
+        check_choice("link", link, LINKS)
+        local = check_vector("local", local)
         return PointMotion(*self.links()[link].point(local))
 
     def __len__(self):
@@ -396,11 +391,8 @@ class LooperMotion:
         scipy.interpolate.BSpline
             ``deviation`` (mm, or the drive's length unit) and ``checked`` as in ``Curve.to_bspline``.
         """
-        if which not in ("ball", "tip"):
-            raise ValueError(f"which must be 'ball' or 'tip', got {which!r}")
-        tol = float(tol)
-        if not math.isfinite(tol) or tol <= 0:
-            raise ValueError(f"tol must be a positive finite number, got {tol!r}")
+        check_choice("which", which, ("ball", "tip"))
+        tol = check_positive("tol", tol)
         lo, hi = float(np.min(self.crank_angle)), float(np.max(self.crank_angle))
         if not hi > lo:
             raise ValueError("a path B-spline needs at least two distinct crank angles")
@@ -440,7 +432,3 @@ def ranges_of(grid, mask):
         out.append((start, grid[-1]))
     return out
 
-
-def _rotation_x(angle):
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])

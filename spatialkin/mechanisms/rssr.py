@@ -10,9 +10,9 @@ import numpy as np
 from ..frame import Frame
 from ..kernels import linkage as kl
 from ..kinematics import serial_chain
-from ..surfaces import check_length
 from ..continuation import CurveKernels, solve_at, trace_cycle
 from ..trajectory import time_map, to_time
+from ..validation import check_positive
 from .common import PointMotion, angle_range_text, check_branch, check_drive
 
 #: solve_ivp tolerance of the configuration-curve trace (a predictor: positions are solved by Newton).
@@ -41,9 +41,9 @@ class RSSR:
     """
 
     def __init__(self, crank_radius, coupler_length, rocker_radius, crank_frame=None, rocker_frame=None):
-        self.crank_radius = check_length("crank_radius", crank_radius)
-        self.coupler_length = check_length("coupler_length", coupler_length)
-        self.rocker_radius = check_length("rocker_radius", rocker_radius)
+        self.crank_radius = check_positive("crank_radius", crank_radius)
+        self.coupler_length = check_positive("coupler_length", coupler_length)
+        self.rocker_radius = check_positive("rocker_radius", rocker_radius)
         self.crank_frame = crank_frame if crank_frame is not None else Frame()
         self.rocker_frame = rocker_frame if rocker_frame is not None else Frame()
         p = np.zeros(kl.PARAMS_SIZE)

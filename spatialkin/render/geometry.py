@@ -6,48 +6,12 @@ import numpy as np
 
 from ..surfaces import Surface
 from ..tracing.traits import traits
+from ..validation import check_range
 
 #: Default grid of a surface: samples along u and along v.
 SURFACE_RESOLUTION = (96, 48)
 #: Fewest samples along a parameter direction of a surface grid.
 MIN_RESOLUTION = 3
-
-
-def check_points(name, value, count=None):
-    """Finite points (N, 3) as a float array with N >= 1 (N == count when given), or ValueError naming
-    the argument."""
-    pts = np.asarray(value, dtype=float)
-    if pts.ndim != 2 or pts.shape[1] != 3 or len(pts) == 0:
-        raise ValueError(f"{name} must have shape (N, 3) with N >= 1, got {pts.shape}")
-    if count is not None and len(pts) != count:
-        raise ValueError(f"{name} must have {count} rows (one per point), got {len(pts)}")
-    if not np.all(np.isfinite(pts)):
-        bad = int(np.argmax(~np.all(np.isfinite(pts), axis=1)))
-        raise ValueError(f"{name} must be finite: row {bad} is {pts[bad].tolist()}")
-    return pts
-
-
-def check_scalars(name, value, count):
-    """Finite scalars (count,) as a float array, or ValueError naming the argument."""
-    arr = np.asarray(value, dtype=float)
-    if arr.shape != (count,):
-        raise ValueError(f"{name} must have shape ({count},) (one value per point), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite: index {int(np.argmax(~np.isfinite(arr)))} is not")
-    return arr
-
-
-def check_positive(name, value, allow_none=False):
-    """A finite positive float (or None when allowed), or ValueError naming the argument."""
-    if value is None and allow_none:
-        return None
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a positive number, got {value!r}") from None
-    if not (math.isfinite(x) and x > 0):
-        raise ValueError(f"{name} must be a finite positive number, got {value!r}")
-    return x
 
 
 def chord_length(points):
@@ -63,13 +27,10 @@ def natural_domain(surface):
 
 
 def _check_range(name, value, default):
-    lo, hi = default if value is None else value
-    lo, hi = float(lo), float(hi)
+    lo, hi = check_range(name, default if value is None else value)
     if not (math.isfinite(lo) and math.isfinite(hi)):
         raise ValueError(f"{name} must be finite to mesh the surface (it is unbounded there), got "
                          f"({lo}, {hi}); give {name}=(min, max)")
-    if not lo < hi:
-        raise ValueError(f"{name} must satisfy min < max, got ({lo}, {hi})")
     return lo, hi
 
 

@@ -15,6 +15,7 @@ import numpy as np
 from ..export import polylines
 from ..io import atomic_path
 from ..tracing.result import Curve
+from ..validation import check_choice, check_points, check_positive, check_range, check_vector
 from . import geometry as geo
 from ._backend import pyvista
 
@@ -102,7 +103,7 @@ class Scene:
         self.window_size = window_size
         self.theme = theme
         self.camera_position = camera_position
-        self.zoom = geo.check_positive("zoom", zoom)
+        self.zoom = check_positive("zoom", zoom)
         self.off_screen = bool(off_screen)
         self.title = None if title is None else str(title)
         self.axes = bool(axes)
@@ -198,14 +199,13 @@ class Scene:
         -------
         str : the item's name.
         """
-        if color_by not in COLOR_MODES:
-            raise ValueError(f"color_by must be one of {COLOR_MODES}, got {color_by!r}")
+        check_choice("color_by", color_by, COLOR_MODES)
         if isinstance(curve, Curve):
             # a dense polyline spaced by the chord height, never the solver's steps
             (s, points, _), = polylines(curve, chord_tol)
-            points = geo.check_points("curve.points", points)
+            points = check_points("curve.points", points)
         else:
-            points = geo.check_points("curve", curve)
+            points = check_points("curve", curve)
             s = geo.chord_length(points)
         if color_by == "speed" and speed is None:
             raise ValueError("speed must be given (one value per point) for color_by='speed'")
@@ -213,9 +213,9 @@ class Scene:
         data.point_data[S_ARRAY] = s
         if speed is not None:
             if isinstance(curve, Curve):         # given at the curve's own points: onto the dense polyline
-                speed = np.interp(s, curve.s, geo.check_scalars("speed", speed, len(curve.s)))
-            data.point_data[SPEED_ARRAY] = geo.check_scalars("speed", speed, len(points))
-        style = {"color_by": color_by, "radius": geo.check_positive("radius", radius, allow_none=True),
+                speed = np.interp(s, curve.s, check_vector("speed", speed, len(curve.s)))
+            data.point_data[SPEED_ARRAY] = check_vector("speed", speed, len(points))
+        style = {"color_by": color_by, "radius": check_positive("radius", radius, allow_none=True),
                  "color": color, "cmap": cmap, "clim": _check_clim(clim), "scalar_bar": bool(scalar_bar),
                  "bar_title": None if bar_title is None else str(bar_title),
                  "bar_position": None if bar_position is None else tuple(float(x) for x in bar_position)}
@@ -228,7 +228,7 @@ class Scene:
         -------
         str : the item's name.
         """
-        points = geo.check_points("points", points)
+        points = check_points("points", points)
         labels = [str(x) for x in labels]
         if len(labels) != len(points):
             raise ValueError(f"labels must give one text per point ({len(points)}), got {len(labels)}")
@@ -249,11 +249,11 @@ class Scene:
         -------
         str : the item's name.
         """
-        points = geo.check_points("points", points)
-        vectors = geo.check_points("vectors", vectors, count=len(points))
+        points = check_points("points", points)
+        vectors = check_points("vectors", vectors, count=len(points))
         data = pyvista().PolyData(points)
         data.point_data[VECTOR_ARRAY] = vectors
-        style = {"scale": geo.check_positive("scale", scale, allow_none=True), "color": color}
+        style = {"scale": check_positive("scale", scale, allow_none=True), "color": color}
         return self._add(name, "arrows", data, style)
 
     def add_looper(self, motion, index=0, name="looper"):
@@ -533,17 +533,14 @@ def _check_suffix(path, allowed):
 def _check_clim(clim):
     if clim is None:
         return None
-    try:
-        lo, hi = (float(x) for x in clim)
-    except (TypeError, ValueError):
-        raise ValueError(f"clim must be a pair (min, max), got {clim!r}") from None
-    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+    lo, hi = check_range("clim", clim)
+    if not (np.isfinite(lo) and np.isfinite(hi)):
         raise ValueError(f"clim must be finite with min < max, got {clim!r}")
     return lo, hi
 
 
 def _check_opacity(opacity):
-    x = geo.check_positive("opacity", opacity)
+    x = check_positive("opacity", opacity)
     if x > 1:
         raise ValueError(f"opacity must lie in (0, 1], got {opacity!r}")
     return x

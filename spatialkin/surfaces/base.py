@@ -5,43 +5,15 @@ Each kind (torus.py, sphere.py, plane.py, cylinder.py, cone.py) defines its clas
 (spatialkin.tracing.traits.SurfaceTraits) in its own module and registers them; ``Surface`` asks the registry for
 the kind code and the kernel geometry it packs.
 """
-import math
 
 import numpy as np
 
 from ..frame import Frame
 from ..kernels import surfaces as ks
 from ..tracing.traits import AXIS, check_surface, traits
+from ..validation import check_positive as check_length, check_range
 
 __all__ = ["Surface", "check_length", "check_range", "check_surface"]
-
-
-def check_length(name, value):
-    """A finite, strictly positive float, or ValueError naming the argument."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(x):
-        raise ValueError(f"{name} must be finite, got {x}")
-    if x <= 0:
-        raise ValueError(f"{name} must be positive, got {x}")
-    return x
-
-
-def check_range(name, value):
-    """(lo, hi) with lo < hi (either may be infinite, never NaN); None means unbounded."""
-    if value is None:
-        return -math.inf, math.inf
-    try:
-        lo, hi = (float(x) for x in value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a pair (min, max), got {value!r}") from None
-    if math.isnan(lo) or math.isnan(hi):
-        raise ValueError(f"{name} must not contain NaN, got {value!r}")
-    if not lo < hi:
-        raise ValueError(f"{name} must satisfy min < max, got ({lo}, {hi})")
-    return lo, hi
 
 
 class Surface:

@@ -22,6 +22,7 @@ import numpy as np
 from flint import arb, arb_mat
 
 from .traits import UnknownSurfaceKindError, check_surface, traits
+from ..validation import check_points, check_positive
 
 __all__ = ["implicit_arb", "certify_points", "PRECISION_BITS"]
 
@@ -123,15 +124,6 @@ def implicit_arb(surface, x):
     return _ArbSurface(surface).evaluate(xs)
 
 
-def _check_points(name, value):
-    arr = np.asarray(value, dtype=float)
-    if arr.ndim != 2 or arr.shape[1] != 3:
-        raise ValueError(f"{name} must have shape (N, 3), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite")
-    return arr
-
-
 def _upper(ball):
     """A float >= every |value| in the ball (rounded up)."""
     return math.nextafter(float(ball.abs_upper()), math.inf)
@@ -213,12 +205,11 @@ def certify_points(a, b, points, tangents, radius0=None, *, max_radius=None, pre
     """
     check_surface("a", a)
     check_surface("b", b)
-    pts = _check_points("points", points)
-    tans = _check_points("tangents", tangents)
+    pts = check_points("points", points, allow_empty=True)
+    tans = check_points("tangents", tangents, allow_empty=True)
     if tans.shape[0] != pts.shape[0]:
         raise ValueError(f"tangents must have the same number of rows as points: {tans.shape[0]} != {pts.shape[0]}")
-    if radius0 is not None and not (math.isfinite(radius0) and radius0 > 0):
-        raise ValueError(f"radius0 must be a positive finite float, got {radius0!r}")
+    check_positive("radius0", radius0, allow_none=True)
     size = min(a.size, b.size)
     cap = RADIUS_CAP_FRACTION * size if max_radius is None else float(max_radius)
     if radius0 is not None:

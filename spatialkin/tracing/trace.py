@@ -19,6 +19,7 @@ from .result import Curve, CurveResult, TracingError, user_params, DUPLICATE_SPA
 from .start import locate_on_curve, parameter_units, scene_scale
 from .status import CLOSED, open_outcome
 from .traits import check_surface, traits
+from ..validation import check_choice, check_nonnegative, check_positive
 
 # --- defaults -----------------------------------------------------------------------------------------
 #: Relative tolerance of solve_ivp on (u1, v1, u2, v2): sets how far a step may stray before the Newton
@@ -44,13 +45,6 @@ METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", "compiled")
 SNAP = 1e-2
 
 
-def check_positive(name, value):
-    x = float(value)
-    if not math.isfinite(x) or x <= 0:
-        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
-    return x
-
-
 def extent(surface):
     """A length that bounds the surface (inf for an untrimmed plane, cylinder or cone): its traits' extent."""
     return traits(surface).extent(surface)
@@ -60,11 +54,9 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
     """Validated numerical settings, absolute lengths scaled by the scene."""
     tol = check_positive("tol", tol)
     rtol = check_positive("rtol", rtol)
-    if method not in METHODS:
-        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    check_choice("method", method, METHODS)
     singular_tol = check_positive("singular_tol", singular_tol)
-    if pullback < 0 or not math.isfinite(pullback):
-        raise ValueError(f"pullback must be a finite number >= 0, got {pullback!r}")
+    check_nonnegative("pullback", pullback)
     scale = scene_scale(a, b)
     if max_length is None:
         bound = min(extent(a), extent(b))

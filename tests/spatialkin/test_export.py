@@ -7,14 +7,14 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
+from spatialkin import reference
 from spatialkin.export import dense_polyline, export_curves, write_csv, write_dxf, write_step, write_vtp
 from spatialkin.mechanisms import LooperDrive
 
 
 @pytest.fixture(scope="module")
 def looper_pair():
-    torus = sk.Torus(8.0, 50.0)
-    sphere = sk.Sphere(30.0, sk.Frame((6, 0, 75), sk.rotation_about((1, 0, 0), -np.pi / 2)))
+    torus, sphere = reference.looper_pair()
     return torus, sphere, sk.intersect(torus, sphere)
 
 

@@ -9,6 +9,7 @@ import pytest
 from oracles import looper_closed_form
 
 import spatialkin as sk
+from spatialkin import reference
 from spatialkin.cli import main
 from spatialkin.looper_figures import angle_span
 from spatialkin.looper_job import DEFAULT_SPEED_RPM, KEYS, ROTATION_TOL, build, load_config
@@ -59,8 +60,9 @@ def test_table_has_units_degrees_and_machine_speed(reference_run):
 def test_record_holds_geometry_speed_versions_errors(reference_run):
     out, _, table, record = reference_run
     g = record["geometry"]
-    assert (g["crank_radius"], g["coupler_length"], g["rocker_length"]) == (8.0, 50.0, 30.0)
-    np.testing.assert_allclose(g["rocker_frame"]["origin"], [6.0, 0.0, 75.0])
+    assert (g["crank_radius"], g["coupler_length"], g["rocker_length"]) == (
+        reference.CRANK_RADIUS, reference.COUPLER_LENGTH, reference.ROCKER_LENGTH)
+    np.testing.assert_allclose(g["rocker_frame"]["origin"], reference.ROCKER_CENTRE)
     assert record["speed"]["rpm"] == DEFAULT_SPEED_RPM and record["branch"] == 0 and record["length_unit"] == "mm"
     assert set(record["versions"]) >= {"spatialkin", "numpy", "scipy", "numba", "python"}
     assert max(record["measured_error"][k] for k in ("C_to_torus", "C_to_sphere", "coupler_vs_rocker_chain")) < 1e-12
@@ -87,14 +89,14 @@ def test_summary_states_units(tmp_path):
         assert needle in text, needle
 
 
-def test_partial_turn_drive_is_analysed_over_its_reachable_ranges(tmp_path, capsys):
+def test_partial_turn_drive_is_analysed_over_its_reachable_ranges(tmp_path, capsys, blocked_drive):
     cfg = tmp_path / "rocking.toml"
-    cfg.write_text("rocker_frame = { origin = [40.0, 0.0, 60.0] }\nstep_deg = 0.5\n")
+    cfg.write_text("rocker_frame = { origin = [40.0, 0.0, 60.0] }\nstep_deg = 0.5\n")      # blocked_drive typed
     out = tmp_path / "out"
     assert main(["looper", "--out", str(out), "--config", str(cfg)]) == 0
     assert "dead positions at crank angles" in capsys.readouterr().out
     record = json.loads((out / "looper_run.json").read_text())
-    drive = LooperDrive(8.0, 50.0, 30.0, rocker_frame=sk.Frame((40.0, 0.0, 60.0)))
+    drive = blocked_drive
     edges = np.degrees(sorted(x for rng in drive.blocked_ranges for x in rng))
     assert not record["analysis"]["turns_fully"]
     np.testing.assert_allclose(record["analysis"]["dead_positions_deg"], edges, atol=np.degrees(DEAD_TOL))

@@ -7,6 +7,7 @@ import pytest
 from oracles import looper_closed_form
 
 import spatialkin as sk
+from spatialkin import reference
 from spatialkin.mechanisms import LooperDrive
 
 
@@ -40,6 +41,16 @@ def test_full_turn_matches_closed_form(drive, branch):
     vel, acc = omega * d1, omega ** 2 * d2
     assert np.max(np.abs(m.ball_velocity - vel)) < 1e-8 * np.max(np.abs(vel))
     assert np.max(np.abs(m.ball_acceleration - acc)) < 1e-8 * np.max(np.abs(acc))
+
+
+def test_reference_drive_is_built_on_the_reference_pair(drive):
+    """Identity oracle: LooperDrive.reference() places exactly the surfaces of spatialkin.reference (the one
+    definition of the reference geometry), and its rocker frame turns local z onto +y."""
+    torus, sphere = reference.looper_pair()
+    np.testing.assert_array_equal(drive.torus.data, torus.data)
+    np.testing.assert_array_equal(drive.sphere.data, sphere.data)
+    np.testing.assert_allclose(drive.rocker_frame.rotation[:, 2], (0.0, 1.0, 0.0), atol=1e-15)
+    np.testing.assert_array_equal(drive.looper_tip, reference.LOOPER_TIP)
 
 
 def test_reference_branches_and_swing(drive):
@@ -80,11 +91,11 @@ def test_rocker_rates_and_link_points(drive):
     np.testing.assert_allclose(m.angular_velocity("crank"), np.tile([0, 0, omega], (50, 1)), atol=1e-15)
 
 
-def test_mechanism_that_cannot_be_assembled():
+def test_mechanism_that_cannot_be_assembled(blocked_drive):
     with pytest.raises(ValueError, match="cannot be assembled at any crank angle"):
         LooperDrive(8.0, 50.0, 5.0, rocker_frame=sk.Frame((6.0, 0.0, 200.0)))
     # assembled for part of the turn only: the error names the crank angles
-    d = LooperDrive(8.0, 50.0, 30.0, rocker_frame=sk.Frame((40.0, 0.0, 60.0)))
+    d = blocked_drive
     assert d.blocked_ranges
     lo, hi = d.blocked_ranges[0]
     with pytest.raises(ValueError, match="cannot be assembled at .* crank angles in"):
@@ -96,8 +107,8 @@ def test_mechanism_that_cannot_be_assembled():
     ({"rocker_length": np.nan}, "rocker_length"), ({"looper_link": "crank"}, "looper_link"),
 ])
 def test_bad_arguments(kwargs, name):
-    args = dict(crank_radius=8.0, coupler_length=50.0, rocker_length=30.0,
-                rocker_frame=sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1, 0, 0), -np.pi / 2)))
+    args = dict(crank_radius=reference.CRANK_RADIUS, coupler_length=reference.COUPLER_LENGTH,
+                rocker_length=reference.ROCKER_LENGTH, rocker_frame=reference.rocker_frame())
     args.update(kwargs)
     with pytest.raises(ValueError, match=name):
         LooperDrive(**args)
@@ -160,10 +171,10 @@ def test_analysis_of_the_reference(drive):
     assert 0 < a.min_transmission[0] < np.pi / 2
 
 
-def test_dead_positions_are_the_edges_of_the_blocked_ranges():
+def test_dead_positions_are_the_edges_of_the_blocked_ranges(blocked_drive):
     """A crank that cannot turn fully: the dead positions found on the traced loops (u1' = 0) are the crank
     angles where the coupler circle just touches the rocker sphere (independent distance formula)."""
-    d = LooperDrive(8.0, 50.0, 30.0, rocker_frame=sk.Frame((40.0, 0.0, 60.0)))
+    d = blocked_drive
     a = d.analyse()
     assert not a.turns_fully
     edges = sorted(x for rng in d.blocked_ranges for x in rng)
@@ -185,11 +196,11 @@ def test_seed_start_and_assembly_agree_with_solve(drive):
         np.testing.assert_allclose(np.angle(np.exp(1j * (m.states[0] - y))), 0.0, atol=1e-9)
 
 
-def test_branch_over_two_components_uses_every_component():
+def test_branch_over_two_components_uses_every_component(blocked_drive):
     """A crank that cannot turn fully, asked at crank angles in both of its ranges: branch 0 lies on a
     different loop in each, so the component through the first assembly does not cover the request and
     solve traces every component; positions match the closed form to 1e-9 mm either way."""
-    d = LooperDrive(8.0, 50.0, 30.0, rocker_frame=sk.Frame((40.0, 0.0, 60.0)))
+    d = blocked_drive
     (a0, a1), (b0, b1) = d.blocked_ranges
     one_range = np.linspace(a1 + 0.05, b0 - 0.05, 50)
     both = np.concatenate([one_range, np.mod(np.linspace(b1 + 0.05, a0 + 2 * np.pi - 0.05, 50), 2 * np.pi)])

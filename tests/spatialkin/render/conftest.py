@@ -4,6 +4,7 @@ import pytest
 import pyvista
 
 import spatialkin as sk
+from spatialkin import reference
 from spatialkin.mechanisms import LooperDrive
 
 pyvista.OFF_SCREEN = True
@@ -27,8 +28,7 @@ def testing_theme():
 @pytest.fixture(scope="session")
 def pair():
     """The looper's torus and sphere (reference geometry) and their two closed components."""
-    torus = sk.Torus(8.0, 50.0)
-    sphere = sk.Sphere(30.0, sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1, 0, 0), -np.pi / 2)))
+    torus, sphere = reference.looper_pair()
     return torus, sphere, sk.intersect(torus, sphere)
 
 

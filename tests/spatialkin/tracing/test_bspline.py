@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
+from spatialkin import reference
 from spatialkin.tracing.bspline import SplineToleranceError, fit, hermite_bspline
 from spatialkin.tracing.curvature import curvature_vectors, implicit_jets
 
@@ -69,9 +70,8 @@ def test_curvature_vector_of_a_circle():
 def test_curve_to_bspline_within_tolerance_of_the_true_curve(tol):
     """The looper's two loops: every spline sample lies within tol x scale of the curve (Curve.closest, a foot
     point by Newton on the corrected curve) and of both surfaces; closed loops give periodic splines."""
-    torus = sk.Torus(8.0, 50.0)
-    sphere = sk.Sphere(30.0, sk.Frame((6, 0, 75), sk.rotation_about((1, 0, 0), -np.pi / 2)))
-    scale = 30.0
+    torus, sphere = reference.looper_pair()
+    scale = reference.ROCKER_LENGTH
     for curve in sk.intersect(torus, sphere):
         sp = curve.to_bspline(tol)
         assert sp.deviation <= tol * scale and sp.extrapolate == "periodic"

@@ -8,6 +8,7 @@ from oracles import (random_rotation, sphere_distance, torus_distance, torus_sph
                      torus_sphere_components, torus_sphere_critical_radii)
 
 import spatialkin as sk
+from spatialkin import reference
 
 TOL = 1e-10
 
@@ -114,14 +115,14 @@ def test_equal_cylinders_cross_in_two_ellipses():
 
 def test_spindle_torus_of_the_looper_has_two_components():
     """The looper drive's spindle torus (R = 8, r = 50) and its rocker sphere: two assembly branches."""
-    torus = sk.Torus(8.0, 50.0)
-    sphere = sk.Sphere(30.0, sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1, 0, 0), -np.pi / 2)))
+    torus, sphere = reference.looper_pair()
     curves = sk.intersect(torus, sphere)
     assert len(curves) == 2 and all(c.closed for c in curves)
     assert min(abs(c.length - 59.7) for c in curves) < 0.05
+    radius = reference.ROCKER_LENGTH
     for c in curves:
-        assert torus_distance(c.points, 8.0, 50.0).max() < TOL * 30
-        assert sphere_distance(c.points, sphere.center, 30.0).max() < TOL * 30
+        assert torus_distance(c.points, reference.CRANK_RADIUS, reference.COUPLER_LENGTH).max() < TOL * radius
+        assert sphere_distance(c.points, sphere.center, radius).max() < TOL * radius
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -4,6 +4,7 @@ import pytest
 from scipy.integrate import quad
 
 import spatialkin as sk
+from spatialkin import reference
 
 TOL = 1e-10
 
@@ -11,9 +12,7 @@ TOL = 1e-10
 @pytest.fixture(scope="module")
 def looper_pair():
     """The reference geometry of ../shared/reference/looper-drive.md (mm)."""
-    torus = sk.Torus(8.0, 50.0)
-    sphere = sk.Sphere(30.0, sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1, 0, 0), -np.pi / 2)))
-    return torus, sphere
+    return reference.looper_pair()
 
 
 def test_auxiliary_start_is_on_both_surfaces(looper_pair):

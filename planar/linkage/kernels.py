@@ -21,9 +21,9 @@ import math
 
 import numpy as np
 
-from spatialkin._jit import jit
-from spatialkin.kernels.curve import lu_factor, lu_solve
+from spatialkin.kernels import jit
 from spatialkin.kernels.follow import follow_events, follow_fun
+from spatialkin.kernels.linalg import lu_factor, lu_solve
 from spatialkin.kernels.rk import advance
 from spatialkin.kernels.implicit import follow_rhs
 
@@ -163,7 +163,7 @@ def linkage_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps,
 # they make J_q's explicit block unit lower triangular, and J_q x = b reduces to the Schur complement S on
 # the implicit joints' columns (the rows of the distance constraints): x_E = a + G x_R, S x_R = b_I - J_IE a,
 # with G, S (and S's LU) from the Jacobian alone. det J_q = det S, so S is singular exactly where J_q is.
-# layout = (pattern, slot, rows, cols, ne) from planar.linkage: rows (n,) the explicit joints' unit rows in
+# layout = (pattern, slot, rows, cols, ne) from model._block_layout: rows (n,) the explicit joints' unit rows in
 # order, then the implicit rows; cols (n,) the matching explicit columns, then the implicit ones; ne the
 # number of explicit columns; pattern (n, 6) the columns each row couples (its own explicit joint's left out,
 # -1 padded); slot (n,) a column's position in cols (explicit) or -1 - its position among the implicit ones.

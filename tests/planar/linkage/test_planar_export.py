@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import planar
-from planar.export import write_dxf
+from planar.linkage import write_dxf
 
 ezdxf = pytest.importorskip("ezdxf")
 

@@ -10,34 +10,20 @@ References
 Seed 000 and ../shared/reference/frenet-planar.md (formulas reconstructed; the printed (15), (16) have the
 wrong sign of the gamma term: the corrected derivatives are used).
 """
-import math
-
 import numpy as np
 
-from . import law_kernels as lk
+from spatialkin.validation import check_choice, check_finite, check_nonnegative, check_positive
 
+from . import kernels as lk
 
-def check_positive(name, value):
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(x) or x <= 0:
-        raise ValueError(f"{name} must be positive and finite, got {value!r}")
-    return x
-
-
-def as_s(s):
-    s = np.asarray(s, dtype=float)
-    if not np.all(np.isfinite(s)):
-        raise ValueError("s must be finite")
-    return s
+#: Relative slack of the crank-slider's full-turn condition e + 1/k <= L (round-off in the given lengths).
+TURN_SLACK = 1e-12
 
 
 def kernel_law(kernel, s, *params):
     """(phi, dphi, ddphi, cos gamma, sin gamma, cos ks, sin ks) shaped like s from a jitted law kernel
-    (planar.law_kernels)."""
-    s = as_s(s)
+    (planar.frenet.kernels)."""
+    s = check_finite("s", s)
     out = np.empty((7, s.size))
     kernel(*params, np.ascontiguousarray(s).ravel(), *out)
     return tuple(o.reshape(s.shape) for o in out)
@@ -66,7 +52,7 @@ class Law:
 
     def gamma(self, s):
         """Angle of the link to the fixed x-axis, gamma = ks + phi (eq. (1))."""
-        s = as_s(s)
+        s = check_finite("s", s)
         return self.k * s + self.evaluate(s)[0]
 
 
@@ -86,16 +72,11 @@ class CrankSlider(Law):
 
     def __init__(self, k, e, L, side=1, branch=0):
         self.k = check_positive("k", k)
-        e = float(e)
-        if not math.isfinite(e) or e < 0:
-            raise ValueError(f"e must be a finite offset >= 0, got {e!r}")
-        self.e = e
+        self.e = check_nonnegative("e", e)
         self.L = check_positive("L", L)
-        if side not in (1, -1):
-            raise ValueError(f"side must be +1 or -1, got {side!r}")
-        if branch not in (0, 1):
-            raise ValueError(f"branch must be 0 or 1, got {branch!r}")
-        if self.e + 1.0 / self.k > self.L * (1 + 1e-12):
+        check_choice("side", side, (1, -1))
+        check_choice("branch", branch, (0, 1))
+        if self.e + 1.0 / self.k > self.L * (1 + TURN_SLACK):
             raise ValueError(f"the crank-slider needs e + 1/k <= L to turn fully: e + 1/k = "
                              f"{self.e + 1 / self.k:.6g} > L = {self.L:.6g}")
         self.side, self.branch = side, branch
@@ -133,7 +114,7 @@ class LawFromFunctions(Law):
         self._f = (phi, dphi, ddphi)
 
     def evaluate(self, s):
-        s = as_s(s)
+        s = check_finite("s", s)
         out = tuple(np.broadcast_to(np.asarray(f(s), dtype=float), s.shape).copy() for f in self._f)
         if not all(np.all(np.isfinite(x)) for x in out):
             raise ValueError("the law's functions returned non-finite values (outside their domain?)")

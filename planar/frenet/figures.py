@@ -7,13 +7,14 @@
 """
 import numpy as np
 
+from spatialkin.validation import check_choice, check_positive
 
-def _figure(size=(6.0, 6.0), columns=1):
-    """A matplotlib Figure outside pyplot's state (no backend switch, nothing accumulates; Jupyter shows
-    it when returned) with its axes."""
-    from matplotlib.figure import Figure
-    fig = Figure(figsize=size)
-    return fig, fig.subplots(1, columns)
+from ..plotting import new_figure
+
+#: What vectors() and magnitudes() draw.
+KINDS = ("velocity", "acceleration")
+#: Default density of vectors(): this many vectors per crank turn along each trajectory.
+VECTORS_PER_TURN = 36
 
 
 def _turn(link, samples):
@@ -23,7 +24,7 @@ def _turn(link, samples):
 def positions(link, rhos, link_from=-4.0, link_to=None, count=12, samples=721, title=None):
     """Link positions at `count` crank angles over a turn (segments from rho = link_from to link_to) and
     the trajectories of the points at the signed distances rhos. Returns a matplotlib Figure."""
-    fig, ax = _figure()
+    fig, ax = new_figure()
     rhos = np.atleast_1d(np.asarray(rhos, dtype=float))
     link_to = float(rhos.max()) if link_to is None else link_to
     s_all = _turn(link, samples)
@@ -47,15 +48,11 @@ def positions(link, rhos, link_from=-4.0, link_to=None, count=12, samples=721, t
 def vectors(link, rhos, kind="velocity", scale=0.5, ds=None, samples=721, title=None):
     """Velocity or acceleration vectors (scaled by `scale`) drawn from trajectory points spaced ds apart
     (default: 36 per turn) along the trajectories of the points rhos."""
-    if kind not in ("velocity", "acceleration"):
-        raise ValueError(f"kind must be 'velocity' or 'acceleration', got {kind!r}")
-    if not np.isfinite(scale) or scale <= 0:
-        raise ValueError(f"scale must be positive, got {scale!r}")
-    fig, ax = _figure()
+    check_choice("kind", kind, KINDS)
+    check_positive("scale", scale)
     turn = 2 * np.pi / link.k
-    ds = turn / 36 if ds is None else float(ds)
-    if not np.isfinite(ds) or ds <= 0:
-        raise ValueError(f"ds must be positive, got {ds!r}")
+    ds = turn / VECTORS_PER_TURN if ds is None else check_positive("ds", ds)
+    fig, ax = new_figure()
     for rho in np.atleast_1d(rhos):
         path = link.position(_turn(link, samples), rho)
         ax.plot(path[:, 0], path[:, 1], lw=1.2)
@@ -71,9 +68,8 @@ def vectors(link, rhos, kind="velocity", scale=0.5, ds=None, samples=721, title=
 
 def magnitudes(link, rhos, kind="velocity", samples=721, title=None):
     """|v| or |a| of the points rhos against the crank angle (degrees) over one turn."""
-    if kind not in ("velocity", "acceleration"):
-        raise ValueError(f"kind must be 'velocity' or 'acceleration', got {kind!r}")
-    fig, ax = _figure((7.0, 4.0))
+    check_choice("kind", kind, KINDS)
+    fig, ax = new_figure((7.0, 4.0))
     s = _turn(link, samples)
     deg = np.degrees(link.crank_angle(s))
     for rho in np.atleast_1d(rhos):

@@ -18,10 +18,10 @@ Seed 000; ../shared/reference/frenet-planar.md (eqs. (2)-(4), (11)).
 
 import numpy as np
 
-from spatialkin.mechanisms.common import check_omega
 from spatialkin.trajectory import Trajectory, time_map
+from spatialkin.validation import check_finite, check_omega
 
-from . import law_kernels as lk
+from . import kernels as lk
 from .laws import Law
 
 
@@ -35,9 +35,8 @@ class DrivenLink:
     def __init__(self, law, omega=1.0):
         if not isinstance(law, Law):
             raise TypeError(f"law must be a planar law (CrankSlider, CrankRocker, ...), got {type(law).__name__}")
-        omega = check_omega(omega)
         self.law = law
-        self.omega = float(omega)
+        self.omega = check_omega(omega)
         self.k = law.k
         self.speed = self.omega / self.k          # V, the pin's speed
 
@@ -49,9 +48,7 @@ class DrivenLink:
         evaluated once per value of s and shared by every rho (s[:, None] with rho (R,) gives R points of
         the link at N crank positions), positions and s-derivatives by a jitted kernel."""
         s = np.asarray(s, dtype=float)
-        rho = np.asarray(rho, dtype=float)
-        if not np.all(np.isfinite(rho)):
-            raise ValueError("rho must be finite")
+        rho = check_finite("rho", rho)
         shape = np.broadcast_shapes(s.shape, rho.shape)
         if s.ndim == 2 and s.shape[1] == 1 and rho.ndim == 1:        # N positions x R points
             s = s[:, 0]
@@ -74,7 +71,7 @@ class DrivenLink:
     def acceleration(self, s, rho):
         return self.trajectory(s, rho).acceleration
 
-    def _on_frame(self, s, rho, vectors):
+    def _on_frame(self, s, vectors):
         ks = self.k * np.asarray(s, dtype=float)
         tau = np.stack([np.cos(ks), np.sin(ks)], axis=-1)
         n = np.stack([-np.sin(ks), np.cos(ks)], axis=-1)
@@ -82,11 +79,11 @@ class DrivenLink:
 
     def velocity_frame(self, s, rho):
         """(V_tau, V_n) (..., 2): velocity components on the trihedron (tau, n)."""
-        return self._on_frame(s, rho, self.velocity(s, rho))
+        return self._on_frame(s, self.velocity(s, rho))
 
     def acceleration_frame(self, s, rho):
         """(W_tau, W_n) (..., 2): acceleration components on (tau, n)."""
-        return self._on_frame(s, rho, self.acceleration(s, rho))
+        return self._on_frame(s, self.acceleration(s, rho))
 
     def angular_velocity(self, s):
         """Omega = V (k + phi') of the link (anticlockwise positive)."""

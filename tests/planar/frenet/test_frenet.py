@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import planar
-from planar import figures
+from planar.frenet import figures
 
 BASELINE = os.path.join(os.path.dirname(__file__), "baseline")
 

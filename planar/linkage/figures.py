@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from .figures import _figure
+from ..plotting import new_figure
 
 #: Grey levels and widths of the drawing.
 LINK_COLOUR, GROUND_COLOUR, TERNARY_FILL = "0.25", "0.45", "0.85"
@@ -23,7 +23,7 @@ JOINT_SIZE = 4.0
 def _axes(ax, size=(6.0, 6.0)):
     if ax is not None:
         return ax.figure, ax
-    return _figure(size)
+    return new_figure(size)
 
 
 def mechanism(motion, indices=(0,), ax=None, labels=True, title=None):
@@ -79,7 +79,7 @@ def velocity_plans(motion, index, joints=("A", "B", "C", "K", "D"), title=None):
     of every joint's velocity, from the pole p) and one of the full motion, where each share is drawn
     tip to tail to show V = sum of the shares. Returns a matplotlib Figure."""
     cranks = len(motion.linkage.cranks)
-    fig, axes = _figure((4.0 * (cranks + 1), 4.2), columns=cranks + 1)
+    fig, axes = new_figure((4.0 * (cranks + 1), 4.2), columns=cranks + 1)
     panels = [(k + 1, f"crank {k + 1} alone (others stopped)") for k in range(cranks)]
     panels.append((None, "full motion = sum of the shares"))
     for ax, (crank, name) in zip(axes, panels):

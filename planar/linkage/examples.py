@@ -1,5 +1,5 @@
 """Ready-made planar linkages with the reference geometries of ../shared/reference."""
-from .linkage import Crank, Link, Linkage
+from .model import Crank, Link, Linkage
 
 #: Gear teeth of the FNF drive: z1 on crank 1, z2 on crank 2, in external mesh (omega2 = -z1/z2 omega1).
 FNF_TEETH = (40, 20)

@@ -2,11 +2,11 @@
 
 Each law kernel fills phi, phi', phi'' at the arc lengths s (flat arrays); link_derivatives fills the
 positions of the link's points and their first and second s-derivatives from the law (computed once per s
-by the caller and shared by every point rho). Formulas: planar.laws and planar.link.
+by the caller and shared by every point rho). Formulas: planar.frenet.laws and planar.frenet.link.
 """
 import math
 
-from spatialkin._jit import jit
+from spatialkin.kernels import jit
 
 #: Smallest W^2 kept under the square root of the crank-slider (its boundary case has W = 0 at a cusp).
 TINY = 2.2250738585072014e-308

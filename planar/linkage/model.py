@@ -2,7 +2,7 @@
 more driving cranks geared to one input angle.
 
 The loop-closure equations F(q, phi) = 0 are written in natural coordinates (the moving joints' x, y;
-see planar.kernels), so a class III group (a triad) is solved as one system with no dyad decomposition.
+see planar.linkage.kernels), so a class III group (a triad) is solved as one system with no dyad decomposition.
 The configuration curve is followed along the input by arc length with spatialkin's continuation pipeline
 (solve_ivp with the compiled engine over the jitted right-hand side), each requested input angle is then
 solved exactly by Newton from the traced prediction (or, next to an angle solved before it, from that
@@ -10,7 +10,7 @@ solution's second-order expansion), and velocities and accelerations come analyt
 curve, mapped to time by the trajectory pipeline); each crank's share of the velocity is
 -J_q^-1 dF/dtheta_k theta_k' (the velocities are linear in the crank rates at a fixed position). The
 systems in J_q are solved by block elimination of the explicit joints (crank pins, rigid links' further
-joints): one small LU on the joints the distance constraints couple (planar.kernels).
+joints): one small LU on the joints the distance constraints couple (planar.linkage.kernels).
 
 References
 ----------
@@ -24,10 +24,11 @@ from fractions import Fraction
 import numpy as np
 from scipy.optimize import least_squares
 
-from spatialkin.mechanisms.common import check_omega
-from spatialkin.continuation import CurveKernels, trace_cycle
+from spatialkin.continuation import CurveKernels, solve_at, trace_cycle
+from spatialkin.validation import check_angles, check_omega, check_positive
+
 from . import kernels as kn
-from .linkage_motion import LinkageMotion, LockError
+from .motion import LinkageMotion, LockError
 
 #: Random starts of the assembly search at one input angle (deterministic seed).
 ASSEMBLY_STARTS = 200
@@ -89,7 +90,7 @@ class Link:
 
 
 def _block_layout(ci, n):
-    """Block structure of J_q for planar.kernels.factor_reduced / solve_reduced: (pattern, slot, rows, cols,
+    """Block structure of J_q for kernels.factor_reduced / solve_reduced: (pattern, slot, rows, cols,
     explicit columns) (see there).
 
     A crank's pin and a rigid link's further joint are explicit (defined by their constraint's two rows),
@@ -127,13 +128,6 @@ def _block_layout(ci, n):
     slot[cols] = np.arange(n)
     slot[cols[len(ecol):]] = -1 - np.arange(n - len(ecol))
     return pattern, slot, np.array(rows, dtype=np.int64), np.array(cols, dtype=np.int64), len(ecol)
-
-
-def _check_positive(name, value):
-    value = float(value)
-    if not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be a finite positive length, got {value!r}")
-    return value
 
 
 class Linkage:
@@ -175,7 +169,7 @@ class Linkage:
     def _moving_joints(self):
         names = []
         for c in self.cranks:
-            _check_positive(f"crank {c.name} radius", c.radius)
+            check_positive(f"crank {c.name} radius", c.radius)
             if not (math.isfinite(c.ratio) and c.ratio != 0 and math.isfinite(c.phase)):
                 raise ValueError(f"crank {c.name}: ratio must be finite and non-zero, phase finite")
             for j in (c.pivot, c.pin):
@@ -189,11 +183,11 @@ class Linkage:
             if lk.shape is None:
                 if lk.length is None:
                     raise ValueError(f"link {lk.name}: give shape (joint coordinates) or length")
-                _check_positive(f"link {lk.name} length", lk.length)
+                check_positive(f"link {lk.name} length", lk.length)
             shape = lk.local()
             if shape.shape != (len(lk.joints), 2) or not np.all(np.isfinite(shape)):
                 raise ValueError(f"link {lk.name}: shape must be finite ({len(lk.joints)}, 2)")
-            _check_positive(f"link {lk.name} distance {lk.joints[0]}-{lk.joints[1]}",
+            check_positive(f"link {lk.name} distance {lk.joints[0]}-{lk.joints[1]}",
                             np.linalg.norm(shape[1] - shape[0]))
             for j in lk.joints:
                 if j not in self.fixed and j not in names:
@@ -392,34 +386,33 @@ class Linkage:
         LockError
             When a requested angle lies beyond a lock position of the assembly.
         """
-        angles = np.atleast_1d(np.asarray(crank_angles, dtype=float))
-        if angles.ndim != 1 or angles.size == 0 or not np.all(np.isfinite(angles)):
-            raise ValueError("crank_angles must be a finite, non-empty 1-D array")
+        angles = check_angles("crank_angles", crank_angles)
         omega = check_omega(omega)
         cycle = self.cycle(assembly)
         inputs, states = cycle.branch_samples()
         order = np.argsort(inputs)
-        inputs, states = inputs[order], states[order]
-        if cycle.full_turn:
-            local = inputs[0] + np.mod(angles - inputs[0], cycle.period)
-        else:
-            lo, hi = inputs[0], inputs[-1]
-            local = lo + np.mod(angles - lo, self.period)
-            outside = local > hi
-            if outside.any():
-                raise LockError(self.lock_positions(assembly), angles[outside])
-        guess = np.column_stack([np.interp(local, inputs, states[:, i]) for i in range(states.shape[1] - 1)]
-                                + [local])
+
+        def locked(mask):
+            return LockError(self.lock_positions(assembly), angles[mask])
+        ys, d1, d2, parts = solve_at(angles, inputs[order], states[order], self._configurations, index=-1,
+                                     period=cycle.period if cycle.full_turn else self.period,
+                                     reach=None if cycle.full_turn else 0.0, outside=locked, wrapped=True)
+        bad = np.isnan(ys[:, 0])
+        if bad.any():
+            raise locked(bad)
+        ys[:, -1] = angles
+        return LinkageMotion(self, ys, float(omega), d1, d2, parts)
+
+    def _configurations(self, guess):
+        """(states, y', y'', per-crank parts) by Newton at the fixed inputs of guess (m, n), sorted by input, each
+        from the prediction or from the one solved before it within TAYLOR_REACH (solve_at's corrector); the
+        rows where Newton fails or jumps to another assembly are NaN."""
         m, n = guess.shape
         ys, d1, d2 = np.empty((m, n)), np.empty((m, n)), np.empty((m, n))
         parts = np.empty((m, len(self.cranks), n - 1))
         status = np.empty(m, dtype=np.int64)
-        kn.solve_configurations(guess, np.argsort(local, kind="stable"), TAYLOR_REACH, BRANCH_JUMP, self.ci,
-                                self.cf, self.fixed_xy, self.layout, NEWTON_TOL, NEWTON_ITER, ys, d1, d2, parts,
-                                status)
-        jump = np.max(np.abs(ys - guess), axis=1)
-        bad = (status != 0) | (jump > BRANCH_JUMP)
-        if bad.any():
-            raise LockError(self.lock_positions(assembly), angles[bad])
-        ys[:, -1] = angles
-        return LinkageMotion(self, ys, float(omega), d1, d2, parts)
+        kn.solve_configurations(guess, np.arange(m), TAYLOR_REACH, BRANCH_JUMP, self.ci, self.cf, self.fixed_xy,
+                                self.layout, NEWTON_TOL, NEWTON_ITER, ys, d1, d2, parts, status)
+        bad = (status != 0) | (np.max(np.abs(ys - guess), axis=1) > BRANCH_JUMP)
+        ys[bad] = np.nan
+        return ys, d1, d2, parts

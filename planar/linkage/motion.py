@@ -50,8 +50,8 @@ class LinkageMotion:
     """
 
     def __init__(self, linkage, states, omega, d1, d2, parts):
-        """From solved states (N, n+1) and their derivatives in the input (planar.kernels.
-        solve_configurations)."""
+        """From solved states (N, n+1) and their derivatives in the input
+        (kernels.solve_configurations)."""
         self.linkage = linkage
         self.states = states
         self.omega = omega

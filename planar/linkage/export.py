@@ -1,10 +1,10 @@
 """A planar linkage's drawing as DXF: links as lines, joints and the cranks' pin circles as circles, joint paths
-as dense polylines (spaced by a chord height, from exact solutions), written atomically with ezdxf (the
-``cad`` extra of spatialkin)."""
+as dense polylines (spaced by a chord height, from exact solutions), written atomically with ezdxf (a
+dependency of spatialkin)."""
 import numpy as np
 
-from spatialkin.export import dense_polyline, require
-from spatialkin.io import atomic_path
+from spatialkin.export import atomic_path, dense_polyline, require
+from spatialkin.validation import check_positive
 
 #: Joint circles' radius, as a fraction of the linkage's mean link length.
 JOINT_FRACTION = 0.03
@@ -20,7 +20,7 @@ def write_dxf(path, motion, indices=(0,), paths=(), chord_tol=None):
     Parameters
     ----------
     path : str or path-like
-    motion : planar.LinkageMotion
+    motion : planar.linkage.LinkageMotion
         From ``linkage.solve(angles)``.
     indices : sequence of int
         Positions (indices into the solved angles) at which the mechanism is drawn: cranks and binary links
@@ -39,9 +39,7 @@ def write_dxf(path, motion, indices=(0,), paths=(), chord_tol=None):
     for i in indices:
         if not -len(motion) <= i < len(motion):
             raise ValueError(f"indices must lie in [0, {len(motion)}), got {i}")
-    chord = CHORD_FRACTION * size if chord_tol is None else float(chord_tol)
-    if not np.isfinite(chord) or chord <= 0:
-        raise ValueError(f"chord_tol must be a positive length, got {chord_tol!r}")
+    chord = CHORD_FRACTION * size if chord_tol is None else check_positive("chord_tol", chord_tol)
     doc = ezdxf.new("R2010")
     msp = doc.modelspace()
     for name in LAYERS:

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import planar
-from planar import linkage_figures as lf
+from planar.linkage import figures as lf
 
 
 @pytest.fixture(scope="module")

@@ -1,0 +1,61 @@
+"""Small dense linear systems in jitted code: LU with partial pivoting, in place (no allocation).
+
+Used by the curve kernels' 3 x 3 and 4 x 4 Newton systems and by planar linkages' Schur complements.
+"""
+from .._jit import jit
+
+__all__ = ["PIVOT_EPS", "lu_factor", "lu_solve"]
+
+#: Below this, a pivot is treated as zero (relative to the largest entry of the matrix).
+PIVOT_EPS = 1e-14
+
+
+@jit
+def lu_factor(m, piv):
+    """LU factorisation with partial pivoting of the square m, in place; False if a pivot vanishes
+    relative to the largest entry (a singular matrix)."""
+    n = m.shape[0]
+    big = 0.0
+    for i in range(n):
+        for j in range(n):
+            big = max(big, abs(m[i, j]))
+    if big == 0.0:
+        return False
+    for col in range(n):
+        p = col
+        for i in range(col + 1, n):
+            if abs(m[i, col]) > abs(m[p, col]):
+                p = i
+        piv[col] = p
+        if abs(m[p, col]) <= PIVOT_EPS * big:
+            return False
+        if p != col:
+            for j in range(n):
+                tmp = m[col, j]
+                m[col, j] = m[p, j]
+                m[p, j] = tmp
+        for i in range(col + 1, n):
+            m[i, col] /= m[col, col]
+            for j in range(col + 1, n):
+                m[i, j] -= m[i, col] * m[col, j]
+    return True
+
+
+@jit
+def lu_solve(m, piv, r, x):
+    """x = m^-1 r from lu_factor's m, piv (r is left untouched)."""
+    n = m.shape[0]
+    for i in range(n):
+        x[i] = r[i]
+    for i in range(n):
+        p = piv[i]
+        if p != i:
+            tmp = x[i]
+            x[i] = x[p]
+            x[p] = tmp
+        for j in range(i):
+            x[i] -= m[i, j] * x[j]
+    for i in range(n - 1, -1, -1):
+        for j in range(i + 1, n):
+            x[i] -= m[i, j] * x[j]
+        x[i] /= m[i, i]

@@ -1,0 +1,49 @@
+"""The reference looper drive (lengths in mm), defined once.
+
+``LooperDrive.reference()``, the looper job's default configuration, ``spatialkin demo``, the bench cases and
+the tests take the reference geometry from here: the crank frame is the global axes, the rocker frame sits at
+the rocker centre P2 turned a quarter turn about x (its z, the rocker shaft, along +y).
+
+References
+----------
+Seed 002 and ../shared/reference/looper-drive.md (the scheme and the reference geometry).
+"""
+import math
+
+from .frame import Frame, rotation_about
+from .surfaces import Sphere, Torus
+
+__all__ = ["CRANK_RADIUS", "COUPLER_LENGTH", "ROCKER_LENGTH", "ROCKER_CENTRE", "ROCKER_TURN", "LOOPER_TIP",
+           "rocker_rotation", "rocker_frame", "looper_pair"]
+
+#: R1, crank pin axis to crank shaft: the torus's major radius.
+CRANK_RADIUS = 8.0
+#: r1, ball centre C to the crank pin axis: the torus's minor radius.
+COUPLER_LENGTH = 50.0
+#: R2, ball centre C to the rocker centre P2: the sphere's radius.
+ROCKER_LENGTH = 30.0
+#: P2, the rocker centre, in the crank frame (the global axes).
+ROCKER_CENTRE = (6.0, 0.0, 75.0)
+#: Turn (rad) of the rocker frame about the global x axis: its local z (the rocker shaft) points along +y.
+ROCKER_TURN = -math.pi / 2
+#: The looper tip in the rocker arm's frame: 40 mm along the arm (x from P2 to C), 12 mm off it.
+LOOPER_TIP = (40.0, 0.0, 12.0)
+
+
+def rocker_rotation():
+    """The rocker frame's rotation (3, 3): ROCKER_TURN about the global x axis."""
+    return rotation_about((1.0, 0.0, 0.0), ROCKER_TURN)
+
+
+def rocker_frame():
+    """The rocker frame: origin ROCKER_CENTRE, rotation rocker_rotation()."""
+    return Frame(ROCKER_CENTRE, rocker_rotation())
+
+
+def looper_pair():
+    """(torus, sphere) of the reference drive: the ball centre's two surfaces, whose intersection is its path.
+
+    The torus (CRANK_RADIUS, COUPLER_LENGTH) in the crank frame (the global axes), the sphere (ROCKER_LENGTH)
+    about the rocker centre in rocker_frame().
+    """
+    return Torus(CRANK_RADIUS, COUPLER_LENGTH), Sphere(ROCKER_LENGTH, rocker_frame())

@@ -1,0 +1,171 @@
+"""Argument checks, written once for spatialkin and planar.
+
+Each check returns the value converted (a float, a float array, a pair) or raises ``ValueError`` naming the
+argument, so that the object API turns a bad input into a clear message before any numerics run. Only numpy
+and math: every layer above the kernels may import this module (the kernels validate nothing).
+"""
+import math
+
+import numpy as np
+
+__all__ = ["ORTHONORMAL_TOL", "check_real", "check_positive", "check_nonnegative", "check_count", "check_omega",
+           "check_choice", "check_range", "check_finite", "check_vector", "check_points", "check_angles",
+           "check_frame"]
+
+#: Largest accepted deviation of R^T R from the identity (entrywise), for a rotation given in floats.
+ORTHONORMAL_TOL = 1e-9
+
+
+# --- numbers ------------------------------------------------------------------------------------------------
+def check_real(name, value, finite=False):
+    """``float(value)``, or ValueError naming the argument when it is not a real number (or, with finite=True,
+    not a finite one)."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+    if finite and not math.isfinite(x):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return x
+
+
+def check_positive(name, value, allow_none=False):
+    """A finite, strictly positive float (a length, a tolerance, a scale), or None when allowed.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument when it is not a real number, not finite or not positive.
+    """
+    if value is None and allow_none:
+        return None
+    x = check_real(name, value)
+    if not (math.isfinite(x) and x > 0):
+        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+    return x
+
+
+def check_nonnegative(name, value):
+    """A finite float >= 0 (an offset, a rate that may vanish), or ValueError naming the argument."""
+    x = check_real(name, value)
+    if not (math.isfinite(x) and x >= 0):
+        raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+    return x
+
+
+def check_count(name, value, minimum=1):
+    """value itself when it is an integer >= minimum (a number of samples, points, workers), or ValueError
+    naming the argument."""
+    if not (isinstance(value, (int, np.integer)) and value >= minimum):
+        kind = {0: "a non-negative integer", 1: "a positive integer"}.get(minimum, f"an integer >= {minimum}")
+        raise ValueError(f"{name} must be {kind}, got {value!r}")
+    return value
+
+
+def check_omega(omega):
+    """A driver's rate omega (rad per unit time) as a finite, non-zero float, or ValueError naming it."""
+    try:
+        value = float(omega)
+    except (TypeError, ValueError):
+        raise ValueError(f"omega must be a real number (rad per unit time), got {omega!r}") from None
+    if not math.isfinite(value) or value == 0:
+        raise ValueError(f"omega must be finite and non-zero, got {omega!r}")
+    return value
+
+
+def check_choice(name, value, choices):
+    """value itself when it is one of choices (compared with ==), or ValueError naming the argument."""
+    if value not in choices:
+        allowed = (" or ".join(repr(c) for c in choices) if len(choices) == 2
+                   else "one of " + ", ".join(repr(c) for c in choices))
+        raise ValueError(f"{name} must be {allowed}, got {value!r}")
+    return value
+
+
+def check_range(name, value):
+    """(lo, hi) floats with lo < hi (either may be infinite, never NaN); None means unbounded."""
+    if value is None:
+        return -math.inf, math.inf
+    try:
+        lo, hi = (float(x) for x in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a pair (min, max), got {value!r}") from None
+    if math.isnan(lo) or math.isnan(hi):
+        raise ValueError(f"{name} must not contain NaN, got {value!r}")
+    if not lo < hi:
+        raise ValueError(f"{name} must satisfy min < max, got ({lo}, {hi})")
+    return lo, hi
+
+
+# --- arrays -------------------------------------------------------------------------------------------------
+def check_finite(name, value):
+    """value as a float array of any shape with every entry finite, or ValueError naming the argument."""
+    arr = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite")
+    return arr
+
+
+def check_vector(name, value, length=3):
+    """value as a finite float array of shape (length,): a point or a direction, or one value per point of a
+    polyline; or ValueError naming the argument (and its first entry that is not finite)."""
+    arr = np.asarray(value, dtype=float)
+    if arr.shape != (length,):
+        raise ValueError(f"{name} must have shape ({length},), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        bad = int(np.argmax(~np.isfinite(arr)))
+        raise ValueError(f"{name} must be finite: entry {bad} is {arr[bad]}")
+    return arr
+
+
+def check_points(name, value, count=None, allow_empty=False):
+    """Finite points (N, 3) as a float array: N >= 1 unless allow_empty, N == count when given; or
+    ValueError naming the argument (and the first row that is not finite)."""
+    pts = np.asarray(value, dtype=float)
+    if pts.ndim != 2 or pts.shape[1] != 3 or (len(pts) == 0 and not allow_empty):
+        least = "" if allow_empty else " with N >= 1"
+        raise ValueError(f"{name} must have shape (N, 3){least}, got {pts.shape}")
+    if count is not None and len(pts) != count:
+        raise ValueError(f"{name} must have {count} rows (one per point), got {len(pts)}")
+    if not np.all(np.isfinite(pts)):
+        bad = int(np.argmax(~np.all(np.isfinite(pts), axis=1)))
+        raise ValueError(f"{name} must be finite: row {bad} is {pts[bad].tolist()}")
+    return pts
+
+
+def check_angles(name, values):
+    """Angles (radians) as a finite 1-D float array (a scalar is one angle), or ValueError naming the argument
+    (also for an empty one: a motion has at least one position)."""
+    try:
+        angles = np.atleast_1d(np.asarray(values, dtype=float))
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be real numbers (radians), got {values!r}") from None
+    if angles.ndim != 1 or not np.all(np.isfinite(angles)):
+        raise ValueError(f"{name} must be a finite 1-D array")
+    if angles.size == 0:
+        raise ValueError(f"{name} is empty: give at least one angle")
+    return angles
+
+
+# --- frames -------------------------------------------------------------------------------------------------
+def check_frame(origin, rotation):
+    """Validate and return (origin (3,), rotation (3, 3)) of a frame as float arrays.
+
+    Raises
+    ------
+    ValueError
+        If either is not finite, has the wrong shape, or rotation is not orthonormal (within ORTHONORMAL_TOL)
+        and right-handed.
+    """
+    origin = check_vector("origin", origin)
+    rot = np.asarray(rotation, dtype=float)
+    if rot.shape != (3, 3):
+        raise ValueError(f"rotation must have shape (3, 3), got {rot.shape}")
+    if not np.all(np.isfinite(rot)):
+        raise ValueError("rotation must be finite")
+    deviation = np.max(np.abs(rot.T @ rot - np.eye(3)))
+    if deviation > ORTHONORMAL_TOL:
+        raise ValueError(f"rotation must be orthonormal: max |R^T R - I| = {deviation:.3g} > {ORTHONORMAL_TOL}")
+    if np.linalg.det(rot) < 0:
+        raise ValueError("rotation must be right-handed (det = +1), got a reflection (det = -1)")
+    return origin, rot

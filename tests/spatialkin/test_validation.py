@@ -1,0 +1,61 @@
+"""spatialkin.validation: every check returns the converted value, and refuses a bad one with a ValueError
+naming the argument. Oracles: the inputs themselves (conversions are exact) and the named argument."""
+import math
+
+import numpy as np
+import pytest
+
+from spatialkin import validation as v
+
+
+@pytest.mark.parametrize("check, good, want", [
+    (lambda x: v.check_real("x", x), "2.5", 2.5),
+    (lambda x: v.check_positive("x", x), 3, 3.0),
+    (lambda x: v.check_positive("x", x, allow_none=True), None, None),
+    (lambda x: v.check_nonnegative("x", x), 0, 0.0),
+    (lambda x: v.check_count("x", x, 3), 3, 3),
+    (v.check_omega, -2, -2.0),
+    (lambda x: v.check_choice("x", x, (1, -1)), -1, -1),
+    (lambda x: v.check_range("x", x), None, (-math.inf, math.inf)),
+    (lambda x: v.check_range("x", x), (0, math.inf), (0.0, math.inf)),
+])
+def test_good_values_come_back_converted(check, good, want):
+    got = check(good)
+    assert got == want and type(got) is type(want)
+
+
+@pytest.mark.parametrize("check, bad, words", [
+    (lambda x: v.check_real("tol", x), "a", "tol must be a real number"),
+    (lambda x: v.check_real("tol", x, finite=True), math.inf, "tol must be finite"),
+    (lambda x: v.check_positive("tol", x), None, "tol must be a real number"),
+    (lambda x: v.check_positive("tol", x), 0.0, "tol must be a positive finite number"),
+    (lambda x: v.check_positive("tol", x), math.nan, "tol must be a positive finite number"),
+    (lambda x: v.check_nonnegative("pullback", x), -1e-300, "pullback must be a finite number >= 0"),
+    (lambda x: v.check_count("samples", x, 3), 2, "samples must be an integer >= 3"),
+    (lambda x: v.check_count("n", x), 1.0, "n must be a positive integer"),
+    (lambda x: v.check_count("processes", x, 0), -1, "processes must be a non-negative integer"),
+    (v.check_omega, 0.0, "omega must be finite and non-zero"),
+    (v.check_omega, "fast", "omega must be a real number"),
+    (lambda x: v.check_choice("branch", x, (0, 1)), 2, "branch must be 0 or 1, got 2"),
+    (lambda x: v.check_choice("kind", x, ("a", "b", "c")), "d", "kind must be one of 'a', 'b', 'c'"),
+    (lambda x: v.check_range("u_range", x), (1, 1), "u_range must satisfy min < max"),
+    (lambda x: v.check_range("u_range", x), (0, math.nan), "u_range must not contain NaN"),
+    (lambda x: v.check_range("u_range", x), 3, "u_range must be a pair"),
+    (lambda x: v.check_finite("s", x), [0.0, math.nan], "s must be finite"),
+    (lambda x: v.check_vector("origin", x), (0, 0), r"origin must have shape \(3,\)"),
+    (lambda x: v.check_vector("origin", x), (0, math.inf, 0), "origin must be finite: entry 1 is inf"),
+    (lambda x: v.check_points("points", x), np.empty((0, 3)), r"points must have shape \(N, 3\) with N >= 1"),
+    (lambda x: v.check_points("vectors", x, count=2), np.zeros((3, 3)), "vectors must have 2 rows"),
+    (lambda x: v.check_points("curve", x), [[0, 0, 0], [0, math.nan, 0]], "curve must be finite: row 1"),
+    (lambda x: v.check_angles("crank_angles", x), [], "crank_angles is empty"),
+    (lambda x: v.check_angles("crank_angles", x), [[0.0]], "crank_angles must be a finite 1-D array"),
+    (lambda x: v.check_frame((0, 0, 0), x), np.diag([1.0, 1.0, -1.0]), "rotation must be right-handed"),
+    (lambda x: v.check_frame((0, 0, 0), x), np.diag([1.0, 1.0, 2.0]), "rotation must be orthonormal"),
+])
+def test_bad_values_name_the_argument(check, bad, words):
+    with pytest.raises(ValueError, match=words):
+        check(bad)
+
+
+def test_points_may_be_empty_when_allowed():
+    assert v.check_points("points", np.empty((0, 3)), allow_empty=True).shape == (0, 3)

@@ -129,6 +129,56 @@ def dense_many(ts, ys, hs, qs, t, out):
         dense_state(ts[j], hs[j], ys[j], qs[j], t[k], out[k])
 
 
+#: Iterations of the Illinois root search locating an event on a step's dense output.
+ROOT_MAX_ITER = 100
+#: Relative width (times 4 ulps, as solve_ivp's brentq call) at which the root search stops.
+ROOT_ULPS = 4.0
+
+
+@jit
+def regula_falsi_point(lo, hi, g_lo, g_hi):
+    """The secant root of g on [lo, hi] (the midpoint where the secant leaves the bracket or is flat)."""
+    tm = (lo * g_hi - hi * g_lo) / (g_hi - g_lo) if g_hi != g_lo else 0.5 * (lo + hi)
+    return tm if lo < tm < hi else 0.5 * (lo + hi)
+
+
+@jit
+def illinois_update(lo, hi, g_lo, g_hi, side, tm, gm, to_lo):
+    """One Illinois update of the bracket: tm (value gm) replaces lo when to_lo, else hi; when the same end
+    moves twice running, the other end's value is halved. Returns (lo, hi, g_lo, g_hi, side)."""
+    if to_lo:
+        if side == -1:
+            g_hi *= 0.5
+        return tm, hi, gm, g_hi, -1
+    if side == 1:
+        g_lo *= 0.5
+    return lo, tm, g_lo, gm, 1
+
+
+@jit(inline="always")
+def locate(events, args, eargs, only, values, index, t_old, step, y_old, q, g_lo, g_hi, out):
+    """The time where event `index` crosses zero inside the step [t_old, t_old + step] (values g_lo, g_hi at
+    its ends, of opposite signs), by the Illinois method on the step's dense output (to ROOT_ULPS ulp, as
+    solve_ivp's brentq); the state there is written to out. only (n_events,) is a mask with only `index` set,
+    values a work array."""
+    lo, hi = t_old, t_old + step
+    side = 0
+    for _ in range(ROOT_MAX_ITER):
+        if hi - lo <= ROOT_ULPS * 2.220446049250313e-16 * max(abs(hi), 1e-300):
+            break
+        tm = regula_falsi_point(lo, hi, g_lo, g_hi)
+        dense_state(t_old, step, y_old, q, tm, out)
+        events(tm, out, args, eargs, only, values)
+        gm = values[index]
+        if gm == 0.0:
+            lo = hi = tm
+            break
+        lo, hi, g_lo, g_hi, side = illinois_update(lo, hi, g_lo, g_hi, side, tm, gm,
+                                                   (gm < 0.0) == (g_lo < 0.0) and g_lo != 0.0)
+    dense_state(t_old, step, y_old, q, hi, out)
+    return hi
+
+
 @jit(inline="always")
 def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol):
     """scipy's select_initial_step for an error estimator of order ERROR_ORDER (forward in t)."""
@@ -160,47 +210,61 @@ def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol):
 
 @jit(inline="always")
 def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev,
-            g, active):
-    """RK45 steps from (t, y, f = fun(t, y)) with proposed step h towards t_bound.
+            g, active, directions, terminal):
+    """RK45 steps from (t, y, f = fun(t, y)) with proposed step h towards t_bound, stopping at events.
 
-    Returns at t_bound, after max_steps steps, at the first step over which an active event changes sign (in
-    either direction, so that each event changes sign at most once over what one call covers and solve_ivp's
-    root search on its dense output finds that crossing), when the step size falls below the round-off floor,
-    or when more than max_nfev evaluations were spent. With fresh, f is computed first, and h <= 0 asks for
-    scipy's initial step.
+    Returns at t_bound, after max_steps steps, after a step over which active events cross zero in their
+    directions (each crossing located on the step's dense output, as solve_ivp locates events; at a terminal
+    one the step is cut there), when the step size falls below the round-off floor, or when more than max_nfev
+    evaluations were spent. With fresh, f is computed first, and h <= 0 asks for scipy's initial step.
 
     Parameters
     ----------
     fun, events : jitted callables
         ``fun(t, y, args, out)``, ``events(t, y, args, eargs, active, out)`` (module docstring).
-    args, eargs : tuple
+    args, eargs : tuple or ndarray
         The system's and its events' parameters.
     y, f : ndarray (n,)
         State and its derivative at t; overwritten with those at the returned time.
     g : ndarray (n_events,)
         Event values at (t, y); overwritten with those at the returned time.
-    active : ndarray (n_events,) of bool
+    active, terminal : ndarray (n_events,) of bool
+    directions : ndarray (n_events,)
+        +1: crossings upwards count, -1 downwards, 0 both (solve_ivp's event.direction).
 
     Returns
     -------
     status : int
         STEPPED, EVENT, STEP_FAILED or BUDGET.
     t : float
-        Time reached.
+        Time reached (a terminal event's time).
     h : float
         The next step size proposed.
     nfev : int
         Evaluations of fun spent.
     ts : ndarray (m,)
-        Step points, ts[0] the start.
+        Step points, ts[0] the start (the last one a terminal event's time).
     ys : ndarray (m, n)
-    qs : ndarray (m - 1, n, 4)
-        Dense-output coefficients of each step (dense_state; the step length is ts[j + 1] - ts[j]).
+    hs, qs : ndarray (m - 1,), (m - 1, n, 4)
+        Each step's length and dense-output coefficients (dense_state; the last step's polynomial may reach
+        past a terminal event).
+    hits : ndarray (k,) of int
+        The events crossed over the last step, in time order, up to the first terminal one.
+    hit_ts : ndarray (k,)
+    hit_ys : ndarray (k, n)
     """
     n = y.shape[0]
+    ne = g.shape[0]
     ts = np.empty(max_steps + 1)
     ys = np.empty((max_steps + 1, n))
+    hs = np.empty(max_steps)
     qs = np.empty((max_steps, n, 4))
+    hits = np.empty(ne, dtype=np.int64)
+    hit_ts = np.empty(ne)
+    hit_ys = np.empty((ne, n))
+    n_hits = 0
+    only = np.zeros(ne, dtype=np.bool_)
+    values = np.empty(ne)
     ts[0] = t
     copy_into(ys[0], y)
     count = 1
@@ -266,19 +330,53 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
             break
         for m in range(4):                                       # this step's dense output
             combine(qs[count - 1, :, m], None, 1.0, P[:, m], k, 7)
+        hs[count - 1] = step
+        events(t_new, y_new, args, eargs, active, g_new)
+        # events crossed over this step, located, in time order (insertion), up to the first terminal one
+        for i in range(ne):
+            if not active[i]:
+                continue
+            up = g[i] <= 0.0 <= g_new[i]
+            down = g[i] >= 0.0 >= g_new[i]
+            if not ((up and directions[i] >= 0.0) or (down and directions[i] <= 0.0)):
+                continue
+            only[i] = True
+            t_e = locate(events, args, eargs, only, values, i, t, step, y, qs[count - 1], g[i], g_new[i], stage)
+            only[i] = False
+            j = n_hits
+            while j > 0 and hit_ts[j - 1] > t_e:
+                hits[j] = hits[j - 1]
+                hit_ts[j] = hit_ts[j - 1]
+                copy_into(hit_ys[j], hit_ys[j - 1])
+                j -= 1
+            hits[j] = i
+            hit_ts[j] = t_e
+            copy_into(hit_ys[j], stage)
+            n_hits += 1
+        first = -1
+        for j in range(n_hits):
+            if terminal[hits[j]]:
+                first = j
+                n_hits = j + 1
+                break
+        if first >= 0:                                           # cut at the terminal event
+            ts[count] = hit_ts[first]
+            copy_into(ys[count], hit_ys[first])
+            count += 1
+            t = hit_ts[first]
+            copy_into(y, hit_ys[first])               # the integration ends here: f and g stay the step's
+            status = EVENT
+            break
         ts[count] = t_new
         copy_into(ys[count], y_new)
         count += 1
         t = t_new
         copy_into(y, y_new)
         copy_into(f, k[6])
-        events(t, y, args, eargs, active, g_new)
-        crossed = False                  # any sign change, in either direction: one per step returned
-        for i in range(g.shape[0]):
-            if active[i] and ((g[i] <= 0.0 <= g_new[i]) or (g[i] >= 0.0 >= g_new[i])):
-                crossed = True
+        for i in range(ne):
             g[i] = g_new[i]
-        if crossed:
+        if n_hits:
             status = EVENT
             break
-    return status, t, h, nfev, ts[:count].copy(), ys[:count].copy(), qs[:count - 1].copy()
+    return (status, t, h, nfev, ts[:count].copy(), ys[:count].copy(), hs[:count - 1].copy(),
+            qs[:count - 1].copy(), hits[:n_hits].copy(), hit_ts[:n_hits].copy(), hit_ys[:n_hits].copy())

@@ -45,7 +45,8 @@ class System:
         ``events(t, y, args, eargs, active, out)``: the event values (n_events,) into out.
     advance : callable
         spatialkin.kernels.rk.advance bound to the system's kernels:
-        ``advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, args, eargs)``.
+        ``advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
+        terminal, args, eargs)``.
     args, eargs : tuple or ndarray
         Parameters of the right-hand side and of the events.
     n_events : int
@@ -80,12 +81,12 @@ class Event:
 
 
 class StepsDense(DenseOutput):
-    """Dense output of one CompiledRK45 step: the RK45 polynomial of each of its internal steps."""
+    """Dense output of one CompiledRK45 step: the RK45 polynomial of each of its internal steps (step lengths
+    hs: the last polynomial may reach past a terminal event's time ts[-1])."""
 
-    def __init__(self, ts, ys, qs):
+    def __init__(self, ts, ys, hs, qs):
         super().__init__(ts[0], ts[-1])
-        self.ts, self.ys, self.qs = ts, ys, qs
-        self.hs = np.diff(ts)
+        self.ts, self.ys, self.hs, self.qs = ts, ys, hs, qs
 
     def _call_impl(self, t):
         if np.ndim(t) == 0:
@@ -93,19 +94,31 @@ class StepsDense(DenseOutput):
         tt = np.atleast_1d(np.asarray(t, dtype=float)).ravel()
         out = np.empty((tt.size, self.ys.shape[1]))
         rk.dense_many(self.ts, self.ys, self.hs, self.qs, tt, out)
-        return out[0] if np.ndim(t) == 0 else out.T
+        return out.T
+
+
+class EventLog:
+    """What CompiledRK45 records for integrate: the events it located, (event position in its list, t, y) in
+    time order, and its internal steps (t, y arrays per solver step)."""
+
+    def __init__(self):
+        self.hits = []
+        self.steps = []
 
 
 class CompiledRK45(OdeSolver):
-    """scipy's RK45 run in compiled code, many steps per solver step, stopping where an event changes sign.
+    """scipy's RK45 run in compiled code, many steps per solver step, stopping at the events it is given.
 
-    Options (through solve_ivp): ``system`` (System, required), ``watch`` (the Event list given to solve_ivp as
-    its events, so that a step stops at their crossings), ``rtol``, ``atol``, ``max_step``, ``first_step``, ``max_nfev``
-    (BudgetExceeded past it), ``steps_per_call``. Forward in t only.
+    Options (through solve_ivp): ``system`` (System, required); ``watch`` and ``log``: the Events to watch
+    (given to this solver, not as solve_ivp's events: each crossing is located in compiled code on the step's dense
+    output, as solve_ivp locates events, and recorded in the EventLog ``log``; at a terminal one the integration
+    ends there); ``rtol``, ``atol``, ``max_step``, ``first_step``, ``max_nfev`` (BudgetExceeded past it),
+    ``steps_per_call``. Forward in t only. ``integrate`` turns the log into solve_ivp's t_events and y_events.
     """
 
-    def __init__(self, fun, t0, y0, t_bound, vectorized=False, system=None, watch=(), rtol=1e-3, atol=1e-6,
-                 max_step=np.inf, first_step=None, max_nfev=None, steps_per_call=STEPS_PER_CALL, **extraneous):
+    def __init__(self, fun, t0, y0, t_bound, vectorized=False, system=None, watch=(), log=None, rtol=1e-3,
+                 atol=1e-6, max_step=np.inf, first_step=None, max_nfev=None, steps_per_call=STEPS_PER_CALL,
+                 **extraneous):
         if extraneous:
             raise TypeError(f"CompiledRK45 got unexpected options {sorted(extraneous)}")
         if not isinstance(system, System):
@@ -117,13 +130,24 @@ class CompiledRK45(OdeSolver):
             raise ValueError(f"max_step must be positive, got {max_step!r}")
         self.system = system
         self.rtol = float(rtol)
-        self.atol = np.ascontiguousarray(np.broadcast_to(np.asarray(atol, dtype=float), (self.n,)))
+        self.atol = (atol if isinstance(atol, np.ndarray) and atol.shape == (self.n,) and atol.dtype == float
+                     else np.full(self.n, atol, dtype=float))
         self.max_step = float(max_step)
         self.max_nfev = NO_BUDGET if max_nfev is None else int(max_nfev)
         self.steps_per_call = int(steps_per_call)
-        self.active = np.zeros(system.n_events, dtype=np.bool_)
-        for event in watch:
+        self.log = EventLog() if log is None else log
+        n_events = system.n_events
+        self.active = np.zeros(n_events, dtype=np.bool_)
+        self.directions = np.zeros(n_events)
+        self.terminal = np.zeros(n_events, dtype=np.bool_)
+        self.position = {}
+        for k, event in enumerate(watch):
+            if event.index in self.position:
+                raise ValueError(f"event {event.index} given twice")
+            self.position[event.index] = k
             self.active[event.index] = True
+            self.directions[event.index] = event.direction
+            self.terminal[event.index] = bool(event.terminal)
         self.y = np.array(self.y, dtype=float)
         self.f = np.empty(self.n)
         self.g = system.event_values(self.t, self.y, self.active)
@@ -136,10 +160,10 @@ class CompiledRK45(OdeSolver):
         if self.failed is not None:
             return False, self.failed
         y = self.y.copy()
-        status, t, h, nfev, ts, ys, qs = self.system.advance(
+        status, t, h, nfev, ts, ys, hs, qs, hits, hit_ts, hit_ys = self.system.advance(
             self.t, y, self.f, self.h, self.fresh, self.t_bound, self.rtol, self.atol, self.max_step,
-            self.steps_per_call, self.max_nfev - self.nfev, self.g, self.active, self.system.args,
-            self.system.eargs)
+            self.steps_per_call, self.max_nfev - self.nfev, self.g, self.active, self.directions, self.terminal,
+            self.system.args, self.system.eargs)
         self.fresh = False
         self.nfev += nfev
         if status == rk.BUDGET:
@@ -148,8 +172,13 @@ class CompiledRK45(OdeSolver):
             self.failed = "Required step size is less than spacing between numbers."
             if len(ts) < 2:
                 return False, self.failed
+        for index, t_e, y_e in zip(hits.tolist(), hit_ts.tolist(), hit_ys):
+            self.log.hits.append((self.position[index], t_e, y_e))
+            if self.terminal[index]:
+                self.t_bound = t_e           # the integration ends at a terminal event (solve_ivp: 'finished')
         self.t_old, self.t, self.y, self.h = self.t, t, y, h
-        self._dense = StepsDense(ts, ys, qs)
+        self._dense = StepsDense(ts, ys, hs, qs)
+        self.log.steps.append((ts, ys))
         return True, None
 
     def _dense_output_impl(self):
@@ -157,14 +186,26 @@ class CompiledRK45(OdeSolver):
 
 
 def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, max_nfev=None):
-    """solve_ivp on a System with dense output and the given Events: by CompiledRK45 (method COMPILED), or a
-    solve_ivp method whose right-hand side raises BudgetExceeded past max_nfev evaluations."""
-    if method == COMPILED:
-        return solve_ivp(system.rhs, t_span, y0, method=CompiledRK45, rtol=rtol, atol=atol, dense_output=True,
-                         events=events, args=system.args, max_step=max_step, system=system, watch=events,
-                         max_nfev=max_nfev)
-    return solve_ivp(budgeted(system.rhs, max_nfev), t_span, y0, method=method, rtol=rtol, atol=atol,
-                     dense_output=True, events=events, args=system.args, max_step=max_step)
+    """solve_ivp on a System with dense output and the given Events: by CompiledRK45 (method COMPILED), its
+    located events returned as solve_ivp returns its own (t_events, y_events, status 1 at a terminal one), or
+    by a solve_ivp method whose right-hand side raises BudgetExceeded past max_nfev evaluations."""
+    if method != COMPILED:
+        return solve_ivp(budgeted(system.rhs, max_nfev), t_span, y0, method=method, rtol=rtol, atol=atol,
+                         dense_output=True, events=events, args=system.args, max_step=max_step)
+    log = EventLog()
+    res = solve_ivp(system.rhs, t_span, y0, method=CompiledRK45, rtol=rtol, atol=atol, dense_output=True,
+                    args=system.args, max_step=max_step, system=system, watch=events, log=log, max_nfev=max_nfev)
+    t_events = [[] for _ in events]
+    y_events = [[] for _ in events]
+    for k, t_e, y_e in log.hits:
+        t_events[k].append(t_e)
+        y_events[k].append(y_e)
+    res.t_events = [np.array(t) for t in t_events]
+    res.y_events = [np.array(y).reshape(len(y), len(y0)) for y in y_events]
+    if res.status == 0 and log.hits and events[log.hits[-1][0]].terminal:
+        res.status, res.message = 1, "A termination event occurred."
+    res.steps = log.steps
+    return res
 
 
 def budgeted(rhs, limit=None):
@@ -182,13 +223,14 @@ def budgeted(rhs, limit=None):
 
 
 def step_points(res):
-    """(t (m,), y (n, m)) of every RK step of a solve_ivp result with dense output, up to its end (a terminal
-    event's time is the last point): a CompiledRK45 step's internal steps, otherwise res.t and res.y."""
-    interpolants = getattr(res.sol, "interpolants", None) if res.sol is not None else None
-    if not interpolants or not isinstance(interpolants[0], StepsDense):
+    """(t (m,), y (n, m)) of every RK step of a solve_ivp result up to its end: a CompiledRK45 result's internal
+    steps (integrate keeps them as res.steps), otherwise res.t and res.y."""
+    steps = getattr(res, "steps", None)
+    if not steps:
         return res.t, res.y
-    ts = np.concatenate([interpolants[0].ts[:1]] + [d.ts[1:] for d in interpolants])
-    ys = np.concatenate([interpolants[0].ys[:1]] + [d.ys[1:] for d in interpolants])
-    keep = ts < res.t[-1]
-    return (np.concatenate([ts[keep], res.t[-1:]]),
-            np.ascontiguousarray(np.concatenate([ys[keep], res.y[:, -1:].T]).T))
+    if len(steps) == 1:
+        ts, ys = steps[0]
+    else:
+        ts = np.concatenate([steps[0][0][:1]] + [t[1:] for t, _ in steps])
+        ys = np.concatenate([steps[0][1][:1]] + [y[1:] for _, y in steps])
+    return ts, np.ascontiguousarray(ys.T)

@@ -52,9 +52,10 @@ def ellipse_events(t, y, args, eargs, active, out):
 
 
 @jit
-def ellipse_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, args, eargs):
+def ellipse_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
+                   terminal, args, eargs):
     return advance(ellipse_fun, ellipse_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
-                   max_steps, max_nfev, g, active)
+                   max_steps, max_nfev, g, active, directions, terminal)
 
 
 @jit
@@ -68,9 +69,10 @@ def wave_events(t, y, args, eargs, active, out):
 
 
 @jit
-def wave_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, args, eargs):
+def wave_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
+                   terminal, args, eargs):
     return advance(wave_fun, wave_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
-                   max_steps, max_nfev, g, active)
+                   max_steps, max_nfev, g, active, directions, terminal)
 
 
 ELLIPSE = CurveKernels(ellipse_rhs, ellipse_events, ellipse_advance)

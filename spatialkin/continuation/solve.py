@@ -36,8 +36,8 @@ def predict(local, sample_inputs, sample_states, index, how="linear"):
     return guess
 
 
-def solve_at(inputs, sample_inputs, sample_states, correct, index=-1, period=None, reach=None, how="linear",
-             outside=None, wrapped=False):
+def solve_at(inputs, sample_inputs, sample_states, correct, index=-1, period=None, start=None, reach=None,
+             how="linear", outside=None, wrapped=False):
     """Exact states at the given inputs.
 
     Parameters
@@ -53,7 +53,9 @@ def solve_at(inputs, sample_inputs, sample_states, correct, index=-1, period=Non
     index : int
         Column of the input in the states.
     period : float, optional
-        The input's period: inputs are first moved by whole periods into [sample_inputs[0], + period).
+        The input's period: inputs are first moved by whole periods into [start, start + period) ...
+    start : float, optional
+        ... (default sample_inputs[0]).
     reach : float, optional
         Where the branch does not cover a period (it ends at lock positions): inputs farther than this past the
         last sample are outside it ...
@@ -71,7 +73,10 @@ def solve_at(inputs, sample_inputs, sample_states, correct, index=-1, period=Non
         correct's arrays, in the order of the inputs.
     """
     inputs = np.asarray(inputs, dtype=float)
-    local = inputs if period is None else wrap_inputs(inputs, sample_inputs[0], period)
+    if (reach is None) != (outside is None):
+        raise ValueError("reach and outside are given together or not at all")
+    start = sample_inputs[0] if start is None else start
+    local = inputs if period is None else wrap_inputs(inputs, start, period)
     if reach is not None:
         beyond = local > sample_inputs[-1] + reach
         if beyond.any():

@@ -85,10 +85,10 @@ def rssr_events(t, y, args, eargs, active, out):
 
 @jit
 def rssr_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
-                   terminal, args, eargs):
+                   modes, args, eargs):
     """spatialkin.kernels.rk.advance bound to rssr_fun and rssr_events."""
     return advance(rssr_fun, rssr_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
-                   max_steps, max_nfev, g, active, directions, terminal)
+                   max_steps, max_nfev, g, active, directions, modes)
 
 
 @jit

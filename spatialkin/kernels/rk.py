@@ -2,9 +2,9 @@
 
 Every curve of the library (intersection branches, continuation of mechanisms) is integrated by
 ``solve_ivp(..., method=spatialkin.tracing.ode.CompiledRK45)``; that OdeSolver calls ``advance`` here, which
-takes many RK45 steps inside compiled code and returns at the first step where one of the system's event
-functions changes sign in its direction, so that solve_ivp locates the event on the step's dense output as it
-does for its own methods. The tableau, error norm, step-size control, initial step and dense output are
+takes many RK45 steps inside compiled code and returns after a step over which one of the system's events
+crosses zero in its direction (located on the step's dense output as solve_ivp locates events for its own
+methods) or reaches a level. The tableau, error norm, step-size control, initial step and dense output are
 scipy's (scipy.integrate._ivp.rk.RK45, common.select_initial_step): the steps are RK45's, to round-off.
 
 A system supplies two jitted functions, bound at compile time by a small jitted wrapper in its own kernel
@@ -32,6 +32,17 @@ EVENT = 1
 STEP_FAILED = -1
 #: The evaluation budget ran out.
 BUDGET = -2
+
+# --- how an event ends a call of advance (its entry in `modes`) ----------------------------------------------
+#: A zero crossing in the event's direction, located on the step's dense output, recorded; the integration goes on.
+CROSSING = 0
+#: The same, and the integration ends at the crossing (solve_ivp's terminal event).
+TERMINAL = 1
+#: A level: the integration ends at the last step before the one whose end reaches it (the value at or past
+#: zero in the event's direction), that step dropped (a hard case ahead, handed to another method).
+LEVEL_BEFORE = 2
+#: A level: the integration ends at the end of the first step that reaches it (the step kept).
+LEVEL_AFTER = 3
 
 # --- RK45 (Dormand–Prince) coefficients, as in scipy.integrate._ivp.rk.RK45 ---------------------------------
 C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
@@ -179,6 +190,15 @@ def locate(events, args, eargs, only, values, index, t_old, step, y_old, q, g_lo
     return hi
 
 
+@jit
+def level_reached(g, active, directions, modes, mode):
+    """The first active event of the given level mode whose value g has reached zero in its direction, or -1."""
+    for i in range(g.shape[0]):
+        if active[i] and modes[i] == mode and (g[i] <= 0.0 if directions[i] <= 0.0 else g[i] >= 0.0):
+            return i
+    return -1
+
+
 @jit(inline="always")
 def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol):
     """scipy's select_initial_step for an error estimator of order ERROR_ORDER (forward in t)."""
@@ -210,13 +230,14 @@ def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol):
 
 @jit(inline="always")
 def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev,
-            g, active, directions, terminal):
+            g, active, directions, modes):
     """RK45 steps from (t, y, f = fun(t, y)) with proposed step h towards t_bound, stopping at events.
 
     Returns at t_bound, after max_steps steps, after a step over which active events cross zero in their
     directions (each crossing located on the step's dense output, as solve_ivp locates events; at a terminal
-    one the step is cut there), when the step size falls below the round-off floor, or when more than max_nfev
-    evaluations were spent. With fresh, f is computed first, and h <= 0 asks for scipy's initial step.
+    one the step is cut there), where a level event is reached (modes: LEVEL_BEFORE, LEVEL_AFTER), when the step
+    size falls below the round-off floor, or when more than max_nfev evaluations were spent. With fresh, f is
+    computed first, and h <= 0 asks for scipy's initial step.
 
     Parameters
     ----------
@@ -228,16 +249,19 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         State and its derivative at t; overwritten with those at the returned time.
     g : ndarray (n_events,)
         Event values at (t, y); overwritten with those at the returned time.
-    active, terminal : ndarray (n_events,) of bool
+    active : ndarray (n_events,) of bool
     directions : ndarray (n_events,)
-        +1: crossings upwards count, -1 downwards, 0 both (solve_ivp's event.direction).
+        +1: crossings upwards count, -1 downwards, 0 both (solve_ivp's event.direction); for a level, the
+        direction in which it is reached.
+    modes : ndarray (n_events,) of int
+        CROSSING, TERMINAL, LEVEL_BEFORE or LEVEL_AFTER.
 
     Returns
     -------
     status : int
         STEPPED, EVENT, STEP_FAILED or BUDGET.
     t : float
-        Time reached (a terminal event's time).
+        Time reached (a terminal event's time, or where a level event stopped it).
     h : float
         The next step size proposed.
     nfev : int
@@ -249,7 +273,8 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         Each step's length and dense-output coefficients (dense_state; the last step's polynomial may reach
         past a terminal event).
     hits : ndarray (k,) of int
-        The events crossed over the last step, in time order, up to the first terminal one.
+        The events crossed over the last step, in time order, up to the first terminal one (or the level event
+        that stopped it).
     hit_ts : ndarray (k,)
     hit_ys : ndarray (k, n)
     """
@@ -328,13 +353,21 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
                     break
         if not accepted:
             break
+        events(t_new, y_new, args, eargs, active, g_new)
+        before = level_reached(g_new, active, directions, modes, LEVEL_BEFORE)
+        if before >= 0:                                          # a hard case ahead: this step is dropped
+            hits[0] = before
+            hit_ts[0] = t
+            copy_into(hit_ys[0], y)
+            n_hits = 1
+            status = EVENT
+            break
         for m in range(4):                                       # this step's dense output
             combine(qs[count - 1, :, m], None, 1.0, P[:, m], k, 7)
         hs[count - 1] = step
-        events(t_new, y_new, args, eargs, active, g_new)
         # events crossed over this step, located, in time order (insertion), up to the first terminal one
         for i in range(ne):
-            if not active[i]:
+            if not active[i] or modes[i] >= LEVEL_BEFORE:
                 continue
             up = g[i] <= 0.0 <= g_new[i]
             down = g[i] >= 0.0 >= g_new[i]
@@ -355,7 +388,7 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
             n_hits += 1
         first = -1
         for j in range(n_hits):
-            if terminal[hits[j]]:
+            if modes[hits[j]] == TERMINAL:
                 first = j
                 n_hits = j + 1
                 break
@@ -375,6 +408,12 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         copy_into(f, k[6])
         for i in range(ne):
             g[i] = g_new[i]
+        after = level_reached(g_new, active, directions, modes, LEVEL_AFTER)
+        if after >= 0:                                           # the step is kept, the integration ends here
+            hits[n_hits] = after
+            hit_ts[n_hits] = t
+            copy_into(hit_ys[n_hits], y)
+            n_hits += 1
         if n_hits:
             status = EVENT
             break

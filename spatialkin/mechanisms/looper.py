@@ -256,7 +256,7 @@ class LooperDrive:
         # CONTINUATION_REACH
         solved, status, dy, ddy, d1, d2 = solve_at(u1, np.mod(samples[:, 0], 2 * np.pi), samples,
                                                    self._fixed_crank_path, index=0, period=2 * np.pi,
-                                                   how="nearest")
+                                                   start=0.0, how="nearest")
         if np.any(status == 1):
             raise ValueError("Newton at fixed crank angle failed: the crank angles are too close to a dead "
                              "position or a branch point")

@@ -15,8 +15,9 @@ from ..trajectory import time_map, to_time
 from ..validation import check_positive
 from .common import PointMotion, angle_range_text, check_branch, check_drive
 
-#: solve_ivp tolerance of the configuration-curve trace (a predictor: positions are solved by Newton).
+#: solve_ivp tolerance and method of the configuration-curve trace (a predictor: positions are solved by Newton).
 TRACE_RTOL = 1e-10
+TRACE_METHOD = "DOP853"
 #: Arc-length budget of the configuration curve per radian of crank angle (the curve is bounded).
 LENGTH_BUDGET = 1e3
 #: Samples of the rocker angle when assembling at the first crank angle.
@@ -96,7 +97,7 @@ class RSSR:
         if branch not in self._cycles:
             x0 = self.assemble(0.0, branch)
             cycle = trace_cycle(RSSR_KERNELS, x0, (self.params,), 2 * np.pi,
-                                LENGTH_BUDGET * 2 * np.pi, index=0, rtol=TRACE_RTOL)
+                                LENGTH_BUDGET * 2 * np.pi, index=0, rtol=TRACE_RTOL, method=TRACE_METHOD)
             if cycle.locks:
                 raise ValueError("the crank of this RSSR cannot turn fully: dead position at crank angle "
                                  f"{math.degrees(cycle.locks[0][0]):.6g} deg")

@@ -94,42 +94,30 @@ def segment_system(a, b, settings, sign, start, direction, s_arm):
 
 
 def segment_events(system, a, b, settings, compiled):
-    """(Events, kinds) of one segment, in a fixed order: singular, apex, minimum (or, for the compiled method,
-    the hand-over to solve_ivp's method before either), boundaries, poles, closure."""
+    """(Events, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles, closure.
+
+    The compiled method watches levels instead of the first three and the boundaries (as its kernel did before
+    it was a solve_ivp method): where the sine or the area element nears a hard case, or a parameter passes a
+    bound, the segment ends at the last step before (that step dropped) and solve_ivp's DOP853 goes on with the
+    fine events; a sphere's chart ends the segment at the end of the step that passes its pole guard."""
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
-    plan = ([(kb.HANDOFF_SINE, -1, ("handoff", None))] + ([(kb.HANDOFF_AREA, -1, ("handoff", None))] if flagged else [])
-            if compiled else
-            [(kb.SINGULAR, -1, ("singular", None))] + ([(kb.APEX, -1, ("apex", None))] if flagged else [])
-            + [(kb.MINIMUM, 1, ("minimum", None))])
+    handoff = ("handoff", None)
+    if compiled:
+        plan = [(kb.HANDOFF_SINE, -1, handoff, "before")] + (
+            [(kb.HANDOFF_AREA, -1, handoff, "before")] if flagged else [])
+    else:
+        plan = [(kb.SINGULAR, -1, ("singular", None), None)] + (
+            [(kb.APEX, -1, ("apex", None), None)] if flagged else []) + [(kb.MINIMUM, 1, ("minimum", None), None)]
     for k, j, idx, _, lower, _ in finite_bounds(a, b):
-        plan.append((kb.EDGE + 2 * idx + (0 if lower else 1), -1, ("boundary", (k, j))))
+        edge = kb.EDGE + 2 * idx + (0 if lower else 1)
+        plan.append((edge, -1, handoff, "before") if compiled else (edge, -1, ("boundary", (k, j)), None))
     for k, data in enumerate((a, b)):
         if traits(data).recharts:
-            plan.append((kb.POLE_A + k, -1, ("chart", k)))
+            plan.append((kb.POLE_A + k, -1, ("chart", k), "after" if compiled else None))
     if settings.close:
-        plan.append((kb.CLOSURE, 1, ("closure", None)))
-    return [Event(system, i, d) for i, d, _ in plan], [kind for _, _, kind in plan]
-
-
-def back_to_last_step(branch, seg):
-    """Cut the branch's last segment back to its last RK step before its end: (state, arc length) there."""
-    keep = int(np.searchsorted(seg.t, seg.t[-1], side="left")) - 1
-    if branch.segments and branch.segments[-1] is seg:
-        branch.segments.pop()
-    if keep <= 0:
-        return seg.y[:, 0].copy(), seg.s0
-    seg.t, seg.y = seg.t[:keep + 1], seg.y[:, :keep + 1]
-    seg.s1 = seg.s0 + seg.t[-1]
-    branch.segments.append(seg)
-    return seg.y[:, -1].copy(), seg.s1
-
-
-def near_hard_case(system, y):
-    """True where the compiled method's hand-over events are already past their levels at y."""
-    g = system.event_values(0.0, y, HANDOFF_EVENTS)
-    return bool(g[kb.HANDOFF_SINE] <= 0.0 or (system.eargs[kb.P_FLAG_A] or system.eargs[kb.P_FLAG_B])
-                and g[kb.HANDOFF_AREA] <= 0.0)
+        plan.append((kb.CLOSURE, 1, ("closure", None), None))
+    return [Event(system, i, d, level=level) for i, d, _, level in plan], [kind for _, _, kind, _ in plan]
 
 
 def at_outer_edge(a, b, y, sign):
@@ -193,8 +181,6 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             branch.status, branch.message = outcome("leaves_edge", s=s)
             break
         system = segment_system(a, b, settings, sign, start, direction, s_arm - s)
-        if compiled and near_hard_case(system, y):
-            compiled = False             # a hard case ahead: solve_ivp's method and the fine events from here on
         events, kinds = segment_events(system, a, b, settings, compiled)
         method = COMPILED if compiled else (FALLBACK_METHOD if settings.method == COMPILED else settings.method)
         try:
@@ -211,6 +197,10 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             branch.segments.append(seg)
         s = seg.s1
         y = ys[:, -1].copy()
+        if res.status == -1 and getattr(res, "budget_exceeded", False):
+            branch.status, branch.message = outcome("stalled", s=s, budget=SEGMENT_MAX_EVALUATIONS,
+                                                    point=point.tolist())
+            break
         if res.status == -1:
             if compiled:
                 compiled = False         # the step size collapsed: solve_ivp's method from here on
@@ -229,13 +219,6 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         y = res.y_events[hit][0].copy()
         kc.curve_frame(y, a, b, point, tangent)
         if kind == "handoff":
-            compiled = False
-            continue
-        if kind == "boundary" and compiled:
-            # the edge is located by solve_ivp's method, from the last step before it (its dense output is the
-            # more accurate where the end is snapped onto the edge)
-            y, s = back_to_last_step(branch, seg)
-            kc.curve_frame(y, a, b, point, tangent)
             compiled = False
             continue
         singular = kind == "singular" or (kind == "apex" and known_node(point, settings)) or (

@@ -1,9 +1,10 @@
 """Every curve integrated by solve_ivp: the compiled engine as an OdeSolver, events written once.
 
 ``CompiledRK45`` is a ``scipy.integrate.OdeSolver``: ``solve_ivp(fun, span, y0, method=CompiledRK45,
-system=system, ...)``. One of its steps runs many RK45 steps inside compiled code (spatialkin.kernels.rk) and
-stops at the first internal step over which one of the events it is given changes sign, so solve_ivp sees the
-crossing and locates it on the step's dense output, as it does for its own methods. The steps are scipy RK45's.
+system=system, watch=events, ...)``. One of its steps runs many RK45 steps inside compiled code
+(spatialkin.kernels.rk) and stops at the events it watches: each crossing is located on the step's dense output
+in compiled code, as solve_ivp locates events for its own methods (to 4 ulp), and the integration ends at a
+terminal one; ``integrate`` hands them back as solve_ivp's t_events and y_events. The steps are scipy RK45's.
 
 A ``System`` carries a curve's jitted kernels: the right-hand side in solve_ivp's form, the vector of its
 event values, and ``advance`` (the engine bound to both). An ``Event`` is one entry of that vector as solve_ivp
@@ -27,6 +28,9 @@ STEPS_PER_CALL = 256
 COMPILED = "compiled"
 #: Evaluation budget standing for none.
 NO_BUDGET = 2 ** 62
+#: CompiledRK45's messages when it stops short (solve_ivp status -1).
+STEP_FAILED_MESSAGE = "Required step size is less than spacing between numbers."
+BUDGET_MESSAGE = "The evaluation budget ran out."
 
 
 class BudgetExceeded(Exception):
@@ -46,7 +50,7 @@ class System:
     advance : callable
         spatialkin.kernels.rk.advance bound to the system's kernels:
         ``advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
-        terminal, args, eargs)``.
+        modes, args, eargs)``.
     args, eargs : tuple or ndarray
         Parameters of the right-hand side and of the events.
     n_events : int
@@ -66,13 +70,28 @@ class System:
 
 
 class Event:
-    """Event `index` of a System as a solve_ivp event function (terminal by default)."""
+    """Event `index` of a System as a solve_ivp event function (terminal by default).
 
-    def __init__(self, system, index, direction, terminal=True):
-        self.system, self.index, self.direction, self.terminal = system, int(index), float(direction), terminal
+    ``level`` ('before' or 'after', the compiled method only) makes it a level instead of a crossing: the
+    integration ends at the last step before the one whose end reaches zero in the event's direction (that
+    step dropped), or at the end of the first such step (spatialkin.kernels.rk.LEVEL_BEFORE, LEVEL_AFTER)."""
+
+    def __init__(self, system, index, direction, terminal=True, level=None):
+        if level not in (None, "before", "after"):
+            raise ValueError(f"level must be None, 'before' or 'after', got {level!r}")
+        self.system, self.index, self.direction = system, int(index), float(direction)
+        self.terminal = bool(terminal or level)
+        self.level = level
         self._only = np.zeros(system.n_events, dtype=np.bool_)
         self._only[self.index] = True
         self._out = np.empty(system.n_events)
+
+    @property
+    def mode(self):
+        """The event's entry in spatialkin.kernels.rk.advance's modes."""
+        if self.level is not None:
+            return rk.LEVEL_BEFORE if self.level == "before" else rk.LEVEL_AFTER
+        return rk.TERMINAL if self.terminal else rk.CROSSING
 
     def __call__(self, t, y, *_):
         system = self.system
@@ -104,6 +123,7 @@ class EventLog:
     def __init__(self):
         self.hits = []
         self.steps = []
+        self.budget_exceeded = False
 
 
 class CompiledRK45(OdeSolver):
@@ -139,7 +159,7 @@ class CompiledRK45(OdeSolver):
         n_events = system.n_events
         self.active = np.zeros(n_events, dtype=np.bool_)
         self.directions = np.zeros(n_events)
-        self.terminal = np.zeros(n_events, dtype=np.bool_)
+        self.modes = np.zeros(n_events, dtype=np.int64)
         self.position = {}
         for k, event in enumerate(watch):
             if event.index in self.position:
@@ -147,7 +167,7 @@ class CompiledRK45(OdeSolver):
             self.position[event.index] = k
             self.active[event.index] = True
             self.directions[event.index] = event.direction
-            self.terminal[event.index] = bool(event.terminal)
+            self.modes[event.index] = event.mode
         self.y = np.array(self.y, dtype=float)
         self.f = np.empty(self.n)
         self.g = system.event_values(self.t, self.y, self.active)
@@ -162,19 +182,18 @@ class CompiledRK45(OdeSolver):
         y = self.y.copy()
         status, t, h, nfev, ts, ys, hs, qs, hits, hit_ts, hit_ys = self.system.advance(
             self.t, y, self.f, self.h, self.fresh, self.t_bound, self.rtol, self.atol, self.max_step,
-            self.steps_per_call, self.max_nfev - self.nfev, self.g, self.active, self.directions, self.terminal,
+            self.steps_per_call, self.max_nfev - self.nfev, self.g, self.active, self.directions, self.modes,
             self.system.args, self.system.eargs)
         self.fresh = False
         self.nfev += nfev
-        if status == rk.BUDGET:
-            raise BudgetExceeded(f"{self.nfev} right-hand-side evaluations")
-        if status == rk.STEP_FAILED:
-            self.failed = "Required step size is less than spacing between numbers."
+        if status in (rk.STEP_FAILED, rk.BUDGET):
+            self.failed = STEP_FAILED_MESSAGE if status == rk.STEP_FAILED else BUDGET_MESSAGE
+            self.log.budget_exceeded = status == rk.BUDGET
             if len(ts) < 2:
                 return False, self.failed
         for index, t_e, y_e in zip(hits.tolist(), hit_ts.tolist(), hit_ys):
             self.log.hits.append((self.position[index], t_e, y_e))
-            if self.terminal[index]:
+            if self.modes[index] != rk.CROSSING:
                 self.t_bound = t_e           # the integration ends at a terminal event (solve_ivp: 'finished')
         self.t_old, self.t, self.y, self.h = self.t, t, y, h
         self._dense = StepsDense(ts, ys, hs, qs)
@@ -187,9 +206,12 @@ class CompiledRK45(OdeSolver):
 
 def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, max_nfev=None):
     """solve_ivp on a System with dense output and the given Events: by CompiledRK45 (method COMPILED), its
-    located events returned as solve_ivp returns its own (t_events, y_events, status 1 at a terminal one), or
-    by a solve_ivp method whose right-hand side raises BudgetExceeded past max_nfev evaluations."""
+    located events returned as solve_ivp returns its own (t_events, y_events, status 1 at a terminal one; past
+    max_nfev evaluations status -1 with the steps taken and res.budget_exceeded), or by a solve_ivp method whose
+    right-hand side raises BudgetExceeded past max_nfev evaluations (level events are the compiled method's)."""
     if method != COMPILED:
+        if any(event.level for event in events):
+            raise ValueError(f"level events need the compiled method, not {method!r}")
         return solve_ivp(budgeted(system.rhs, max_nfev), t_span, y0, method=method, rtol=rtol, atol=atol,
                          dense_output=True, events=events, args=system.args, max_step=max_step)
     log = EventLog()
@@ -205,6 +227,7 @@ def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, m
     if res.status == 0 and log.hits and events[log.hits[-1][0]].terminal:
         res.status, res.message = 1, "A termination event occurred."
     res.steps = log.steps
+    res.budget_exceeded = log.budget_exceeded
     return res
 
 

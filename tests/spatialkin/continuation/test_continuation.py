@@ -53,9 +53,9 @@ def ellipse_events(t, y, args, eargs, active, out):
 
 @jit
 def ellipse_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
-                   terminal, args, eargs):
+                   modes, args, eargs):
     return advance(ellipse_fun, ellipse_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
-                   max_steps, max_nfev, g, active, directions, terminal)
+                   max_steps, max_nfev, g, active, directions, modes)
 
 
 @jit
@@ -70,9 +70,9 @@ def wave_events(t, y, args, eargs, active, out):
 
 @jit
 def wave_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
-                   terminal, args, eargs):
+                   modes, args, eargs):
     return advance(wave_fun, wave_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
-                   max_steps, max_nfev, g, active, directions, terminal)
+                   max_steps, max_nfev, g, active, directions, modes)
 
 
 ELLIPSE = CurveKernels(ellipse_rhs, ellipse_events, ellipse_advance)

@@ -82,9 +82,7 @@ class Event:
         self.system, self.index, self.direction = system, int(index), float(direction)
         self.terminal = bool(terminal or level)
         self.level = level
-        self._only = np.zeros(system.n_events, dtype=np.bool_)
-        self._only[self.index] = True
-        self._out = np.empty(system.n_events)
+        self._only = self._out = None        # work arrays, made at the first call (solve_ivp's methods only)
 
     @property
     def mode(self):
@@ -95,6 +93,10 @@ class Event:
 
     def __call__(self, t, y, *_):
         system = self.system
+        if self._only is None:
+            self._only = np.zeros(system.n_events, dtype=np.bool_)
+            self._only[self.index] = True
+            self._out = np.empty(system.n_events)
         system.events(t, y, system.args, system.eargs, self._only, self._out)
         return self._out[self.index]
 

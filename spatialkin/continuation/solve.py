@@ -73,8 +73,8 @@ def solve_at(inputs, sample_inputs, sample_states, correct, index=-1, period=Non
         correct's arrays, in the order of the inputs.
     """
     inputs = np.asarray(inputs, dtype=float)
-    if (reach is None) != (outside is None):
-        raise ValueError("reach and outside are given together or not at all")
+    if reach is not None and outside is None:
+        raise ValueError("reach needs outside (the exception raised for inputs beyond it)")
     start = sample_inputs[0] if start is None else start
     local = inputs if period is None else wrap_inputs(inputs, start, period)
     if reach is not None:

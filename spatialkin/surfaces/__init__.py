@@ -5,7 +5,7 @@ Each surface is a thin object over a packed float array (``surface.data``) that 
 declares the kind's traits (spatialkin.tracing.traits) and registers them: a new kind is its own module plus that
 registration (over one of the kernels' geometries; see spatialkin.tracing.traits for the limit).
 """
-from .base import Surface, check_length, check_range, check_surface  # noqa: F401  (the checks, re-exported)
+from .base import Surface, check_positive, check_range, check_surface  # noqa: F401  (the checks, re-exported)
 from .torus import Torus
 from .sphere import Sphere
 from .plane import Plane

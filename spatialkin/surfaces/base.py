@@ -11,9 +11,9 @@ import numpy as np
 from ..frame import Frame
 from ..kernels import surfaces as ks
 from ..tracing.traits import AXIS, check_surface, traits
-from ..validation import check_positive as check_length, check_range
+from ..validation import check_positive, check_range
 
-__all__ = ["Surface", "check_length", "check_range", "check_surface"]
+__all__ = ["Surface", "check_positive", "check_range", "check_surface"]
 
 
 class Surface:

@@ -6,7 +6,7 @@ import numpy as np
 from ..kernels import surfaces as ks
 from ..tracing.placement import parallel
 from ..tracing.traits import ANGLE, LENGTH, SCALING, SurfaceTraits, register
-from .base import Surface, check_length, own_axis, quadric_jets
+from .base import Surface, check_positive, own_axis, quadric_jets
 from .cylinder import axial_trims_overlap
 
 
@@ -17,7 +17,7 @@ class Cone(Surface):
     """
 
     def __init__(self, half_angle, frame=None, v_range=None):
-        a = check_length("half_angle", half_angle)
+        a = check_positive("half_angle", half_angle)
         if a >= math.pi / 2:
             raise ValueError(f"half_angle must lie in (0, pi/2), got {a}")
         self.half_angle = a

@@ -6,7 +6,7 @@ import numpy as np
 from ..kernels import surfaces as ks
 from ..tracing.placement import on_line, parallel
 from ..tracing.traits import ANGLE, LENGTH, TRANSLATION, SurfaceTraits, register
-from .base import Surface, check_length, own_axis, quadric_jets
+from .base import Surface, check_positive, own_axis, quadric_jets
 
 
 class Cylinder(Surface):
@@ -16,7 +16,7 @@ class Cylinder(Surface):
     """
 
     def __init__(self, radius, frame=None, v_range=None):
-        self.radius = check_length("radius", radius)
+        self.radius = check_positive("radius", radius)
         super().__init__(frame, self.radius, 0.0, v_range=v_range)
 
     def with_frame(self, frame):

@@ -6,7 +6,7 @@ import numpy as np
 from ..frame import Frame
 from ..kernels import surfaces as ks
 from ..tracing.traits import ANGLE, FULL_TURN, POINT, SurfaceTraits, register
-from .base import Surface, check_length, quadric_jets
+from .base import Surface, check_positive, quadric_jets
 
 #: The latitudes of the poles, where the chart (u longitude, v latitude) collapses.
 POLES = (-0.5 * math.pi, 0.5 * math.pi)
@@ -19,7 +19,7 @@ class Sphere(Surface):
     """
 
     def __init__(self, radius, frame=None):
-        self.radius = check_length("radius", radius)
+        self.radius = check_positive("radius", radius)
         super().__init__(frame, self.radius)
 
     @property

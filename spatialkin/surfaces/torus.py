@@ -6,7 +6,7 @@ import numpy as np
 from ..kernels import surfaces as ks
 from ..tracing.placement import parallel
 from ..tracing.traits import ANGLE, SurfaceTraits, register
-from .base import Surface, check_length, own_axis
+from .base import Surface, check_positive, own_axis
 
 
 class Torus(Surface):
@@ -16,8 +16,8 @@ class Torus(Surface):
     """
 
     def __init__(self, major_radius, minor_radius, frame=None):
-        self.major_radius = check_length("major_radius", major_radius)
-        self.minor_radius = check_length("minor_radius", minor_radius)
+        self.major_radius = check_positive("major_radius", major_radius)
+        self.minor_radius = check_positive("minor_radius", minor_radius)
         super().__init__(frame, self.major_radius, self.minor_radius)
 
     @property

@@ -8,6 +8,7 @@ import operator
 import numpy as np
 
 from ..kernels import surfaces as ks
+from ..validation import check_positive
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome
 from .traits import traits
@@ -204,9 +205,7 @@ class Curve:
         SplineToleranceError
             If tol lies below the round-off of the curve's points.
         """
-        tol = float(tol)
-        if not np.isfinite(tol) or tol <= 0:
-            raise ValueError(f"tol must be a positive finite number, got {tol!r}")
+        tol = check_positive("tol", tol)
         if self.length == 0:
             raise ValueError("a curve of length zero (a contact point) has no B-spline")
         from .start import scene_scale       # start imports this module

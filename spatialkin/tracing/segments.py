@@ -87,7 +87,7 @@ class Settings:
 
 def area_flag(data):
     """Whether a degenerate parametrisation of this surface ends a branch (its traits' area watch)."""
-    return traits(data).area_watch
+    return int(traits(data).area_watch)       # an int: the kernels take it as one (no bool specialisation)
 
 
 def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):

@@ -17,7 +17,7 @@ from scipy.optimize import brentq
 import spatialkin as sk
 from spatialkin.kernels import surfaces as ks
 from spatialkin.render.geometry import natural_domain
-from spatialkin.surfaces import check_length, check_range
+from spatialkin.surfaces import check_positive, check_range
 from spatialkin.surfaces.sphere import SphereTraits
 from spatialkin.tracing.traits import ANGLE, AXIS, SurfaceTraits, register, traits, unregister
 
@@ -35,7 +35,7 @@ class SphericalZone(sk.Surface):
     frame.origin about its local z: M(u, v) = frame(R cos v cos u, R cos v sin u, R sin v)."""
 
     def __init__(self, radius, v_range, frame=None):
-        self.radius = check_length("radius", radius)
+        self.radius = check_positive("radius", radius)
         lo, hi = check_range("v_range", v_range)
         if not -0.5 * math.pi < lo < hi < 0.5 * math.pi:
             raise ValueError(f"v_range must lie inside (-pi/2, pi/2) (the poles excluded), got {v_range!r}")

@@ -134,8 +134,9 @@ class CompiledRK45(OdeSolver):
     Options (through solve_ivp): ``system`` (System, required); ``watch`` and ``log``: the Events to watch
     (given to this solver, not as solve_ivp's events: each crossing is located in compiled code on the step's dense
     output, as solve_ivp locates events, and recorded in the EventLog ``log``; at a terminal one the integration
-    ends there); ``rtol``, ``atol``, ``max_step``, ``first_step``, ``max_nfev`` (BudgetExceeded past it),
-    ``steps_per_call``. Forward in t only. ``integrate`` turns the log into solve_ivp's t_events and y_events.
+    ends there); ``rtol``, ``atol``, ``max_step``, ``first_step``, ``max_nfev`` (past it the steps taken are
+    kept and the next solver step fails with BUDGET_MESSAGE, log.budget_exceeded set), ``steps_per_call``.
+    Forward in t only. ``integrate`` turns the log into solve_ivp's t_events and y_events.
     """
 
     def __init__(self, fun, t0, y0, t_bound, vectorized=False, system=None, watch=(), log=None, rtol=1e-3,

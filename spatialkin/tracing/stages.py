@@ -31,10 +31,9 @@ from dataclasses import dataclass, field
 
 #: The stages, in the order a call passes them.
 STAGES = ("setup", "topology", "trace_setup", "integration", "correction", "dedupe", "result")
-#: How the bench and the README name them.
-LABELS = {"setup": "Python set-up", "topology": "topology (seeds)", "trace_setup": "per-trace set-up",
-          "integration": "integration", "correction": "correction (Newton)", "dedupe": "de-duplication",
-          "result": "result building"}
+#: Column headings of the bench's profile table (spatialkin.bench.sidebyside).
+LABELS = {"setup": "Python set-up", "topology": "topology", "trace_setup": "trace set-up",
+          "integration": "integration", "correction": "correction", "dedupe": "dedupe", "result": "result"}
 #: The stage a profiled call starts in (and that takes whatever no other stage claims).
 ROOT = "setup"
 

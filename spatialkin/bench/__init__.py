@@ -4,12 +4,13 @@ For several torus–sphere cases and the looper drive it measures the maximum di
 exact curve (exact distance functions of both surfaces, closed forms) and the wall time per curve, for every
 solve_ivp method and a range of tolerances, beside OpenCascade's GeomAPI_IntSS (optional ``cadquery-ocp``),
 the closed form and a per-angle scipy root solve; prints the table and the goal ratios, and writes a CSV
-and a log–log PNG.
+and a log–log PNG. Then, per pair kind of plane, sphere, cylinder, cone and torus (spatialkin.bench.sidebyside):
+the stage profile of sk.intersect and sk.intersect against GeomAPI_IntSS, interleaved in this process.
 """
 import os
 from importlib.metadata import entry_points
 
-from . import runner
+from . import runner, sidebyside
 from .runner import best_time
 from .report import goal_lines, machine, plot, table, write_csv
 
@@ -30,8 +31,9 @@ def run(out_dir=None, quick=False, echo=print):
     if not runner.baselines.occ_available():
         echo("OpenCascade (cadquery-ocp): not installed -- pip install '.[bench]' for the side-by-side run")
     rows, goals = runner.run_all(quick=quick, echo=echo)
-    for line in table(rows) + [""] + goal_lines(goals, runner):
+    for line in table(rows) + [""] + goal_lines(goals, runner) + [""]:
         echo(line)
+    sidebyside.run(quick=quick, echo=echo)
     for plugin in entry_points(group=PLUGIN_GROUP):      # e.g. planar's cases (spatialkin never imports planar)
         plugin.load()(quick=quick, echo=echo)
     if out_dir is not None:

@@ -28,7 +28,8 @@ def occ_available():
         return False
 
 
-def _ax3(frame):
+def ax3(frame):
+    """gp_Ax3 of a spatialkin Frame: origin, main direction local z, x direction local x."""
     from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
     rot = frame.rotation
     return gp_Ax3(gp_Pnt(*frame.origin), gp_Dir(*rot[:, 2]), gp_Dir(*rot[:, 0]))
@@ -37,8 +38,8 @@ def _ax3(frame):
 def occ_surfaces(torus, sphere):
     """Geom_ToroidalSurface and Geom_SphericalSurface with the same placement as the spatialkin surfaces."""
     from OCP.Geom import Geom_SphericalSurface, Geom_ToroidalSurface
-    return (Geom_ToroidalSurface(_ax3(torus.frame), torus.major_radius, torus.minor_radius),
-            Geom_SphericalSurface(_ax3(sphere.frame), sphere.radius))
+    return (Geom_ToroidalSurface(ax3(torus.frame), torus.major_radius, torus.minor_radius),
+            Geom_SphericalSurface(ax3(sphere.frame), sphere.radius))
 
 
 def occ_intersect(torus, sphere, tol, repeats):

@@ -10,6 +10,7 @@ from .exact import contact_point, exact_curve
 from .result import Curve, TracingError
 from .start import locate_on_curve, newton_fixed
 from .certificate import certificates
+from . import stages
 from .status import CONTACT
 from .topology import topology
 from .traits import check_surface
@@ -62,7 +63,11 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     check_surface("b", b)
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
+    if stages.ON:
+        stages.switch("topology")
     topo = topology(a, b, settings.scale, settings.tolerance)
+    if stages.ON:
+        stages.switch("setup")
     settings = dataclasses.replace(settings, nodes=np.array(topo.nodes + topo.apexes).reshape(-1, 3))
     # the components as CurveResults (each made a Curve once, complete, at the end)
     curves = [contact_point((a, b), p, settings.tolerance) for p in topo.contacts]
@@ -77,27 +82,41 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         seeds = np.array(topo.seeds, dtype=float).reshape(-1, 3)
         on = np.maximum(a.distance(seeds), b.distance(seeds)) <= settings.tolerance
         pending += [(seed, None, bool(exact)) for seed, exact in zip(seeds, on)]
+    if stages.ON:
+        stages.switch("dedupe")
     pending = drop_traced(pending, curves, radius)
     while pending:
         point, y, _ = pending.pop(0)
         if y is None:
+            if stages.ON:
+                stages.switch("correction")
             try:
                 point, y = locate_on_curve(a, b, point, settings.gap_tol)
             except TracingError:
                 continue
+            if stages.ON:
+                stages.switch("dedupe")
             if any(near_curve(c, point, radius)[0] for c in curves):
                 continue
+        if stages.ON:
+            stages.switch("trace_setup")
         try:
             curve = trace_from(a, b, point, y, settings, time.perf_counter())
         except TracingError:
             continue            # the seed sits on a singular point: the arms' seeds trace it
         curves.append(curve)
+        if stages.ON:
+            stages.switch("dedupe")
         pending = drop_traced(pending, [curve], radius)
+    if stages.ON:
+        stages.switch("dedupe")
     kept = []
     for i, c in enumerate(curves):          # of two copies of one piece, the first is kept
         if not covered(c, kept + curves[i + 1:], radius):
             kept.append(c)
     curves = kept
+    if stages.ON:
+        stages.switch("result")
     curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
     proofs = certificates(a, b, curves, topo) if certify else [None] * len(curves)
     return [Curve(dataclasses.replace(c, topology=topo, certificate=proof)) for c, proof in zip(curves, proofs)]

@@ -23,6 +23,7 @@ from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS,
 from .status import outcome
 from .singular import APEX_GUARD, closes_within_jump, jump_across, take_jump
 from .traits import traits
+from . import stages
 
 # --- named limits -------------------------------------------------------------------------------------
 #: The closure plane is put this far (relative to the curve scale) behind the start, so that the start
@@ -160,7 +161,10 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             bend = curvature_vector(y, a, b)
             if bend is not None:
                 a, b, y = charts_at(a_user, b_user, point, sign * tangent, y, bend)
+        mark = stages.enter("correction") if stages.ON else None
         y, point, tangent, ok = project_state(y, a, b, settings)
+        if mark is not None:
+            stages.leave(mark)
         if not ok and branch.segments and not np.any(branch.segments[-1].normal):
             # a restart beside a singular point: pass it from the last integrated segment instead
             last = branch.segments[-1]
@@ -183,6 +187,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         system = segment_system(a, b, settings, sign, start, direction, s_arm - s)
         events, kinds = segment_events(system, a, b, settings, compiled)
         method = COMPILED if compiled else (FALLBACK_METHOD if settings.method == COMPILED else settings.method)
+        mark = stages.enter("integration") if stages.ON else None
         try:
             res = integrate(system, (0.0, settings.max_length - s), y, method, events, settings.rtol, settings.atol,
                             settings.max_step, SEGMENT_MAX_EVALUATIONS)
@@ -190,6 +195,9 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             branch.status, branch.message = outcome("stalled", s=s, budget=SEGMENT_MAX_EVALUATIONS,
                                                     point=point.tolist())
             break
+        finally:
+            if mark is not None:
+                stages.leave(mark)
         branch.nfev += res.nfev
         ts, ys = step_points(res)
         seg = Segment(s0=s, s1=s + ts[-1], sign=sign, sol=res.sol, a=a, b=b, t=ts, y=ys, compiled=compiled)
@@ -244,7 +252,10 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if kind in ("minimum", "chart"):
             continue
         if kind == "closure":
+            mark = stages.enter("correction") if stages.ON else None
             yp, p_e, t_e, _ = project_state(y, a, b, settings)
+            if mark is not None:
+                stages.leave(mark)
             close_enough = np.linalg.norm(p_e - start) <= radius
             if close_enough and float(np.dot(sign * t_e, direction)) >= CLOSURE_COSINE:
                 remaining = float(np.dot(start - p_e, sign * t_e))

@@ -19,6 +19,7 @@ from .result import Curve, CurveResult, TracingError, user_params, DUPLICATE_SPA
 from .start import locate_on_curve, parameter_units, scene_scale
 from .status import CLOSED, open_outcome
 from .traits import check_surface, traits
+from . import stages
 from ..validation import check_choice, check_nonnegative, check_positive
 
 # --- defaults -----------------------------------------------------------------------------------------
@@ -145,16 +146,14 @@ def trace_from(a, b, point, y, settings, t_start):
     sin_normals = kc.curve_frame(y_chart, a_chart, b_chart, p, tangent)
     if sin_normals < settings.singular_tol:
         raise TracingError.of("singular_start", where=point, point=point.tolist(), sin=sin_normals)
-    forward = remeasure_branch(integrate_branch(a.data, b.data, point, tangent, y, 1.0, settings),
-                               settings.pullback, settings.gap_tol)
+    forward = measured_branch(a, b, point, tangent, y, 1.0, settings)
     nfev = forward.nfev
     if forward.status == CLOSED:
         branches = [(forward, 1.0, 0.0)]
         closed, length = True, forward.length
         status, message = CLOSED, forward.message
     else:
-        backward = remeasure_branch(integrate_branch(a.data, b.data, point, tangent, y, -1.0, settings),
-                                    settings.pullback, settings.gap_tol)
+        backward = measured_branch(a, b, point, tangent, y, -1.0, settings)
         nfev += backward.nfev
         if backward.status == CLOSED:
             branches = [(backward, 1.0, 0.0)]
@@ -164,6 +163,7 @@ def trace_from(a, b, point, y, settings, t_start):
             branches = [(backward, -1.0, backward.length), (forward, 1.0, backward.length)]
             closed, length = False, backward.length + forward.length
             status, message = open_outcome(backward.status, backward.message, forward.status, forward.message)
+    mark = stages.enter("result") if stages.ON else None
     spans, ys, ss, charts = [], [], [], []
     for branch, flip, offset in branches:
         pieces = []
@@ -194,7 +194,10 @@ def trace_from(a, b, point, y, settings, t_start):
         spans[-1].hi = length
         keep &= s_all < length - DUPLICATE_SPACING * settings.scale
     s_all, y_all, span_of = s_all[keep], y_all[keep], span_of[keep]
+    inner = stages.enter("correction") if stages.ON else None
     points, params, raw_gap = _corrected(a, b, y_all, span_of, spans, settings)
+    if inner is not None:
+        stages.leave(inner)
     if closed:
         points = np.vstack([points, points[:1]])
         params = np.vstack([params, _closing_params(a, b, params[0], params[-1])])
@@ -202,9 +205,23 @@ def trace_from(a, b, point, y, settings, t_start):
     nodes = snapped_nodes([p for branch, _, _ in branches for _, p in branch.nodes], settings)
     sol = TracedSolution(surfaces=(a, b), spans=spans, nodes=nodes, gap_tol=settings.gap_tol, length=length,
                          closed=closed, knots=s_all)
-    return CurveResult(points=points, s=s_all, params=params, closed=closed, length=length, status=status,
-                       message=message, tolerance=settings.tolerance, sol=sol, nodes=nodes, solver_gap=raw_gap,
-                       nfev=nfev, wall_time=time.perf_counter() - t_start)
+    result = CurveResult(points=points, s=s_all, params=params, closed=closed, length=length, status=status,
+                         message=message, tolerance=settings.tolerance, sol=sol, nodes=nodes, solver_gap=raw_gap,
+                         nfev=nfev, wall_time=time.perf_counter() - t_start)
+    if mark is not None:
+        stages.leave(mark)
+    return result
+
+
+def measured_branch(a, b, point, tangent, y, sign, settings):
+    """One direction integrated from point (integrate_branch) with its arc length re-measured on the curve
+    (remeasure_branch, timed as correction)."""
+    branch = integrate_branch(a.data, b.data, point, tangent, y, sign, settings)
+    mark = stages.enter("correction") if stages.ON else None
+    branch = remeasure_branch(branch, settings.pullback, settings.gap_tol)
+    if mark is not None:
+        stages.leave(mark)
+    return branch
 
 
 def snapped_nodes(located, settings):

@@ -7,7 +7,8 @@ import functools
 import numpy as np
 import pytest
 
-from spatialkin.bench import baselines, runner
+from spatialkin.bench import baselines, runner, sidebyside
+from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.bench.cases import looper_closed_form, torus_sphere_cases
 from spatialkin.cli import main
 from spatialkin.mechanisms import LooperDrive
@@ -91,9 +92,11 @@ def test_bench_quick_command(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(runner, "torus_sphere_cases", lambda: torus_sphere_cases()[1:2])
     monkeypatch.setattr(runner, "tracer_rows", functools.partial(runner.tracer_rows, methods=("DOP853",)))
     monkeypatch.setattr(runner, "looper_rows", functools.partial(runner.looper_rows, n=91))
+    monkeypatch.setattr(sidebyside, "pair_kind_cases", lambda: pair_kind_cases()[:2])   # the 15 in test_sidebyside
     assert main(["bench", "--quick", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "goal 1" in out and "goal 2" in out and "goal 3" in out
+    assert "sk.intersect stage profile" in out and "plane-sphere" in out
     with open(tmp_path / "bench.csv") as f:
         rows = list(csv.DictReader(f))
     traced = [r for r in rows if r["solver"] == "trace"]

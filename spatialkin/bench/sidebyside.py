@@ -1,0 +1,173 @@
+"""Per pair kind: where the time of sk.intersect goes (the stage profile) and sk.intersect beside OpenCascade's
+GeomAPI_IntSS, both measured in this process, interleaved call by call (A B A B ...), medians, so that the ratio
+does not depend on the machine's mood; errors are measured distances of the returned points and dense samples
+to both surfaces (exact distance functions, surface.distance).
+"""
+import statistics
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..tracing import stages
+from ..tracing.intersect import intersect
+from . import baselines
+from .kinds import occ_surface, pair_kind_cases
+from .runner import curve_error, points_error
+
+#: Accuracy asked of sk.intersect (relative to the scene scale): the library's default.
+OUR_TOL = 1e-10
+#: Interleaved timed calls per side and pair kind (full run, --quick), after one untimed call of each.
+CALLS = 30
+QUICK_CALLS = 5
+#: Profiled calls per pair kind (the profile is their mean; the stage timer is on only for them).
+PROFILE_CALLS = 10
+QUICK_PROFILE_CALLS = 3
+#: Dense evaluations per curve of ours, and samples per OCC result curve (evenly in its parameter), measured.
+OUR_SAMPLES = 1000
+OCC_SAMPLES = 2000
+QUICK_OCC_SAMPLES = 500
+
+
+@dataclass
+class KindRow:
+    """One pair kind measured side by side.
+
+    Attributes
+    ----------
+    kind : str
+        'plane-sphere', ...
+    ours, occ : float
+        Median wall time of one sk.intersect call (tol OUR_TOL) and one GeomAPI_IntSS call (its default
+        tolerance), seconds; nan for OCC when it is not installed.
+    our_error, occ_error : float
+        Largest measured distance to either surface of the returned points and dense samples (length units).
+    our_curves, occ_curves : int
+        Components returned (OCC splits a loop into several lines).
+    profile : stages.StageProfile
+        Mean stage profile of one sk.intersect call.
+    """
+    kind: str
+    ours: float
+    occ: float
+    our_error: float
+    occ_error: float
+    our_curves: int
+    occ_curves: int
+    profile: stages.StageProfile
+
+    @property
+    def ratio(self):
+        """OCC's time over ours (above 1: sk.intersect is faster)."""
+        return self.occ / self.ours
+
+
+def occ_points(inter, samples):
+    """Each result line of a GeomAPI_IntSS sampled evenly in its parameter: list of (samples, 3)."""
+    out = []
+    for i in range(1, inter.NbLines() + 1):
+        line = inter.Line(i)
+        ts = np.linspace(line.FirstParameter(), line.LastParameter(), samples)
+        out.append(np.array([[p.X(), p.Y(), p.Z()] for p in (line.Value(float(t)) for t in ts)]))
+    return out
+
+
+def profile_of(pair, calls):
+    """Mean stage profile of one sk.intersect call over `calls` profiled calls."""
+    with stages.profiled() as prof:
+        for _ in range(calls):
+            intersect(*pair, tol=OUR_TOL)
+    return prof.scaled(1.0 / calls)
+
+
+def measure(kind, a, b, calls, profile_calls, occ_samples):
+    """The KindRow of one pair: interleaved timings (ours, OCC, ours, OCC, ...), errors and the profile."""
+    pair = (a, b)
+    curves = intersect(*pair, tol=OUR_TOL)          # untimed: first-call work done, results kept for the error
+    has_occ = baselines.occ_available()
+    if has_occ:
+        from OCP.GeomAPI import GeomAPI_IntSS
+        geoms = (occ_surface(a), occ_surface(b))
+        inter = GeomAPI_IntSS(*geoms, baselines.OCC_DEFAULT_TOL)
+        if not inter.IsDone():
+            raise RuntimeError(f"GeomAPI_IntSS did not finish on {kind}")
+    ours, occ = [], []
+    for _ in range(calls):
+        t0 = time.perf_counter()
+        intersect(*pair, tol=OUR_TOL)
+        ours.append(time.perf_counter() - t0)
+        if has_occ:
+            t0 = time.perf_counter()
+            GeomAPI_IntSS(*geoms, baselines.OCC_DEFAULT_TOL)
+            occ.append(time.perf_counter() - t0)
+    occ_error, occ_curves = np.nan, 0
+    if has_occ:
+        occ_error = points_error(occ_points(inter, occ_samples), pair)
+        occ_curves = inter.NbLines()
+    return KindRow(kind, statistics.median(ours), statistics.median(occ) if occ else np.nan,
+                   curve_error(curves, pair, OUR_SAMPLES), occ_error, len(curves), occ_curves, profile_of(pair, profile_calls))
+
+
+def kind_rows(quick=False, echo=print):
+    """A KindRow for each of the 15 pair kinds (spatialkin.bench.kinds)."""
+    calls, profile_calls, samples = ((QUICK_CALLS, QUICK_PROFILE_CALLS, QUICK_OCC_SAMPLES) if quick
+                                     else (CALLS, PROFILE_CALLS, OCC_SAMPLES))
+    rows = []
+    for kind, a, b in pair_kind_cases():
+        echo(f"... {kind}")
+        rows.append(measure(kind, a, b, calls, profile_calls, samples))
+    return rows
+
+
+def occ_table(rows, calls):
+    """The side-by-side table as text lines."""
+    head = (f"{'pair kind':<18} {'ours ms':>8} {'OCC ms':>8} {'OCC/ours':>8} {'our error':>9} {'OCC error':>9} "
+            f"{'curves':>7}")
+    lines = [f"sk.intersect (tol {OUR_TOL:g}) vs GeomAPI_IntSS (tol {baselines.OCC_DEFAULT_TOL:g}), interleaved, "
+             f"median of {calls} calls each; error: largest distance to either surface of the returned points "
+             "and dense samples", head, "-" * len(head)]
+    for r in rows:
+        lines.append(f"{r.kind:<18} {1e3 * r.ours:>8.3f} {1e3 * r.occ:>8.3f} {r.ratio:>8.2f} {r.our_error:>9.1e} "
+                     f"{r.occ_error:>9.1e} {r.our_curves:>3}/{r.occ_curves:<3}")
+    ratios = np.array([r.ratio for r in rows])
+    if np.all(np.isfinite(ratios)):
+        lines.append(f"OCC/ours: median {np.median(ratios):.2f}, min {ratios.min():.2f} "
+                     f"({rows[int(np.argmin(ratios))].kind}), max {ratios.max():.2f} "
+                     f"({rows[int(np.argmax(ratios))].kind})")
+    return lines
+
+
+def profile_table(rows):
+    """The stage profile per pair kind as text lines: ms and % of the call per stage, and all kinds together."""
+    head = f"{'pair kind':<18} {'ms/call':>8}" + "".join(f" {stages.LABELS[s]:>13}" for s in stages.STAGES)
+    lines = ["sk.intersect stage profile (mean of the profiled calls; ms and % of the call per stage; "
+             "spatialkin.tracing.stages)", head,
+             "-" * len(head)]
+    total = stages.StageProfile({s: 0.0 for s in stages.STAGES}, 0.0)
+    for r in rows:
+        p = r.profile
+        lines.append(_profile_line(r.kind, p))
+        total.seconds = {s: total.seconds[s] + p.seconds[s] for s in stages.STAGES}
+        total.total += p.total
+    lines.append(_profile_line("all kinds (sum)", total))
+    return lines
+
+
+def _profile_line(name, p):
+    share = p.shares()
+    return f"{name:<18} {1e3 * p.total:>8.3f}" + "".join(
+        f" {1e3 * p.seconds[s]:>6.2f} ({100 * share[s]:>2.0f}%)" for s in stages.STAGES)
+
+
+def run(quick=False, echo=print):
+    """Measure every pair kind, print both tables; returns the KindRows."""
+    echo("per pair kind: sk.intersect profile and OpenCascade side by side")
+    rows = kind_rows(quick=quick, echo=echo)
+    for line in profile_table(rows) + [""]:
+        echo(line)
+    if baselines.occ_available():
+        for line in occ_table(rows, QUICK_CALLS if quick else CALLS):
+            echo(line)
+    else:
+        echo("OpenCascade (cadquery-ocp) not installed: the side-by-side table is skipped")
+    return rows

@@ -113,31 +113,31 @@ def dense_state(t_old, h, y_old, q, t, out):
 
 
 @jit
-def dense_at(ts, ys, hs, qs, t):
-    """The dense state (n,) at one time t (dense_many for a scalar)."""
-    out = np.empty(ys.shape[1])
+def dense_into(ts, ys, hs, qs, t, out):
+    """The dense state at time t into out (n,), from stored steps ts (m,), ys (m, n), their lengths hs (m - 1,)
+    and qs (m - 1, n, 4); outside [ts[0], ts[-1]] the first or last step's polynomial is extended (as scipy's
+    OdeSolution)."""
     m = ts.shape[0]
     if m < 2:
         copy_into(out, ys[0])
-        return out
+        return
     j = min(max(np.searchsorted(ts, t, side="right") - 1, 0), m - 2)
     dense_state(ts[j], hs[j], ys[j], qs[j], t, out)
+
+
+@jit
+def dense_at(ts, ys, hs, qs, t):
+    """The dense state (n,) at one time t (dense_into, allocated)."""
+    out = np.empty(ys.shape[1])
+    dense_into(ts, ys, hs, qs, t, out)
     return out
 
 
 @jit
 def dense_many(ts, ys, hs, qs, t, out):
-    """Dense states out (M, n) at times t (M,) from stored steps ts (m,), ys (m, n), their lengths hs (m - 1,)
-    and qs (m - 1, n, 4); outside [ts[0], ts[-1]] the first or last step's polynomial is extended (as scipy's
-    OdeSolution)."""
-    m = ts.shape[0]
+    """Dense states out (M, n) at times t (M,) (dense_into for each)."""
     for k in range(t.shape[0]):
-        if m < 2:
-            copy_into(out[k], ys[0])
-            continue
-        j = np.searchsorted(ts, t[k], side="right") - 1
-        j = min(max(j, 0), m - 2)
-        dense_state(ts[j], hs[j], ys[j], qs[j], t[k], out[k])
+        dense_into(ts, ys, hs, qs, t[k], out[k])
 
 
 #: Iterations of the Illinois root search locating an event on a step's dense output.

@@ -55,8 +55,6 @@ FALLBACK_METHOD = "DOP853"
 #: The compiled integrator hands over to solve_ivp this many times before a watched threshold (the sine's
 #: WATCH_BELOW or the singular tolerance, APEX_GUARD), so that solve_ivp's events see the whole approach.
 HANDOFF_MARGIN = 2.0
-#: The events that end the compiled method's segments before a hard case.
-HANDOFF_EVENTS = np.isin(np.arange(kb.COUNT), (kb.HANDOFF_SINE, kb.HANDOFF_AREA))
 #: At most this many segments in one branch (each ends at an event): bounds the work on pathological input.
 MAX_SEGMENTS = 10_000
 

@@ -6,10 +6,11 @@ from .tracing.result import Curve, TracingError
 from .tracing.start import auxiliary_starts
 from .tracing.trace import trace
 from .tracing.intersect import intersect
+from .tracing.batch import BatchError, intersect_many
 from .tracing.placement import CoincidentSurfacesError
 from .tracing.topology import TopologyError
 
 __all__ = ["Frame", "rotation_about", "rotation_to_z", "Surface", "Torus", "Sphere", "Plane", "Cylinder",
-           "Cone", "Curve", "TracingError", "trace", "intersect", "auxiliary_starts", "CoincidentSurfacesError",
+           "Cone", "Curve", "TracingError", "trace", "intersect", "intersect_many", "BatchError", "auxiliary_starts", "CoincidentSurfacesError",
            "TopologyError"]
 __version__ = "0.1.0"

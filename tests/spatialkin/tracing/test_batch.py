@@ -1,0 +1,86 @@
+"""sk.intersect_many: the same curves as sk.intersect pair by pair (in this process and on workers), arguments
+checked before any work, failures named by index."""
+import numpy as np
+import pytest
+
+import spatialkin as sk
+from spatialkin.tracing import batch
+
+
+def mixed_pairs():
+    """A few kinds, both argument orders."""
+    from spatialkin.bench.kinds import pair_kind_cases
+    cases = pair_kind_cases()
+    return [(a, b) for _, a, b in cases[::4]] + [(b, a) for _, a, b in cases[1::5]]
+
+
+def same_curves(got, want):
+    """The oracle: sk.intersect's curves, bit for bit (points, arc lengths, statuses)."""
+    assert len(got) == len(want)
+    for g, w in zip(got, want):
+        assert g.status == w.status and g.closed == w.closed
+        assert np.array_equal(g.points, w.points) and np.array_equal(g.s, w.s)
+        assert g.length == w.length
+
+
+def test_intersect_many_equals_intersect_pair_by_pair():
+    pairs = mixed_pairs()
+    results = sk.intersect_many(pairs, tol=1e-10)
+    assert len(results) == len(pairs)
+    for (a, b), got in zip(pairs, results):
+        same_curves(got, sk.intersect(a, b, tol=1e-10))
+
+
+def test_workers_give_the_same_curves_in_order():
+    from spatialkin.reference import looper_pair
+    torus, sphere = looper_pair()
+    radii = sphere.radius * np.linspace(0.98, 1.02, 2 * batch.MIN_CHUNKS_PER_WORKER * batch.CHUNK)
+    pairs = [(torus, sk.Sphere(r, sphere.frame)) for r in radii]
+    results = sk.intersect_many(pairs, workers=2)
+    assert len(results) == len(pairs)
+    for (a, b), got in zip(pairs, results):
+        same_curves(got, sk.intersect(a, b))
+
+
+def test_empty_batch():
+    assert sk.intersect_many([]) == []
+
+
+@pytest.mark.parametrize("pairs, kind, words", [
+    (5, TypeError, "pairs must be an iterable"),
+    ([("x",)], ValueError, "pairs[0] must be a pair"),
+    ([None], ValueError, "pairs[0] must be a pair"),
+])
+def test_bad_pairs_named(pairs, kind, words):
+    with pytest.raises(kind, match=words.replace("[", r"\[").replace("]", r"\]")):
+        sk.intersect_many(pairs)
+
+
+def test_bad_surface_and_options_named_before_any_work(monkeypatch):
+    good = mixed_pairs()[0]
+    calls = []
+    monkeypatch.setattr(batch, "intersect", lambda *a, **k: calls.append(a))
+    with pytest.raises(TypeError, match=r"pairs\[1\]\[1\] must be a spatialkin surface"):
+        sk.intersect_many([good, (good[0], "plane")])
+    with pytest.raises(ValueError, match="tol must be a positive"):
+        sk.intersect_many([good, good], tol=-1.0)
+    with pytest.raises(ValueError, match="workers"):
+        sk.intersect_many([good], workers=0)
+    with pytest.raises(ValueError, match="errors"):
+        sk.intersect_many([good], errors="ignore")
+    with pytest.raises(ValueError, match="method"):
+        sk.intersect_many([good], method="Euler")
+    assert calls == []
+
+
+def test_a_failing_pair_is_named_or_returned_in_place():
+    sphere = sk.Sphere(1.0)
+    other = sk.Sphere(1.0, sk.Frame((0.5, 0.0, 0.0)))
+    pairs = [(sphere, other), (sphere, sphere), (other, sphere)]
+    with pytest.raises(sk.BatchError, match=r"pairs\[1\]: CoincidentSurfacesError") as err:
+        sk.intersect_many(pairs)
+    assert err.value.index == 1 and isinstance(err.value.__cause__, sk.CoincidentSurfacesError)
+    results = sk.intersect_many(pairs, errors="return")
+    assert isinstance(results[1], sk.CoincidentSurfacesError)
+    same_curves(results[0], sk.intersect(sphere, other))
+    same_curves(results[2], sk.intersect(other, sphere))

@@ -102,7 +102,7 @@ def parser():
     p_demo.set_defaults(func=demo)
     p_bench = sub.add_parser("bench", help="speed against error: every solve_ivp method and tolerance, "
                              "OpenCascade (if installed), the looper against a per-angle root solve")
-    p_bench.add_argument("--out", default=None, help="folder for bench.csv and bench.png (created if missing)")
+    p_bench.add_argument("--out", default=None, help="folder for bench.csv, bench.png, bench_kinds.csv and bench_kinds.png (created if missing)")
     p_bench.add_argument("--quick", action="store_true", help="a short run: two cases, two tolerances, one repeat")
     p_bench.set_defaults(func=bench)
     return top

@@ -5,12 +5,15 @@ exact curve (exact distance functions of both surfaces, closed forms) and the wa
 solve_ivp method and a range of tolerances, beside OpenCascade's GeomAPI_IntSS (optional ``cadquery-ocp``),
 the closed form and a per-angle scipy root solve; prints the table and the goal ratios, and writes a CSV
 and a log–log PNG. Then, per pair kind of plane, sphere, cylinder, cone and torus (spatialkin.bench.sidebyside):
-the stage profile of sk.intersect and sk.intersect against GeomAPI_IntSS, interleaved in this process.
+the stage profile of sk.intersect and sk.intersect against GeomAPI_IntSS, interleaved in this process (written
+to bench_kinds.csv and bench_kinds.png); and sk.intersect_many on a sweep of the looper pair against the compiled
+kernels' own time and the closed form (spatialkin.bench.batch).
 """
 import os
 from importlib.metadata import entry_points
 
-from . import runner, sidebyside
+from . import batch, runner, sidebyside
+from .kinds_report import plot_kinds, write_kinds_csv
 from .runner import best_time
 from .report import goal_lines, machine, plot, table, write_csv
 
@@ -33,12 +36,19 @@ def run(out_dir=None, quick=False, echo=print):
     rows, goals = runner.run_all(quick=quick, echo=echo)
     for line in table(rows) + [""] + goal_lines(goals, runner) + [""]:
         echo(line)
-    sidebyside.run(quick=quick, echo=echo)
+    kind_rows = sidebyside.run(quick=quick, echo=echo)
+    echo("")
+    batch.run(quick=quick, echo=echo)
     for plugin in entry_points(group=PLUGIN_GROUP):      # e.g. planar's cases (spatialkin never imports planar)
         plugin.load()(quick=quick, echo=echo)
     if out_dir is not None:
         os.makedirs(out_dir, exist_ok=True)
-        write_csv(rows, os.path.join(out_dir, "bench.csv"))
-        plot(rows, os.path.join(out_dir, "bench.png"), machine())
-        echo(f"wrote {os.path.join(out_dir, 'bench.csv')} and {os.path.join(out_dir, 'bench.png')}")
+        paths = [os.path.join(out_dir, name) for name in ("bench.csv", "bench.png", "bench_kinds.csv",
+                                                           "bench_kinds.png")]
+        write_csv(rows, paths[0])
+        plot(rows, paths[1], machine())
+        write_kinds_csv(kind_rows, paths[2])
+        plot_kinds(kind_rows, paths[3], f"sk.intersect vs OpenCascade per pair kind, one process, interleaved; "
+                                        f"{machine()}")
+        echo(f"wrote {', '.join(paths)}")
     return rows, goals

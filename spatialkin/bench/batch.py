@@ -2,7 +2,8 @@
 kernel cost, and points per second against the closed form's (issue 19, item 3).
 
 The sweep varies the looper sphere's radius by up to +-SPREAD (two loops throughout). In one run, interleaved
-(A B C A B C ...): a Python loop of ``sk.intersect``, ``intersect_many`` in this process and on two workers. The
+(A B C A B C ...): a Python loop of ``sk.intersect``, ``intersect_many`` in this process and on two workers (their
+pool made and warmed before the timing: intersect_many keeps it for the next batches). The
 pure kernel cost is the time spent inside the compiled kernels (spatialkin.kernels: the topology search, the
 Runge–Kutta engine, Newton) of the same batch, read from cProfile's own-time of those functions (their calls are
 few, so the profiler's overhead on them is small; it inflates only the Python, which is not counted). The closed
@@ -81,7 +82,7 @@ def measure(quick=False):
     ways = {"loop of sk.intersect": lambda: [intersect(a, b) for a, b in pairs],
             "intersect_many": lambda: intersect_many(pairs),
             f"intersect_many, {WORKERS} workers": lambda: intersect_many(pairs, workers=WORKERS)}
-    results = intersect_many(pairs[:2])                    # warm: numba cache, first-call work
+    results = intersect_many(pairs, workers=WORKERS)       # warm: numba cache, first-call work, the kept pool
     times = {label: [] for label in ways}
     for _ in range(rounds):
         for label, func in ways.items():

@@ -1,0 +1,68 @@
+"""The per-pair-kind side-by-side run (spatialkin.bench.sidebyside) written out: a CSV and a two-panel PNG (our
+speed over OpenCascade's per pair kind, against the goal; both errors), each written whole or not at all."""
+import csv
+
+import numpy as np
+
+from ..io import atomic_path
+from ..tracing import stages
+from .runner import GOAL_OCC_RATIO
+
+#: Columns of bench_kinds.csv: times in seconds, errors in length units, stage seconds per call.
+COLUMNS = (["pair kind", "ours s", "OCC s", "OCC/ours", "our error", "OCC error", "our curves", "OCC curves"]
+           + [f"{stages.LABELS[s]} s" for s in stages.STAGES])
+#: The ratio axis reaches this many times past the largest ratio (room for the time labels).
+LABEL_ROOM = 60.0
+#: Errors below this are drawn at it (a log axis has no zero).
+ERROR_FLOOR = 1e-17
+
+
+def write_kinds_csv(rows, path):
+    """One line per pair kind (sidebyside.KindRow)."""
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(COLUMNS)
+            for r in rows:
+                w.writerow([r.kind, f"{r.ours:.6g}", f"{r.occ:.6g}", f"{r.ratio:.4g}", f"{r.our_error:.3e}",
+                            f"{r.occ_error:.3e}", r.our_curves, r.occ_curves]
+                           + [f"{r.profile.seconds[s]:.6g}" for s in stages.STAGES])
+
+
+def plot_kinds(rows, path, title):
+    """Left: OCC time / our time per pair kind (log), with the goal and parity; right: both errors (log)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    names = [r.kind for r in rows]
+    y = np.arange(len(rows))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 0.32 * len(rows) + 1.8), sharey=True)
+    ratios = np.array([r.ratio for r in rows])
+    colours = ["tab:green" if q >= GOAL_OCC_RATIO else "tab:orange" if q >= 1 else "tab:red" for q in ratios]
+    left.barh(y, np.where(np.isfinite(ratios), ratios, 0.0), color=colours)
+    left.axvline(GOAL_OCC_RATIO, color="k", ls="--", lw=1, label=f"goal: {GOAL_OCC_RATIO:g}x faster")
+    left.axvline(1.0, color="grey", ls=":", lw=1, label="parity")
+    left.set_xscale("log")
+    finite = ratios[np.isfinite(ratios)]
+    left.set_xlim(min(0.5, float(finite.min()) / 2) if finite.size else 0.1,
+                  LABEL_ROOM * max(GOAL_OCC_RATIO, float(finite.max()) if finite.size else 1.0))
+    left.set_xlabel("OpenCascade time / sk.intersect time (above 1: ours faster)")
+    left.set_yticks(y, names)
+    left.invert_yaxis()
+    left.legend(fontsize=7, loc="upper right")
+    left.grid(True, axis="x", which="both", alpha=0.3)
+    for k, r in enumerate(rows):
+        left.annotate(f"ours {1e3 * r.ours:.2f} ms, OCC {1e3 * r.occ:.2f} ms", (max(r.ratio, 1e-3), k), fontsize=6,
+                      xytext=(3, -2), textcoords="offset points")
+    right.plot([max(r.our_error, ERROR_FLOOR) for r in rows], y, "s", label="sk.intersect (tol 1e-10)")
+    right.plot([max(r.occ_error, ERROR_FLOOR) for r in rows], y, "X", label="GeomAPI_IntSS (tol 1e-7)")
+    right.set_xscale("log")
+    right.set_xlabel("largest distance to either surface [length units]")
+    right.legend(fontsize=7)
+    right.grid(True, axis="x", which="both", alpha=0.3)
+    fig.suptitle(title, fontsize=8)
+    fig.tight_layout()
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=90, format="png")
+    plt.close(fig)

@@ -1,0 +1,63 @@
+"""The bench's batch section (spatialkin.bench.batch) and the per-kind files (spatialkin.bench.kinds_report)."""
+import csv
+import time
+
+import numpy as np
+import pytest
+
+from spatialkin.bench import batch
+from spatialkin.bench.kinds_report import COLUMNS, plot_kinds, write_kinds_csv
+from spatialkin.bench.sidebyside import KindRow
+from spatialkin.kernels import curve as kc
+from spatialkin.tracing import stages
+
+
+def test_sweep_is_the_looper_pair_with_radii_spread():
+    from spatialkin.reference import looper_pair
+    torus, sphere = looper_pair()
+    pairs = batch.looper_configs(5)
+    radii = [s.radius for _, s in pairs]
+    for t, s in pairs:
+        assert (t.major_radius, t.minor_radius) == (torus.major_radius, torus.minor_radius)
+        np.testing.assert_array_equal(t.frame.origin, torus.frame.origin)
+        np.testing.assert_array_equal(s.frame.origin, sphere.frame.origin)
+    np.testing.assert_allclose(radii, sphere.radius * np.linspace(1 - batch.SPREAD, 1 + batch.SPREAD, 5), rtol=1e-15)
+
+
+def test_kernel_seconds_counts_only_kernel_time():
+    torus, sphere = batch.looper_configs(1)[0]
+    y = np.array([0.3, 0.2, 0.1, 0.4])
+    kc.dragilev_rhs(0.0, y, torus.data, sphere.data, 1.0, 0.0)     # compiled before the measurement
+
+    def work():
+        time.sleep(0.05)                    # Python time: not counted
+        for _ in range(200):
+            kc.dragilev_rhs(0.0, y, torus.data, sphere.data, 1.0, 0.0)
+        return 1
+
+    seconds, out = batch.kernel_seconds(work)
+    assert out == 1 and 0.0 < seconds < 0.05
+
+
+def test_closed_form_rate_counts_points():
+    torus, sphere = batch.looper_configs(1)[0]
+    rate = batch.closed_form_rate(torus, sphere, angles=1000)
+    assert np.isfinite(rate) and rate > 0
+
+
+def fake_rows():
+    prof = stages.StageProfile({s: 1e-4 for s in stages.STAGES}, 7e-4)
+    return [KindRow("plane-plane", 2e-3, 2e-4, 3e-16, 4e-16, 1, 1, prof),
+            KindRow("torus-torus", 1e-2, 2e-1, 8e-16, 5e-8, 1, 10, prof)]
+
+
+def test_kinds_csv_and_png_written(tmp_path):
+    rows = fake_rows()
+    write_kinds_csv(rows, tmp_path / "k.csv")
+    plot_kinds(rows, tmp_path / "k.png", "title")
+    with open(tmp_path / "k.csv") as f:
+        table = list(csv.reader(f))
+    assert table[0] == COLUMNS and len(table) == 3
+    assert float(table[1][3]) == pytest.approx(0.1) and float(table[2][3]) == pytest.approx(20.0)
+    assert (tmp_path / "k.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["k.csv", "k.png"]       # no temporary left

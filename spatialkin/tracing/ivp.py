@@ -92,13 +92,15 @@ def segment_system(a, b, settings, sign, start, direction, s_arm):
                   kb.COUNT)
 
 
-def segment_events(system, a, b, settings, compiled):
+def segment_events(system, a, b, settings, compiled, near_edge=False):
     """(Events, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles, closure.
 
-    The compiled method watches levels instead of the first three and the boundaries (as its kernel did before
-    it was a solve_ivp method): where the sine or the area element nears a hard case, or a parameter passes a
-    bound, the segment ends at the last step before (that step dropped) and solve_ivp's DOP853 goes on with the
-    fine events; a sphere's chart ends the segment at the end of the step that passes its pole guard."""
+    The compiled method watches levels instead of the first three (as its kernel did before it was a solve_ivp
+    method): where the sine or the area element nears a hard case, the segment ends at the last step before (that
+    step dropped) and solve_ivp's DOP853 goes on with the fine events; a sphere's chart ends the segment at the end
+    of the step that passes its pole guard. A bound is a level too, until the branch is near_edge: then the next
+    segment, started on the curve (projected) at most a step from the bound, ends exactly at the crossing, so
+    that the curve's end on the edge has one step's accuracy, not the whole branch's drift."""
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
     handoff = ("handoff", None)
@@ -110,7 +112,8 @@ def segment_events(system, a, b, settings, compiled):
             [(kb.APEX, -1, ("apex", None), None)] if flagged else []) + [(kb.MINIMUM, 1, ("minimum", None), None)]
     for k, j, idx, _, lower, _ in finite_bounds(a, b):
         edge = kb.EDGE + 2 * idx + (0 if lower else 1)
-        plan.append((edge, -1, handoff, "before") if compiled else (edge, -1, ("boundary", (k, j)), None))
+        plan.append((edge, -1, ("near_edge", None), "before") if compiled and not near_edge
+                    else (edge, -1, ("boundary", (k, j)), None))
     for k, data in enumerate((a, b)):
         if traits(data).recharts:
             plan.append((kb.POLE_A + k, -1, ("chart", k), "after" if compiled else None))
@@ -152,6 +155,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     s, s_arm = 0.0, 0.0
     radius = CLOSURE_RADIUS * settings.scale
     compiled = settings.method == COMPILED
+    near_edge = False
     for _ in range(MAX_SEGMENTS):
         y_prev = y
         a, b, y = charts_at(a_user, b_user, point, sign * tangent, y)
@@ -183,7 +187,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             branch.status, branch.message = outcome("leaves_edge", s=s)
             break
         system = segment_system(a, b, settings, sign, start, direction, s_arm - s)
-        events, kinds = segment_events(system, a, b, settings, compiled)
+        events, kinds = segment_events(system, a, b, settings, compiled, near_edge)
         method = COMPILED if compiled else (FALLBACK_METHOD if settings.method == COMPILED else settings.method)
         mark = stages.enter("integration") if stages.ON else None
         try:
@@ -226,6 +230,9 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         kc.curve_frame(y, a, b, point, tangent)
         if kind == "handoff":
             compiled = False
+            continue
+        if kind == "near_edge":
+            near_edge = True
             continue
         singular = kind == "singular" or (kind == "apex" and known_node(point, settings)) or (
             kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT

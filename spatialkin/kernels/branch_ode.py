@@ -5,13 +5,15 @@ segment switches on the ones it watches. The same values serve the compiled engi
 and solve_ivp's own methods (spatialkin.tracing.ode.Event reads one entry).
 
 The event parameters are one float array ``ep`` laid out by the P_* indices below, plus the chart data of the
-two surfaces in ``args = (a, b, sign, pullback)``.
+two surfaces in ``args = (a, b, sign, pullback, memo)`` (``branch_args``). ``memo`` keeps what the last right-hand
+side computed at its state (the normals' sine and M1): the engine evaluates the events at the state of a step's
+last stage, so the events read them instead of evaluating both surfaces again (the same values, bit for bit).
 """
 import numpy as np
 
 from .._jit import jit
 from . import rk
-from .curve import area_degeneracy, closure_value, degeneracy, degeneracy_slope, dragilev_into
+from .curve import area_degeneracy, degeneracy, degeneracy_slope, dragilev_into, frame, plane_value
 
 # --- events, in order (each value falls or rises through zero) -----------------------------------------------
 #: The normals' sine falls below the singular tolerance.
@@ -52,31 +54,71 @@ P_START = 29            # 3 entries
 P_DIRECTION = 32        # 3 entries
 P_SIZE = 35
 
+# --- layout of memo: the state of the last right-hand side, the normals' sine and M1 there ---------------------
+M_STATE = 0             # 4 entries
+M_SINE = 4
+M_POINT = 5             # 3 entries
+M_SIZE = 8
+
+
+def branch_args(a, b, sign, pullback):
+    """The args of the branch's kernels: (a, b, sign, pullback, memo), the memo empty (NaN: matches no state)."""
+    return (a, b, float(sign), float(pullback), np.full(M_SIZE, np.nan))
+
+
+@jit
+def branch_rhs(s, y, a, b, sign, pullback, memo):
+    """dy/ds for solve_ivp's methods (args = branch_args(...)); the memo is not used."""
+    dy = np.empty(4)
+    dragilev_into(y, a, b, sign, pullback, dy)
+    return dy
+
 
 @jit
 def branch_fun(t, y, args, out):
-    """dy/ds of the branch (Dragilev's right-hand side with its pull-back), args = (a, b, sign, pullback)."""
-    a, b, sign, pullback = args
-    dragilev_into(y, a, b, sign, pullback, out)
+    """dy/ds of the branch (Dragilev's right-hand side with its pull-back), args = branch_args(...); the state,
+    the sine and M1 kept in the memo."""
+    a, b, sign, pullback, memo = args
+    sine, point = dragilev_into(y, a, b, sign, pullback, out)
+    for i in range(4):
+        memo[M_STATE + i] = y[i]
+    memo[M_SINE] = sine
+    for i in range(3):
+        memo[M_POINT + i] = point[i]
+
+
+@jit
+def remembered(y, memo):
+    """True when the memo holds the state y (exactly)."""
+    for i in range(4):
+        if memo[M_STATE + i] != y[i]:
+            return False
+    return True
+
+
+@jit
+def sine_at(y, a, b, memo):
+    """sin of the normals' angle at y (degeneracy without flags), from the memo when it holds y."""
+    return memo[M_SINE] if remembered(y, memo) else degeneracy(y, a, b, 0, 0)
 
 
 @jit
 def branch_event(i, t, y, args, ep):
     """Value of event i at (t, y)."""
-    a, b, sign, _ = args
+    a, b, sign, _, memo = args
     if i == SINGULAR:
-        return degeneracy(y, a, b, 0, 0) - ep[P_SINGULAR_TOL]
+        return sine_at(y, a, b, memo) - ep[P_SINGULAR_TOL]
     if i == APEX or i == HANDOFF_AREA:
         guard = ep[P_APEX_GUARD] if i == APEX else ep[P_HANDOFF_AREA]
         return area_degeneracy(y, a, b, int(ep[P_FLAG_A]), int(ep[P_FLAG_B])) - guard
     if i == MINIMUM:
         if t <= ep[P_MINIMUM_ARM]:
             return 1.0          # not at the segment's start, which may be the minimum just found
-        if degeneracy(y, a, b, 0, 0) > ep[P_WATCH_BELOW]:
+        if sine_at(y, a, b, memo) > ep[P_WATCH_BELOW]:
             return -1.0
         return degeneracy_slope(y, a, b, sign, ep[P_SLOPE_STEP]) - ep[P_SLOPE_FLOOR]
     if i == HANDOFF_SINE:
-        return degeneracy(y, a, b, 0, 0) - ep[P_HANDOFF_SINE]
+        return sine_at(y, a, b, memo) - ep[P_HANDOFF_SINE]
     if EDGE <= i < EDGE + 8:
         j = i - EDGE
         idx = j // 2
@@ -89,7 +131,11 @@ def branch_event(i, t, y, args, ep):
     if i == CLOSURE:
         if t <= ep[P_CLOSURE_ARM]:
             return 1.0
-        return closure_value(y, a, ep[P_START:P_START + 3], ep[P_DIRECTION:P_DIRECTION + 3], ep[P_CLOSURE_OFFSET])
+        if remembered(y, memo):
+            point = (memo[M_POINT], memo[M_POINT + 1], memo[M_POINT + 2])
+        else:
+            point, _, _ = frame(a, y[0], y[1])
+        return plane_value(point, ep[P_START:P_START + 3], ep[P_DIRECTION:P_DIRECTION + 3], ep[P_CLOSURE_OFFSET])
     return 1.0
 
 

@@ -150,14 +150,15 @@ def dragilev_rhs(s, y, a, b, sign, pullback):
 
 @jit
 def dragilev_into(y, a, b, sign, pullback, out):
-    """dragilev_rhs written to out (4,), without allocating (the compiled integrator's hot path)."""
+    """dragilev_rhs written to out (4,), without allocating (the compiled integrator's hot path). Returns (sin of
+    the normals' angle, M1) at y, which it computed on the way (as degeneracy and frame give them)."""
     p1, su1, sv1 = frame(a, y[0], y[1])
     p2, su2, sv2 = frame(b, y[2], y[3])
     t, c = unit_tangent(su1, sv1, su2, sv2)
     if c == 0.0:
         for i in range(4):
             out[i] = 0.0
-        return
+        return c, p1
     t = (sign * t[0], sign * t[1], sign * t[2])
     out[0], out[1], _ = gram(su1, sv1, t)
     out[2], out[3], _ = gram(su2, sv2, t)
@@ -166,6 +167,7 @@ def dragilev_into(y, a, b, sign, pullback, out):
         if ok:
             for i in range(4):
                 out[i] += pullback * step[i]
+    return c, p1
 
 
 @jit
@@ -315,9 +317,8 @@ def degeneracy_slope(y, a, b, sign, h):
 
 
 @jit
-def closure_value(y, a, start, direction, offset):
-    """Signed distance of M1(y) past the plane through start normal to direction, plus offset."""
-    p, _, _ = frame(a, y[0], y[1])
+def plane_value(p, start, direction, offset):
+    """Signed distance of the point p (3-tuple) past the plane through start normal to direction, plus offset."""
     return (p[0] - start[0]) * direction[0] + (p[1] - start[1]) * direction[1] + (p[2] - start[2]) * direction[2] \
         + offset
 

@@ -88,8 +88,8 @@ def segment_system(a, b, settings, sign, start, direction, s_arm):
     ep[kb.P_CLOSURE_OFFSET] = CLOSURE_OFFSET * settings.scale
     ep[kb.P_START:kb.P_START + 3] = start
     ep[kb.P_DIRECTION:kb.P_DIRECTION + 3] = direction
-    return System(kc.dragilev_rhs, kb.branch_events, kb.branch_advance, (a, b, float(sign), settings.pullback), ep,
-                  kb.COUNT)
+    return System(kb.branch_rhs, kb.branch_events, kb.branch_advance, kb.branch_args(a, b, sign, settings.pullback),
+                  ep, kb.COUNT)
 
 
 def segment_events(system, a, b, settings, compiled, near_edge=False):

@@ -27,8 +27,8 @@ def looper_system():
     curve = sk.intersect(torus, sphere)[0]
     y0 = np.ascontiguousarray(curve.params[0], dtype=float)
     ep = np.zeros(kb.P_SIZE)
-    return System(kc.dragilev_rhs, kb.branch_events, kb.branch_advance, (torus.data, sphere.data, 1.0, 0.0), ep,
-                  kb.COUNT), y0, curve.length
+    return System(kb.branch_rhs, kb.branch_events, kb.branch_advance, kb.branch_args(torus.data, sphere.data, 1.0, 0.0),
+                  ep, kb.COUNT), y0, curve.length
 
 
 def test_compiled_rk45_takes_scipys_rk45_steps():

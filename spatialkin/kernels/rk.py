@@ -43,6 +43,13 @@ TERMINAL = 1
 LEVEL_BEFORE = 2
 #: A level: the integration ends at the end of the first step that reaches it (the step kept).
 LEVEL_AFTER = 3
+#: TERMINAL and LEVEL_BEFORE, the event also probed at PROBES interior points of each step's dense output: a
+#: crossing out and back within one step (a curve grazing out of a trim edge for a fraction of a step) is found
+#: when it spans more than about 1/(PROBES + 1) of the step. For cheap events (a parameter against a bound).
+TERMINAL_PROBED = 4
+LEVEL_BEFORE_PROBED = 5
+#: Interior points of a step at which probed events are evaluated (evenly spaced).
+PROBES = 8
 
 # --- RK45 (Dormand–Prince) coefficients, as in scipy.integrate._ivp.rk.RK45 ---------------------------------
 C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
@@ -167,12 +174,11 @@ def illinois_update(lo, hi, g_lo, g_hi, side, tm, gm, to_lo):
 
 
 @jit(inline="always")
-def locate(events, args, eargs, only, values, index, t_old, step, y_old, q, g_lo, g_hi, out):
-    """The time where event `index` crosses zero inside the step [t_old, t_old + step] (values g_lo, g_hi at
-    its ends, of opposite signs), by the Illinois method on the step's dense output (to ROOT_ULPS ulp, as
-    solve_ivp's brentq); the state there is written to out. only (n_events,) is a mask with only `index` set,
-    values a work array."""
-    lo, hi = t_old, t_old + step
+def locate(events, args, eargs, only, values, index, t_old, step, y_old, q, lo, hi, g_lo, g_hi, out):
+    """The time where event `index` crosses zero inside [lo, hi] within the step [t_old, t_old + step] (values
+    g_lo, g_hi at lo and hi, of opposite signs), by the Illinois method on the step's dense output (to ROOT_ULPS
+    ulp, as solve_ivp's brentq); the state there is written to out. only (n_events,) is a mask with only `index`
+    set, values a work array."""
     side = 0
     for _ in range(ROOT_MAX_ITER):
         if hi - lo <= ROOT_ULPS * 2.220446049250313e-16 * max(abs(hi), 1e-300):
@@ -191,12 +197,61 @@ def locate(events, args, eargs, only, values, index, t_old, step, y_old, q, g_lo
 
 
 @jit
-def level_reached(g, active, directions, modes, mode):
-    """The first active event of the given level mode whose value g has reached zero in its direction, or -1."""
+def level_reached(g, active, directions, modes, mode, other=-1):
+    """The first active event of the given level mode (or of mode `other`) whose value g has reached zero in its
+    direction, or -1."""
     for i in range(g.shape[0]):
-        if active[i] and modes[i] == mode and (g[i] <= 0.0 if directions[i] <= 0.0 else g[i] >= 0.0):
+        if (active[i] and (modes[i] == mode or modes[i] == other)
+                and (g[i] <= 0.0 if directions[i] <= 0.0 else g[i] >= 0.0)):
             return i
     return -1
+
+
+@jit
+def crosses(g_lo, g_hi, direction):
+    """True when an event's value goes from g_lo to g_hi through zero in its direction (solve_ivp's rule)."""
+    up = g_lo <= 0.0 <= g_hi
+    down = g_lo >= 0.0 >= g_hi
+    return (up and direction >= 0.0) or (down and direction <= 0.0)
+
+
+@jit
+def is_terminal(mode):
+    return mode == TERMINAL or mode == TERMINAL_PROBED
+
+
+@jit
+def is_level(mode):
+    return mode == LEVEL_BEFORE or mode == LEVEL_AFTER or mode == LEVEL_BEFORE_PROBED
+
+
+@jit(inline="always")
+def probe_level(events, args, eargs, probed, values, t_old, step, y_old, q, directions, modes, out):
+    """The first probed level event (LEVEL_BEFORE_PROBED, mask `probed`) reached at an interior probe of the step,
+    or -1."""
+    for k in range(1, PROBES + 1):
+        tk = t_old + step * k / (PROBES + 1)
+        dense_state(t_old, step, y_old, q, tk, out)
+        events(tk, out, args, eargs, probed, values)
+        i = level_reached(values, probed, directions, modes, LEVEL_BEFORE_PROBED)
+        if i >= 0:
+            return i
+    return -1
+
+
+@jit(inline="always")
+def probe_crossing(events, args, eargs, only, values, index, t_old, step, y_old, q, g_lo, direction, out):
+    """(lo, hi, g_lo, g_hi) of the first interval between interior probes of the step over which event `index`
+    crosses zero in its direction (its value g_lo at the step's start), or lo > hi when none does."""
+    t_lo = t_old
+    for k in range(1, PROBES + 1):
+        tk = t_old + step * k / (PROBES + 1)
+        dense_state(t_old, step, y_old, q, tk, out)
+        events(tk, out, args, eargs, only, values)
+        if crosses(g_lo, values[index], direction):
+            return t_lo, tk, g_lo, values[index]
+        t_lo, g_lo = tk, values[index]
+    return 1.0, 0.0, 0.0, 0.0
 
 
 @jit(inline="always")
@@ -254,7 +309,7 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         +1: crossings upwards count, -1 downwards, 0 both (solve_ivp's event.direction); for a level, the
         direction in which it is reached.
     modes : ndarray (n_events,) of int
-        CROSSING, TERMINAL, LEVEL_BEFORE or LEVEL_AFTER.
+        CROSSING, TERMINAL, LEVEL_BEFORE, LEVEL_AFTER, TERMINAL_PROBED or LEVEL_BEFORE_PROBED.
 
     Returns
     -------
@@ -306,6 +361,11 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
     err = np.empty(n)
     scale = np.empty(n)
     g_new = np.empty(g.shape[0])
+    probed = np.zeros(ne, dtype=np.bool_)               # the probed level events
+    any_probed = False
+    for i in range(ne):
+        probed[i] = active[i] and modes[i] == LEVEL_BEFORE_PROBED
+        any_probed = any_probed or probed[i]
     status = STEPPED
     while t < t_bound and count <= max_steps:
         if nfev > max_nfev:
@@ -354,7 +414,12 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         if not accepted:
             break
         events(t_new, y_new, args, eargs, active, g_new)
-        before = level_reached(g_new, active, directions, modes, LEVEL_BEFORE)
+        for m in range(4):                                       # this step's dense output
+            combine(qs[count - 1, :, m], None, 1.0, P[:, m], k, 7)
+        before = level_reached(g_new, active, directions, modes, LEVEL_BEFORE, LEVEL_BEFORE_PROBED)
+        if before < 0 and any_probed:
+            before = probe_level(events, args, eargs, probed, values, t, step, y, qs[count - 1], directions, modes,
+                                 stage)
         if before >= 0:                                          # a hard case ahead: this step is dropped
             hits[0] = before
             hit_ts[0] = t
@@ -362,19 +427,23 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
             n_hits = 1
             status = EVENT
             break
-        for m in range(4):                                       # this step's dense output
-            combine(qs[count - 1, :, m], None, 1.0, P[:, m], k, 7)
         hs[count - 1] = step
         # events crossed over this step, located, in time order (insertion), up to the first terminal one
         for i in range(ne):
-            if not active[i] or modes[i] >= LEVEL_BEFORE:
+            if not active[i] or is_level(modes[i]):
                 continue
-            up = g[i] <= 0.0 <= g_new[i]
-            down = g[i] >= 0.0 >= g_new[i]
-            if not ((up and directions[i] >= 0.0) or (down and directions[i] <= 0.0)):
-                continue
+            lo, hi, g_lo, g_hi = t, t_new, g[i], g_new[i]
+            if not crosses(g_lo, g_hi, directions[i]):
+                if modes[i] != TERMINAL_PROBED:
+                    continue
+                only[i] = True
+                lo, hi, g_lo, g_hi = probe_crossing(events, args, eargs, only, values, i, t, step, y,
+                                                    qs[count - 1], g[i], directions[i], stage)
+                if lo > hi:
+                    only[i] = False
+                    continue
             only[i] = True
-            t_e = locate(events, args, eargs, only, values, i, t, step, y, qs[count - 1], g[i], g_new[i], stage)
+            t_e = locate(events, args, eargs, only, values, i, t, step, y, qs[count - 1], lo, hi, g_lo, g_hi, stage)
             only[i] = False
             j = n_hits
             while j > 0 and hit_ts[j - 1] > t_e:
@@ -388,7 +457,7 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
             n_hits += 1
         first = -1
         for j in range(n_hits):
-            if modes[hits[j]] == TERMINAL:
+            if is_terminal(modes[hits[j]]):
                 first = j
                 n_hits = j + 1
                 break

@@ -100,7 +100,9 @@ def segment_events(system, a, b, settings, compiled, near_edge=False):
     step dropped) and solve_ivp's DOP853 goes on with the fine events; a sphere's chart ends the segment at the end
     of the step that passes its pole guard. A bound is a level too, until the branch is near_edge: then the next
     segment, started on the curve (projected) at most a step from the bound, ends exactly at the crossing, so
-    that the curve's end on the edge has one step's accuracy, not the whole branch's drift."""
+    that the curve's end on the edge has one step's accuracy, not the whole branch's drift. The compiled method
+    probes the bounds inside each step too (spatialkin.kernels.rk.PROBES), so that a curve grazing out of a trim
+    and back within one step ends there."""
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
     handoff = ("handoff", None)
@@ -119,7 +121,9 @@ def segment_events(system, a, b, settings, compiled, near_edge=False):
             plan.append((kb.POLE_A + k, -1, ("chart", k), "after" if compiled else None))
     if settings.close:
         plan.append((kb.CLOSURE, 1, ("closure", None), None))
-    return [Event(system, i, d, level=level) for i, d, _, level in plan], [kind for _, _, kind, _ in plan]
+    edges = range(kb.EDGE, kb.EDGE + 8)
+    return ([Event(system, i, d, level=level, probed=compiled and i in edges) for i, d, _, level in plan],
+            [kind for _, _, kind, _ in plan])
 
 
 def at_outer_edge(a, b, y, sign):

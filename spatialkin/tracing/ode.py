@@ -74,21 +74,30 @@ class Event:
 
     ``level`` ('before' or 'after', the compiled method only) makes it a level instead of a crossing: the
     integration ends at the last step before the one whose end reaches zero in the event's direction (that
-    step dropped), or at the end of the first such step (spatialkin.kernels.rk.LEVEL_BEFORE, LEVEL_AFTER)."""
+    step dropped), or at the end of the first such step (spatialkin.kernels.rk.LEVEL_BEFORE, LEVEL_AFTER).
+    ``probed`` (the compiled method; solve_ivp's methods check step ends only) also evaluates a terminal crossing
+    or a level 'before' at interior points of each step (rk.TERMINAL_PROBED, LEVEL_BEFORE_PROBED)."""
 
-    def __init__(self, system, index, direction, terminal=True, level=None):
+    def __init__(self, system, index, direction, terminal=True, level=None, probed=False):
         if level not in (None, "before", "after"):
             raise ValueError(f"level must be None, 'before' or 'after', got {level!r}")
+        if probed and (level == "after" or (level is None and not terminal)):
+            raise ValueError("probed is for a terminal crossing or a level 'before'")
         self.system, self.index, self.direction = system, int(index), float(direction)
         self.terminal = bool(terminal or level)
         self.level = level
+        self.probed = bool(probed)
         self._only = self._out = None        # work arrays, made at the first call (solve_ivp's methods only)
 
     @property
     def mode(self):
         """The event's entry in spatialkin.kernels.rk.advance's modes."""
         if self.level is not None:
-            return rk.LEVEL_BEFORE if self.level == "before" else rk.LEVEL_AFTER
+            if self.level == "after":
+                return rk.LEVEL_AFTER
+            return rk.LEVEL_BEFORE_PROBED if self.probed else rk.LEVEL_BEFORE
+        if self.probed:
+            return rk.TERMINAL_PROBED
         return rk.TERMINAL if self.terminal else rk.CROSSING
 
     def __call__(self, t, y, *_):

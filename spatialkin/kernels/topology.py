@@ -335,3 +335,22 @@ def point_values(s_data, t_data, m, c, uv, out):
 def level_enclosure(s_data, t_data, m, c, pad, cpad, u, v):
     """(lo, hi): a rigorous enclosure of g at the point (u, v) (its round-off and the placement's)."""
     return jet(s_data, t_data, m, c, pad, cpad, (u, u), (v, v))[0]
+
+
+@jit
+def line_on_level(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, probes, widen):
+    """True when g is zero within its round-off at every one of `probes` evenly spaced points of the parameter line
+    (parameter `fixed` of S = value, the other over [t0, t1], both ends included, spaced as numpy.linspace spaces
+    them): its rigorous enclosure, widened `widen` times its width on each side, holds zero. Stops at the first
+    probe off the level."""
+    step = (t1 - t0) / (probes - 1)
+    for i in range(probes):
+        t = t1 if i == probes - 1 else i * step + t0
+        if fixed == 1:
+            lo, hi = jet(s_data, t_data, m, c, pad, cpad, (t, t), (value, value))[0]
+        else:
+            lo, hi = jet(s_data, t_data, m, c, pad, cpad, (value, value), (t, t))[0]
+        width = hi - lo
+        if not (lo - widen * width <= 0.0 <= hi + widen * width):
+            return False
+    return True

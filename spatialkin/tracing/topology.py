@@ -38,6 +38,7 @@ import scipy.linalg
 from scipy.optimize import brentq
 
 from ..kernels import interval as ki
+from ..kernels import surfaces as ks
 from ..kernels import topology as kt
 from .placement import bounding_ball, check_not_coincident, common_axis, ruled_along
 from .traits import traits
@@ -226,6 +227,21 @@ class Reader:
         return kt.level_enclosure(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
                                   float(uv[0]), float(uv[1]))
 
+    def line_on_level(self, fixed, value, t0, t1):
+        """True when g is zero within its round-off (on_level) at LINE_PROBES evenly spaced points of the line
+        (parameter `fixed` of S = value, the other over [t0, t1]): the line itself lies on T."""
+        return kt.line_on_level(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad, int(fixed),
+                                float(value), float(t0), float(t1), LINE_PROBES, ON_LEVEL)
+
+    def line_points(self, fixed, value, along):
+        """Points (N, 3) of S on the line (parameter `fixed` = value) at the other parameter's values along."""
+        uv = np.empty((len(along), 2))
+        uv[:, 1 - fixed] = along
+        uv[:, fixed] = value
+        out = np.empty((len(along), 3))
+        ks.evaluate(self.s.data, uv, out)
+        return out
+
     def on_level(self, uv):
         """True when g at uv is zero within its round-off (a rigorous enclosure, widened ON_LEVEL times)."""
         lo, hi = self.enclosure(uv)
@@ -292,25 +308,19 @@ def topology(a, b, scale, tolerance):
     loose = []                                      # (surface reader, uv) of unresolved boxes
     apex_points = [p.point(0.0, v) for v in apexes] if mode == "general" else []
 
-    def keep(point):
-        """A start inside both trims and off the apexes (the rings round them seed their branches)."""
-        if any(np.linalg.norm(point - x) <= APEX_CLEARANCE * scale for x in apex_points):
-            return False
-        return inside_trims(a, point, tolerance) and inside_trims(b, point, tolerance)
+    keep = Keeper(a, b, apex_points, scale, tolerance)
 
     def add_line_roots(reader, fixed, value, t_lo, t_hi, name, surf_index, edge):
-        along = np.linspace(t_lo, t_hi, LINE_PROBES)
-        probes = [(t, value) if fixed == 1 else (value, t) for t in along]
-        if all(reader.on_level(uv) for uv in probes):
+        if reader.line_on_level(fixed, value, t_lo, t_hi):
             # the whole line lies on the other surface (a patch's edge in the other plane, a rim on it): it
             # is a piece of the intersection itself; starts on it, inside both trims, trace it
-            topo.seeds += [pt for pt in (reader.s.point(*uv) for uv in probes[1:-1]) if keep(pt)]
+            along = np.linspace(t_lo, t_hi, LINE_PROBES)[1:-1]
+            topo.seeds += keep.select(reader.line_points(fixed, value, along))
             return np.empty(0), np.empty(0)
         roots, unresolved = reader.line(fixed, value, t_lo, t_hi, topo, name)
-        for t in roots:
-            uv = (t, value) if fixed == 1 else (value, t)
-            pt = reader.s.point(*uv)
-            if keep(pt):
+        if len(roots):
+            pts = reader.line_points(fixed, value, roots)
+            for pt in pts[keep.many(pts)]:
                 if edge:
                     topo.edge_starts.append((pt, surf_index, fixed, value))
                 else:
@@ -347,8 +357,7 @@ def topology(a, b, scale, tolerance):
                 if box[2] <= ring <= box[3]:
                     roots, unresolved = add_line_roots(pq, 1, ring, box[0], box[1], "apex ring", None, False)
                     found += len(roots) + len(unresolved)
-            if (not found and pq.on_level((0.0, v)) and inside_trims(a, apex, tolerance)
-                    and inside_trims(b, apex, tolerance)):
+            if not found and pq.on_level((0.0, v)) and keep.inside_both(apex):
                 topo.contacts.append(apex)           # on Q to round-off, with no branch round it
         # Q's own apexes on P: singular points of the curve (known, so that the tracer's jumps pass them exactly;
         # a chart's poles are no points of the curve's kind)
@@ -364,10 +373,7 @@ def topology(a, b, scale, tolerance):
         for lo, hi in split_range(box[2], box[3], bands):
             roots, unresolved = pq.extremal(np.array([box[0], box[1], lo, hi]), traits(p).parameter_units(scale),
                                             topo)
-            for uv in roots:
-                pt = p.point(*uv)
-                if keep(pt):
-                    topo.seeds.append(pt)
+            topo.seeds += keep.select(p.point(roots[:, 0], roots[:, 1]))
             loose += [(pq, uv) for uv in unresolved]
     classify(loose, topo, scale, keep)
     topo.seconds = time.perf_counter() - t0
@@ -448,7 +454,7 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
             continue
         # an arc of a circle cut by a trimmed plane: seed it at a point inside both trims
         ring = p.point(np.linspace(-math.pi, math.pi, 64, endpoint=False), np.full(64, v))
-        inside = [x for x in ring if keep(x)]
+        inside = keep.select(ring)
         if inside:
             topo.seeds.append(inside[0])
     if q_rim:
@@ -536,16 +542,57 @@ def merge_values(values, gap):
     return out
 
 
-def inside_trims(surface, point, tolerance):
-    """True when the surface's foot point of `point` lies within its trims (with a slack of the tolerance)."""
-    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
-    if not (np.isfinite([u0, u1, v0, v1]).any()):
-        return True
-    u, v = surface.parameters(point)
-    u_slack, v_slack = traits(surface).trim_slack(surface, 10.0 * tolerance)
-    if not (u0 - u_slack <= u <= u1 + u_slack):
-        return False
-    return v0 - v_slack <= v <= v1 + v_slack
+class Trims:
+    """The trim test of one surface, set up once per call: which of many points have their foot point within
+    its trims (with a slack of the tolerance)."""
+
+    def __init__(self, surface, tolerance):
+        (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+        self.data = surface.data
+        self.trimmed = bool(np.isfinite([u0, u1, v0, v1]).any())
+        if self.trimmed:
+            u_slack, v_slack = traits(surface).trim_slack(surface, 10.0 * tolerance)
+            self.u_lo, self.u_hi, self.v_lo, self.v_hi = u0 - u_slack, u1 + u_slack, v0 - v_slack, v1 + v_slack
+
+    def inside(self, points):
+        """(N,) bool: True where the foot point of points (N, 3) lies within the trims."""
+        points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
+        if not self.trimmed:
+            return np.ones(len(points), dtype=bool)
+        uv = np.empty((len(points), 2))
+        ks.inverse(self.data, points, uv)
+        return (self.u_lo <= uv[:, 0]) & (uv[:, 0] <= self.u_hi) & (self.v_lo <= uv[:, 1]) & (uv[:, 1] <= self.v_hi)
+
+
+class Keeper:
+    """Which starts are kept: inside both trims and off the apexes of P (the rings round them seed their
+    branches); set up once per call."""
+
+    def __init__(self, a, b, apex_points, scale, tolerance):
+        self.trims = (Trims(a, tolerance), Trims(b, tolerance))
+        self.apexes = np.array(apex_points, dtype=float).reshape(-1, 3)
+        self.clearance = APEX_CLEARANCE * scale
+
+    def inside_both(self, point):
+        """True when the point (3,) is inside both trims (wherever it is relative to the apexes)."""
+        return bool(self.trims[0].inside(point)[0] and self.trims[1].inside(point)[0])
+
+    def many(self, points):
+        """(N,) bool for points (N, 3)."""
+        points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
+        kept = self.trims[0].inside(points) & self.trims[1].inside(points)
+        for x in self.apexes:
+            kept &= np.sqrt(np.sum((points - x) ** 2, axis=1)) > self.clearance
+        return kept
+
+    def __call__(self, point):
+        """True when the start point (3,) is kept."""
+        return bool(self.many(point)[0])
+
+    def select(self, points):
+        """The kept rows of points (N, 3), as a list of (3,) arrays."""
+        points = np.asarray(points, dtype=float).reshape(-1, 3)
+        return list(points[self.many(points)]) if len(points) else []
 
 
 def classify(loose, topo, scale, keep):

@@ -354,3 +354,30 @@ def line_on_level(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, probes,
         if not (lo - widen * width <= 0.0 <= hi + widen * width):
             return False
     return True
+
+
+@jit
+def line_search(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse, max_boxes, out, kinds):
+    """line_roots, its records then reduced to points of the line: the verified roots, refined (refine_line),
+    in out[:K, 0], then the unresolved boxes' midpoints in out[K:N, 0] (each in the search's order).
+
+    Returns (N, status, boxes visited, K).
+    """
+    n, status, boxes = line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse,
+                                  max_boxes, out, kinds)
+    roots = np.empty(n)
+    loose = np.empty(n)
+    k = 0
+    j = 0
+    for i in range(n):
+        if kinds[i] == VERIFIED:
+            roots[k] = refine_line(s_data, t_data, m, c, fixed, value, out[i, 0], out[i, 1])
+            k += 1
+        else:
+            loose[j] = 0.5 * (out[i, 0] + out[i, 1])
+            j += 1
+    for i in range(k):
+        out[i, 0] = roots[i]
+    for i in range(j):
+        out[k + i, 0] = loose[i]
+    return n, status, boxes, k

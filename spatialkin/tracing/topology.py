@@ -84,6 +84,9 @@ NODE_OFFSET = 2e-2
 #: Where the seams of periodic parameters are cut (offsets from -pi, tried in turn): any position proves the
 #: same, but a component lying along the seam itself (a meridian plane through a torus axis) must be avoided.
 SEAM_OFFSETS = (0.0, 0.7236, 2.2019, 4.0537, 5.3211)
+#: Grid (per parameter) on which g's typical size is sampled, and samples of a seam candidate.
+SEAM_GRID, SEAM_SAMPLES = 9, 17
+SEAM_T = np.linspace(0.0, 1.0, SEAM_SAMPLES)
 #: A seam candidate is rejected when g is below this fraction of its typical size at most of its samples.
 SEAM_FLAT = 1e-9
 #: Newton iterations locating a critical point of g from an unresolved box.
@@ -193,14 +196,11 @@ class Reader:
         out = np.empty((MAX_RECORDS, 2))
         kinds = np.empty(MAX_RECORDS, dtype=np.int64)
         width = max(self.min_width(t0, t1), 1e-15 * (t1 - t0))
-        n, status, boxes = kt.line_roots(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad, int(fixed),
-                                         float(value), float(t0), float(t1), width, COARSE * (t1 - t0), MAX_BOXES,
-                                         out, kinds)
-        self._account(topo, name, status, boxes, kinds[:n])
-        roots = [kt.refine_line(self.s.data, self.t.data, self.m, self.c, int(fixed), float(value), lo, hi)
-                 for lo, hi in out[:n][kinds[:n] == kt.VERIFIED]]
-        loose = [0.5 * (lo + hi) for lo, hi in out[:n][kinds[:n] == kt.UNRESOLVED]]
-        return np.array(roots), np.array(loose)
+        n, status, boxes, verified = kt.line_search(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
+                                                    int(fixed), float(value), float(t0), float(t1), width,
+                                                    COARSE * (t1 - t0), MAX_BOXES, out, kinds)
+        self._account(topo, name, status, boxes, verified, n - verified)
+        return out[:verified, 0].copy(), out[verified:n, 0].copy()
 
     def extremal(self, box, unit, topo):
         """Roots of g = 0, d_v g_u - d_u g_v = 0 in the box: (verified (K, 2), unresolved (L, 2))."""
@@ -213,7 +213,8 @@ class Reader:
                                               np.ascontiguousarray(box, dtype=float), width,
                                               COARSE * max((box[1] - box[0]) / width[0], (box[3] - box[2]) / width[1]),
                                               MAX_BOXES, out, kinds)
-        self._account(topo, "interior", status, boxes, kinds[:n])
+        verified = int(np.count_nonzero(kinds[:n] == kt.VERIFIED))
+        self._account(topo, "interior", status, boxes, verified, n - verified)
         uv = np.empty(2)
         roots = []
         for rec in out[:n][kinds[:n] == kt.VERIFIED]:
@@ -256,10 +257,10 @@ class Reader:
         return out
 
     @staticmethod
-    def _account(topo, name, status, boxes, kinds):
+    def _account(topo, name, status, boxes, verified, unresolved):
         topo.boxes += int(boxes)
-        topo.verified += int(np.sum(kinds == kt.VERIFIED))
-        topo.unresolved += int(np.sum(kinds == kt.UNRESOLVED))
+        topo.verified += verified
+        topo.unresolved += unresolved
         topo.searches.append((name, int(boxes)))
         if status == kt.OVERFLOW:
             raise TopologyError(f"the {name} search ran out of its budget of {MAX_BOXES} boxes: the intersection "
@@ -381,23 +382,38 @@ def topology(a, b, scale, tolerance):
 
 
 def place_seams(reader, box, u_periodic, v_periodic, apexes):
-    """Cut the periodic parameters' seams (box is changed in place) where g does not vanish all along them."""
-    uu, vv = np.meshgrid(np.linspace(box[0], box[1], 9), np.linspace(box[2], box[3], 9))
-    typical = float(np.max(np.abs(reader.values(np.column_stack([uu.ravel(), vv.ravel()]))[:, 0])))
-    t = np.linspace(0.0, 1.0, 17)
+    """Cut the periodic parameters' seams (box is changed in place) where g does not vanish all along them.
+
+    g's typical size comes from a SEAM_GRID x SEAM_GRID grid over the box, each seam candidate is sampled at
+    SEAM_SAMPLES points; the grid and the first u seam candidate are evaluated in one call."""
+    grid = np.empty((SEAM_GRID * SEAM_GRID, 2))
+    grid[:, 0] = np.tile(np.linspace(box[0], box[1], SEAM_GRID), SEAM_GRID)
+    grid[:, 1] = np.repeat(np.linspace(box[2], box[3], SEAM_GRID), SEAM_GRID)
+    if u_periodic:
+        grid = np.vstack([grid, seam_samples(0, -math.pi + SEAM_OFFSETS[0], box[2], box[3])])
+    g = reader.values(grid)[:, 0]
+    n = SEAM_GRID * SEAM_GRID
+    typical = float(np.max(np.abs(g[:n])))
     for k, periodic in ((0, u_periodic), (1, v_periodic)):
         if not periodic:
             continue
         lo, hi = box[2 - 2 * k], box[3 - 2 * k]
-        for offset in SEAM_OFFSETS:
+        for i, offset in enumerate(SEAM_OFFSETS):
             value = -math.pi + offset
             if k == 1 and any(abs(math.remainder(value - v, 2 * math.pi)) < 1e-9 for v in apexes):
                 continue
-            other = lo + t * (hi - lo)
-            uv = np.column_stack([np.full_like(t, value), other] if k == 0 else [other, np.full_like(t, value)])
-            if np.mean(np.abs(reader.values(uv)[:, 0]) <= SEAM_FLAT * typical) < 0.5:
+            seam = g[n:] if k == 0 and i == 0 else reader.values(seam_samples(k, value, lo, hi))[:, 0]
+            if np.mean(np.abs(seam) <= SEAM_FLAT * typical) < 0.5:
                 break
         box[2 * k], box[2 * k + 1] = value, value + 2 * math.pi
+
+
+def seam_samples(fixed, value, lo, hi):
+    """SEAM_SAMPLES parameter points (N, 2) on the seam (parameter `fixed` = value), the other over [lo, hi]."""
+    uv = np.empty((SEAM_SAMPLES, 2))
+    uv[:, fixed] = value
+    uv[:, 1 - fixed] = lo + SEAM_T * (hi - lo)
+    return uv
 
 
 def q_edges(q, qp, p_ball, add_line_roots, q_index):

@@ -381,3 +381,34 @@ def line_search(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width
     for i in range(j):
         out[k + i, 0] = loose[i]
     return n, status, boxes, k
+
+
+@jit
+def extremal_search(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coarse, max_boxes, out, kinds):
+    """extremal_points, its records then reduced to parameter points: the verified roots, refined
+    (refine_extremal), in out[:K, :2], then the unresolved boxes' centres in out[K:N, :2] (each in the search's
+    order).
+
+    Returns (N, status, boxes visited, K).
+    """
+    n, status, boxes = extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coarse, max_boxes,
+                                       out, kinds)
+    points = np.empty((n, 2))
+    uv = np.empty(2)
+    k = 0
+    for i in range(n):
+        if kinds[i] == VERIFIED:
+            refine_extremal(s_data, t_data, m, c, du, dv, out[i], uv)
+            points[k, 0] = uv[0]
+            points[k, 1] = uv[1]
+            k += 1
+    j = k
+    for i in range(n):
+        if kinds[i] != VERIFIED:
+            points[j, 0] = 0.5 * (out[i, 0] + out[i, 1])
+            points[j, 1] = 0.5 * (out[i, 2] + out[i, 3])
+            j += 1
+    for i in range(n):
+        out[i, 0] = points[i, 0]
+        out[i, 1] = points[i, 1]
+    return n, status, boxes, k

@@ -209,19 +209,13 @@ class Reader:
         kinds = np.empty(MAX_RECORDS, dtype=np.int64)
         width = np.array([max(self.min_width(box[0], box[1]), 1e-15 * (box[1] - box[0])),
                           max(self.min_width(box[2], box[3]), 1e-15 * (box[3] - box[2]))])
-        n, status, boxes = kt.extremal_points(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad, du, dv,
-                                              np.ascontiguousarray(box, dtype=float), width,
-                                              COARSE * max((box[1] - box[0]) / width[0], (box[3] - box[2]) / width[1]),
-                                              MAX_BOXES, out, kinds)
-        verified = int(np.count_nonzero(kinds[:n] == kt.VERIFIED))
+        n, status, boxes, verified = kt.extremal_search(self.s.data, self.t.data, self.m, self.c, self.pad,
+                                                        self.cpad, du, dv, np.ascontiguousarray(box, dtype=float),
+                                                        width, COARSE * max((box[1] - box[0]) / width[0],
+                                                                            (box[3] - box[2]) / width[1]),
+                                                        MAX_BOXES, out, kinds)
         self._account(topo, "interior", status, boxes, verified, n - verified)
-        uv = np.empty(2)
-        roots = []
-        for rec in out[:n][kinds[:n] == kt.VERIFIED]:
-            kt.refine_extremal(self.s.data, self.t.data, self.m, self.c, du, dv, rec, uv)
-            roots.append(uv.copy())
-        loose = [[0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3])] for r in out[:n][kinds[:n] == kt.UNRESOLVED]]
-        return np.array(roots).reshape(-1, 2), np.array(loose).reshape(-1, 2)
+        return out[:verified, :2].copy(), out[verified:n, :2].copy()
 
     def enclosure(self, uv):
         """(lo, hi): a rigorous enclosure of g at the parameter point uv of S."""

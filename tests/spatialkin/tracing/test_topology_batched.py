@@ -47,6 +47,26 @@ def line(reader, fixed, value, t0, t1):
     return np.array(roots), np.array(loose), status, boxes
 
 
+def extremal(reader, box, unit):
+    """(verified (K, 2), unresolved (L, 2)) of the interior search: extremal_points, then refine_extremal per root."""
+    du, dv = math.cos(tp.DIRECTION) / unit[0], math.sin(tp.DIRECTION) / unit[1]
+    out = np.empty((tp.MAX_RECORDS, 4))
+    kinds = np.empty(tp.MAX_RECORDS, dtype=np.int64)
+    width = np.array([max(reader.min_width(box[0], box[1]), 1e-15 * (box[1] - box[0])),
+                      max(reader.min_width(box[2], box[3]), 1e-15 * (box[3] - box[2]))])
+    n, status, boxes = kt.extremal_points(reader.s.data, reader.t.data, reader.m, reader.c, reader.pad, reader.cpad,
+                                          du, dv, np.ascontiguousarray(box, dtype=float), width,
+                                          tp.COARSE * max((box[1] - box[0]) / width[0], (box[3] - box[2]) / width[1]),
+                                          tp.MAX_BOXES, out, kinds)
+    uv = np.empty(2)
+    roots = []
+    for rec in out[:n][kinds[:n] == kt.VERIFIED]:
+        kt.refine_extremal(reader.s.data, reader.t.data, reader.m, reader.c, du, dv, rec, uv)
+        roots.append(uv.copy())
+    loose = [[0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3])] for r in out[:n][kinds[:n] == kt.UNRESOLVED]]
+    return np.array(roots).reshape(-1, 2), np.array(loose).reshape(-1, 2), boxes
+
+
 def place_seams(reader, box, u_periodic, v_periodic, apexes):
     uu, vv = np.meshgrid(np.linspace(box[0], box[1], 9), np.linspace(box[2], box[3], 9))
     typical = float(np.max(np.abs(reader.values(np.column_stack([uu.ravel(), vv.ravel()]))[:, 0])))
@@ -160,3 +180,24 @@ def test_place_seams_matches_the_scalar_code(k):
             tp.place_seams(reader, got, u_periodic, v_periodic, apexes)
             place_seams(reader, want, u_periodic, v_periodic, apexes)
             assert np.array_equal(got, want)
+
+
+@pytest.mark.parametrize("k", range(len(pairs())))
+def test_extremal_search_matches_the_scalar_code(k):
+    """Reader.extremal (one compiled extremal_search) against extremal_points and refine_extremal called root by
+    root, over P's whole domain and a sub-box of it, for the parametrised surface of a general placement."""
+    a, b = pairs()[k]
+    for p, q in ((a, b), (b, a)):
+        kind = traits(p)
+        p = kind.general_chart(p, q)
+        box, u_periodic, v_periodic = tp.domain(p, tp.bounding_ball(q))
+        if not (box[0] < box[1] and box[2] < box[3]) or not np.all(np.isfinite(box)):
+            continue
+        reader = tp.Reader(p, q)
+        unit = kind.parameter_units(2.0)
+        for sub in (box, box * np.array([0.9, 0.4, 0.7, 0.3])):
+            topo = tp.Topology(P=p, Q=q, mode="general")
+            roots, loose = reader.extremal(sub, unit, topo)
+            want_roots, want_loose, boxes = extremal(reader, sub, unit)
+            assert np.array_equal(roots, want_roots) and np.array_equal(loose, want_loose)
+            assert topo.boxes == boxes and topo.verified == len(roots) and topo.unresolved == len(loose)

@@ -21,6 +21,7 @@ import numpy as np
 
 from .._jit import jit
 from .interval import (contains_zero, iadd, imul, intersect, iscale, isub, jet, point)
+from .surfaces import inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
 #: Status of a search: completed, or stopped at its box budget (the result is then not a proof).
@@ -338,22 +339,84 @@ def level_enclosure(s_data, t_data, m, c, pad, cpad, u, v):
 
 
 @jit
+def spaced(lo, hi, n, i):
+    """Point i of n evenly spaced over [lo, hi], ends included, to the bit as numpy.linspace(lo, hi, n)[i]."""
+    if i == n - 1:
+        return hi
+    return i * ((hi - lo) / (n - 1)) + lo
+
+
+@jit
+def _on_line(fixed, value, t):
+    """(u, v) of the point t of the parameter line (parameter `fixed` = value)."""
+    if fixed == 1:
+        return t, value
+    return value, t
+
+
+@jit
 def line_on_level(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, probes, widen):
     """True when g is zero within its round-off at every one of `probes` evenly spaced points of the parameter line
-    (parameter `fixed` of S = value, the other over [t0, t1], both ends included, spaced as numpy.linspace spaces
-    them): its rigorous enclosure, widened `widen` times its width on each side, holds zero. Stops at the first
-    probe off the level."""
-    step = (t1 - t0) / (probes - 1)
+    (parameter `fixed` of S = value, the other over [t0, t1]: spaced()): its rigorous enclosure, widened `widen`
+    times its width on each side, holds zero. Stops at the first probe off the level."""
     for i in range(probes):
-        t = t1 if i == probes - 1 else i * step + t0
-        if fixed == 1:
-            lo, hi = jet(s_data, t_data, m, c, pad, cpad, (t, t), (value, value))[0]
-        else:
-            lo, hi = jet(s_data, t_data, m, c, pad, cpad, (value, value), (t, t))[0]
+        u, v = _on_line(fixed, value, spaced(t0, t1, probes, i))
+        lo, hi = jet(s_data, t_data, m, c, pad, cpad, (u, u), (v, v))[0]
         width = hi - lo
         if not (lo - widen * width <= 0.0 <= hi + widen * width):
             return False
     return True
+
+
+@jit
+def level_max(s_data, t_data, m, c, box, n):
+    """Largest |g| (float evaluation) on the n x n grid of spaced() points over box (u_lo, u_hi, v_lo, v_hi)."""
+    top = 0.0
+    for j in range(n):
+        v = spaced(box[2], box[3], n, j)
+        for i in range(n):
+            top = max(top, abs(_point_jet(s_data, t_data, m, c, spaced(box[0], box[1], n, i), v)[0]))
+    return top
+
+
+@jit
+def flat_fraction(s_data, t_data, m, c, fixed, value, lo, hi, n, floor):
+    """Fraction of n spaced() points of the parameter line (parameter `fixed` = value, the other over [lo, hi])
+    where |g| (float evaluation) is at most floor."""
+    flat = 0
+    for i in range(n):
+        u, v = _on_line(fixed, value, lo + spaced(0.0, 1.0, n, i) * (hi - lo))
+        if abs(_point_jet(s_data, t_data, m, c, u, v)[0]) <= floor:
+            flat += 1
+    return flat / n
+
+
+@jit
+def _inside(data, bounds, point, q, uv):
+    """True when the foot point's parameters of point lie in bounds (u_lo, u_hi, v_lo, v_hi); NaN bounds: no trim."""
+    if bounds[0] != bounds[0]:
+        return True
+    to_local(data, point, q)
+    inverse_local(data, q, uv)
+    return bounds[0] <= uv[0] <= bounds[1] and bounds[2] <= uv[1] <= bounds[3]
+
+
+@jit
+def keep_points(a_data, a_bounds, b_data, b_bounds, apexes, clearance, points, out):
+    """out[k] = True where points[k] (N, 3) has its foot points on both surfaces within their trims (a_bounds,
+    b_bounds: u_lo, u_hi, v_lo, v_hi with the slack included; NaN: untrimmed) and lies farther than clearance
+    from every apex (K, 3)."""
+    q = np.empty(3)
+    uv = np.empty(2)
+    for k in range(points.shape[0]):
+        kept = _inside(a_data, a_bounds, points[k], q, uv) and _inside(b_data, b_bounds, points[k], q, uv)
+        for j in range(apexes.shape[0]):
+            d0 = points[k, 0] - apexes[j, 0]
+            d1 = points[k, 1] - apexes[j, 1]
+            d2 = points[k, 2] - apexes[j, 2]
+            if np.sqrt(d0 * d0 + d1 * d1 + d2 * d2) <= clearance:
+                kept = False
+        out[k] = kept
 
 
 @jit

@@ -86,9 +86,10 @@ NODE_OFFSET = 2e-2
 SEAM_OFFSETS = (0.0, 0.7236, 2.2019, 4.0537, 5.3211)
 #: Grid (per parameter) on which g's typical size is sampled, and samples of a seam candidate.
 SEAM_GRID, SEAM_SAMPLES = 9, 17
-SEAM_T = np.linspace(0.0, 1.0, SEAM_SAMPLES)
 #: A seam candidate is rejected when g is below this fraction of its typical size at most of its samples.
 SEAM_FLAT = 1e-9
+#: No points (an empty list of apexes).
+NO_POINTS = np.empty((0, 3))
 #: Newton iterations locating a critical point of g from an unresolved box.
 CRITICAL_ITER = 40
 
@@ -233,9 +234,7 @@ class Reader:
         uv = np.empty((len(along), 2))
         uv[:, 1 - fixed] = along
         uv[:, fixed] = value
-        out = np.empty((len(along), 3))
-        ks.evaluate(self.s.data, uv, out)
-        return out
+        return points_at(self.s, uv)
 
     def on_level(self, uv):
         """True when g at uv is zero within its round-off (a rigorous enclosure, widened ON_LEVEL times)."""
@@ -260,6 +259,14 @@ class Reader:
             raise TopologyError(f"the {name} search ran out of its budget of {MAX_BOXES} boxes: the intersection "
                                 "could not be resolved there (a tangency along a curve in a placement not "
                                 "recognised as symmetric?)", where=name)
+
+
+def points_at(surface, uv):
+    """Points (N, 3) of a surface at parameter points uv (N, 2): Surface.point without its broadcasting."""
+    uv = np.ascontiguousarray(uv, dtype=float).reshape(-1, 2)
+    out = np.empty((len(uv), 3))
+    ks.evaluate(surface.data, uv, out)
+    return out
 
 
 def topology(a, b, scale, tolerance):
@@ -294,14 +301,15 @@ def topology(a, b, scale, tolerance):
         topo.seconds = time.perf_counter() - t0
         return topo                                  # Q's ball misses P's trimmed domain
     pq, qp = Reader(p, q), Reader(q, p)
+    collapse = traits(p).collapse_lines(p)
     if mode == "general":
-        place_seams(pq, box, u_periodic, v_periodic, traits(p).collapse_lines(p))
+        place_seams(pq, box, u_periodic, v_periodic, collapse)
     index = {id(a): 0, id(b): 1}
     p_index, q_index = index[id(p_user)], index[id(q)]
-    apexes = [v + 2 * math.pi * math.ceil((box[2] - v) / (2 * math.pi) - 1e-12) for v in traits(p).collapse_lines(p)]
+    apexes = [v + 2 * math.pi * math.ceil((box[2] - v) / (2 * math.pi) - 1e-12) for v in collapse]
     apexes = sorted({v for v in apexes if box[2] <= v <= box[3]})
     loose = []                                      # (surface reader, uv) of unresolved boxes
-    apex_points = [p.point(0.0, v) for v in apexes] if mode == "general" else []
+    apex_points = list(points_at(p, [(0.0, v) for v in apexes])) if mode == "general" else []
 
     keep = Keeper(a, b, apex_points, scale, tolerance)
 
@@ -341,8 +349,7 @@ def topology(a, b, scale, tolerance):
             add_line_roots(pq, 1, box[2], box[0], box[1], "v seam", None, False)
         # rings round poles and apexes on Q
         bands = []
-        for v in apexes:
-            apex = p.point(0.0, v)
+        for v, apex in zip(apexes, apex_points):
             if float(q.distance(apex)) > 1e3 * tolerance:
                 continue
             bands.append((v - RINGS[-1], v + RINGS[-1]))
@@ -368,7 +375,7 @@ def topology(a, b, scale, tolerance):
         for lo, hi in split_range(box[2], box[3], bands):
             roots, unresolved = pq.extremal(np.array([box[0], box[1], lo, hi]), traits(p).parameter_units(scale),
                                             topo)
-            topo.seeds += keep.select(p.point(roots[:, 0], roots[:, 1]))
+            topo.seeds += keep.select(points_at(p, roots))
             loose += [(pq, uv) for uv in unresolved]
     classify(loose, topo, scale, keep)
     topo.seconds = time.perf_counter() - t0
@@ -376,38 +383,22 @@ def topology(a, b, scale, tolerance):
 
 
 def place_seams(reader, box, u_periodic, v_periodic, apexes):
-    """Cut the periodic parameters' seams (box is changed in place) where g does not vanish all along them.
-
-    g's typical size comes from a SEAM_GRID x SEAM_GRID grid over the box, each seam candidate is sampled at
-    SEAM_SAMPLES points; the grid and the first u seam candidate are evaluated in one call."""
-    grid = np.empty((SEAM_GRID * SEAM_GRID, 2))
-    grid[:, 0] = np.tile(np.linspace(box[0], box[1], SEAM_GRID), SEAM_GRID)
-    grid[:, 1] = np.repeat(np.linspace(box[2], box[3], SEAM_GRID), SEAM_GRID)
-    if u_periodic:
-        grid = np.vstack([grid, seam_samples(0, -math.pi + SEAM_OFFSETS[0], box[2], box[3])])
-    g = reader.values(grid)[:, 0]
-    n = SEAM_GRID * SEAM_GRID
-    typical = float(np.max(np.abs(g[:n])))
+    """Cut the periodic parameters' seams (box is changed in place) where g does not vanish all along them: not
+    where g is below SEAM_FLAT of its typical size (its largest on a SEAM_GRID x SEAM_GRID grid over the box) at
+    half or more of SEAM_SAMPLES points along the seam."""
+    args = (reader.s.data, reader.t.data, reader.m, reader.c)
+    floor = SEAM_FLAT * kt.level_max(*args, box, SEAM_GRID)
     for k, periodic in ((0, u_periodic), (1, v_periodic)):
         if not periodic:
             continue
         lo, hi = box[2 - 2 * k], box[3 - 2 * k]
-        for i, offset in enumerate(SEAM_OFFSETS):
+        for offset in SEAM_OFFSETS:
             value = -math.pi + offset
             if k == 1 and any(abs(math.remainder(value - v, 2 * math.pi)) < 1e-9 for v in apexes):
                 continue
-            seam = g[n:] if k == 0 and i == 0 else reader.values(seam_samples(k, value, lo, hi))[:, 0]
-            if np.mean(np.abs(seam) <= SEAM_FLAT * typical) < 0.5:
+            if kt.flat_fraction(*args, k, value, lo, hi, SEAM_SAMPLES, floor) < 0.5:
                 break
         box[2 * k], box[2 * k + 1] = value, value + 2 * math.pi
-
-
-def seam_samples(fixed, value, lo, hi):
-    """SEAM_SAMPLES parameter points (N, 2) on the seam (parameter `fixed` = value), the other over [lo, hi]."""
-    uv = np.empty((SEAM_SAMPLES, 2))
-    uv[:, fixed] = value
-    uv[:, 1 - fixed] = lo + SEAM_T * (hi - lo)
-    return uv
 
 
 def q_edges(q, qp, p_ball, add_line_roots, q_index):
@@ -552,52 +543,42 @@ def merge_values(values, gap):
     return out
 
 
-class Trims:
-    """The trim test of one surface, set up once per call: which of many points have their foot point within
-    its trims (with a slack of the tolerance)."""
-
-    def __init__(self, surface, tolerance):
-        (u0, u1), (v0, v1) = surface.u_range, surface.v_range
-        self.data = surface.data
-        self.trimmed = bool(np.isfinite([u0, u1, v0, v1]).any())
-        if self.trimmed:
-            u_slack, v_slack = traits(surface).trim_slack(surface, 10.0 * tolerance)
-            self.u_lo, self.u_hi, self.v_lo, self.v_hi = u0 - u_slack, u1 + u_slack, v0 - v_slack, v1 + v_slack
-
-    def inside(self, points):
-        """(N,) bool: True where the foot point of points (N, 3) lies within the trims."""
-        points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
-        if not self.trimmed:
-            return np.ones(len(points), dtype=bool)
-        uv = np.empty((len(points), 2))
-        ks.inverse(self.data, points, uv)
-        return (self.u_lo <= uv[:, 0]) & (uv[:, 0] <= self.u_hi) & (self.v_lo <= uv[:, 1]) & (uv[:, 1] <= self.v_hi)
+def trim_bounds(surface, tolerance):
+    """(u_lo, u_hi, v_lo, v_hi) (4,): the trims of a surface widened by a slack of 10 tolerances (as parameter
+    slacks at the trims); all NaN when it has no trim."""
+    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    if not (math.isfinite(u0) or math.isfinite(u1) or math.isfinite(v0) or math.isfinite(v1)):
+        return np.full(4, np.nan)
+    u_slack, v_slack = traits(surface).trim_slack(surface, 10.0 * tolerance)
+    return np.array([u0 - u_slack, u1 + u_slack, v0 - v_slack, v1 + v_slack])
 
 
 class Keeper:
-    """Which starts are kept: inside both trims and off the apexes of P (the rings round them seed their
-    branches); set up once per call."""
+    """Which starts are kept: inside both trims (their foot points' parameters, with a slack of the tolerance)
+    and off the apexes of P (the rings round them seed their branches); set up once per call, each test of
+    many points one compiled call (spatialkin.kernels.topology.keep_points)."""
 
     def __init__(self, a, b, apex_points, scale, tolerance):
-        self.trims = (Trims(a, tolerance), Trims(b, tolerance))
+        self.data = (a.data, b.data)
+        self.bounds = (trim_bounds(a, tolerance), trim_bounds(b, tolerance))
         self.apexes = np.array(apex_points, dtype=float).reshape(-1, 3)
         self.clearance = APEX_CLEARANCE * scale
 
-    def inside_both(self, point):
-        """True when the point (3,) is inside both trims (wherever it is relative to the apexes)."""
-        return bool(self.trims[0].inside(point)[0] and self.trims[1].inside(point)[0])
-
-    def many(self, points):
-        """(N,) bool for points (N, 3)."""
+    def many(self, points, apexes=None):
+        """(N,) bool for points (N, 3); apexes (K, 3) in place of P's."""
         points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
-        kept = self.trims[0].inside(points) & self.trims[1].inside(points)
-        for x in self.apexes:
-            kept &= np.sqrt(np.sum((points - x) ** 2, axis=1)) > self.clearance
-        return kept
+        out = np.empty(len(points), dtype=bool)
+        kt.keep_points(self.data[0], self.bounds[0], self.data[1], self.bounds[1],
+                       self.apexes if apexes is None else apexes, self.clearance, points, out)
+        return out
 
     def __call__(self, point):
         """True when the start point (3,) is kept."""
         return bool(self.many(point)[0])
+
+    def inside_both(self, point):
+        """True when the point (3,) is inside both trims (wherever it is relative to the apexes)."""
+        return bool(self.many(point, NO_POINTS)[0])
 
     def select(self, points):
         """The kept rows of points (N, 3), as a list of (3,) arrays."""

@@ -26,6 +26,8 @@ from .surfaces import inverse_local, to_local
 VERIFIED, UNRESOLVED = 1, 2
 #: Status of a search: completed, or stopped at its box budget (the result is then not a proof).
 DONE, OVERFLOW = 0, -1
+#: Status of a line search that found the whole line on the level (line_search with probes): not searched.
+ON_LEVEL = 1
 #: A contracted box is searched again (rather than bisected) when each side shrank to this fraction or less.
 CONTRACTION = 0.7
 #: Depth of the explicit box stack.
@@ -420,12 +422,17 @@ def keep_points(a_data, a_bounds, b_data, b_bounds, apexes, clearance, points, o
 
 
 @jit
-def line_search(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse, max_boxes, out, kinds):
+def line_search(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse, max_boxes, out, kinds,
+                probes, widen):
     """line_roots, its records then reduced to points of the line: the verified roots, refined (refine_line),
-    in out[:K, 0], then the unresolved boxes' midpoints in out[K:N, 0] (each in the search's order).
+    in out[:K, 0], then the unresolved boxes' midpoints in out[K:N, 0] (each in the search's order). First,
+    when probes > 0, the line is probed (line_on_level with probes, widen): where it lies on the level, it is
+    not searched and the status is ON_LEVEL.
 
     Returns (N, status, boxes visited, K).
     """
+    if probes > 0 and line_on_level(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, probes, widen):
+        return 0, ON_LEVEL, 0, 0
     n, status, boxes = line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse,
                                   max_boxes, out, kinds)
     roots = np.empty(n)

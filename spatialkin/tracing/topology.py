@@ -191,15 +191,19 @@ class Reader:
         """Smallest box width on [lo, hi]: MIN_WIDTH_ULPS ulps of its magnitude."""
         return MIN_WIDTH_ULPS * ki.EPS * max(abs(lo), abs(hi), 1e-300)
 
-    def line(self, fixed, value, t0, t1, topo, name):
+    def line(self, fixed, value, t0, t1, topo, name, probe=False):
         """Roots of g on the line (parameter `fixed` of S = value, the other in [t0, t1]): (verified (K,),
-        unresolved (L,)) of the other parameter."""
+        unresolved (L,)) of the other parameter; with probe, None where the line lies on T (line_on_level), not
+        searched."""
         out = np.empty((MAX_RECORDS, 2))
         kinds = np.empty(MAX_RECORDS, dtype=np.int64)
         width = max(self.min_width(t0, t1), 1e-15 * (t1 - t0))
         n, status, boxes, verified = kt.line_search(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
                                                     int(fixed), float(value), float(t0), float(t1), width,
-                                                    COARSE * (t1 - t0), MAX_BOXES, out, kinds)
+                                                    COARSE * (t1 - t0), MAX_BOXES, out, kinds,
+                                                    LINE_PROBES if probe else 0, ON_LEVEL)
+        if status == kt.ON_LEVEL:
+            return None
         self._account(topo, name, status, boxes, verified, n - verified)
         return out[:verified, 0].copy(), out[verified:n, 0].copy()
 
@@ -222,12 +226,6 @@ class Reader:
         """(lo, hi): a rigorous enclosure of g at the parameter point uv of S."""
         return kt.level_enclosure(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
                                   float(uv[0]), float(uv[1]))
-
-    def line_on_level(self, fixed, value, t0, t1):
-        """True when g is zero within its round-off (on_level) at LINE_PROBES evenly spaced points of the line
-        (parameter `fixed` of S = value, the other over [t0, t1]): the line itself lies on T."""
-        return kt.line_on_level(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad, int(fixed),
-                                float(value), float(t0), float(t1), LINE_PROBES, ON_LEVEL)
 
     def line_points(self, fixed, value, along):
         """Points (N, 3) of S on the line (parameter `fixed` = value) at the other parameter's values along."""
@@ -314,13 +312,14 @@ def topology(a, b, scale, tolerance):
     keep = Keeper(a, b, apex_points, scale, tolerance)
 
     def add_line_roots(reader, fixed, value, t_lo, t_hi, name, surf_index, edge):
-        if reader.line_on_level(fixed, value, t_lo, t_hi):
+        found = reader.line(fixed, value, t_lo, t_hi, topo, name, probe=True)
+        if found is None:
             # the whole line lies on the other surface (a patch's edge in the other plane, a rim on it): it
             # is a piece of the intersection itself; starts on it, inside both trims, trace it
             along = np.linspace(t_lo, t_hi, LINE_PROBES)[1:-1]
             topo.seeds += keep.select(reader.line_points(fixed, value, along))
             return np.empty(0), np.empty(0)
-        roots, unresolved = reader.line(fixed, value, t_lo, t_hi, topo, name)
+        roots, unresolved = found
         if len(roots):
             pts = reader.line_points(fixed, value, roots)
             for pt in pts[keep.many(pts)]:
@@ -333,7 +332,7 @@ def topology(a, b, scale, tolerance):
         return roots, unresolved
 
     if mode == "coaxial":
-        coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index)
+        coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_index)
     elif mode == "ruled":
         ruled_components(p, q, pq, box, topo, scale)
     else:
@@ -413,7 +412,7 @@ def q_edges(q, qp, p_ball, add_line_roots, q_index):
                 add_line_roots(qp, j, bound, lo, hi, "edge of Q", q_index, True)
 
 
-def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index):
+def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_index):
     """Surfaces of revolution about one axis (P's z) meet in parallels v = const of P: the roots of g on one
     meridian. A simple root is a circle crossed transversally (traced); a multiple root where g keeps its sign
     is a circle of tangency; a root where the parallel collapses (a pole, an apex) is a contact point."""
@@ -459,7 +458,7 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
         if inside:
             topo.seeds.append(inside[0])
     if q_rim:
-        q_edges(q, Reader(q, p), bounding_ball(p), add_line_roots, q_index)
+        q_edges(q, qp, bounding_ball(p), add_line_roots, q_index)
 
 
 def ruled_components(p, q, pq, box, topo, scale):

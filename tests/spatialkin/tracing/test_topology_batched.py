@@ -132,8 +132,8 @@ def test_keeper_matches_the_scalar_trim_test(k):
 
 @pytest.mark.parametrize("k", range(len(pairs())))
 def test_line_search_and_probes_match_the_scalar_code(k):
-    """Reader.line (one compiled line_search) against line_roots and refine_line called root by root, and
-    Reader.line_on_level against on_level at numpy.linspace's probes, on the edges, seams and lines through the
+    """Reader.line (one compiled line_search) against line_roots and refine_line called root by root, and its
+    probe (line_on_level) against on_level at numpy.linspace's probes, on the edges, seams and lines through the
     middle of both surfaces' domains, both ways round."""
     a, b = pairs()[k]
     checked_on_level = 0
@@ -148,14 +148,17 @@ def test_line_search_and_probes_match_the_scalar_code(k):
             for value in (box[2 * fixed], box[2 * fixed + 1], 0.37 * box[2 * fixed] + 0.63 * box[2 * fixed + 1]):
                 probes = np.linspace(t0, t1, tp.LINE_PROBES)
                 want = all(reader.on_level((t, value) if fixed == 1 else (value, t)) for t in probes)
-                assert reader.line_on_level(fixed, value, t0, t1) == want
+                topo = tp.Topology(P=s, Q=reader.t, mode="general")
+                found = reader.line(fixed, value, t0, t1, topo, "line", probe=True)
+                assert (found is None) == want
                 checked_on_level += want
                 if not want:                         # (a line on the level is not searched: it has no roots)
-                    topo = tp.Topology(P=s, Q=reader.t, mode="general")
-                    roots, loose = reader.line(fixed, value, t0, t1, topo, "line")
+                    roots, loose = found
                     want_roots, want_loose, _, boxes = line(reader, fixed, value, t0, t1)
                     assert np.array_equal(roots, want_roots) and np.array_equal(loose, want_loose)
                     assert topo.boxes == boxes and topo.verified == len(roots) and topo.unresolved == len(loose)
+                    plain = reader.line(fixed, value, t0, t1, tp.Topology(P=s, Q=reader.t, mode="general"), "line")
+                    assert np.array_equal(plain[0], roots) and np.array_equal(plain[1], loose)
                 along = probes[1:-1]
                 pts = reader.line_points(fixed, value, along)
                 assert np.array_equal(pts, np.array([s.point(*((t, value) if fixed == 1 else (value, t)))

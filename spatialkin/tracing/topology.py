@@ -146,7 +146,11 @@ def choose_roles(a, b, axis, ruled):
     else:
         mode = "general"
         cands = [a, b]
-    best = min(cands, key=lambda s: (traits(s).rank, -s.size, tuple(s.data)))
+    ranks = [traits(s).rank for s in cands]
+    if len(cands) == 2 and ranks[0] != ranks[1]:
+        best = cands[0] if ranks[0] < ranks[1] else cands[1]     # (the key's first entry decides)
+    else:
+        best = min(cands, key=lambda s: (traits(s).rank, -s.size, tuple(s.data)))
     return best, (b if best is a else a), mode
 
 
@@ -166,8 +170,9 @@ def domain(p, q_ball):
 
 def limited_range(surface, j, ball):
     """The trims of parameter j of a surface, an unbounded length limited by the other surface's ball."""
-    lo, hi = traits(surface).natural_domain(surface)[j]
-    axis = traits(surface).parameter_axes[j]
+    kind = traits(surface)
+    lo, hi = kind.natural_domain(surface)[j]
+    axis = kind.parameter_axes[j]
     if axis is not None and (not math.isfinite(lo) or not math.isfinite(hi)) and ball is not None:
         centre = surface.frame.to_local(ball[0])[axis]
         lo, hi = max(lo, centre - BALL_MARGIN * ball[1]), min(hi, centre + BALL_MARGIN * ball[1])

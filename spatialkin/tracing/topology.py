@@ -390,6 +390,8 @@ def place_seams(reader, box, u_periodic, v_periodic, apexes):
     """Cut the periodic parameters' seams (box is changed in place) where g does not vanish all along them: not
     where g is below SEAM_FLAT of its typical size (its largest on a SEAM_GRID x SEAM_GRID grid over the box) at
     half or more of SEAM_SAMPLES points along the seam."""
+    if not (u_periodic or v_periodic):
+        return
     args = (reader.s.data, reader.t.data, reader.m, reader.c)
     floor = SEAM_FLAT * kt.level_max(*args, box, SEAM_GRID)
     for k, periodic in ((0, u_periodic), (1, v_periodic)):

@@ -10,6 +10,9 @@ verified when they reach the minimum width are returned as unresolved (singular 
 nodes, tangencies).
 
 Records are boxes (lo, hi per parameter) with a kind: VERIFIED (exactly one simple root inside) or UNRESOLVED.
+line_search and extremal_search run a search and reduce its records to points in the same call (the refined
+roots, then the unresolved boxes' centres); line_on_level, level_max, flat_fraction and keep_points do the stage's
+per-point tests of many points in one call, to the bit as the scalar code they replace.
 
 References
 ----------
@@ -27,7 +30,7 @@ VERIFIED, UNRESOLVED = 1, 2
 #: Status of a search: completed, or stopped at its box budget (the result is then not a proof).
 DONE, OVERFLOW = 0, -1
 #: Status of a line search that found the whole line on the level (line_search with probes): not searched.
-ON_LEVEL = 1
+WHOLE_LINE = 1
 #: A contracted box is searched again (rather than bisected) when each side shrank to this fraction or less.
 CONTRACTION = 0.7
 #: Depth of the explicit box stack.
@@ -427,12 +430,12 @@ def line_search(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width
     """line_roots, its records then reduced to points of the line: the verified roots, refined (refine_line),
     in out[:K, 0], then the unresolved boxes' midpoints in out[K:N, 0] (each in the search's order). First,
     when probes > 0, the line is probed (line_on_level with probes, widen): where it lies on the level, it is
-    not searched and the status is ON_LEVEL.
+    not searched and the status is WHOLE_LINE.
 
     Returns (N, status, boxes visited, K).
     """
     if probes > 0 and line_on_level(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, probes, widen):
-        return 0, ON_LEVEL, 0, 0
+        return 0, WHOLE_LINE, 0, 0
     n, status, boxes = line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse,
                                   max_boxes, out, kinds)
     roots = np.empty(n)

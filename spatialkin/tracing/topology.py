@@ -207,7 +207,7 @@ class Reader:
                                                     int(fixed), float(value), float(t0), float(t1), width,
                                                     COARSE * (t1 - t0), MAX_BOXES, out, kinds,
                                                     LINE_PROBES if probe else 0, ON_LEVEL)
-        if status == kt.ON_LEVEL:
+        if status == kt.WHOLE_LINE:
             return None
         self._account(topo, name, status, boxes, verified, n - verified)
         return out[:verified, 0].copy(), out[verified:n, 0].copy()

@@ -10,6 +10,9 @@ verified when they reach the minimum width are returned as unresolved (singular 
 nodes, tangencies).
 
 Records are boxes (lo, hi per parameter) with a kind: VERIFIED (exactly one simple root inside) or UNRESOLVED.
+line_search and extremal_search run a search and reduce its records to points in the same call (the refined
+roots, then the unresolved boxes' centres); line_on_level, level_max, flat_fraction and keep_points do the stage's
+per-point tests of many points in one call, to the bit as the scalar code they replace.
 
 References
 ----------
@@ -21,10 +24,13 @@ import numpy as np
 
 from .._jit import jit
 from .interval import (contains_zero, iadd, imul, intersect, iscale, isub, jet, point)
+from .surfaces import inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
 #: Status of a search: completed, or stopped at its box budget (the result is then not a proof).
 DONE, OVERFLOW = 0, -1
+#: Status of a line search that found the whole line on the level (line_search with probes): not searched.
+WHOLE_LINE = 1
 #: A contracted box is searched again (rather than bisected) when each side shrank to this fraction or less.
 CONTRACTION = 0.7
 #: Depth of the explicit box stack.
@@ -335,3 +341,147 @@ def point_values(s_data, t_data, m, c, uv, out):
 def level_enclosure(s_data, t_data, m, c, pad, cpad, u, v):
     """(lo, hi): a rigorous enclosure of g at the point (u, v) (its round-off and the placement's)."""
     return jet(s_data, t_data, m, c, pad, cpad, (u, u), (v, v))[0]
+
+
+@jit
+def spaced(lo, hi, n, i):
+    """Point i of n evenly spaced over [lo, hi], ends included, to the bit as numpy.linspace(lo, hi, n)[i]."""
+    if i == n - 1:
+        return hi
+    return i * ((hi - lo) / (n - 1)) + lo
+
+
+@jit
+def _on_line(fixed, value, t):
+    """(u, v) of the point t of the parameter line (parameter `fixed` = value)."""
+    if fixed == 1:
+        return t, value
+    return value, t
+
+
+@jit
+def line_on_level(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, probes, widen):
+    """True when g is zero within its round-off at every one of `probes` evenly spaced points of the parameter line
+    (parameter `fixed` of S = value, the other over [t0, t1]: spaced()): its rigorous enclosure, widened `widen`
+    times its width on each side, holds zero. Stops at the first probe off the level."""
+    for i in range(probes):
+        u, v = _on_line(fixed, value, spaced(t0, t1, probes, i))
+        lo, hi = jet(s_data, t_data, m, c, pad, cpad, (u, u), (v, v))[0]
+        width = hi - lo
+        if not (lo - widen * width <= 0.0 <= hi + widen * width):
+            return False
+    return True
+
+
+@jit
+def level_max(s_data, t_data, m, c, box, n):
+    """Largest |g| (float evaluation) on the n x n grid of spaced() points over box (u_lo, u_hi, v_lo, v_hi)."""
+    top = 0.0
+    for j in range(n):
+        v = spaced(box[2], box[3], n, j)
+        for i in range(n):
+            top = max(top, abs(_point_jet(s_data, t_data, m, c, spaced(box[0], box[1], n, i), v)[0]))
+    return top
+
+
+@jit
+def flat_fraction(s_data, t_data, m, c, fixed, value, lo, hi, n, floor):
+    """Fraction of n spaced() points of the parameter line (parameter `fixed` = value, the other over [lo, hi])
+    where |g| (float evaluation) is at most floor."""
+    flat = 0
+    for i in range(n):
+        u, v = _on_line(fixed, value, lo + spaced(0.0, 1.0, n, i) * (hi - lo))
+        if abs(_point_jet(s_data, t_data, m, c, u, v)[0]) <= floor:
+            flat += 1
+    return flat / n
+
+
+@jit
+def _inside(data, bounds, point, q, uv):
+    """True when the foot point's parameters of point lie in bounds (u_lo, u_hi, v_lo, v_hi); NaN bounds: no trim."""
+    if bounds[0] != bounds[0]:
+        return True
+    to_local(data, point, q)
+    inverse_local(data, q, uv)
+    return bounds[0] <= uv[0] <= bounds[1] and bounds[2] <= uv[1] <= bounds[3]
+
+
+@jit
+def keep_points(a_data, a_bounds, b_data, b_bounds, apexes, clearance, points, out):
+    """out[k] = True where points[k] (N, 3) has its foot points on both surfaces within their trims (a_bounds,
+    b_bounds: u_lo, u_hi, v_lo, v_hi with the slack included; NaN: untrimmed) and lies farther than clearance
+    from every apex (K, 3)."""
+    q = np.empty(3)
+    uv = np.empty(2)
+    for k in range(points.shape[0]):
+        kept = _inside(a_data, a_bounds, points[k], q, uv) and _inside(b_data, b_bounds, points[k], q, uv)
+        for j in range(apexes.shape[0]):
+            d0 = points[k, 0] - apexes[j, 0]
+            d1 = points[k, 1] - apexes[j, 1]
+            d2 = points[k, 2] - apexes[j, 2]
+            if np.sqrt(d0 * d0 + d1 * d1 + d2 * d2) <= clearance:
+                kept = False
+        out[k] = kept
+
+
+@jit
+def line_search(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse, max_boxes, out, kinds,
+                probes, widen):
+    """line_roots, its records then reduced to points of the line: the verified roots, refined (refine_line),
+    in out[:K, 0], then the unresolved boxes' midpoints in out[K:N, 0] (each in the search's order). First,
+    when probes > 0, the line is probed (line_on_level with probes, widen): where it lies on the level, it is
+    not searched and the status is WHOLE_LINE.
+
+    Returns (N, status, boxes visited, K).
+    """
+    if probes > 0 and line_on_level(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, probes, widen):
+        return 0, WHOLE_LINE, 0, 0
+    n, status, boxes = line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse,
+                                  max_boxes, out, kinds)
+    roots = np.empty(n)
+    loose = np.empty(n)
+    k = 0
+    j = 0
+    for i in range(n):
+        if kinds[i] == VERIFIED:
+            roots[k] = refine_line(s_data, t_data, m, c, fixed, value, out[i, 0], out[i, 1])
+            k += 1
+        else:
+            loose[j] = 0.5 * (out[i, 0] + out[i, 1])
+            j += 1
+    for i in range(k):
+        out[i, 0] = roots[i]
+    for i in range(j):
+        out[k + i, 0] = loose[i]
+    return n, status, boxes, k
+
+
+@jit
+def extremal_search(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coarse, max_boxes, out, kinds):
+    """extremal_points, its records then reduced to parameter points: the verified roots, refined
+    (refine_extremal), in out[:K, :2], then the unresolved boxes' centres in out[K:N, :2] (each in the search's
+    order).
+
+    Returns (N, status, boxes visited, K).
+    """
+    n, status, boxes = extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coarse, max_boxes,
+                                       out, kinds)
+    points = np.empty((n, 2))
+    uv = np.empty(2)
+    k = 0
+    for i in range(n):
+        if kinds[i] == VERIFIED:
+            refine_extremal(s_data, t_data, m, c, du, dv, out[i], uv)
+            points[k, 0] = uv[0]
+            points[k, 1] = uv[1]
+            k += 1
+    j = k
+    for i in range(n):
+        if kinds[i] != VERIFIED:
+            points[j, 0] = 0.5 * (out[i, 0] + out[i, 1])
+            points[j, 1] = 0.5 * (out[i, 2] + out[i, 3])
+            j += 1
+    for i in range(n):
+        out[i, 0] = points[i, 0]
+        out[i, 1] = points[i, 1]
+    return n, status, boxes, k

@@ -4,6 +4,8 @@ These decide the topology stage's special configurations (spatialkin.tracing.top
 an error, coaxial surfaces of revolution meet in parallels (circles about the common axis), a cylinder and a
 surface invariant along its axis meet in lines along it.
 """
+import math
+
 import numpy as np
 
 from .traits import AXIS, NORMAL, POINT, SCALING, TRANSLATION, traits
@@ -31,7 +33,8 @@ def on_line(point, line_point, direction, tol):
 
 def parallel(d1, d2, same=SAME):
     """True when the unit directions d1 and d2 are parallel or opposite (|d1 x d2| <= same)."""
-    return np.linalg.norm(np.cross(d1, d2)) <= same
+    (x1, y1, z1), (x2, y2, z2) = (float(x) for x in d1), (float(x) for x in d2)
+    return math.hypot(y1 * z2 - z1 * y2, z1 * x2 - x1 * z2, x1 * y2 - y1 * x2) <= same
 
 
 def common_axis(a, b, scale):

@@ -38,6 +38,7 @@ import scipy.linalg
 from scipy.optimize import brentq
 
 from ..kernels import interval as ki
+from ..kernels import surfaces as ks
 from ..kernels import topology as kt
 from .placement import bounding_ball, check_not_coincident, common_axis, ruled_along
 from .traits import traits
@@ -83,8 +84,12 @@ NODE_OFFSET = 2e-2
 #: Where the seams of periodic parameters are cut (offsets from -pi, tried in turn): any position proves the
 #: same, but a component lying along the seam itself (a meridian plane through a torus axis) must be avoided.
 SEAM_OFFSETS = (0.0, 0.7236, 2.2019, 4.0537, 5.3211)
+#: Grid (per parameter) on which g's typical size is sampled, and samples of a seam candidate.
+SEAM_GRID, SEAM_SAMPLES = 9, 17
 #: A seam candidate is rejected when g is below this fraction of its typical size at most of its samples.
 SEAM_FLAT = 1e-9
+#: No points (an empty list of apexes).
+NO_POINTS = np.empty((0, 3))
 #: Newton iterations locating a critical point of g from an unresolved box.
 CRITICAL_ITER = 40
 
@@ -141,7 +146,11 @@ def choose_roles(a, b, axis, ruled):
     else:
         mode = "general"
         cands = [a, b]
-    best = min(cands, key=lambda s: (traits(s).rank, -s.size, tuple(s.data)))
+    ranks = [traits(s).rank for s in cands]
+    if len(cands) == 2 and ranks[0] != ranks[1]:
+        best = cands[0] if ranks[0] < ranks[1] else cands[1]     # (the key's first entry decides)
+    else:
+        best = min(cands, key=lambda s: (traits(s).rank, -s.size, tuple(s.data)))
     return best, (b if best is a else a), mode
 
 
@@ -161,8 +170,9 @@ def domain(p, q_ball):
 
 def limited_range(surface, j, ball):
     """The trims of parameter j of a surface, an unbounded length limited by the other surface's ball."""
-    lo, hi = traits(surface).natural_domain(surface)[j]
-    axis = traits(surface).parameter_axes[j]
+    kind = traits(surface)
+    lo, hi = kind.natural_domain(surface)[j]
+    axis = kind.parameter_axes[j]
     if axis is not None and (not math.isfinite(lo) or not math.isfinite(hi)) and ball is not None:
         centre = surface.frame.to_local(ball[0])[axis]
         lo, hi = max(lo, centre - BALL_MARGIN * ball[1]), min(hi, centre + BALL_MARGIN * ball[1])
@@ -186,20 +196,21 @@ class Reader:
         """Smallest box width on [lo, hi]: MIN_WIDTH_ULPS ulps of its magnitude."""
         return MIN_WIDTH_ULPS * ki.EPS * max(abs(lo), abs(hi), 1e-300)
 
-    def line(self, fixed, value, t0, t1, topo, name):
+    def line(self, fixed, value, t0, t1, topo, name, probe=False):
         """Roots of g on the line (parameter `fixed` of S = value, the other in [t0, t1]): (verified (K,),
-        unresolved (L,)) of the other parameter."""
+        unresolved (L,)) of the other parameter; with probe, None where the line lies on T (line_on_level), not
+        searched."""
         out = np.empty((MAX_RECORDS, 2))
         kinds = np.empty(MAX_RECORDS, dtype=np.int64)
         width = max(self.min_width(t0, t1), 1e-15 * (t1 - t0))
-        n, status, boxes = kt.line_roots(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad, int(fixed),
-                                         float(value), float(t0), float(t1), width, COARSE * (t1 - t0), MAX_BOXES,
-                                         out, kinds)
-        self._account(topo, name, status, boxes, kinds[:n])
-        roots = [kt.refine_line(self.s.data, self.t.data, self.m, self.c, int(fixed), float(value), lo, hi)
-                 for lo, hi in out[:n][kinds[:n] == kt.VERIFIED]]
-        loose = [0.5 * (lo + hi) for lo, hi in out[:n][kinds[:n] == kt.UNRESOLVED]]
-        return np.array(roots), np.array(loose)
+        n, status, boxes, verified = kt.line_search(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
+                                                    int(fixed), float(value), float(t0), float(t1), width,
+                                                    COARSE * (t1 - t0), MAX_BOXES, out, kinds,
+                                                    LINE_PROBES if probe else 0, ON_LEVEL)
+        if status == kt.WHOLE_LINE:
+            return None
+        self._account(topo, name, status, boxes, verified, n - verified)
+        return out[:verified, 0].copy(), out[verified:n, 0].copy()
 
     def extremal(self, box, unit, topo):
         """Roots of g = 0, d_v g_u - d_u g_v = 0 in the box: (verified (K, 2), unresolved (L, 2))."""
@@ -208,23 +219,25 @@ class Reader:
         kinds = np.empty(MAX_RECORDS, dtype=np.int64)
         width = np.array([max(self.min_width(box[0], box[1]), 1e-15 * (box[1] - box[0])),
                           max(self.min_width(box[2], box[3]), 1e-15 * (box[3] - box[2]))])
-        n, status, boxes = kt.extremal_points(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad, du, dv,
-                                              np.ascontiguousarray(box, dtype=float), width,
-                                              COARSE * max((box[1] - box[0]) / width[0], (box[3] - box[2]) / width[1]),
-                                              MAX_BOXES, out, kinds)
-        self._account(topo, "interior", status, boxes, kinds[:n])
-        uv = np.empty(2)
-        roots = []
-        for rec in out[:n][kinds[:n] == kt.VERIFIED]:
-            kt.refine_extremal(self.s.data, self.t.data, self.m, self.c, du, dv, rec, uv)
-            roots.append(uv.copy())
-        loose = [[0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3])] for r in out[:n][kinds[:n] == kt.UNRESOLVED]]
-        return np.array(roots).reshape(-1, 2), np.array(loose).reshape(-1, 2)
+        n, status, boxes, verified = kt.extremal_search(self.s.data, self.t.data, self.m, self.c, self.pad,
+                                                        self.cpad, du, dv, np.ascontiguousarray(box, dtype=float),
+                                                        width, COARSE * max((box[1] - box[0]) / width[0],
+                                                                            (box[3] - box[2]) / width[1]),
+                                                        MAX_BOXES, out, kinds)
+        self._account(topo, "interior", status, boxes, verified, n - verified)
+        return out[:verified, :2].copy(), out[verified:n, :2].copy()
 
     def enclosure(self, uv):
         """(lo, hi): a rigorous enclosure of g at the parameter point uv of S."""
         return kt.level_enclosure(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
                                   float(uv[0]), float(uv[1]))
+
+    def line_points(self, fixed, value, along):
+        """Points (N, 3) of S on the line (parameter `fixed` = value) at the other parameter's values along."""
+        uv = np.empty((len(along), 2))
+        uv[:, 1 - fixed] = along
+        uv[:, fixed] = value
+        return points_at(self.s, uv)
 
     def on_level(self, uv):
         """True when g at uv is zero within its round-off (a rigorous enclosure, widened ON_LEVEL times)."""
@@ -240,15 +253,23 @@ class Reader:
         return out
 
     @staticmethod
-    def _account(topo, name, status, boxes, kinds):
+    def _account(topo, name, status, boxes, verified, unresolved):
         topo.boxes += int(boxes)
-        topo.verified += int(np.sum(kinds == kt.VERIFIED))
-        topo.unresolved += int(np.sum(kinds == kt.UNRESOLVED))
+        topo.verified += verified
+        topo.unresolved += unresolved
         topo.searches.append((name, int(boxes)))
         if status == kt.OVERFLOW:
             raise TopologyError(f"the {name} search ran out of its budget of {MAX_BOXES} boxes: the intersection "
                                 "could not be resolved there (a tangency along a curve in a placement not "
                                 "recognised as symmetric?)", where=name)
+
+
+def points_at(surface, uv):
+    """Points (N, 3) of a surface at parameter points uv (N, 2): Surface.point without its broadcasting."""
+    uv = np.ascontiguousarray(uv, dtype=float).reshape(-1, 2)
+    out = np.empty((len(uv), 3))
+    ks.evaluate(surface.data, uv, out)
+    return out
 
 
 def topology(a, b, scale, tolerance):
@@ -283,34 +304,30 @@ def topology(a, b, scale, tolerance):
         topo.seconds = time.perf_counter() - t0
         return topo                                  # Q's ball misses P's trimmed domain
     pq, qp = Reader(p, q), Reader(q, p)
+    collapse = traits(p).collapse_lines(p)
     if mode == "general":
-        place_seams(pq, box, u_periodic, v_periodic, traits(p).collapse_lines(p))
+        place_seams(pq, box, u_periodic, v_periodic, collapse)
     index = {id(a): 0, id(b): 1}
     p_index, q_index = index[id(p_user)], index[id(q)]
-    apexes = [v + 2 * math.pi * math.ceil((box[2] - v) / (2 * math.pi) - 1e-12) for v in traits(p).collapse_lines(p)]
+    apexes = [v + 2 * math.pi * math.ceil((box[2] - v) / (2 * math.pi) - 1e-12) for v in collapse]
     apexes = sorted({v for v in apexes if box[2] <= v <= box[3]})
     loose = []                                      # (surface reader, uv) of unresolved boxes
-    apex_points = [p.point(0.0, v) for v in apexes] if mode == "general" else []
+    apex_points = list(points_at(p, [(0.0, v) for v in apexes])) if mode == "general" else []
 
-    def keep(point):
-        """A start inside both trims and off the apexes (the rings round them seed their branches)."""
-        if any(np.linalg.norm(point - x) <= APEX_CLEARANCE * scale for x in apex_points):
-            return False
-        return inside_trims(a, point, tolerance) and inside_trims(b, point, tolerance)
+    keep = Keeper(a, b, apex_points, scale, tolerance)
 
     def add_line_roots(reader, fixed, value, t_lo, t_hi, name, surf_index, edge):
-        along = np.linspace(t_lo, t_hi, LINE_PROBES)
-        probes = [(t, value) if fixed == 1 else (value, t) for t in along]
-        if all(reader.on_level(uv) for uv in probes):
+        found = reader.line(fixed, value, t_lo, t_hi, topo, name, probe=True)
+        if found is None:
             # the whole line lies on the other surface (a patch's edge in the other plane, a rim on it): it
             # is a piece of the intersection itself; starts on it, inside both trims, trace it
-            topo.seeds += [pt for pt in (reader.s.point(*uv) for uv in probes[1:-1]) if keep(pt)]
+            along = np.linspace(t_lo, t_hi, LINE_PROBES)[1:-1]
+            topo.seeds += keep.select(reader.line_points(fixed, value, along))
             return np.empty(0), np.empty(0)
-        roots, unresolved = reader.line(fixed, value, t_lo, t_hi, topo, name)
-        for t in roots:
-            uv = (t, value) if fixed == 1 else (value, t)
-            pt = reader.s.point(*uv)
-            if keep(pt):
+        roots, unresolved = found
+        if len(roots):
+            pts = reader.line_points(fixed, value, roots)
+            for pt in pts[keep.many(pts)]:
                 if edge:
                     topo.edge_starts.append((pt, surf_index, fixed, value))
                 else:
@@ -320,7 +337,7 @@ def topology(a, b, scale, tolerance):
         return roots, unresolved
 
     if mode == "coaxial":
-        coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index)
+        coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_index)
     elif mode == "ruled":
         ruled_components(p, q, pq, box, topo, scale)
     else:
@@ -336,8 +353,7 @@ def topology(a, b, scale, tolerance):
             add_line_roots(pq, 1, box[2], box[0], box[1], "v seam", None, False)
         # rings round poles and apexes on Q
         bands = []
-        for v in apexes:
-            apex = p.point(0.0, v)
+        for v, apex in zip(apexes, apex_points):
             if float(q.distance(apex)) > 1e3 * tolerance:
                 continue
             bands.append((v - RINGS[-1], v + RINGS[-1]))
@@ -347,8 +363,7 @@ def topology(a, b, scale, tolerance):
                 if box[2] <= ring <= box[3]:
                     roots, unresolved = add_line_roots(pq, 1, ring, box[0], box[1], "apex ring", None, False)
                     found += len(roots) + len(unresolved)
-            if (not found and pq.on_level((0.0, v)) and inside_trims(a, apex, tolerance)
-                    and inside_trims(b, apex, tolerance)):
+            if not found and pq.on_level((0.0, v)) and keep.inside_both(apex):
                 topo.contacts.append(apex)           # on Q to round-off, with no branch round it
         # Q's own apexes on P: singular points of the curve (known, so that the tracer's jumps pass them exactly;
         # a chart's poles are no points of the curve's kind)
@@ -364,10 +379,7 @@ def topology(a, b, scale, tolerance):
         for lo, hi in split_range(box[2], box[3], bands):
             roots, unresolved = pq.extremal(np.array([box[0], box[1], lo, hi]), traits(p).parameter_units(scale),
                                             topo)
-            for uv in roots:
-                pt = p.point(*uv)
-                if keep(pt):
-                    topo.seeds.append(pt)
+            topo.seeds += keep.select(points_at(p, roots))
             loose += [(pq, uv) for uv in unresolved]
     classify(loose, topo, scale, keep)
     topo.seconds = time.perf_counter() - t0
@@ -375,10 +387,13 @@ def topology(a, b, scale, tolerance):
 
 
 def place_seams(reader, box, u_periodic, v_periodic, apexes):
-    """Cut the periodic parameters' seams (box is changed in place) where g does not vanish all along them."""
-    uu, vv = np.meshgrid(np.linspace(box[0], box[1], 9), np.linspace(box[2], box[3], 9))
-    typical = float(np.max(np.abs(reader.values(np.column_stack([uu.ravel(), vv.ravel()]))[:, 0])))
-    t = np.linspace(0.0, 1.0, 17)
+    """Cut the periodic parameters' seams (box is changed in place) where g does not vanish all along them: not
+    where g is below SEAM_FLAT of its typical size (its largest on a SEAM_GRID x SEAM_GRID grid over the box) at
+    half or more of SEAM_SAMPLES points along the seam."""
+    if not (u_periodic or v_periodic):
+        return
+    args = (reader.s.data, reader.t.data, reader.m, reader.c)
+    floor = SEAM_FLAT * kt.level_max(*args, box, SEAM_GRID)
     for k, periodic in ((0, u_periodic), (1, v_periodic)):
         if not periodic:
             continue
@@ -387,9 +402,7 @@ def place_seams(reader, box, u_periodic, v_periodic, apexes):
             value = -math.pi + offset
             if k == 1 and any(abs(math.remainder(value - v, 2 * math.pi)) < 1e-9 for v in apexes):
                 continue
-            other = lo + t * (hi - lo)
-            uv = np.column_stack([np.full_like(t, value), other] if k == 0 else [other, np.full_like(t, value)])
-            if np.mean(np.abs(reader.values(uv)[:, 0]) <= SEAM_FLAT * typical) < 0.5:
+            if kt.flat_fraction(*args, k, value, lo, hi, SEAM_SAMPLES, floor) < 0.5:
                 break
         box[2 * k], box[2 * k + 1] = value, value + 2 * math.pi
 
@@ -406,7 +419,7 @@ def q_edges(q, qp, p_ball, add_line_roots, q_index):
                 add_line_roots(qp, j, bound, lo, hi, "edge of Q", q_index, True)
 
 
-def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index):
+def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_index):
     """Surfaces of revolution about one axis (P's z) meet in parallels v = const of P: the roots of g on one
     meridian. A simple root is a circle crossed transversally (traced); a multiple root where g keeps its sign
     is a circle of tangency; a root where the parallel collapses (a pole, an apex) is a contact point."""
@@ -448,11 +461,11 @@ def coaxial_components(p, q, pq, box, topo, keep, add_line_roots, scale, q_index
             continue
         # an arc of a circle cut by a trimmed plane: seed it at a point inside both trims
         ring = p.point(np.linspace(-math.pi, math.pi, 64, endpoint=False), np.full(64, v))
-        inside = [x for x in ring if keep(x)]
+        inside = keep.select(ring)
         if inside:
             topo.seeds.append(inside[0])
     if q_rim:
-        q_edges(q, Reader(q, p), bounding_ball(p), add_line_roots, q_index)
+        q_edges(q, qp, bounding_ball(p), add_line_roots, q_index)
 
 
 def ruled_components(p, q, pq, box, topo, scale):
@@ -536,16 +549,47 @@ def merge_values(values, gap):
     return out
 
 
-def inside_trims(surface, point, tolerance):
-    """True when the surface's foot point of `point` lies within its trims (with a slack of the tolerance)."""
+def trim_bounds(surface, tolerance):
+    """(u_lo, u_hi, v_lo, v_hi) (4,): the trims of a surface widened by a slack of 10 tolerances (as parameter
+    slacks at the trims); all NaN when it has no trim."""
     (u0, u1), (v0, v1) = surface.u_range, surface.v_range
-    if not (np.isfinite([u0, u1, v0, v1]).any()):
-        return True
-    u, v = surface.parameters(point)
+    if not (math.isfinite(u0) or math.isfinite(u1) or math.isfinite(v0) or math.isfinite(v1)):
+        return np.full(4, np.nan)
     u_slack, v_slack = traits(surface).trim_slack(surface, 10.0 * tolerance)
-    if not (u0 - u_slack <= u <= u1 + u_slack):
-        return False
-    return v0 - v_slack <= v <= v1 + v_slack
+    return np.array([u0 - u_slack, u1 + u_slack, v0 - v_slack, v1 + v_slack])
+
+
+class Keeper:
+    """Which starts are kept: inside both trims (their foot points' parameters, with a slack of the tolerance)
+    and off the apexes of P (the rings round them seed their branches); set up once per call, each test of
+    many points one compiled call (spatialkin.kernels.topology.keep_points)."""
+
+    def __init__(self, a, b, apex_points, scale, tolerance):
+        self.data = (a.data, b.data)
+        self.bounds = (trim_bounds(a, tolerance), trim_bounds(b, tolerance))
+        self.apexes = np.array(apex_points, dtype=float).reshape(-1, 3)
+        self.clearance = APEX_CLEARANCE * scale
+
+    def many(self, points, apexes=None):
+        """(N,) bool for points (N, 3); apexes (K, 3) in place of P's."""
+        points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
+        out = np.empty(len(points), dtype=bool)
+        kt.keep_points(self.data[0], self.bounds[0], self.data[1], self.bounds[1],
+                       self.apexes if apexes is None else apexes, self.clearance, points, out)
+        return out
+
+    def __call__(self, point):
+        """True when the start point (3,) is kept."""
+        return bool(self.many(point)[0])
+
+    def inside_both(self, point):
+        """True when the point (3,) is inside both trims (wherever it is relative to the apexes)."""
+        return bool(self.many(point, NO_POINTS)[0])
+
+    def select(self, points):
+        """The kept rows of points (N, 3), as a list of (3,) arrays."""
+        points = np.asarray(points, dtype=float).reshape(-1, 3)
+        return list(points[self.many(points)]) if len(points) else []
 
 
 def classify(loose, topo, scale, keep):

@@ -5,9 +5,12 @@ import time
 import numpy as np
 from scipy.spatial import cKDTree
 
+from ..kernels import near as kn
 from .dense import CLOSEST_NEWTON_STEPS
 from .exact import contact_point, exact_curve
+from .packed import packed
 from .result import Curve, TracingError
+from .segments import NEWTON_MAX_ITER
 from .start import locate_on_curve, newton_fixed
 from .certificate import certificates
 from . import stages
@@ -140,17 +143,27 @@ def near_curve(curve, points, radius):
     """Mask (M,) of the points (M, 3) lying within radius of the curve (a CurveResult). A point farther than radius
     plus half the longest step from every stored point is farther than radius from the curve (each arc between
     two stored points lies within half its length of one of them); a point within radius of a foot point found
-    by Newton in s from the nearest stored point is near; the closest point decides the rest."""
-    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    by Newton in s from the nearest stored point is near; the closest point decides the rest. A traced curve is
+    tested in compiled code (spatialkin.kernels.near), the others through their dense output's methods."""
+    points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
     out = np.zeros(len(points), dtype=bool)
     ask = np.ones(len(points), dtype=bool)
     if curve.length > 0 and len(curve.points) > 1:
-        reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
-        gap, nearest = cKDTree(curve.points).query(points, distance_upper_bound=reach)
-        ask = gap <= reach
-        if ask.any():
-            out[ask] = curve.sol.foot_points(points[ask], curve.s[nearest[ask]], CLOSEST_NEWTON_STEPS)[1] <= radius
-            ask &= ~out
+        table = packed(curve.sol)
+        if table is not None:
+            sol = curve.sol
+            verdict = np.empty(len(points), dtype=np.int64)
+            kn.near_mask(points, np.ascontiguousarray(curve.points), np.ascontiguousarray(curve.s), float(radius),
+                         table, sol.closed, sol.length, float(sol.gap_tol), NEWTON_MAX_ITER, CLOSEST_NEWTON_STEPS,
+                         verdict)
+            out, ask = verdict == kn.NEAR, verdict == kn.UNDECIDED
+        else:
+            reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
+            gap, nearest = cKDTree(curve.points).query(points, distance_upper_bound=reach)
+            ask = gap <= reach
+            if ask.any():
+                out[ask] = curve.sol.foot_points(points[ask], curve.s[nearest[ask]], CLOSEST_NEWTON_STEPS)[1] <= radius
+                ask &= ~out
     if ask.any():
         out[ask] = curve.sol.closest(points[ask])[1] <= radius
     return out

@@ -1,0 +1,140 @@
+"""Distances of points from a traced curve in compiled code: which points lie within a radius of it.
+
+The curve's dense output is read from flat tables (built by spatialkin.tracing.packed from a TracedSolution):
+
+* spans (S): arc length s in [lo[k], ...) maps to the solver time t = shift[k] + flip[k] s of span k's segment,
+  whose charts are rows k of ``charts_a`` and ``charts_b`` and whose direction of travel is sign[k];
+* solver steps: span k's scipy OdeSolution times are ``ode_t[ode_off[k]:ode_off[k + 1]]`` and its dense
+  outputs are numbers ``ode_first[k]``, ... of the pieces' level;
+* dense outputs (G): dense output g has kind ``kinds[g]`` (RK45_STEPS: spatialkin.tracing.ode.StepsDense,
+  DOP853: scipy's Dop853DenseOutput) and its polynomials' start times ``pt[pt_off[g]:pt_off[g + 1]]``
+  (StepsDense: its ts; DOP853: t_old, t), each polynomial j's length ``ph[j]``, start state ``py[j]`` and
+  coefficients ``pc[j]`` (4, 7) (RK45: Q in the first four columns; DOP853: F transposed).
+
+Every state is then corrected onto both surfaces by the same Newton (project_to_curve in the plane normal to the
+tangent) as TracedSolution.evaluate, and the foot point is found by the same Newton in s as
+CurveSolution.foot_points, operation for operation: the results are those of the Python path to the bit.
+
+References
+----------
+scipy.integrate._ivp.common.OdeSolution (the step lookup), scipy.integrate._ivp.rk.Dop853DenseOutput (its
+polynomial), spatialkin.tracing.dense (the evaluation this mirrors).
+"""
+import math
+
+import numpy as np
+
+from .._jit import jit
+from .curve import curve_frame, project_to_curve
+from .rk import dense_state
+
+#: kinds[g] of a dense output: a CompiledRK45 step (RK45 polynomials, spatialkin.tracing.ode.StepsDense) ...
+RK45_STEPS = 0
+#: ... or a step of solve_ivp's DOP853 (scipy's Dop853DenseOutput, a degree-7 polynomial).
+DOP853 = 1
+#: Coefficient columns of a DOP853 dense output (scipy's DOP853 INTERPOLATOR_POWER).
+DOP853_POWER = 7
+#: near_mask's verdicts: farther than the reach from every stored point (far from the curve) ...
+FAR = 0
+#: ... within the radius of the foot point found from the nearest stored point (near) ...
+NEAR = 1
+#: ... or neither: only the closest point on the whole curve decides.
+UNDECIDED = 2
+
+
+@jit
+def dop853_state(t_old, h, y_old, c, t, out):
+    """scipy's Dop853DenseOutput at t into out (n,): Horner in x and 1 - x over the coefficient columns c (n, 7)
+    from the last, as scipy evaluates it (the same operations in the same order)."""
+    x = (t - t_old) / h
+    for i in range(out.shape[0]):
+        acc = 0.0
+        for r in range(DOP853_POWER):
+            acc += c[i, DOP853_POWER - 1 - r]
+            if r % 2 == 0:
+                acc *= x
+            else:
+                acc *= 1 - x
+        out[i] = acc + y_old[i]
+
+
+@jit
+def solver_state(table, k, t, out):
+    """The solver's state at its time t on span k into out (4,), as scipy's OdeSolution of the span's segment
+    gives it (the step found by searchsorted 'left', then the dense output's own lookup)."""
+    (_, _, _, _, _, _, ode_t, ode_off, ode_first, kinds, pt_off, pt, ph, py, pc) = table
+    lo, hi = ode_off[k], ode_off[k + 1]
+    n_dense = hi - lo - 1
+    ind = np.searchsorted(ode_t[lo:hi], t, side="left")
+    g = ode_first[k] + min(max(ind - 1, 0), n_dense - 1)
+    first, last = pt_off[g], pt_off[g + 1]
+    j = first + min(max(np.searchsorted(pt[first:last], t, side="right") - 1, 0), last - first - 2)
+    if kinds[g] == DOP853:
+        dop853_state(pt[j], ph[j], py[j], pc[j], t, out)
+    else:
+        dense_state(pt[j], ph[j], py[j], pc[j], t, out)
+
+
+@jit
+def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangent):
+    """Point (3,) and unit tangent (3,) (towards increasing s) of the curve at arc length s, the state corrected
+    onto both surfaces (y (4,), q (3,): work space); returns s wrapped into [0, length) for a closed curve. As
+    TracedSolution.evaluate does for one s."""
+    (lo, flip, shift, sign, charts_a, charts_b, _, _, _, _, _, _, _, _, _) = table
+    if closed and length > 0.0:
+        s = s % length
+    k = min(max(np.searchsorted(lo, s, side="right") - 1, 0), lo.shape[0] - 1)
+    solver_state(table, k, shift[k] + flip[k] * s, y)
+    a, b = charts_a[k], charts_b[k]
+    curve_frame(y, a, b, q, tangent)
+    project_to_curve(y, a, b, q, tangent, gap_tol, max_iter)
+    curve_frame(y, a, b, point, tangent)
+    for i in range(3):
+        tangent[i] = tangent[i] * flip[k] * sign[k]
+    return s
+
+
+@jit
+def foot_distance(table, closed, length, gap_tol, max_iter, p, s, steps):
+    """(s, distance) of the foot point of p (3,) on the curve by `steps` Newton steps in s from s, as
+    CurveSolution.foot_points (its dot product summed as numpy's einsum sums three terms: (0 + 2) + 1)."""
+    y, q, at, tangent = np.empty(4), np.empty(3), np.empty(3), np.empty(3)
+    for _ in range(steps):
+        curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
+        s = s + (((p[0] - at[0]) * tangent[0] + (p[2] - at[2]) * tangent[2]) + (p[1] - at[1]) * tangent[1])
+        if not closed:
+            if s < 0.0:
+                s = 0.0
+            elif s > length:
+                s = length
+    s = curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
+    d0, d1, d2 = p[0] - at[0], p[1] - at[1], p[2] - at[2]
+    return s, math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
+
+
+@jit
+def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, max_iter, steps, verdict):
+    """Verdict (M,) (FAR, NEAR or UNDECIDED) of each point (M, 3) against the curve through its stored points
+    (N, 3) at arc lengths s_stored (N,): FAR when farther than radius plus half the longest step from every
+    stored point (each arc between two stored points lies within half its length of one of them); NEAR when
+    within radius of the foot point found by foot_distance from the nearest stored point; UNDECIDED otherwise.
+    """
+    longest = 0.0
+    for j in range(s_stored.shape[0] - 1):
+        longest = max(longest, s_stored[j + 1] - s_stored[j])
+    reach = radius + 0.5 * longest
+    for m in range(points.shape[0]):
+        best, nearest = np.inf, -1
+        for j in range(stored.shape[0]):
+            d0 = points[m, 0] - stored[j, 0]
+            d1 = points[m, 1] - stored[j, 1]
+            d2 = points[m, 2] - stored[j, 2]
+            d = (d0 * d0 + d1 * d1) + d2 * d2
+            if d < best:
+                best, nearest = d, j
+        # scipy's cKDTree query with distance_upper_bound=reach finds no neighbour at reach or beyond
+        if not math.sqrt(best) < reach:
+            verdict[m] = FAR
+            continue
+        _, dist = foot_distance(table, closed, length, gap_tol, max_iter, points[m], s_stored[nearest], steps)
+        verdict[m] = NEAR if dist <= radius else UNDECIDED

@@ -2,14 +2,16 @@
 
 The curve's dense output is read from flat tables (built by spatialkin.tracing.packed from a TracedSolution):
 
-* spans (S): arc length s in [lo[k], ...) maps to the solver time t = shift[k] + flip[k] s of span k's segment,
-  whose charts are rows k of ``charts_a`` and ``charts_b`` and whose direction of travel is sign[k];
-* solver steps: span k's scipy OdeSolution times are ``ode_t[ode_off[k]:ode_off[k + 1]]`` and its dense
-  outputs are numbers ``ode_first[k]``, ... of the pieces' level;
-* dense outputs (G): dense output g has kind ``kinds[g]`` (RK45_STEPS: spatialkin.tracing.ode.StepsDense,
-  DOP853: scipy's Dop853DenseOutput) and its polynomials' start times ``pt[pt_off[g]:pt_off[g + 1]]``
-  (StepsDense: its ts; DOP853: t_old, t), each polynomial j's length ``ph[j]``, start state ``py[j]`` and
-  coefficients ``pc[j]`` (4, 7) (RK45: Q in the first four columns; DOP853: F transposed).
+* spans (S): row k of ``spans`` (S, 4) is (lo, flip, shift, sign): arc length s in [lo, next lo) maps to the
+  solver time t = shift + flip s of span k's segment, whose charts are rows k of ``charts_a`` and ``charts_b``
+  and whose direction of travel is sign;
+* solver steps: span k's scipy OdeSolution times are ``ode_t[ode_off[k]:ode_off[k + 1]]`` and its steps' dense
+  outputs are numbers ``ode_first[k]``, ... of the next level;
+* dense outputs (G): dense output g has kind ``kinds[g]``; poly_first[g] indexes its kind's tables:
+  RK45_STEPS (spatialkin.tracing.ode.StepsDense): its times ``pt[pt_off[g]:pt_off[g + 1]]`` (ts), and the
+  polynomial from its time i is number poly_first[g] + i of ``rk_h`` (length), ``rk_y`` (start state) and
+  ``rk_q`` (Q (4, 4)); DOP853 (scipy's Dop853DenseOutput): ``dop_t0`` (t_old), ``dop_h``, ``dop_y`` (y_old)
+  and ``dop_f`` (F (7, 4)).
 
 Every state is then corrected onto both surfaces by the same Newton (project_to_curve in the plane normal to the
 tangent) as TracedSolution.evaluate, and the foot point is found by the same Newton in s as
@@ -28,6 +30,8 @@ from .._jit import jit
 from .curve import curve_frame, project_to_curve
 from .rk import dense_state
 
+#: Columns of the spans table.
+LO, FLIP, SHIFT, SIGN = 0, 1, 2, 3
 #: kinds[g] of a dense output: a CompiledRK45 step (RK45 polynomials, spatialkin.tracing.ode.StepsDense) ...
 RK45_STEPS = 0
 #: ... or a step of solve_ivp's DOP853 (scipy's Dop853DenseOutput, a degree-7 polynomial).
@@ -43,14 +47,14 @@ UNDECIDED = 2
 
 
 @jit
-def dop853_state(t_old, h, y_old, c, t, out):
-    """scipy's Dop853DenseOutput at t into out (n,): Horner in x and 1 - x over the coefficient columns c (n, 7)
+def dop853_state(t_old, h, y_old, f, t, out):
+    """scipy's Dop853DenseOutput at t into out (n,): Horner in x and 1 - x over the coefficient rows f (7, n)
     from the last, as scipy evaluates it (the same operations in the same order)."""
     x = (t - t_old) / h
     for i in range(out.shape[0]):
         acc = 0.0
         for r in range(DOP853_POWER):
-            acc += c[i, DOP853_POWER - 1 - r]
+            acc += f[DOP853_POWER - 1 - r, i]
             if r % 2 == 0:
                 acc *= x
             else:
@@ -61,18 +65,19 @@ def dop853_state(t_old, h, y_old, c, t, out):
 @jit
 def solver_state(table, k, t, out):
     """The solver's state at its time t on span k into out (4,), as scipy's OdeSolution of the span's segment
-    gives it (the step found by searchsorted 'left', then the dense output's own lookup)."""
-    (_, _, _, _, _, _, ode_t, ode_off, ode_first, kinds, pt_off, pt, ph, py, pc) = table
+    gives it (the step found by searchsorted 'left', then the step's dense output)."""
+    (_, _, _, ode_t, ode_off, ode_first, kinds, pt_off, poly_first, pt, rk_h, rk_y, rk_q,
+     dop_t0, dop_h, dop_y, dop_f) = table
     lo, hi = ode_off[k], ode_off[k + 1]
-    n_dense = hi - lo - 1
     ind = np.searchsorted(ode_t[lo:hi], t, side="left")
-    g = ode_first[k] + min(max(ind - 1, 0), n_dense - 1)
-    first, last = pt_off[g], pt_off[g + 1]
-    j = first + min(max(np.searchsorted(pt[first:last], t, side="right") - 1, 0), last - first - 2)
+    g = ode_first[k] + min(max(ind - 1, 0), hi - lo - 2)
+    j = poly_first[g]
     if kinds[g] == DOP853:
-        dop853_state(pt[j], ph[j], py[j], pc[j], t, out)
-    else:
-        dense_state(pt[j], ph[j], py[j], pc[j], t, out)
+        dop853_state(dop_t0[j], dop_h[j], dop_y[j], dop_f[j], t, out)
+        return
+    first, last = pt_off[g], pt_off[g + 1]      # StepsDense's own lookup (spatialkin.kernels.rk.dense_into)
+    i = min(max(np.searchsorted(pt[first:last], t, side="right") - 1, 0), last - first - 2)
+    dense_state(pt[first + i], rk_h[j + i], rk_y[j + i], rk_q[j + i], t, out)
 
 
 @jit
@@ -80,17 +85,21 @@ def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangen
     """Point (3,) and unit tangent (3,) (towards increasing s) of the curve at arc length s, the state corrected
     onto both surfaces (y (4,), q (3,): work space); returns s wrapped into [0, length) for a closed curve. As
     TracedSolution.evaluate does for one s."""
-    (lo, flip, shift, sign, charts_a, charts_b, _, _, _, _, _, _, _, _, _) = table
+    spans, charts_a, charts_b = table[0], table[1], table[2]
     if closed and length > 0.0:
         s = s % length
-    k = min(max(np.searchsorted(lo, s, side="right") - 1, 0), lo.shape[0] - 1)
-    solver_state(table, k, shift[k] + flip[k] * s, y)
+    k = 0                         # searchsorted(lo, s, 'right') - 1, clipped to the spans (lo ascending)
+    for j in range(1, spans.shape[0]):
+        if spans[j, LO] <= s:
+            k = j
+    flip = spans[k, FLIP]
+    solver_state(table, k, spans[k, SHIFT] + flip * s, y)
     a, b = charts_a[k], charts_b[k]
     curve_frame(y, a, b, q, tangent)
     project_to_curve(y, a, b, q, tangent, gap_tol, max_iter)
     curve_frame(y, a, b, point, tangent)
     for i in range(3):
-        tangent[i] = tangent[i] * flip[k] * sign[k]
+        tangent[i] = tangent[i] * flip * spans[k, SIGN]
     return s
 
 

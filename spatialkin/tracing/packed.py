@@ -36,46 +36,48 @@ def packed(sol):
 def _pack(sol):
     """The tables for a TracedSolution, or None (see packed)."""
     spans = sol.spans
-    if any(np.any(span.seg.normal) for span in spans):
-        return None                        # a jump across a node or an apex: straight chords, not a solver
-    charts = [[np.asarray(getattr(span.seg, side), dtype=float) for span in spans] for side in ("a", "b")]
-    if any(len({len(c) for c in side}) > 1 for side in charts):
-        return None                        # charts of different layouts (never met: one surface, one kind)
-    ode_t, ode_off, ode_first, kinds, pieces = [], [0], [], [], []
+    ode_t, ode_off, ode_first, kinds, dense_outputs = [], [0], [], [], []
     for span in spans:
         ode = span.seg.sol
-        if not isinstance(ode, OdeSolution) or not ode.ascending or ode.side != "left":
-            return None                    # re-measured (RemappedStates), or a method other than ours and DOP853
+        if any(span.seg.normal.tolist()) or not isinstance(ode, OdeSolution) or not ode.ascending or ode.side != "left":
+            return None      # a jump across a node or an apex, a re-measured segment, or another solve_ivp method
         ode_first.append(len(kinds))
         for dense in ode.interpolants:
-            piece = _piece(dense)
-            if piece is None:
+            if isinstance(dense, StepsDense) and len(dense.ts) >= 2:
+                kinds.append(kn.RK45_STEPS)
+            elif isinstance(dense, Dop853DenseOutput) and dense.F.shape == (kn.DOP853_POWER, 4):
+                kinds.append(kn.DOP853)
+            else:
                 return None
-            kinds.append(piece[0])
-            pieces.append(piece[1:])
-        ode_t.append(np.asarray(ode.ts, dtype=float))
+            dense_outputs.append(dense)
+        ode_t.append(ode.ts)
         ode_off.append(ode_off[-1] + len(ode.ts))
-    pt_off = np.cumsum([0] + [len(piece[0]) for piece in pieces])
-    pt, ph, py, pc = (np.concatenate(parts) for parts in zip(*pieces))
-    lo, flip, shift, sign = (np.array(x, dtype=float) for x in zip(*((span.lo, span.flip, span.shift, span.seg.sign)
-                                                                     for span in spans)))
-    return (lo, flip, shift, sign, np.stack(charts[0]), np.stack(charts[1]), np.concatenate(ode_t),
-            np.array(ode_off, dtype=np.int64), np.array(ode_first, dtype=np.int64), np.array(kinds, dtype=np.int64),
-            pt_off.astype(np.int64), pt, ph, py, pc)
+    charts_a = np.array([span.seg.a for span in spans], dtype=float)
+    charts_b = np.array([span.seg.b for span in spans], dtype=float)
+    if charts_a.ndim != 2 or charts_b.ndim != 2:
+        return None          # charts of different layouts (never met: one surface keeps its kind)
+    steps = [dense for dense in dense_outputs if isinstance(dense, StepsDense)]
+    dop = [dense for dense in dense_outputs if not isinstance(dense, StepsDense)]
+    pt_off, poly_first, n_times, n_polys, n_dop = [0], [], 0, 0, 0
+    for dense in dense_outputs:
+        if isinstance(dense, StepsDense):
+            poly_first.append(n_polys)
+            n_times += len(dense.ts)
+            n_polys += len(dense.ts) - 1
+        else:
+            poly_first.append(n_dop)
+            n_dop += 1
+        pt_off.append(n_times)
+    numbers = np.array([x for span in spans for x in (span.lo, span.flip, span.shift, span.seg.sign)], dtype=float)
+    ints = (np.array(x, dtype=np.int64) for x in (ode_off, ode_first, kinds, pt_off, poly_first))
+    return (numbers.reshape(len(spans), 4), charts_a, charts_b, np.concatenate(ode_t), *ints,
+            _joined([d.ts for d in steps], (0,)), _joined([d.hs[:len(d.ts) - 1] for d in steps], (0,)),
+            _joined([d.ys[:len(d.ts) - 1] for d in steps], (0, 4)), _joined([d.qs[:len(d.ts) - 1] for d in steps],
+                                                                            (0, 4, 4)),
+            np.array([d.t_old for d in dop], dtype=float), np.array([d.h for d in dop], dtype=float),
+            _joined([d.y_old[None] for d in dop], (0, 4)), _joined([d.F[None] for d in dop], (0, kn.DOP853_POWER, 4)))
 
 
-def _piece(dense):
-    """(kind, start times (m,), lengths (m,), start states (m, 4), coefficients (m, 4, 7)) of one step's dense
-    output (the last row of each a filler: m times bound m - 1 polynomials), or None for another kind."""
-    if isinstance(dense, StepsDense) and len(dense.ts) >= 2:
-        m = len(dense.ts)
-        coef = np.zeros((m, 4, kn.DOP853_POWER))
-        coef[:m - 1, :, :4] = dense.qs
-        return (kn.RK45_STEPS, np.asarray(dense.ts, dtype=float), np.append(dense.hs[:m - 1], 0.0),
-                np.asarray(dense.ys, dtype=float), coef)
-    if isinstance(dense, Dop853DenseOutput) and dense.F.shape == (kn.DOP853_POWER, 4):
-        coef = np.zeros((2, 4, kn.DOP853_POWER))
-        coef[0] = dense.F.T
-        return (kn.DOP853, np.array([dense.t_old, dense.t], dtype=float), np.array([dense.h, 0.0]),
-                np.stack([dense.y_old, np.zeros(4)]), coef)
-    return None
+def _joined(arrays, empty):
+    """The arrays concatenated (C-contiguous floats), or an empty array of shape `empty` when there are none."""
+    return np.ascontiguousarray(np.concatenate(arrays), dtype=float) if arrays else np.empty(empty)

@@ -104,13 +104,18 @@ def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangen
 
 
 @jit
-def foot_distance(table, closed, length, gap_tol, max_iter, p, s, steps):
+def foot_distance(table, closed, length, gap_tol, max_iter, p, s, steps, enough):
     """(s, distance) of the foot point of p (3,) on the curve by `steps` Newton steps in s from s, as
-    CurveSolution.foot_points (its dot product summed as numpy's einsum sums three terms: (0 + 2) + 1)."""
+    CurveSolution.foot_points (its dot product summed as numpy's einsum sums three terms: (0 + 2) + 1); or, at
+    the first curve point met within `enough` of p, that point's (a negative `enough`: never)."""
     y, q, at, tangent = np.empty(4), np.empty(3), np.empty(3), np.empty(3)
     for _ in range(steps):
-        curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
-        s = s + (((p[0] - at[0]) * tangent[0] + (p[2] - at[2]) * tangent[2]) + (p[1] - at[1]) * tangent[1])
+        s_at = curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
+        d0, d1, d2 = p[0] - at[0], p[1] - at[1], p[2] - at[2]
+        dist = math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
+        if dist <= enough:
+            return s_at, dist
+        s = s + ((d0 * tangent[0] + d2 * tangent[2]) + d1 * tangent[1])
         if not closed:
             if s < 0.0:
                 s = 0.0
@@ -126,12 +131,15 @@ def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, 
     """Verdict (M,) (FAR, NEAR or UNDECIDED) of each point (M, 3) against the curve through its stored points
     (N, 3) at arc lengths s_stored (N,): FAR when farther than radius plus half the longest step from every
     stored point (each arc between two stored points lies within half its length of one of them); NEAR when
-    within radius of the foot point found by foot_distance from the nearest stored point; UNDECIDED otherwise.
+    within radius of a curve point met by foot_distance from the nearest stored point (the foot point, or one of
+    the Newton iterates before it: each is a point of the curve); UNDECIDED otherwise. Returns the number of
+    UNDECIDED points.
     """
     longest = 0.0
     for j in range(s_stored.shape[0] - 1):
         longest = max(longest, s_stored[j + 1] - s_stored[j])
     reach = radius + 0.5 * longest
+    undecided = 0
     for m in range(points.shape[0]):
         best, nearest = np.inf, -1
         for j in range(stored.shape[0]):
@@ -145,5 +153,8 @@ def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, 
         if not math.sqrt(best) < reach:
             verdict[m] = FAR
             continue
-        _, dist = foot_distance(table, closed, length, gap_tol, max_iter, points[m], s_stored[nearest], steps)
+        _, dist = foot_distance(table, closed, length, gap_tol, max_iter, points[m], s_stored[nearest], steps,
+                                radius)
         verdict[m] = NEAR if dist <= radius else UNDECIDED
+        undecided += verdict[m] == UNDECIDED
+    return undecided

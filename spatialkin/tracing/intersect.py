@@ -146,25 +146,25 @@ def near_curve(curve, points, radius):
     by Newton in s from the nearest stored point is near; the closest point decides the rest. A traced curve is
     tested in compiled code (spatialkin.kernels.near), the others through their dense output's methods."""
     points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
-    out = np.zeros(len(points), dtype=bool)
-    ask = np.ones(len(points), dtype=bool)
-    if curve.length > 0 and len(curve.points) > 1:
-        table = packed(curve.sol)
-        if table is not None:
-            sol = curve.sol
-            verdict = np.empty(len(points), dtype=np.int64)
-            kn.near_mask(points, np.ascontiguousarray(curve.points), np.ascontiguousarray(curve.s), float(radius),
-                         table, sol.closed, sol.length, float(sol.gap_tol), NEWTON_MAX_ITER, CLOSEST_NEWTON_STEPS,
-                         verdict)
-            out, ask = verdict == kn.NEAR, verdict == kn.UNDECIDED
-        else:
+    table = packed(curve.sol) if curve.length > 0 and len(curve.points) > 1 else None
+    if table is not None:
+        sol = curve.sol
+        verdict = np.empty(len(points), dtype=np.int64)
+        undecided = kn.near_mask(points, curve.points, curve.s, float(radius), table, sol.closed, sol.length,
+                                 float(sol.gap_tol), NEWTON_MAX_ITER, CLOSEST_NEWTON_STEPS, verdict)
+        out = verdict == kn.NEAR
+        ask = verdict == kn.UNDECIDED if undecided else None
+    else:
+        out = np.zeros(len(points), dtype=bool)
+        ask = np.ones(len(points), dtype=bool)
+        if curve.length > 0 and len(curve.points) > 1:
             reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
             gap, nearest = cKDTree(curve.points).query(points, distance_upper_bound=reach)
             ask = gap <= reach
             if ask.any():
                 out[ask] = curve.sol.foot_points(points[ask], curve.s[nearest[ask]], CLOSEST_NEWTON_STEPS)[1] <= radius
                 ask &= ~out
-    if ask.any():
+    if ask is not None and ask.any():
         out[ask] = curve.sol.closest(points[ask])[1] <= radius
     return out
 

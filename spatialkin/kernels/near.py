@@ -127,6 +127,40 @@ def foot_distance(table, closed, length, gap_tol, max_iter, p, s, steps, enough)
 
 
 @jit
+def reach_of(s_stored, radius):
+    """Radius plus half the longest step between stored points at arc lengths s_stored (N,): a point farther than
+    this from every stored point is farther than radius from the curve (each arc between two stored points lies
+    within half its length of one of them)."""
+    longest = 0.0
+    for j in range(s_stored.shape[0] - 1):
+        longest = max(longest, s_stored[j + 1] - s_stored[j])
+    return radius + 0.5 * longest
+
+
+@jit
+def nearest_stored(p, stored):
+    """(distance, index) of the stored point (N, 3) nearest to p (3,) (the first of equals)."""
+    best, nearest = np.inf, -1
+    for j in range(stored.shape[0]):
+        d0, d1, d2 = p[0] - stored[j, 0], p[1] - stored[j, 1], p[2] - stored[j, 2]
+        d = (d0 * d0 + d1 * d1) + d2 * d2
+        if d < best:
+            best, nearest = d, j
+    return math.sqrt(best), nearest
+
+
+@jit
+def within_reach(points, stored, s_stored, radius):
+    """Whether every point (M, 3) lies within reach_of(s_stored, radius) of one of the stored points (N, 3): False
+    proves some point farther than radius from the curve."""
+    reach = reach_of(s_stored, radius)
+    for m in range(points.shape[0]):
+        if not nearest_stored(points[m], stored)[0] < reach:
+            return False
+    return True
+
+
+@jit
 def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, max_iter, steps, verdict):
     """Verdict (M,) (FAR, NEAR or UNDECIDED) of each point (M, 3) against the curve through its stored points
     (N, 3) at arc lengths s_stored (N,): FAR when farther than radius plus half the longest step from every
@@ -135,22 +169,12 @@ def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, 
     the Newton iterates before it: each is a point of the curve); UNDECIDED otherwise. Returns the number of
     UNDECIDED points.
     """
-    longest = 0.0
-    for j in range(s_stored.shape[0] - 1):
-        longest = max(longest, s_stored[j + 1] - s_stored[j])
-    reach = radius + 0.5 * longest
+    reach = reach_of(s_stored, radius)
     undecided = 0
     for m in range(points.shape[0]):
-        best, nearest = np.inf, -1
-        for j in range(stored.shape[0]):
-            d0 = points[m, 0] - stored[j, 0]
-            d1 = points[m, 1] - stored[j, 1]
-            d2 = points[m, 2] - stored[j, 2]
-            d = (d0 * d0 + d1 * d1) + d2 * d2
-            if d < best:
-                best, nearest = d, j
+        gap, nearest = nearest_stored(points[m], stored)
         # scipy's cKDTree query with distance_upper_bound=reach finds no neighbour at reach or beyond
-        if not math.sqrt(best) < reach:
+        if not gap < reach:
             verdict[m] = FAR
             continue
         _, dist = foot_distance(table, closed, length, gap_tol, max_iter, points[m], s_stored[nearest], steps,

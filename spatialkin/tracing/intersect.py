@@ -170,11 +170,23 @@ def near_curve(curve, points, radius):
 
 
 def covered(curve, others, radius):
-    """True for an open curve lying wholly on another curve (a piece of a component traced again)."""
+    """True for an open curve lying wholly on another curve (a piece of a component traced again). A curve one of
+    whose points lies beyond the reach of every stored point of the other (kernels.near.within_reach) is not on
+    it; the closest points decide the rest."""
     if curve.closed or curve.status == CONTACT:
         return False
-    return any(other.length >= curve.length and np.max(other.sol.closest(curve.points)[1]) <= radius
-               for other in others)
+    points = np.ascontiguousarray(curve.points)
+    return any(other.length >= curve.length and could_cover(other, points, radius)
+               and np.max(other.sol.closest(points)[1]) <= radius for other in others)
+
+
+def could_cover(curve, points, radius):
+    """False when one of the points (M, 3) is proven farther than radius from the curve (a CurveResult) by its
+    stored points alone (kernels.near.within_reach); True otherwise."""
+    if curve.length > 0 and len(curve.points) > 1:
+        return kn.within_reach(points, np.ascontiguousarray(curve.points), np.ascontiguousarray(curve.s),
+                               float(radius))
+    return True
 
 
 def edge_start(a, b, point, p_index, fixed, value, settings):

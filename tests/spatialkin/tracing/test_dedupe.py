@@ -1,5 +1,7 @@
 """De-duplication of starts: the compiled near_curve (spatialkin.kernels.near on spatialkin.tracing.packed) against
 the Python one it replaced (kept here as the oracle), and its dense output against scipy's."""
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 from oracles import torus_sphere_critical_radii
@@ -9,7 +11,7 @@ import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels import near as kn
 from spatialkin.tracing.dense import CLOSEST_NEWTON_STEPS, TracedSolution
-from spatialkin.tracing.intersect import SAME_COMPONENT, near_curve
+from spatialkin.tracing.intersect import SAME_COMPONENT, covered, near_curve
 from spatialkin.tracing.packed import packed
 from spatialkin.tracing.segments import NEWTON_MAX_ITER
 
@@ -39,6 +41,14 @@ def reference_near_curve(curve, points, radius):
     if ask.any():
         out[ask] = curve.sol.closest(points[ask])[1] <= radius
     return out
+
+
+def reference_covered(curve, others, radius):
+    """The Python covered this replaced (spatialkin 5b6a3a9), unchanged: the oracle."""
+    if curve.closed or curve.status == "contact":
+        return False
+    return any(other.length >= curve.length and np.max(other.sol.closest(curve.points)[1]) <= radius
+               for other in others)
 
 
 def results(a, b):
@@ -126,3 +136,23 @@ def test_curves_without_a_table_use_the_python_path():
         points = probe_points(curve, r, rng, n=15)[0]
         np.testing.assert_array_equal(near_curve(curve, points, r), reference_near_curve(curve, points, r))
     assert isinstance(eight[0].sol, TracedSolution)
+
+
+@pytest.mark.parametrize("kind", ["plane-plane", "cone-cone", "torus-torus"])
+def test_covered_as_the_python_one(kind):
+    """A piece of a curve (open, shorter) is covered by it; the same piece moved 10 radii off it, or cut from
+    another curve of the scene, is not: as the oracle says."""
+    curves, radius = results(*CASES[kind])
+    curve = curves[0]
+    s = np.linspace(0.2, 0.6, 40) * curve.length
+    on = curve.sol(s)
+    off = on + 10.0 * radius * np.cross(curve.sol.tangent(s), [0.0, 0.0, 1.0])
+
+    def piece(points):
+        return SimpleNamespace(closed=False, status="boundary", points=points, length=0.4 * curve.length)
+
+    pieces = {"on": piece(on), "off": piece(off)}
+    if len(curves) > 1:
+        pieces["other"] = piece(curves[1].sol(np.linspace(0.0, 0.4, 40) * curves[1].length))
+    for name, p in pieces.items():
+        assert covered(p, [curve], radius) == reference_covered(p, [curve], radius) == (name == "on"), name

@@ -144,7 +144,8 @@ def near_curve(curve, points, radius):
     plus half the longest step from every stored point is farther than radius from the curve (each arc between
     two stored points lies within half its length of one of them); a point within radius of a foot point found
     by Newton in s from the nearest stored point is near; the closest point decides the rest. A traced curve is
-    tested in compiled code (spatialkin.kernels.near), the others through their dense output's methods."""
+    tested in compiled code (spatialkin.kernels.near: there a point within radius of one of Newton's iterates,
+    each a point of the curve, is near too), the others through their dense output's methods."""
     points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
     table = packed(curve.sol) if curve.length > 0 and len(curve.points) > 1 else None
     if table is not None:

@@ -23,7 +23,7 @@ _NO_TABLE = ()
 
 
 def packed(sol):
-    """The tables of kernels.near for the dense output sol (a tuple of 15 arrays), made once per curve, or None
+    """The tables of kernels.near for the dense output sol (a tuple of 17 arrays), made once per curve, or None
     when sol is not a plain traced curve (see the module docstring)."""
     if not isinstance(sol, TracedSolution):
         return None

@@ -70,14 +70,17 @@ def _pack(sol):
         pt_off.append(n_times)
     numbers = np.array([x for span in spans for x in (span.lo, span.flip, span.shift, span.seg.sign)], dtype=float)
     ints = (np.array(x, dtype=np.int64) for x in (ode_off, ode_first, kinds, pt_off, poly_first))
-    return (numbers.reshape(len(spans), 4), charts_a, charts_b, np.concatenate(ode_t), *ints,
+    return (numbers.reshape(len(spans), 4), charts_a, charts_b, _joined(ode_t, (0,)), *ints,
             _joined([d.ts for d in steps], (0,)), _joined([d.hs[:len(d.ts) - 1] for d in steps], (0,)),
             _joined([d.ys[:len(d.ts) - 1] for d in steps], (0, 4)), _joined([d.qs[:len(d.ts) - 1] for d in steps],
                                                                             (0, 4, 4)),
-            np.array([d.t_old for d in dop], dtype=float), np.array([d.h for d in dop], dtype=float),
+            np.array([d.t_old for d in dop], dtype=float), np.array([d.h for d in dop], dtype=float),  # (D,) each
             _joined([d.y_old[None] for d in dop], (0, 4)), _joined([d.F[None] for d in dop], (0, kn.DOP853_POWER, 4)))
 
 
 def _joined(arrays, empty):
-    """The arrays concatenated (C-contiguous floats), or an empty array of shape `empty` when there are none."""
+    """The arrays concatenated (C-contiguous floats; one such array itself, not copied), or an empty array of shape
+    `empty` when there are none."""
+    if len(arrays) == 1 and arrays[0].dtype == np.float64 and arrays[0].flags.c_contiguous:
+        return arrays[0]
     return np.ascontiguousarray(np.concatenate(arrays), dtype=float) if arrays else np.empty(empty)

@@ -2,9 +2,10 @@
 
 The curve's dense output is read from flat tables (built by spatialkin.tracing.packed from a TracedSolution):
 
-* spans (S): row k of ``spans`` (S, 4) is (lo, flip, shift, sign): arc length s in [lo, next lo) maps to the
-  solver time t = shift + flip s of span k's segment, whose charts are rows k of ``charts_a`` and ``charts_b``
-  and whose direction of travel is sign;
+* spans (S): row k of ``spans`` (S, 5) is (lo, flip, shift, sign, compiled): arc length s in [lo, next lo) maps
+  to the solver time t = shift + flip s of span k's segment, whose charts are rows k of ``charts_a`` and
+  ``charts_b`` and whose direction of travel is sign; compiled is 0 for a span these tables do not hold (a
+  jump across a node or an apex, a re-measured segment): a point whose Newton meets it is left to Python;
 * solver steps: span k's scipy OdeSolution times are ``ode_t[ode_off[k]:ode_off[k + 1]]`` and its steps' dense
   outputs are numbers ``ode_first[k]``, ... of the next level;
 * dense outputs (G): dense output g has kind ``kinds[g]``; poly_first[g] indexes its kind's tables:
@@ -31,7 +32,7 @@ from .curve import curve_frame, project_to_curve
 from .rk import dense_state
 
 #: Columns of the spans table.
-LO, FLIP, SHIFT, SIGN = 0, 1, 2, 3
+LO, FLIP, SHIFT, SIGN, COMPILED = 0, 1, 2, 3, 4
 #: kinds[g] of a dense output: a CompiledRK45 step (RK45 polynomials, spatialkin.tracing.ode.StepsDense) ...
 RK45_STEPS = 0
 #: ... or a step of solve_ivp's DOP853 (scipy's Dop853DenseOutput, a degree-7 polynomial).
@@ -42,8 +43,10 @@ DOP853_POWER = 7
 FAR = 0
 #: ... within the radius of the foot point found from the nearest stored point (near) ...
 NEAR = 1
-#: ... or neither: only the closest point on the whole curve decides.
+#: ... or neither: only the closest point on the whole curve decides ...
 UNDECIDED = 2
+#: ... or its Newton met a span the tables do not hold: the Python foot point decides.
+PYTHON = 3
 
 
 @jit
@@ -83,8 +86,8 @@ def solver_state(table, k, t, out):
 @jit
 def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangent):
     """Point (3,) and unit tangent (3,) (towards increasing s) of the curve at arc length s, the state corrected
-    onto both surfaces (y (4,), q (3,): work space); returns s wrapped into [0, length) for a closed curve. As
-    TracedSolution.evaluate does for one s."""
+    onto both surfaces (y (4,), q (3,): work space); returns s wrapped into [0, length) for a closed curve, or
+    NaN (nothing written) on a span the tables do not hold. As TracedSolution.evaluate does for one s."""
     spans, charts_a, charts_b = table[0], table[1], table[2]
     if closed and length > 0.0:
         s = s % length
@@ -92,6 +95,8 @@ def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangen
     for j in range(1, spans.shape[0]):
         if spans[j, LO] <= s:
             k = j
+    if spans[k, COMPILED] == 0.0:
+        return np.nan
     flip = spans[k, FLIP]
     solver_state(table, k, spans[k, SHIFT] + flip * s, y)
     a, b = charts_a[k], charts_b[k]
@@ -107,10 +112,13 @@ def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangen
 def foot_distance(table, closed, length, gap_tol, max_iter, p, s, steps, enough):
     """(s, distance) of the foot point of p (3,) on the curve by `steps` Newton steps in s from s, as
     CurveSolution.foot_points (its dot product summed as numpy's einsum sums three terms: (0 + 2) + 1); or, at
-    the first curve point met within `enough` of p, that point's (a negative `enough`: never)."""
+    the first curve point met within `enough` of p, that point's (a negative `enough`: never); (NaN, NaN) when
+    Newton meets a span the tables do not hold."""
     y, q, at, tangent = np.empty(4), np.empty(3), np.empty(3), np.empty(3)
     for _ in range(steps):
         s_at = curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
+        if math.isnan(s_at):
+            return np.nan, np.nan
         d0, d1, d2 = p[0] - at[0], p[1] - at[1], p[2] - at[2]
         dist = math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
         if dist <= enough:
@@ -122,6 +130,8 @@ def foot_distance(table, closed, length, gap_tol, max_iter, p, s, steps, enough)
             elif s > length:
                 s = length
     s = curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
+    if math.isnan(s):
+        return np.nan, np.nan
     d0, d1, d2 = p[0] - at[0], p[1] - at[1], p[2] - at[2]
     return s, math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
 
@@ -166,8 +176,8 @@ def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, 
     (N, 3) at arc lengths s_stored (N,): FAR when farther than radius plus half the longest step from every
     stored point (each arc between two stored points lies within half its length of one of them); NEAR when
     within radius of a curve point met by foot_distance from the nearest stored point (the foot point, or one of
-    the Newton iterates before it: each is a point of the curve); UNDECIDED otherwise. Returns the number of
-    UNDECIDED points.
+    the Newton iterates before it: each is a point of the curve); PYTHON when that Newton met a span the tables
+    do not hold (or gave NaN); UNDECIDED otherwise. Returns the number of UNDECIDED and PYTHON points.
     """
     reach = reach_of(s_stored, radius)
     undecided = 0
@@ -179,6 +189,9 @@ def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, 
             continue
         _, dist = foot_distance(table, closed, length, gap_tol, max_iter, points[m], s_stored[nearest], steps,
                                 radius)
-        verdict[m] = NEAR if dist <= radius else UNDECIDED
-        undecided += verdict[m] == UNDECIDED
+        if math.isnan(dist):
+            verdict[m] = PYTHON
+        else:
+            verdict[m] = NEAR if dist <= radius else UNDECIDED
+        undecided += verdict[m] != NEAR
     return undecided

@@ -145,29 +145,42 @@ def near_curve(curve, points, radius):
     two stored points lies within half its length of one of them); a point within radius of a foot point found
     by Newton in s from the nearest stored point is near; the closest point decides the rest. A traced curve is
     tested in compiled code (spatialkin.kernels.near: there a point within radius of one of Newton's iterates,
-    each a point of the curve, is near too), the others through their dense output's methods."""
+    each a point of the curve, is near too), except where Newton meets a span the compiled tables do not hold (a
+    jump across a node or an apex): there, and on the other curves, the dense output's methods decide."""
     points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
-    table = packed(curve.sol) if curve.length > 0 and len(curve.points) > 1 else None
-    if table is not None:
-        sol = curve.sol
-        verdict = np.empty(len(points), dtype=np.int64)
-        undecided = kn.near_mask(points, curve.points, curve.s, float(radius), table, sol.closed, sol.length,
-                                 float(sol.gap_tol), NEWTON_MAX_ITER, CLOSEST_NEWTON_STEPS, verdict)
-        out = verdict == kn.NEAR
-        ask = verdict == kn.UNDECIDED if undecided else None
+    if not (curve.length > 0 and len(curve.points) > 1 and len(points)):
+        return curve.sol.closest(points)[1] <= radius if len(points) else np.zeros(0, dtype=bool)
+    table = packed(curve.sol)
+    if table is None:
+        verdict = np.full(len(points), kn.PYTHON)
     else:
-        out = np.zeros(len(points), dtype=bool)
-        ask = np.ones(len(points), dtype=bool)
-        if curve.length > 0 and len(curve.points) > 1:
-            reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
-            gap, nearest = cKDTree(curve.points).query(points, distance_upper_bound=reach)
-            ask = gap <= reach
-            if ask.any():
-                out[ask] = curve.sol.foot_points(points[ask], curve.s[nearest[ask]], CLOSEST_NEWTON_STEPS)[1] <= radius
-                ask &= ~out
-    if ask is not None and ask.any():
+        verdict = np.empty(len(points), dtype=np.int64)
+        if not kn.near_mask(points, curve.points, curve.s, float(radius), table, curve.sol.closed,
+                            curve.sol.length, float(curve.sol.gap_tol), NEWTON_MAX_ITER, CLOSEST_NEWTON_STEPS,
+                            verdict):
+            return verdict == kn.NEAR
+    python = verdict == kn.PYTHON
+    if python.any():
+        verdict[python] = python_verdicts(curve, points[python], radius)
+    out = verdict == kn.NEAR
+    ask = verdict == kn.UNDECIDED
+    if ask.any():
         out[ask] = curve.sol.closest(points[ask])[1] <= radius
     return out
+
+
+def python_verdicts(curve, points, radius):
+    """near_mask's verdicts (kernels.near: FAR, NEAR or UNDECIDED) of the points (M, 3) against the curve (a
+    CurveResult of positive length) in Python: the nearest stored point by a cKDTree, the foot point by the dense
+    output's foot_points."""
+    reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
+    gap, nearest = cKDTree(curve.points).query(points, distance_upper_bound=reach)
+    verdict = np.full(len(points), kn.FAR)
+    ask = gap <= reach
+    if ask.any():
+        near = curve.sol.foot_points(points[ask], curve.s[nearest[ask]], CLOSEST_NEWTON_STEPS)[1] <= radius
+        verdict[ask] = np.where(near, kn.NEAR, kn.UNDECIDED)
+    return verdict
 
 
 def covered(curve, others, radius):

@@ -2,9 +2,10 @@
 
 ``packed(sol)`` reads a TracedSolution's spans, their segments' charts and scipy OdeSolutions, and each step's
 dense output (CompiledRK45's StepsDense, or solve_ivp's DOP853 where the compiled method handed over) into the
-tables kernels.near documents, once per curve (a curve does not change). A curve that is not a plain traced one
-(a closed form, a jump across a node or an apex, a re-measured segment, another solve_ivp method) has no table:
-None, and the callers use the dense output's Python methods.
+tables kernels.near documents, once per curve (a curve does not change). A closed form has no table (None), nor a traced
+curve none of whose spans the tables can hold; a span they cannot hold (a jump across a node or an apex, a
+re-measured segment, another solve_ivp method) is marked so, and a point whose Newton meets it is left to the
+dense output's Python methods.
 """
 import weakref
 
@@ -36,22 +37,19 @@ def packed(sol):
 def _pack(sol):
     """The tables for a TracedSolution, or None (see packed)."""
     spans = sol.spans
-    ode_t, ode_off, ode_first, kinds, dense_outputs = [], [0], [], [], []
+    ode_t, ode_off, ode_first, kinds, dense_outputs, compiled = [], [0], [], [], [], []
     for span in spans:
         ode = span.seg.sol
-        if any(span.seg.normal.tolist()) or not isinstance(ode, OdeSolution) or not ode.ascending or ode.side != "left":
-            return None      # a jump across a node or an apex, a re-measured segment, or another solve_ivp method
-        ode_first.append(len(kinds))
-        for dense in ode.interpolants:
-            if isinstance(dense, StepsDense) and len(dense.ts) >= 2:
-                kinds.append(kn.RK45_STEPS)
-            elif isinstance(dense, Dop853DenseOutput) and dense.F.shape == (kn.DOP853_POWER, 4):
-                kinds.append(kn.DOP853)
-            else:
-                return None
-            dense_outputs.append(dense)
-        ode_t.append(ode.ts)
-        ode_off.append(ode_off[-1] + len(ode.ts))
+        own = _kinds(ode) if not any(span.seg.normal.tolist()) else None
+        compiled.append(own is not None)       # a jump across a node or an apex, a re-measured segment, another
+        ode_first.append(len(kinds))           # solve_ivp method: not held (its points left to Python)
+        if own is not None:
+            kinds += own
+            dense_outputs += ode.interpolants
+            ode_t.append(ode.ts)
+        ode_off.append(ode_off[-1] + (len(ode.ts) if own is not None else 0))
+    if not any(compiled):
+        return None
     charts_a = np.array([span.seg.a for span in spans], dtype=float)
     charts_b = np.array([span.seg.b for span in spans], dtype=float)
     if charts_a.ndim != 2 or charts_b.ndim != 2:
@@ -68,14 +66,31 @@ def _pack(sol):
             poly_first.append(n_dop)
             n_dop += 1
         pt_off.append(n_times)
-    numbers = np.array([x for span in spans for x in (span.lo, span.flip, span.shift, span.seg.sign)], dtype=float)
+    numbers = np.array([x for span, held in zip(spans, compiled)
+                        for x in (span.lo, span.flip, span.shift, span.seg.sign, held)], dtype=float)
     ints = (np.array(x, dtype=np.int64) for x in (ode_off, ode_first, kinds, pt_off, poly_first))
-    return (numbers.reshape(len(spans), 4), charts_a, charts_b, _joined(ode_t, (0,)), *ints,
+    return (numbers.reshape(len(spans), 5), charts_a, charts_b, _joined(ode_t, (0,)), *ints,
             _joined([d.ts for d in steps], (0,)), _joined([d.hs[:len(d.ts) - 1] for d in steps], (0,)),
             _joined([d.ys[:len(d.ts) - 1] for d in steps], (0, 4)), _joined([d.qs[:len(d.ts) - 1] for d in steps],
                                                                             (0, 4, 4)),
             np.array([d.t_old for d in dop], dtype=float), np.array([d.h for d in dop], dtype=float),  # (D,) each
             _joined([d.y_old[None] for d in dop], (0, 4)), _joined([d.F[None] for d in dop], (0, kn.DOP853_POWER, 4)))
+
+
+def _kinds(ode):
+    """The kinds (kernels.near) of the dense outputs of a segment's solution, or None when the tables cannot hold
+    it (not scipy's OdeSolution ascending in time, or a dense output neither CompiledRK45's nor DOP853's)."""
+    if not isinstance(ode, OdeSolution) or not ode.ascending or ode.side != "left":
+        return None
+    kinds = []
+    for dense in ode.interpolants:
+        if isinstance(dense, StepsDense) and len(dense.ts) >= 2:
+            kinds.append(kn.RK45_STEPS)
+        elif isinstance(dense, Dop853DenseOutput) and dense.F.shape == (kn.DOP853_POWER, 4):
+            kinds.append(kn.DOP853)
+        else:
+            return None
+    return kinds
 
 
 def _joined(arrays, empty):

@@ -123,19 +123,25 @@ def test_solver_states_bit_identical_to_scipy(kind):
             np.testing.assert_array_equal(out, ode(tk))
 
 
-def test_curves_without_a_table_use_the_python_path():
-    """A circle in closed form and a figure-eight traced through its node (a jump span) have no table; their
-    mask is still the oracle's."""
+def test_spans_without_tables_left_to_python():
+    """A circle in closed form has no table; a figure-eight traced through its node has one whose jump spans
+    are marked not held (Newton meeting them leaves the point to Python). Both masks are the oracle's, on points
+    everywhere on and off the curve and beside the node."""
     rng = np.random.default_rng(5)
     circle, radius = results(*CASES["sphere-sphere"])
     rho = torus_sphere_critical_radii(BIG, SMALL, CENTRE)[1]
     eight, radius8 = results(sk.Torus(BIG, SMALL), sk.Sphere(rho, sk.Frame(CENTRE)))
-    assert any(span.seg.normal.any() for span in eight[0].sol.spans)
-    for curve, r in ((circle[0], radius), (eight[0], radius8)):
-        assert packed(curve.sol) is None
-        points = probe_points(curve, r, rng, n=15)[0]
-        np.testing.assert_array_equal(near_curve(curve, points, r), reference_near_curve(curve, points, r))
-    assert isinstance(eight[0].sol, TracedSolution)
+    curve = eight[0]
+    assert packed(circle[0].sol) is None
+    jumps = np.array([span.seg.normal.any() for span in curve.sol.spans])
+    assert jumps.any() and isinstance(curve.sol, TracedSolution)
+    held = packed(curve.sol)[0][:, kn.COMPILED] == 1.0
+    assert held.any() and not held[jumps].any()
+    node = curve.nodes[0]
+    beside = node + rng.normal(size=(40, 3)) * rng.uniform(0.0, 1e-2, (40, 1))
+    for c, r, extra in ((circle[0], radius, np.empty((0, 3))), (curve, radius8, beside)):
+        points = np.vstack([probe_points(c, r, rng, n=15)[0], extra])
+        np.testing.assert_array_equal(near_curve(c, points, r), reference_near_curve(c, points, r))
 
 
 @pytest.mark.parametrize("kind", ["plane-plane", "cone-cone", "torus-torus"])

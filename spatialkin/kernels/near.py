@@ -70,7 +70,7 @@ def solver_state(table, k, t, out):
     """The solver's state at its time t on span k into out (4,), as scipy's OdeSolution of the span's segment
     gives it (the step found by searchsorted 'left', then the step's dense output)."""
     (_, _, _, ode_t, ode_off, ode_first, kinds, pt_off, poly_first, pt, rk_h, rk_y, rk_q,
-     dop_t0, dop_h, dop_y, dop_f) = table
+     dop_t0, dop_h, dop_y, dop_f, _, _, _) = table
     lo, hi = ode_off[k], ode_off[k + 1]
     ind = np.searchsorted(ode_t[lo:hi], t, side="left")
     g = ode_first[k] + min(max(ind - 1, 0), hi - lo - 2)
@@ -81,6 +81,31 @@ def solver_state(table, k, t, out):
     first, last = pt_off[g], pt_off[g + 1]      # StepsDense's own lookup (spatialkin.kernels.rk.dense_into)
     i = min(max(np.searchsorted(pt[first:last], t, side="right") - 1, 0), last - first - 2)
     dense_state(pt[first + i], rk_h[j + i], rk_y[j + i], rk_q[j + i], t, out)
+
+
+@jit
+def interp(x, xp, fp):
+    """np.interp(x, xp, fp) at one x (xp ascending), operation for operation as numpy computes it (arr_interp in
+    numpy/_core/src/multiarray/compiled_base.c: the ends, the knots and the NaN guard included)."""
+    n = xp.shape[0]
+    if n == 1:
+        return fp[0]
+    if math.isnan(x):
+        return x
+    if x < xp[0]:
+        return fp[0]
+    if x > xp[n - 1]:
+        return fp[n - 1]
+    j = np.searchsorted(xp, x, side="right") - 1          # xp[j] <= x < xp[j + 1], or j = n - 1 at the end
+    if j == n - 1 or xp[j] == x:
+        return fp[j]
+    slope = (fp[j + 1] - fp[j]) / (xp[j + 1] - xp[j])
+    value = slope * (x - xp[j]) + fp[j]
+    if math.isnan(value):
+        value = slope * (x - xp[j + 1]) + fp[j + 1]
+        if math.isnan(value) and fp[j] == fp[j + 1]:
+            value = fp[j]
+    return value
 
 
 @jit
@@ -98,7 +123,11 @@ def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangen
     if spans[k, COMPILED] == 0.0:
         return np.nan
     flip = spans[k, FLIP]
-    solver_state(table, k, spans[k, SHIFT] + flip * s, y)
+    t = spans[k, SHIFT] + flip * s
+    remap_off, remap_new, remap_old = table[17], table[18], table[19]
+    if remap_off[k + 1] > remap_off[k]:
+        t = interp(t, remap_new[remap_off[k]:remap_off[k + 1]], remap_old[remap_off[k]:remap_off[k + 1]])
+    solver_state(table, k, t, y)
     a, b = charts_a[k], charts_b[k]
     curve_frame(y, a, b, q, tangent)
     project_to_curve(y, a, b, q, tangent, gap_tol, max_iter)

@@ -3,8 +3,8 @@
 ``packed(sol)`` reads a TracedSolution's spans, their segments' charts and scipy OdeSolutions, and each step's
 dense output (CompiledRK45's StepsDense, or solve_ivp's DOP853 where the compiled method handed over) into the
 tables kernels.near documents, once per curve (a curve does not change). A closed form has no table (None), nor a traced
-curve none of whose spans the tables can hold; a span they cannot hold (a jump across a node or an apex, a
-re-measured segment, another solve_ivp method) is marked so, and a point whose Newton meets it is left to the
+curve none of whose spans the tables can hold; a span they cannot hold (a jump across a node or an apex,
+another solve_ivp method) is marked so, and a point whose Newton meets it is left to the
 dense output's Python methods.
 """
 import weakref
@@ -14,6 +14,7 @@ from scipy.integrate import OdeSolution
 from scipy.integrate._ivp.rk import Dop853DenseOutput   # scipy's DOP853 step polynomial (no public name)
 
 from ..kernels import near as kn
+from .arclength import RemappedStates
 from .dense import TracedSolution
 from .ode import StepsDense
 
@@ -24,7 +25,7 @@ _NO_TABLE = ()
 
 
 def packed(sol):
-    """The tables of kernels.near for the dense output sol (a tuple of 17 arrays), made once per curve, or None
+    """The tables of kernels.near for the dense output sol (a tuple of 20 arrays), made once per curve, or None
     when sol is not a plain traced curve (see the module docstring)."""
     if not isinstance(sol, TracedSolution):
         return None
@@ -38,11 +39,17 @@ def _pack(sol):
     """The tables for a TracedSolution, or None (see packed)."""
     spans = sol.spans
     ode_t, ode_off, ode_first, kinds, dense_outputs, compiled = [], [0], [], [], [], []
+    remap_off, remap_new, remap_old = [0], [], []
     for span in spans:
         ode = span.seg.sol
+        if isinstance(ode, RemappedStates):     # a re-measured segment: arc length -> solver time first
+            remap_new.append(ode.t_new)
+            remap_old.append(ode.t_old)
+            ode = ode.sol
+        remap_off.append(remap_off[-1] + (len(remap_new[-1]) if ode is not span.seg.sol else 0))
         own = _kinds(ode) if not any(span.seg.normal.tolist()) else None
-        compiled.append(own is not None)       # a jump across a node or an apex, a re-measured segment, another
-        ode_first.append(len(kinds))           # solve_ivp method: not held (its points left to Python)
+        compiled.append(own is not None)       # a jump across a node or an apex, another solve_ivp method: not
+        ode_first.append(len(kinds))           # held (its points left to Python)
         if own is not None:
             kinds += own
             dense_outputs += ode.interpolants
@@ -74,7 +81,8 @@ def _pack(sol):
             _joined([d.ys[:len(d.ts) - 1] for d in steps], (0, 4)), _joined([d.qs[:len(d.ts) - 1] for d in steps],
                                                                             (0, 4, 4)),
             np.array([d.t_old for d in dop], dtype=float), np.array([d.h for d in dop], dtype=float),  # (D,) each
-            _joined([d.y_old[None] for d in dop], (0, 4)), _joined([d.F[None] for d in dop], (0, kn.DOP853_POWER, 4)))
+            _joined([d.y_old[None] for d in dop], (0, 4)), _joined([d.F[None] for d in dop], (0, kn.DOP853_POWER, 4)),
+            np.array(remap_off, dtype=np.int64), _joined(remap_new, (0,)), _joined(remap_old, (0,)))
 
 
 def _kinds(ode):

@@ -224,3 +224,46 @@ def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, 
             verdict[m] = NEAR if dist <= radius else UNDECIDED
         undecided += verdict[m] != NEAR
     return undecided
+
+
+@jit
+def curve_points(table, closed, length, gap_tol, max_iter, s, points):
+    """Points (M, 3) of the curve at arc lengths s (M,) (curve_point for each); False when one of them lies on a
+    span the tables do not hold (the rest then unwritten)."""
+    y, q, tangent = np.empty(4), np.empty(3), np.empty(3)
+    for m in range(s.shape[0]):
+        if math.isnan(curve_point(table, closed, length, gap_tol, max_iter, s[m], y, q, points[m], tangent)):
+            return False
+    return True
+
+
+@jit
+def closest_within(points, grid_s, grid, radius, table, closed, length, gap_tol, max_iter, steps, candidates,
+                   verdict):
+    """Verdict (M,) of each point (M, 3) as CurveSolution.closest decides it against radius: NEAR when a foot
+    point (or a Newton iterate before it, see foot_distance) from one of the `candidates` grid points (arc
+    lengths grid_s (G,), points grid (G, 3)) nearest to it lies within radius, FAR when none does, PYTHON when a
+    Newton met a span the tables do not hold or gave NaN (where closest's minimum would be NaN)."""
+    k = min(candidates, grid.shape[0])
+    best_d, best_i = np.empty(k), np.empty(k, dtype=np.int64)
+    for m in range(points.shape[0]):
+        for c in range(k):
+            best_d[c], best_i[c] = np.inf, -1
+        for j in range(grid.shape[0]):          # the k nearest grid points, kept in order of distance
+            d0, d1, d2 = points[m, 0] - grid[j, 0], points[m, 1] - grid[j, 1], points[m, 2] - grid[j, 2]
+            d = (d0 * d0 + d1 * d1) + d2 * d2
+            if d < best_d[k - 1]:
+                c = k - 1
+                while c > 0 and best_d[c - 1] > d:
+                    best_d[c], best_i[c] = best_d[c - 1], best_i[c - 1]
+                    c -= 1
+                best_d[c], best_i[c] = d, j
+        verdict[m] = FAR
+        for c in range(k):
+            _, dist = foot_distance(table, closed, length, gap_tol, max_iter, points[m], grid_s[best_i[c]], steps,
+                                    radius)
+            if math.isnan(dist):
+                verdict[m] = PYTHON
+                break
+            if dist <= radius:
+                verdict[m] = NEAR

@@ -6,9 +6,9 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ..kernels import near as kn
-from .dense import CLOSEST_NEWTON_STEPS
+from .dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS
 from .exact import contact_point, exact_curve
-from .packed import packed
+from .packed import packed, packed_grid
 from .result import Curve, TracingError
 from .segments import NEWTON_MAX_ITER
 from .start import locate_on_curve, newton_fixed
@@ -165,7 +165,26 @@ def near_curve(curve, points, radius):
     out = verdict == kn.NEAR
     ask = verdict == kn.UNDECIDED
     if ask.any():
-        out[ask] = curve.sol.closest(points[ask])[1] <= radius
+        out[ask] = within(curve, points[ask], radius)
+    return out
+
+
+def within(curve, points, radius):
+    """Mask (M,) of the points (M, 3) whose closest point on the curve (a CurveResult; CurveSolution.closest) lies
+    within radius: in compiled code (kernels.near.closest_within) where the tables hold the curve, else, and for
+    the points whose Newton meets a span they do not hold, by closest() itself."""
+    sol = curve.sol
+    table = packed(sol) if curve.length > 0 else None
+    if table is None:
+        return sol.closest(points)[1] <= radius
+    grid_s, grid = packed_grid(sol, table)
+    verdict = np.empty(len(points), dtype=np.int64)
+    kn.closest_within(points, grid_s, grid, float(radius), table, sol.closed, sol.length, float(sol.gap_tol),
+                      NEWTON_MAX_ITER, CLOSEST_NEWTON_STEPS, CLOSEST_CANDIDATES, verdict)
+    out = verdict == kn.NEAR
+    python = verdict == kn.PYTHON
+    if python.any():
+        out[python] = sol.closest(points[python])[1] <= radius
     return out
 
 
@@ -186,12 +205,12 @@ def python_verdicts(curve, points, radius):
 def covered(curve, others, radius):
     """True for an open curve lying wholly on another curve (a piece of a component traced again). A curve one of
     whose points lies beyond the reach of every stored point of the other (kernels.near.within_reach) is not on
-    it; the closest points decide the rest."""
+    it; the closest points decide the rest (within)."""
     if curve.closed or curve.status == CONTACT:
         return False
     points = np.ascontiguousarray(curve.points)
     return any(other.length >= curve.length and could_cover(other, points, radius)
-               and np.max(other.sol.closest(points)[1]) <= radius for other in others)
+               and within(other, points, radius).all() for other in others)
 
 
 def could_cover(curve, points, radius):

@@ -15,11 +15,14 @@ from scipy.integrate._ivp.rk import Dop853DenseOutput   # scipy's DOP853 step po
 
 from ..kernels import near as kn
 from .arclength import RemappedStates
-from .dense import TracedSolution
+from .dense import CLOSEST_GRID_FACTOR, CLOSEST_GRID_MIN, TracedSolution
 from .ode import StepsDense
+from .segments import NEWTON_MAX_ITER
 
 #: The tables made so far, per dense output (dropped with it).
 _TABLES = weakref.WeakKeyDictionary()
+#: The grids of closest() (CurveSolution.grid) made so far, per dense output.
+_GRIDS = weakref.WeakKeyDictionary()
 #: What _TABLES holds for a curve without a table (None would read as "not packed yet").
 _NO_TABLE = ()
 
@@ -33,6 +36,18 @@ def packed(sol):
     if table is None:
         table = _TABLES[sol] = _pack(sol) or _NO_TABLE
     return table or None
+
+
+def packed_grid(sol, table):
+    """(arc lengths (G,), points (G, 3)) of the grid CurveSolution.closest starts from, the same to the bit: by
+    kernels.near.curve_points on the tables of sol when they hold every span, else sol.grid(). Made once."""
+    grid = _GRIDS.get(sol)
+    if grid is None:
+        s = np.linspace(0.0, sol.length, max(CLOSEST_GRID_FACTOR * len(sol.knots), CLOSEST_GRID_MIN))
+        points = np.empty((len(s), 3))
+        grid = _GRIDS[sol] = ((s, points) if kn.curve_points(table, sol.closed, sol.length, float(sol.gap_tol),
+                                                               NEWTON_MAX_ITER, s, points) else sol.grid())
+    return grid
 
 
 def _pack(sol):

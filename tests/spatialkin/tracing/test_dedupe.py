@@ -11,8 +11,8 @@ import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels import near as kn
 from spatialkin.tracing.dense import CLOSEST_NEWTON_STEPS, TracedSolution
-from spatialkin.tracing.intersect import SAME_COMPONENT, covered, near_curve
-from spatialkin.tracing.packed import packed
+from spatialkin.tracing.intersect import SAME_COMPONENT, covered, near_curve, within
+from spatialkin.tracing.packed import packed, packed_grid
 from spatialkin.tracing.segments import NEWTON_MAX_ITER
 
 #: Pair kinds whose curves cover the tables: closed and open, one span and several (a sphere re-charted), the
@@ -172,3 +172,20 @@ def test_interp_bit_identical_to_numpy():
     x = np.concatenate([rng.uniform(xp[0] - 1.0, xp[-1] + 1.0, 500), xp, [xp[0], xp[-1]]])
     np.testing.assert_array_equal([kn.interp(v, xp, fp) for v in x], np.interp(x, xp, fp))
     assert kn.interp(0.3, xp[:1], fp[:1]) == np.interp(0.3, xp[:1], fp[:1])
+
+
+@pytest.mark.parametrize("kind", ["torus-torus", "plane-plane", "sphere-cylinder"])
+def test_closest_grid_and_verdicts_as_closest(kind):
+    """The compiled grid equals CurveSolution.grid to the bit; `within` says what closest() says of the points
+    against radius (points on, just inside, just outside, a few steps off, far)."""
+    rng = np.random.default_rng(23)
+    curves, radius = results(*CASES[kind])
+    curve = curves[0]
+    fresh = TracedSolution(surfaces=curve.sol.surfaces, spans=curve.sol.spans, nodes=curve.sol.nodes,
+                           gap_tol=curve.sol.gap_tol, length=curve.sol.length, closed=curve.sol.closed,
+                           knots=curve.sol.knots)                  # no grid cached by an earlier closest()
+    s, points = packed_grid(fresh, packed(fresh))
+    np.testing.assert_array_equal(s, fresh.grid()[0])
+    np.testing.assert_array_equal(points, fresh.grid()[1])
+    probes = probe_points(curve, radius, rng, n=20)[0]
+    np.testing.assert_array_equal(within(curve, probes, radius), curve.sol.closest(probes)[1] <= radius)

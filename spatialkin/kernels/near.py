@@ -5,7 +5,10 @@ The curve's dense output is read from flat tables (built by spatialkin.tracing.p
 * spans (S): row k of ``spans`` (S, 5) is (lo, flip, shift, sign, compiled): arc length s in [lo, next lo) maps
   to the solver time t = shift + flip s of span k's segment, whose charts are rows k of ``charts_a`` and
   ``charts_b`` and whose direction of travel is sign; compiled is 0 for a span these tables do not hold (a
-  jump across a node or an apex, a re-measured segment): a point whose Newton meets it is left to Python;
+  jump across a node or an apex, another solve_ivp method): a point whose Newton meets it is left to Python
+  (verdict PYTHON); a re-measured segment (spatialkin.tracing.arclength.RemappedStates) first maps t to the
+  solver's time by np.interp through ``remap_new[remap_off[k]:remap_off[k + 1]]`` and ``remap_old[...]`` (an
+  empty range: no re-mapping);
 * solver steps: span k's scipy OdeSolution times are ``ode_t[ode_off[k]:ode_off[k + 1]]`` and its steps' dense
   outputs are numbers ``ode_first[k]``, ... of the next level;
 * dense outputs (G): dense output g has kind ``kinds[g]``; poly_first[g] indexes its kind's tables:
@@ -16,7 +19,9 @@ The curve's dense output is read from flat tables (built by spatialkin.tracing.p
 
 Every state is then corrected onto both surfaces by the same Newton (project_to_curve in the plane normal to the
 tangent) as TracedSolution.evaluate, and the foot point is found by the same Newton in s as
-CurveSolution.foot_points, operation for operation: the results are those of the Python path to the bit.
+CurveSolution.foot_points, operation for operation: points, foot points and distances are those of the Python
+path to the bit. The tests against a radius (near_mask, closest_within) stop at the first Newton iterate within
+it (a point of the curve too), so they decide as the Python path does without always taking its last steps.
 
 References
 ----------

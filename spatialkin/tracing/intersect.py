@@ -5,9 +5,12 @@ import time
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .dense import CLOSEST_NEWTON_STEPS
+from ..kernels import near as kn
+from .dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS
 from .exact import contact_point, exact_curve
+from .packed import packed, packed_grid
 from .result import Curve, TracingError
+from .segments import NEWTON_MAX_ITER
 from .start import locate_on_curve, newton_fixed
 from .certificate import certificates
 from . import stages
@@ -140,28 +143,83 @@ def near_curve(curve, points, radius):
     """Mask (M,) of the points (M, 3) lying within radius of the curve (a CurveResult). A point farther than radius
     plus half the longest step from every stored point is farther than radius from the curve (each arc between
     two stored points lies within half its length of one of them); a point within radius of a foot point found
-    by Newton in s from the nearest stored point is near; the closest point decides the rest."""
-    points = np.asarray(points, dtype=float).reshape(-1, 3)
-    out = np.zeros(len(points), dtype=bool)
-    ask = np.ones(len(points), dtype=bool)
-    if curve.length > 0 and len(curve.points) > 1:
-        reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
-        gap, nearest = cKDTree(curve.points).query(points, distance_upper_bound=reach)
-        ask = gap <= reach
-        if ask.any():
-            out[ask] = curve.sol.foot_points(points[ask], curve.s[nearest[ask]], CLOSEST_NEWTON_STEPS)[1] <= radius
-            ask &= ~out
+    by Newton in s from the nearest stored point is near; the closest point decides the rest. A traced curve is
+    tested in compiled code (spatialkin.kernels.near: there a point within radius of one of Newton's iterates,
+    each a point of the curve, is near too), except where Newton meets a span the compiled tables do not hold (a
+    jump across a node or an apex): there, and on the other curves, the dense output's methods decide."""
+    points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
+    if not (curve.length > 0 and len(curve.points) > 1 and len(points)):
+        return curve.sol.closest(points)[1] <= radius if len(points) else np.zeros(0, dtype=bool)
+    table = packed(curve.sol)
+    if table is None:
+        verdict = np.full(len(points), kn.PYTHON)
+    else:
+        verdict = np.empty(len(points), dtype=np.int64)
+        if not kn.near_mask(points, curve.points, curve.s, float(radius), table, curve.sol.closed,
+                            curve.sol.length, float(curve.sol.gap_tol), NEWTON_MAX_ITER, CLOSEST_NEWTON_STEPS,
+                            verdict):
+            return verdict == kn.NEAR
+    python = verdict == kn.PYTHON
+    if python.any():
+        verdict[python] = python_verdicts(curve, points[python], radius)
+    out = verdict == kn.NEAR
+    ask = verdict == kn.UNDECIDED
     if ask.any():
-        out[ask] = curve.sol.closest(points[ask])[1] <= radius
+        out[ask] = within(curve, points[ask], radius)
     return out
 
 
+def within(curve, points, radius):
+    """Mask (M,) of the points (M, 3) whose closest point on the curve (a CurveResult; CurveSolution.closest) lies
+    within radius: in compiled code (kernels.near.closest_within) where the tables hold the curve, else, and for
+    the points whose Newton meets a span they do not hold, by closest() itself."""
+    sol = curve.sol
+    table = packed(sol) if curve.length > 0 else None
+    if table is None:
+        return sol.closest(points)[1] <= radius
+    grid_s, grid = packed_grid(sol, table)
+    verdict = np.empty(len(points), dtype=np.int64)
+    kn.closest_within(points, grid_s, grid, float(radius), table, sol.closed, sol.length, float(sol.gap_tol),
+                      NEWTON_MAX_ITER, CLOSEST_NEWTON_STEPS, CLOSEST_CANDIDATES, verdict)
+    out = verdict == kn.NEAR
+    python = verdict == kn.PYTHON
+    if python.any():
+        out[python] = sol.closest(points[python])[1] <= radius
+    return out
+
+
+def python_verdicts(curve, points, radius):
+    """near_mask's verdicts (kernels.near: FAR, NEAR or UNDECIDED) of the points (M, 3) against the curve (a
+    CurveResult of positive length) in Python: the nearest stored point by a cKDTree, the foot point by the dense
+    output's foot_points."""
+    reach = radius + 0.5 * float(np.max(np.diff(curve.s)))
+    gap, nearest = cKDTree(curve.points).query(points, distance_upper_bound=reach)
+    verdict = np.full(len(points), kn.FAR)
+    ask = gap <= reach
+    if ask.any():
+        near = curve.sol.foot_points(points[ask], curve.s[nearest[ask]], CLOSEST_NEWTON_STEPS)[1] <= radius
+        verdict[ask] = np.where(near, kn.NEAR, kn.UNDECIDED)
+    return verdict
+
+
 def covered(curve, others, radius):
-    """True for an open curve lying wholly on another curve (a piece of a component traced again)."""
+    """True for an open curve lying wholly on another curve (a piece of a component traced again). A curve one of
+    whose points lies beyond the reach of every stored point of the other (kernels.near.within_reach) is not on
+    it; the closest points decide the rest (within)."""
     if curve.closed or curve.status == CONTACT:
         return False
-    return any(other.length >= curve.length and np.max(other.sol.closest(curve.points)[1]) <= radius
-               for other in others)
+    points = np.ascontiguousarray(curve.points)
+    return any(other.length >= curve.length and could_cover(other, points, radius)
+               and within(other, points, radius).all() for other in others)
+
+
+def could_cover(curve, points, radius):
+    """False when one of the points (M, 3) is proven farther than radius from the curve (a CurveResult) by its
+    stored points alone (kernels.near.within_reach); True otherwise."""
+    if curve.length > 0 and len(curve.points) > 1:
+        return kn.within_reach(points, np.ascontiguousarray(curve.points), np.ascontiguousarray(curve.s),
+                               float(radius))
+    return True
 
 
 def edge_start(a, b, point, p_index, fixed, value, settings):

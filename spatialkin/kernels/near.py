@@ -1,0 +1,274 @@
+"""Distances of points from a traced curve in compiled code: which points lie within a radius of it.
+
+The curve's dense output is read from flat tables (built by spatialkin.tracing.packed from a TracedSolution):
+
+* spans (S): row k of ``spans`` (S, 5) is (lo, flip, shift, sign, compiled): arc length s in [lo, next lo) maps
+  to the solver time t = shift + flip s of span k's segment, whose charts are rows k of ``charts_a`` and
+  ``charts_b`` and whose direction of travel is sign; compiled is 0 for a span these tables do not hold (a
+  jump across a node or an apex, another solve_ivp method): a point whose Newton meets it is left to Python
+  (verdict PYTHON); a re-measured segment (spatialkin.tracing.arclength.RemappedStates) first maps t to the
+  solver's time by np.interp through ``remap_new[remap_off[k]:remap_off[k + 1]]`` and ``remap_old[...]`` (an
+  empty range: no re-mapping);
+* solver steps: span k's scipy OdeSolution times are ``ode_t[ode_off[k]:ode_off[k + 1]]`` and its steps' dense
+  outputs are numbers ``ode_first[k]``, ... of the next level;
+* dense outputs (G): dense output g has kind ``kinds[g]``; poly_first[g] indexes its kind's tables:
+  RK45_STEPS (spatialkin.tracing.ode.StepsDense): its times ``pt[pt_off[g]:pt_off[g + 1]]`` (ts), and the
+  polynomial from its time i is number poly_first[g] + i of ``rk_h`` (length), ``rk_y`` (start state) and
+  ``rk_q`` (Q (4, 4)); DOP853 (scipy's Dop853DenseOutput): ``dop_t0`` (t_old), ``dop_h``, ``dop_y`` (y_old)
+  and ``dop_f`` (F (7, 4)).
+
+Every state is then corrected onto both surfaces by the same Newton (project_to_curve in the plane normal to the
+tangent) as TracedSolution.evaluate, and the foot point is found by the same Newton in s as
+CurveSolution.foot_points, operation for operation: points, foot points and distances are those of the Python
+path to the bit. The tests against a radius (near_mask, closest_within) stop at the first Newton iterate within
+it (a point of the curve too), so they decide as the Python path does without always taking its last steps.
+
+References
+----------
+scipy.integrate._ivp.common.OdeSolution (the step lookup), scipy.integrate._ivp.rk.Dop853DenseOutput (its
+polynomial), spatialkin.tracing.dense (the evaluation this mirrors).
+"""
+import math
+
+import numpy as np
+
+from .._jit import jit
+from .curve import curve_frame, project_to_curve
+from .rk import dense_state
+
+#: Columns of the spans table.
+LO, FLIP, SHIFT, SIGN, COMPILED = 0, 1, 2, 3, 4
+#: kinds[g] of a dense output: a CompiledRK45 step (RK45 polynomials, spatialkin.tracing.ode.StepsDense) ...
+RK45_STEPS = 0
+#: ... or a step of solve_ivp's DOP853 (scipy's Dop853DenseOutput, a degree-7 polynomial).
+DOP853 = 1
+#: Coefficient columns of a DOP853 dense output (scipy's DOP853 INTERPOLATOR_POWER).
+DOP853_POWER = 7
+#: near_mask's verdicts: farther than the reach from every stored point (far from the curve) ...
+FAR = 0
+#: ... within the radius of the foot point found from the nearest stored point (near) ...
+NEAR = 1
+#: ... or neither: only the closest point on the whole curve decides ...
+UNDECIDED = 2
+#: ... or its Newton met a span the tables do not hold: the Python foot point decides.
+PYTHON = 3
+
+
+@jit
+def dop853_state(t_old, h, y_old, f, t, out):
+    """scipy's Dop853DenseOutput at t into out (n,): Horner in x and 1 - x over the coefficient rows f (7, n)
+    from the last, as scipy evaluates it (the same operations in the same order)."""
+    x = (t - t_old) / h
+    for i in range(out.shape[0]):
+        acc = 0.0
+        for r in range(DOP853_POWER):
+            acc += f[DOP853_POWER - 1 - r, i]
+            if r % 2 == 0:
+                acc *= x
+            else:
+                acc *= 1 - x
+        out[i] = acc + y_old[i]
+
+
+@jit
+def solver_state(table, k, t, out):
+    """The solver's state at its time t on span k into out (4,), as scipy's OdeSolution of the span's segment
+    gives it (the step found by searchsorted 'left', then the step's dense output)."""
+    (_, _, _, ode_t, ode_off, ode_first, kinds, pt_off, poly_first, pt, rk_h, rk_y, rk_q,
+     dop_t0, dop_h, dop_y, dop_f, _, _, _) = table
+    lo, hi = ode_off[k], ode_off[k + 1]
+    ind = np.searchsorted(ode_t[lo:hi], t, side="left")
+    g = ode_first[k] + min(max(ind - 1, 0), hi - lo - 2)
+    j = poly_first[g]
+    if kinds[g] == DOP853:
+        dop853_state(dop_t0[j], dop_h[j], dop_y[j], dop_f[j], t, out)
+        return
+    first, last = pt_off[g], pt_off[g + 1]      # StepsDense's own lookup (spatialkin.kernels.rk.dense_into)
+    i = min(max(np.searchsorted(pt[first:last], t, side="right") - 1, 0), last - first - 2)
+    dense_state(pt[first + i], rk_h[j + i], rk_y[j + i], rk_q[j + i], t, out)
+
+
+@jit
+def interp(x, xp, fp):
+    """np.interp(x, xp, fp) at one x (xp ascending), operation for operation as numpy computes it (arr_interp in
+    numpy/_core/src/multiarray/compiled_base.c: the ends, the knots and the NaN guard included)."""
+    n = xp.shape[0]
+    if n == 1:
+        return fp[0]
+    if math.isnan(x):
+        return x
+    if x < xp[0]:
+        return fp[0]
+    if x > xp[n - 1]:
+        return fp[n - 1]
+    j = np.searchsorted(xp, x, side="right") - 1          # xp[j] <= x < xp[j + 1], or j = n - 1 at the end
+    if j == n - 1 or xp[j] == x:
+        return fp[j]
+    slope = (fp[j + 1] - fp[j]) / (xp[j + 1] - xp[j])
+    value = slope * (x - xp[j]) + fp[j]
+    if math.isnan(value):
+        value = slope * (x - xp[j + 1]) + fp[j + 1]
+        if math.isnan(value) and fp[j] == fp[j + 1]:
+            value = fp[j]
+    return value
+
+
+@jit
+def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangent):
+    """Point (3,) and unit tangent (3,) (towards increasing s) of the curve at arc length s, the state corrected
+    onto both surfaces (y (4,), q (3,): work space); returns s wrapped into [0, length) for a closed curve, or
+    NaN (nothing written) on a span the tables do not hold. As TracedSolution.evaluate does for one s."""
+    spans, charts_a, charts_b = table[0], table[1], table[2]
+    if closed and length > 0.0:
+        s = s % length
+    k = 0                         # searchsorted(lo, s, 'right') - 1, clipped to the spans (lo ascending)
+    for j in range(1, spans.shape[0]):
+        if spans[j, LO] <= s:
+            k = j
+    if spans[k, COMPILED] == 0.0:
+        return np.nan
+    flip = spans[k, FLIP]
+    t = spans[k, SHIFT] + flip * s
+    remap_off, remap_new, remap_old = table[17], table[18], table[19]
+    if remap_off[k + 1] > remap_off[k]:
+        t = interp(t, remap_new[remap_off[k]:remap_off[k + 1]], remap_old[remap_off[k]:remap_off[k + 1]])
+    solver_state(table, k, t, y)
+    a, b = charts_a[k], charts_b[k]
+    curve_frame(y, a, b, q, tangent)
+    project_to_curve(y, a, b, q, tangent, gap_tol, max_iter)
+    curve_frame(y, a, b, point, tangent)
+    for i in range(3):
+        tangent[i] = tangent[i] * flip * spans[k, SIGN]
+    return s
+
+
+@jit
+def foot_distance(table, closed, length, gap_tol, max_iter, p, s, steps, enough):
+    """(s, distance) of the foot point of p (3,) on the curve by `steps` Newton steps in s from s, as
+    CurveSolution.foot_points (its dot product summed as numpy's einsum sums three terms: (0 + 2) + 1); or, at
+    the first curve point met within `enough` of p, that point's (a negative `enough`: never); (NaN, NaN) when
+    Newton meets a span the tables do not hold."""
+    y, q, at, tangent = np.empty(4), np.empty(3), np.empty(3), np.empty(3)
+    for _ in range(steps):
+        s_at = curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
+        if math.isnan(s_at):
+            return np.nan, np.nan
+        d0, d1, d2 = p[0] - at[0], p[1] - at[1], p[2] - at[2]
+        dist = math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
+        if dist <= enough:
+            return s_at, dist
+        s = s + ((d0 * tangent[0] + d2 * tangent[2]) + d1 * tangent[1])
+        if not closed:
+            if s < 0.0:
+                s = 0.0
+            elif s > length:
+                s = length
+    s = curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
+    if math.isnan(s):
+        return np.nan, np.nan
+    d0, d1, d2 = p[0] - at[0], p[1] - at[1], p[2] - at[2]
+    return s, math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
+
+
+@jit
+def reach_of(s_stored, radius):
+    """Radius plus half the longest step between stored points at arc lengths s_stored (N,): a point farther than
+    this from every stored point is farther than radius from the curve (each arc between two stored points lies
+    within half its length of one of them)."""
+    longest = 0.0
+    for j in range(s_stored.shape[0] - 1):
+        longest = max(longest, s_stored[j + 1] - s_stored[j])
+    return radius + 0.5 * longest
+
+
+@jit
+def nearest_stored(p, stored):
+    """(distance, index) of the stored point (N, 3) nearest to p (3,) (the first of equals)."""
+    best, nearest = np.inf, -1
+    for j in range(stored.shape[0]):
+        d0, d1, d2 = p[0] - stored[j, 0], p[1] - stored[j, 1], p[2] - stored[j, 2]
+        d = (d0 * d0 + d1 * d1) + d2 * d2
+        if d < best:
+            best, nearest = d, j
+    return math.sqrt(best), nearest
+
+
+@jit
+def within_reach(points, stored, s_stored, radius):
+    """Whether every point (M, 3) lies within reach_of(s_stored, radius) of one of the stored points (N, 3): False
+    proves some point farther than radius from the curve."""
+    reach = reach_of(s_stored, radius)
+    for m in range(points.shape[0]):
+        if not nearest_stored(points[m], stored)[0] < reach:
+            return False
+    return True
+
+
+@jit
+def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, max_iter, steps, verdict):
+    """Verdict (M,) (FAR, NEAR or UNDECIDED) of each point (M, 3) against the curve through its stored points
+    (N, 3) at arc lengths s_stored (N,): FAR when farther than radius plus half the longest step from every
+    stored point (each arc between two stored points lies within half its length of one of them); NEAR when
+    within radius of a curve point met by foot_distance from the nearest stored point (the foot point, or one of
+    the Newton iterates before it: each is a point of the curve); PYTHON when that Newton met a span the tables
+    do not hold (or gave NaN); UNDECIDED otherwise. Returns the number of UNDECIDED and PYTHON points.
+    """
+    reach = reach_of(s_stored, radius)
+    undecided = 0
+    for m in range(points.shape[0]):
+        gap, nearest = nearest_stored(points[m], stored)
+        # scipy's cKDTree query with distance_upper_bound=reach finds no neighbour at reach or beyond
+        if not gap < reach:
+            verdict[m] = FAR
+            continue
+        _, dist = foot_distance(table, closed, length, gap_tol, max_iter, points[m], s_stored[nearest], steps,
+                                radius)
+        if math.isnan(dist):
+            verdict[m] = PYTHON
+        else:
+            verdict[m] = NEAR if dist <= radius else UNDECIDED
+        undecided += verdict[m] != NEAR
+    return undecided
+
+
+@jit
+def curve_points(table, closed, length, gap_tol, max_iter, s, points):
+    """Points (M, 3) of the curve at arc lengths s (M,) (curve_point for each); False when one of them lies on a
+    span the tables do not hold (the rest then unwritten)."""
+    y, q, tangent = np.empty(4), np.empty(3), np.empty(3)
+    for m in range(s.shape[0]):
+        if math.isnan(curve_point(table, closed, length, gap_tol, max_iter, s[m], y, q, points[m], tangent)):
+            return False
+    return True
+
+
+@jit
+def closest_within(points, grid_s, grid, radius, table, closed, length, gap_tol, max_iter, steps, candidates,
+                   verdict):
+    """Verdict (M,) of each point (M, 3) as CurveSolution.closest decides it against radius: NEAR when a foot
+    point (or a Newton iterate before it, see foot_distance) from one of the `candidates` grid points (arc
+    lengths grid_s (G,), points grid (G, 3)) nearest to it lies within radius, FAR when none does, PYTHON when a
+    Newton met a span the tables do not hold or gave NaN (where closest's minimum would be NaN)."""
+    k = min(candidates, grid.shape[0])
+    best_d, best_i = np.empty(k), np.empty(k, dtype=np.int64)
+    for m in range(points.shape[0]):
+        for c in range(k):
+            best_d[c], best_i[c] = np.inf, -1
+        for j in range(grid.shape[0]):          # the k nearest grid points, kept in order of distance
+            d0, d1, d2 = points[m, 0] - grid[j, 0], points[m, 1] - grid[j, 1], points[m, 2] - grid[j, 2]
+            d = (d0 * d0 + d1 * d1) + d2 * d2
+            if d < best_d[k - 1]:
+                c = k - 1
+                while c > 0 and best_d[c - 1] > d:
+                    best_d[c], best_i[c] = best_d[c - 1], best_i[c - 1]
+                    c -= 1
+                best_d[c], best_i[c] = d, j
+        verdict[m] = FAR
+        for c in range(k):
+            _, dist = foot_distance(table, closed, length, gap_tol, max_iter, points[m], grid_s[best_i[c]], steps,
+                                    radius)
+            if math.isnan(dist):
+                verdict[m] = PYTHON
+                break
+            if dist <= radius:
+                verdict[m] = NEAR

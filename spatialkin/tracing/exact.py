@@ -105,17 +105,18 @@ class PointSolution(ExactSolution):
         return np.zeros(pts.shape[:-1]), np.linalg.norm(pts - self.point, axis=-1)
 
 
-def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent"):
+def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent", topology=None):
     """The CurveResult of a circle (centre (3,), unit axis (3,), radius) or a segment (p0 (3,), p1 (3,)) in closed
     form; `event` is 'tangent' (the surfaces touch all along it) or 'axis_circle' (a circle about their common
-    axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve."""
+    axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve; topology the
+    search that found it (CurveResult.topology)."""
     sol = CircleSolution(surfaces, *circle) if circle is not None else SegmentSolution(surfaces, *segment)
     _, points, _, params = sol.evaluate(sol.knots)
     if sol.closed:
         points[-1] = points[0]
     status, message = outcome(event, shape=sol.shape)
     return CurveResult(points=points, s=sol.knots, params=params, closed=sol.closed, length=sol.length,
-                       status=status, message=message, tolerance=tolerance, sol=sol)
+                       status=status, message=message, tolerance=tolerance, sol=sol, topology=topology)
 
 
 def contact_point(surfaces, point, tolerance):

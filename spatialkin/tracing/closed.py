@@ -33,9 +33,13 @@ GRAZE = 1e3
 #: A conic whose centre or semi-axes exceed this many scales (a plane nearly parallel to a cylinder's axis or to a
 #: cone's generatrix) is left to the general path: its points would lose digits.
 LARGE = 1e4
-#: |A| at most this: the plane is parallel to a cylinder's axis (two lines) or a cone's generatrix (a parabola),
-#: as the topology stage recognises it (placement.SAME, squared for the cosine).
+#: |A| at most this: the plane is parallel to a cylinder's axis (two lines, as the topology stage recognises it:
+#: placement.SAME, squared for the cosine) ...
 PARALLEL_A = SAME * SAME
+#: ... or to a cone's generatrix (a parabola; a plane placed so has |A| of a few ulps, and the parabola's points
+#: are checked on the cone: PARABOLA_CHECK x tolerance).
+PARABOLA_A = 1e-13
+PARABOLA_CHECK = 0.1
 #: Topology.mode of the curves found here.
 MODE = "closed_form"
 #: The edges of a trim, in the order of the bounds in a surface's data.
@@ -110,13 +114,13 @@ def plane_line(a, b, graze, scale):
     """[(LINE, point, 0, unit direction)] of two planes; [] for parallel planes apart; None for (nearly) coplanar
     ones or a line farther than LARGE x scale."""
     n1, n2 = a.frame.rotation[:, 2], b.frame.rotation[:, 2]
-    cross = np.cross(n1, n2)
-    sin = float(np.linalg.norm(cross))
+    cross = cross3(n1, n2)
+    sin = math.sqrt(cross @ cross)
     gap = float(n2 @ (b.frame.origin - a.frame.origin))
     if sin <= SAME:
         return None if abs(gap) <= graze else []
-    offset = gap * np.cross(cross, n1) / (sin * sin)      # a's origin to its foot on the line
-    if np.linalg.norm(offset) > LARGE * scale:
+    offset = (gap / (sin * sin)) * cross3(cross, n1)      # a's origin to its foot on the line
+    if abs(gap) > LARGE * scale * sin:
         return None
     return [(LINE, a.frame.origin + offset, np.zeros(3), cross / sin)]
 
@@ -150,8 +154,8 @@ def plane_conics(plane, quadric, graze, scale):
     sin = math.hypot(n[0], n[1])
     if sin <= SAME:
         e1, sin = np.array([1.0, 0.0, 0.0]), 0.0
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(n, e1)
+    e1 /= math.sqrt(e1 @ e1)
+    e2 = cross3(n, e1)
     q0 = d * n
     weights = np.array([1.0, 1.0, mu])
     A = float(weights @ (e2 * e2))
@@ -160,7 +164,7 @@ def plane_conics(plane, quadric, graze, scale):
     coaxial = name == "sphere" or sin <= SAME
     trimmed = np.isfinite(plane.data[ks.BOUNDS:ks.BOUNDS + 4]).any()
     local = []
-    if abs(A) <= PARALLEL_A:
+    if abs(A) <= (PARABOLA_A if name == "cone" else PARALLEL_A):
         if name == "cylinder":                               # parallel to the axis: two lines x = +-sqrt(-C)
             if abs(math.sqrt(rho) - abs(d)) <= graze:
                 return None
@@ -203,21 +207,31 @@ def inside_axial(quadric, z, margin):
 
 
 # --- clipping ----------------------------------------------------------------------------------------------------
+class Trims:
+    """The finite trims of two surfaces as linear functions of the point x: trim i holds x . w[i] - bound[i] on
+    the inside side (side[i] (x . w[i] - bound[i]) <= 0); edges[i] is (surface index, edge index)."""
+
+    def __init__(self, w, bound, side, edges):
+        self.w, self.bound, self.side, self.edges = w, bound, side, edges
+
+
 def linear_trims(surfaces):
-    """[(w (3,), offset, bound, surface index, edge index)] of every finite trim: the trimmed parameter is the
-    linear function w . x - offset of the point x; None if a finite trim is not a length along a local axis."""
-    trims = []
+    """The Trims of both surfaces (a trimmed parameter is a length along a local axis: x . w - w . origin); None
+    if a finite trim is not such a length."""
+    rows, bounds, edges = [], [], []
     for k, surf in enumerate(surfaces):
-        bounds = surf.data[ks.BOUNDS:ks.BOUNDS + 4]
         axes = traits(surf).parameter_axes
-        for j in range(4):
-            if math.isfinite(bounds[j]):
+        for j, value in enumerate(surf.data[ks.BOUNDS:ks.BOUNDS + 4].tolist()):
+            if math.isfinite(value):
                 axis = axes[j // 2]
                 if axis is None:
                     return None
                 w = surf.frame.rotation[:, axis]
-                trims.append((w, float(w @ surf.frame.origin), float(bounds[j]), k, j))
-    return trims
+                rows.append(w)
+                bounds.append(value + float(w @ surf.frame.origin))
+                edges.append((k, j))
+    w = np.array(rows).reshape(-1, 3)
+    return Trims(w, np.array(bounds), np.array([1.0 if j % 2 else -1.0 for _, j in edges]), edges)
 
 
 def crossings(shape, beta, gamma, level, graze):
@@ -260,8 +274,9 @@ def clip(shape, centre, P, Q, trims, graze):
     ((surface, edge) at t_lo, at t_hi); None where declined (a touch, a corner, an unbounded arc)."""
     conic = Conic(shape, centre, P, Q)
     events = []
-    for w, offset, bound, k, j in trims:
-        roots = crossings(shape, float(w @ P), float(w @ Q), bound - float(w @ centre) + offset, graze)
+    for beta, gamma, level, (k, j) in zip((trims.w @ P).tolist(), (trims.w @ Q).tolist(),
+                                          (trims.bound - trims.w @ centre).tolist(), trims.edges):
+        roots = crossings(shape, beta, gamma, level, graze)
         if roots is None:
             return None
         events += [(t, (k, j)) for t in roots]
@@ -286,24 +301,25 @@ def clip(shape, centre, P, Q, trims, graze):
 
 def inside(conic, trims, t):
     """Mask (M,): the conic's points at t (M,) lie inside every trim."""
-    pts = conic.at(t)
-    ok = np.ones(len(t), dtype=bool)
-    for w, offset, bound, _, j in trims:
-        value = pts @ w - offset
-        ok &= value >= bound if j % 2 == 0 else value <= bound
-    return ok
+    excess = (conic.at(t) @ trims.w.T - trims.bound) * trims.side      # <= 0 inside
+    return np.all(excess <= 0.0, axis=1)
 
 
 # --- the components ----------------------------------------------------------------------------------------------
-def normals(surfaces, point):
-    """The two surfaces' normals (2, 3) at a point on both (positive multiples of S_u x S_v: their implicit
-    functions' gradients)."""
-    out = np.empty((2, 3))
-    for k, surf in enumerate(surfaces):
-        rot = surf.frame.rotation
-        q = (point - surf.frame.origin) @ rot
-        out[k] = rot @ traits(surf).implicit_jets(surf, q[None])[1][0]
-    return out
+def normal(surf, point):
+    """The surface's normal (3,) at a point on it: a positive multiple of S_u x S_v (the gradient of its implicit
+    function: q diag(1, 1, mu) for a quadric, local z for a plane)."""
+    rot = surf.frame.rotation
+    if traits(surf).name == "plane":
+        return rot[:, 2]
+    q = (point - surf.frame.origin) @ rot
+    q[2] *= quadric_form(surf)[0]
+    return rot @ q
+
+
+def cross3(x, y):
+    """x x y of two 3-vectors (np.cross costs more than the product on such small arrays)."""
+    return np.array([x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]])
 
 
 def component(surfaces, shape, centre, P, Q, t_lo, t_hi, ends, settings, topo):
@@ -311,9 +327,10 @@ def component(surfaces, shape, centre, P, Q, t_lo, t_hi, ends, settings, topo):
     where the surfaces are nearly tangent on it."""
     probe = Conic(shape, centre, P, Q)
     t_mid = np.array([0.5 * (t_lo + t_hi)])
-    na, nb = normals(surfaces, probe.at(t_mid)[0])
-    along = np.cross(na, nb)
-    sin = np.linalg.norm(along) / (np.linalg.norm(na) * np.linalg.norm(nb))
+    point = probe.at(t_mid)[0]
+    na, nb = normal(surfaces[0], point), normal(surfaces[1], point)
+    along = cross3(na, nb)
+    sin = math.sqrt((along @ along) / ((na @ na) * (nb @ nb)))
     if sin < settings.singular_tol:
         return None
     if along @ probe.at(t_mid, 1)[0] < 0:                    # run it backwards: C(-t), g odd
@@ -331,6 +348,9 @@ def component(surfaces, shape, centre, P, Q, t_lo, t_hi, ends, settings, topo):
             u = params[:, 2 * k]
             u[1:] -= TWO_PI * np.cumsum(np.round(np.diff(u) / TWO_PI))
     sol.params = params
+    if shape == PARABOLA and max(float(np.max(surf.distance(points))) for surf in surfaces) > (
+            PARABOLA_CHECK * settings.tolerance):
+        return None                                          # not quite parallel to the generatrix
     length = sol.length
     if closed:
         status, message = outcome("closed", s=length)

@@ -18,8 +18,10 @@ from spatialkin.tracing.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_
 
 #: Random placements per pair kind (each in both argument orders).
 CASES = 12
-#: Lengths agree to this (relative); points of one curve lie within POINT_TOL x scale of the other.
-LENGTH_TOL = 1e-9
+#: Lengths agree to this (relative): the traced length itself is off by up to about 1e-9 relative (seen: 1.1e-9
+#: on a short hyperbola arc), the closed form's by round-off (test_arc_length_and_points: scipy quad to 1e-12) ...
+LENGTH_TOL = 5e-9
+#: ... and the points of one curve lie within this x scale of the other.
 POINT_TOL = 1e-9
 #: Stored points lie on both surfaces within this x the coordinates' magnitude (round-off).
 ON_SURFACE = 1e-14

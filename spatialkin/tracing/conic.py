@@ -104,9 +104,14 @@ class ConicSolution(ExactSolution):
     def __init__(self, surfaces, conic, t_lo, t_hi, closed, samples=EXACT_SAMPLES):
         self.conic, self.t_lo = conic, float(t_lo)
         self.t_knots = np.linspace(t_lo, t_hi, samples)
-        self.s0 = float(conic.arc(np.array([t_lo]))[0])
-        knots = conic.arc(self.t_knots) - self.s0
-        knots[0] = 0.0
+        if closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0:
+            knots = conic.b * ellipse_turn(conic.m, samples)      # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
+            self.s0 = 0.0 if t_lo == 0 else -knots[-1]
+        else:
+            arcs = conic.arc(self.t_knots)
+            self.s0 = float(arcs[0])
+            knots = arcs - self.s0
+            knots[0] = 0.0
         self.shape = conic.shape
         self.params = None                      # the stored parameters, set by the builder (continuity reference)
         super().__init__(surfaces, knots[-1], closed, knots)
@@ -147,3 +152,13 @@ class ConicSolution(ExactSolution):
         tangents = d1 / np.sqrt(speed2)[:, None]
         bend = (d2 - np.einsum("ij,ij->i", d2, tangents)[:, None] * tangents) / speed2[:, None]
         return tuple(x.reshape(shape + (3,)) for x in (self.conic.at(t), tangents, bend))
+
+
+def ellipse_turn(m, samples):
+    """E(t | m) at `samples` values of t evenly spaced over [0, 2 pi] (samples - 1 a multiple of 4): evaluated on
+    the first quarter only, by E(pi / 2 + x) = 2 E(m) - E(pi / 2 - x) and E(t + pi) = E(t) + 2 E(m)."""
+    quarter = (samples - 1) // 4
+    e = ellipeinc(np.linspace(0.0, 0.5 * math.pi, quarter + 1), m)
+    full = e[-1]
+    rising, falling = e[:-1], full - e[:0:-1]           # E(x) and E(pi/2 + x) - E(pi/2) for x in [0, pi/2)
+    return np.concatenate([rising, full + falling, 2 * full + rising, 3 * full + falling, [4 * full]])

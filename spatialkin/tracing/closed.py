@@ -23,7 +23,7 @@ from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution
 from .exact import exact_curve
 from .placement import SAME
 from .result import CurveResult
-from .status import BOUNDARY, CLOSED, open_outcome, outcome
+from .status import BOUNDARY, open_outcome, outcome
 from .topology import Topology
 from .traits import traits
 
@@ -40,6 +40,9 @@ PARALLEL_A = SAME * SAME
 #: are checked on the cone: PARABOLA_CHECK x tolerance).
 PARABOLA_A = 1e-13
 PARABOLA_CHECK = 0.1
+#: A curve longer than this share of settings.max_length is left to the tracer (a branch runs at most max_length
+#: each way from its start).
+MAX_LENGTH_SHARE = 0.5
 #: Topology.mode of the curves found here.
 MODE = "closed_form"
 #: The edges of a trim, in the order of the bounds in a surface's data.
@@ -85,8 +88,8 @@ def closed_form(a, b, settings):
             return None
         for t_lo, t_hi, ends in arcs:
             curve = component((a, b), shape, centre, P, Q, t_lo, t_hi, ends, settings, topo)
-            if curve is None:
-                return None
+            if curve is None or curve.length > MAX_LENGTH_SHARE * settings.max_length:
+                return None                                  # (the tracer would stop at max_length)
             curves.append(curve)
     curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
     return curves
@@ -359,6 +362,5 @@ def component(surfaces, shape, centre, P, Q, t_lo, t_hi, ends, settings, topo):
         status, message = open_outcome(
             BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
             BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=length)[1])
-    assert status in (CLOSED, BOUNDARY)
     return CurveResult(points=points, s=sol.knots, params=params, closed=closed, length=length, status=status,
                        message=message, tolerance=settings.tolerance, sol=sol, topology=topo)

@@ -215,3 +215,11 @@ def test_nothing_and_orders():
     other = sk.Plane(sk.Frame((0.0, 0.0, 1.0), np.eye(3)), (-1, 1), (-1, 1))
     assert closed_form(apart, other, settings_of(apart, other)) == []
     assert sk.intersect(sk.Sphere(1.0), sk.Sphere(0.5, sk.Frame((3.0, 0.0, 0.0), np.eye(3)))) == []
+
+
+def test_short_max_length_left_to_tracer(monkeypatch):
+    """A max_length shorter than the curve: declined, the tracer stops there as before."""
+    plane = sk.Plane(sk.Frame((0.0, 0.0, 0.2), np.eye(3)), (-2, 2), (-2, 2))
+    ours = sk.intersect(plane, sk.Sphere(1.0), max_length=1.0)
+    assert ours[0].topology.mode != "closed_form"
+    assert sk.intersect(plane, sk.Sphere(1.0))[0].topology.mode == "closed_form"

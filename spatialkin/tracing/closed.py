@@ -52,11 +52,13 @@ QUADRICS = ("sphere", "cylinder", "cone")
 TWO_PI = 2.0 * math.pi
 
 
+
 def closed_form(a, b, settings):
     """The components of a ∩ b (CurveResults, longest first, as sk.intersect sorts them), or None when the pair
     or its placement is not handled here (see the module docstring)."""
-    names = (traits(a).name, traits(b).name)
-    if not (math.isfinite(traits(a).extent(a)) or math.isfinite(traits(b).extent(b))):
+    kinds = (traits(a), traits(b))
+    names = (kinds[0].name, kinds[1].name)
+    if not (math.isfinite(kinds[0].extent(a)) or math.isfinite(kinds[1].extent(b))):
         return None
     graze = GRAZE * settings.tolerance
     topo = Topology(P=a, Q=b, mode=MODE)
@@ -69,38 +71,79 @@ def closed_form(a, b, settings):
         conics = plane_line(a, b, graze, settings.scale)
     elif "plane" in names and (names[0] in QUADRICS or names[1] in QUADRICS):
         plane, quadric = (a, b) if names[0] == "plane" else (b, a)
-        found = plane_conics(plane, quadric, graze, settings.scale)
-        if isinstance(found, tuple):                        # a circle about a common axis: as the general path
-            return [] if found == () else [exact_curve((a, b), settings.tolerance, circle=found,
-                                                       event="axis_circle", topology=topo)]
-        conics = found
+        conics = plane_conics(plane, quadric, graze, settings.scale)
+        if isinstance(conics, tuple):                       # a circle about a common axis: as the general path
+            return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=conics,
+                                                      event="axis_circle", topology=topo)]
     else:
         return None
-    if conics is None:
-        return None
+    if not conics:
+        return conics                                        # None (declined) or [] (nothing)
     trims = linear_trims((a, b))
-    if trims is None:
+    if not trims:
         return None
     curves = []
-    for shape, centre, P, Q in conics:
-        arcs = clip(shape, centre, P, Q, trims, graze)
+    for shape, rows in conics:
+        arcs = clip(shape, rows, trims, graze)
         if arcs is None:
             return None
         for t_lo, t_hi, ends in arcs:
-            curve = component((a, b), shape, centre, P, Q, t_lo, t_hi, ends, settings, topo)
+            curve = component((a, b), shape, rows, t_lo, t_hi, ends, settings, topo)
             if curve is None or curve.length > MAX_LENGTH_SHARE * settings.max_length:
                 return None                                  # (the tracer would stop at max_length)
             curves.append(curve)
-    curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
+    if len(curves) > 1:
+        curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
     return curves
 
 
-# --- the conics ------------------------------------------------------------------------------------------------
+# --- small vectors as lists of floats (numpy costs more than the arithmetic on them) ---------------------------
+def dot(x, y):
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
+
+
+def cross(x, y):
+    return [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]]
+
+
+def combine(rows, f, g):
+    """rows[0] + f rows[1] + g rows[2] (3-lists)."""
+    c, p, q = rows
+    return [c[i] + f * p[i] + g * q[i] for i in range(3)]
+
+
+def basis(shape, t, order=0):
+    """(f, g) of spatialkin.tracing.conic at one t, or their derivatives of the given order (0 or 1)."""
+    if shape == ELLIPSE:
+        return (math.cos(t), math.sin(t)) if order == 0 else (-math.sin(t), math.cos(t))
+    if shape == HYPERBOLA:
+        return (math.cosh(t), math.sinh(t)) if order == 0 else (math.sinh(t), math.cosh(t))
+    if shape == PARABOLA:
+        return (t * t, t) if order == 0 else (2.0 * t, 1.0)
+    return (0.0, t) if order == 0 else (0.0, 1.0)
+
+
+def local_frame(surface):
+    """(origin, rotation) of the surface as lists (rotation rows)."""
+    return surface.frame.origin.tolist(), surface.frame.rotation.tolist()
+
+
+def to_global(rot, x):
+    """rot x (the local vector x in global coordinates)."""
+    return [dot(rot[0], x), dot(rot[1], x), dot(rot[2], x)]
+
+
+def to_local(rot, x):
+    """rot^T x."""
+    return [rot[0][j] * x[0] + rot[1][j] * x[1] + rot[2][j] * x[2] for j in range(3)]
+
+
+# --- the conics: (shape, [centre, P, Q]) in global coordinates ------------------------------------------------
 def sphere_circle(a, b, graze, scale):
     """(centre, axis, radius) of the circle of two spheres, the axis from a's centre to b's (as the topology
     stage's common axis); () when they do not meet; None near tangency or coincidence."""
     d = b.frame.origin - a.frame.origin
-    dist = float(np.linalg.norm(d))
+    dist = math.sqrt(d @ d)
     ra, rb = a.radius, b.radius
     if dist <= SAME * scale:
         return None if abs(ra - rb) <= graze else ()
@@ -114,18 +157,20 @@ def sphere_circle(a, b, graze, scale):
 
 
 def plane_line(a, b, graze, scale):
-    """[(LINE, point, 0, unit direction)] of two planes; [] for parallel planes apart; None for (nearly) coplanar
-    ones or a line farther than LARGE x scale."""
-    n1, n2 = a.frame.rotation[:, 2], b.frame.rotation[:, 2]
-    cross = cross3(n1, n2)
-    sin = math.sqrt(cross @ cross)
-    gap = float(n2 @ (b.frame.origin - a.frame.origin))
+    """[(LINE, rows)] of two planes; [] for parallel planes apart; None for (nearly) coplanar ones or a line
+    farther than LARGE x scale."""
+    (oa, ra), (ob, rb) = local_frame(a), local_frame(b)
+    n1, n2 = [row[2] for row in ra], [row[2] for row in rb]
+    along = cross(n1, n2)
+    sin = math.sqrt(dot(along, along))
+    gap = dot(n2, [ob[i] - oa[i] for i in range(3)])
     if sin <= SAME:
         return None if abs(gap) <= graze else []
-    offset = (gap / (sin * sin)) * cross3(cross, n1)      # a's origin to its foot on the line
     if abs(gap) > LARGE * scale * sin:
         return None
-    return [(LINE, a.frame.origin + offset, np.zeros(3), cross / sin)]
+    foot = cross(along, n1)                                 # a's origin to its foot on the line, over gap / sin^2
+    k = gap / (sin * sin)
+    return [(LINE, [[oa[i] + k * foot[i] for i in range(3)], [0.0, 0.0, 0.0], [x / sin for x in along]])]
 
 
 def quadric_form(quadric):
@@ -135,38 +180,32 @@ def quadric_form(quadric):
         return 1.0, quadric.radius ** 2
     if name == "cylinder":
         return 0.0, quadric.radius ** 2
-    tan = quadric.data[ks.P1]
+    tan = float(quadric.data[ks.P1])
     return -tan * tan, 0.0
 
 
 def plane_conics(plane, quadric, graze, scale):
-    """[(shape, centre, P, Q)] (global) of the plane and the quadric; a tuple (centre, axis, radius) for the
-    circle of an untrimmed plane about the quadric's axis (or a sphere's), () when nothing is there; None where
-    declined."""
-    rot, origin = quadric.frame.rotation, quadric.frame.origin
-    normal = plane.frame.rotation[:, 2]
-    n = rot.T @ normal
-    d = float(normal @ (plane.frame.origin - origin))       # the plane: n . q = d (local)
+    """[(shape, rows)] (global) of the plane and the quadric; a tuple (centre, axis, radius) for the circle of an
+    untrimmed plane about the quadric's axis (or a sphere's), () when nothing is there; None where declined."""
+    origin, rot = local_frame(quadric)
+    p_origin, p_rot = local_frame(plane)
+    normal = [row[2] for row in p_rot]
+    n = to_local(rot, normal)
+    d = dot(normal, [p_origin[i] - origin[i] for i in range(3)])     # the plane: n . q = d (local)
     mu, rho = quadric_form(quadric)
     name = traits(quadric).name
     if name == "sphere" and abs(abs(d) - math.sqrt(rho)) <= graze:
         return None                                          # tangent
     if name == "cone" and abs(d) <= graze:
         return None                                          # through the apex
-    e1 = np.array([n[1], -n[0], 0.0])                        # n x z
     sin = math.hypot(n[0], n[1])
-    if sin <= SAME:
-        e1, sin = np.array([1.0, 0.0, 0.0]), 0.0
-    e1 /= math.sqrt(e1 @ e1)
-    e2 = cross3(n, e1)
-    q0 = d * n
-    weights = np.array([1.0, 1.0, mu])
-    A = float(weights @ (e2 * e2))
-    B = float(weights @ (e2 * q0))
-    C = float(weights @ (q0 * q0)) - rho
-    coaxial = name == "sphere" or sin <= SAME
-    trimmed = np.isfinite(plane.data[ks.BOUNDS:ks.BOUNDS + 4]).any()
-    local = []
+    e1 = [n[1] / sin, -n[0] / sin, 0.0] if sin > SAME else [1.0, 0.0, 0.0]    # n x z, normal to the axis
+    e2 = cross(n, e1)
+    q0 = [d * x for x in n]
+    A = e2[0] * e2[0] + e2[1] * e2[1] + mu * e2[2] * e2[2]
+    B = e2[0] * q0[0] + e2[1] * q0[1] + mu * e2[2] * q0[2]
+    C = q0[0] * q0[0] + q0[1] * q0[1] + mu * q0[2] * q0[2] - rho
+    zero = [0.0, 0.0, 0.0]
     if abs(A) <= (PARABOLA_A if name == "cone" else PARALLEL_A):
         if name == "cylinder":                               # parallel to the axis: two lines x = +-sqrt(-C)
             if abs(math.sqrt(rho) - abs(d)) <= graze:
@@ -174,9 +213,10 @@ def plane_conics(plane, quadric, graze, scale):
             if C > 0:
                 return []
             x = math.sqrt(-C)
-            local = [(LINE, q0 + x * e1, np.zeros(3), e2), (LINE, q0 - x * e1, np.zeros(3), e2)]
+            local = [(LINE, [[q0[i] + s * x * e1[i] for i in range(3)], zero, e2]) for s in (1.0, -1.0)]
         elif name == "cone" and B != 0.0:                    # parallel to a generatrix: y = -(x^2 + C) / (2 B)
-            local = [(PARABOLA, q0 - C / (2.0 * B) * e2, -e2 / (2.0 * B), e1)]
+            local = [(PARABOLA, [[q0[i] - C / (2.0 * B) * e2[i] for i in range(3)], [-x / (2.0 * B) for x in e2],
+                                 e1])]
         else:
             return None
     else:
@@ -184,57 +224,51 @@ def plane_conics(plane, quadric, graze, scale):
         K = A * y0 * y0 - C
         if A > 0 and K <= 0:
             return []
-        if max(abs(y0), math.sqrt(abs(K)), math.sqrt(abs(K / A))) > LARGE * scale or K == 0:
+        if K == 0 or max(abs(y0), math.sqrt(abs(K)), math.sqrt(abs(K / A))) > LARGE * scale:
             return None
-        centre = q0 + y0 * e2
+        centre = [q0[i] + y0 * e2[i] for i in range(3)]
         if A > 0:
             major, minor = math.sqrt(K / A), math.sqrt(K)
-            if coaxial and not trimmed:
+            if (name == "sphere" or sin <= SAME) and not np.isfinite(plane.data[ks.BOUNDS:ks.BOUNDS + 4]).any():
                 if not inside_axial(quadric, centre[2], graze):
                     return None if inside_axial(quadric, centre[2], -graze) else ()
-                axis = normal if name == "sphere" else rot[:, 2]
-                return origin + rot @ centre, axis, minor
-            P, Q = (minor * e1, major * e2) if minor <= major else (major * e2, -minor * e1)
-            local = [(ELLIPSE, centre, P, Q)]
-        elif K < 0:
-            local = [(HYPERBOLA, centre, sign * math.sqrt(K / A) * e2, math.sqrt(-K) * e1) for sign in (1.0, -1.0)]
-        else:
-            local = [(HYPERBOLA, centre, sign * math.sqrt(K) * e1, math.sqrt(-K / A) * e2) for sign in (1.0, -1.0)]
-    return [(shape, origin + rot @ c, rot @ P, rot @ Q) for shape, c, P, Q in local]
+                axis = normal if name == "sphere" else [row[2] for row in rot]
+                return np.array(combine([origin, to_global(rot, centre), zero], 1.0, 0.0)), np.array(axis), minor
+            if minor <= major:
+                local = [(ELLIPSE, [centre, [minor * x for x in e1], [major * x for x in e2]])]
+            else:
+                local = [(ELLIPSE, [centre, [major * x for x in e2], [-minor * x for x in e1]])]
+        else:                                                # a hyperbola's two branches
+            u, v = (e2, e1) if K < 0 else (e1, e2)
+            ku, kv = (math.sqrt(K / A), math.sqrt(-K)) if K < 0 else (math.sqrt(K), math.sqrt(-K / A))
+            local = [(HYPERBOLA, [centre, [s * ku * x for x in u], [kv * x for x in v]]) for s in (1.0, -1.0)]
+    return [(shape, [[origin[i] + x for i, x in enumerate(to_global(rot, c))], to_global(rot, P), to_global(rot, Q)])
+            for shape, (c, P, Q) in local]
 
 
 def inside_axial(quadric, z, margin):
     """True when the local height z lies inside the quadric's v trim by more than margin (a sphere: always)."""
-    lo, hi = quadric.data[ks.BOUNDS + 2:ks.BOUNDS + 4]
+    lo, hi = quadric.data[ks.BOUNDS + 2:ks.BOUNDS + 4].tolist()
     return lo + margin < z < hi - margin
 
 
 # --- clipping ----------------------------------------------------------------------------------------------------
-class Trims:
-    """The finite trims of two surfaces as linear functions of the point x: trim i holds x . w[i] - bound[i] on
-    the inside side (side[i] (x . w[i] - bound[i]) <= 0); edges[i] is (surface index, edge index)."""
-
-    def __init__(self, w, bound, side, edges):
-        self.w, self.bound, self.side, self.edges = w, bound, side, edges
-
-
 def linear_trims(surfaces):
-    """The Trims of both surfaces (a trimmed parameter is a length along a local axis: x . w - w . origin); None
-    if a finite trim is not such a length."""
-    rows, bounds, edges = [], [], []
+    """[(w (3,), bound, side, (surface index, edge index))] of every finite trim: x . w - bound <= 0 inside when
+    side is 1 (an upper bound), >= 0 when it is -1 (a trimmed parameter is a length along a local axis:
+    x . w - w . origin); None if a finite trim is not such a length."""
+    trims = []
     for k, surf in enumerate(surfaces):
         axes = traits(surf).parameter_axes
+        origin, rot = local_frame(surf)
         for j, value in enumerate(surf.data[ks.BOUNDS:ks.BOUNDS + 4].tolist()):
             if math.isfinite(value):
                 axis = axes[j // 2]
                 if axis is None:
                     return None
-                w = surf.frame.rotation[:, axis]
-                rows.append(w)
-                bounds.append(value + float(w @ surf.frame.origin))
-                edges.append((k, j))
-    w = np.array(rows).reshape(-1, 3)
-    return Trims(w, np.array(bounds), np.array([1.0 if j % 2 else -1.0 for _, j in edges]), edges)
+                w = [row[axis] for row in rot]
+                trims.append((w, value + dot(w, origin), 1.0 if j % 2 else -1.0, (k, j)))
+    return trims
 
 
 def crossings(shape, beta, gamma, level, graze):
@@ -256,7 +290,7 @@ def crossings(shape, beta, gamma, level, graze):
         if beta != 0.0 and abs(level + gamma * gamma / (4.0 * beta)) <= graze:
             return None
         return quadratic(beta, gamma, -level)
-    if gamma == 0.0 or abs(gamma) <= SAME:
+    if abs(gamma) <= SAME:
         return None if abs(level) <= graze else []
     return [level / gamma]
 
@@ -272,72 +306,62 @@ def quadratic(a2, a1, a0):
     return [q / a2] if q == 0.0 else [q / a2, a0 / q]
 
 
-def clip(shape, centre, P, Q, trims, graze):
+def clip(shape, rows, trims, graze):
     """[(t_lo, t_hi, ends)] of the arcs of the conic inside every trim; ends is None for a whole ellipse, else
     ((surface, edge) at t_lo, at t_hi); None where declined (a touch, a corner, an unbounded arc)."""
-    conic = Conic(shape, centre, P, Q)
+    linear = [(dot(w, rows[0]) - bound, dot(w, rows[1]), dot(w, rows[2]), side) for w, bound, side, _ in trims]
     events = []
-    for beta, gamma, level, (k, j) in zip((trims.w @ P).tolist(), (trims.w @ Q).tolist(),
-                                          (trims.bound - trims.w @ centre).tolist(), trims.edges):
-        roots = crossings(shape, beta, gamma, level, graze)
+    for (alpha, beta, gamma, _), (_, _, _, edge) in zip(linear, trims):
+        roots = crossings(shape, beta, gamma, -alpha, graze)
         if roots is None:
             return None
-        events += [(t, (k, j)) for t in roots]
+        events += [(t, edge) for t in roots]
     events.sort()
     periodic = shape == ELLIPSE
+
+    def inside(t):
+        f, g = basis(shape, t)
+        return all((alpha + beta * f + gamma * g) * side <= 0.0 for alpha, beta, gamma, side in linear)
+
     if not events:
-        if inside(conic, trims, np.zeros(1))[0]:
+        if inside(0.0):
             return [(0.0, TWO_PI, None)] if periodic else None
         return []
-    ts = np.array([t for t, _ in events])
     if periodic:
-        ts = np.append(ts, ts[0] + TWO_PI)
-        events.append((ts[-1], events[0][1]))
-    elif inside(conic, trims, np.array([ts[0] - 1.0, ts[-1] + 1.0])).any():
+        events.append((events[0][0] + TWO_PI, events[0][1]))
+    elif inside(events[0][0] - 1.0) or inside(events[-1][0] + 1.0):
         return None                                          # an unbounded arc
-    pts = conic.at(ts)
-    if len(ts) > 1 and np.min(np.linalg.norm(np.diff(pts, axis=0), axis=1)) <= graze:
-        return None                                          # a corner, or two trims crossed at one point
-    keep = inside(conic, trims, 0.5 * (ts[1:] + ts[:-1]))
-    return [(events[i][0], events[i + 1][0], (events[i][1], events[i + 1][1])) for i in np.flatnonzero(keep)]
-
-
-def inside(conic, trims, t):
-    """Mask (M,): the conic's points at t (M,) lie inside every trim."""
-    excess = (conic.at(t) @ trims.w.T - trims.bound) * trims.side      # <= 0 inside
-    return np.all(excess <= 0.0, axis=1)
+    points = [combine(rows, *basis(shape, t)) for t, _ in events]
+    for p, q in zip(points, points[1:]):
+        if math.dist(p, q) <= graze:
+            return None                                      # a corner, or two trims crossed at one point
+    return [(t0, t1, (e0, e1)) for (t0, e0), (t1, e1) in zip(events, events[1:]) if inside(0.5 * (t0 + t1))]
 
 
 # --- the components ----------------------------------------------------------------------------------------------
 def normal(surf, point):
-    """The surface's normal (3,) at a point on it: a positive multiple of S_u x S_v (the gradient of its implicit
-    function: q diag(1, 1, mu) for a quadric, local z for a plane)."""
-    rot = surf.frame.rotation
+    """The surface's normal at a point on it: a positive multiple of S_u x S_v (the gradient of its implicit
+    function: diag(1, 1, mu) q for a quadric, local z for a plane)."""
+    origin, rot = local_frame(surf)
     if traits(surf).name == "plane":
-        return rot[:, 2]
-    q = (point - surf.frame.origin) @ rot
+        return [row[2] for row in rot]
+    q = to_local(rot, [point[i] - origin[i] for i in range(3)])
     q[2] *= quadric_form(surf)[0]
-    return rot @ q
+    return to_global(rot, q)
 
 
-def cross3(x, y):
-    """x x y of two 3-vectors (np.cross costs more than the product on such small arrays)."""
-    return np.array([x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]])
-
-
-def component(surfaces, shape, centre, P, Q, t_lo, t_hi, ends, settings, topo):
+def component(surfaces, shape, rows, t_lo, t_hi, ends, settings, topo):
     """The CurveResult of the arc t in [t_lo, t_hi] (ends None: the whole closed conic), run along N_a x N_b; None
     where the surfaces are nearly tangent on it."""
-    probe = Conic(shape, centre, P, Q)
-    t_mid = np.array([0.5 * (t_lo + t_hi)])
-    point = probe.at(t_mid)[0]
+    t_mid = 0.5 * (t_lo + t_hi)
+    point = combine(rows, *basis(shape, t_mid))
     na, nb = normal(surfaces[0], point), normal(surfaces[1], point)
-    along = cross3(na, nb)
-    sin = math.sqrt((along @ along) / ((na @ na) * (nb @ nb)))
-    if sin < settings.singular_tol:
+    along = cross(na, nb)
+    if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
         return None
-    if along @ probe.at(t_mid, 1)[0] < 0:                    # run it backwards: C(-t), g odd
-        Q, t_lo, t_hi = -Q, -t_hi, -t_lo
+    centre, P, Q = (np.array(x) for x in rows)
+    if dot(along, combine([[0.0] * 3, rows[1], rows[2]], *basis(shape, t_mid, 1))) < 0:
+        Q, t_lo, t_hi = -Q, -t_hi, -t_lo                     # run it backwards: C(-t), g odd
         ends = None if ends is None else ends[::-1]
     closed = ends is None
     conic = Conic(shape, centre, P, Q, t_lo, t_hi)
@@ -345,11 +369,14 @@ def component(surfaces, shape, centre, P, Q, t_lo, t_hi, ends, settings, topo):
     points = conic.at(sol.t_knots)
     if closed:
         points[-1] = points[0]
-    params = np.concatenate([surf.parameters(points) for surf in surfaces], axis=1)
+    params = np.empty((len(points), 4))
+    uv = np.empty((len(points), 2))
     for k, surf in enumerate(surfaces):
+        ks.inverse(surf.data, points, uv)
+        params[:, 2 * k:2 * k + 2] = uv
         if traits(surf).periodic[0]:                         # unwrapped along the curve, as the tracer's
             u = params[:, 2 * k]
-            u[1:] -= TWO_PI * np.cumsum(np.round(np.diff(u) / TWO_PI))
+            u[1:] -= TWO_PI * np.add.accumulate(np.rint((u[1:] - u[:-1]) / TWO_PI))
     sol.params = params
     if shape == PARABOLA and max(float(np.max(surf.distance(points))) for surf in surfaces) > (
             PARABOLA_CHECK * settings.tolerance):

@@ -103,7 +103,8 @@ class ConicSolution(ExactSolution):
 
     def __init__(self, surfaces, conic, t_lo, t_hi, closed, samples=EXACT_SAMPLES):
         self.conic, self.t_lo = conic, float(t_lo)
-        self.t_knots = np.linspace(t_lo, t_hi, samples)
+        self.t_knots = t_lo + (t_hi - t_lo) / (samples - 1) * np.arange(float(samples))
+        self.t_knots[-1] = t_hi
         if closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0:
             knots = conic.b * ellipse_turn(conic.m, samples)      # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
             self.s0 = 0.0 if t_lo == 0 else -knots[-1]

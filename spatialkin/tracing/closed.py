@@ -20,7 +20,7 @@ import numpy as np
 
 from ..kernels import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution
-from .exact import exact_curve
+from .exact import exact_curve, surface_parameters
 from .placement import SAME
 from .result import CurveResult
 from .status import BOUNDARY, open_outcome, outcome
@@ -369,11 +369,8 @@ def component(surfaces, shape, rows, t_lo, t_hi, ends, settings, topo):
     points = conic.at(sol.t_knots)
     if closed:
         points[-1] = points[0]
-    params = np.empty((len(points), 4))
-    uv = np.empty((len(points), 2))
+    params = surface_parameters(surfaces, points)
     for k, surf in enumerate(surfaces):
-        ks.inverse(surf.data, points, uv)
-        params[:, 2 * k:2 * k + 2] = uv
         if traits(surf).periodic[0]:                         # unwrapped along the curve, as the tracer's
             u = params[:, 2 * k]
             u[1:] -= TWO_PI * np.add.accumulate(np.rint((u[1:] - u[:-1]) / TWO_PI))

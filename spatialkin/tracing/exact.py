@@ -5,6 +5,7 @@ output evaluates the closed form exactly.
 """
 import numpy as np
 
+from ..kernels import surfaces as ks
 from .dense import CurveSolution
 from .result import CurveResult
 from .status import outcome
@@ -116,12 +117,23 @@ def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent",
     axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve; topology the
     search that found it (CurveResult.topology)."""
     sol = CircleSolution(surfaces, *circle) if circle is not None else SegmentSolution(surfaces, *segment)
-    _, points, _, params = sol.evaluate(sol.knots)
+    points = sol.at(sol.knots)[0]
     if sol.closed:
         points[-1] = points[0]
+    params = surface_parameters(surfaces, points)
     status, message = outcome(event, shape=sol.shape)
     return CurveResult(points=points, s=sol.knots, params=params, closed=sol.closed, length=sol.length,
                        status=status, message=message, tolerance=tolerance, sol=sol, topology=topology)
+
+
+def surface_parameters(surfaces, points):
+    """(u1, v1, u2, v2) (N, 4) of the points (N, 3) on the two surfaces (Surface.parameters of each, u wrapped)."""
+    params = np.empty((len(points), 4))
+    uv = np.empty((len(points), 2))
+    for k, surf in enumerate(surfaces):
+        ks.inverse(surf.data, np.ascontiguousarray(points), uv)
+        params[:, 2 * k:2 * k + 2] = uv
+    return params
 
 
 def contact_point(surfaces, point, tolerance):

@@ -5,12 +5,18 @@ output evaluates the closed form exactly.
 """
 import numpy as np
 
+from ..kernels import surfaces as ks
 from .dense import CurveSolution
 from .result import CurveResult
 from .status import outcome
 
 #: Stored points of a circle or a segment in closed form.
 EXACT_SAMPLES = 65
+
+
+def cross(x, y):
+    """x x y (3,) of two 3-vectors: np.cross's products, without its cost on such small arrays."""
+    return np.array([x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]])
 
 
 class ExactSolution(CurveSolution):
@@ -49,9 +55,9 @@ class CircleSolution(ExactSolution):
     def __init__(self, surfaces, centre, axis, radius, samples=EXACT_SAMPLES):
         self.centre, axis, self.radius = np.asarray(centre, dtype=float), np.asarray(axis, dtype=float), float(radius)
         helper = np.eye(3)[np.argmin(np.abs(axis))]
-        e1 = np.cross(axis, helper)
+        e1 = cross(axis, helper)
         self.e1 = e1 / np.linalg.norm(e1)
-        self.e2 = np.cross(axis, self.e1)
+        self.e2 = cross(axis, self.e1)
         length = 2 * np.pi * self.radius
         super().__init__(surfaces, length, True, np.linspace(0.0, length, samples))
 
@@ -105,17 +111,29 @@ class PointSolution(ExactSolution):
         return np.zeros(pts.shape[:-1]), np.linalg.norm(pts - self.point, axis=-1)
 
 
-def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent"):
+def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent", topology=None):
     """The CurveResult of a circle (centre (3,), unit axis (3,), radius) or a segment (p0 (3,), p1 (3,)) in closed
     form; `event` is 'tangent' (the surfaces touch all along it) or 'axis_circle' (a circle about their common
-    axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve."""
+    axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve; topology the
+    search that found it (CurveResult.topology)."""
     sol = CircleSolution(surfaces, *circle) if circle is not None else SegmentSolution(surfaces, *segment)
-    _, points, _, params = sol.evaluate(sol.knots)
+    points = sol.at(sol.knots)[0]
     if sol.closed:
         points[-1] = points[0]
+    params = surface_parameters(surfaces, points)
     status, message = outcome(event, shape=sol.shape)
     return CurveResult(points=points, s=sol.knots, params=params, closed=sol.closed, length=sol.length,
-                       status=status, message=message, tolerance=tolerance, sol=sol)
+                       status=status, message=message, tolerance=tolerance, sol=sol, topology=topology)
+
+
+def surface_parameters(surfaces, points):
+    """(u1, v1, u2, v2) (N, 4) of the points (N, 3) on the two surfaces (Surface.parameters of each, u wrapped)."""
+    params = np.empty((len(points), 4))
+    uv = np.empty((len(points), 2))
+    for k, surf in enumerate(surfaces):
+        ks.inverse(surf.data, np.ascontiguousarray(points), uv)
+        params[:, 2 * k:2 * k + 2] = uv
+    return params
 
 
 def contact_point(surfaces, point, tolerance):

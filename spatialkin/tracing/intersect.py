@@ -13,6 +13,7 @@ from .result import Curve, TracingError
 from .segments import NEWTON_MAX_ITER
 from .start import locate_on_curve, newton_fixed
 from .certificate import certificates
+from .closed import closed_form
 from . import stages
 from .status import CONTACT
 from .topology import topology
@@ -21,6 +22,9 @@ from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGU
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
 SAME_COMPONENT = 1e-6
+#: Pairs that meet in conics are solved in closed form (spatialkin.tracing.closed); False forces the general
+#: path (the tests compare the two).
+CLOSED_FORMS = True
 
 
 def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol=None, max_length=None,
@@ -66,6 +70,10 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     check_surface("b", b)
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
+    if CLOSED_FORMS and not certify:
+        found = closed_form(a, b, settings)
+        if found is not None:
+            return [Curve(c) for c in found]
     if stages.ON:
         stages.switch("topology")
     topo = topology(a, b, settings.scale, settings.tolerance)

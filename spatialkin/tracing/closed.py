@@ -1,0 +1,390 @@
+"""sk.intersect in closed form for the pairs that meet in conics: plane-plane (a line), plane-sphere and
+sphere-sphere (a circle), plane-cylinder (an ellipse, or two lines along the axis) and plane-cone (an ellipse, a
+parabola or a hyperbola), each clipped by the trims.
+
+A plane cuts a quadric q^T diag(1, 1, mu) q = rho (local coordinates: a sphere, a cylinder, a double cone) in
+the conic x^2 + A y^2 + 2 B y + C = 0 of the plane's coordinates along e1 = n x z (normal to the axis) and
+e2 = n x e1; its sign of A tells the shape. Every trim (a plane's u or v, a cylinder's or cone's v) is a linear
+function of the point, so its crossings with the conic are roots in closed form (R cos(t - phi) = c, a quadratic in
+e^t, in t, or a linear equation). The arcs between crossings that lie inside every trim are the components,
+oriented as the tracer runs them (along N_a x N_b), sampled as exact points with exact arc lengths
+(spatialkin.tracing.conic).
+
+``closed_form`` declines (returns None, and sk.intersect runs its general path) on everything degenerate: a
+tangency or a touch of a trim edge or corner within GRAZE x tolerance, a plane through a cone's apex, coincident
+surfaces, near-parallel configurations whose conic would be huge, both surfaces unbounded.
+"""
+import math
+
+import numpy as np
+
+from ..kernels import surfaces as ks
+from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution
+from .exact import exact_curve, surface_parameters
+from .placement import SAME
+from .result import CurveResult
+from .status import BOUNDARY, open_outcome, outcome
+from .topology import Topology
+from .traits import traits
+
+#: A curve within this many times the tolerance of touching a trim level, a corner, or the other surface
+#: (tangency, a plane through an apex) is left to the general path.
+GRAZE = 1e3
+#: A conic whose centre or semi-axes exceed this many scales (a plane nearly parallel to a cylinder's axis or to a
+#: cone's generatrix) is left to the general path: its points would lose digits.
+LARGE = 1e4
+#: |A| at most this: the plane is parallel to a cylinder's axis (two lines, as the topology stage recognises it:
+#: placement.SAME, squared for the cosine) ...
+PARALLEL_A = SAME * SAME
+#: ... or to a cone's generatrix (a parabola; a plane placed so has |A| of a few ulps, and the parabola's points
+#: are checked on the cone: PARABOLA_CHECK x tolerance).
+PARABOLA_A = 1e-13
+PARABOLA_CHECK = 0.1
+#: A curve longer than this share of settings.max_length is left to the tracer (a branch runs at most max_length
+#: each way from its start).
+MAX_LENGTH_SHARE = 0.5
+#: Topology.mode of the curves found here.
+MODE = "closed_form"
+#: The edges of a trim, in the order of the bounds in a surface's data.
+EDGES = ("u_min", "u_max", "v_min", "v_max")
+#: The quadrics a plane is cut with here.
+QUADRICS = ("sphere", "cylinder", "cone")
+TWO_PI = 2.0 * math.pi
+
+
+
+def closed_form(a, b, settings):
+    """The components of a ∩ b (CurveResults, longest first, as sk.intersect sorts them), or None when the pair
+    or its placement is not handled here (see the module docstring)."""
+    kinds = (traits(a), traits(b))
+    names = (kinds[0].name, kinds[1].name)
+    if not (math.isfinite(kinds[0].extent(a)) or math.isfinite(kinds[1].extent(b))):
+        return None
+    graze = GRAZE * settings.tolerance
+    topo = Topology(P=a, Q=b, mode=MODE)
+    if names == ("sphere", "sphere"):
+        circle = sphere_circle(a, b, graze, settings.scale)
+        if not circle:
+            return None if circle is None else []
+        return [exact_curve((a, b), settings.tolerance, circle=circle, event="axis_circle", topology=topo)]
+    if names == ("plane", "plane"):
+        conics = plane_line(a, b, graze, settings.scale)
+    elif "plane" in names and (names[0] in QUADRICS or names[1] in QUADRICS):
+        plane, quadric = (a, b) if names[0] == "plane" else (b, a)
+        conics = plane_conics(plane, quadric, graze, settings.scale)
+        if isinstance(conics, tuple):                       # a circle about a common axis: as the general path
+            return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=conics,
+                                                      event="axis_circle", topology=topo)]
+    else:
+        return None
+    if not conics:
+        return conics                                        # None (declined) or [] (nothing)
+    trims = linear_trims((a, b))
+    if not trims:
+        return None
+    curves = []
+    for shape, rows in conics:
+        arcs = clip(shape, rows, trims, graze)
+        if arcs is None:
+            return None
+        for t_lo, t_hi, ends in arcs:
+            curve = component((a, b), shape, rows, t_lo, t_hi, ends, settings, topo)
+            if curve is None or curve.length > MAX_LENGTH_SHARE * settings.max_length:
+                return None                                  # (the tracer would stop at max_length)
+            curves.append(curve)
+    if len(curves) > 1:
+        curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
+    return curves
+
+
+# --- small vectors as lists of floats (numpy costs more than the arithmetic on them) ---------------------------
+def dot(x, y):
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
+
+
+def cross(x, y):
+    return [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]]
+
+
+def combine(rows, f, g):
+    """rows[0] + f rows[1] + g rows[2] (3-lists)."""
+    c, p, q = rows
+    return [c[i] + f * p[i] + g * q[i] for i in range(3)]
+
+
+def basis(shape, t, order=0):
+    """(f, g) of spatialkin.tracing.conic at one t, or their derivatives of the given order (0 or 1)."""
+    if shape == ELLIPSE:
+        return (math.cos(t), math.sin(t)) if order == 0 else (-math.sin(t), math.cos(t))
+    if shape == HYPERBOLA:
+        return (math.cosh(t), math.sinh(t)) if order == 0 else (math.sinh(t), math.cosh(t))
+    if shape == PARABOLA:
+        return (t * t, t) if order == 0 else (2.0 * t, 1.0)
+    return (0.0, t) if order == 0 else (0.0, 1.0)
+
+
+def local_frame(surface):
+    """(origin, rotation) of the surface as lists (rotation rows)."""
+    return surface.frame.origin.tolist(), surface.frame.rotation.tolist()
+
+
+def to_global(rot, x):
+    """rot x (the local vector x in global coordinates)."""
+    return [dot(rot[0], x), dot(rot[1], x), dot(rot[2], x)]
+
+
+def to_local(rot, x):
+    """rot^T x."""
+    return [rot[0][j] * x[0] + rot[1][j] * x[1] + rot[2][j] * x[2] for j in range(3)]
+
+
+# --- the conics: (shape, [centre, P, Q]) in global coordinates ------------------------------------------------
+def sphere_circle(a, b, graze, scale):
+    """(centre, axis, radius) of the circle of two spheres, the axis from a's centre to b's (as the topology
+    stage's common axis); () when they do not meet; None near tangency or coincidence."""
+    d = b.frame.origin - a.frame.origin
+    dist = math.sqrt(d @ d)
+    ra, rb = a.radius, b.radius
+    if dist <= SAME * scale:
+        return None if abs(ra - rb) <= graze else ()
+    if min(abs(dist - ra - rb), abs(dist - abs(ra - rb))) <= graze:
+        return None
+    if dist > ra + rb or dist < abs(ra - rb):
+        return ()
+    axis = d / dist
+    x = 0.5 * (dist * dist + ra * ra - rb * rb) / dist
+    return a.frame.origin + x * axis, axis, math.sqrt(ra * ra - x * x)
+
+
+def plane_line(a, b, graze, scale):
+    """[(LINE, rows)] of two planes; [] for parallel planes apart; None for (nearly) coplanar ones or a line
+    farther than LARGE x scale."""
+    (oa, ra), (ob, rb) = local_frame(a), local_frame(b)
+    n1, n2 = [row[2] for row in ra], [row[2] for row in rb]
+    along = cross(n1, n2)
+    sin = math.sqrt(dot(along, along))
+    gap = dot(n2, [ob[i] - oa[i] for i in range(3)])
+    if sin <= SAME:
+        return None if abs(gap) <= graze else []
+    if abs(gap) > LARGE * scale * sin:
+        return None
+    foot = cross(along, n1)                                 # a's origin to its foot on the line, over gap / sin^2
+    k = gap / (sin * sin)
+    return [(LINE, [[oa[i] + k * foot[i] for i in range(3)], [0.0, 0.0, 0.0], [x / sin for x in along]])]
+
+
+def quadric_form(quadric):
+    """(mu, rho): the quadric is x^2 + y^2 + mu z^2 = rho in its local coordinates."""
+    name = traits(quadric).name
+    if name == "sphere":
+        return 1.0, quadric.radius ** 2
+    if name == "cylinder":
+        return 0.0, quadric.radius ** 2
+    tan = float(quadric.data[ks.P1])
+    return -tan * tan, 0.0
+
+
+def plane_conics(plane, quadric, graze, scale):
+    """[(shape, rows)] (global) of the plane and the quadric; a tuple (centre, axis, radius) for the circle of an
+    untrimmed plane about the quadric's axis (or a sphere's), () when nothing is there; None where declined."""
+    origin, rot = local_frame(quadric)
+    p_origin, p_rot = local_frame(plane)
+    normal = [row[2] for row in p_rot]
+    n = to_local(rot, normal)
+    d = dot(normal, [p_origin[i] - origin[i] for i in range(3)])     # the plane: n . q = d (local)
+    mu, rho = quadric_form(quadric)
+    name = traits(quadric).name
+    if name == "sphere" and abs(abs(d) - math.sqrt(rho)) <= graze:
+        return None                                          # tangent
+    if name == "cone" and abs(d) <= graze:
+        return None                                          # through the apex
+    sin = math.hypot(n[0], n[1])
+    e1 = [n[1] / sin, -n[0] / sin, 0.0] if sin > SAME else [1.0, 0.0, 0.0]    # n x z, normal to the axis
+    e2 = cross(n, e1)
+    q0 = [d * x for x in n]
+    A = e2[0] * e2[0] + e2[1] * e2[1] + mu * e2[2] * e2[2]
+    B = e2[0] * q0[0] + e2[1] * q0[1] + mu * e2[2] * q0[2]
+    C = q0[0] * q0[0] + q0[1] * q0[1] + mu * q0[2] * q0[2] - rho
+    zero = [0.0, 0.0, 0.0]
+    if abs(A) <= (PARABOLA_A if name == "cone" else PARALLEL_A):
+        if name == "cylinder":                               # parallel to the axis: two lines x = +-sqrt(-C)
+            if abs(math.sqrt(rho) - abs(d)) <= graze:
+                return None
+            if C > 0:
+                return []
+            x = math.sqrt(-C)
+            local = [(LINE, [[q0[i] + s * x * e1[i] for i in range(3)], zero, e2]) for s in (1.0, -1.0)]
+        elif name == "cone" and B != 0.0:                    # parallel to a generatrix: y = -(x^2 + C) / (2 B)
+            local = [(PARABOLA, [[q0[i] - C / (2.0 * B) * e2[i] for i in range(3)], [-x / (2.0 * B) for x in e2],
+                                 e1])]
+        else:
+            return None
+    else:
+        y0 = -B / A
+        K = A * y0 * y0 - C
+        if A > 0 and K <= 0:
+            return []
+        if K == 0 or max(abs(y0), math.sqrt(abs(K)), math.sqrt(abs(K / A))) > LARGE * scale:
+            return None
+        centre = [q0[i] + y0 * e2[i] for i in range(3)]
+        if A > 0:
+            major, minor = math.sqrt(K / A), math.sqrt(K)
+            if (name == "sphere" or sin <= SAME) and not np.isfinite(plane.data[ks.BOUNDS:ks.BOUNDS + 4]).any():
+                if not inside_axial(quadric, centre[2], graze):
+                    return None if inside_axial(quadric, centre[2], -graze) else ()
+                axis = normal if name == "sphere" else [row[2] for row in rot]
+                return np.array(combine([origin, to_global(rot, centre), zero], 1.0, 0.0)), np.array(axis), minor
+            if minor <= major:
+                local = [(ELLIPSE, [centre, [minor * x for x in e1], [major * x for x in e2]])]
+            else:
+                local = [(ELLIPSE, [centre, [major * x for x in e2], [-minor * x for x in e1]])]
+        else:                                                # a hyperbola's two branches
+            u, v = (e2, e1) if K < 0 else (e1, e2)
+            ku, kv = (math.sqrt(K / A), math.sqrt(-K)) if K < 0 else (math.sqrt(K), math.sqrt(-K / A))
+            local = [(HYPERBOLA, [centre, [s * ku * x for x in u], [kv * x for x in v]]) for s in (1.0, -1.0)]
+    return [(shape, [[origin[i] + x for i, x in enumerate(to_global(rot, c))], to_global(rot, P), to_global(rot, Q)])
+            for shape, (c, P, Q) in local]
+
+
+def inside_axial(quadric, z, margin):
+    """True when the local height z lies inside the quadric's v trim by more than margin (a sphere: always)."""
+    lo, hi = quadric.data[ks.BOUNDS + 2:ks.BOUNDS + 4].tolist()
+    return lo + margin < z < hi - margin
+
+
+# --- clipping ----------------------------------------------------------------------------------------------------
+def linear_trims(surfaces):
+    """[(w (3,), bound, side, (surface index, edge index))] of every finite trim: x . w - bound <= 0 inside when
+    side is 1 (an upper bound), >= 0 when it is -1 (a trimmed parameter is a length along a local axis:
+    x . w - w . origin); None if a finite trim is not such a length."""
+    trims = []
+    for k, surf in enumerate(surfaces):
+        axes = traits(surf).parameter_axes
+        origin, rot = local_frame(surf)
+        for j, value in enumerate(surf.data[ks.BOUNDS:ks.BOUNDS + 4].tolist()):
+            if math.isfinite(value):
+                axis = axes[j // 2]
+                if axis is None:
+                    return None
+                w = [row[axis] for row in rot]
+                trims.append((w, value + dot(w, origin), 1.0 if j % 2 else -1.0, (k, j)))
+    return trims
+
+
+def crossings(shape, beta, gamma, level, graze):
+    """The t where beta f(t) + gamma g(t) = level (see spatialkin.tracing.conic for f, g); None where the conic
+    touches the level within graze (its extremum there, or a line along it)."""
+    if shape == ELLIPSE:
+        amp = math.hypot(beta, gamma)
+        if abs(amp - abs(level)) <= graze:
+            return None
+        if abs(level) > amp:
+            return []
+        phi, half = math.atan2(gamma, beta), math.acos(level / amp)
+        return [(phi - half) % TWO_PI, (phi + half) % TWO_PI]
+    if shape == HYPERBOLA:
+        if abs(beta) > abs(gamma) and abs(level - math.copysign(math.sqrt(beta * beta - gamma * gamma), beta)) <= graze:
+            return None
+        return [math.log(z) for z in quadratic(beta + gamma, -2.0 * level, beta - gamma) if z > 0]  # z = e^t
+    if shape == PARABOLA:
+        if beta != 0.0 and abs(level + gamma * gamma / (4.0 * beta)) <= graze:
+            return None
+        return quadratic(beta, gamma, -level)
+    if abs(gamma) <= SAME:
+        return None if abs(level) <= graze else []
+    return [level / gamma]
+
+
+def quadratic(a2, a1, a0):
+    """Real roots of a2 x^2 + a1 x + a0 = 0 (stable form; linear where a2 = 0)."""
+    if a2 == 0.0:
+        return [] if a1 == 0.0 else [-a0 / a1]
+    disc = a1 * a1 - 4.0 * a2 * a0
+    if disc < 0.0:
+        return []
+    q = -0.5 * (a1 + math.copysign(math.sqrt(disc), a1))
+    return [q / a2] if q == 0.0 else [q / a2, a0 / q]
+
+
+def clip(shape, rows, trims, graze):
+    """[(t_lo, t_hi, ends)] of the arcs of the conic inside every trim; ends is None for a whole ellipse, else
+    ((surface, edge) at t_lo, at t_hi); None where declined (a touch, a corner, an unbounded arc)."""
+    linear = [(dot(w, rows[0]) - bound, dot(w, rows[1]), dot(w, rows[2]), side) for w, bound, side, _ in trims]
+    events = []
+    for (alpha, beta, gamma, _), (_, _, _, edge) in zip(linear, trims):
+        roots = crossings(shape, beta, gamma, -alpha, graze)
+        if roots is None:
+            return None
+        events += [(t, edge) for t in roots]
+    events.sort()
+    periodic = shape == ELLIPSE
+
+    def inside(t):
+        f, g = basis(shape, t)
+        return all((alpha + beta * f + gamma * g) * side <= 0.0 for alpha, beta, gamma, side in linear)
+
+    if not events:
+        if inside(0.0):
+            return [(0.0, TWO_PI, None)] if periodic else None
+        return []
+    if periodic:
+        events.append((events[0][0] + TWO_PI, events[0][1]))
+    elif inside(events[0][0] - 1.0) or inside(events[-1][0] + 1.0):
+        return None                                          # an unbounded arc
+    points = [combine(rows, *basis(shape, t)) for t, _ in events]
+    for p, q in zip(points, points[1:]):
+        if math.dist(p, q) <= graze:
+            return None                                      # a corner, or two trims crossed at one point
+    return [(t0, t1, (e0, e1)) for (t0, e0), (t1, e1) in zip(events, events[1:]) if inside(0.5 * (t0 + t1))]
+
+
+# --- the components ----------------------------------------------------------------------------------------------
+def normal(surf, point):
+    """The surface's normal at a point on it: a positive multiple of S_u x S_v (the gradient of its implicit
+    function: diag(1, 1, mu) q for a quadric, local z for a plane)."""
+    origin, rot = local_frame(surf)
+    if traits(surf).name == "plane":
+        return [row[2] for row in rot]
+    q = to_local(rot, [point[i] - origin[i] for i in range(3)])
+    q[2] *= quadric_form(surf)[0]
+    return to_global(rot, q)
+
+
+def component(surfaces, shape, rows, t_lo, t_hi, ends, settings, topo):
+    """The CurveResult of the arc t in [t_lo, t_hi] (ends None: the whole closed conic), run along N_a x N_b; None
+    where the surfaces are nearly tangent on it."""
+    t_mid = 0.5 * (t_lo + t_hi)
+    point = combine(rows, *basis(shape, t_mid))
+    na, nb = normal(surfaces[0], point), normal(surfaces[1], point)
+    along = cross(na, nb)
+    if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
+        return None
+    centre, P, Q = (np.array(x) for x in rows)
+    if dot(along, combine([[0.0] * 3, rows[1], rows[2]], *basis(shape, t_mid, 1))) < 0:
+        Q, t_lo, t_hi = -Q, -t_hi, -t_lo                     # run it backwards: C(-t), g odd
+        ends = None if ends is None else ends[::-1]
+    closed = ends is None
+    conic = Conic(shape, centre, P, Q, t_lo, t_hi)
+    sol = ConicSolution(surfaces, conic, t_lo, t_hi, closed)
+    points = conic.at(sol.t_knots)
+    if closed:
+        points[-1] = points[0]
+    params = surface_parameters(surfaces, points)
+    for k, surf in enumerate(surfaces):
+        if traits(surf).periodic[0]:                         # unwrapped along the curve, as the tracer's
+            u = params[:, 2 * k]
+            u[1:] -= TWO_PI * np.add.accumulate(np.rint((u[1:] - u[:-1]) / TWO_PI))
+    sol.params = params
+    if shape == PARABOLA and max(float(np.max(surf.distance(points))) for surf in surfaces) > (
+            PARABOLA_CHECK * settings.tolerance):
+        return None                                          # not quite parallel to the generatrix
+    length = sol.length
+    if closed:
+        status, message = outcome("closed", s=length)
+    else:
+        (k0, j0), (k1, j1) = ends
+        status, message = open_outcome(
+            BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
+            BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=length)[1])
+    return CurveResult(points=points, s=sol.knots, params=params, closed=closed, length=length, status=status,
+                       message=message, tolerance=settings.tolerance, sol=sol, topology=topo)

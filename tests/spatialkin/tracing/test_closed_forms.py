@@ -1,0 +1,258 @@
+"""Closed forms of sk.intersect (spatialkin.tracing.closed) against independent oracles: the general traced path of
+the library on random placements of each pair kind (both argument orders, trimmed or not), scipy's quad for the
+arc length, the surfaces' exact distance functions for the points; degenerate placements must be declined."""
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+import spatialkin as sk
+import spatialkin.tracing.intersect as intersect_module
+from spatialkin.frame import rotation_about
+from spatialkin.tracing.closed import closed_form
+from spatialkin.tracing.conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA
+from spatialkin.tracing.placement import CoincidentSurfacesError
+from spatialkin.tracing.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL,
+                                      make_settings)
+
+#: Random placements per pair kind (each in both argument orders).
+CASES = 12
+#: Lengths agree to this (relative): the traced length itself is off by up to about 1e-9 relative (seen: 1.1e-9
+#: on a short hyperbola arc), the closed form's by round-off (test_arc_length_and_points: scipy quad to 1e-12) ...
+LENGTH_TOL = 5e-9
+#: ... and the points of one curve lie within this x scale of the other.
+POINT_TOL = 1e-9
+#: Stored points lie on both surfaces within this x the coordinates' magnitude (round-off).
+ON_SURFACE = 1e-14
+#: Arc length against scipy quad (relative).
+QUAD_TOL = 1e-12
+
+
+def frame(rng, spread=0.3):
+    rot = rotation_about(rng.normal(size=3), rng.uniform(0.0, math.pi))
+    return sk.Frame(rng.uniform(-spread, spread, 3), rot)
+
+
+def plane_through(rng, near, trimmed, half=(0.6, 2.5)):
+    """A plane through a point near `near`, trimmed to a random rectangle round it or not."""
+    f = frame(rng)
+    f = sk.Frame(near + rng.uniform(-0.3, 0.3, 3), f.rotation)
+    if not trimmed:
+        return sk.Plane(f)
+    u0, v0 = rng.uniform(-0.5, 0.5, 2)
+    hu, hv = rng.uniform(*half, 2)
+    return sk.Plane(f, (u0 - hu, u0 + hu), (v0 - hv, v0 + hv))
+
+
+def make_pair(kind, rng, k):
+    """A random placement of the pair kind; k alternates the trims."""
+    if kind == "plane-plane":
+        return plane_through(rng, np.zeros(3), True), plane_through(rng, np.zeros(3), k % 3 != 0)
+    if kind == "plane-sphere":
+        sphere = sk.Sphere(rng.uniform(0.7, 1.3), frame(rng))
+        return plane_through(rng, sphere.frame.origin, k % 2 == 0, half=(0.3, 1.5)), sphere
+    if kind == "sphere-sphere":
+        return sk.Sphere(rng.uniform(0.7, 1.3), frame(rng, 0.8)), sk.Sphere(rng.uniform(0.7, 1.3), frame(rng, 0.8))
+    if kind == "plane-cylinder":
+        cyl = sk.Cylinder(rng.uniform(0.5, 1.0), frame(rng), (-rng.uniform(1, 2), rng.uniform(1, 2)))
+        return plane_through(rng, cyl.frame.origin, k % 2 == 0), cyl
+    if kind == "plane-cone":
+        trims = ((0.3, 3.0), (-2.0, 2.5), (-3.0, -0.5))[k % 3]
+        cone = sk.Cone(rng.uniform(0.3, 0.8), frame(rng), trims)
+        centre = cone.frame.to_global([0.0, 0.0, 0.5 * sum(trims)])
+        return plane_through(rng, centre, k % 2 == 1), cone
+    raise ValueError(kind)
+
+
+KINDS = ("plane-plane", "plane-sphere", "sphere-sphere", "plane-cylinder", "plane-cone")
+
+
+def general(a, b, monkeypatch):
+    """sk.intersect by the general path (topology stage and tracing)."""
+    with monkeypatch.context() as m:
+        m.setattr(intersect_module, "CLOSED_FORMS", False)
+        return sk.intersect(a, b)
+
+
+def settings_of(a, b):
+    anchor = np.concatenate([a.frame.origin, b.frame.origin])
+    return make_settings(a, b, 1e-10, DEFAULT_METHOD, DEFAULT_RTOL, None, None, DEFAULT_SINGULAR_TOL,
+                         DEFAULT_PULLBACK, True, anchor)
+
+
+def compare(ours, theirs, scale):
+    """The two lists describe the same components (see the module docstring)."""
+    assert [(c.status, c.closed) for c in ours] == [(c.status, c.closed) for c in theirs]
+    for c in ours:
+        # curves of one length (to round-off) come in either order: the one lying on c
+        ties = [g for g in theirs if abs(g.length - c.length) <= LENGTH_TOL * c.length]
+        g = min(ties, key=lambda g: np.max(g.closest(c.points[::8])[1]))
+        assert c.length == pytest.approx(g.length, rel=LENGTH_TOL)
+        assert np.max(g.closest(c.points)[1]) <= POINT_TOL * scale
+        assert np.max(c.closest(g.points)[1]) <= POINT_TOL * scale
+        s = np.linspace(0.0, c.length, 23)
+        points, tangents, bends = c.derivatives(s)
+        assert np.allclose(points, c(s), rtol=0, atol=1e-13 * scale)
+        s_g, gap = g.closest(points)
+        assert np.max(gap) <= POINT_TOL * scale
+        assert np.min(np.sum(tangents * g.tangent(s_g), axis=1)) >= 1 - 1e-9
+        bend_g = g.derivatives(s_g)[2]
+        assert np.max(np.linalg.norm(bends - bend_g, axis=1)) <= 1e-6 * max(1.0, np.max(np.linalg.norm(bend_g, axis=1)))
+        # parameters: the same surface points (periodic ones up to whole turns), continuous along the curve
+        params = c.parameters(s)
+        for k, surf in enumerate(c.surfaces):
+            assert np.allclose(surf.point(params[:, 2 * k], params[:, 2 * k + 1]), points, atol=1e-12 * scale)
+            assert np.allclose(surf.point(c.params[:, 2 * k], c.params[:, 2 * k + 1]), c.points, atol=1e-12 * scale)
+        if hasattr(c.result.sol, "conic"):     # (an axis circle, spatialkin.tracing.exact: wrapped, as there)
+            assert np.max(np.abs(np.diff(c.params, axis=0))) <= math.pi       # periodic ones unwrapped
+        if c.closed:
+            assert np.array_equal(c.points[0], c.points[-1])
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_against_general_path(kind, monkeypatch):
+    """Random placements, both orders: the closed form (it must handle most of them) gives what the traced path
+    gives: statuses, closed flags, lengths (1e-9 rel), points within 1e-9 x scale of each other's curve, dense
+    output (points, tangents, curvature vectors, parameters)."""
+    rng = np.random.default_rng(sum(map(ord, kind)))
+    handled = 0
+    for k in range(CASES):
+        a, b = make_pair(kind, rng, k)
+        for pair in ((a, b), (b, a)):
+            scale = settings_of(*pair).scale
+            ours = sk.intersect(*pair)
+            if ours and ours[0].topology.mode == "closed_form":
+                handled += 1
+            compare(ours, general(*pair, monkeypatch), scale)
+    assert handled >= CASES          # most placements are transversal: handled in closed form
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_arc_length_and_points(kind):
+    """Arc lengths of the stored points against scipy quad of |C'(t)|; points on both surfaces to round-off."""
+    rng = np.random.default_rng(7 + len(kind))
+    for k in range(CASES):
+        a, b = make_pair(kind, rng, k)
+        found = closed_form(a, b, settings_of(a, b))
+        for c in found or ():
+            sol = c.sol
+            magnitude = max(1.0, np.max(np.abs(c.points)))
+            assert np.max([surf.distance(c.points) for surf in (a, b)]) <= ON_SURFACE * magnitude
+            if not hasattr(sol, "conic"):
+                continue                            # a circle about a common axis (spatialkin.tracing.exact)
+            conic = sol.conic
+            t = sol.t_knots
+            for i in (len(t) // 3, len(t) - 1):
+                exact = quad(lambda x: conic.speed(np.array([x]))[0], t[0], t[i], epsabs=0, epsrel=1e-13,
+                             limit=200)[0]
+                assert c.s[i] == pytest.approx(exact, rel=QUAD_TOL, abs=1e-14 * c.length)
+            s = np.linspace(0.0, c.length, 17, endpoint=not c.closed)     # s -> t by Newton: the arc length of the point reached is s
+            back = [quad(lambda x: conic.speed(np.array([x]))[0], t[0], tt, epsabs=0, epsrel=1e-13, limit=200)[0]
+                    for tt in sol.t_of(sol.wrap(s))]
+            assert np.allclose(back, s, rtol=0, atol=1e-12 * c.length)
+
+
+def test_each_conic_shape(monkeypatch):
+    """Lines (two planes; a plane along a cylinder's axis), ellipses, both branches of a hyperbola (a plane
+    steeper than the generatrix across a two-nappe cone), a parabola (a plane parallel to a generatrix): each
+    against the general path."""
+    cyl = sk.Cylinder(0.8, sk.Frame((0.1, 0.0, 0.0), rotation_about((1.0, 0.2, 0.0), 0.4)), (-2.0, 2.0))
+    rot = cyl.frame.rotation                                           # a plane along the axis, 0.3 from it
+    along = sk.Plane(sk.Frame(cyl.frame.origin + 0.3 * rot[:, 1], np.column_stack([rot[:, 2], rot[:, 0], rot[:, 1]])),
+                     (-3, 3), (-3, 3))
+    alpha = 0.5
+    cone = sk.Cone(alpha, sk.Frame((0.0, 0.0, 0.0), np.eye(3)), (-2.0, 2.5))
+    steep = sk.Plane(sk.Frame((0.3, 0.0, 0.0), rotation_about((0.0, 1.0, 0.0), math.pi / 2 - 0.2)))
+    n = np.array([math.cos(alpha), 0.0, math.sin(alpha)])             # normal to a generatrix: parabola
+    x = np.cross([0.0, 1.0, 0.0], n)
+    tilted = sk.Plane(sk.Frame(0.6 * n, np.column_stack([x / np.linalg.norm(x), [0.0, 1.0, 0.0], n])))
+    shapes = {}
+    for a, b, shape, count in ((along, cyl, LINE, 2), (steep, cone, HYPERBOLA, 2), (tilted, cone, PARABOLA, 1)):
+        ours = sk.intersect(a, b)
+        assert len(ours) == count and ours[0].topology.mode == "closed_form"
+        shapes[shape] = {c.result.sol.shape for c in ours}
+        scale = settings_of(a, b).scale
+        compare(ours, general(a, b, monkeypatch), scale)
+        assert ours[0].to_bspline(1e-8).deviation <= 1e-8 * scale          # the dense output's C'' in use
+    assert shapes == {LINE: {LINE}, HYPERBOLA: {HYPERBOLA}, PARABOLA: {PARABOLA}}
+    ellipse = sk.intersect(sk.Plane(sk.Frame((0, 0, 0.5), rotation_about((1, 0, 0), 0.3))), cyl)
+    assert ellipse[0].result.sol.shape == ELLIPSE
+
+
+def declined(a, b):
+    return closed_form(a, b, settings_of(a, b)) is None
+
+
+def test_degenerate_placements_decline(monkeypatch):
+    """Tangency, an apex, coincidence, a touch of a trim edge or a corner, both surfaces unbounded: declined, and
+    sk.intersect answers as its general path does (a contact point, an error)."""
+    sphere = sk.Sphere(1.0)
+    tangent = sk.Plane(sk.Frame((0.0, 0.0, 1.0), np.eye(3)), (-1, 1), (-1, 1))
+    assert declined(tangent, sphere)
+    assert [c.status for c in sk.intersect(tangent, sphere)] == ["contact"]
+    cone = sk.Cone(0.5, sk.Frame(), (-1.0, 2.0))
+    apex = sk.Plane(sk.Frame((0.0, 0.0, 0.0), rotation_about((1.0, 0.0, 0.0), 0.3)), (-1, 1), (-1, 1))
+    assert declined(apex, cone)
+    assert [c.status for c in sk.intersect(apex, cone)] == [c.status for c in general(apex, cone, monkeypatch)]
+    cyl = sk.Cylinder(0.8, sk.Frame(), (-1.0, 1.0))
+    along = sk.Plane(sk.Frame((0.8, 0.0, 0.0), rotation_about((0.0, 1.0, 0.0), math.pi / 2)), (-2, 2), (-2, 2))
+    assert declined(along, cyl)
+    # a circle touching the rectangle's edge (the sphere's circle in z = 0.6 has radius 0.8: edge u = 0.8)
+    edge = sk.Plane(sk.Frame((0.0, 0.0, 0.6), np.eye(3)), (-2.0, 0.8), (-2.0, 2.0))
+    assert declined(edge, sphere)
+    # coincident: the general path raises
+    for a, b in ((sphere, sk.Sphere(1.0)), (tangent, sk.Plane(sk.Frame((0.5, 0.0, 1.0), np.eye(3)), (-1, 1), (-1, 1)))):
+        assert declined(a, b)
+        with pytest.raises(CoincidentSurfacesError):
+            sk.intersect(a, b)
+    with pytest.raises(ValueError):
+        sk.intersect(sk.Plane(), sk.Cylinder(1.0))
+
+
+def test_nothing_and_orders():
+    """Apart surfaces give nothing in closed form; parallel planes apart give nothing."""
+    apart = sk.Plane(sk.Frame((0.0, 0.0, 3.0), np.eye(3)), (-1, 1), (-1, 1))
+    assert closed_form(apart, sk.Sphere(1.0), settings_of(apart, sk.Sphere(1.0))) == []
+    other = sk.Plane(sk.Frame((0.0, 0.0, 1.0), np.eye(3)), (-1, 1), (-1, 1))
+    assert closed_form(apart, other, settings_of(apart, other)) == []
+    assert sk.intersect(sk.Sphere(1.0), sk.Sphere(0.5, sk.Frame((3.0, 0.0, 0.0), np.eye(3)))) == []
+
+
+def test_short_max_length_left_to_tracer(monkeypatch):
+    """A max_length shorter than the curve: declined, the tracer stops there as before."""
+    plane = sk.Plane(sk.Frame((0.0, 0.0, 0.2), np.eye(3)), (-2, 2), (-2, 2))
+    ours = sk.intersect(plane, sk.Sphere(1.0), max_length=1.0)
+    assert ours[0].topology.mode != "closed_form"
+    assert sk.intersect(plane, sk.Sphere(1.0))[0].topology.mode == "closed_form"
+
+
+def test_shallow_excursion_outside_a_trim():
+    """A circle leaving the plane's rectangle across v_min for a short arc (0.15 long, 2.7e-3 deep) and coming
+    back: two arcs. (The general path's steps straddle this excursion: it returns one arc of 2.551 through it.)
+    Oracle: the circle sampled densely, its points inside the rectangle counted."""
+    plane = sk.Plane(sk.Frame([-0.5523879885672389, -0.08928690230167596, 0.12607836007907872],
+                              [[-0.060366508727972334, 0.25941428288252233, 0.9638776449635827],
+                               [-0.5574749736002153, 0.7922439357508919, -0.24813544703523524],
+                               [-0.8279960980786293, -0.5523167353090828, 0.09679197003926343]]),
+                     (-1.1486097622476277, 1.7858576728468885), (-0.8542926269204929, 0.11675909175501697))
+    sphere = sk.Sphere(1.072878977396994, sk.Frame([-0.28245991117022656, 0.18465057879768043, 0.29193087797790135],
+                                                   [[0.9393923273152404, 0.24643500451583844, 0.23835235247535333],
+                                                    [-0.2612261280947865, 0.9647443149278069, 0.032082967678860236],
+                                                    [-0.22204271071544449, -0.09240235583444448, 0.9706486693208733]]))
+    ours = sk.intersect(plane, sphere)
+    assert [c.status for c in ours] == ["boundary", "boundary"] and ours[0].topology.mode == "closed_form"
+    # the full circle, sampled: centre, radius and in-plane axes from the plane's frame
+    rot, origin = plane.frame.rotation, plane.frame.origin
+    d = float(rot[:, 2] @ (sphere.frame.origin - origin))
+    centre = sphere.frame.origin - d * rot[:, 2]
+    radius = math.sqrt(sphere.radius ** 2 - d * d)
+    angles = np.linspace(0.0, 2 * math.pi, 400001)[:-1]
+    pts = centre + radius * (np.cos(angles)[:, None] * rot[:, 0] + np.sin(angles)[:, None] * rot[:, 1])
+    uv = plane.frame.to_local(pts)[:, :2]
+    inside = ((uv[:, 0] >= plane.u_range[0]) & (uv[:, 0] <= plane.u_range[1]) & (uv[:, 1] >= plane.v_range[0])
+              & (uv[:, 1] <= plane.v_range[1]))
+    step = 2 * math.pi * radius / len(angles)
+    assert sum(c.length for c in ours) == pytest.approx(inside.sum() * step, abs=4 * step)
+    runs = np.flatnonzero(np.diff(inside.astype(int)) == 1)          # arcs entering the rectangle
+    assert len(runs) + (inside[0] and not inside[-1]) == 2

@@ -45,7 +45,9 @@ LEVEL_BEFORE = 2
 LEVEL_AFTER = 3
 #: TERMINAL and LEVEL_BEFORE, the event also probed at PROBES interior points of each step's dense output: a
 #: crossing out and back within one step (a curve grazing out of a trim edge for a fraction of a step) is found
-#: when it spans more than about 1/(PROBES + 1) of the step. For cheap events (a parameter against a bound).
+#: when it spans more than about 1/(PROBES + 1) of the step. Only for events 1-Lipschitz in the state's largest
+#: component (a parameter against a bound): a step is probed only where such an event's value at an end is within
+#: the step's reach (step_reach: a bound on how far any component of the dense output moves within the step).
 TERMINAL_PROBED = 4
 LEVEL_BEFORE_PROBED = 5
 #: Interior points of a step at which probed events are evaluated (evenly spaced).
@@ -205,6 +207,21 @@ def level_reached(g, active, directions, modes, mode, other=-1):
                 and (g[i] <= 0.0 if directions[i] <= 0.0 else g[i] >= 0.0)):
             return i
     return -1
+
+
+@jit
+def step_reach(step, q):
+    """Bound on |y_i(t) - y_i(t_old)| over the step, every component i: |step| x max_i sum_m |q[i, m]|."""
+    reach = 0.0
+    for i in range(q.shape[0]):
+        reach = max(reach, abs(q[i, 0]) + abs(q[i, 1]) + abs(q[i, 2]) + abs(q[i, 3]))
+    return abs(step) * reach
+
+
+@jit
+def within_reach(g_lo, g_hi, reach):
+    """True when a 1-Lipschitz event with values g_lo, g_hi at a step's ends may reach zero inside it."""
+    return min(abs(g_lo), abs(g_hi)) <= reach
 
 
 @jit
@@ -417,9 +434,14 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         for m in range(4):                                       # this step's dense output
             combine(qs[count - 1, :, m], None, 1.0, P[:, m], k, 7)
         before = level_reached(g_new, active, directions, modes, LEVEL_BEFORE, LEVEL_BEFORE_PROBED)
+        reach = step_reach(step, qs[count - 1])
         if before < 0 and any_probed:
-            before = probe_level(events, args, eargs, probed, values, t, step, y, qs[count - 1], directions, modes,
-                                 stage)
+            near = False
+            for i in range(ne):
+                near = near or (probed[i] and within_reach(g[i], g_new[i], reach))
+            if near:
+                before = probe_level(events, args, eargs, probed, values, t, step, y, qs[count - 1], directions,
+                                     modes, stage)
         if before >= 0:                                          # a hard case ahead: this step is dropped
             hits[0] = before
             hit_ts[0] = t
@@ -434,7 +456,7 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
                 continue
             lo, hi, g_lo, g_hi = t, t_new, g[i], g_new[i]
             if not crosses(g_lo, g_hi, directions[i]):
-                if modes[i] != TERMINAL_PROBED:
+                if modes[i] != TERMINAL_PROBED or not within_reach(g_lo, g_hi, reach):
                     continue
                 only[i] = True
                 lo, hi, g_lo, g_hi = probe_crossing(events, args, eargs, only, values, i, t, step, y,

@@ -1,0 +1,84 @@
+"""A curve that grazes out of a trim and back within one solver step ends at the edge (the compiled method probes
+the bounds inside each step, spatialkin.kernels.rk.PROBES), checked on the general path against the closed form
+(spatialkin.tracing.closed) and a dense sampling of the true circle; and the step reach that decides where to probe
+bounds the dense output."""
+import math
+
+import numpy as np
+import pytest
+
+import spatialkin as sk
+import spatialkin.tracing.intersect as intersect_module
+from spatialkin.kernels import rk
+
+#: The pair found by the closed-form tests: the plane's rectangle cuts the circle four times, and between two of
+#: those cuts the circle leaves across v_min for an arc 0.15 long and 2.7e-3 deep, shorter than one solver step.
+PLANE = sk.Plane(sk.Frame([-0.5523879885672389, -0.08928690230167596, 0.12607836007907872],
+                          [[-0.060366508727972334, 0.25941428288252233, 0.9638776449635827],
+                           [-0.5574749736002153, 0.7922439357508919, -0.24813544703523524],
+                           [-0.8279960980786293, -0.5523167353090828, 0.09679197003926343]]),
+                 (-1.1486097622476277, 1.7858576728468885), (-0.8542926269204929, 0.11675909175501697))
+SPHERE = sk.Sphere(1.072878977396994, sk.Frame([-0.28245991117022656, 0.18465057879768043, 0.29193087797790135],
+                                               [[0.9393923273152404, 0.24643500451583844, 0.23835235247535333],
+                                                [-0.2612261280947865, 0.9647443149278069, 0.032082967678860236],
+                                                [-0.22204271071544449, -0.09240235583444448, 0.9706486693208733]]))
+#: Lengths agree with the closed form to this (relative), and samples lie inside the trim to this (absolute).
+LENGTH_RTOL = 1e-8
+TRIM_SLACK = 1e-9
+
+
+def inside_lengths():
+    """Oracle: the circle sampled densely; the lengths of its runs inside the rectangle, sorted."""
+    rot, origin = PLANE.frame.rotation, PLANE.frame.origin
+    d = float(rot[:, 2] @ (SPHERE.frame.origin - origin))
+    centre = SPHERE.frame.origin - d * rot[:, 2]
+    radius = math.sqrt(SPHERE.radius ** 2 - d * d)
+    angles = np.linspace(0.0, 2 * math.pi, 200001)[:-1]
+    uv = PLANE.frame.to_local(centre + radius * (np.cos(angles)[:, None] * rot[:, 0]
+                                                 + np.sin(angles)[:, None] * rot[:, 1]))[:, :2]
+    inside = ((uv[:, 0] >= PLANE.u_range[0]) & (uv[:, 0] <= PLANE.u_range[1])
+              & (uv[:, 1] >= PLANE.v_range[0]) & (uv[:, 1] <= PLANE.v_range[1]))
+    start = int(np.argmin(inside))                      # roll so that the first sample is outside
+    runs, count = [], 0
+    for flag in np.roll(inside, -start):
+        if flag:
+            count += 1
+        elif count:
+            runs.append(count)
+            count = 0
+    if count:
+        runs.append(count)
+    return sorted(r * 2 * math.pi * radius / len(angles) for r in runs), 2 * math.pi * radius / len(angles)
+
+
+@pytest.mark.parametrize("order", ["ab", "ba"])
+def test_grazing_excursion_ends_the_traced_arc(monkeypatch, order):
+    pair = (PLANE, SPHERE) if order == "ab" else (SPHERE, PLANE)
+    exact = sk.intersect(*pair)
+    assert exact[0].topology.mode == "closed_form"
+    monkeypatch.setattr(intersect_module, "CLOSED_FORMS", False)
+    traced = sk.intersect(*pair)
+    assert traced[0].topology.mode != "closed_form"
+    assert [c.status for c in traced] == ["boundary", "boundary"]
+    np.testing.assert_allclose([c.length for c in traced], [c.length for c in exact], rtol=LENGTH_RTOL)
+    runs, step = inside_lengths()
+    np.testing.assert_allclose(sorted(c.length for c in traced), runs, atol=2 * step)
+    for c in traced:
+        uv = PLANE.parameters(c.sample(2000))
+        assert uv[:, 1].min() >= PLANE.v_range[0] - TRIM_SLACK
+        assert uv[:, 0].min() >= PLANE.u_range[0] - TRIM_SLACK and uv[:, 0].max() <= PLANE.u_range[1] + TRIM_SLACK
+
+
+def test_step_reach_bounds_the_dense_output():
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        q = rng.normal(size=(4, 4))
+        step = float(rng.uniform(0.01, 2.0))
+        y_old = rng.normal(size=4)
+        reach = rk.step_reach(step, q)
+        out = np.empty(4)
+        worst = 0.0
+        for t in np.linspace(0.0, step, 401):
+            rk.dense_state(0.0, step, y_old, q, t, out)
+            worst = max(worst, float(np.max(np.abs(out - y_old))))
+        assert worst <= reach * (1 + 1e-12)

@@ -2,6 +2,7 @@
 import numpy as np
 
 from .validation import check_frame, check_real, check_vector
+from .vectors import cross
 
 
 def rotation_about(axis, angle):
@@ -25,9 +26,9 @@ def rotation_to_z(z_axis):
         raise ValueError("z_axis must be a non-zero vector")
     z = z / n
     helper = np.eye(3)[np.argmin(np.abs(z))]
-    x = np.cross(helper, z)
+    x = cross(helper, z)
     x /= np.linalg.norm(x)
-    return np.column_stack([x, np.cross(z, x), z])
+    return np.column_stack([x, cross(z, x), z])
 
 
 class Frame:

@@ -6,17 +6,13 @@ output evaluates the closed form exactly.
 import numpy as np
 
 from ..kernels import surfaces as ks
+from ..vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult
 from .status import outcome
 
 #: Stored points of a circle or a segment in closed form.
 EXACT_SAMPLES = 65
-
-
-def cross(x, y):
-    """x x y (3,) of two 3-vectors: np.cross's products, without its cost on such small arrays."""
-    return np.array([x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]])
 
 
 class ExactSolution(CurveSolution):

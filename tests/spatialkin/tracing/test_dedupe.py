@@ -8,6 +8,7 @@ from oracles import torus_sphere_critical_radii
 from scipy.spatial import cKDTree
 
 import spatialkin as sk
+import spatialkin.tracing.intersect as intersect_module
 from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels import near as kn
 from spatialkin.tracing.dense import CLOSEST_NEWTON_STEPS, TracedSolution
@@ -52,8 +53,13 @@ def reference_covered(curve, others, radius):
 
 
 def results(a, b):
-    """The CurveResults of a ∩ b and the radius intersect uses for them."""
-    curves = sk.intersect(a, b)
+    """The traced CurveResults of a ∩ b (the closed forms off: the plane-quadric kinds are traced too) and the
+    radius intersect uses for them."""
+    closed_forms, intersect_module.CLOSED_FORMS = intersect_module.CLOSED_FORMS, False
+    try:
+        curves = sk.intersect(a, b)
+    finally:
+        intersect_module.CLOSED_FORMS = closed_forms
     scale = max(np.ptp(np.vstack([c.points for c in curves]), axis=0).max(), 1.0)
     return [c._result for c in curves], SAME_COMPONENT * scale
 

@@ -1,11 +1,10 @@
 """The per-pair-kind side-by-side run (spatialkin.bench.sidebyside) written out: a CSV and a two-panel PNG (our
 speed over OpenCascade's per pair kind, against the goal; both errors), each written whole or not at all."""
-import csv
-
 import numpy as np
 
 from ..io import atomic_path
 from ..tracing import stages
+from .report import write_table
 from .runner import GOAL_OCC_RATIO
 
 #: Columns of bench_kinds.csv: times in seconds, errors in length units, stage seconds per call.
@@ -18,15 +17,10 @@ ERROR_FLOOR = 1e-17
 
 
 def write_kinds_csv(rows, path):
-    """One line per pair kind (sidebyside.KindRow)."""
-    with atomic_path(path) as tmp:
-        with open(tmp, "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(COLUMNS)
-            for r in rows:
-                w.writerow([r.kind, f"{r.ours:.6g}", f"{r.occ:.6g}", f"{r.ratio:.4g}", f"{r.our_error:.3e}",
-                            f"{r.occ_error:.3e}", r.our_curves, r.occ_curves]
-                           + [f"{r.profile.seconds[s]:.6g}" for s in stages.STAGES])
+    """One line per pair kind (sidebyside.KindRow), written whole or not at all."""
+    write_table(path, COLUMNS, ([r.kind, f"{r.ours:.6g}", f"{r.occ:.6g}", f"{r.ratio:.4g}", f"{r.our_error:.3e}",
+                                 f"{r.occ_error:.3e}", r.our_curves, r.occ_curves]
+                                + [f"{r.profile.seconds[s]:.6g}" for s in stages.STAGES] for r in rows))
 
 
 def plot_kinds(rows, path, title):

@@ -65,15 +65,20 @@ def goal_lines(g, goals_module):
     ]
 
 
-def write_csv(rows, path):
-    """The table as CSV (seconds, lengths in the cases' units), written whole or not at all."""
+def write_table(path, columns, lines):
+    """A CSV file of a header (columns) and lines (lists of cells), written whole or not at all."""
     with atomic_path(path) as tmp:
         with open(tmp, "w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(COLUMNS)
-            for r in rows:
-                w.writerow([r.case, r.solver, r.method, r.rtol, r.curves, r.expected, f"{r.seconds:.6g}",
-                            f"{r.per_curve:.6g}", f"{r.error:.3e}", f"{r.length_error:.3e}", r.nfev, r.extra])
+            w.writerow(columns)
+            w.writerows(lines)
+
+
+def write_csv(rows, path):
+    """The table as CSV (seconds, lengths in the cases' units), written whole or not at all."""
+    write_table(path, COLUMNS, ([r.case, r.solver, r.method, r.rtol, r.curves, r.expected, f"{r.seconds:.6g}",
+                                 f"{r.per_curve:.6g}", f"{r.error:.3e}", f"{r.length_error:.3e}", r.nfev, r.extra]
+                                for r in rows))
 
 
 def plot(rows, path, title):

@@ -226,33 +226,3 @@ def test_short_max_length_left_to_tracer(monkeypatch):
     assert ours[0].topology.mode != "closed_form"
     assert sk.intersect(plane, sk.Sphere(1.0))[0].topology.mode == "closed_form"
 
-
-def test_shallow_excursion_outside_a_trim():
-    """A circle leaving the plane's rectangle across v_min for a short arc (0.15 long, 2.7e-3 deep) and coming
-    back: two arcs. (The general path's steps straddle this excursion: it returns one arc of 2.551 through it.)
-    Oracle: the circle sampled densely, its points inside the rectangle counted."""
-    plane = sk.Plane(sk.Frame([-0.5523879885672389, -0.08928690230167596, 0.12607836007907872],
-                              [[-0.060366508727972334, 0.25941428288252233, 0.9638776449635827],
-                               [-0.5574749736002153, 0.7922439357508919, -0.24813544703523524],
-                               [-0.8279960980786293, -0.5523167353090828, 0.09679197003926343]]),
-                     (-1.1486097622476277, 1.7858576728468885), (-0.8542926269204929, 0.11675909175501697))
-    sphere = sk.Sphere(1.072878977396994, sk.Frame([-0.28245991117022656, 0.18465057879768043, 0.29193087797790135],
-                                                   [[0.9393923273152404, 0.24643500451583844, 0.23835235247535333],
-                                                    [-0.2612261280947865, 0.9647443149278069, 0.032082967678860236],
-                                                    [-0.22204271071544449, -0.09240235583444448, 0.9706486693208733]]))
-    ours = sk.intersect(plane, sphere)
-    assert [c.status for c in ours] == ["boundary", "boundary"] and ours[0].topology.mode == "closed_form"
-    # the full circle, sampled: centre, radius and in-plane axes from the plane's frame
-    rot, origin = plane.frame.rotation, plane.frame.origin
-    d = float(rot[:, 2] @ (sphere.frame.origin - origin))
-    centre = sphere.frame.origin - d * rot[:, 2]
-    radius = math.sqrt(sphere.radius ** 2 - d * d)
-    angles = np.linspace(0.0, 2 * math.pi, 400001)[:-1]
-    pts = centre + radius * (np.cos(angles)[:, None] * rot[:, 0] + np.sin(angles)[:, None] * rot[:, 1])
-    uv = plane.frame.to_local(pts)[:, :2]
-    inside = ((uv[:, 0] >= plane.u_range[0]) & (uv[:, 0] <= plane.u_range[1]) & (uv[:, 1] >= plane.v_range[0])
-              & (uv[:, 1] <= plane.v_range[1]))
-    step = 2 * math.pi * radius / len(angles)
-    assert sum(c.length for c in ours) == pytest.approx(inside.sum() * step, abs=4 * step)
-    runs = np.flatnonzero(np.diff(inside.astype(int)) == 1)          # arcs entering the rectangle
-    assert len(runs) + (inside[0] and not inside[-1]) == 2

@@ -31,7 +31,9 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
               singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK, certify=False):
     """Every component of a ∩ b.
 
-    Start points come from the topology stage (spatialkin.tracing.topology: an interval subdivision of one
+    Pairs that meet in conics (plane–plane, plane–sphere, plane–cylinder, plane–cone, sphere–sphere) are solved in
+    closed form (spatialkin.tracing.closed; its degenerate cases, and certify=True, take the general path). In
+    general, start points come from the topology stage (spatialkin.tracing.topology: an interval subdivision of one
     surface's parameter domain that provably finds a start on every component); each component is traced
     once by ``trace`` and the starts on it are skipped. The result does not depend on the argument order
     (curves come longest first), on translation or on scale.

@@ -234,11 +234,13 @@ def crosses(g_lo, g_hi, direction):
 
 @jit
 def is_terminal(mode):
+    """True for the modes that end the integration at the crossing."""
     return mode == TERMINAL or mode == TERMINAL_PROBED
 
 
 @jit
 def is_level(mode):
+    """True for the level modes (reached at a step's end, not located)."""
     return mode == LEVEL_BEFORE or mode == LEVEL_AFTER or mode == LEVEL_BEFORE_PROBED
 
 

@@ -256,15 +256,37 @@ def project_many(ys, a, b, normal, gap_tol, max_iter, points, tangents, status):
     t = np.empty(3)
     fixed = dot(normal, normal) > 0.0
     for k in range(ys.shape[0]):
-        curve_frame(ys[k], a, b, q, t)
-        if fixed:
-            for i in range(3):
-                t[i] = normal[i]
-        status[k] = project_to_curve(ys[k], a, b, q, t, gap_tol, max_iter)
-        curve_frame(ys[k], a, b, points[k], tangents[k])
-        if fixed and dot(tangents[k], normal) < 0.0:
-            for i in range(3):
-                tangents[k, i] = -tangents[k, i]
+        status[k] = _project_row(ys[k], a, b, normal, fixed, gap_tol, max_iter, q, t, points[k], tangents[k])
+
+
+@jit
+def corrected_many(ys, a, b, normal, gap_tol, max_iter, points, gaps):
+    """project_many for the stored states of a traced segment: the rows of ys (N, 4) projected in place, their
+    points (N, 3), and gaps[k] = |M1 - M2| of each row before its projection (the solver's own gap)."""
+    q = np.empty(3)
+    t = np.empty(3)
+    tangent = np.empty(3)
+    fixed = dot(normal, normal) > 0.0
+    for k in range(ys.shape[0]):
+        p1 = frame(a, ys[k, 0], ys[k, 1])[0]
+        p2 = frame(b, ys[k, 2], ys[k, 3])[0]
+        gaps[k] = math.sqrt((p1[0] - p2[0]) ** 2 + (p1[1] - p2[1]) ** 2 + (p1[2] - p2[2]) ** 2)
+        _project_row(ys[k], a, b, normal, fixed, gap_tol, max_iter, q, t, points[k], tangent)
+
+
+@jit
+def _project_row(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent):
+    """One row of project_many (q, t: work vectors); returns Newton's iterations or -1."""
+    curve_frame(y, a, b, q, t)
+    if fixed:
+        for i in range(3):
+            t[i] = normal[i]
+    status = project_to_curve(y, a, b, q, t, gap_tol, max_iter)
+    curve_frame(y, a, b, point, tangent)
+    if fixed and dot(tangent, normal) < 0.0:
+        for i in range(3):
+            tangent[i] = -tangent[i]
+    return status
 
 
 @jit

@@ -73,16 +73,16 @@ class SphereTraits(SurfaceTraits):
         return list(POLES)
 
     def general_chart(self, p, q):
-        """The sphere with its poles as far from Q as the frame's axes allow (fewer rings round them)."""
-        best, score = p, -1.0
+        """The sphere with its poles as far from Q as the frame's axes allow (fewer rings round them): of the
+        frame's axes, the first whose poles lie farther from Q than every earlier one's (by a relative 1e-9)."""
+        axes = p.frame.rotation.T
+        poles = (p.frame.origin + np.concatenate([axes, -axes]) * p.radius)
+        d = np.minimum(*q.distance(poles).reshape(2, 3)).tolist()
+        best, score = 2, -1.0
         for k in range(3):
-            axis = p.frame.rotation[:, k]
-            poles = p.frame.origin + np.outer([1.0, -1.0], axis) * p.radius
-            d = float(np.min(q.distance(poles)))
-            if d > score * (1 + 1e-9):
-                best = p if k == 2 else p.with_frame(Frame.from_z_axis(p.frame.origin, axis))
-                score = d
-        return best
+            if d[k] > score * (1 + 1e-9):
+                best, score = k, d[k]
+        return p if best == 2 else p.with_frame(Frame.from_z_axis(p.frame.origin, axes[best]))
 
     def symmetry(self, surface):
         return POINT, surface.frame.origin

@@ -240,24 +240,18 @@ def snapped_nodes(located, settings):
 
 
 def _corrected(a, b, y_all, span_of, spans, settings):
-    """Project the solver's step states onto the curve (each in its segment's charts); user parameters."""
+    """Project the solver's step states onto the curve (each in its segment's charts); user parameters.
+    span_of is non-decreasing (the states come span by span): one compiled call per span."""
     points = np.empty((len(y_all), 3))
     params = np.empty((len(y_all), 4))
     raw_gap = np.empty(len(y_all))
-    for k in np.unique(span_of):
-        mask = span_of == k
-        seg = spans[k].seg
-        y = np.ascontiguousarray(y_all[mask])
-        on_a, on_b = np.empty((len(y), 3)), np.empty((len(y), 3))
-        ks.evaluate(seg.a, np.ascontiguousarray(y[:, :2]), on_a)
-        ks.evaluate(seg.b, np.ascontiguousarray(y[:, 2:]), on_b)
-        raw_gap[mask] = np.linalg.norm(on_a - on_b, axis=1)
-        p = np.empty((len(y), 3))
-        t = np.empty((len(y), 3))
-        st = np.empty(len(y), dtype=np.int64)
-        kc.project_many(y, seg.a, seg.b, seg.normal, settings.gap_tol, NEWTON_MAX_ITER, p, t, st)
-        points[mask] = p
-        params[mask] = user_params((a, b), y, p, seg.a, seg.b)
+    cuts = [0] + (np.flatnonzero(np.diff(span_of)) + 1).tolist() + [len(span_of)]
+    for lo, hi in zip(cuts[:-1], cuts[1:]):
+        seg = spans[span_of[lo]].seg
+        y = y_all[lo:hi].copy()
+        kc.corrected_many(y, seg.a, seg.b, seg.normal, settings.gap_tol, NEWTON_MAX_ITER, points[lo:hi],
+                          raw_gap[lo:hi])
+        params[lo:hi] = user_params((a, b), y, points[lo:hi], seg.a, seg.b)
     for k, surf in enumerate((a, b)):
         if traits(surf).recharts:         # its parameters come from the points
             u = params[:, 2 * k]          # unwrapped: whole turns removed from the jumps

@@ -3,6 +3,7 @@
 A branch is integrated segment by segment (see spatialkin.tracing.ivp); each segment keeps the charts it
 was integrated in (a sphere is re-charted away from its poles) and its dense output.
 """
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -118,16 +119,23 @@ def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):
 
 
 def finite_bounds(*surfaces):
-    """(surface index k, bound index j, state index, bound value, is a lower bound, slack) of every finite bound
+    """[(surface index k, bound index j, state index, bound value, is a lower bound, slack)] of every finite bound
     of the surfaces' data, j in (u_min, u_max, v_min, v_max) order. slack is EDGE_ULPS ulp of the parameter's
     range: the round-off by which a curve lying along the edge may cross it."""
-    for k, data in enumerate(surfaces):
-        bounds = data[ks.BOUNDS:ks.BOUNDS + 4].tolist()
-        for j, bound in enumerate(bounds):
-            if math.isfinite(bound):
-                pair = [x for x in bounds[2 * (j // 2):2 * (j // 2) + 2] if math.isfinite(x)]
-                size = max(max(abs(x) for x in pair), max(pair) - min(pair))
-                yield k, j, 2 * k + j // 2, bound, j % 2 == 0, EDGE_ULPS * np.spacing(size)
+    return [row for k, data in enumerate(surfaces)
+            for row in _bounds_of(k, tuple(data[ks.BOUNDS:ks.BOUNDS + 4].tolist()))]
+
+
+@functools.lru_cache(maxsize=256)
+def _bounds_of(k, bounds):
+    """finite_bounds' rows of surface k with these (u_min, u_max, v_min, v_max), made once per trim."""
+    rows = []
+    for j, bound in enumerate(bounds):
+        if math.isfinite(bound):
+            pair = [x for x in bounds[2 * (j // 2):2 * (j // 2) + 2] if math.isfinite(x)]
+            size = max(max(abs(x) for x in pair), max(pair) - min(pair))
+            rows.append((k, j, 2 * k + j // 2, bound, j % 2 == 0, EDGE_ULPS * np.spacing(size)))
+    return tuple(rows)
 
 
 def newton_fixed(a, b, y, fixed, gap_tol, max_iter=30):

@@ -3,11 +3,11 @@ and the points of the level g = 0 where its tangent is normal to a fixed directi
 function d . (u, v) along the level: every closed loop of the level has one).
 
 Both are branch-and-bound subdivisions over boxes of S's parameters. A box is discarded only when an interval
-enclosure (spatialkin.kernels.interval: the natural form intersected with the centred form) excludes zero, so
-no root is ever lost; a box is kept as holding exactly one root when the interval Newton operator (lines) or
-the Krawczyk operator (the 2 x 2 system) maps it strictly into itself. Boxes that can be neither discarded nor
-verified when they reach the minimum width are returned as unresolved (singular or multiple roots: contacts,
-nodes, tangencies).
+enclosure (spatialkin.kernels.interval: the natural form, the centred form and, for g in the 2-D search, the
+second-order Taylor form) excludes zero, so no root is ever lost; a box is kept as holding exactly one root when
+the interval Newton operator (lines) or the Krawczyk operator (the 2 x 2 system) maps it strictly into itself.
+Boxes that can be neither discarded nor verified when they reach the minimum width are returned as unresolved
+(singular or multiple roots: contacts, nodes, tangencies).
 
 Records are boxes (lo, hi per parameter) with a kind: VERIFIED (exactly one simple root inside) or UNRESOLVED.
 line_search and extremal_search run a search and reduce its records to points in the same call (the refined
@@ -23,7 +23,7 @@ R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIA
 import numpy as np
 
 from .._jit import jit
-from .interval import (contains_zero, iadd, imul, intersect, iscale, isub, jet, point)
+from .interval import (contains_zero, iadd, imul, intersect, iscale, isqr, isub, jet, point)
 from .surfaces import inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
@@ -197,6 +197,8 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         dV = isub(V, point(mv))
         if not contains_zero(intersect(g, iadd(gm, iadd(imul(gu, dU), imul(gv, dV))))):
             continue
+        if not contains_zero(_second_order(gm, gum, gvm, guu, guv, gvv, dU, dV)):
+            continue
         j10 = isub(iscale(guu, dv), iscale(guv, du))
         j11 = isub(iscale(guv, dv), iscale(gvv, du))
         phim = isub(iscale(gum, dv), iscale(gvm, du))
@@ -259,6 +261,18 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             stack[top + 1, 2] = cut
         top += 2
     return count, DONE, boxes
+
+
+@jit
+def _second_order(gm, gum, gvm, guu, guv, gvv, dU, dV):
+    """The second-order Taylor form of g over the box m + dU x dV: g(m) + grad g(m) . d + d^T H(X) d / 2, with g
+    and its gradient enclosed at the midpoint m and the Hessian over the box X (Lagrange's remainder lies in it).
+    Its overestimate falls with the square of the width, as the centred form's does, but with a smaller constant
+    (0.1-0.4 of it, tests/spatialkin/kernels/test_interval.py): the 2-D searches of the bench's pairs visit 8-37%
+    fewer boxes with it (a torus-torus pair 2877 for 4597)."""
+    linear = iadd(imul(gum, dU), imul(gvm, dV))
+    half = iadd(iadd(iscale(imul(guu, isqr(dU)), 0.5), imul(guv, imul(dU, dV))), iscale(imul(gvv, isqr(dV)), 0.5))
+    return iadd(gm, iadd(linear, half))
 
 
 @jit

@@ -114,3 +114,40 @@ def test_extremal_points_of_a_tilted_circle():
         g = np.empty((1, 6))
         kt.point_values(torus.data, plane.data, m, c, uv.reshape(1, 2), g)
         assert abs(dv * g[0, 1] - du * g[0, 2]) < 1e-12 * np.hypot(g[0, 1], g[0, 2])
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_second_order_form_encloses_g_and_is_tighter_on_small_boxes(seed):
+    """The 2-D search's second-order Taylor form (kernels.topology._second_order) contains g at points inside
+    random boxes (the numpy oracle, to its round-off), and on boxes 1e-3 wide its overestimate (width less the
+    range of the samples, corners included) is at most half the centred form's, g(m) + grad g(X) . (X - m), and
+    0.3 of it in the median, wherever g bends (both fall with the square of the width; the Taylor form's constant
+    is smaller), and never larger where g is linear to round-off."""
+    rng = np.random.default_rng(100 + seed)
+    ratios = []
+    for s in surfaces(rng):
+        for t in surfaces(rng):
+            m, c = np.empty((3, 3)), np.empty(3)
+            mag = ki.relative_placement(s.data, t.data, m, c)
+            pad, cpad = ki.PLACEMENT_ULPS * ki.EPS, ki.PLACEMENT_ULPS * ki.EPS * mag
+            for width in (1.0, 1e-1, 1e-3):
+                u0, v0 = rng.uniform(-3, 3, 2)
+                U, V = (u0, u0 + width), (v0, v0 + 0.7 * width)
+                g, gu, gv, guu, guv, gvv = ki.jet(s.data, t.data, m, c, pad, cpad, U, V)
+                mu, mv = 0.5 * (U[0] + U[1]), 0.5 * (V[0] + V[1])
+                gm, gum, gvm = ki.jet(s.data, t.data, m, c, pad, cpad, (mu, mu), (mv, mv))[:3]
+                dU, dV = ki.isub(U, (mu, mu)), ki.isub(V, (mv, mv))
+                form = kt._second_order(gm, gum, gvm, guu, guv, gvv, dU, dV)
+                uu = U[0] + (U[1] - U[0]) * np.append(rng.uniform(0, 1, SAMPLES), [0.0, 0.0, 1.0, 1.0])
+                vv = V[0] + (V[1] - V[0]) * np.append(rng.uniform(0, 1, SAMPLES), [0.0, 1.0, 0.0, 1.0])
+                values = poly_implicit(t, s.point(uu, vv))
+                slack = 1e-12 * (np.max(np.abs(values)) + 1.0)
+                assert np.all(values >= form[0] - slack) and np.all(values <= form[1] + slack)
+                if width == 1e-3:
+                    centred = ki.iadd(gm, ki.iadd(ki.imul(gu, dU), ki.imul(gv, dV)))
+                    spread = np.ptp(values)
+                    over, centred_over = form[1] - form[0] - spread, centred[1] - centred[0] - spread
+                    assert over <= centred_over * (1 + 1e-9)
+                    if centred_over > 1e-9 * (np.max(np.abs(values)) + 1.0):
+                        ratios.append(over / centred_over)
+    assert len(ratios) >= 10 and max(ratios) <= 0.5 and np.median(ratios) <= 0.3

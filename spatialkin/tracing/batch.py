@@ -17,7 +17,7 @@ import os
 from ..validation import check_choice, check_count
 from .intersect import intersect
 from .traits import check_surface
-from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings
+from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, check_options
 
 #: Pairs sent to a worker per task (amortises the transfer of surfaces and curves).
 CHUNK = 8
@@ -68,8 +68,7 @@ def intersect_many(pairs, tol=1e-10, *, workers=1, errors="raise", method=DEFAUL
     workers = (os.cpu_count() or 1) if workers is None else check_count("workers", workers)
     options = dict(tol=tol, method=method, rtol=rtol, atol=atol, max_length=max_length, singular_tol=singular_tol,
                    pullback=pullback)
-    for a, b in pairs:          # every option checked against every pair (scales differ) before any numerics
-        make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, a.frame.origin)
+    check_options(tol, method, rtol, atol, max_length, singular_tol, pullback)    # once: none depends on a pair
     chunks = [(start, pairs[start:start + CHUNK]) for start in range(0, len(pairs), CHUNK)]
     if workers == 1 or len(chunks) < MIN_CHUNKS_PER_WORKER * workers:
         done = [_intersect_chunk(start, chunk, options, errors) for start, chunk in chunks]

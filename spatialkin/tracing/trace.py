@@ -51,13 +51,24 @@ def extent(surface):
     return traits(surface).extent(surface)
 
 
-def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor):
-    """Validated numerical settings, absolute lengths scaled by the scene."""
+def check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
+    """(tol, rtol, singular_tol) checked, with the other options (ValueError naming a bad one); none depends on
+    the surfaces."""
     tol = check_positive("tol", tol)
     rtol = check_positive("rtol", rtol)
     check_choice("method", method, METHODS)
     singular_tol = check_positive("singular_tol", singular_tol)
     check_nonnegative("pullback", pullback)
+    if max_length is not None:
+        check_positive("max_length", max_length)
+    if atol is not None:
+        check_positive("atol", atol)
+    return tol, rtol, singular_tol
+
+
+def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor):
+    """Validated numerical settings, absolute lengths scaled by the scene."""
+    tol, rtol, singular_tol = check_options(tol, method, rtol, atol, max_length, singular_tol, pullback)
     scale = scene_scale(a, b)
     if max_length is None:
         bound = min(extent(a), extent(b))

@@ -70,6 +70,9 @@ def test_bad_surface_and_options_named_before_any_work(monkeypatch):
         sk.intersect_many([good], errors="ignore")
     with pytest.raises(ValueError, match="method"):
         sk.intersect_many([good], method="Euler")
+    for option in ("rtol", "atol", "max_length", "singular_tol", "pullback"):
+        with pytest.raises(ValueError, match=option):
+            sk.intersect_many([good], **{option: -1.0})
     assert calls == []
 
 

@@ -250,6 +250,9 @@ def traits(x):
     UnknownSurfaceKindError
         Nothing is registered for x.
     """
+    kind = _BY_CLASS.get(type(x))          # a surface of a registered class (the common call)
+    if kind is not None:
+        return kind
     if isinstance(x, np.ndarray):
         return _by_code(int(x[ks.KIND]))
     if isinstance(x, (int, np.integer)):

@@ -101,12 +101,20 @@ def test_spindle_torus_apex_on_the_curve():
 def test_horn_torus_cusp():
     """A horn torus (R = r = 1) with a sphere through its cusp (the origin): when the sphere's tangent
     plane there holds the axis and its radius exceeds R the curve runs through the cusp; otherwise the cusp
-    is an isolated point of contact. Positions stay on both surfaces to 1e-12."""
+    is an isolated point of contact. Positions stay on both surfaces to 1e-12.
+
+    The first sphere (centre (1.5, 0, 0), radius 1.5) meets the torus in two tube circles of radius 1 touching at
+    the cusp (x^2 + y^2 + z^2 = 3x and = 2 rho give x = 2 rho / 3: two meridian half-planes), 4 pi in all. The
+    cusp is a singular point of the curve, where the integrator's path is fixed only to about the square root of
+    its accuracy: with the same code, the traced figure-eight passed within 1e-9 of it on one CI machine and 4.2e-8
+    from it on another (AMD EPYC with FMA and AVX-512; last-bit differences of the machine's libm decide it). The
+    bound is 1e-7, and the length is checked against 4 pi."""
     torus = sk.Torus(1.0, 1.0)
     centre = np.array([1.5, 0.0, 0.0])
     curves = sk.intersect(torus, sk.Sphere(1.5, sk.Frame(centre)))
     assert curves and all(c.closed for c in curves)
-    assert min(c.closest(np.zeros(3))[1] for c in curves) < 1e-9
+    assert min(c.closest(np.zeros(3))[1] for c in curves) < 1e-7
+    assert abs(sum(c.length for c in curves) - 4 * np.pi) < 1e-6
     for c in curves:
         assert on_both(c, centre, 1.5, 1.0, 1.0) < 1e-12
     centre = np.array([0.5, 0.2, 0.3])

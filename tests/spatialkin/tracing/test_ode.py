@@ -13,9 +13,11 @@ from spatialkin.kernels import curve as kc
 from spatialkin.tracing.ode import COMPILED, BudgetExceeded, CompiledRK45, Event, System, integrate, step_points
 
 #: The same steps: as many, at the same points to this (relative). Not bit for bit: the error estimate
-#: h sum E_j k_j cancels to ~1e-5 of the k_j, so summing in numpy's order or ours moves it in its 12th digit and
-#: the next step size in its 11th (measured: 9e-11 relative on this problem).
-SAME_STEP_RTOL = 1e-9
+#: h sum E_j k_j cancels to ~1e-5 of the k_j, so summing in numpy's order or ours moves it in its 12th digit or
+#: later and the next step sizes follow (measured on this problem: step times 9e-11 relative on one machine,
+#: 9e-9 on an AMD EPYC with AVX-512, where numpy sums in another order). The states are compared on the same
+#: solution instead: ours read at scipy's step times.
+SAME_STEP_RTOL = 1e-7
 #: States, dense output and event times: the same polynomials on (nearly) the same steps.
 SAME_DENSE_TOL = 1e-9
 RTOL = 1e-9
@@ -40,7 +42,8 @@ def test_compiled_rk45_takes_scipys_rk45_steps():
     assert ours.status == scipy.status == 0
     assert len(ours.t) < len(t) == len(scipy.t) > 20          # many RK steps per solver step, the same steps
     np.testing.assert_allclose(t, scipy.t, rtol=SAME_STEP_RTOL, atol=0)
-    np.testing.assert_allclose(y, scipy.y, rtol=SAME_STEP_RTOL, atol=SAME_STEP_RTOL)
+    np.testing.assert_allclose(y[:, 0], scipy.y[:, 0], rtol=0, atol=0)
+    np.testing.assert_allclose(ours.sol(scipy.t), scipy.y, rtol=0, atol=SAME_DENSE_TOL)
     s = np.linspace(0.0, length, 997)
     np.testing.assert_allclose(ours.sol(s), scipy.sol(s), rtol=0, atol=SAME_DENSE_TOL)
     assert ours.nfev == scipy.nfev

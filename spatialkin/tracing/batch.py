@@ -5,15 +5,21 @@ asks for the same intersection many times. The batch checks every argument befor
 pair or option fails at once with its index, then intersects pair after pair, or in chunks on worker processes:
 each pair's result is what ``sk.intersect`` returns for it (same curves, same numbers), in the pairs' order.
 
-Workers start by fork where the platform has it, elsewhere by the platform's default (they import spatialkin);
-the pool is kept for the next batches, each worker warmed by one small intersection when it starts (numba loads
-its kernels from the cache once per worker).
+Workers are forked from a server process that imported spatialkin (forkserver; spawn where the platform has no
+fork), never from the caller, whose threads (a notebook's, a BLAS pool's) a fork would not carry. One pool is kept
+for the next batches, each worker warmed by one small intersection when it starts (numba loads its kernels from
+the cache once per worker); it is replaced when another worker count is asked, dropped when a worker dies (the
+next batch starts a new one), and shut down at exit. Surfaces of a kind registered at run time reach workers only
+when their module can be imported there.
 """
 import atexit
 import concurrent.futures
 import multiprocessing
 import os
+from concurrent.futures.process import BrokenProcessPool
 
+from ..frame import Frame
+from ..surfaces import Sphere, Torus
 from ..validation import check_choice, check_count
 from .intersect import intersect
 from .traits import check_surface
@@ -34,6 +40,10 @@ class BatchError(RuntimeError):
     def __init__(self, index, error):
         super().__init__(f"pairs[{index}]: {type(error).__name__}: {error}")
         self.index = index
+        self.error = error
+
+    def __reduce__(self):
+        return BatchError, (self.index, self.error)
 
 
 def intersect_many(pairs, tol=1e-10, *, workers=1, errors="raise", method=DEFAULT_METHOD, rtol=DEFAULT_RTOL,
@@ -73,8 +83,13 @@ def intersect_many(pairs, tol=1e-10, *, workers=1, errors="raise", method=DEFAUL
     if workers == 1 or len(chunks) < MIN_CHUNKS_PER_WORKER * workers:
         done = [_intersect_chunk(start, chunk, options, errors) for start, chunk in chunks]
     else:
-        done = list(_pool(workers, pairs[0]).map(_intersect_chunk, *zip(*chunks), [options] * len(chunks),
-                                       [errors] * len(chunks)))
+        try:
+            done = list(_pool(workers).map(_intersect_chunk, *zip(*chunks), [options] * len(chunks),
+                                           ["return"] * len(chunks)))
+        except BrokenProcessPool as err:
+            _discard()
+            raise RuntimeError(f"a worker process of sk.intersect_many died (pairs[0:{len(pairs)}] on {workers} "
+                               "workers); its pool is discarded and the next call starts a new one") from err
     results = [r for part in done for r in part]
     if errors == "raise":
         for k, r in enumerate(results):
@@ -102,52 +117,59 @@ def check_pairs(pairs):
 
 
 def _intersect_chunk(start, chunk, options, errors):
-    """sk.intersect of each pair of a chunk; with errors='return' (and in workers, where the first failure is
-    re-raised by the caller) a failure is kept as its exception. `start` is the chunk's first index."""
+    """sk.intersect of each pair of a chunk (`start`: the index of its first pair). A failure raises BatchError
+    with errors='raise' (in this process), and is kept in place as its exception with errors='return' (and on
+    workers, which are always given 'return': the caller raises the first one)."""
     out = []
     for k, (a, b) in enumerate(chunk):
         try:
             out.append(intersect(a, b, **options))
-        except Exception as error:      # noqa: BLE001 - kept in place, raised by the caller as BatchError
-            if errors == "raise" and multiprocessing.parent_process() is None:
+        except Exception as error:      # noqa: BLE001 - kept in place, or raised as BatchError naming the pair
+            if errors == "raise":
                 raise BatchError(start + k, error) from error
             out.append(error)
     return out
 
 
-_POOLS = {}
+_POOL = {}          # {'workers': n, 'executor': ProcessPoolExecutor}: one kept pool
 
 
-def _pool(workers, first):
-    """The process pool of `workers` workers, made at its first use and kept for the next batches (a worker's
-    first intersection loads the compiled kernels, about 0.3 s: paid once per worker, not per batch; `first`, a
-    pair, warms each worker); shut down at exit."""
-    pool = _POOLS.get(workers)
-    if pool is None:
-        pool = concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=_context(),
-                                                      initializer=_warm, initargs=first)
-        _POOLS[workers] = pool
-        if len(_POOLS) == 1:
-            atexit.register(_shutdown)
-    return pool
+def _pool(workers):
+    """The kept process pool, with `workers` workers (made at its first use, replaced when the count changes; a
+    worker's first intersection loads the compiled kernels, about 0.3 s: paid once per worker, not per batch);
+    shut down at exit."""
+    if _POOL.get("workers") != workers:
+        _discard()
+        _POOL["executor"] = concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=_context(),
+                                                                   initializer=_warm)
+        _POOL["workers"] = workers
+    return _POOL["executor"]
 
 
-def _warm(a, b):
-    """A worker's first work: the first pair of the batch that made the pool, so that its kernels are loaded before
-    the first chunk (a failure there is left for the chunk that has the pair)."""
-    try:
-        intersect(a, b)
-    except Exception:       # noqa: BLE001 - the pair's own chunk reports it
-        pass
+def _warm():
+    """A worker's first work: one small torus–sphere intersection, so that its kernels are loaded before the first
+    chunk."""
+    intersect(Torus(1.0, 0.4), Sphere(1.0, Frame((1.0, 0.0, 0.3))))
 
 
-def _shutdown():
-    for pool in _POOLS.values():
-        pool.shutdown(wait=False, cancel_futures=True)
-    _POOLS.clear()
+def _discard(wait=False):
+    """Shut the kept pool down (if any) and forget it."""
+    executor = _POOL.pop("executor", None)
+    _POOL.clear()
+    if executor is not None:
+        executor.shutdown(wait=wait, cancel_futures=True)
 
 
 def _context():
-    """fork where the platform has it (workers inherit the compiled kernels), else the default start method."""
-    methods = multiprocessing.get_all_start_methods()
-    return multiprocessing.get_context("fork" if "fork" in methods else None)
+    """forkserver where the platform has it, spatialkin preloaded in the server (a worker starts as a fork of a
+    process that imported it, and never of the caller's, whose threads a fork would not carry), else spawn."""
+    if "forkserver" in multiprocessing.get_all_start_methods():
+        context = multiprocessing.get_context("forkserver")
+        context.set_forkserver_preload(["spatialkin"])
+        return context
+    return multiprocessing.get_context("spawn")
+
+
+atexit.register(_discard)
+if hasattr(os, "register_at_fork"):     # a forked child (the user's own pool) must not use the parent's workers
+    os.register_at_fork(after_in_child=_POOL.clear)

@@ -10,7 +10,6 @@ import time
 import numpy as np
 
 from ..kernels import curve as kc
-from ..kernels import surfaces as ks
 from .arclength import remeasure_branch
 from .ivp import integrate_branch
 from .segments import NEWTON_MAX_ITER, Settings, charts_at

@@ -87,3 +87,45 @@ def test_a_failing_pair_is_named_or_returned_in_place():
     assert isinstance(results[1], sk.CoincidentSurfacesError)
     same_curves(results[0], sk.intersect(sphere, other))
     same_curves(results[2], sk.intersect(other, sphere))
+
+
+def looper_sweep(count):
+    """count looper pairs (sphere radius within 2%)."""
+    from spatialkin.reference import looper_pair
+    torus, sphere = looper_pair()
+    return [(torus, sk.Sphere(r, sphere.frame)) for r in sphere.radius * np.linspace(0.98, 1.02, count)]
+
+
+def test_a_failing_pair_on_workers_is_named_or_returned_in_place():
+    pairs = looper_sweep(2 * batch.MIN_CHUNKS_PER_WORKER * batch.CHUNK)
+    bad = 2 * batch.CHUNK + 3                  # in the third chunk
+    pairs[bad] = (pairs[bad][1], pairs[bad][1])
+    with pytest.raises(sk.BatchError, match=rf"pairs\[{bad}\]: CoincidentSurfacesError") as err:
+        sk.intersect_many(pairs, workers=2)
+    assert err.value.index == bad and isinstance(err.value.__cause__, sk.CoincidentSurfacesError)
+    results = sk.intersect_many(pairs, workers=2, errors="return")
+    assert isinstance(results[bad], sk.CoincidentSurfacesError)
+    same_curves(results[bad + 1], sk.intersect(*pairs[bad + 1]))
+
+
+def test_a_dead_worker_is_named_and_the_next_batch_gets_a_new_pool():
+    import os
+    import signal
+    pairs = looper_sweep(2 * batch.MIN_CHUNKS_PER_WORKER * batch.CHUNK)
+    sk.intersect_many(pairs, workers=2)                      # the kept pool exists
+    pool = batch._POOL["executor"]
+    os.kill(next(iter(pool._processes)), signal.SIGKILL)     # a worker dies (the OOM killer, a crash)
+    with pytest.raises(RuntimeError, match=r"a worker process of sk.intersect_many died"):
+        sk.intersect_many(pairs, workers=2)
+    assert "executor" not in batch._POOL
+    results = sk.intersect_many(pairs, workers=2)
+    assert batch._POOL["executor"] is not pool
+    for pair, got in zip(pairs[:3], results):
+        same_curves(got, sk.intersect(*pair))
+
+
+def test_batch_error_survives_pickling():
+    import pickle
+    error = pickle.loads(pickle.dumps(sk.BatchError(4, ValueError("bad radius"))))
+    assert error.index == 4 and str(error) == "pairs[4]: ValueError: bad radius"
+    assert isinstance(error.error, ValueError)

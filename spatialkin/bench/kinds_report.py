@@ -18,9 +18,14 @@ ERROR_FLOOR = 1e-17
 
 def write_kinds_csv(rows, path):
     """One line per pair kind (sidebyside.KindRow), written whole or not at all."""
-    write_table(path, COLUMNS, ([r.kind, f"{r.ours:.6g}", f"{r.occ:.6g}", f"{r.ratio:.4g}", f"{r.our_error:.3e}",
-                                 f"{r.occ_error:.3e}", r.our_curves, r.occ_curves]
+    write_table(path, COLUMNS, ([r.kind, cell(r.ours, ".6g"), cell(r.occ, ".6g"), cell(r.ratio, ".4g"),
+                                 cell(r.our_error, ".3e"), cell(r.occ_error, ".3e"), r.our_curves, r.occ_curves]
                                 + [f"{r.profile.seconds[s]:.6g}" for s in stages.STAGES] for r in rows))
+
+
+def cell(value, spec):
+    """A CSV cell: the number formatted, or empty where it was not measured (OpenCascade not installed: NaN)."""
+    return format(value, spec) if np.isfinite(value) else ""
 
 
 def plot_kinds(rows, path, title):
@@ -32,9 +37,15 @@ def plot_kinds(rows, path, title):
     names = [r.kind for r in rows]
     y = np.arange(len(rows))
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 0.32 * len(rows) + 1.8), sharey=True)
+    from .baselines import OCC_DEFAULT_TOL
+    from .sidebyside import OUR_TOL
     ratios = np.array([r.ratio for r in rows])
+    measured = np.isfinite(ratios)
     colours = ["tab:green" if q >= GOAL_OCC_RATIO else "tab:orange" if q >= 1 else "tab:red" for q in ratios]
-    left.barh(y, np.where(np.isfinite(ratios), ratios, 0.0), color=colours)
+    left.barh(y, np.where(measured, ratios, 0.0), color=colours)
+    if not measured.any():
+        left.text(0.5, 0.5, "OpenCascade (cadquery-ocp) not installed:\nno side-by-side times",
+                  transform=left.transAxes, ha="center", va="center", fontsize=8)
     left.axvline(GOAL_OCC_RATIO, color="k", ls="--", lw=1, label=f"goal: {GOAL_OCC_RATIO:g}x faster")
     left.axvline(1.0, color="grey", ls=":", lw=1, label="parity")
     left.set_xscale("log")
@@ -47,10 +58,13 @@ def plot_kinds(rows, path, title):
     left.legend(fontsize=7, loc="upper right")
     left.grid(True, axis="x", which="both", alpha=0.3)
     for k, r in enumerate(rows):
+        if not measured[k]:
+            continue
         left.annotate(f"ours {1e3 * r.ours:.2f} ms, OCC {1e3 * r.occ:.2f} ms", (max(r.ratio, 1e-3), k), fontsize=6,
                       xytext=(3, -2), textcoords="offset points")
-    right.plot([max(r.our_error, ERROR_FLOOR) for r in rows], y, "s", label="sk.intersect (tol 1e-10)")
-    right.plot([max(r.occ_error, ERROR_FLOOR) for r in rows], y, "X", label="GeomAPI_IntSS (tol 1e-7)")
+    right.plot([max(r.our_error, ERROR_FLOOR) for r in rows], y, "s", label=f"sk.intersect (tol {OUR_TOL:g})")
+    if measured.any():
+        right.plot([max(r.occ_error, ERROR_FLOOR) for r in rows], y, "X", label=f"GeomAPI_IntSS (tol {OCC_DEFAULT_TOL:g})")
     right.set_xscale("log")
     right.set_xlabel("largest distance to either surface [length units]")
     right.legend(fontsize=7)

@@ -61,3 +61,16 @@ def test_kinds_csv_and_png_written(tmp_path):
     assert float(table[1][3]) == pytest.approx(0.1) and float(table[2][3]) == pytest.approx(20.0)
     assert (tmp_path / "k.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["k.csv", "k.png"]       # no temporary left
+
+
+def test_kinds_files_without_opencascade_hold_no_nan(tmp_path):
+    """OpenCascade not installed (its times and errors NaN): the CSV leaves those cells empty, the PNG says so."""
+    prof = stages.StageProfile({s: 1e-4 for s in stages.STAGES}, 7e-4)
+    rows = [KindRow("torus-torus", 1e-2, float("nan"), 8e-16, float("nan"), 1, 0, prof)]
+    write_kinds_csv(rows, tmp_path / "k.csv")
+    plot_kinds(rows, tmp_path / "k.png", "title")
+    text = (tmp_path / "k.csv").read_text()
+    assert "nan" not in text.lower()
+    row = list(csv.reader(text.splitlines()))[1]
+    assert row[2] == row[3] == row[5] == "" and float(row[1]) == 1e-2
+    assert (tmp_path / "k.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -206,7 +206,7 @@ def within_reach(points, stored, s_stored, radius):
 
 @jit
 def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, max_iter, steps, verdict):
-    """Verdict (M,) (FAR, NEAR or UNDECIDED) of each point (M, 3) against the curve through its stored points
+    """Verdict (M,) (FAR, NEAR, UNDECIDED or PYTHON) of each point (M, 3) against the curve through its stored points
     (N, 3) at arc lengths s_stored (N,): FAR when farther than radius plus half the longest step from every
     stored point (each arc between two stored points lies within half its length of one of them); NEAR when
     within radius of a curve point met by foot_distance from the nearest stored point (the foot point, or one of

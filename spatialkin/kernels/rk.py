@@ -309,7 +309,8 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
 
     Returns at t_bound, after max_steps steps, after a step over which active events cross zero in their
     directions (each crossing located on the step's dense output, as solve_ivp locates events; at a terminal
-    one the step is cut there), where a level event is reached (modes: LEVEL_BEFORE, LEVEL_AFTER), when the step
+    one the step is cut there; TERMINAL_PROBED also at PROBES interior points of a step within reach), where a
+    level event is reached (modes: LEVEL_BEFORE, LEVEL_AFTER; LEVEL_BEFORE_PROBED probed likewise), when the step
     size falls below the round-off floor, or when more than max_nfev evaluations were spent. With fresh, f is
     computed first, and h <= 0 asks for scipy's initial step.
 

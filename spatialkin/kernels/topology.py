@@ -12,7 +12,8 @@ Boxes that can be neither discarded nor verified when they reach the minimum wid
 Records are boxes (lo, hi per parameter) with a kind: VERIFIED (exactly one simple root inside) or UNRESOLVED.
 line_search and extremal_search run a search and reduce its records to points in the same call (the refined
 roots, then the unresolved boxes' centres); line_on_level, level_max, flat_fraction and keep_points do the stage's
-per-point tests of many points in one call, to the bit as the scalar code they replace.
+per-point tests of many points in one call (the same bits as one point at a time: tests/spatialkin/tracing/
+test_topology_batched.py keeps the scalar oracle).
 
 References
 ----------

@@ -7,7 +7,9 @@ It is split into segments at events that need Python between two integrations:
 * a sphere's chart nears its poles: the sphere is re-charted (its internal pole axis turned so that the
   current point lies on the new equator, moving along it) and integration goes on; the user's (u, v) are
   recovered from the points afterwards;
-* a crossing of the start's normal plane that is not the start (a closure candidate rejected).
+* a crossing of the start's normal plane that is not the start (a closure candidate rejected);
+* with the compiled method: one step before a trim edge (the next segment, started on the curve, ends exactly on
+  the edge: segment_events), and a hand-over to solve_ivp's DOP853 before a singular point or an apex.
 
 At every segment start the state is projected back onto the curve by Newton, and the right-hand side
 carries a pull-back term, so the gap between the surfaces stays flat however long the branch is.

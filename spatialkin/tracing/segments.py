@@ -128,7 +128,7 @@ def finite_bounds(*surfaces):
 
 @functools.lru_cache(maxsize=256)
 def _bounds_of(k, bounds):
-    """finite_bounds' rows of surface k with these (u_min, u_max, v_min, v_max), made once per trim."""
+    """finite_bounds' rows of surface slot k with these (u_min, u_max, v_min, v_max), made once per slot and trim."""
     rows = []
     for j, bound in enumerate(bounds):
         if math.isfinite(bound):

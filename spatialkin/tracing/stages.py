@@ -17,13 +17,13 @@ The library marks its places with ::
         if mark is not None:
             stages.leave(mark)             # ... back to the stage it interrupted, also on an exception
 
-Stages (STAGES, in the order of the path): Python set-up (validation, settings, exact curves, the starts'
-bookkeeping), the topology stage (the interval search that finds the seeds), per-trace set-up (Python between
-two integrations: charts, event parameters, the branch's decisions), integration (solve_ivp and the compiled
-engine, spatialkin.tracing.ode.integrate), correction (Newton onto the surfaces: locating a seed on the curve,
-projecting a segment's start, correcting the stored points, re-measuring arc length), de-duplication (which
-starts and pieces lie on a curve already traced) and result building (assembling the spans, the dense output,
-the CurveResult and the Curve).
+Stages (STAGES, in the order of the path): Python set-up (validation, settings, the closed forms of
+spatialkin.tracing.closed, exact curves, the starts' bookkeeping), the topology stage (the interval search that
+finds the seeds), per-trace set-up (Python between two integrations: charts, event parameters, the branch's
+decisions), integration (solve_ivp and the compiled engine, spatialkin.tracing.ode.integrate), correction (Newton
+onto the surfaces: locating a seed on the curve, projecting a segment's start, correcting the stored points,
+re-measuring arc length), de-duplication (which starts and pieces lie on a curve already traced) and result
+building (assembling the spans, the dense output, the CurveResult and the Curve).
 """
 import time
 from contextlib import contextmanager

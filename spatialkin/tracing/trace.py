@@ -51,33 +51,31 @@ def extent(surface):
 
 
 def check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
-    """(tol, rtol, singular_tol) checked, with the other options (ValueError naming a bad one); none depends on
-    the surfaces."""
+    """(tol, rtol, atol, max_length, singular_tol, pullback) checked (ValueError naming a bad one; atol and
+    max_length may be None); none depends on the surfaces."""
     tol = check_positive("tol", tol)
     rtol = check_positive("rtol", rtol)
     check_choice("method", method, METHODS)
+    atol = None if atol is None else check_positive("atol", atol)
+    max_length = None if max_length is None else check_positive("max_length", max_length)
     singular_tol = check_positive("singular_tol", singular_tol)
-    check_nonnegative("pullback", pullback)
-    if max_length is not None:
-        check_positive("max_length", max_length)
-    if atol is not None:
-        check_positive("atol", atol)
-    return tol, rtol, singular_tol
+    pullback = check_nonnegative("pullback", pullback)
+    return tol, rtol, atol, max_length, singular_tol, pullback
 
 
 def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor):
     """Validated numerical settings, absolute lengths scaled by the scene."""
-    tol, rtol, singular_tol = check_options(tol, method, rtol, atol, max_length, singular_tol, pullback)
+    tol, rtol, atol, max_length, singular_tol, pullback = check_options(tol, method, rtol, atol, max_length,
+                                                                        singular_tol, pullback)
     scale = scene_scale(a, b)
     if max_length is None:
         bound = min(extent(a), extent(b))
         max_length = MAX_LENGTH_TURNS * 2 * math.pi * (bound if math.isfinite(bound) else 1e3 * scale)
-    max_length = check_positive("max_length", max_length)
     if atol is None:
         # angles get rtol, lengths (plane u, v; cylinder and cone v) rtol * scale
         atol = rtol * np.concatenate([parameter_units(a.data, scale), parameter_units(b.data, scale)])
     else:
-        atol = np.full(4, check_positive("atol", atol))
+        atol = np.full(4, atol)
     magnitude = max(scale, float(np.max(np.abs(anchor))))
     gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
     tolerance = max(tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)

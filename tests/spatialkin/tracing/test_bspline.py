@@ -37,6 +37,23 @@ def test_fit_reaches_the_tolerance_on_a_helix(tol):
     assert sp.deviation <= tol and np.max(np.linalg.norm(sp(t) - helix(t)[0], axis=1)) <= tol
 
 
+def sharp_bend(x, eps=1e-3):
+    """(x, sqrt(x^2 + eps^2)): a hyperbola with a bend of radius eps at x = 0, its exact first and second
+    derivatives."""
+    r = np.sqrt(x * x + eps * eps)
+    return (np.stack([x, r], 1), np.stack([np.ones_like(x), x / r], 1),
+            np.stack([np.zeros_like(x), eps * eps / r ** 3], 1))
+
+
+def test_fit_goes_on_through_a_sharp_bend_until_the_tolerance():
+    """Spans long beside a bend of radius 1e-3 do not halve their error at once (the fit stopped there at 3.3e-3,
+    taking it for round-off, as it did on a near-tangent intersection loop); the spline reaches 1e-6, measured
+    and against 200 001 exact points (closed form)."""
+    sp = fit(sharp_bend, -1.0, 0.93, 1e-6)
+    x = np.linspace(-1.0, 0.93, 200_001)
+    assert sp.deviation <= 1e-6 and np.max(np.linalg.norm(sp(x) - sharp_bend(x)[0], axis=1)) <= 1e-6
+
+
 def test_implicit_jets_match_differences():
     """Gradient and Hessian of every kind's implicit function against central differences (1e-7 relative)."""
     rng = np.random.default_rng(4)

@@ -23,6 +23,7 @@ from ..surfaces import Sphere
 from ..tracing.batch import intersect_many
 from ..tracing.intersect import intersect
 from .cases import torus_sphere_closed_form
+from .runner import DENSE_SAMPLES, best_time
 
 #: Configurations of the sweep (full run, --quick), and the relative spread of the sphere radius.
 CONFIGS = 128
@@ -33,8 +34,6 @@ ROUNDS = 5
 QUICK_ROUNDS = 2
 #: Torus angles of one closed-form evaluation (two points per angle where the meridian meets the sphere).
 CLOSED_FORM_ANGLES = 100_000
-#: Dense evaluations per curve, for the dense-output rate.
-DENSE_SAMPLES = 1000
 #: Worker processes of the parallel row.
 WORKERS = 2
 
@@ -66,13 +65,12 @@ def closed_form_rate(torus, sphere, angles=CLOSED_FORM_ANGLES):
     """Points per second of the closed form of torus ∩ sphere (best of 3 evaluations at `angles` angles)."""
     centre = torus.frame.to_local(sphere.frame.origin)
     phi = np.linspace(-np.pi, np.pi, angles, endpoint=False)
-    best = np.inf
-    for _ in range(3):
-        t0 = time.perf_counter()
+
+    def evaluate():
         pts, _ = torus_sphere_closed_form(torus.major_radius, torus.minor_radius, centre, sphere.radius, phi)
-        torus.frame.to_global(pts.reshape(-1, 3))
-        best = min(best, time.perf_counter() - t0)
-    return pts.shape[0] * pts.shape[1] / best
+        return torus.frame.to_global(pts.reshape(-1, 3))
+    best, pts = best_time(evaluate, 3)
+    return len(pts) / best
 
 
 def measure(quick=False):

@@ -140,6 +140,7 @@ def _pool(workers):
     shut down at exit."""
     if _POOL.get("workers") != workers:
         _discard()
+        _warm()             # compiled here first, so that the workers load the kernels from numba's disk cache
         _POOL["executor"] = concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=_context(),
                                                                    initializer=_warm)
         _POOL["workers"] = workers

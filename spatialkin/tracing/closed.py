@@ -22,7 +22,7 @@ from ..kernels import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution
 from .exact import exact_curve, surface_parameters
 from .placement import SAME
-from .result import CurveResult
+from .result import CurveResult, unwrap_turns
 from .status import BOUNDARY, open_outcome, outcome
 from .topology import Topology
 from .traits import traits
@@ -373,7 +373,7 @@ def component(surfaces, shape, rows, t_lo, t_hi, ends, settings, topo):
     for k, surf in enumerate(surfaces):
         if traits(surf).periodic[0]:                         # unwrapped along the curve, as the tracer's
             u = params[:, 2 * k]
-            u[1:] -= TWO_PI * np.add.accumulate(np.rint((u[1:] - u[:-1]) / TWO_PI))
+            unwrap_turns(u)
     sol.params = params
     if shape == PARABOLA and max(float(np.max(surf.distance(points))) for surf in surfaces) > (
             PARABOLA_CHECK * settings.tolerance):

@@ -122,9 +122,13 @@ class CurveSolution:
         """Arc lengths and points of the dense grid closest() starts from (computed once: a curve does not
         change)."""
         if self._grid is None:
-            grid = np.linspace(0.0, self.length, max(CLOSEST_GRID_FACTOR * len(self.knots), CLOSEST_GRID_MIN))
+            grid = self.grid_s()
             self._grid = (grid, self(grid))
         return self._grid
+
+    def grid_s(self):
+        """The arc lengths of grid(): evenly spaced, CLOSEST_GRID_FACTOR per knot (at least CLOSEST_GRID_MIN)."""
+        return np.linspace(0.0, self.length, max(CLOSEST_GRID_FACTOR * len(self.knots), CLOSEST_GRID_MIN))
 
 
 class Span:

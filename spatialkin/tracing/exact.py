@@ -5,7 +5,6 @@ output evaluates the closed form exactly.
 """
 import numpy as np
 
-from ..kernels import surfaces as ks
 from ..vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult
@@ -124,12 +123,7 @@ def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent",
 
 def surface_parameters(surfaces, points):
     """(u1, v1, u2, v2) (N, 4) of the points (N, 3) on the two surfaces (Surface.parameters of each, u wrapped)."""
-    params = np.empty((len(points), 4))
-    uv = np.empty((len(points), 2))
-    for k, surf in enumerate(surfaces):
-        ks.inverse(surf.data, np.ascontiguousarray(points), uv)
-        params[:, 2 * k:2 * k + 2] = uv
-    return params
+    return np.concatenate([surfaces[0].parameters(points), surfaces[1].parameters(points)], axis=1)
 
 
 def contact_point(surfaces, point, tolerance):

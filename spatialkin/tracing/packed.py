@@ -15,7 +15,7 @@ from scipy.integrate._ivp.rk import Dop853DenseOutput   # scipy's DOP853 step po
 
 from ..kernels import near as kn
 from .arclength import RemappedStates
-from .dense import CLOSEST_GRID_FACTOR, CLOSEST_GRID_MIN, TracedSolution
+from .dense import TracedSolution
 from .ode import StepsDense
 from .segments import NEWTON_MAX_ITER
 
@@ -43,7 +43,7 @@ def packed_grid(sol, table):
     kernels.near.curve_points on the tables of sol when they hold every span, else sol.grid(). Made once."""
     grid = _GRIDS.get(sol)
     if grid is None:
-        s = np.linspace(0.0, sol.length, max(CLOSEST_GRID_FACTOR * len(sol.knots), CLOSEST_GRID_MIN))
+        s = sol.grid_s()
         points = np.empty((len(s), 3))
         grid = _GRIDS[sol] = ((s, points) if kn.curve_points(table, sol.closed, sol.length, float(sol.gap_tol),
                                                                NEWTON_MAX_ITER, s, points) else sol.grid())

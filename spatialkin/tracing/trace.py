@@ -14,7 +14,7 @@ from .arclength import remeasure_branch
 from .ivp import integrate_branch
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from .dense import Span, TracedSolution
-from .result import Curve, CurveResult, TracingError, user_params, DUPLICATE_SPACING
+from .result import Curve, CurveResult, TracingError, unwrap_turns, user_params, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
 from .status import CLOSED, open_outcome
 from .traits import check_surface, traits
@@ -262,8 +262,7 @@ def _corrected(a, b, y_all, span_of, spans, settings):
         params[lo:hi] = user_params((a, b), y, points[lo:hi], seg.a, seg.b)
     for k, surf in enumerate((a, b)):
         if traits(surf).recharts:         # its parameters come from the points
-            u = params[:, 2 * k]          # unwrapped: whole turns removed from the jumps
-            u[1:] -= 2 * np.pi * np.cumsum(np.round(np.diff(u) / (2 * np.pi)))
+            unwrap_turns(params[:, 2 * k])
     return points, params, raw_gap
 
 

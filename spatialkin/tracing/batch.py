@@ -16,6 +16,7 @@ import atexit
 import concurrent.futures
 import multiprocessing
 import os
+import traceback
 from concurrent.futures.process import BrokenProcessPool
 
 from ..frame import Frame
@@ -83,13 +84,7 @@ def intersect_many(pairs, tol=1e-10, *, workers=1, errors="raise", method=DEFAUL
     if workers == 1 or len(chunks) < MIN_CHUNKS_PER_WORKER * workers:
         done = [_intersect_chunk(start, chunk, options, errors) for start, chunk in chunks]
     else:
-        try:
-            done = list(_pool(workers).map(_intersect_chunk, *zip(*chunks), [options] * len(chunks),
-                                           ["return"] * len(chunks)))
-        except BrokenProcessPool as err:
-            _discard()
-            raise RuntimeError(f"a worker process of sk.intersect_many died (pairs[0:{len(pairs)}] on {workers} "
-                               "workers); its pool is discarded and the next call starts a new one") from err
+        done = _on_workers(workers, chunks, options, errors, len(pairs))
     results = [r for part in done for r in part]
     if errors == "raise":
         for k, r in enumerate(results):
@@ -116,6 +111,27 @@ def check_pairs(pairs):
     return out
 
 
+def _on_workers(workers, chunks, options, errors, count):
+    """The chunks' results from the kept pool, in order. With errors='raise' the chunks not started yet are
+    cancelled at the first one that holds a failure (the caller raises it)."""
+    pool = _pool(workers)
+    futures = [pool.submit(_intersect_chunk, start, chunk, options, "return") for start, chunk in chunks]
+    done = []
+    try:
+        for future in futures:
+            done.append(future.result())
+            if errors == "raise" and any(isinstance(r, Exception) for r in done[-1]):
+                break
+    except BrokenProcessPool as err:
+        _discard()
+        raise RuntimeError(f"a worker process of sk.intersect_many died (pairs[0:{count}] on {workers} workers); "
+                           "its pool is discarded and the next call starts a new one") from err
+    finally:
+        for future in futures:
+            future.cancel()
+    return done
+
+
 def _intersect_chunk(start, chunk, options, errors):
     """sk.intersect of each pair of a chunk (`start`: the index of its first pair). A failure raises BatchError
     with errors='raise' (in this process), and is kept in place as its exception with errors='return' (and on
@@ -127,6 +143,8 @@ def _intersect_chunk(start, chunk, options, errors):
         except Exception as error:      # noqa: BLE001 - kept in place, or raised as BatchError naming the pair
             if errors == "raise":
                 raise BatchError(start + k, error) from error
+            if multiprocessing.parent_process() is not None:   # on a worker: its traceback travels as a note
+                error.add_note("".join(traceback.format_exception(error)).rstrip())
             out.append(error)
     return out
 

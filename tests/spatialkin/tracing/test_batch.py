@@ -105,6 +105,7 @@ def test_a_failing_pair_on_workers_is_named_or_returned_in_place():
     assert err.value.index == bad and isinstance(err.value.__cause__, sk.CoincidentSurfacesError)
     results = sk.intersect_many(pairs, workers=2, errors="return")
     assert isinstance(results[bad], sk.CoincidentSurfacesError)
+    assert "Traceback" in "".join(getattr(results[bad], "__notes__", []))        # the worker's traceback
     same_curves(results[bad + 1], sk.intersect(*pairs[bad + 1]))
 
 

@@ -13,7 +13,7 @@ import numpy as np
 
 from .._jit import jit
 from . import rk
-from .curve import area_degeneracy, degeneracy, degeneracy_slope, dragilev_into, frame, plane_value
+from .curve import area_degeneracy, degeneracy, degeneracy_slope, dragilev_into, dragilev_rhs, frame, plane_value
 
 # --- events, in order (each value falls or rises through zero) -----------------------------------------------
 #: The normals' sine falls below the singular tolerance.
@@ -68,10 +68,8 @@ def branch_args(a, b, sign, pullback):
 
 @jit
 def branch_rhs(s, y, a, b, sign, pullback, memo):
-    """dy/ds for solve_ivp's methods (args = branch_args(...)); the memo is not used."""
-    dy = np.empty(4)
-    dragilev_into(y, a, b, sign, pullback, dy)
-    return dy
+    """dy/ds for solve_ivp's methods (args = branch_args(...)): dragilev_rhs; the memo is not used."""
+    return dragilev_rhs(s, y, a, b, sign, pullback)
 
 
 @jit

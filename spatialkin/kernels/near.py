@@ -34,7 +34,7 @@ import numpy as np
 
 from .._jit import jit
 from .curve import curve_frame, project_to_curve
-from .rk import dense_state
+from .rk import dense_into
 
 #: Columns of the spans table.
 LO, FLIP, SHIFT, SIGN, COMPILED = 0, 1, 2, 3, 4
@@ -83,9 +83,8 @@ def solver_state(table, k, t, out):
     if kinds[g] == DOP853:
         dop853_state(dop_t0[j], dop_h[j], dop_y[j], dop_f[j], t, out)
         return
-    first, last = pt_off[g], pt_off[g + 1]      # StepsDense's own lookup (spatialkin.kernels.rk.dense_into)
-    i = min(max(np.searchsorted(pt[first:last], t, side="right") - 1, 0), last - first - 2)
-    dense_state(pt[first + i], rk_h[j + i], rk_y[j + i], rk_q[j + i], t, out)
+    first, last = pt_off[g], pt_off[g + 1]      # StepsDense's own lookup
+    dense_into(pt[first:last], rk_y[j:], rk_h[j:], rk_q[j:], t, out)
 
 
 @jit

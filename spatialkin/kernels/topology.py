@@ -359,6 +359,15 @@ def level_enclosure(s_data, t_data, m, c, pad, cpad, u, v):
 
 
 @jit
+def on_level(s_data, t_data, m, c, pad, cpad, u, v, widen):
+    """True when g at (u, v) is zero within its round-off: its rigorous enclosure (level_enclosure), widened
+    `widen` times its width on each side, holds zero."""
+    lo, hi = level_enclosure(s_data, t_data, m, c, pad, cpad, u, v)
+    width = hi - lo
+    return lo - widen * width <= 0.0 <= hi + widen * width
+
+
+@jit
 def spaced(lo, hi, n, i):
     """Point i of n evenly spaced over [lo, hi], ends included, to the bit as numpy.linspace(lo, hi, n)[i]."""
     if i == n - 1:
@@ -381,9 +390,7 @@ def line_on_level(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, probes,
     times its width on each side, holds zero. Stops at the first probe off the level."""
     for i in range(probes):
         u, v = _on_line(fixed, value, spaced(t0, t1, probes, i))
-        lo, hi = jet(s_data, t_data, m, c, pad, cpad, (u, u), (v, v))[0]
-        width = hi - lo
-        if not (lo - widen * width <= 0.0 <= hi + widen * width):
+        if not on_level(s_data, t_data, m, c, pad, cpad, u, v, widen):
             return False
     return True
 

@@ -19,7 +19,7 @@ import math
 import numpy as np
 
 from ..kernels import surfaces as ks
-from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution
+from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, basis
 from .exact import exact_curve, surface_parameters
 from .placement import SAME
 from .result import CurveResult, unwrap_turns
@@ -112,15 +112,9 @@ def combine(rows, f, g):
     return [c[i] + f * p[i] + g * q[i] for i in range(3)]
 
 
-def basis(shape, t, order=0):
-    """(f, g) of spatialkin.tracing.conic at one t, or their derivatives of the given order (0 or 1)."""
-    if shape == ELLIPSE:
-        return (math.cos(t), math.sin(t)) if order == 0 else (-math.sin(t), math.cos(t))
-    if shape == HYPERBOLA:
-        return (math.cosh(t), math.sinh(t)) if order == 0 else (math.sinh(t), math.cosh(t))
-    if shape == PARABOLA:
-        return (t * t, t) if order == 0 else (2.0 * t, 1.0)
-    return (0.0, t) if order == 0 else (0.0, 1.0)
+def scalar_basis(shape, t, order=0):
+    """(f, g) of spatialkin.tracing.conic at one float t (math, not numpy), or their derivatives."""
+    return basis(shape, t, order, math)
 
 
 def local_frame(surface):
@@ -320,7 +314,7 @@ def clip(shape, rows, trims, graze):
     periodic = shape == ELLIPSE
 
     def inside(t):
-        f, g = basis(shape, t)
+        f, g = scalar_basis(shape, t)
         return all((alpha + beta * f + gamma * g) * side <= 0.0 for alpha, beta, gamma, side in linear)
 
     if not events:
@@ -331,7 +325,7 @@ def clip(shape, rows, trims, graze):
         events.append((events[0][0] + TWO_PI, events[0][1]))
     elif inside(events[0][0] - 1.0) or inside(events[-1][0] + 1.0):
         return None                                          # an unbounded arc
-    points = [combine(rows, *basis(shape, t)) for t, _ in events]
+    points = [combine(rows, *scalar_basis(shape, t)) for t, _ in events]
     for p, q in zip(points, points[1:]):
         if math.dist(p, q) <= graze:
             return None                                      # a corner, or two trims crossed at one point
@@ -354,13 +348,13 @@ def component(surfaces, shape, rows, t_lo, t_hi, ends, settings, topo):
     """The CurveResult of the arc t in [t_lo, t_hi] (ends None: the whole closed conic), run along N_a x N_b; None
     where the surfaces are nearly tangent on it."""
     t_mid = 0.5 * (t_lo + t_hi)
-    point = combine(rows, *basis(shape, t_mid))
+    point = combine(rows, *scalar_basis(shape, t_mid))
     na, nb = normal(surfaces[0], point), normal(surfaces[1], point)
     along = cross(na, nb)
     if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
         return None
     centre, P, Q = (np.array(x) for x in rows)
-    if dot(along, combine([[0.0] * 3, rows[1], rows[2]], *basis(shape, t_mid, 1))) < 0:
+    if dot(along, combine([[0.0] * 3, rows[1], rows[2]], *scalar_basis(shape, t_mid, 1))) < 0:
         Q, t_lo, t_hi = -Q, -t_hi, -t_lo                     # run it backwards: C(-t), g odd
         ends = None if ends is None else ends[::-1]
     closed = ends is None

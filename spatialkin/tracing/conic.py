@@ -32,6 +32,21 @@ NEWTON_STEPS = 4
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(GL_NODES)
 
 
+def basis(shape, t, order=0, lib=np):
+    """(f, g) of a conic of the given shape at t, or their derivatives of the given order (0, 1, 2): t an array
+    with lib numpy, or one float with lib math (the closed forms' scalar arithmetic)."""
+    if shape == ELLIPSE:
+        c, s = lib.cos(t), lib.sin(t)
+        return ((c, s), (-s, c), (-c, -s))[order]
+    if shape == HYPERBOLA:
+        c, s = lib.cosh(t), lib.sinh(t)
+        return ((c, s), (s, c), (c, s))[order]
+    zero, one = (np.zeros_like(t), np.ones_like(t)) if lib is np else (0.0, 1.0)
+    if shape == PARABOLA:
+        return ((t * t, t), (2.0 * t, one), (2.0 * one, zero))[order]
+    return ((zero, t), (zero, one), (zero, zero))[order]
+
+
 class Conic:
     """The conic C(t) = centre + P f(t) + Q g(t) of the given shape (see the module docstring), with the arc
     length S(t) from t = 0 (a hyperbola's quadrature covers [t_lo, t_hi])."""
@@ -52,17 +67,7 @@ class Conic:
 
     def basis(self, t, order=0):
         """(f, g) (M,) each, or their derivatives of the given order (0, 1, 2) at t (M,)."""
-        shape = self.shape
-        if shape == ELLIPSE:
-            c, s = np.cos(t), np.sin(t)
-            return ((c, s), (-s, c), (-c, -s))[order]
-        if shape == HYPERBOLA:
-            c, s = np.cosh(t), np.sinh(t)
-            return ((c, s), (s, c), (c, s))[order]
-        zero, one = np.zeros_like(t), np.ones_like(t)
-        if shape == PARABOLA:
-            return ((t * t, t), (2.0 * t, one), (2.0 * one, zero))[order]
-        return ((zero, t), (zero, one), (zero, zero))[order]
+        return basis(self.shape, t, order)
 
     def at(self, t, order=0):
         """C(t) (M, 3), or its derivative of the given order, at t (M,)."""

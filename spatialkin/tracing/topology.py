@@ -241,9 +241,8 @@ class Reader:
 
     def on_level(self, uv):
         """True when g at uv is zero within its round-off (a rigorous enclosure, widened ON_LEVEL times)."""
-        lo, hi = self.enclosure(uv)
-        width = hi - lo
-        return lo - ON_LEVEL * width <= 0.0 <= hi + ON_LEVEL * width
+        return kt.on_level(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad, float(uv[0]),
+                           float(uv[1]), ON_LEVEL)
 
     def values(self, uv):
         """(g, g_u, g_v, g_uu, g_uv, g_vv) (N, 6) at parameter points uv (N, 2) of S."""

@@ -9,9 +9,6 @@ Runge–Kutta engine, Newton) of the same batch, read from cProfile's own-time o
 few, so the profiler's overhead on them is small; it inflates only the Python, which is not counted). The closed
 form (spatialkin.bench.cases.torus_sphere_closed_form, numpy, per torus angle) is the limit for this pair.
 """
-import cProfile
-import os
-import pstats
 import statistics
 import time
 from dataclasses import dataclass
@@ -23,7 +20,7 @@ from ..surfaces import Sphere
 from ..tracing.batch import intersect_many
 from ..tracing.intersect import intersect
 from .cases import torus_sphere_closed_form
-from .runner import DENSE_SAMPLES, best_time
+from .runner import DENSE_SAMPLES, best_time, kernel_seconds
 
 #: Configurations of the sweep (full run, --quick), and the relative spread of the sphere radius.
 CONFIGS = 128
@@ -50,15 +47,6 @@ def looper_configs(n):
     """n (torus, sphere) pairs: the looper's, its sphere radius scaled by 1 + SPREAD x t, t evenly in [-1, 1]."""
     torus, sphere = looper_pair()
     return [(torus, Sphere(sphere.radius * (1.0 + SPREAD * t), sphere.frame)) for t in np.linspace(-1.0, 1.0, n)]
-
-
-def kernel_seconds(func):
-    """(seconds of own time inside spatialkin.kernels functions while func() runs, func's result)."""
-    prof = cProfile.Profile()
-    out = prof.runcall(func)
-    marker = os.sep + os.path.join("spatialkin", "kernels") + os.sep
-    stats = pstats.Stats(prof).stats
-    return sum(tt for (path, _, _), (_, _, tt, _, _) in stats.items() if marker in path), out
 
 
 def closed_form_rate(torus, sphere, angles=CLOSED_FORM_ANGLES):

@@ -2,6 +2,9 @@
 for every solve_ivp method and tolerance, OpenCascade beside them, the looper drive against the closed form
 and a per-angle root solve, and the start-up time of a fresh process.
 """
+import cProfile
+import os
+import pstats
 import statistics
 import subprocess
 import sys
@@ -94,6 +97,15 @@ class Row:
     nfev: int = 0
     extra: str = ""
     length_error: float = np.nan
+
+
+def kernel_seconds(func):
+    """(seconds of own time inside spatialkin.kernels functions while func() runs, func's result)."""
+    prof = cProfile.Profile()
+    out = prof.runcall(func)
+    marker = os.sep + os.path.join("spatialkin", "kernels") + os.sep
+    stats = pstats.Stats(prof).stats
+    return sum(tt for (path, _, _), (_, _, tt, _, _) in stats.items() if marker in path), out
 
 
 def best_time(func, repeats):

@@ -13,7 +13,7 @@ from ..tracing import stages
 from ..tracing.intersect import intersect
 from . import baselines
 from .kinds import occ_surface, pair_kind_cases
-from .runner import curve_error, points_error
+from .runner import curve_error, kernel_seconds, points_error
 
 #: Accuracy asked of sk.intersect (relative to the scene scale): the library's default.
 OUR_TOL = 1e-10
@@ -46,6 +46,9 @@ class KindRow:
         Components returned (OCC splits a loop into several lines).
     profile : stages.StageProfile
         Mean stage profile of one sk.intersect call.
+    kernel : float
+        Seconds per call spent inside the compiled kernels (spatialkin.kernels, their own time from cProfile):
+        what remains of a call if every line of Python around them went (issue 19, item 2).
     """
     kind: str
     ours: float
@@ -55,6 +58,7 @@ class KindRow:
     our_curves: int
     occ_curves: int
     profile: stages.StageProfile
+    kernel: float = float("nan")
 
     @property
     def ratio(self):
@@ -104,8 +108,10 @@ def measure(kind, a, b, calls, profile_calls, occ_samples):
     if has_occ:
         occ_error = points_error(occ_points(inter, occ_samples), pair)
         occ_curves = inter.NbLines()
+    kernel, _ = kernel_seconds(lambda: [intersect(*pair, tol=OUR_TOL) for _ in range(profile_calls)])
     return KindRow(kind, statistics.median(ours), statistics.median(occ) if occ else np.nan,
-                   curve_error(curves, pair, OUR_SAMPLES), occ_error, len(curves), occ_curves, profile_of(pair, profile_calls))
+                   curve_error(curves, pair, OUR_SAMPLES), occ_error, len(curves), occ_curves,
+                   profile_of(pair, profile_calls), kernel / profile_calls)
 
 
 def kind_rows(quick=False, echo=print):
@@ -139,24 +145,28 @@ def occ_table(rows, calls):
 
 def profile_table(rows):
     """The stage profile per pair kind as text lines: ms and % of the call per stage, and all kinds together."""
-    head = f"{'pair kind':<18} {'ms/call':>8}" + "".join(f" {stages.LABELS[s]:>13}" for s in stages.STAGES)
+    head = (f"{'pair kind':<18} {'ms/call':>8}" + "".join(f" {stages.LABELS[s]:>13}" for s in stages.STAGES)
+            + f" {'compiled':>13}")
     lines = ["sk.intersect stage profile (mean of the profiled calls; ms and % of the call per stage; "
-             "spatialkin.tracing.stages)", head,
-             "-" * len(head)]
+             "spatialkin.tracing.stages; compiled: own time inside spatialkin.kernels, cProfile, across the stages)",
+             head, "-" * len(head)]
     total = stages.StageProfile({s: 0.0 for s in stages.STAGES}, 0.0)
+    kernel = 0.0
     for r in rows:
         p = r.profile
-        lines.append(_profile_line(r.kind, p))
+        lines.append(_profile_line(r.kind, p, r.kernel))
         total.seconds = {s: total.seconds[s] + p.seconds[s] for s in stages.STAGES}
         total.total += p.total
-    lines.append(_profile_line("all kinds (sum)", total))
+        kernel += r.kernel
+    lines.append(_profile_line("all kinds (sum)", total, kernel))
     return lines
 
 
-def _profile_line(name, p):
+def _profile_line(name, p, kernel):
     share = p.shares()
     return f"{name:<18} {1e3 * p.total:>8.3f}" + "".join(
-        f" {1e3 * p.seconds[s]:>6.2f} ({100 * share[s]:>2.0f}%)" for s in stages.STAGES)
+        f" {1e3 * p.seconds[s]:>6.2f} ({100 * share[s]:>2.0f}%)" for s in stages.STAGES) + (
+        f" {1e3 * kernel:>6.2f} ({100 * kernel / p.total:>2.0f}%)" if p.total > 0 else "")
 
 
 def run(quick=False, echo=print):

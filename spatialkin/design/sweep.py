@@ -9,12 +9,11 @@ cluster; a geometry that fails is a row with the reason, never a lost run.
 import concurrent.futures
 import itertools
 import math
-import multiprocessing
 import os
-import sys
 
 import numpy as np
 
+from ..tracing.batch import worker_context
 from ..validation import check_count
 from .looper import LooperDesign
 from .params import PARAMETERS, check_names
@@ -142,19 +141,10 @@ def _portable(design):
 
 
 def _context():
-    """Worker processes forked from a server that has imported spatialkin once (its jitted kernels loaded),
-    so a pool starts in milliseconds instead of a fresh interpreter per worker; spawn where there is no
-    forkserver. A forkserver's or spawned worker re-runs the parent's main script, so when that is no file
-    (a script piped on stdin) the workers are plain forks of this process."""
-    methods = multiprocessing.get_all_start_methods()
-    main_file = getattr(sys.modules.get("__main__"), "__file__", None)
-    if main_file is not None and not os.path.isfile(main_file) and "fork" in methods:
-        return multiprocessing.get_context("fork")
-    if "forkserver" in methods:
-        ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload([__package__ + "._warm"])
-        return ctx
-    return multiprocessing.get_context("spawn")
+    """Worker processes forked from a server that has imported spatialkin once (its jitted kernels loaded, the
+    reference geometry evaluated: design._warm), so a pool starts in milliseconds instead of a fresh interpreter
+    per worker (spatialkin.tracing.batch.worker_context)."""
+    return worker_context([__package__ + "._warm"])
 
 
 def _progress(total, enabled):

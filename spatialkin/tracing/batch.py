@@ -10,12 +10,14 @@ fork), never from the caller, whose threads (a notebook's, a BLAS pool's) a fork
 for the next batches, each worker warmed by one small intersection when it starts (numba loads its kernels from
 the cache once per worker); it is replaced when another worker count is asked, dropped when a worker dies (the
 next batch starts a new one), and shut down at exit. Surfaces of a kind registered at run time reach workers only
-when their module can be imported there.
+when their module can be imported there, and a script calls it under ``if __name__ == "__main__":`` (its workers
+re-import the main module; worker_context).
 """
 import atexit
 import concurrent.futures
 import multiprocessing
 import os
+import sys
 import traceback
 from concurrent.futures.process import BrokenProcessPool
 
@@ -125,7 +127,8 @@ def _on_workers(workers, chunks, options, errors, count):
     except BrokenProcessPool as err:
         _discard()
         raise RuntimeError(f"a worker process of sk.intersect_many died (pairs[0:{count}] on {workers} workers); "
-                           "its pool is discarded and the next call starts a new one") from err
+                           "its pool is discarded and the next call starts a new one. From a script, call it under "
+                           "'if __name__ == \"__main__\":' (workers re-import the main module)") from err
     finally:
         for future in futures:
             future.cancel()
@@ -159,7 +162,7 @@ def _pool(workers):
     if _POOL.get("workers") != workers:
         _discard()
         _warm()             # compiled here first, so that the workers load the kernels from numba's disk cache
-        _POOL["executor"] = concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=_context(),
+        _POOL["executor"] = concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=worker_context(["spatialkin"]),
                                                                    initializer=_warm)
         _POOL["workers"] = workers
     return _POOL["executor"]
@@ -179,12 +182,19 @@ def _discard(wait=False):
         executor.shutdown(wait=wait, cancel_futures=True)
 
 
-def _context():
-    """forkserver where the platform has it, spatialkin preloaded in the server (a worker starts as a fork of a
-    process that imported it, and never of the caller's, whose threads a fork would not carry), else spawn."""
-    if "forkserver" in multiprocessing.get_all_start_methods():
+def worker_context(preload):
+    """The start method of spatialkin's worker pools (intersect_many, spatialkin.design's sweep): forkserver, the
+    modules `preload` imported in the server (a worker starts as a fork of a process that has them, never of the
+    caller's, whose threads a fork would not carry); spawn where there is no fork. A forkserver's or spawned
+    worker re-imports the caller's main script (a script needs ``if __name__ == "__main__":`` round the call), so
+    when that is no file (a script piped on stdin) the workers are plain forks of this process."""
+    methods = multiprocessing.get_all_start_methods()
+    main_file = getattr(sys.modules.get("__main__"), "__file__", None)
+    if main_file is not None and not os.path.isfile(main_file) and "fork" in methods:
+        return multiprocessing.get_context("fork")
+    if "forkserver" in methods:
         context = multiprocessing.get_context("forkserver")
-        context.set_forkserver_preload(["spatialkin"])
+        context.set_forkserver_preload(list(preload))
         return context
     return multiprocessing.get_context("spawn")
 

@@ -130,3 +130,27 @@ def test_batch_error_survives_pickling():
     error = pickle.loads(pickle.dumps(sk.BatchError(4, ValueError("bad radius"))))
     assert error.index == 4 and str(error) == "pairs[4]: ValueError: bad radius"
     assert isinstance(error.error, ValueError)
+
+
+SCRIPT = """
+import spatialkin as sk
+from spatialkin.reference import looper_pair
+torus, sphere = looper_pair()
+pairs = [(torus, sk.Sphere(sphere.radius * (1 + 0.01 * k / 32), sphere.frame)) for k in range(32)]
+{guard}    print(len(sk.intersect_many(pairs, workers=2)), "results")
+"""
+
+
+@pytest.mark.parametrize("guarded", [True, False])
+def test_a_script_with_workers(tmp_path, guarded):
+    """A script on workers: under ``if __name__ == "__main__":`` it runs; without it (its workers re-import it) the
+    batch fails naming the remedy, and nothing hangs."""
+    import subprocess
+    import sys
+    path = tmp_path / "sweep.py"
+    path.write_text(SCRIPT.format(guard='if __name__ == "__main__":\n' if guarded else "if True:\n"))
+    run = subprocess.run([sys.executable, str(path)], capture_output=True, text=True, timeout=300)
+    if guarded:
+        assert run.returncode == 0 and "32 results" in run.stdout, run.stderr[-2000:]
+    else:
+        assert run.returncode != 0 and "if __name__ == " in run.stderr and "worker process" in run.stderr

@@ -65,7 +65,8 @@ def plot_kinds(rows, path, title):
                       xytext=(3, -2), textcoords="offset points")
     right.plot([max(r.our_error, ERROR_FLOOR) for r in rows], y, "s", label=f"sk.intersect (tol {OUR_TOL:g})")
     if measured.any():
-        right.plot([max(r.occ_error, ERROR_FLOOR) for r in rows], y, "X", label=f"GeomAPI_IntSS (tol {OCC_DEFAULT_TOL:g})")
+        right.plot([max(r.occ_error, ERROR_FLOOR) for r in rows], y, "X",
+                   label=f"GeomAPI_IntSS (tol {OCC_DEFAULT_TOL:g})")
     right.set_xscale("log")
     right.set_xlabel("largest distance to either surface [length units]")
     right.legend(fontsize=7)

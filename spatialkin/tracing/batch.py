@@ -162,8 +162,8 @@ def _pool(workers):
     if _POOL.get("workers") != workers:
         _discard()
         _warm()             # compiled here first, so that the workers load the kernels from numba's disk cache
-        _POOL["executor"] = concurrent.futures.ProcessPoolExecutor(max_workers=workers, mp_context=worker_context(["spatialkin"]),
-                                                                   initializer=_warm)
+        _POOL["executor"] = concurrent.futures.ProcessPoolExecutor(
+            max_workers=workers, mp_context=worker_context(["spatialkin"]), initializer=_warm)
         _POOL["workers"] = workers
     return _POOL["executor"]
 

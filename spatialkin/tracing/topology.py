@@ -559,9 +559,9 @@ def trim_bounds(surface, tolerance):
 
 
 class Keeper:
-    """Which starts are kept: inside both trims (their foot points' parameters, with trim_bounds' slack of 10 tolerances)
-    and off the apexes of P (the rings round them seed their branches); set up once per call, each test of
-    many points one compiled call (spatialkin.kernels.topology.keep_points)."""
+    """Which starts are kept: inside both trims (their foot points' parameters, with trim_bounds' slack of 10
+    tolerances) and off the apexes of P (the rings round them seed their branches); set up once per call, each test
+    of many points one compiled call (spatialkin.kernels.topology.keep_points)."""
 
     def __init__(self, a, b, apex_points, scale, tolerance):
         self.data = (a.data, b.data)

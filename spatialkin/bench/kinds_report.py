@@ -5,7 +5,9 @@ import numpy as np
 from ..io import atomic_path
 from ..tracing import stages
 from .report import write_table
+from .baselines import OCC_DEFAULT_TOL
 from .runner import GOAL_OCC_RATIO
+from .sidebyside import OUR_TOL
 
 #: Columns of bench_kinds.csv: times in seconds, errors in length units, stage seconds per call.
 COLUMNS = (["pair kind", "ours s", "OCC s", "OCC/ours", "our error", "OCC error", "our curves", "OCC curves"]
@@ -38,8 +40,6 @@ def plot_kinds(rows, path, title):
     names = [r.kind for r in rows]
     y = np.arange(len(rows))
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 0.32 * len(rows) + 1.8), sharey=True)
-    from .baselines import OCC_DEFAULT_TOL
-    from .sidebyside import OUR_TOL
     ratios = np.array([r.ratio for r in rows])
     measured = np.isfinite(ratios)
     colours = ["tab:green" if q >= GOAL_OCC_RATIO else "tab:orange" if q >= 1 else "tab:red" for q in ratios]

@@ -366,8 +366,7 @@ def component(surfaces, shape, rows, t_lo, t_hi, ends, settings, topo):
     params = surface_parameters(surfaces, points)
     for k, surf in enumerate(surfaces):
         if traits(surf).periodic[0]:                         # unwrapped along the curve, as the tracer's
-            u = params[:, 2 * k]
-            unwrap_turns(u)
+            unwrap_turns(params[:, 2 * k])
     sol.params = params
     if shape == PARABOLA and max(float(np.max(surf.distance(points))) for surf in surfaces) > (
             PARABOLA_CHECK * settings.tolerance):

@@ -14,6 +14,8 @@ It is split into segments at events that need Python between two integrations:
 At every segment start the state is projected back onto the curve by Newton, and the right-hand side
 carries a pull-back term, so the gap between the surfaces stays flat however long the branch is.
 """
+import functools
+
 import numpy as np
 
 from ..kernels import branch_ode as kb
@@ -70,8 +72,10 @@ def known_node(point, settings):
     return bool(len(nodes)) and float(np.min(np.linalg.norm(nodes - point, axis=1))) <= KNOWN_NODE * settings.scale
 
 
-def segment_system(a, b, settings, sign, start, direction, s_arm):
-    """The System of one segment (charts a, b; the closure armed past s_arm) with its event parameters."""
+def branch_event_params(a, b, settings, start, direction):
+    """The event parameters (kb.P_SIZE,) every segment of a branch shares (charts a, b of the surfaces' kinds,
+    the closure plane through start normal to direction): all but the bounds and the closure's arm, which
+    segment_system sets."""
     ep = np.zeros(kb.P_SIZE)
     ep[kb.P_SINGULAR_TOL] = settings.singular_tol
     ep[kb.P_FLAG_A], ep[kb.P_FLAG_B] = area_flag(a), area_flag(b)
@@ -82,19 +86,26 @@ def segment_system(a, b, settings, sign, start, direction, s_arm):
     ep[kb.P_WATCH_BELOW] = WATCH_BELOW
     ep[kb.P_HANDOFF_SINE] = HANDOFF_MARGIN * max(WATCH_BELOW, settings.singular_tol)
     ep[kb.P_HANDOFF_AREA] = HANDOFF_MARGIN * APEX_GUARD
-    for _, _, idx, bound, lower, slack in finite_bounds(a, b):
-        j = 2 * idx + (0 if lower else 1)
-        ep[kb.P_BOUND + j], ep[kb.P_SLACK + j] = bound, slack
     ep[kb.P_POLE_GUARD] = POLE_GUARD
-    ep[kb.P_CLOSURE_ARM] = s_arm
     ep[kb.P_CLOSURE_OFFSET] = CLOSURE_OFFSET * settings.scale
     ep[kb.P_START:kb.P_START + 3] = start
     ep[kb.P_DIRECTION:kb.P_DIRECTION + 3] = direction
+    return ep
+
+
+def segment_system(a, b, settings, sign, s_arm, shared, bounds):
+    """The System of one segment (charts a, b with their finite_bounds rows `bounds`; the closure armed past
+    s_arm) with its event parameters: the branch's shared ones (branch_event_params) completed."""
+    ep = shared.copy()
+    for _, _, idx, bound, lower, slack in bounds:
+        j = 2 * idx + (0 if lower else 1)
+        ep[kb.P_BOUND + j], ep[kb.P_SLACK + j] = bound, slack
+    ep[kb.P_CLOSURE_ARM] = s_arm
     return System(kb.branch_rhs, kb.branch_events, kb.branch_advance, kb.branch_args(a, b, sign, settings.pullback),
                   ep, kb.COUNT)
 
 
-def segment_events(system, a, b, settings, compiled, near_edge=False):
+def segment_events(system, a, b, settings, compiled, near_edge=False, bounds=None):
     """(Events, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles, closure.
 
     The compiled method watches levels instead of the first three (as its kernel did before it was a solve_ivp
@@ -104,9 +115,19 @@ def segment_events(system, a, b, settings, compiled, near_edge=False):
     segment, started on the curve (projected) at most a step from the bound, ends exactly at the crossing, so
     that the curve's end on the edge has one step's accuracy, not the whole branch's drift. The compiled method
     probes the bounds inside each step too (spatialkin.kernels.rk.PROBES), so that a curve grazing out of a trim
-    and back within one step ends there."""
+    and back within one step ends there. bounds: finite_bounds(a, b), when the caller has them."""
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
+    plan, kinds = event_plan(compiled, near_edge, flagged, tuple(finite_bounds(a, b) if bounds is None else bounds),
+                             (traits(a).recharts, traits(b).recharts), settings.close)
+    return [Event(system, i, d, level=level, probed=probed) for i, d, level, probed in plan], list(kinds)
+
+
+@functools.lru_cache(maxsize=256)
+def event_plan(compiled, near_edge, flagged, bounds, recharts, close):
+    """segment_events' plan, made once per case: ((event index, direction, level, probed), ...) and the kinds
+    (what integrate_branch does at each), for the method (compiled or not), near_edge, whether an area element is
+    watched (flagged), the finite_bounds rows, whether each surface re-charts, and whether closure is watched."""
     handoff = ("handoff", None)
     if compiled:
         plan = [(kb.HANDOFF_SINE, -1, handoff, "before")] + (
@@ -114,28 +135,33 @@ def segment_events(system, a, b, settings, compiled, near_edge=False):
     else:
         plan = [(kb.SINGULAR, -1, ("singular", None), None)] + (
             [(kb.APEX, -1, ("apex", None), None)] if flagged else []) + [(kb.MINIMUM, 1, ("minimum", None), None)]
-    for k, j, idx, _, lower, _ in finite_bounds(a, b):
+    for k, j, idx, _, lower, _ in bounds:
         edge = kb.EDGE + 2 * idx + (0 if lower else 1)
         plan.append((edge, -1, ("near_edge", None), "before") if compiled and not near_edge
                     else (edge, -1, ("boundary", (k, j)), None))
-    for k, data in enumerate((a, b)):
-        if traits(data).recharts:
+    for k, rechart in enumerate(recharts):
+        if rechart:
             plan.append((kb.POLE_A + k, -1, ("chart", k), "after" if compiled else None))
-    if settings.close:
+    if close:
         plan.append((kb.CLOSURE, 1, ("closure", None), None))
     edges = range(kb.EDGE, kb.EDGE + 8)
-    return ([Event(system, i, d, level=level, probed=compiled and i in edges) for i, d, _, level in plan],
-            [kind for _, _, kind, _ in plan])
+    return (tuple((i, d, level, compiled and i in edges) for i, d, _, level in plan),
+            tuple(kind for _, _, kind, _ in plan))
 
 
-def at_outer_edge(a, b, y, sign):
+def at_outer_edge(a, b, y, sign, bounds=None):
     """True where y lies on (or past) an edge of a trimmed surface and the direction of travel leaves it (a curve
-    running along the edge does not leave it)."""
-    dy = kc.dragilev_rhs(0.0, y, a, b, sign, 0.0)
-    for k, _, idx, bound, lower, _ in finite_bounds(a, b):
+    running along the edge does not leave it). bounds: finite_bounds(a, b), when the caller has them; the
+    direction of travel is evaluated only at an edge."""
+    dy = None
+    for k, _, idx, bound, lower, _ in finite_bounds(a, b) if bounds is None else bounds:
         inside = y[idx] - bound if lower else bound - y[idx]
+        if not inside <= EDGE_TOL * max(1.0, abs(bound)):
+            continue
+        if dy is None:
+            dy = kc.dragilev_rhs(0.0, y, a, b, sign, 0.0)
         rate = dy[idx] if lower else -dy[idx]
-        if inside <= EDGE_TOL * max(1.0, abs(bound)) and rate < -EDGE_RATE * np.hypot(dy[2 * k], dy[2 * k + 1]):
+        if rate < -EDGE_RATE * np.hypot(dy[2 * k], dy[2 * k + 1]):
             return True
     return False
 
@@ -162,10 +188,12 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     radius = CLOSURE_RADIUS * settings.scale
     compiled = settings.method == COMPILED
     near_edge = False
+    recharts = traits(a_user).recharts or traits(b_user).recharts
+    shared = branch_event_params(a_user, b_user, settings, start, direction)
     for _ in range(MAX_SEGMENTS):
         y_prev = y
         a, b, y = charts_at(a_user, b_user, point, sign * tangent, y)
-        if traits(a_user).recharts or traits(b_user).recharts:
+        if recharts:
             bend = curvature_vector(y, a, b)
             if bend is not None:
                 a, b, y = charts_at(a_user, b_user, point, sign * tangent, y, bend)
@@ -189,11 +217,12 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             else:
                 branch.status, branch.message = outcome("newton_failed", s=s)
             break
-        if at_outer_edge(a, b, y, sign):
+        bounds = finite_bounds(a, b)
+        if at_outer_edge(a, b, y, sign, bounds):
             branch.status, branch.message = outcome("leaves_edge", s=s)
             break
-        system = segment_system(a, b, settings, sign, start, direction, s_arm - s)
-        events, kinds = segment_events(system, a, b, settings, compiled, near_edge)
+        system = segment_system(a, b, settings, sign, s_arm - s, shared, bounds)
+        events, kinds = segment_events(system, a, b, settings, compiled, near_edge, bounds)
         method = COMPILED if compiled else (FALLBACK_METHOD if settings.method == COMPILED else settings.method)
         mark = stages.enter("integration") if stages.ON else None
         try:

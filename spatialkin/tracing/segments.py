@@ -102,18 +102,12 @@ def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):
     y = np.empty(4)
     charts = []
     for k, user in enumerate((a_user, b_user)):
-        uv = np.empty((1, 2))
         kind = traits(user)
-        if kind.recharts:
-            data = kind.rechart(user, point, tangent, bend)
-            ks.inverse(data, point.reshape(1, 3), uv)
-        elif y_prev is not None:
-            data = user
-            uv[0] = y_prev[2 * k:2 * k + 2]
+        data = kind.rechart(user, point, tangent, bend) if kind.recharts else user
+        if data is user and y_prev is not None:
+            y[2 * k:2 * k + 2] = y_prev[2 * k:2 * k + 2]
         else:
-            data = user
-            ks.inverse(data, point.reshape(1, 3), uv)
-        y[2 * k:2 * k + 2] = uv[0]
+            ks.inverse(data, point.reshape(1, 3), y[2 * k:2 * k + 2].reshape(1, 2))
         charts.append(data)
     return charts[0], charts[1], y
 

@@ -23,7 +23,7 @@ from ..kernels import curve as kc
 from ..kernels import surfaces as ks
 from .ode import COMPILED, BudgetExceeded, Event, System, integrate, step_points
 from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment, area_flag,
-                       charts_at, finite_bounds, newton_fixed, project_state)
+                       finite_bounds, newton_fixed, project_state, segment_start)
 from .status import outcome
 from .singular import APEX_GUARD, closes_within_jump, jump_across, take_jump
 from .traits import traits
@@ -105,7 +105,7 @@ def segment_system(a, b, settings, sign, s_arm, shared, bounds):
                   ep, kb.COUNT)
 
 
-def segment_events(system, a, b, settings, compiled, near_edge=False, bounds=None):
+def segment_events(system, a, b, settings, compiled, near_edge=False, bounds=None, recharts=None):
     """(Events, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles, closure.
 
     The compiled method watches levels instead of the first three (as its kernel did before it was a solve_ivp
@@ -115,11 +115,13 @@ def segment_events(system, a, b, settings, compiled, near_edge=False, bounds=Non
     segment, started on the curve (projected) at most a step from the bound, ends exactly at the crossing, so
     that the curve's end on the edge has one step's accuracy, not the whole branch's drift. The compiled method
     probes the bounds inside each step too (spatialkin.kernels.rk.PROBES), so that a curve grazing out of a trim
-    and back within one step ends there. bounds: finite_bounds(a, b), when the caller has them."""
+    and back within one step ends there. bounds: finite_bounds(a, b), and recharts: whether each surface
+    re-charts, when the caller has them."""
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
     plan, kinds = event_plan(compiled, near_edge, flagged, tuple(finite_bounds(a, b) if bounds is None else bounds),
-                             (traits(a).recharts, traits(b).recharts), settings.close)
+                             (traits(a).recharts, traits(b).recharts) if recharts is None else recharts,
+                             settings.close)
     return [Event(system, i, d, level=level, probed=probed) for i, d, level, probed in plan], list(kinds)
 
 
@@ -188,17 +190,13 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     radius = CLOSURE_RADIUS * settings.scale
     compiled = settings.method == COMPILED
     near_edge = False
-    recharts = traits(a_user).recharts or traits(b_user).recharts
+    recharts = (traits(a_user).recharts, traits(b_user).recharts)
     shared = branch_event_params(a_user, b_user, settings, start, direction)
     for _ in range(MAX_SEGMENTS):
         y_prev = y
-        a, b, y = charts_at(a_user, b_user, point, sign * tangent, y)
-        if recharts:
-            bend = curvature_vector(y, a, b)
-            if bend is not None:
-                a, b, y = charts_at(a_user, b_user, point, sign * tangent, y, bend)
         mark = stages.enter("correction") if stages.ON else None
-        y, point, tangent, ok = project_state(y, a, b, settings)
+        # charts_at, curvature_vector, charts_at along the curvature and project_state in one compiled call
+        a, b, y, point, tangent, ok = segment_start(a_user, b_user, recharts, point, sign * tangent, y, settings)
         if mark is not None:
             stages.leave(mark)
         if not ok and branch.segments and not np.any(branch.segments[-1].normal):
@@ -222,7 +220,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             branch.status, branch.message = outcome("leaves_edge", s=s)
             break
         system = segment_system(a, b, settings, sign, s_arm - s, shared, bounds)
-        events, kinds = segment_events(system, a, b, settings, compiled, near_edge, bounds)
+        events, kinds = segment_events(system, a, b, settings, compiled, near_edge, bounds, recharts)
         method = COMPILED if compiled else (FALLBACK_METHOD if settings.method == COMPILED else settings.method)
         mark = stages.enter("integration") if stages.ON else None
         try:

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..kernels import curve as kc
+from ..kernels import restart as kr
 from ..kernels import surfaces as ks
 from .traits import traits
 
@@ -110,6 +111,24 @@ def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):
             ks.inverse(data, point.reshape(1, 3), y[2 * k:2 * k + 2].reshape(1, 2))
         charts.append(data)
     return charts[0], charts[1], y
+
+
+def segment_start(a_user, b_user, recharts, point, direction, y_prev, settings):
+    """(a, b, y, point, tangent, ok) at the start of a segment in one compiled call (kernels.restart.segment_start):
+    charts_at (re-charting the surfaces whose recharts flag is set, along direction, then along the curve's
+    curvature vector where it is defined) followed by project_state, to the bit. A surface that keeps its chart
+    is returned as the user's data itself, a new chart read-only (as every Surface's data)."""
+    a_out, b_out = np.empty_like(a_user), np.empty_like(b_user)
+    y, p, t = np.empty(4), np.empty(3), np.empty(3)
+    ok = kr.segment_start(a_user, b_user, recharts[0], recharts[1], np.ascontiguousarray(point, dtype=float),
+                          np.ascontiguousarray(direction, dtype=float), np.ascontiguousarray(y_prev, dtype=float),
+                          settings.gap_tol, NEWTON_MAX_ITER, a_out, b_out, y, p, t)
+    charts = []
+    for user, out, rechart in ((a_user, a_out, recharts[0]), (b_user, b_out, recharts[1])):
+        if rechart:
+            out.flags.writeable = False
+        charts.append(out if rechart else user)
+    return charts[0], charts[1], y, p, t, bool(ok)
 
 
 def finite_bounds(*surfaces):

@@ -1,0 +1,65 @@
+"""A segment's start in one compiled call (spatialkin.tracing.segments.segment_start, kernels.restart).
+
+Oracle: the Python steps it replaces, one by one (segments.charts_at, ivp.curvature_vector, charts_at along the
+curvature vector, segments.project_state): the same charts, state, point and tangent, bit for bit (tolerance 0:
+the same kernels in the same order), at points along traced curves of re-charting (sphere) and non-re-charting
+pairs, in both directions of travel, from states nudged off the curve.
+"""
+import numpy as np
+import pytest
+
+import spatialkin as sk
+from spatialkin.bench.kinds import pair_kind_cases
+from spatialkin.tracing.ivp import curvature_vector
+from spatialkin.tracing.segments import charts_at, project_state, segment_start
+from spatialkin.tracing.traits import traits
+from spatialkin.tracing.trace import make_settings
+
+#: The kinds checked: spheres (re-charted) against each other kind, and pairs that keep their charts.
+KINDS = ("sphere-cylinder", "sphere-cone", "sphere-torus", "cylinder-torus", "torus-torus", "plane-torus")
+#: States nudged off the curve by this (relative to the scale), so that the projection has work to do.
+NUDGE = 1e-6
+#: Points checked along each curve.
+SAMPLES = 7
+
+
+def python_start(a_user, b_user, point, direction, y_prev, settings):
+    """The oracle: integrate_branch's steps before it was one call."""
+    a, b, y = charts_at(a_user, b_user, point, direction, y_prev)
+    if traits(a_user).recharts or traits(b_user).recharts:
+        bend = curvature_vector(y, a, b)
+        if bend is not None:
+            a, b, y = charts_at(a_user, b_user, point, direction, y, bend)
+    y, p, t, ok = project_state(y, a, b, settings)
+    return a, b, y, p, t, ok
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("order", ["ab", "ba"])
+def test_segment_start_matches_python_steps(kind, order):
+    cases = {k: (a, b) for k, a, b in pair_kind_cases()}
+    a, b = cases[kind] if order == "ab" else cases[kind][::-1]
+    settings = make_settings(a, b, 1e-10, "compiled", 1e-10, None, None, 1e-7, 1.0, True,
+                             np.concatenate([a.frame.origin, b.frame.origin]))
+    recharts = (traits(a).recharts, traits(b).recharts)
+    curves = [c for c in sk.intersect(a, b) if len(c.points) > 1]
+    assert curves
+    rng = np.random.default_rng(7)
+    checked = 0
+    for curve in curves:
+        for k in np.linspace(0, len(curve.points) - 1, SAMPLES).astype(int):
+            y_prev = curve.params[k] + NUDGE * rng.standard_normal(4)
+            point = curve.points[k] + NUDGE * settings.scale * rng.standard_normal(3)
+            tangent = curve.tangent(curve.s[k])
+            for sign in (1.0, -1.0):
+                want = python_start(a.data, b.data, point, sign * tangent, y_prev, settings)
+                got = segment_start(a.data, b.data, recharts, point, sign * tangent, y_prev, settings)
+                for w, g in zip(want[:2], got[:2]):
+                    assert np.array_equal(w, g)
+                    assert (w is a.data or w is b.data) == (g is a.data or g is b.data)
+                    assert not g.flags.writeable
+                for w, g in zip(want[2:5], got[2:5]):
+                    np.testing.assert_array_equal(g, w)
+                assert want[5] == got[5]
+                checked += 1
+    assert checked >= 2 * SAMPLES

@@ -57,8 +57,10 @@ def step_lengths(seg, pullback, gap_tol):
 def remeasure_segment(seg, pullback, gap_tol):
     """Re-map the time of a solver segment that comes near a waist (normals' sine below CHECK_BELOW) to the
     curve's arc length. Returns the segment's new length (its old one when it was not measured)."""
+    if seg.compiled:                 # the compiled method hands over well above
+        return float(seg.s1 - seg.s0)
     t = np.asarray(seg.t, dtype=float)
-    if len(t) < 2 or np.any(seg.normal) or seg.compiled:     # the compiled method hands over well above
+    if len(t) < 2 or np.any(seg.normal):
         return float(seg.s1 - seg.s0)
     y = np.ascontiguousarray(np.asarray(seg.y, dtype=float).T)
     if min(kc.degeneracy(row, seg.a, seg.b, 0, 0) for row in y) >= CHECK_BELOW:

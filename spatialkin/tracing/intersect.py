@@ -130,7 +130,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     curves = kept
     if stages.ON:
         stages.switch("result")
-    curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
+    if len(curves) > 1:
+        curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
     proofs = certificates(a, b, curves, topo) if certify else [None] * len(curves)
     return [Curve(dataclasses.replace(c, topology=topo, certificate=proof)) for c, proof in zip(curves, proofs)]
 

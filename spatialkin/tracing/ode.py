@@ -234,8 +234,9 @@ def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, m
     for k, t_e, y_e in log.hits:
         t_events[k].append(t_e)
         y_events[k].append(y_e)
-    res.t_events = [np.array(t) for t in t_events]
-    res.y_events = [np.array(y).reshape(len(y), len(y0)) for y in y_events]
+    n = len(y0)
+    res.t_events = [np.array(t) if t else np.empty(0) for t in t_events]
+    res.y_events = [np.array(y).reshape(len(y), n) if y else np.empty((0, n)) for y in y_events]
     if res.status == 0 and log.hits and events[log.hits[-1][0]].terminal:
         res.status, res.message = 1, "A termination event occurred."
     res.steps = log.steps

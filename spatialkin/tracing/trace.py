@@ -43,6 +43,8 @@ METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", "compiled")
 #: A node the tracer passed is the proven singular point (Settings.nodes) within this distance (relative to the
 #: scale).
 SNAP = 1e-2
+#: Machine epsilon of the coordinates (a float64).
+EPS = np.finfo(float).eps
 
 
 def extent(surface):
@@ -76,9 +78,9 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
         atol = rtol * np.concatenate([parameter_units(a.data, scale), parameter_units(b.data, scale)])
     else:
         atol = np.full(4, atol)
-    magnitude = max(scale, float(np.max(np.abs(anchor))))
-    gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
-    tolerance = max(tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
+    magnitude = max(scale, max(abs(x) for x in anchor.tolist()))
+    gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * EPS * magnitude)
+    tolerance = max(tol * scale, ROUNDOFF_ULPS * EPS * magnitude)
     return Settings(method=method, rtol=rtol, atol=atol, gap_tol=gap_tol, scale=scale, tolerance=tolerance,
                     singular_tol=singular_tol, pullback=pullback / scale, max_length=max_length,
                     max_step=math.pi * scale / 4, close=close)

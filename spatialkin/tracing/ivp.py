@@ -192,6 +192,10 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     near_edge = False
     recharts = (traits(a_user).recharts, traits(b_user).recharts)
     shared = branch_event_params(a_user, b_user, settings, start, direction)
+    # a re-chart turns a chart's axes only: every segment's charts have the user's bounds, and for one method and
+    # near_edge the same events, made once per branch and pointed at each segment's System
+    bounds = finite_bounds(a_user, b_user)
+    watched = {}
     for _ in range(MAX_SEGMENTS):
         y_prev = y
         mark = stages.enter("correction") if stages.ON else None
@@ -215,12 +219,15 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             else:
                 branch.status, branch.message = outcome("newton_failed", s=s)
             break
-        bounds = finite_bounds(a, b)
         if at_outer_edge(a, b, y, sign, bounds):
             branch.status, branch.message = outcome("leaves_edge", s=s)
             break
         system = segment_system(a, b, settings, sign, s_arm - s, shared, bounds)
-        events, kinds = segment_events(system, a, b, settings, compiled, near_edge, bounds, recharts)
+        if (compiled, near_edge) not in watched:
+            watched[compiled, near_edge] = segment_events(system, a, b, settings, compiled, near_edge, bounds, recharts)
+        events, kinds = watched[compiled, near_edge]
+        for event in events:
+            event.system = system
         method = COMPILED if compiled else (FALLBACK_METHOD if settings.method == COMPILED else settings.method)
         mark = stages.enter("integration") if stages.ON else None
         try:

@@ -76,7 +76,9 @@ class Event:
     integration ends at the last step before the one whose end reaches zero in the event's direction (that
     step dropped), or at the end of the first such step (spatialkin.kernels.rk.LEVEL_BEFORE, LEVEL_AFTER).
     ``probed`` (the compiled method; solve_ivp's methods check step ends only) also evaluates a terminal crossing
-    or a level 'before' at interior points of each step (rk.TERMINAL_PROBED, LEVEL_BEFORE_PROBED)."""
+    or a level 'before' at interior points of each step (rk.TERMINAL_PROBED, LEVEL_BEFORE_PROBED). ``system`` may be
+    pointed at another System of the same events between two integrations (a branch's segments reuse their
+    Events)."""
 
     def __init__(self, system, index, direction, terminal=True, level=None, probed=False):
         if level not in (None, "before", "after"):

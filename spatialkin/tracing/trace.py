@@ -10,11 +10,12 @@ import time
 import numpy as np
 
 from ..kernels import curve as kc
+from ..kernels import stored as kst
 from .arclength import remeasure_branch
 from .ivp import integrate_branch
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from .dense import Span, TracedSolution
-from .result import Curve, CurveResult, TracingError, unwrap_turns, user_params, DUPLICATE_SPACING
+from .result import Curve, CurveResult, TracingError, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
 from .status import CLOSED, open_outcome
 from .traits import check_surface, traits
@@ -251,20 +252,19 @@ def snapped_nodes(located, settings):
 
 def _corrected(a, b, y_all, span_of, spans, settings):
     """Project the solver's step states onto the curve (each in its segment's charts); user parameters.
-    span_of is non-decreasing (the states come span by span): one compiled call per span."""
-    points = np.empty((len(y_all), 3))
-    params = np.empty((len(y_all), 4))
-    raw_gap = np.empty(len(y_all))
-    cuts = [0] + (np.flatnonzero(np.diff(span_of)) + 1).tolist() + [len(span_of)]
-    for lo, hi in zip(cuts[:-1], cuts[1:]):
-        seg = spans[span_of[lo]].seg
-        y = y_all[lo:hi].copy()
-        kc.corrected_many(y, seg.a, seg.b, seg.normal, settings.gap_tol, NEWTON_MAX_ITER, points[lo:hi],
-                          raw_gap[lo:hi])
-        params[lo:hi] = user_params((a, b), y, points[lo:hi], seg.a, seg.b)
-    for k, surf in enumerate((a, b)):
-        if traits(surf).recharts:         # its parameters come from the points
-            unwrap_turns(params[:, 2 * k])
+    span_of is non-decreasing (the states come span by span): one compiled call for all spans
+    (kernels.stored.corrected_spans: per span, corrected_many and user_params' foot points where the span's chart
+    is not the user's; then unwrap_turns of a re-charting surface's u)."""
+    n = len(y_all)
+    points, params, raw_gap = np.empty((n, 3)), np.empty((n, 4)), np.empty(n)
+    cuts = np.concatenate(([0], np.flatnonzero(np.diff(span_of)) + 1, [n])).astype(np.int64)
+    segs = [spans[k].seg for k in span_of[cuts[:-1]].tolist()]
+    own = [np.array([chart is not surf.data and not np.array_equal(chart, surf.data) for chart in charts])
+           for surf, charts in ((a, [seg.a for seg in segs]), (b, [seg.b for seg in segs]))]
+    kst.corrected_spans(np.ascontiguousarray(y_all, dtype=float), cuts, np.array([seg.a for seg in segs]),
+                        np.array([seg.b for seg in segs]), np.array([seg.normal for seg in segs], dtype=float),
+                        a.data, b.data, own[0], own[1], bool(traits(a).recharts), bool(traits(b).recharts),
+                        settings.gap_tol, NEWTON_MAX_ITER, points, params, raw_gap)
     return points, params, raw_gap
 
 

@@ -210,9 +210,9 @@ def trace_from(a, b, point, y, settings, t_start):
     if inner is not None:
         stages.leave(inner)
     if closed:
-        points = np.vstack([points, points[:1]])
-        params = np.vstack([params, _closing_params(a, b, params[0], params[-1])])
-        s_all = np.append(s_all, length)
+        points = np.concatenate([points, points[:1]])
+        params = np.concatenate([params, _closing_params(a, b, params[0], params[-1])[None]])
+        s_all = np.concatenate([s_all, [length]])
     nodes = snapped_nodes([p for branch, _, _ in branches for _, p in branch.nodes], settings)
     sol = TracedSolution(surfaces=(a, b), spans=spans, nodes=nodes, gap_tol=settings.gap_tol, length=length,
                          closed=closed, knots=s_all)
@@ -257,7 +257,9 @@ def _corrected(a, b, y_all, span_of, spans, settings):
     is not the user's; then unwrap_turns of a re-charting surface's u)."""
     n = len(y_all)
     points, params, raw_gap = np.empty((n, 3)), np.empty((n, 4)), np.empty(n)
-    cuts = np.concatenate(([0], np.flatnonzero(np.diff(span_of)) + 1, [n])).astype(np.int64)
+    breaks = np.flatnonzero(span_of[1:] != span_of[:-1])
+    cuts = np.empty(len(breaks) + 2, dtype=np.int64)
+    cuts[0], cuts[1:-1], cuts[-1] = 0, breaks + 1, n
     segs = [spans[k].seg for k in span_of[cuts[:-1]].tolist()]
     own = [np.array([chart is not surf.data and not np.array_equal(chart, surf.data) for chart in charts])
            for surf, charts in ((a, [seg.a for seg in segs]), (b, [seg.b for seg in segs]))]
@@ -272,7 +274,9 @@ def _closing_params(a, b, first, last):
     """The parameters of the closing point: the first point's, shifted by whole turns in periodic u (and v)
     so that they continue the last point's."""
     out = first.copy()
-    for i in range(4):
-        if traits((a, b)[i // 2]).periodic[i % 2]:
-            out[i] = first[i] + 2 * np.pi * np.round((last[i] - first[i]) / (2 * np.pi))
+    for k, surface in enumerate((a, b)):
+        for j, periodic in enumerate(traits(surface).periodic):
+            if periodic:       # (np.rint is np.round to 0 decimals)
+                i = 2 * k + j
+                out[i] = first[i] + 2 * np.pi * np.rint((last[i] - first[i]) / (2 * np.pi))
     return out

@@ -62,7 +62,7 @@ class ConeTraits(SurfaceTraits):
 
     def bounding_ball(self, surface):
         v0, v1 = surface.v_range
-        if not np.all(np.isfinite([v0, v1])):
+        if not (math.isfinite(v0) and math.isfinite(v1)):
             return None
         half = 0.5 * (v1 - v0)
         t = math.tan(surface.half_angle)

@@ -50,7 +50,7 @@ class CylinderTraits(SurfaceTraits):
 
     def bounding_ball(self, surface):
         v0, v1 = surface.v_range
-        if not np.all(np.isfinite([v0, v1])):
+        if not (math.isfinite(v0) and math.isfinite(v1)):
             return None
         half = 0.5 * (v1 - v0)
         return surface.frame.to_global([0.0, 0.0, 0.5 * (v0 + v1)]), math.hypot(surface.radius, half)

@@ -89,18 +89,8 @@ class Event:
         self.terminal = bool(terminal or level)
         self.level = level
         self.probed = bool(probed)
+        self.mode = event_mode(self.level, self.probed, self.terminal)
         self._only = self._out = None        # work arrays, made at the first call (solve_ivp's methods only)
-
-    @property
-    def mode(self):
-        """The event's entry in spatialkin.kernels.rk.advance's modes."""
-        if self.level is not None:
-            if self.level == "after":
-                return rk.LEVEL_AFTER
-            return rk.LEVEL_BEFORE_PROBED if self.probed else rk.LEVEL_BEFORE
-        if self.probed:
-            return rk.TERMINAL_PROBED
-        return rk.TERMINAL if self.terminal else rk.CROSSING
 
     def __call__(self, t, y, *_):
         system = self.system
@@ -110,6 +100,17 @@ class Event:
             self._out = np.empty(system.n_events)
         system.events(t, y, system.args, system.eargs, self._only, self._out)
         return self._out[self.index]
+
+
+def event_mode(level, probed, terminal):
+    """An Event's entry in spatialkin.kernels.rk.advance's modes (Event.mode)."""
+    if level is not None:
+        if level == "after":
+            return rk.LEVEL_AFTER
+        return rk.LEVEL_BEFORE_PROBED if probed else rk.LEVEL_BEFORE
+    if probed:
+        return rk.TERMINAL_PROBED
+    return rk.TERMINAL if terminal else rk.CROSSING
 
 
 class StepsDense(DenseOutput):

@@ -189,11 +189,11 @@ def trace_from(a, b, point, y, settings, t_start):
         if flip < 0:
             pieces.reverse()
         for span, s_pts, y_pts in pieces:
-            order = np.argsort(s_pts)
+            s_pts, y_pts = in_order(s_pts, y_pts)
             spans.append(span)
-            ss.append(s_pts[order])
-            ys.append(y_pts[order])
-            charts.append(np.full(len(order), len(spans) - 1))
+            ss.append(s_pts)
+            ys.append(y_pts)
+            charts.append(np.full(len(s_pts), len(spans) - 1))
     if not ss:
         raise TracingError.of("nothing_traced", where=point, status=status, point=point.tolist(), message=message)
     s_all = np.concatenate(ss)
@@ -222,6 +222,17 @@ def trace_from(a, b, point, y, settings, t_start):
     if mark is not None:
         stages.leave(mark)
     return result
+
+
+def in_order(s, y):
+    """(s (m,), y (m, 4)) sorted by s (np.argsort's order): as given where s strictly increases, reversed where it
+    strictly decreases (the order every sort gives distinct keys), else by np.argsort."""
+    if len(s) < 2 or (s[1:] > s[:-1]).all():
+        return s, y
+    if (s[1:] < s[:-1]).all():
+        return s[::-1], y[::-1]
+    order = np.argsort(s)
+    return s[order], y[order]
 
 
 def measured_branch(a, b, point, tangent, y, sign, settings):

@@ -20,19 +20,27 @@ from .surfaces import inverse, recharted_sphere
 
 
 @jit
-def chart_states(user, rechart, point, direction, bend, y_prev, k, out, y):
+def foot_parameters(data, point, y, k):
+    """y[2k:2k + 2] = the (u, v) of point's foot point on the surface data (spatialkin.kernels.surfaces.inverse)."""
+    uv = np.empty((1, 2))
+    inverse(data, point.reshape((1, 3)), uv)
+    y[2 * k] = uv[0, 0]
+    y[2 * k + 1] = uv[0, 1]
+
+
+@jit
+def chart_states(user, rechart, point, direction, bend, y_prev, k, out, y, keep=True):
     """Surface k's chart into out (user re-charted at point along direction, bend the curvature vector or zero,
-    when rechart; else a copy of user) and its (u, v) into y[2k:2k + 2] (the foot point's in a new chart, else
-    y_prev's)."""
+    when rechart; else a copy of user) and its (u, v) into y[2k:2k + 2] (the foot point's in a new chart or
+    without keep, else y_prev's)."""
     if rechart:
         recharted_sphere(user, point, direction, bend, out)
-        uv = np.empty((1, 2))
-        inverse(out, point.reshape((1, 3)), uv)
-        y[2 * k] = uv[0, 0]
-        y[2 * k + 1] = uv[0, 1]
     else:
         for i in range(out.shape[0]):
             out[i] = user[i]
+    if rechart or not keep:
+        foot_parameters(out, point, y, k)
+    else:
         y[2 * k] = y_prev[2 * k]
         y[2 * k + 1] = y_prev[2 * k + 1]
 
@@ -65,3 +73,29 @@ def segment_start(a_user, b_user, rechart_a, rechart_b, point, direction, y_prev
         iters = project_to_curve(y, a_out, b_out, point_out.copy(), zero, gap_tol, max_iter)
     curve_frame(y, a_out, b_out, point_out, tangent_out)
     return iters >= 0
+
+
+@jit
+def locate(a_user, b_user, rechart_a, rechart_b, guess, y_guess, keep_guess, gap_tol, max_iter, point, y_user):
+    """A point of the curve near guess (3,) by minimum-norm Gauss-Newton on M1 - M2 = 0, in charts made at guess
+    (re-charted where rechart_a, rechart_b; the others' (u, v) from y_guess (4,) with keep_guess, else from the
+    foot points): the point into point (3,), its state into y_user (4,) with a re-charted surface's (u, v) read in
+    the user's chart. Returns False when Newton fails or the point is not finite (spatialkin.tracing.start.
+    locate_on_curve, the same kernels in the same order as it called them one by one)."""
+    zero = np.zeros(3)
+    a_out, b_out = np.empty(a_user.shape[0]), np.empty(b_user.shape[0])
+    y = np.empty(4)
+    chart_states(a_user, rechart_a, guess, zero, zero, y_guess, 0, a_out, y, keep_guess)
+    chart_states(b_user, rechart_b, guess, zero, zero, y_guess, 1, b_out, y, keep_guess)
+    iters = project_to_curve(y, a_out, b_out, guess.copy(), zero, gap_tol, max_iter)
+    tangent = np.empty(3)
+    curve_frame(y, a_out, b_out, point, tangent)
+    if iters < 0 or not (np.isfinite(point[0]) and np.isfinite(point[1]) and np.isfinite(point[2])):
+        return False
+    for i in range(4):
+        y_user[i] = y[i]
+    if rechart_a:
+        foot_parameters(a_user, point, y_user, 0)
+    if rechart_b:
+        foot_parameters(b_user, point, y_user, 1)
+    return True

@@ -7,9 +7,9 @@ solving M1(u1, v1) = M3(u2) for (u1, v1, u2) with v2 = 0.
 """
 import numpy as np
 
-from ..kernels import curve as kc
+from ..kernels import restart as kr
 from ..kernels import surfaces as ks
-from .segments import NEWTON_MAX_ITER, charts_at
+from .segments import NEWTON_MAX_ITER
 from .segments import newton_fixed as data_newton_fixed
 from .result import TracingError
 from .traits import traits
@@ -43,18 +43,13 @@ def locate_on_curve(a, b, guess, gap_tol, y_guess=None):
     Raises TracingError if Newton does not converge (no intersection point near guess).
     """
     guess = np.asarray(guess, dtype=float)
-    point = guess.copy()
-    a_chart, b_chart, y = charts_at(a.data, b.data, point, np.zeros(3), y_guess)
-    iters = kc.project_to_curve(y, a_chart, b_chart, point.copy(), np.zeros(3), gap_tol, NEWTON_MAX_ITER)
-    p1 = np.empty(3)
-    t = np.empty(3)
-    kc.curve_frame(y, a_chart, b_chart, p1, t)
-    if iters < 0 or not np.all(np.isfinite(p1)):
+    p1, y_user = np.empty(3), np.empty(4)
+    keep = y_guess is not None
+    # charts_at, project_to_curve and curve_frame, and a re-charted surface's own (u, v), in one compiled call
+    if not kr.locate(a.data, b.data, traits(a).recharts, traits(b).recharts, np.ascontiguousarray(guess),
+                     np.ascontiguousarray(y_guess, dtype=float) if keep else np.zeros(4), keep, gap_tol,
+                     NEWTON_MAX_ITER, p1, y_user):
         raise TracingError.of("no_start", where=guess, point=guess.tolist())
-    y_user = y.copy()
-    for k, surf in enumerate((a, b)):
-        if traits(surf).recharts:
-            y_user[2 * k:2 * k + 2] = surf.parameters(p1)
     return p1, y_user
 
 

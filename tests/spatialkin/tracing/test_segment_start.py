@@ -1,9 +1,11 @@
-"""A segment's start in one compiled call (spatialkin.tracing.segments.segment_start, kernels.restart).
+"""A segment's start, and a located start, in one compiled call (spatialkin.tracing.segments.segment_start,
+start.locate_on_curve; kernels.restart).
 
 Oracle: the Python steps it replaces, one by one (segments.charts_at, ivp.curvature_vector, charts_at along the
 curvature vector, segments.project_state): the same charts, state, point and tangent, bit for bit (tolerance 0:
 the same kernels in the same order), at points along traced curves of re-charting (sphere) and non-re-charting
-pairs, in both directions of travel, from states nudged off the curve.
+pairs, in both directions of travel, from states nudged off the curve. The same for a start located on the curve
+(start.locate_on_curve on kernels.restart.locate) against the steps it took one by one.
 """
 import numpy as np
 import pytest
@@ -63,3 +65,51 @@ def test_segment_start_matches_python_steps(kind, order):
                 assert want[5] == got[5]
                 checked += 1
     assert checked >= 2 * SAMPLES
+
+
+def python_locate(a, b, guess, gap_tol, y_guess=None):
+    """The oracle: start.locate_on_curve's steps before they were one call ((point, y_user) or None)."""
+    from spatialkin.kernels import curve as kc
+    from spatialkin.tracing.segments import NEWTON_MAX_ITER
+    point = np.asarray(guess, dtype=float).copy()
+    a_chart, b_chart, y = charts_at(a.data, b.data, point, np.zeros(3), y_guess)
+    iters = kc.project_to_curve(y, a_chart, b_chart, point.copy(), np.zeros(3), gap_tol, NEWTON_MAX_ITER)
+    p1, t = np.empty(3), np.empty(3)
+    kc.curve_frame(y, a_chart, b_chart, p1, t)
+    if iters < 0 or not np.all(np.isfinite(p1)):
+        return None
+    y_user = y.copy()
+    for k, surf in enumerate((a, b)):
+        if traits(surf).recharts:
+            y_user[2 * k:2 * k + 2] = surf.parameters(p1)
+    return p1, y_user
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("order", ["ab", "ba"])
+def test_locate_matches_python_steps(kind, order):
+    """locate_on_curve (kernels.restart.locate) against its former steps, bit for bit, from points near the curve
+    with and without a parameter guess, and from a point far from it (both fail, or both give the same)."""
+    from spatialkin.tracing.start import locate_on_curve
+    from spatialkin.tracing.result import TracingError
+    cases = {k: (a, b) for k, a, b in pair_kind_cases()}
+    a, b = cases[kind] if order == "ab" else cases[kind][::-1]
+    gap_tol = 1e-12
+    rng = np.random.default_rng(5)
+    curve = sk.intersect(a, b)[0]
+    for k in np.linspace(0, len(curve.points) - 1, SAMPLES).astype(int):
+        guess = curve.points[k] + 1e-3 * rng.standard_normal(3)
+        for y_guess in (None, curve.params[k] + 1e-3 * rng.standard_normal(4)):
+            want = python_locate(a, b, guess, gap_tol, y_guess)
+            got = locate_on_curve(a, b, guess, gap_tol, y_guess)
+            np.testing.assert_array_equal(got[0], want[0])
+            np.testing.assert_array_equal(got[1], want[1])
+    far = 1e3 * (np.abs(curve.points).max() + 1.0) * np.ones(3)
+    want = python_locate(a, b, far, gap_tol)
+    try:
+        got = locate_on_curve(a, b, far, gap_tol)
+    except TracingError:
+        assert want is None
+    else:
+        np.testing.assert_array_equal(got[0], want[0])
+        np.testing.assert_array_equal(got[1], want[1])

@@ -85,3 +85,32 @@ def test_budget_and_bad_options_are_reported():
         solve_ivp(system.rhs, (0.0, 1.0), y0, method=CompiledRK45, args=system.args)
     with pytest.raises(ValueError, match="forward"):
         solve_ivp(system.rhs, (1.0, 0.0), y0, method=CompiledRK45, args=system.args, system=system)
+
+
+def test_compiled_rk45_base_state_is_odesolvers():
+    """CompiledRK45 sets OdeSolver.__init__'s state itself (its y0 checks on the few floats): oracle OdeSolver.__init__
+    on the same arguments, every attribute it sets equal (the same y0 values, t, t_bound, direction, n, status,
+    counters; the functions callable and counting nfev), and the same errors for a complex, two-dimensional or
+    non-finite y0."""
+    from scipy.integrate import OdeSolver
+    system, y0, length = looper_system()
+    rhs = lambda t, y: system.rhs(t, y, *system.args)      # noqa: E731 (as solve_ivp wraps it with args)
+    ours = CompiledRK45(rhs, 0.0, list(y0), length, system=system)
+    theirs = OdeSolver(rhs, 0.0, list(y0), length, False)
+    assert set(vars(theirs)) <= set(vars(ours))
+    for name, value in vars(theirs).items():
+        if callable(value):
+            assert callable(getattr(ours, name)) or name == "fun_vectorized"
+        elif isinstance(value, np.ndarray):
+            assert getattr(ours, name).dtype == value.dtype
+            np.testing.assert_array_equal(getattr(ours, name), value)
+        else:
+            assert getattr(ours, name) == value and type(getattr(ours, name)) is type(value), name
+    np.testing.assert_array_equal(ours.fun(0.0, y0), theirs.fun(0.0, y0))
+    assert ours.nfev == theirs.nfev == 1
+    for bad in (y0.astype(complex), y0[None], np.where(np.arange(4) == 1, np.nan, y0)):
+        with pytest.raises(ValueError) as want:
+            OdeSolver(system.rhs, 0.0, bad, length, False)
+        with pytest.raises(ValueError) as got:
+            CompiledRK45(system.rhs, 0.0, bad, length, system=system)
+        assert str(got.value) == str(want.value)

@@ -63,7 +63,9 @@ M_SIZE = 8
 
 def branch_args(a, b, sign, pullback):
     """The args of the branch's kernels: (a, b, sign, pullback, memo), the memo empty (NaN: matches no state)."""
-    return (a, b, float(sign), float(pullback), np.full(M_SIZE, np.nan))
+    memo = np.empty(M_SIZE)
+    memo.fill(np.nan)
+    return (a, b, float(sign), float(pullback), memo)
 
 
 @jit

@@ -271,8 +271,9 @@ def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, m
         t_events[k].append(t_e)
         y_events[k].append(y_e)
     n = len(y0)
-    res.t_events = [np.array(t) if t else np.empty(0) for t in t_events]
-    res.y_events = [np.array(y).reshape(len(y), n) if y else np.empty((0, n)) for y in y_events]
+    no_t, no_y = np.empty(0), np.empty((0, n))        # the events not met share these (empty: nothing to change)
+    res.t_events = [np.array(t) if t else no_t for t in t_events]
+    res.y_events = [np.array(y).reshape(len(y), n) if y else no_y for y in y_events]
     if res.status == 0 and log.hits and events[log.hits[-1][0]].terminal:
         res.status, res.message = 1, "A termination event occurred."
     res.steps = log.steps

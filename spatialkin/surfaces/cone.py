@@ -54,7 +54,7 @@ class ConeTraits(SurfaceTraits):
         return 1.0
 
     def scale_length(self, surface):
-        return float(self.size(surface)) if np.all(np.isfinite(surface.v_range)) else None
+        return float(self.size(surface)) if all(math.isfinite(v) for v in surface.v_range) else None
 
     def extent(self, surface):
         v0, v1 = surface.v_range

@@ -58,7 +58,7 @@ class PlaneTraits(SurfaceTraits):
 
     def bounding_ball(self, surface):
         (u0, u1), (v0, v1) = surface.u_range, surface.v_range
-        if not np.all(np.isfinite([u0, u1, v0, v1])):
+        if not all(math.isfinite(x) for x in (u0, u1, v0, v1)):
             return None
         return surface.frame.to_global([0.5 * (u0 + u1), 0.5 * (v0 + v1), 0.0]), 0.5 * math.hypot(u1 - u0, v1 - v0)
 

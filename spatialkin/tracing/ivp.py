@@ -70,6 +70,17 @@ def known_node(point, settings):
     return bool(len(nodes)) and float(np.min(np.linalg.norm(nodes - point, axis=1))) <= KNOWN_NODE * settings.scale
 
 
+def known_apex(point, settings):
+    """True unless the topology stage has proven where the singular points are and the apex of the surfaces
+    (Settings.apexes: a cone's, a horn or spindle torus's points on its axis) nearest to point is none of them. An
+    apex event fires where a relative area element falls to APEX_GUARD, which lies farther from the apex than
+    KNOWN_NODE where the element grows with the square of the distance (a horn torus's cusp: 0.02 x its minor
+    radius), so the apex itself is tested, not the point of the event."""
+    if settings.nodes is None or not len(settings.apexes):
+        return known_node(point, settings)
+    return known_node(settings.apexes[np.argmin(np.linalg.norm(settings.apexes - point, axis=1))], settings)
+
+
 def segment_system(a, b, settings, sign, start, direction, s_arm):
     """The System of one segment (charts a, b; the closure armed past s_arm) with its event parameters."""
     ep = np.zeros(kb.P_SIZE)
@@ -104,7 +115,8 @@ def segment_events(system, a, b, settings, compiled, near_edge=False):
     segment, started on the curve (projected) at most a step from the bound, ends exactly at the crossing, so
     that the curve's end on the edge has one step's accuracy, not the whole branch's drift. The compiled method
     probes the bounds inside each step too (spatialkin.kernels.rk.PROBES), so that a curve grazing out of a trim
-    and back within one step ends there."""
+    and back within one step ends there, and the area hand-over likewise, so that no step passes over an apex (a
+    horn torus's cusp, whose guarded zone a step can span)."""
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
     handoff = ("handoff", None)
@@ -124,7 +136,8 @@ def segment_events(system, a, b, settings, compiled, near_edge=False):
     if settings.close:
         plan.append((kb.CLOSURE, 1, ("closure", None), None))
     edges = range(kb.EDGE, kb.EDGE + 8)
-    return ([Event(system, i, d, level=level, probed=compiled and i in edges) for i, d, _, level in plan],
+    return ([Event(system, i, d, level=level, probed=compiled and (i in edges or i == kb.HANDOFF_AREA))
+             for i, d, _, level in plan],
             [kind for _, _, kind, _ in plan])
 
 
@@ -240,7 +253,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if kind == "near_edge":
             near_edge = True
             continue
-        singular = kind == "singular" or (kind == "apex" and known_node(point, settings)) or (
+        singular = kind == "singular" or (kind == "apex" and known_apex(point, settings)) or (
             kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT
             and known_node(point, settings))
         if singular:

@@ -84,6 +84,7 @@ class Settings:
     max_step: float
     close: bool = True
     nodes: np.ndarray = None  # (K, 3) singular points proven by the topology stage, or None when not known
+    apexes: np.ndarray = field(default_factory=lambda: np.empty((0, 3)))  # (K, 3) the surfaces' apexes
 
 
 def area_flag(data):

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
+from .result import set_states
 from .segments import NEWTON_MAX_ITER, LinearStates, Segment, area_flag
 
 # --- named limits -------------------------------------------------------------------------------------
@@ -26,6 +27,16 @@ APEX_GUARD = 2e-4
 JUMP_STRAIGHTNESS = 0.1
 #: A jump must land where the normals' sine exceeds ten times this (clear of the node), else it is doubled.
 NODE_CLEARANCE = 1e-6
+#: A node located by a jump is the singular point proven by the topology stage within this distance (relative to
+#: the scale).
+SNAP = 1e-2
+#: Gauss-Legendre nodes per side of a jump (start to node, node to end) measuring the curve's arc length over it.
+ARC_NODES = 8
+#: A point of that measure is trusted only within this fraction of its distance from the node (else it went to
+#: the other branch) and of the side's length (else off through a degenerate chart): the chord stands otherwise.
+ARC_STRAY = 0.2
+
+_ARC_X, _ARC_W = np.polynomial.legendre.leggauss(ARC_NODES)
 
 
 def restate(y, from_a, from_b, to_a, to_b):
@@ -101,8 +112,57 @@ def jump_across(branch, seg, t_event, y_event, settings):
                 or kc.degeneracy(y, a, b, 0, 0) < 10 * NODE_CLEARANCE):
             h *= 2                      # still beside the singular point (a cusp, a shallow crossing)
             continue
-        return index, t_back, y_own, y_back, y, d, float(np.linalg.norm(p_after - p_back))
+        node = snapped_node(locate_node(a, b, y_back, y, d, y_event), settings)
+        return index, t_back, y_own, y_back, y, d, jump_arc(a, b, (p_back, node, p_after), (y_back, y), settings), node
     return None
+
+
+def snapped_node(node, settings):
+    """The node located by a jump (to about the jump's accuracy; at a horn torus's cusp, where the area element
+    grows with the square of the distance, 0.01 x the scale off), replaced by the singular point the topology stage
+    proved there (Newton on grad g, or an apex; settings.nodes, when known) if one lies within SNAP x scale."""
+    known = settings.nodes
+    if known is None or not len(known):
+        return node
+    d = np.linalg.norm(np.asarray(known).reshape(-1, 3) - node, axis=1)
+    return np.asarray(known).reshape(-1, 3)[np.argmin(d)] if d.min() <= SNAP * settings.scale else node
+
+
+def jump_arc(a, b, points, states, settings):
+    """Arc length of the curve over a jump through points = (start, node, end), states = (at start, at end): on
+    each side, Gauss-Legendre over the side's chord of 1 / (T . chord), the curve found by Newton in the planes
+    normal to the chord (its point there moves along the chord with that speed), so that a long jump (past a horn
+    torus's cusp, 0.2 x the scale) counts the curve, not the chord. The chord length where a side's point cannot
+    be trusted (ARC_STRAY).
+
+    References
+    ----------
+    Abramowitz and Stegun, Handbook of Mathematical Functions, 25.4.29 (Gauss-Legendre).
+    """
+    chord = float(np.linalg.norm(points[2] - points[0]))
+    arc = 0.0
+    p, t = np.empty(3), np.empty(3)
+    for side in (0, 1):
+        start, end = points[side], points[side + 1]
+        length = float(np.linalg.norm(end - start))
+        if length == 0.0:
+            continue
+        direction = (end - start) / length
+        taus = 0.5 * length * (1.0 + _ARC_X)
+        targets = start + taus[:, None] * direction
+        ys = set_states(np.repeat(np.asarray(states[side], dtype=float)[None], ARC_NODES, axis=0), targets, a, b)
+        speed = np.empty(ARC_NODES)
+        for i in range(ARC_NODES):
+            node_distance = length - taus[i] if side == 0 else taus[i]
+            if kc.project_to_curve(ys[i], a, b, targets[i], direction, settings.gap_tol, NEWTON_MAX_ITER) < 0:
+                return chord
+            kc.curve_frame(ys[i], a, b, p, t)
+            along = abs(float(np.dot(t, direction)))
+            if np.linalg.norm(p - targets[i]) > ARC_STRAY * min(node_distance, length) or along == 0.0:
+                return chord
+            speed[i] = 1.0 / along
+        arc += 0.5 * length * float(speed @ _ARC_W)
+    return arc
 
 
 def locate_node(a, b, y_from, y_to, d, y_event):
@@ -131,14 +191,14 @@ def locate_node(a, b, y_from, y_to, d, y_event):
 def take_jump(branch, seg, y_event, jump):
     """Record a jump across a singular point: cut the branch where the jump starts, add the jump segment
     (in seg's charts), and return the new (sign, state, point, tangent) to go on from."""
-    index, t_back, y_own, y_back, y_after, d, length = jump
+    index, t_back, y_own, y_back, y_after, d, length, node = jump
     owner = branch.segments[index]
     keep = owner.t <= t_back
     owner.t, owner.y = np.append(owner.t[keep], t_back), np.column_stack([owner.y[:, keep], y_own])
     owner.s1 = owner.s0 + t_back
     del branch.segments[index + 1:]
     point, tangent = np.empty(3), np.empty(3)
-    branch.nodes.append((owner.s1, locate_node(seg.a, seg.b, y_back, y_after, d, y_event)))
+    branch.nodes.append((owner.s1, node))
     branch.segments.append(Segment(s0=owner.s1, s1=owner.s1 + length, sign=1.0,
                                    sol=LinearStates(y_back, y_after, length), a=seg.a, b=seg.b,
                                    t=np.array([0.0, length]), y=np.column_stack([y_back, y_after]), normal=d))

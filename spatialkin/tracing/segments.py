@@ -47,10 +47,12 @@ class Segment:
 
 
 class LinearStates:
-    """Dense output of a jump across a singular point: states interpolated linearly over [0, length]."""
+    """Dense output of a jump across a singular point: states interpolated linearly over [0, length]; arc (a
+    spatialkin.tracing.singular.JumpArc, or None) maps arc length to the chords through the node."""
 
-    def __init__(self, y0, y1, length):
+    def __init__(self, y0, y1, length, arc=None):
         self.y0, self.y1, self.length = np.asarray(y0, dtype=float), np.asarray(y1, dtype=float), length
+        self.arc = arc
 
     def __call__(self, t):
         w = np.clip(np.asarray(t, dtype=float) / self.length, 0.0, 1.0)

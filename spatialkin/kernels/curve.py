@@ -260,6 +260,19 @@ def project_many(ys, a, b, normal, gap_tol, max_iter, points, tangents, status):
 
 
 @jit
+def project_through(ys, a, b, normal, targets, gap_tol, max_iter, points, tangents, status):
+    """project_many in the planes normal to the fixed vector `normal` (non-zero) through the points targets (N, 3),
+    not through M1(y): each corrected point lies where its target says along `normal` (a jump's points, placed by
+    arc length on its chords)."""
+    for k in range(ys.shape[0]):
+        status[k] = project_to_curve(ys[k], a, b, targets[k], normal, gap_tol, max_iter)
+        curve_frame(ys[k], a, b, points[k], tangents[k])
+        if dot(tangents[k], normal) < 0.0:
+            for i in range(3):
+                tangents[k, i] = -tangents[k, i]
+
+
+@jit
 def corrected_many(ys, a, b, normal, gap_tol, max_iter, points, gaps):
     """project_many for the stored states of a traced segment: the rows of ys (N, 4) projected in place, their
     points (N, 3), and gaps[k] = |M1 - M2| of each row before its projection (the solver's own gap)."""

@@ -46,8 +46,9 @@ LEVEL_AFTER = 3
 #: TERMINAL and LEVEL_BEFORE, the event also probed at PROBES interior points of each step's dense output: a
 #: crossing out and back within one step (a curve grazing out of a trim edge for a fraction of a step) is found
 #: when it spans more than about 1/(PROBES + 1) of the step. Only for events 1-Lipschitz in the state's largest
-#: component (a parameter against a bound): a step is probed only where such an event's value at an end is within
-#: the step's reach (step_reach: a bound on how far any component of the dense output moves within the step).
+#: component (a parameter against a bound; a relative area element, tests/spatialkin/tracing/test_hard_cases.py):
+#: a step is probed only where such an event's value at an end is within the step's reach (step_reach: a bound on
+#: how far any component of the dense output moves within the step).
 TERMINAL_PROBED = 4
 LEVEL_BEFORE_PROBED = 5
 #: Interior points of a step at which probed events are evaluated (evenly spaced).

@@ -222,7 +222,7 @@ class TracedSolution(CurveSolution):
         a, b = span.seg.a, span.seg.b
         guess, side, chords, near, node = self._jump_chords(span, s)
         set_states(y, guess, a, b)
-        self._project_sides(y, a, b, side, chords, p, t, st)
+        self._project_sides(y, a, b, side, chords, guess, p, t, st)
         moved = np.linalg.norm(p - guess, axis=1)
         stray = (st < 0) | (moved > JUMP_STRAY * (span.hi - span.lo)) | (moved > NODE_STRAY * near)
         p[stray] = guess[stray]
@@ -238,7 +238,7 @@ class TracedSolution(CurveSolution):
                 ya = np.repeat(y[rows][:1], 2, axis=0)
                 set_states(ya, at, a, b)
                 pa, ta, sa = np.empty((2, 3)), np.empty((2, 3)), np.empty(2, np.int64)
-                kc.project_many(ya, a, b, chords[half], self.gap_tol, NEWTON_MAX_ITER, pa, ta, sa)
+                kc.project_through(ya, a, b, chords[half], at, self.gap_tol, NEWTON_MAX_ITER, pa, ta, sa)
                 if np.any(sa < 0) or (any(flags) and min(kc.area_degeneracy(ya[i], a, b, *flags)
                                                          for i in range(2)) < ANCHOR_APEX_CLEAR):
                     continue                       # beside an apex (a horn torus's cusp): Newton's points stand
@@ -252,13 +252,15 @@ class TracedSolution(CurveSolution):
         direction = span.seg.normal
         t[np.sum(t * direction, axis=1) < 0] *= -1.0
 
-    def _project_sides(self, y, a, b, side, chords, p, t, st):
-        """Newton in the plane normal to each side's chord (rows of side 0 and 1), in place."""
+    def _project_sides(self, y, a, b, side, chords, guess, p, t, st):
+        """Newton in the plane normal to each side's chord through each guess point (rows of side 0 and 1), in
+        place."""
         for half in np.unique(side):
             rows = side == half
             n = int(rows.sum())
             yh, ph, th, sh = y[rows], np.empty((n, 3)), np.empty((n, 3)), np.empty(n, np.int64)
-            kc.project_many(yh, a, b, chords[half], self.gap_tol, NEWTON_MAX_ITER, ph, th, sh)
+            kc.project_through(yh, a, b, chords[half], np.ascontiguousarray(guess[rows]), self.gap_tol,
+                               NEWTON_MAX_ITER, ph, th, sh)
             y[rows], p[rows], t[rows], st[rows] = yh, ph, th, sh
 
     def _jump_chords(self, span, s):
@@ -275,7 +277,7 @@ class TracedSolution(CurveSolution):
             node = self.nodes[np.argmin(np.linalg.norm(self.nodes - ends.mean(axis=0), axis=1))]
             first, second = np.linalg.norm(node - ends[0]), np.linalg.norm(ends[1] - node)
             if first + second <= 2.0 * max(np.linalg.norm(ends[1] - ends[0]), 1e-300) and first > 0 and second > 0:
-                d = w * (first + second)
+                d = w * (first + second) if sol.arc is None else sol.arc.chord_position(w[:, 0] * sol.length)[:, None]
                 chords = np.stack([(node - ends[0]) / first, (ends[1] - node) / second])
                 side = (d[:, 0] > first).astype(np.int64)
                 return (np.where(d <= first, ends[0] + (node - ends[0]) * (d / first),

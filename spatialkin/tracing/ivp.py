@@ -72,6 +72,17 @@ def known_node(point, settings):
     return bool(len(nodes)) and float(np.min(np.linalg.norm(nodes - point, axis=1))) <= KNOWN_NODE * settings.scale
 
 
+def known_apex(point, settings):
+    """True unless the topology stage has proven where the singular points are and the apex of the surfaces
+    (Settings.apexes: a cone's, a horn or spindle torus's points on its axis) nearest to point is none of them. An
+    apex event fires where a relative area element falls to APEX_GUARD, which lies farther from the apex than
+    KNOWN_NODE where the element grows with the square of the distance (a horn torus's cusp: 0.02 x its minor
+    radius), so the apex itself is tested, not the point of the event."""
+    if settings.nodes is None or not len(settings.apexes):
+        return known_node(point, settings)
+    return known_node(settings.apexes[np.argmin(np.linalg.norm(settings.apexes - point, axis=1))], settings)
+
+
 def branch_event_params(a, b, settings, start, direction):
     """The event parameters (kb.P_SIZE,) every segment of a branch shares (charts a, b of the surfaces' kinds,
     the closure plane through start normal to direction): all but the bounds and the closure's arm, which
@@ -115,8 +126,9 @@ def segment_events(system, a, b, settings, compiled, near_edge=False, bounds=Non
     segment, started on the curve (projected) at most a step from the bound, ends exactly at the crossing, so
     that the curve's end on the edge has one step's accuracy, not the whole branch's drift. The compiled method
     probes the bounds inside each step too (spatialkin.kernels.rk.PROBES), so that a curve grazing out of a trim
-    and back within one step ends there. bounds: finite_bounds(a, b), and recharts: whether each surface
-    re-charts, when the caller has them."""
+    and back within one step ends there, and the area hand-over likewise, so that no step passes over an apex (a
+    horn torus's cusp, whose guarded zone a step can span). bounds: finite_bounds(a, b), and recharts: whether each
+    surface re-charts, when the caller has them."""
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
     plan, kinds = event_plan(compiled, near_edge, flagged, tuple(finite_bounds(a, b) if bounds is None else bounds),
@@ -147,7 +159,7 @@ def event_plan(compiled, near_edge, flagged, bounds, recharts, close):
     if close:
         plan.append((kb.CLOSURE, 1, ("closure", None), None))
     edges = range(kb.EDGE, kb.EDGE + 8)
-    return (tuple((i, d, level, compiled and i in edges) for i, d, _, level in plan),
+    return (tuple((i, d, level, compiled and (i in edges or i == kb.HANDOFF_AREA)) for i, d, _, level in plan),
             tuple(kind for _, _, kind, _ in plan))
 
 
@@ -274,7 +286,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if kind == "near_edge":
             near_edge = True
             continue
-        singular = kind == "singular" or (kind == "apex" and known_node(point, settings)) or (
+        singular = kind == "singular" or (kind == "apex" and known_apex(point, settings)) or (
             kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT
             and known_node(point, settings))
         if singular:

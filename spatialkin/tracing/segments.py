@@ -48,10 +48,12 @@ class Segment:
 
 
 class LinearStates:
-    """Dense output of a jump across a singular point: states interpolated linearly over [0, length]."""
+    """Dense output of a jump across a singular point: states interpolated linearly over [0, length]; arc (a
+    spatialkin.tracing.singular.JumpArc, or None) maps arc length to the chords through the node."""
 
-    def __init__(self, y0, y1, length):
+    def __init__(self, y0, y1, length, arc=None):
         self.y0, self.y1, self.length = np.asarray(y0, dtype=float), np.asarray(y1, dtype=float), length
+        self.arc = arc
 
     def __call__(self, t):
         w = np.clip(np.asarray(t, dtype=float) / self.length, 0.0, 1.0)
@@ -85,6 +87,7 @@ class Settings:
     max_step: float
     close: bool = True
     nodes: np.ndarray = None  # (K, 3) singular points proven by the topology stage, or None when not known
+    apexes: np.ndarray = field(default_factory=lambda: np.empty((0, 3)))  # (K, 3) the surfaces' apexes
 
 
 def area_flag(data):

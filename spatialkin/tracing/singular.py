@@ -7,9 +7,11 @@ References
 plane normal to the direction of travel keeps to the same branch.
 """
 import numpy as np
+from numpy.polynomial import legendre
 
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
+from .result import set_states
 from .segments import NEWTON_MAX_ITER, LinearStates, Segment, area_flag
 
 # --- named limits -------------------------------------------------------------------------------------
@@ -26,6 +28,19 @@ APEX_GUARD = 2e-4
 JUMP_STRAIGHTNESS = 0.1
 #: A jump must land where the normals' sine exceeds ten times this (clear of the node), else it is doubled.
 NODE_CLEARANCE = 1e-6
+#: A node located by a jump is the singular point proven by the topology stage within this distance (relative to
+#: the scale).
+SNAP = 1e-2
+#: Gauss-Legendre nodes per side of a jump (start to node, node to end) measuring the curve's arc length over it.
+ARC_NODES = 8
+#: Newton steps mapping an arc length inside a jump to its chord position (speed within 1e-2 of 1 there: each step
+#: squares the error).
+ARC_NEWTON = 5
+#: A point of that measure is trusted only within this fraction of its distance from the node (else it went to
+#: the other branch) and of the side's length (else off through a degenerate chart): the chord stands otherwise.
+ARC_STRAY = 0.2
+
+_ARC_X, _ARC_W = np.polynomial.legendre.leggauss(ARC_NODES)
 
 
 def restate(y, from_a, from_b, to_a, to_b):
@@ -101,8 +116,97 @@ def jump_across(branch, seg, t_event, y_event, settings):
                 or kc.degeneracy(y, a, b, 0, 0) < 10 * NODE_CLEARANCE):
             h *= 2                      # still beside the singular point (a cusp, a shallow crossing)
             continue
-        return index, t_back, y_own, y_back, y, d, float(np.linalg.norm(p_after - p_back))
+        node = snapped_node(locate_node(a, b, y_back, y, d, y_event), settings)
+        arc = jump_arc(a, b, (p_back, node, p_after), (y_back, y), settings)
+        length = arc.length if arc is not None else float(np.linalg.norm(p_after - p_back))
+        return index, t_back, y_own, y_back, y, d, length, node, arc
     return None
+
+
+def snapped_node(node, settings):
+    """The node located by a jump (to about the jump's accuracy; at a horn torus's cusp, where the area element
+    grows with the square of the distance, 0.01 x the scale off), replaced by the singular point the topology stage
+    proved there (Newton on grad g, or an apex; settings.nodes, when known) if one lies within SNAP x scale."""
+    known = settings.nodes
+    if known is None or not len(known):
+        return node
+    d = np.linalg.norm(np.asarray(known).reshape(-1, 3) - node, axis=1)
+    return np.asarray(known).reshape(-1, 3)[np.argmin(d)] if d.min() <= SNAP * settings.scale else node
+
+
+class JumpArc:
+    """The curve's arc length over a jump through (start, node, end): on each side, the speed 1 / (T . chord) of the
+    curve point in the plane normal to the side's chord, interpolated at the Gauss-Legendre nodes by a Legendre
+    series and integrated exactly (the Gauss-Legendre sum), so that an arc length inside the jump maps to its point
+    on the chords (chord_position: Newton on the integral), not in proportion to the chords' length."""
+
+    def __init__(self, lengths, speeds):
+        """lengths (2,): the sides' chords; speeds (2, ARC_NODES): the speed at each side's Gauss-Legendre nodes
+        (0.5 x length x (1 + x_i), x_i the nodes on [-1, 1])."""
+        self.sides = []                                     # per side: (chord length, speed series, its integral)
+        for length, speed in zip(lengths, speeds):
+            series = legendre.legfit(_ARC_X, speed, ARC_NODES - 1)
+            self.sides.append((float(length), series, legendre.legint(series, lbnd=-1.0)))
+        self.arcs = [0.5 * length * float(legendre.legval(1.0, integral)) for length, _, integral in self.sides]
+        self.length = float(sum(self.arcs))
+
+    def chord_position(self, t):
+        """Distance along the chords (start to node, node to end) (M,) at arc lengths t (M,) from the start."""
+        t = np.clip(np.asarray(t, dtype=float), 0.0, self.length)
+        out = np.empty_like(t)
+        first = t <= self.arcs[0]
+        offset = 0.0
+        for k, rows in enumerate((first, ~first)):
+            length, series, integral = self.sides[k]
+            target = t[rows] - (self.arcs[0] if k else 0.0)
+            tau = target * (length / self.arcs[k]) if self.arcs[k] > 0 else np.zeros_like(target)
+            for _ in range(ARC_NEWTON):
+                xi = 2.0 * tau / length - 1.0
+                tau = np.clip(tau - (0.5 * length * legendre.legval(xi, integral) - target)
+                              / legendre.legval(xi, series), 0.0, length)
+            out[rows] = offset + tau
+            offset += length
+        return out
+
+    def arc_position(self, d):
+        """Arc length from the start at distance d along the chords (a float)."""
+        first = self.sides[0][0]
+        k, tau = (0, d) if d <= first else (1, d - first)
+        length, _, integral = self.sides[k]
+        tau = min(max(tau, 0.0), length)
+        return (self.arcs[0] if k else 0.0) + 0.5 * length * float(legendre.legval(2.0 * tau / length - 1.0, integral))
+
+
+def jump_arc(a, b, points, states, settings):
+    """The JumpArc of a jump through points = (start, node, end), states = (at start, at end): the curve's points
+    found by Newton in the planes normal to each side's chord at its Gauss-Legendre nodes (where the point moves
+    along the chord with speed 1 / (T . chord)), so that a long jump (past a horn torus's cusp, 0.2 x the scale)
+    counts the curve, not the chord. None (the chords stand) where a side's point cannot be trusted (ARC_STRAY).
+
+    References
+    ----------
+    Abramowitz and Stegun, Handbook of Mathematical Functions, 25.4.29 (Gauss-Legendre).
+    """
+    lengths, speeds = [], []
+    for side in (0, 1):
+        start, end = points[side], points[side + 1]
+        length = float(np.linalg.norm(end - start))
+        if length == 0.0:
+            return None
+        direction = (end - start) / length
+        taus = 0.5 * length * (1.0 + _ARC_X)
+        targets = start + taus[:, None] * direction
+        ys = set_states(np.repeat(np.asarray(states[side], dtype=float)[None], ARC_NODES, axis=0), targets, a, b)
+        found, tangents, status = np.empty((ARC_NODES, 3)), np.empty((ARC_NODES, 3)), np.empty(ARC_NODES, np.int64)
+        kc.project_through(ys, a, b, direction, targets, settings.gap_tol, NEWTON_MAX_ITER, found, tangents, status)
+        along = tangents @ direction
+        node_distance = length - taus if side == 0 else taus
+        if (np.any(status < 0) or np.any(along <= 0.0)
+                or np.any(np.linalg.norm(found - targets, axis=1) > ARC_STRAY * np.minimum(node_distance, length))):
+            return None
+        lengths.append(length)
+        speeds.append(1.0 / along)
+    return JumpArc(lengths, speeds)
 
 
 def locate_node(a, b, y_from, y_to, d, y_event):
@@ -131,16 +235,16 @@ def locate_node(a, b, y_from, y_to, d, y_event):
 def take_jump(branch, seg, y_event, jump):
     """Record a jump across a singular point: cut the branch where the jump starts, add the jump segment
     (in seg's charts), and return the new (sign, state, point, tangent) to go on from."""
-    index, t_back, y_own, y_back, y_after, d, length = jump
+    index, t_back, y_own, y_back, y_after, d, length, node, arc = jump
     owner = branch.segments[index]
     keep = owner.t <= t_back
     owner.t, owner.y = np.append(owner.t[keep], t_back), np.column_stack([owner.y[:, keep], y_own])
     owner.s1 = owner.s0 + t_back
     del branch.segments[index + 1:]
     point, tangent = np.empty(3), np.empty(3)
-    branch.nodes.append((owner.s1, locate_node(seg.a, seg.b, y_back, y_after, d, y_event)))
+    branch.nodes.append((owner.s1, node))
     branch.segments.append(Segment(s0=owner.s1, s1=owner.s1 + length, sign=1.0,
-                                   sol=LinearStates(y_back, y_after, length), a=seg.a, b=seg.b,
+                                   sol=LinearStates(y_back, y_after, length, arc), a=seg.a, b=seg.b,
                                    t=np.array([0.0, length]), y=np.column_stack([y_back, y_after]), normal=d))
     kc.curve_frame(y_after, seg.a, seg.b, point, tangent)
     sign = 1.0 if float(np.dot(tangent, d)) > 0 else -1.0
@@ -158,5 +262,5 @@ def closes_within_jump(jump, start, direction, min_cosine):
     travelled = jump.s0 + along > 2.0 * length         # not the start's own neighbourhood
     if (0.0 < along <= length and travelled and lateral <= JUMP_STRAIGHTNESS * length
             and float(np.dot(d, direction)) >= min_cosine):
-        return jump.s0 + along
+        return jump.s0 + (along if jump.sol.arc is None else jump.sol.arc.arc_position(along))
     return None

@@ -41,9 +41,6 @@ ROUNDOFF_ULPS = 64
 #: solve_ivp's methods, and "compiled": solve_ivp with spatialkin.tracing.ode.CompiledRK45 (scipy's RK45 steps,
 #: many per solver step in compiled code), handing hard cases to solve_ivp's DOP853.
 METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", "compiled")
-#: A node the tracer passed is the proven singular point (Settings.nodes) within this distance (relative to the
-#: scale).
-SNAP = 1e-2
 #: Machine epsilon of the coordinates (a float64).
 EPS = np.finfo(float).eps
 
@@ -84,7 +81,13 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
     tolerance = max(tol * scale, ROUNDOFF_ULPS * EPS * magnitude)
     return Settings(method=method, rtol=rtol, atol=atol, gap_tol=gap_tol, scale=scale, tolerance=tolerance,
                     singular_tol=singular_tol, pullback=pullback / scale, max_length=max_length,
-                    max_step=math.pi * scale / 4, close=close)
+                    max_step=math.pi * scale / 4, close=close, apexes=apex_points(a, b))
+
+
+def apex_points(a, b):
+    """(K, 3) the apexes of both surfaces (a cone's, a horn or spindle torus's points on its axis)."""
+    return np.array([a_or_b.point(0.0, v) for a_or_b in (a, b) for v in traits(a_or_b).apexes(a_or_b)],
+                    dtype=float).reshape(-1, 3)
 
 
 def start_point(a, b, start, gap_tol):
@@ -213,7 +216,7 @@ def trace_from(a, b, point, y, settings, t_start):
         points = np.concatenate([points, points[:1]])
         params = np.concatenate([params, _closing_params(a, b, params[0], params[-1])[None]])
         s_all = np.concatenate([s_all, [length]])
-    nodes = snapped_nodes([p for branch, _, _ in branches for _, p in branch.nodes], settings)
+    nodes = np.array([p for branch, _, _ in branches for _, p in branch.nodes]).reshape(-1, 3)
     sol = TracedSolution(surfaces=(a, b), spans=spans, nodes=nodes, gap_tol=settings.gap_tol, length=length,
                          closed=closed, knots=s_all)
     result = CurveResult(points=points, s=s_all, params=params, closed=closed, length=length, status=status,
@@ -244,21 +247,6 @@ def measured_branch(a, b, point, tangent, y, sign, settings):
     if mark is not None:
         stages.leave(mark)
     return branch
-
-
-def snapped_nodes(located, settings):
-    """The nodes (K, 3) the tracer located (to about its jump's accuracy), each replaced by the singular point the
-    topology stage proved there (Newton on grad g, or an apex; settings.nodes, when known), if one lies within
-    SNAP x scale."""
-    nodes = np.array(located).reshape(-1, 3)
-    known = settings.nodes
-    if known is None or not len(known):
-        return nodes
-    for k, node in enumerate(nodes):
-        d = np.linalg.norm(known - node, axis=1)
-        if d.min() <= SNAP * settings.scale:
-            nodes[k] = known[np.argmin(d)]
-    return nodes
 
 
 def _corrected(a, b, y_all, span_of, spans, settings):

@@ -37,7 +37,7 @@ class ConeTraits(SurfaceTraits):
 
     code = geometry = ks.CONE
     name = "cone"
-    rank = 3
+    rank = 2                        # ruled, as the cylinder
     units = (ANGLE, LENGTH)
     periodic = (True, False)
     parameter_axes = (None, 2)

@@ -32,7 +32,7 @@ class CylinderTraits(SurfaceTraits):
 
     code = geometry = ks.CYLINDER
     name = "cylinder"
-    rank = 2
+    rank = 1                        # ruled: g is quadratic along its lines, the search prunes best (below)
     units = (ANGLE, LENGTH)
     periodic = (True, False)
     parameter_axes = (None, 2)

@@ -40,7 +40,7 @@ class SphereTraits(SurfaceTraits):
 
     code = geometry = ks.SPHERE
     name = "sphere"
-    rank = 1
+    rank = 3                        # after the ruled kinds: P = cylinder or cone takes 0.6-0.7x the boxes
     units = (ANGLE, ANGLE)
     periodic = (True, False)
     parameter_axes = (None, None)

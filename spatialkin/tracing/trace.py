@@ -67,21 +67,28 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
     """Validated numerical settings, absolute lengths scaled by the scene."""
     tol, rtol, atol, max_length, singular_tol, pullback = check_options(tol, method, rtol, atol, max_length,
                                                                         singular_tol, pullback)
-    scale = scene_scale(a, b)
-    if max_length is None:
-        bound = min(extent(a), extent(b))
-        max_length = MAX_LENGTH_TURNS * 2 * math.pi * (bound if math.isfinite(bound) else 1e3 * scale)
+    scale, tolerance, gap_tol, max_length = scene_lengths(a, b, tol, max_length, float(np.max(np.abs(anchor))))
     if atol is None:
         # angles get rtol, lengths (plane u, v; cylinder and cone v) rtol * scale
         atol = rtol * np.concatenate([parameter_units(a.data, scale), parameter_units(b.data, scale)])
     else:
         atol = np.full(4, atol)
-    magnitude = max(scale, float(np.max(np.abs(anchor))))
-    gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
-    tolerance = max(tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
     return Settings(method=method, rtol=rtol, atol=atol, gap_tol=gap_tol, scale=scale, tolerance=tolerance,
                     singular_tol=singular_tol, pullback=pullback / scale, max_length=max_length,
                     max_step=math.pi * scale / 4, close=close)
+
+
+def scene_lengths(a, b, tol, max_length, magnitude):
+    """(scale, tolerance, gap_tol, max_length) of the settings (see make_settings; tol and max_length checked,
+    max_length None for the default), magnitude the largest |coordinate| of the surfaces' origins."""
+    scale = scene_scale(a, b)
+    if max_length is None:
+        bound = min(extent(a), extent(b))
+        max_length = MAX_LENGTH_TURNS * 2 * math.pi * (bound if math.isfinite(bound) else 1e3 * scale)
+    magnitude = max(scale, magnitude)
+    gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
+    tolerance = max(tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
+    return scale, tolerance, gap_tol, max_length
 
 
 def start_point(a, b, start, gap_tol):

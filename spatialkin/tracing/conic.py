@@ -11,12 +11,13 @@ References
 ----------
 Abramowitz and Stegun, Handbook of Mathematical Functions, 17.2 (E(phi | m)) and 25.4.29 (Gauss-Legendre).
 """
+import functools
 import math
 
 import numpy as np
 from scipy.special import ellipeinc
 
-from .exact import EXACT_SAMPLES, ExactSolution
+from .exact import EXACT_SAMPLES, ExactSolution, counting
 from .traits import traits
 
 LINE, ELLIPSE, HYPERBOLA, PARABOLA = "line", "ellipse", "hyperbola", "parabola"
@@ -108,7 +109,7 @@ class ConicSolution(ExactSolution):
 
     def __init__(self, surfaces, conic, t_lo, t_hi, closed, samples=EXACT_SAMPLES):
         self.conic, self.t_lo = conic, float(t_lo)
-        self.t_knots = t_lo + (t_hi - t_lo) / (samples - 1) * np.arange(float(samples))
+        self.t_knots = t_lo + (t_hi - t_lo) / (samples - 1) * counting(samples)
         self.t_knots[-1] = t_hi
         if closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0:
             knots = conic.b * ellipse_turn(conic.m, samples)      # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
@@ -163,8 +164,16 @@ class ConicSolution(ExactSolution):
 def ellipse_turn(m, samples):
     """E(t | m) at `samples` values of t evenly spaced over [0, 2 pi] (samples - 1 a multiple of 4): evaluated on
     the first quarter only, by E(pi / 2 + x) = 2 E(m) - E(pi / 2 - x) and E(t + pi) = E(t) + 2 E(m)."""
-    quarter = (samples - 1) // 4
-    e = ellipeinc(np.linspace(0.0, 0.5 * math.pi, quarter + 1), m)
+    e = ellipeinc(quarter_turn(samples), m)
     full = e[-1]
     rising, falling = e[:-1], full - e[:0:-1]           # E(x) and E(pi/2 + x) - E(pi/2) for x in [0, pi/2)
     return np.concatenate([rising, full + falling, 2 * full + rising, 3 * full + falling, [4 * full]])
+
+
+@functools.lru_cache(maxsize=None)
+def quarter_turn(samples):
+    """The angles of ellipse_turn's first quarter, np.linspace(0, pi / 2, (samples - 1) / 4 + 1), made once per
+    samples (read-only)."""
+    out = np.linspace(0.0, 0.5 * math.pi, (samples - 1) // 4 + 1)
+    out.flags.writeable = False
+    return out

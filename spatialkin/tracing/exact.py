@@ -3,6 +3,9 @@ tracer cannot follow them, the normals being parallel all along), a circle about
 revolution (status 'closed'), a single point where they touch (status 'contact'). Each is a CurveResult whose dense
 output evaluates the closed form exactly.
 """
+import functools
+import math
+
 import numpy as np
 
 from ..vectors import cross
@@ -12,6 +15,30 @@ from .status import outcome
 
 #: Stored points of a circle or a segment in closed form.
 EXACT_SAMPLES = 65
+#: The unit vectors along the coordinate axes (rows).
+AXES = np.eye(3)
+AXES.flags.writeable = False
+
+
+@functools.lru_cache(maxsize=None)
+def counting(count):
+    """0.0, 1.0, ..., count - 1 (count,), shared and read-only (np.arange(float(count)), made once per count)."""
+    out = np.arange(float(count))
+    out.flags.writeable = False
+    return out
+
+
+def even(start, stop, count):
+    """np.linspace(start, stop, count) (float start and stop, count >= 2), bit for bit (its own arithmetic:
+    k x ((stop - start) / (count - 1)) + start, the last set to stop) without its call overhead; a zero step
+    (below the smallest normal float) goes to np.linspace itself."""
+    step = (stop - start) / (count - 1)
+    if step == 0:
+        return np.linspace(start, stop, count)
+    out = counting(count) * step
+    out += start
+    out[-1] = stop
+    return out
 
 
 class ExactSolution(CurveSolution):
@@ -21,6 +48,10 @@ class ExactSolution(CurveSolution):
     def at(self, s):
         """(points (M, 3), unit tangents (M, 3)) at the wrapped arc lengths s (M,)."""
         raise NotImplementedError
+
+    def points_at(self, s):
+        """The points (M, 3) of ``at`` alone."""
+        return self.at(s)[0]
 
     def bend(self, points):
         """Curvature vectors (M, 3) at the points (M, 3) of the curve."""
@@ -49,17 +80,25 @@ class CircleSolution(ExactSolution):
 
     def __init__(self, surfaces, centre, axis, radius, samples=EXACT_SAMPLES):
         self.centre, axis, self.radius = np.asarray(centre, dtype=float), np.asarray(axis, dtype=float), float(radius)
-        helper = np.eye(3)[np.argmin(np.abs(axis))]
+        helper = AXES[np.argmin(np.abs(axis))]
         e1 = cross(axis, helper)
-        self.e1 = e1 / np.linalg.norm(e1)
+        self.e1 = e1 / math.sqrt(e1.dot(e1))                 # (np.linalg.norm's arithmetic)
         self.e2 = cross(axis, self.e1)
         length = 2 * np.pi * self.radius
-        super().__init__(surfaces, length, True, np.linspace(0.0, length, samples))
+        super().__init__(surfaces, length, True, even(0.0, length, samples))
+
+    def _turn(self, s):
+        """(cos, sin) (M, 1) each of the angles at arc lengths s (M,)."""
+        angle = s / self.radius
+        return np.cos(angle)[:, None], np.sin(angle)[:, None]
 
     def at(self, s):
-        angle = s / self.radius
-        c, n = np.cos(angle)[:, None], np.sin(angle)[:, None]
+        c, n = self._turn(s)
         return self.centre + self.radius * (c * self.e1 + n * self.e2), -n * self.e1 + c * self.e2
+
+    def points_at(self, s):
+        c, n = self._turn(s)
+        return self.centre + self.radius * (c * self.e1 + n * self.e2)
 
     def bend(self, points):
         return -(points - self.centre) / self.radius ** 2
@@ -74,7 +113,7 @@ class SegmentSolution(ExactSolution):
         self.p0, p1 = (np.asarray(x, dtype=float) for x in (p0, p1))
         length = float(np.linalg.norm(p1 - self.p0))
         self.direction = (p1 - self.p0) / max(length, 1e-300)
-        super().__init__(surfaces, length, False, np.linspace(0.0, length, samples))
+        super().__init__(surfaces, length, False, even(0.0, length, samples))
 
     def at(self, s):
         return self.p0 + s[:, None] * self.direction, np.broadcast_to(self.direction, (len(s), 3)).copy()
@@ -112,7 +151,7 @@ def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent",
     axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve; topology the
     search that found it (CurveResult.topology)."""
     sol = CircleSolution(surfaces, *circle) if circle is not None else SegmentSolution(surfaces, *segment)
-    points = sol.at(sol.knots)[0]
+    points = sol.points_at(sol.knots)
     if sol.closed:
         points[-1] = points[0]
     params = surface_parameters(surfaces, points)

@@ -1,0 +1,92 @@
+"""The closed-form dense outputs' helpers (spatialkin.tracing.exact and .conic) against the numpy calls they stand
+for, bit for bit (tolerance 0: they promise numpy's own arithmetic), and the closed forms' settings (Scene) against
+make_settings (exactly equal, and the same errors for bad options)."""
+import math
+
+import numpy as np
+import pytest
+
+import spatialkin as sk
+from spatialkin.tracing.closed import closed_settings
+from spatialkin.tracing.conic import quarter_turn
+from spatialkin.tracing.exact import CircleSolution, SegmentSolution, counting, even
+from spatialkin.tracing.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL,
+                                      make_settings)
+
+#: Random (start, stop) pairs per count.
+DRAWS = 200
+
+
+@pytest.mark.parametrize("count", [2, 3, 17, 65, 257])
+def test_even_is_linspace(count):
+    """even(start, stop, count) is np.linspace(start, stop, count) bit for bit, over magnitudes from 1e-300 to
+    1e300, either sign, and a zero step (start == stop)."""
+    rng = np.random.default_rng(count)
+    for _ in range(DRAWS):
+        start, stop = (float(x) for x in rng.normal(size=2) * 10.0 ** rng.integers(-300, 300, 2))
+        for lo, hi in ((start, stop), (0.0, abs(stop)), (start, start), (0.0, 5e-324)):
+            assert np.array_equal(even(lo, hi, count), np.linspace(lo, hi, count))
+            assert np.signbit(even(lo, hi, count)).tolist() == np.signbit(np.linspace(lo, hi, count)).tolist()
+    assert np.array_equal(counting(count), np.arange(float(count)))
+    assert not counting(count).flags.writeable
+
+
+def test_quarter_turn_is_linspace():
+    assert np.array_equal(quarter_turn(65), np.linspace(0.0, 0.5 * math.pi, 17))
+    assert not quarter_turn(65).flags.writeable
+
+
+def test_circle_and_segment():
+    """The circle's frame as np.linalg.norm makes it, and points_at is at()[0] (circle and segment)."""
+    rng = np.random.default_rng(3)
+    sphere = sk.Sphere(1.0)
+    for _ in range(DRAWS):
+        axis = rng.normal(size=3)
+        axis /= np.linalg.norm(axis)
+        sol = CircleSolution((sphere, sphere), rng.normal(size=3), axis, rng.uniform(0.1, 3.0))
+        e1 = np.cross(axis, np.eye(3)[np.argmin(np.abs(axis))])
+        assert np.array_equal(sol.e1, e1 / np.linalg.norm(e1))
+        assert np.array_equal(sol.knots, np.linspace(0.0, sol.length, len(sol.knots)))
+        assert np.array_equal(sol.points_at(sol.knots), sol.at(sol.knots)[0])
+        seg = SegmentSolution((sphere, sphere), rng.normal(size=3), rng.normal(size=3))
+        assert np.array_equal(seg.points_at(seg.knots), seg.at(seg.knots)[0])
+        assert np.array_equal(seg.knots, np.linspace(0.0, seg.length, len(seg.knots)))
+
+
+def options(**changes):
+    out = dict(tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol=None, max_length=None,
+               singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK)
+    out.update(changes)
+    return out
+
+
+@pytest.mark.parametrize("changes", [{}, {"tol": 1e-6}, {"max_length": 3.5}, {"singular_tol": 1e-5},
+                                     {"atol": 1e-9, "rtol": 1e-8}])
+def test_closed_settings_match_make_settings(changes):
+    """The Scene's fields equal make_settings' (exactly), for placements far from the origin (the round-off floor
+    of the tolerance) and near it."""
+    rng = np.random.default_rng(5)
+    for offset in (0.0, 1e9):
+        a = sk.Sphere(0.8, sk.Frame(rng.normal(size=3) + offset))
+        b = sk.Plane(sk.Frame(rng.normal(size=3)), (-1.0, 2.0), (-3.0, 1.0))
+        for x, y in ((a, b), (b, a)):
+            scene = closed_settings(x, y, **options(**changes))
+            anchor = np.concatenate([x.frame.origin, y.frame.origin])
+            full = make_settings(x, y, *options(**changes).values(), True, anchor)
+            for name in scene._fields:
+                assert getattr(scene, name) == getattr(full, name) and type(getattr(scene, name)) is type(
+                    getattr(full, name)), name
+
+
+@pytest.mark.parametrize("changes", [{"tol": -1.0}, {"tol": "x"}, {"method": "Euler"}, {"rtol": 0.0},
+                                     {"atol": -1.0}, {"max_length": math.inf}, {"singular_tol": math.nan},
+                                     {"pullback": -1.0}])
+def test_bad_options_same_errors(changes):
+    """sk.intersect on a closed-form pair raises what make_settings raises for a bad option."""
+    a, b = sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.3)))
+    anchor = np.concatenate([a.frame.origin, b.frame.origin])
+    with pytest.raises(ValueError) as theirs:
+        make_settings(a, b, *options(**changes).values(), True, anchor)
+    with pytest.raises(ValueError) as ours:
+        sk.intersect(a, b, **options(**changes))
+    assert str(ours.value) == str(theirs.value)

@@ -21,9 +21,8 @@ import numpy as np
 
 from ..kernels import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, basis
-from .exact import exact_curve, surface_parameters
+from .exact import SampledResult, exact_curve
 from .placement import SAME
-from .result import CurveResult, unwrap_turns
 from .status import BOUNDARY, open_outcome, outcome
 from .topology import Topology
 from .trace import check_options, scene_lengths
@@ -387,16 +386,8 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
     closed = ends is None
     surfaces = (placed[0].surface, placed[1].surface)
     conic = Conic(shape, centre, P, Q, t_lo, t_hi)
-    sol = ConicSolution(surfaces, conic, t_lo, t_hi, closed)
-    points = conic.at(sol.t_knots)
-    if closed:
-        points[-1] = points[0]
-    params = surface_parameters(surfaces, points)
-    for k, surf in enumerate(placed):
-        if surf.kind.periodic[0]:                            # unwrapped along the curve, as the tracer's
-            unwrap_turns(params[:, 2 * k])
-    sol.params = params
-    if shape == PARABOLA and max(float(np.max(surf.distance(points))) for surf in surfaces) > (
+    sol = ConicSolution(surfaces, conic, t_lo, t_hi, closed)    # (its points and parameters made on first use)
+    if shape == PARABOLA and max(float(np.max(surf.distance(sol.samples()[0]))) for surf in surfaces) > (
             PARABOLA_CHECK * settings.tolerance):
         return None                                          # not quite parallel to the generatrix
     length = sol.length
@@ -407,5 +398,5 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
         status, message = open_outcome(
             BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
             BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=length)[1])
-    return CurveResult(points=points, s=sol.knots, params=params, closed=closed, length=length, status=status,
-                       message=message, tolerance=settings.tolerance, sol=sol, topology=topo)
+    return SampledResult(closed=closed, length=length, status=status, message=message, tolerance=settings.tolerance,
+                         sol=sol, topology=topo)

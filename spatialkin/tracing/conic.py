@@ -17,7 +17,8 @@ import math
 import numpy as np
 from scipy.special import ellipeinc
 
-from .exact import EXACT_SAMPLES, ExactSolution, counting
+from .exact import EXACT_SAMPLES, ExactSolution, counting, surface_parameters
+from .result import unwrap_turns
 from .traits import traits
 
 LINE, ELLIPSE, HYPERBOLA, PARABOLA = "line", "ellipse", "hyperbola", "parabola"
@@ -31,6 +32,11 @@ GL_PANEL = 0.5
 NEWTON_STEPS = 4
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(GL_NODES)
+#: The shapes whose arc length S(t) is computed value by value (the same at a t whatever else is evaluated with
+#: it): their length comes from the two ends, their knots are made on first use.
+ENDWISE = (LINE, ELLIPSE)
+#: The first and the last of the knots.
+ENDS = [0, -1]
 
 
 def basis(shape, t, order=0, lib=np):
@@ -111,17 +117,60 @@ class ConicSolution(ExactSolution):
         self.conic, self.t_lo = conic, float(t_lo)
         self.t_knots = t_lo + (t_hi - t_lo) / (samples - 1) * counting(samples)
         self.t_knots[-1] = t_hi
-        if closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0:
-            knots = conic.b * ellipse_turn(conic.m, samples)      # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
-            self.s0 = 0.0 if t_lo == 0 else -knots[-1]
+        self.turn = closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0
+        knots = None                            # (made on first use: the knots property)
+        if self.turn:                           # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
+            length = conic.b * (4 * ellipeinc(quarter_turn(samples)[-1], conic.m))      # (ellipse_turn's last)
+            self.s0 = 0.0 if t_lo == 0 else -length
+        elif conic.shape in ENDWISE:
+            ends = conic.arc(self.t_knots[ENDS])
+            self.s0 = float(ends[0])
+            length = ends[1] - self.s0
         else:
-            arcs = conic.arc(self.t_knots)
-            self.s0 = float(arcs[0])
-            knots = arcs - self.s0
-            knots[0] = 0.0
+            knots = self.arc_knots()
+            length = knots[-1]
         self.shape = conic.shape
-        self.params = None                      # the stored parameters, set by the builder (continuity reference)
-        super().__init__(surfaces, knots[-1], closed, knots)
+        super().__init__(surfaces, length, closed, knots)
+
+    @property
+    def knots(self):
+        """Arc lengths (N,) of the stored points, S(t_knots) - S(t_lo) (made on first use)."""
+        if self._knots is None:
+            self._knots = self.arc_knots()
+        return self._knots
+
+    @knots.setter
+    def knots(self, value):
+        self._knots = value
+
+    def arc_knots(self):
+        """The knots: a closed ellipse's by ellipse_turn, else S(t_knots) - S(t_lo) (setting s0 = S(t_lo))."""
+        if self.turn:
+            return self.conic.b * ellipse_turn(self.conic.m, len(self.t_knots))
+        arcs = self.conic.arc(self.t_knots)
+        self.s0 = float(arcs[0])
+        knots = arcs - self.s0
+        knots[0] = 0.0
+        return knots
+
+    def samples(self):
+        """(points (N, 3), params (N, 4)) at t_knots: the exact points (a closed curve's last is its first) and the
+        surfaces' parameters, periodic u unwrapped along the curve (as the tracer's), made once."""
+        if self._samples is None:
+            points = self.conic.at(self.t_knots)
+            if self.closed:
+                points[-1] = points[0]
+            params = surface_parameters(self.surfaces, points)
+            for k, surf in enumerate(self.surfaces):
+                if traits(surf).periodic[0]:
+                    unwrap_turns(params[:, 2 * k])
+            self._samples = points, params
+        return self._samples
+
+    @property
+    def params(self):
+        """The stored parameters (N, 4) (samples; the continuity reference of evaluate)."""
+        return self.samples()[1]
 
     def t_of(self, s):
         """Conic parameter t (M,) at wrapped arc lengths s (M,)."""
@@ -141,7 +190,7 @@ class ConicSolution(ExactSolution):
 
     def evaluate(self, s, with_params=True):
         s, points, tangents, params = super().evaluate(s, with_params)
-        if with_params and self.params is not None:
+        if with_params:
             near = self.params[np.clip(np.searchsorted(self.knots, s), 0, len(self.knots) - 1)]
             for k, surf in enumerate(self.surfaces):
                 kind = traits(surf)

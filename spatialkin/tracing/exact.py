@@ -1,7 +1,9 @@
 """Components known in closed form: a circle or a segment along which the two surfaces touch (status 'tangent'; the
 tracer cannot follow them, the normals being parallel all along), a circle about the common axis of two surfaces of
 revolution (status 'closed'), a single point where they touch (status 'contact'). Each is a CurveResult whose dense
-output evaluates the closed form exactly.
+output evaluates the closed form exactly; a circle's or a segment's (and a conic's, spatialkin.tracing.conic) is a
+SampledResult, whose stored points and parameters are made on first access (from the dense output, the same
+arrays whenever they are made).
 """
 import functools
 import math
@@ -41,9 +43,51 @@ def even(start, stop, count):
     return out
 
 
+#: The fields of a SampledResult taken from its dense output's samples (ExactSolution.samples) on first access.
+SAMPLED_FIELDS = ("points", "s", "params")
+
+
+class SampledResult(CurveResult):
+    """A CurveResult of a closed form whose points, s and params, unless given, are its dense output's stored
+    samples (``sol.samples()`` and ``sol.knots``: the exact points and the surfaces' parameters at the knots), made
+    on first access: what sk.intersect returns costs no sampling until a caller reads them, and reads the same
+    arrays then."""
+
+    def __init__(self, *, points=None, s=None, params=None, **fields):
+        super().__init__(points=points, s=s, params=params, **fields)
+        state = self.__dict__
+        for name in SAMPLED_FIELDS:
+            if state[name] is None:
+                del state[name]                 # (read through __getattr__)
+
+    def __getattr__(self, name):
+        """A sampled field not made yet (Python asks only for attributes the instance does not hold)."""
+        state = self.__dict__
+        if name in SAMPLED_FIELDS and "sol" in state:
+            sol = state["sol"]
+            points, params = sol.samples()
+            fields = {"points": points, "s": sol.knots, "params": params}
+            for key in SAMPLED_FIELDS:
+                state.setdefault(key, fields[key])
+            return state[name]
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+
 class ExactSolution(CurveSolution):
     """Closed-form dense output: subclasses give the points and unit tangents (``at``) and the curvature vectors
     (``bend``); the parameters are the surfaces' own (Surface.parameters) of the exact points."""
+
+    _samples = None
+
+    def samples(self):
+        """(points (N, 3), params (N, 4)) at the knots: the exact points (a closed curve's last is its first) and
+        their parameters on the two surfaces (surface_parameters), made once."""
+        if self._samples is None:
+            points = self.points_at(self.knots)
+            if self.closed:
+                points[-1] = points[0]
+            self._samples = points, surface_parameters(self.surfaces, points)
+        return self._samples
 
     def at(self, s):
         """(points (M, 3), unit tangents (M, 3)) at the wrapped arc lengths s (M,)."""
@@ -151,13 +195,9 @@ def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent",
     axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve; topology the
     search that found it (CurveResult.topology)."""
     sol = CircleSolution(surfaces, *circle) if circle is not None else SegmentSolution(surfaces, *segment)
-    points = sol.points_at(sol.knots)
-    if sol.closed:
-        points[-1] = points[0]
-    params = surface_parameters(surfaces, points)
     status, message = outcome(event, shape=sol.shape)
-    return CurveResult(points=points, s=sol.knots, params=params, closed=sol.closed, length=sol.length,
-                       status=status, message=message, tolerance=tolerance, sol=sol, topology=topology)
+    return SampledResult(closed=sol.closed, length=sol.length, status=status, message=message, tolerance=tolerance,
+                         sol=sol, topology=topology)
 
 
 def surface_parameters(surfaces, points):

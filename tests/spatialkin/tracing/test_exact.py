@@ -90,3 +90,57 @@ def test_bad_options_same_errors(changes):
     with pytest.raises(ValueError) as ours:
         sk.intersect(a, b, **options(**changes))
     assert str(ours.value) == str(theirs.value)
+
+
+def pairs():
+    """The closed-form pairs of the bench (spatialkin.bench.kinds), both orders, and a plane-cone hyperbola, a
+    plane-cylinder pair of lines and an open ellipse arc (a trimmed plane across a cylinder)."""
+    from spatialkin.bench.kinds import pair_kind_cases
+    closed = ("plane-plane", "plane-sphere", "plane-cylinder", "plane-cone", "sphere-sphere")
+    out = [(a, b) for kind, a, b in pair_kind_cases() if kind in closed]
+    cone = sk.Cone(0.5, sk.Frame((0.0, 0.0, 0.0), np.eye(3)), (-2.0, 2.5))
+    steep = sk.Plane(sk.Frame((0.3, 0.0, 0.0), sk.frame.rotation_about((0.0, 1.0, 0.0), math.pi / 2 - 0.2)))
+    cyl = sk.Cylinder(0.8, sk.Frame((0.1, 0.0, 0.0)), (-2.0, 2.0))
+    along = sk.Plane(sk.Frame((0.3, 0.0, 0.0), sk.frame.rotation_about((0.0, 1.0, 0.0), math.pi / 2)), (-3, 3),
+                     (-3, 3))
+    across = sk.Plane(sk.Frame((0.0, 0.0, 0.2), sk.frame.rotation_about((1.0, 0.0, 0.0), 0.3)), (-0.5, 0.5),
+                      (-3, 3))
+    out += [(steep, cone), (along, cyl), (across, cyl)]
+    return out + [(b, a) for a, b in out]
+
+
+def fingerprint(curve, first):
+    """The stored and dense values of a curve, its dense output read first (first='dense') or its stored samples
+    first (first='stored')."""
+    s = np.linspace(0.0, curve.length, 7)
+    out = {}
+    order = (("dense", "stored") if first == "dense" else ("stored", "dense"))
+    for what in order:
+        if what == "dense":
+            out["at"], out["dense_params"] = curve(s), curve.parameters(s)
+        else:
+            out["points"], out["s"], out["params"] = curve.points, curve.s, curve.params
+    return out
+
+
+def test_samples_made_on_first_use():
+    """A closed form's stored points, arc lengths and parameters (made on first access) are the same arrays, to the
+    bit, whether they or the dense output are read first, and after pickling; the result's repr and
+    dataclasses.replace see them."""
+    import dataclasses
+    import pickle
+    handled = 0
+    for a, b in pairs():
+        first, second = sk.intersect(a, b), sk.intersect(a, b)
+        assert len(first) == len(second)
+        for c, d in zip(first, second):
+            handled += c.topology.mode == "closed_form"
+            x, y = fingerprint(c, "dense"), fingerprint(d, "stored")
+            unpickled = pickle.loads(pickle.dumps(sk.intersect(a, b)))[first.index(c)]
+            z = fingerprint(unpickled, "stored")
+            for key in x:
+                assert np.array_equal(x[key], y[key]) and np.array_equal(x[key], z[key]), key
+            e = sk.Curve(dataclasses.replace(sk.intersect(a, b)[first.index(c)].result, certificate=None))
+            assert np.array_equal(e.points, y["points"]) and np.array_equal(e.params, y["params"])
+            assert "points=array" in repr(c.result)
+    assert handled >= 12

@@ -87,8 +87,8 @@ def closed_form(a, b, settings):
     or its placement is not handled here (see the module docstring). settings: a Scene or a trace Settings."""
     placed = (Placed(a), Placed(b))
     names = (placed[0].name, placed[1].name)
-    if not (math.isfinite(placed[0].kind.extent(a)) or math.isfinite(placed[1].kind.extent(b))):
-        return None
+    if not any(p.kind.compact or math.isfinite(p.kind.extent(p.surface)) for p in placed):
+        return None                                          # (a compact kind is bounded)
     graze = GRAZE * settings.tolerance
     topo = Topology(P=a, Q=b, mode=MODE)
     if names == ("sphere", "sphere"):
@@ -341,7 +341,10 @@ def clip(shape, rows, trims, graze):
 
     def inside(t):
         f, g = scalar_basis(shape, t)
-        return all((alpha + beta * f + gamma * g) * side <= 0.0 for alpha, beta, gamma, side in linear)
+        for alpha, beta, gamma, side in linear:
+            if not (alpha + beta * f + gamma * g) * side <= 0.0:
+                return False
+        return True
 
     if not events:
         if inside(0.0):

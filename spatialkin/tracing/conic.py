@@ -115,15 +115,15 @@ class ConicSolution(ExactSolution):
 
     def __init__(self, surfaces, conic, t_lo, t_hi, closed, samples=EXACT_SAMPLES):
         self.conic, self.t_lo = conic, float(t_lo)
-        self.t_knots = t_lo + (t_hi - t_lo) / (samples - 1) * counting(samples)
-        self.t_knots[-1] = t_hi
+        self._t_range, self._t_knots = (t_lo, t_hi, (t_hi - t_lo) / (samples - 1), samples), None
         self.turn = closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0
         knots = None                            # (made on first use: the knots property)
         if self.turn:                           # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
             length = conic.b * (4 * ellipeinc(quarter_turn(samples)[-1], conic.m))      # (ellipse_turn's last)
             self.s0 = 0.0 if t_lo == 0 else -length
         elif conic.shape in ENDWISE:
-            ends = conic.arc(self.t_knots[ENDS])
+            step = self._t_range[2]
+            ends = conic.arc(np.array([t_lo + step * 0.0, t_hi]))     # (t_knots' first and last)
             self.s0 = float(ends[0])
             length = ends[1] - self.s0
         else:
@@ -131,6 +131,15 @@ class ConicSolution(ExactSolution):
             length = knots[-1]
         self.shape = conic.shape
         super().__init__(surfaces, length, closed, knots)
+
+    @property
+    def t_knots(self):
+        """The conic parameters (N,) of the stored points, evenly spaced from t_lo to t_hi (made on first use)."""
+        if self._t_knots is None:
+            t_lo, t_hi, step, samples = self._t_range
+            self._t_knots = t_lo + step * counting(samples)
+            self._t_knots[-1] = t_hi
+        return self._t_knots
 
     @property
     def knots(self):
@@ -146,7 +155,7 @@ class ConicSolution(ExactSolution):
     def arc_knots(self):
         """The knots: a closed ellipse's by ellipse_turn, else S(t_knots) - S(t_lo) (setting s0 = S(t_lo))."""
         if self.turn:
-            return self.conic.b * ellipse_turn(self.conic.m, len(self.t_knots))
+            return self.conic.b * ellipse_turn(self.conic.m, self._t_range[3])
         arcs = self.conic.arc(self.t_knots)
         self.s0 = float(arcs[0])
         knots = arcs - self.s0

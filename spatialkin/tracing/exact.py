@@ -48,17 +48,16 @@ SAMPLED_FIELDS = ("points", "s", "params")
 
 
 class SampledResult(CurveResult):
-    """A CurveResult of a closed form whose points, s and params, unless given, are its dense output's stored
-    samples (``sol.samples()`` and ``sol.knots``: the exact points and the surfaces' parameters at the knots), made
-    on first access: what sk.intersect returns costs no sampling until a caller reads them, and reads the same
-    arrays then."""
+    """A CurveResult of a closed form whose points, s and params, unless given (all three), are its dense output's
+    stored samples (``sol.samples()`` and ``sol.knots``: the exact points and the surfaces' parameters at the
+    knots), made on first access: what sk.intersect returns costs no sampling until a caller reads them, and reads
+    the same arrays then."""
 
     def __init__(self, *, points=None, s=None, params=None, **fields):
-        super().__init__(points=points, s=s, params=params, **fields)
-        state = self.__dict__
-        for name in SAMPLED_FIELDS:
-            if state[name] is None:
-                del state[name]                 # (read through __getattr__)
+        CurveResult.__init__(self, points=points, s=s, params=params, **fields)
+        if points is None:                      # (all three given, or none: read through __getattr__)
+            state = self.__dict__
+            del state["points"], state["s"], state["params"]
 
     def __getattr__(self, name):
         """A sampled field not made yet (Python asks only for attributes the instance does not hold)."""
@@ -66,9 +65,7 @@ class SampledResult(CurveResult):
         if name in SAMPLED_FIELDS and "sol" in state:
             sol = state["sol"]
             points, params = sol.samples()
-            fields = {"points": points, "s": sol.knots, "params": params}
-            for key in SAMPLED_FIELDS:
-                state.setdefault(key, fields[key])
+            state.update(points=points, s=sol.knots, params=params)
             return state[name]
         raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 

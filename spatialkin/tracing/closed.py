@@ -72,11 +72,11 @@ class Placed:
 
     __slots__ = ("surface", "kind", "name", "origin", "rot", "bounds")
 
-    def __init__(self, surface):
+    def __init__(self, surface, kind):
         data = surface.data.tolist()
         self.surface = surface
-        self.kind = traits(surface)
-        self.name = self.kind.name
+        self.kind = kind
+        self.name = kind.name
         self.origin = data[ks.ORIGIN:ks.ORIGIN + 3]
         self.rot = [data[ks.ROT + 3 * i:ks.ROT + 3 * i + 3] for i in range(3)]
         self.bounds = data[ks.BOUNDS:ks.BOUNDS + 4]
@@ -85,9 +85,10 @@ class Placed:
 def closed_form(a, b, settings):
     """The components of a ∩ b (CurveResults, longest first, as sk.intersect sorts them), or None when the pair
     or its placement is not handled here (see the module docstring). settings: a Scene or a trace Settings."""
-    placed = (Placed(a), Placed(b))
-    names = (placed[0].name, placed[1].name)
-    if not any(p.kind.compact or math.isfinite(p.kind.extent(p.surface)) for p in placed):
+    kinds = (traits(a), traits(b))
+    names = (kinds[0].name, kinds[1].name)
+    if not (kinds[0].compact or kinds[1].compact or math.isfinite(kinds[0].extent(a))
+            or math.isfinite(kinds[1].extent(b))):
         return None                                          # (a compact kind is bounded)
     graze = GRAZE * settings.tolerance
     topo = Topology(P=a, Q=b, mode=MODE)
@@ -96,6 +97,7 @@ def closed_form(a, b, settings):
         if not circle:
             return None if circle is None else []
         return [exact_curve((a, b), settings.tolerance, circle=circle, event="axis_circle", topology=topo)]
+    placed = (Placed(a, kinds[0]), Placed(b, kinds[1]))
     if names == ("plane", "plane"):
         conics = plane_line(*placed, graze, settings.scale)
     elif "plane" in names and (names[0] in QUADRICS or names[1] in QUADRICS):

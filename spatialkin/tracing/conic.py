@@ -117,7 +117,7 @@ class ConicSolution(ExactSolution):
         self.conic, self.t_lo = conic, float(t_lo)
         self._t_range, self._t_knots = (t_lo, t_hi, (t_hi - t_lo) / (samples - 1), samples), None
         self.turn = closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0
-        knots = None                            # (made on first use: the knots property)
+        knots = None                            # (made on first use: make_knots)
         if self.turn:                           # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
             length = conic.b * (4 * ellipeinc(quarter_turn(samples)[-1], conic.m))      # (ellipse_turn's last)
             self.s0 = 0.0 if t_lo == 0 else -length
@@ -127,7 +127,7 @@ class ConicSolution(ExactSolution):
             self.s0 = float(ends[0])
             length = ends[1] - self.s0
         else:
-            knots = self.arc_knots()
+            knots = self.make_knots()
             length = knots[-1]
         self.shape = conic.shape
         super().__init__(surfaces, length, closed, knots)
@@ -141,18 +141,7 @@ class ConicSolution(ExactSolution):
             self._t_knots[-1] = t_hi
         return self._t_knots
 
-    @property
-    def knots(self):
-        """Arc lengths (N,) of the stored points, S(t_knots) - S(t_lo) (made on first use)."""
-        if self._knots is None:
-            self._knots = self.arc_knots()
-        return self._knots
-
-    @knots.setter
-    def knots(self, value):
-        self._knots = value
-
-    def arc_knots(self):
+    def make_knots(self):
         """The knots: a closed ellipse's by ellipse_turn, else S(t_knots) - S(t_lo) (setting s0 = S(t_lo))."""
         if self.turn:
             return self.conic.b * ellipse_turn(self.conic.m, self._t_range[3])

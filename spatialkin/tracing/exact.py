@@ -75,6 +75,22 @@ class ExactSolution(CurveSolution):
     (``bend``); the parameters are the surfaces' own (Surface.parameters) of the exact points."""
 
     _samples = None
+    _knots = None
+
+    @property
+    def knots(self):
+        """Arc lengths (N,) of the stored points (make_knots, on first use)."""
+        if self._knots is None:
+            self._knots = self.make_knots()
+        return self._knots
+
+    @knots.setter
+    def knots(self, value):
+        self._knots = value
+
+    def make_knots(self):
+        """The knots, for a subclass that gives none to CurveSolution.__init__."""
+        raise NotImplementedError
 
     def samples(self):
         """(points (N, 3), params (N, 4)) at the knots: the exact points (a closed curve's last is its first) and
@@ -120,13 +136,24 @@ class CircleSolution(ExactSolution):
     shape = "circle"
 
     def __init__(self, surfaces, centre, axis, radius, samples=EXACT_SAMPLES):
-        self.centre, axis, self.radius = np.asarray(centre, dtype=float), np.asarray(axis, dtype=float), float(radius)
-        helper = AXES[np.argmin(np.abs(axis))]
-        e1 = cross(axis, helper)
-        self.e1 = e1 / math.sqrt(e1.dot(e1))                 # (np.linalg.norm's arithmetic)
-        self.e2 = cross(axis, self.e1)
-        length = 2 * np.pi * self.radius
-        super().__init__(surfaces, length, True, even(0.0, length, samples))
+        self.centre, self.axis, self.radius = (np.asarray(centre, dtype=float), np.asarray(axis, dtype=float),
+                                               float(radius))
+        self.count = samples
+        super().__init__(surfaces, 2 * np.pi * self.radius, True, None)      # (the knots and e1, e2 on first use)
+
+    def make_knots(self):
+        return even(0.0, self.length, self.count)
+
+    @functools.cached_property
+    def e1(self):
+        """The unit vector (3,) from the centre to the point at s = 0."""
+        e1 = cross(self.axis, AXES[np.argmin(np.abs(self.axis))])
+        return e1 / math.sqrt(e1.dot(e1))                    # (np.linalg.norm's arithmetic)
+
+    @functools.cached_property
+    def e2(self):
+        """axis x e1 (3,)."""
+        return cross(self.axis, self.e1)
 
     def _turn(self, s):
         """(cos, sin) (M, 1) each of the angles at arc lengths s (M,)."""
@@ -154,7 +181,11 @@ class SegmentSolution(ExactSolution):
         self.p0, p1 = (np.asarray(x, dtype=float) for x in (p0, p1))
         length = float(np.linalg.norm(p1 - self.p0))
         self.direction = (p1 - self.p0) / max(length, 1e-300)
-        super().__init__(surfaces, length, False, even(0.0, length, samples))
+        self.count = samples
+        super().__init__(surfaces, length, False, None)         # (the knots on first use)
+
+    def make_knots(self):
+        return even(0.0, self.length, self.count)
 
     def at(self, s):
         return self.p0 + s[:, None] * self.direction, np.broadcast_to(self.direction, (len(s), 3)).copy()

@@ -37,6 +37,8 @@ MAX_LENGTH_TURNS = 32
 GAP_FRACTION = 1e-2
 #: ... but never below this many ulps of the coordinates' magnitude (round-off floor).
 ROUNDOFF_ULPS = 64
+#: The ulp of 1.0 (np.float64).
+EPS = np.finfo(float).eps
 #: solve_ivp's methods, and "compiled": solve_ivp with spatialkin.tracing.ode.CompiledRK45 (scipy's RK45 steps,
 #: many per solver step in compiled code), handing hard cases to solve_ivp's DOP853.
 METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", "compiled")
@@ -86,8 +88,8 @@ def scene_lengths(a, b, tol, max_length, magnitude):
         bound = min(extent(a), extent(b))
         max_length = MAX_LENGTH_TURNS * 2 * math.pi * (bound if math.isfinite(bound) else 1e3 * scale)
     magnitude = max(scale, magnitude)
-    gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
-    tolerance = max(tol * scale, ROUNDOFF_ULPS * np.finfo(float).eps * magnitude)
+    gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * EPS * magnitude)
+    tolerance = max(tol * scale, ROUNDOFF_ULPS * EPS * magnitude)
     return scale, tolerance, gap_tol, max_length
 
 

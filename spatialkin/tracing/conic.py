@@ -44,14 +44,14 @@ def basis(shape, t, order=0, lib=np):
     with lib numpy, or one float with lib math (the closed forms' scalar arithmetic)."""
     if shape == ELLIPSE:
         c, s = lib.cos(t), lib.sin(t)
-        return ((c, s), (-s, c), (-c, -s))[order]
+        return (c, s) if order == 0 else (-s, c) if order == 1 else (-c, -s)
     if shape == HYPERBOLA:
         c, s = lib.cosh(t), lib.sinh(t)
-        return ((c, s), (s, c), (c, s))[order]
+        return (s, c) if order == 1 else (c, s)
     zero, one = (np.zeros_like(t), np.ones_like(t)) if lib is np else (0.0, 1.0)
     if shape == PARABOLA:
-        return ((t * t, t), (2.0 * t, one), (2.0 * one, zero))[order]
-    return ((zero, t), (zero, one), (zero, zero))[order]
+        return (t * t, t) if order == 0 else (2.0 * t, one) if order == 1 else (2.0 * one, zero)
+    return (zero, t) if order == 0 else (zero, one) if order == 1 else (zero, zero)
 
 
 class Conic:

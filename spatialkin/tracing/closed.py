@@ -140,7 +140,7 @@ def cross(x, y):
 def combine(rows, f, g):
     """rows[0] + f rows[1] + g rows[2] (3-lists)."""
     c, p, q = rows
-    return [c[i] + f * p[i] + g * q[i] for i in range(3)]
+    return [c[0] + f * p[0] + g * q[0], c[1] + f * p[1] + g * q[1], c[2] + f * p[2] + g * q[2]]
 
 
 def scalar_basis(shape, t, order=0):
@@ -155,7 +155,9 @@ def to_global(rot, x):
 
 def to_local(rot, x):
     """rot^T x."""
-    return [rot[0][j] * x[0] + rot[1][j] * x[1] + rot[2][j] * x[2] for j in range(3)]
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = rot
+    return [r00 * x[0] + r10 * x[1] + r20 * x[2], r01 * x[0] + r11 * x[1] + r21 * x[2],
+            r02 * x[0] + r12 * x[1] + r22 * x[2]]
 
 
 # --- the conics: (shape, [centre, P, Q]) in global coordinates ------------------------------------------------
@@ -384,7 +386,7 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
     along = cross(na, nb)
     if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
         return None
-    centre, P, Q = (np.array(x) for x in rows)
+    centre, P, Q = np.array(rows)                            # (rows of one array)
     if dot(along, combine([[0.0] * 3, rows[1], rows[2]], *scalar_basis(shape, t_mid, 1))) < 0:
         Q, t_lo, t_hi = -Q, -t_hi, -t_lo                     # run it backwards: C(-t), g odd
         ends = None if ends is None else ends[::-1]

@@ -144,3 +144,29 @@ def test_samples_made_on_first_use():
             assert np.array_equal(e.points, y["points"]) and np.array_equal(e.params, y["params"])
             assert "points=array" in repr(c.result)
     assert handled >= 12
+
+
+def test_sampled_result_init_is_curve_result_init():
+    """SampledResult writes what CurveResult's generated init writes (every field, the defaults, the checks of
+    __post_init__), given all fields or all but the sampled ones; a missing field or a bad status raises."""
+    from spatialkin.tracing.exact import SampledResult
+    from spatialkin.tracing.result import CurveResult
+    import dataclasses
+    a = sk.Sphere(1.0)
+    sol = CircleSolution((a, a), np.zeros(3), np.array([0.0, 0.0, 1.0]), 1.0)
+    fields = dict(closed=1, length=np.float64(2.0), status="closed", message="m", tolerance=1e-10, sol=sol, nfev=3.0)
+    points, params = sol.samples()
+    ours, theirs = SampledResult(**fields), CurveResult(points=points, s=sol.knots, params=params, **fields)
+    given = SampledResult(points=points, s=sol.knots, params=params, **fields)
+    for f in dataclasses.fields(CurveResult):
+        for x in (ours, given):
+            value, expected = getattr(x, f.name), getattr(theirs, f.name)
+            assert type(value) is type(expected), f.name
+            assert (np.array_equal(value, expected) if isinstance(value, np.ndarray) else value == expected), f.name
+    assert set(ours.__dict__) == set(theirs.__dict__) and set(given.__dict__) == set(theirs.__dict__)
+    with pytest.raises(ValueError):
+        SampledResult(**dict(fields, status="nonsense"))
+    with pytest.raises(TypeError):
+        SampledResult(**{k: v for k, v in fields.items() if k != "sol"})
+    with pytest.raises(TypeError):
+        SampledResult(**fields, colour="red")

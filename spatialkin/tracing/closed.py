@@ -15,6 +15,7 @@ tangency or a touch of a trim edge or corner within GRAZE x tolerance, a plane t
 surfaces, near-parallel configurations whose conic would be huge, both surfaces unbounded.
 """
 import collections
+import functools
 import math
 
 import numpy as np
@@ -143,9 +144,9 @@ def combine(rows, f, g):
     return [c[0] + f * p[0] + g * q[0], c[1] + f * p[1] + g * q[1], c[2] + f * p[2] + g * q[2]]
 
 
-def scalar_basis(shape, t, order=0):
-    """(f, g) of spatialkin.tracing.conic at one float t (math, not numpy), or their derivatives."""
-    return basis(shape, t, order, math)
+#: scalar_basis(shape, t, order=0): (f, g) of spatialkin.tracing.conic at one float t (math, not numpy), or their
+#: derivatives (conic.basis with lib=math, called without a Python frame of its own).
+scalar_basis = functools.partial(basis, lib=math)
 
 
 def to_global(rot, x):

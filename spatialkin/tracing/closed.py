@@ -79,7 +79,7 @@ class Placed:
         self.kind = kind
         self.name = kind.name
         self.origin = data[ks.ORIGIN:ks.ORIGIN + 3]
-        self.rot = [data[ks.ROT + 3 * i:ks.ROT + 3 * i + 3] for i in range(3)]
+        self.rot = [data[ks.ROT:ks.ROT + 3], data[ks.ROT + 3:ks.ROT + 6], data[ks.ROT + 6:ks.ROT + 9]]
         self.bounds = data[ks.BOUNDS:ks.BOUNDS + 4]
 
 
@@ -150,8 +150,10 @@ scalar_basis = functools.partial(basis, lib=math)
 
 
 def to_global(rot, x):
-    """rot x (the local vector x in global coordinates)."""
-    return [dot(rot[0], x), dot(rot[1], x), dot(rot[2], x)]
+    """rot x (the local vector x in global coordinates): dot(row, x) for each row."""
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = rot
+    return [r00 * x[0] + r01 * x[1] + r02 * x[2], r10 * x[0] + r11 * x[1] + r12 * x[2],
+            r20 * x[0] + r21 * x[1] + r22 * x[2]]
 
 
 def to_local(rot, x):

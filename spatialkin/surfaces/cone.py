@@ -54,7 +54,8 @@ class ConeTraits(SurfaceTraits):
         return 1.0
 
     def scale_length(self, surface):
-        return float(self.size(surface)) if all(math.isfinite(v) for v in surface.v_range) else None
+        lo, hi = surface.v_range
+        return float(self.size(surface)) if math.isfinite(lo) and math.isfinite(hi) else None
 
     def extent(self, surface):
         v0, v1 = surface.v_range

@@ -14,17 +14,19 @@ oriented as the tracer runs them (along N_a x N_b), sampled as exact points with
 tangency or a touch of a trim edge or corner within GRAZE x tolerance, a plane through a cone's apex, coincident
 surfaces, near-parallel configurations whose conic would be huge, both surfaces unbounded.
 """
+import collections
+import functools
 import math
 
 import numpy as np
 
 from ..kernels import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, basis
-from .exact import exact_curve, surface_parameters
+from .exact import SampledResult, exact_curve
 from .placement import SAME
-from .result import CurveResult, unwrap_turns
 from .status import BOUNDARY, open_outcome, outcome
 from .topology import Topology
+from .trace import check_options, scene_lengths
 from .traits import traits
 
 #: A curve within this many times the tolerance of touching a trim level, a corner, or the other surface
@@ -51,15 +53,44 @@ EDGES = ("u_min", "u_max", "v_min", "v_max")
 QUADRICS = ("sphere", "cylinder", "cone")
 TWO_PI = 2.0 * math.pi
 
+#: What the closed forms read of the settings (a trace Settings has these fields too; closed_form takes either).
+Scene = collections.namedtuple("Scene", "scale tolerance singular_tol max_length")
+
+
+def closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback):
+    """The Scene of sk.intersect's options (named as there), checked as make_settings checks them (ValueError
+    naming a bad one), its lengths those make_settings gives (spatialkin.tracing.trace.scene_lengths)."""
+    tol, _, _, max_length, singular_tol, _ = check_options(tol, method, rtol, atol, max_length, singular_tol,
+                                                           pullback)
+    origins = a.frame.origin.tolist() + b.frame.origin.tolist()
+    scale, tolerance, _, max_length = scene_lengths(a, b, tol, max_length, max(map(abs, origins)))
+    return Scene(scale, tolerance, singular_tol, max_length)
+
+
+class Placed:
+    """A surface as the closed forms read it, once per call: its traits and name, and its frame's origin (3 floats),
+    rotation (3 rows of 3 floats) and trims (u_min, u_max, v_min, v_max) as floats, read from its packed data."""
+
+    __slots__ = ("surface", "kind", "name", "origin", "rot", "bounds")
+
+    def __init__(self, surface, kind):
+        data = surface.data.tolist()
+        self.surface = surface
+        self.kind = kind
+        self.name = kind.name
+        self.origin = data[ks.ORIGIN:ks.ORIGIN + 3]
+        self.rot = [data[ks.ROT:ks.ROT + 3], data[ks.ROT + 3:ks.ROT + 6], data[ks.ROT + 6:ks.ROT + 9]]
+        self.bounds = data[ks.BOUNDS:ks.BOUNDS + 4]
 
 
 def closed_form(a, b, settings):
     """The components of a ∩ b (CurveResults, longest first, as sk.intersect sorts them), or None when the pair
-    or its placement is not handled here (see the module docstring)."""
+    or its placement is not handled here (see the module docstring). settings: a Scene or a trace Settings."""
     kinds = (traits(a), traits(b))
     names = (kinds[0].name, kinds[1].name)
-    if not (math.isfinite(kinds[0].extent(a)) or math.isfinite(kinds[1].extent(b))):
-        return None
+    if not (kinds[0].compact or kinds[1].compact or math.isfinite(kinds[0].extent(a))
+            or math.isfinite(kinds[1].extent(b))):
+        return None                                          # (a compact kind is bounded)
     graze = GRAZE * settings.tolerance
     topo = Topology(P=a, Q=b, mode=MODE)
     if names == ("sphere", "sphere"):
@@ -67,10 +98,11 @@ def closed_form(a, b, settings):
         if not circle:
             return None if circle is None else []
         return [exact_curve((a, b), settings.tolerance, circle=circle, event="axis_circle", topology=topo)]
+    placed = (Placed(a, kinds[0]), Placed(b, kinds[1]))
     if names == ("plane", "plane"):
-        conics = plane_line(a, b, graze, settings.scale)
+        conics = plane_line(*placed, graze, settings.scale)
     elif "plane" in names and (names[0] in QUADRICS or names[1] in QUADRICS):
-        plane, quadric = (a, b) if names[0] == "plane" else (b, a)
+        plane, quadric = placed if names[0] == "plane" else placed[::-1]
         conics = plane_conics(plane, quadric, graze, settings.scale)
         if isinstance(conics, tuple):                       # a circle about a common axis: as the general path
             return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=conics,
@@ -79,7 +111,7 @@ def closed_form(a, b, settings):
         return None
     if not conics:
         return conics                                        # None (declined) or [] (nothing)
-    trims = linear_trims((a, b))
+    trims = linear_trims(placed)
     if not trims:
         return None
     curves = []
@@ -88,7 +120,7 @@ def closed_form(a, b, settings):
         if arcs is None:
             return None
         for t_lo, t_hi, ends in arcs:
-            curve = component((a, b), shape, rows, t_lo, t_hi, ends, settings, topo)
+            curve = component(placed, shape, rows, t_lo, t_hi, ends, settings, topo)
             if curve is None or curve.length > MAX_LENGTH_SHARE * settings.max_length:
                 return None                                  # (the tracer would stop at max_length)
             curves.append(curve)
@@ -109,27 +141,26 @@ def cross(x, y):
 def combine(rows, f, g):
     """rows[0] + f rows[1] + g rows[2] (3-lists)."""
     c, p, q = rows
-    return [c[i] + f * p[i] + g * q[i] for i in range(3)]
+    return [c[0] + f * p[0] + g * q[0], c[1] + f * p[1] + g * q[1], c[2] + f * p[2] + g * q[2]]
 
 
-def scalar_basis(shape, t, order=0):
-    """(f, g) of spatialkin.tracing.conic at one float t (math, not numpy), or their derivatives."""
-    return basis(shape, t, order, math)
-
-
-def local_frame(surface):
-    """(origin, rotation) of the surface as lists (rotation rows)."""
-    return surface.frame.origin.tolist(), surface.frame.rotation.tolist()
+#: scalar_basis(shape, t, order=0): (f, g) of spatialkin.tracing.conic at one float t (math, not numpy), or their
+#: derivatives (conic.basis with lib=math, called without a Python frame of its own).
+scalar_basis = functools.partial(basis, lib=math)
 
 
 def to_global(rot, x):
-    """rot x (the local vector x in global coordinates)."""
-    return [dot(rot[0], x), dot(rot[1], x), dot(rot[2], x)]
+    """rot x (the local vector x in global coordinates): dot(row, x) for each row."""
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = rot
+    return [r00 * x[0] + r01 * x[1] + r02 * x[2], r10 * x[0] + r11 * x[1] + r12 * x[2],
+            r20 * x[0] + r21 * x[1] + r22 * x[2]]
 
 
 def to_local(rot, x):
     """rot^T x."""
-    return [rot[0][j] * x[0] + rot[1][j] * x[1] + rot[2][j] * x[2] for j in range(3)]
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = rot
+    return [r00 * x[0] + r10 * x[1] + r20 * x[2], r01 * x[0] + r11 * x[1] + r21 * x[2],
+            r02 * x[0] + r12 * x[1] + r22 * x[2]]
 
 
 # --- the conics: (shape, [centre, P, Q]) in global coordinates ------------------------------------------------
@@ -151,9 +182,9 @@ def sphere_circle(a, b, graze, scale):
 
 
 def plane_line(a, b, graze, scale):
-    """[(LINE, rows)] of two planes; [] for parallel planes apart; None for (nearly) coplanar ones or a line
-    farther than LARGE x scale."""
-    (oa, ra), (ob, rb) = local_frame(a), local_frame(b)
+    """[(LINE, rows)] of two planes (Placed); [] for parallel planes apart; None for (nearly) coplanar ones or a
+    line farther than LARGE x scale."""
+    (oa, ra), (ob, rb) = (a.origin, a.rot), (b.origin, b.rot)
     n1, n2 = [row[2] for row in ra], [row[2] for row in rb]
     along = cross(n1, n2)
     sin = math.sqrt(dot(along, along))
@@ -168,26 +199,27 @@ def plane_line(a, b, graze, scale):
 
 
 def quadric_form(quadric):
-    """(mu, rho): the quadric is x^2 + y^2 + mu z^2 = rho in its local coordinates."""
-    name = traits(quadric).name
+    """(mu, rho): the quadric (Placed) is x^2 + y^2 + mu z^2 = rho in its local coordinates."""
+    name, surface = quadric.name, quadric.surface
     if name == "sphere":
-        return 1.0, quadric.radius ** 2
+        return 1.0, surface.radius ** 2
     if name == "cylinder":
-        return 0.0, quadric.radius ** 2
-    tan = float(quadric.data[ks.P1])
+        return 0.0, surface.radius ** 2
+    tan = float(surface.data[ks.P1])
     return -tan * tan, 0.0
 
 
 def plane_conics(plane, quadric, graze, scale):
-    """[(shape, rows)] (global) of the plane and the quadric; a tuple (centre, axis, radius) for the circle of an
-    untrimmed plane about the quadric's axis (or a sphere's), () when nothing is there; None where declined."""
-    origin, rot = local_frame(quadric)
-    p_origin, p_rot = local_frame(plane)
+    """[(shape, rows)] (global) of the plane and the quadric (Placed); a tuple (centre, axis, radius) for the circle
+    of an untrimmed plane about the quadric's axis (or a sphere's), () when nothing is there; None where
+    declined."""
+    origin, rot = quadric.origin, quadric.rot
+    p_origin, p_rot = plane.origin, plane.rot
     normal = [row[2] for row in p_rot]
     n = to_local(rot, normal)
     d = dot(normal, [p_origin[i] - origin[i] for i in range(3)])     # the plane: n . q = d (local)
     mu, rho = quadric_form(quadric)
-    name = traits(quadric).name
+    name = quadric.name
     if name == "sphere" and abs(abs(d) - math.sqrt(rho)) <= graze:
         return None                                          # tangent
     if name == "cone" and abs(d) <= graze:
@@ -223,7 +255,7 @@ def plane_conics(plane, quadric, graze, scale):
         centre = [q0[i] + y0 * e2[i] for i in range(3)]
         if A > 0:
             major, minor = math.sqrt(K / A), math.sqrt(K)
-            if (name == "sphere" or sin <= SAME) and not np.isfinite(plane.data[ks.BOUNDS:ks.BOUNDS + 4]).any():
+            if (name == "sphere" or sin <= SAME) and not any(map(math.isfinite, plane.bounds)):
                 if not inside_axial(quadric, centre[2], graze):
                     return None if inside_axial(quadric, centre[2], -graze) else ()
                 axis = normal if name == "sphere" else [row[2] for row in rot]
@@ -241,21 +273,22 @@ def plane_conics(plane, quadric, graze, scale):
 
 
 def inside_axial(quadric, z, margin):
-    """True when the local height z lies inside the quadric's v trim by more than margin (a sphere: always)."""
-    lo, hi = quadric.data[ks.BOUNDS + 2:ks.BOUNDS + 4].tolist()
+    """True when the local height z lies inside the quadric's (Placed) v trim by more than margin (a sphere:
+    always)."""
+    lo, hi = quadric.bounds[2:]
     return lo + margin < z < hi - margin
 
 
 # --- clipping ----------------------------------------------------------------------------------------------------
 def linear_trims(surfaces):
-    """[(w (3,), bound, side, (surface index, edge index))] of every finite trim: x . w - bound <= 0 inside when
-    side is 1 (an upper bound), >= 0 when it is -1 (a trimmed parameter is a length along a local axis:
-    x . w - w . origin); None if a finite trim is not such a length."""
+    """[(w (3,), bound, side, (surface index, edge index))] of every finite trim of the surfaces (Placed):
+    x . w - bound <= 0 inside when side is 1 (an upper bound), >= 0 when it is -1 (a trimmed parameter is a length
+    along a local axis: x . w - w . origin); None if a finite trim is not such a length."""
     trims = []
     for k, surf in enumerate(surfaces):
-        axes = traits(surf).parameter_axes
-        origin, rot = local_frame(surf)
-        for j, value in enumerate(surf.data[ks.BOUNDS:ks.BOUNDS + 4].tolist()):
+        axes = surf.kind.parameter_axes
+        origin, rot = surf.origin, surf.rot
+        for j, value in enumerate(surf.bounds):
             if math.isfinite(value):
                 axis = axes[j // 2]
                 if axis is None:
@@ -315,7 +348,10 @@ def clip(shape, rows, trims, graze):
 
     def inside(t):
         f, g = scalar_basis(shape, t)
-        return all((alpha + beta * f + gamma * g) * side <= 0.0 for alpha, beta, gamma, side in linear)
+        for alpha, beta, gamma, side in linear:
+            if not (alpha + beta * f + gamma * g) * side <= 0.0:
+                return False
+        return True
 
     if not events:
         if inside(0.0):
@@ -334,41 +370,34 @@ def clip(shape, rows, trims, graze):
 
 # --- the components ----------------------------------------------------------------------------------------------
 def normal(surf, point):
-    """The surface's normal at a point on it: a positive multiple of S_u x S_v (the gradient of its implicit
-    function: diag(1, 1, mu) q for a quadric, local z for a plane)."""
-    origin, rot = local_frame(surf)
-    if traits(surf).name == "plane":
+    """The surface's (Placed) normal at a point on it: a positive multiple of S_u x S_v (the gradient of its
+    implicit function: diag(1, 1, mu) q for a quadric, local z for a plane)."""
+    origin, rot = surf.origin, surf.rot
+    if surf.name == "plane":
         return [row[2] for row in rot]
     q = to_local(rot, [point[i] - origin[i] for i in range(3)])
     q[2] *= quadric_form(surf)[0]
     return to_global(rot, q)
 
 
-def component(surfaces, shape, rows, t_lo, t_hi, ends, settings, topo):
-    """The CurveResult of the arc t in [t_lo, t_hi] (ends None: the whole closed conic), run along N_a x N_b; None
-    where the surfaces are nearly tangent on it."""
+def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
+    """The CurveResult of the arc t in [t_lo, t_hi] (ends None: the whole closed conic) of the surfaces (Placed),
+    run along N_a x N_b; None where the surfaces are nearly tangent on it."""
     t_mid = 0.5 * (t_lo + t_hi)
     point = combine(rows, *scalar_basis(shape, t_mid))
-    na, nb = normal(surfaces[0], point), normal(surfaces[1], point)
+    na, nb = normal(placed[0], point), normal(placed[1], point)
     along = cross(na, nb)
     if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
         return None
-    centre, P, Q = (np.array(x) for x in rows)
+    centre, P, Q = np.array(rows)                            # (rows of one array)
     if dot(along, combine([[0.0] * 3, rows[1], rows[2]], *scalar_basis(shape, t_mid, 1))) < 0:
         Q, t_lo, t_hi = -Q, -t_hi, -t_lo                     # run it backwards: C(-t), g odd
         ends = None if ends is None else ends[::-1]
     closed = ends is None
+    surfaces = (placed[0].surface, placed[1].surface)
     conic = Conic(shape, centre, P, Q, t_lo, t_hi)
-    sol = ConicSolution(surfaces, conic, t_lo, t_hi, closed)
-    points = conic.at(sol.t_knots)
-    if closed:
-        points[-1] = points[0]
-    params = surface_parameters(surfaces, points)
-    for k, surf in enumerate(surfaces):
-        if traits(surf).periodic[0]:                         # unwrapped along the curve, as the tracer's
-            unwrap_turns(params[:, 2 * k])
-    sol.params = params
-    if shape == PARABOLA and max(float(np.max(surf.distance(points))) for surf in surfaces) > (
+    sol = ConicSolution(surfaces, conic, t_lo, t_hi, closed)    # (its points and parameters made on first use)
+    if shape == PARABOLA and max(float(np.max(surf.distance(sol.samples()[0]))) for surf in surfaces) > (
             PARABOLA_CHECK * settings.tolerance):
         return None                                          # not quite parallel to the generatrix
     length = sol.length
@@ -379,5 +408,5 @@ def component(surfaces, shape, rows, t_lo, t_hi, ends, settings, topo):
         status, message = open_outcome(
             BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
             BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=length)[1])
-    return CurveResult(points=points, s=sol.knots, params=params, closed=closed, length=length, status=status,
-                       message=message, tolerance=settings.tolerance, sol=sol, topology=topo)
+    return SampledResult(closed=closed, length=length, status=status, message=message, tolerance=settings.tolerance,
+                         sol=sol, topology=topo)

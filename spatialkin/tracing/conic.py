@@ -11,12 +11,14 @@ References
 ----------
 Abramowitz and Stegun, Handbook of Mathematical Functions, 17.2 (E(phi | m)) and 25.4.29 (Gauss-Legendre).
 """
+import functools
 import math
 
 import numpy as np
 from scipy.special import ellipeinc
 
-from .exact import EXACT_SAMPLES, ExactSolution
+from .exact import EXACT_SAMPLES, ExactSolution, counting, surface_parameters
+from .result import unwrap_turns
 from .traits import traits
 
 LINE, ELLIPSE, HYPERBOLA, PARABOLA = "line", "ellipse", "hyperbola", "parabola"
@@ -30,6 +32,11 @@ GL_PANEL = 0.5
 NEWTON_STEPS = 4
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(GL_NODES)
+#: The shapes whose arc length S(t) is computed value by value (the same at a t whatever else is evaluated with
+#: it): their length comes from the two ends, their knots are made on first use.
+ENDWISE = (LINE, ELLIPSE)
+#: The first and the last of the knots.
+ENDS = [0, -1]
 
 
 def basis(shape, t, order=0, lib=np):
@@ -37,14 +44,14 @@ def basis(shape, t, order=0, lib=np):
     with lib numpy, or one float with lib math (the closed forms' scalar arithmetic)."""
     if shape == ELLIPSE:
         c, s = lib.cos(t), lib.sin(t)
-        return ((c, s), (-s, c), (-c, -s))[order]
+        return (c, s) if order == 0 else (-s, c) if order == 1 else (-c, -s)
     if shape == HYPERBOLA:
         c, s = lib.cosh(t), lib.sinh(t)
-        return ((c, s), (s, c), (c, s))[order]
+        return (s, c) if order == 1 else (c, s)
     zero, one = (np.zeros_like(t), np.ones_like(t)) if lib is np else (0.0, 1.0)
     if shape == PARABOLA:
-        return ((t * t, t), (2.0 * t, one), (2.0 * one, zero))[order]
-    return ((zero, t), (zero, one), (zero, zero))[order]
+        return (t * t, t) if order == 0 else (2.0 * t, one) if order == 1 else (2.0 * one, zero)
+    return (zero, t) if order == 0 else (zero, one) if order == 1 else (zero, zero)
 
 
 class Conic:
@@ -108,19 +115,60 @@ class ConicSolution(ExactSolution):
 
     def __init__(self, surfaces, conic, t_lo, t_hi, closed, samples=EXACT_SAMPLES):
         self.conic, self.t_lo = conic, float(t_lo)
-        self.t_knots = t_lo + (t_hi - t_lo) / (samples - 1) * np.arange(float(samples))
-        self.t_knots[-1] = t_hi
-        if closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0:
-            knots = conic.b * ellipse_turn(conic.m, samples)      # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
-            self.s0 = 0.0 if t_lo == 0 else -knots[-1]
+        self._t_range, self._t_knots = (t_lo, t_hi, (t_hi - t_lo) / (samples - 1), samples), None
+        self.turn = closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0
+        knots = None                            # (made on first use: make_knots)
+        if self.turn:                           # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
+            length = conic.b * (4 * ellipeinc(quarter_turn(samples)[-1], conic.m))      # (ellipse_turn's last)
+            self.s0 = 0.0 if t_lo == 0 else -length
+        elif conic.shape in ENDWISE:
+            step = self._t_range[2]
+            ends = conic.arc(np.array([t_lo + step * 0.0, t_hi]))     # (t_knots' first and last)
+            self.s0 = float(ends[0])
+            length = ends[1] - self.s0
         else:
-            arcs = conic.arc(self.t_knots)
-            self.s0 = float(arcs[0])
-            knots = arcs - self.s0
-            knots[0] = 0.0
+            knots = self.make_knots()
+            length = knots[-1]
         self.shape = conic.shape
-        self.params = None                      # the stored parameters, set by the builder (continuity reference)
-        super().__init__(surfaces, knots[-1], closed, knots)
+        super().__init__(surfaces, length, closed, knots)
+
+    @property
+    def t_knots(self):
+        """The conic parameters (N,) of the stored points, evenly spaced from t_lo to t_hi (made on first use)."""
+        if self._t_knots is None:
+            t_lo, t_hi, step, samples = self._t_range
+            self._t_knots = t_lo + step * counting(samples)
+            self._t_knots[-1] = t_hi
+        return self._t_knots
+
+    def make_knots(self):
+        """The knots: a closed ellipse's by ellipse_turn, else S(t_knots) - S(t_lo) (setting s0 = S(t_lo))."""
+        if self.turn:
+            return self.conic.b * ellipse_turn(self.conic.m, self._t_range[3])
+        arcs = self.conic.arc(self.t_knots)
+        self.s0 = float(arcs[0])
+        knots = arcs - self.s0
+        knots[0] = 0.0
+        return knots
+
+    def samples(self):
+        """(points (N, 3), params (N, 4)) at t_knots: the exact points (a closed curve's last is its first) and the
+        surfaces' parameters, periodic u unwrapped along the curve (as the tracer's), made once."""
+        if self._samples is None:
+            points = self.conic.at(self.t_knots)
+            if self.closed:
+                points[-1] = points[0]
+            params = surface_parameters(self.surfaces, points)
+            for k, surf in enumerate(self.surfaces):
+                if traits(surf).periodic[0]:
+                    unwrap_turns(params[:, 2 * k])
+            self._samples = points, params
+        return self._samples
+
+    @property
+    def params(self):
+        """The stored parameters (N, 4) (samples; the continuity reference of evaluate)."""
+        return self.samples()[1]
 
     def t_of(self, s):
         """Conic parameter t (M,) at wrapped arc lengths s (M,)."""
@@ -140,7 +188,7 @@ class ConicSolution(ExactSolution):
 
     def evaluate(self, s, with_params=True):
         s, points, tangents, params = super().evaluate(s, with_params)
-        if with_params and self.params is not None:
+        if with_params:
             near = self.params[np.clip(np.searchsorted(self.knots, s), 0, len(self.knots) - 1)]
             for k, surf in enumerate(self.surfaces):
                 kind = traits(surf)
@@ -163,8 +211,16 @@ class ConicSolution(ExactSolution):
 def ellipse_turn(m, samples):
     """E(t | m) at `samples` values of t evenly spaced over [0, 2 pi] (samples - 1 a multiple of 4): evaluated on
     the first quarter only, by E(pi / 2 + x) = 2 E(m) - E(pi / 2 - x) and E(t + pi) = E(t) + 2 E(m)."""
-    quarter = (samples - 1) // 4
-    e = ellipeinc(np.linspace(0.0, 0.5 * math.pi, quarter + 1), m)
+    e = ellipeinc(quarter_turn(samples), m)
     full = e[-1]
     rising, falling = e[:-1], full - e[:0:-1]           # E(x) and E(pi/2 + x) - E(pi/2) for x in [0, pi/2)
     return np.concatenate([rising, full + falling, 2 * full + rising, 3 * full + falling, [4 * full]])
+
+
+@functools.lru_cache(maxsize=None)
+def quarter_turn(samples):
+    """The angles of ellipse_turn's first quarter, np.linspace(0, pi / 2, (samples - 1) / 4 + 1), made once per
+    samples (read-only)."""
+    out = np.linspace(0.0, 0.5 * math.pi, (samples - 1) // 4 + 1)
+    out.flags.writeable = False
+    return out

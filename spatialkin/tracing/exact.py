@@ -1,8 +1,14 @@
 """Components known in closed form: a circle or a segment along which the two surfaces touch (status 'tangent'; the
 tracer cannot follow them, the normals being parallel all along), a circle about the common axis of two surfaces of
 revolution (status 'closed'), a single point where they touch (status 'contact'). Each is a CurveResult whose dense
-output evaluates the closed form exactly.
+output evaluates the closed form exactly; a circle's or a segment's (and a conic's, spatialkin.tracing.conic) is a
+SampledResult, whose stored points and parameters are made on first access (from the dense output, the same
+arrays whenever they are made).
 """
+import dataclasses
+import functools
+import math
+
 import numpy as np
 
 from ..vectors import cross
@@ -12,15 +18,114 @@ from .status import outcome
 
 #: Stored points of a circle or a segment in closed form.
 EXACT_SAMPLES = 65
+#: The unit vectors along the coordinate axes (rows).
+AXES = np.eye(3)
+AXES.flags.writeable = False
+
+
+@functools.lru_cache(maxsize=None)
+def counting(count):
+    """0.0, 1.0, ..., count - 1 (count,), shared and read-only (np.arange(float(count)), made once per count)."""
+    out = np.arange(float(count))
+    out.flags.writeable = False
+    return out
+
+
+def even(start, stop, count):
+    """np.linspace(start, stop, count) (float start and stop, count >= 2), bit for bit (its own arithmetic:
+    k x ((stop - start) / (count - 1)) + start, the last set to stop) without its call overhead; a zero step
+    (below the smallest normal float) goes to np.linspace itself."""
+    step = (stop - start) / (count - 1)
+    if step == 0:
+        return np.linspace(start, stop, count)
+    out = counting(count) * step
+    out += start
+    out[-1] = stop
+    return out
+
+
+#: The fields of a SampledResult taken from its dense output's samples (ExactSolution.samples) on first access.
+SAMPLED_FIELDS = ("points", "s", "params")
+#: CurveResult's fields with a default value, and those with a default factory (name, factory).
+_DEFAULTS = {f.name: f.default for f in dataclasses.fields(CurveResult) if f.default is not dataclasses.MISSING}
+_FACTORIES = tuple((f.name, f.default_factory) for f in dataclasses.fields(CurveResult)
+                   if f.default_factory is not dataclasses.MISSING)
+#: All of CurveResult's field names, and those a SampledResult must be given.
+_FIELDS = frozenset(f.name for f in dataclasses.fields(CurveResult))
+_REQUIRED = _FIELDS - set(_DEFAULTS) - {name for name, _ in _FACTORIES} - set(SAMPLED_FIELDS)
+
+
+class SampledResult(CurveResult):
+    """A CurveResult of a closed form whose points, s and params, unless given (all three), are its dense output's
+    stored samples (``sol.samples()`` and ``sol.knots``: the exact points and the surfaces' parameters at the
+    knots), made on first access: what sk.intersect returns costs no sampling until a caller reads them, and reads
+    the same arrays then."""
+
+    def __init__(self, *, points=None, s=None, params=None, **fields):
+        # CurveResult's own init with its defaults and its checks (__post_init__), its fields written as its
+        # generated init writes them (to the instance's dict), at half its cost (tests: test_exact.py)
+        state = self.__dict__
+        state.update(_DEFAULTS)
+        for name, make in _FACTORIES:
+            state[name] = make()
+        state.update(fields)
+        if not (_REQUIRED <= state.keys() <= _FIELDS):
+            raise TypeError(f"SampledResult: missing {sorted(_REQUIRED - state.keys())} or unknown "
+                            f"{sorted(state.keys() - _FIELDS)} fields")
+        if points is not None:                  # (all three given, or none: read through __getattr__)
+            state.update(points=points, s=s, params=params)
+        self.__post_init__()
+
+    def __getattr__(self, name):
+        """A sampled field not made yet (Python asks only for attributes the instance does not hold)."""
+        state = self.__dict__
+        if name in SAMPLED_FIELDS and "sol" in state:
+            sol = state["sol"]
+            points, params = sol.samples()
+            state.update(points=points, s=sol.knots, params=params)
+            return state[name]
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
 
 class ExactSolution(CurveSolution):
     """Closed-form dense output: subclasses give the points and unit tangents (``at``) and the curvature vectors
     (``bend``); the parameters are the surfaces' own (Surface.parameters) of the exact points."""
 
+    _samples = None
+    _knots = None
+
+    @property
+    def knots(self):
+        """Arc lengths (N,) of the stored points (make_knots, on first use)."""
+        if self._knots is None:
+            self._knots = self.make_knots()
+        return self._knots
+
+    @knots.setter
+    def knots(self, value):
+        self._knots = value
+
+    def make_knots(self):
+        """The knots, for a subclass that gives none to CurveSolution.__init__."""
+        raise NotImplementedError
+
+    def samples(self):
+        """(points (N, 3), params (N, 4)) at the knots: the exact points (a closed curve's last is its first) and
+        their parameters on the two surfaces (surface_parameters), made once."""
+        if self._samples is None:
+            points = self.points_at(self.knots)
+            if self.closed:
+                points[-1] = points[0]
+            self._samples = points, surface_parameters(self.surfaces, points)
+        return self._samples
+
     def at(self, s):
         """(points (M, 3), unit tangents (M, 3)) at the wrapped arc lengths s (M,)."""
         raise NotImplementedError
+
+    def points_at(self, s):
+        """The points (M, 3) of ``at`` alone."""
+        return self.at(s)[0]
 
     def bend(self, points):
         """Curvature vectors (M, 3) at the points (M, 3) of the curve."""
@@ -48,18 +153,37 @@ class CircleSolution(ExactSolution):
     shape = "circle"
 
     def __init__(self, surfaces, centre, axis, radius, samples=EXACT_SAMPLES):
-        self.centre, axis, self.radius = np.asarray(centre, dtype=float), np.asarray(axis, dtype=float), float(radius)
-        helper = np.eye(3)[np.argmin(np.abs(axis))]
-        e1 = cross(axis, helper)
-        self.e1 = e1 / np.linalg.norm(e1)
-        self.e2 = cross(axis, self.e1)
-        length = 2 * np.pi * self.radius
-        super().__init__(surfaces, length, True, np.linspace(0.0, length, samples))
+        self.centre, self.axis, self.radius = (np.asarray(centre, dtype=float), np.asarray(axis, dtype=float),
+                                               float(radius))
+        self.count = samples
+        super().__init__(surfaces, 2 * np.pi * self.radius, True, None)      # (the knots and e1, e2 on first use)
+
+    def make_knots(self):
+        return even(0.0, self.length, self.count)
+
+    @functools.cached_property
+    def e1(self):
+        """The unit vector (3,) from the centre to the point at s = 0."""
+        e1 = cross(self.axis, AXES[np.argmin(np.abs(self.axis))])
+        return e1 / math.sqrt(e1.dot(e1))                    # (np.linalg.norm's arithmetic)
+
+    @functools.cached_property
+    def e2(self):
+        """axis x e1 (3,)."""
+        return cross(self.axis, self.e1)
+
+    def _turn(self, s):
+        """(cos, sin) (M, 1) each of the angles at arc lengths s (M,)."""
+        angle = s / self.radius
+        return np.cos(angle)[:, None], np.sin(angle)[:, None]
 
     def at(self, s):
-        angle = s / self.radius
-        c, n = np.cos(angle)[:, None], np.sin(angle)[:, None]
+        c, n = self._turn(s)
         return self.centre + self.radius * (c * self.e1 + n * self.e2), -n * self.e1 + c * self.e2
+
+    def points_at(self, s):
+        c, n = self._turn(s)
+        return self.centre + self.radius * (c * self.e1 + n * self.e2)
 
     def bend(self, points):
         return -(points - self.centre) / self.radius ** 2
@@ -74,7 +198,11 @@ class SegmentSolution(ExactSolution):
         self.p0, p1 = (np.asarray(x, dtype=float) for x in (p0, p1))
         length = float(np.linalg.norm(p1 - self.p0))
         self.direction = (p1 - self.p0) / max(length, 1e-300)
-        super().__init__(surfaces, length, False, np.linspace(0.0, length, samples))
+        self.count = samples
+        super().__init__(surfaces, length, False, None)         # (the knots on first use)
+
+    def make_knots(self):
+        return even(0.0, self.length, self.count)
 
     def at(self, s):
         return self.p0 + s[:, None] * self.direction, np.broadcast_to(self.direction, (len(s), 3)).copy()
@@ -112,13 +240,9 @@ def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent",
     axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve; topology the
     search that found it (CurveResult.topology)."""
     sol = CircleSolution(surfaces, *circle) if circle is not None else SegmentSolution(surfaces, *segment)
-    points = sol.at(sol.knots)[0]
-    if sol.closed:
-        points[-1] = points[0]
-    params = surface_parameters(surfaces, points)
     status, message = outcome(event, shape=sol.shape)
-    return CurveResult(points=points, s=sol.knots, params=params, closed=sol.closed, length=sol.length,
-                       status=status, message=message, tolerance=tolerance, sol=sol, topology=topology)
+    return SampledResult(closed=sol.closed, length=sol.length, status=status, message=message, tolerance=tolerance,
+                         sol=sol, topology=topology)
 
 
 def surface_parameters(surfaces, points):

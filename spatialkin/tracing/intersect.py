@@ -13,7 +13,7 @@ from .result import Curve, TracingError
 from .segments import NEWTON_MAX_ITER
 from .start import locate_on_curve, newton_fixed
 from .certificate import certificates
-from .closed import closed_form
+from .closed import closed_form, closed_settings
 from . import stages
 from .status import CONTACT
 from .topology import topology
@@ -70,12 +70,12 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     """
     check_surface("a", a)
     check_surface("b", b)
-    anchor = np.concatenate([a.frame.origin, b.frame.origin])
-    settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
-    if CLOSED_FORMS and not certify:
-        found = closed_form(a, b, settings)
+    if CLOSED_FORMS and not certify:      # (its settings are checked as make_settings checks them)
+        found = closed_form(a, b, closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback))
         if found is not None:
             return [Curve(c) for c in found]
+    anchor = np.concatenate([a.frame.origin, b.frame.origin])
+    settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
     if stages.ON:
         stages.switch("topology")
     topo = topology(a, b, settings.scale, settings.tolerance)

@@ -5,6 +5,8 @@ References
 Seed 002 (../shared/reference/looper-drive.md): the start from the sphere's equator M3(u2) = M2(u2, 0),
 solving M1(u1, v1) = M3(u2) for (u1, v1, u2) with v2 = 0.
 """
+import math
+
 import numpy as np
 
 from ..kernels import restart as kr
@@ -25,8 +27,8 @@ def scene_scale(a, b):
     sizes = [x for x in (traits(s).scale_length(s) for s in (a, b)) if x is not None]
     if sizes:
         return min(sizes)
-    spans = [0.5 * np.hypot(s.u_range[1] - s.u_range[0], s.v_range[1] - s.v_range[0]) for s in (a, b)]
-    spans = [x for x in spans if np.isfinite(x)]
+    spans = [0.5 * np.hypot(u1 - u0, v1 - v0) for (u0, u1), (v0, v1) in ((s.u_range, s.v_range) for s in (a, b))]
+    spans = [x for x in spans if math.isfinite(x)]
     return min(spans) if spans else 1.0
 
 

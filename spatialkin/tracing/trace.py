@@ -38,11 +38,11 @@ MAX_LENGTH_TURNS = 32
 GAP_FRACTION = 1e-2
 #: ... but never below this many ulps of the coordinates' magnitude (round-off floor).
 ROUNDOFF_ULPS = 64
+#: The ulp of 1.0 (np.float64).
+EPS = np.finfo(float).eps
 #: solve_ivp's methods, and "compiled": solve_ivp with spatialkin.tracing.ode.CompiledRK45 (scipy's RK45 steps,
 #: many per solver step in compiled code), handing hard cases to solve_ivp's DOP853.
 METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", "compiled")
-#: Machine epsilon of the coordinates (a float64).
-EPS = np.finfo(float).eps
 
 
 def extent(surface):
@@ -67,18 +67,12 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
     """Validated numerical settings, absolute lengths scaled by the scene."""
     tol, rtol, atol, max_length, singular_tol, pullback = check_options(tol, method, rtol, atol, max_length,
                                                                         singular_tol, pullback)
-    scale = scene_scale(a, b)
-    if max_length is None:
-        bound = min(extent(a), extent(b))
-        max_length = MAX_LENGTH_TURNS * 2 * math.pi * (bound if math.isfinite(bound) else 1e3 * scale)
+    scale, tolerance, gap_tol, max_length = scene_lengths(a, b, tol, max_length, max(abs(x) for x in anchor.tolist()))
     if atol is None:
         # angles get rtol, lengths (plane u, v; cylinder and cone v) rtol * scale
         atol = rtol * np.concatenate([parameter_units(a.data, scale), parameter_units(b.data, scale)])
     else:
         atol = np.full(4, atol)
-    magnitude = max(scale, max(abs(x) for x in anchor.tolist()))
-    gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * EPS * magnitude)
-    tolerance = max(tol * scale, ROUNDOFF_ULPS * EPS * magnitude)
     return Settings(method=method, rtol=rtol, atol=atol, gap_tol=gap_tol, scale=scale, tolerance=tolerance,
                     singular_tol=singular_tol, pullback=pullback / scale, max_length=max_length,
                     max_step=math.pi * scale / 4, close=close, apexes=apex_points(a, b))
@@ -88,6 +82,19 @@ def apex_points(a, b):
     """(K, 3) the apexes of both surfaces (a cone's, a horn or spindle torus's points on its axis)."""
     return np.array([a_or_b.point(0.0, v) for a_or_b in (a, b) for v in traits(a_or_b).apexes(a_or_b)],
                     dtype=float).reshape(-1, 3)
+
+
+def scene_lengths(a, b, tol, max_length, magnitude):
+    """(scale, tolerance, gap_tol, max_length) of the settings (see make_settings; tol and max_length checked,
+    max_length None for the default), magnitude the largest |coordinate| of the surfaces' origins."""
+    scale = scene_scale(a, b)
+    if max_length is None:
+        bound = min(extent(a), extent(b))
+        max_length = MAX_LENGTH_TURNS * 2 * math.pi * (bound if math.isfinite(bound) else 1e3 * scale)
+    magnitude = max(scale, magnitude)
+    gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * EPS * magnitude)
+    tolerance = max(tol * scale, ROUNDOFF_ULPS * EPS * magnitude)
+    return scale, tolerance, gap_tol, max_length
 
 
 def start_point(a, b, start, gap_tol):

@@ -1,0 +1,172 @@
+"""The closed-form dense outputs' helpers (spatialkin.tracing.exact and .conic) against the numpy calls they stand
+for, bit for bit (tolerance 0: they promise numpy's own arithmetic), and the closed forms' settings (Scene) against
+make_settings (exactly equal, and the same errors for bad options)."""
+import math
+
+import numpy as np
+import pytest
+
+import spatialkin as sk
+from spatialkin.tracing.closed import closed_settings
+from spatialkin.tracing.conic import quarter_turn
+from spatialkin.tracing.exact import CircleSolution, SegmentSolution, counting, even
+from spatialkin.tracing.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL,
+                                      make_settings)
+
+#: Random (start, stop) pairs per count.
+DRAWS = 200
+
+
+@pytest.mark.parametrize("count", [2, 3, 17, 65, 257])
+def test_even_is_linspace(count):
+    """even(start, stop, count) is np.linspace(start, stop, count) bit for bit, over magnitudes from 1e-300 to
+    1e300, either sign, and a zero step (start == stop)."""
+    rng = np.random.default_rng(count)
+    for _ in range(DRAWS):
+        start, stop = (float(x) for x in rng.normal(size=2) * 10.0 ** rng.integers(-300, 300, 2))
+        for lo, hi in ((start, stop), (0.0, abs(stop)), (start, start), (0.0, 5e-324)):
+            assert np.array_equal(even(lo, hi, count), np.linspace(lo, hi, count))
+            assert np.signbit(even(lo, hi, count)).tolist() == np.signbit(np.linspace(lo, hi, count)).tolist()
+    assert np.array_equal(counting(count), np.arange(float(count)))
+    assert not counting(count).flags.writeable
+
+
+def test_quarter_turn_is_linspace():
+    assert np.array_equal(quarter_turn(65), np.linspace(0.0, 0.5 * math.pi, 17))
+    assert not quarter_turn(65).flags.writeable
+
+
+def test_circle_and_segment():
+    """The circle's frame as np.linalg.norm makes it, and points_at is at()[0] (circle and segment)."""
+    rng = np.random.default_rng(3)
+    sphere = sk.Sphere(1.0)
+    for _ in range(DRAWS):
+        axis = rng.normal(size=3)
+        axis /= np.linalg.norm(axis)
+        sol = CircleSolution((sphere, sphere), rng.normal(size=3), axis, rng.uniform(0.1, 3.0))
+        e1 = np.cross(axis, np.eye(3)[np.argmin(np.abs(axis))])
+        assert np.array_equal(sol.e1, e1 / np.linalg.norm(e1))
+        assert np.array_equal(sol.knots, np.linspace(0.0, sol.length, len(sol.knots)))
+        assert np.array_equal(sol.points_at(sol.knots), sol.at(sol.knots)[0])
+        seg = SegmentSolution((sphere, sphere), rng.normal(size=3), rng.normal(size=3))
+        assert np.array_equal(seg.points_at(seg.knots), seg.at(seg.knots)[0])
+        assert np.array_equal(seg.knots, np.linspace(0.0, seg.length, len(seg.knots)))
+
+
+def options(**changes):
+    out = dict(tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol=None, max_length=None,
+               singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK)
+    out.update(changes)
+    return out
+
+
+@pytest.mark.parametrize("changes", [{}, {"tol": 1e-6}, {"max_length": 3.5}, {"singular_tol": 1e-5},
+                                     {"atol": 1e-9, "rtol": 1e-8}])
+def test_closed_settings_match_make_settings(changes):
+    """The Scene's fields equal make_settings' (exactly), for placements far from the origin (the round-off floor
+    of the tolerance) and near it."""
+    rng = np.random.default_rng(5)
+    for offset in (0.0, 1e9):
+        a = sk.Sphere(0.8, sk.Frame(rng.normal(size=3) + offset))
+        b = sk.Plane(sk.Frame(rng.normal(size=3)), (-1.0, 2.0), (-3.0, 1.0))
+        for x, y in ((a, b), (b, a)):
+            scene = closed_settings(x, y, **options(**changes))
+            anchor = np.concatenate([x.frame.origin, y.frame.origin])
+            full = make_settings(x, y, *options(**changes).values(), True, anchor)
+            for name in scene._fields:
+                assert getattr(scene, name) == getattr(full, name) and type(getattr(scene, name)) is type(
+                    getattr(full, name)), name
+
+
+@pytest.mark.parametrize("changes", [{"tol": -1.0}, {"tol": "x"}, {"method": "Euler"}, {"rtol": 0.0},
+                                     {"atol": -1.0}, {"max_length": math.inf}, {"singular_tol": math.nan},
+                                     {"pullback": -1.0}])
+def test_bad_options_same_errors(changes):
+    """sk.intersect on a closed-form pair raises what make_settings raises for a bad option."""
+    a, b = sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.3)))
+    anchor = np.concatenate([a.frame.origin, b.frame.origin])
+    with pytest.raises(ValueError) as theirs:
+        make_settings(a, b, *options(**changes).values(), True, anchor)
+    with pytest.raises(ValueError) as ours:
+        sk.intersect(a, b, **options(**changes))
+    assert str(ours.value) == str(theirs.value)
+
+
+def pairs():
+    """The closed-form pairs of the bench (spatialkin.bench.kinds), both orders, and a plane-cone hyperbola, a
+    plane-cylinder pair of lines and an open ellipse arc (a trimmed plane across a cylinder)."""
+    from spatialkin.bench.kinds import pair_kind_cases
+    closed = ("plane-plane", "plane-sphere", "plane-cylinder", "plane-cone", "sphere-sphere")
+    out = [(a, b) for kind, a, b in pair_kind_cases() if kind in closed]
+    cone = sk.Cone(0.5, sk.Frame((0.0, 0.0, 0.0), np.eye(3)), (-2.0, 2.5))
+    steep = sk.Plane(sk.Frame((0.3, 0.0, 0.0), sk.frame.rotation_about((0.0, 1.0, 0.0), math.pi / 2 - 0.2)))
+    cyl = sk.Cylinder(0.8, sk.Frame((0.1, 0.0, 0.0)), (-2.0, 2.0))
+    along = sk.Plane(sk.Frame((0.3, 0.0, 0.0), sk.frame.rotation_about((0.0, 1.0, 0.0), math.pi / 2)), (-3, 3),
+                     (-3, 3))
+    across = sk.Plane(sk.Frame((0.0, 0.0, 0.2), sk.frame.rotation_about((1.0, 0.0, 0.0), 0.3)), (-0.5, 0.5),
+                      (-3, 3))
+    out += [(steep, cone), (along, cyl), (across, cyl)]
+    return out + [(b, a) for a, b in out]
+
+
+def fingerprint(curve, first):
+    """The stored and dense values of a curve, its dense output read first (first='dense') or its stored samples
+    first (first='stored')."""
+    s = np.linspace(0.0, curve.length, 7)
+    out = {}
+    order = (("dense", "stored") if first == "dense" else ("stored", "dense"))
+    for what in order:
+        if what == "dense":
+            out["at"], out["dense_params"] = curve(s), curve.parameters(s)
+        else:
+            out["points"], out["s"], out["params"] = curve.points, curve.s, curve.params
+    return out
+
+
+def test_samples_made_on_first_use():
+    """A closed form's stored points, arc lengths and parameters (made on first access) are the same arrays, to the
+    bit, whether they or the dense output are read first, and after pickling; the result's repr and
+    dataclasses.replace see them."""
+    import dataclasses
+    import pickle
+    handled = 0
+    for a, b in pairs():
+        first, second = sk.intersect(a, b), sk.intersect(a, b)
+        assert len(first) == len(second)
+        for c, d in zip(first, second):
+            handled += c.topology.mode == "closed_form"
+            x, y = fingerprint(c, "dense"), fingerprint(d, "stored")
+            unpickled = pickle.loads(pickle.dumps(sk.intersect(a, b)))[first.index(c)]
+            z = fingerprint(unpickled, "stored")
+            for key in x:
+                assert np.array_equal(x[key], y[key]) and np.array_equal(x[key], z[key]), key
+            e = sk.Curve(dataclasses.replace(sk.intersect(a, b)[first.index(c)].result, certificate=None))
+            assert np.array_equal(e.points, y["points"]) and np.array_equal(e.params, y["params"])
+            assert "points=array" in repr(c.result)
+    assert handled >= 12
+
+
+def test_sampled_result_init_is_curve_result_init():
+    """SampledResult writes what CurveResult's generated init writes (every field, the defaults, the checks of
+    __post_init__), given all fields or all but the sampled ones; a missing field or a bad status raises."""
+    from spatialkin.tracing.exact import SampledResult
+    from spatialkin.tracing.result import CurveResult
+    import dataclasses
+    a = sk.Sphere(1.0)
+    sol = CircleSolution((a, a), np.zeros(3), np.array([0.0, 0.0, 1.0]), 1.0)
+    fields = dict(closed=1, length=np.float64(2.0), status="closed", message="m", tolerance=1e-10, sol=sol, nfev=3.0)
+    points, params = sol.samples()
+    ours, theirs = SampledResult(**fields), CurveResult(points=points, s=sol.knots, params=params, **fields)
+    given = SampledResult(points=points, s=sol.knots, params=params, **fields)
+    for f in dataclasses.fields(CurveResult):
+        for x in (ours, given):
+            value, expected = getattr(x, f.name), getattr(theirs, f.name)
+            assert type(value) is type(expected), f.name
+            assert (np.array_equal(value, expected) if isinstance(value, np.ndarray) else value == expected), f.name
+    assert set(ours.__dict__) == set(theirs.__dict__) and set(given.__dict__) == set(theirs.__dict__)
+    with pytest.raises(ValueError):
+        SampledResult(**dict(fields, status="nonsense"))
+    with pytest.raises(TypeError):
+        SampledResult(**{k: v for k, v in fields.items() if k != "sol"})
+    with pytest.raises(TypeError):
+        SampledResult(**fields, colour="red")

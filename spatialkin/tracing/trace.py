@@ -67,7 +67,8 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
     """Validated numerical settings, absolute lengths scaled by the scene."""
     tol, rtol, atol, max_length, singular_tol, pullback = check_options(tol, method, rtol, atol, max_length,
                                                                         singular_tol, pullback)
-    scale, tolerance, gap_tol, max_length = scene_lengths(a, b, tol, max_length, max(abs(x) for x in anchor.tolist()))
+    magnitude = max(abs(x) for x in anchor.tolist())
+    scale, tolerance, gap_tol, max_length = scene_lengths(a, b, tol, max_length, magnitude)
     if atol is None:
         # angles get rtol, lengths (plane u, v; cylinder and cone v) rtol * scale
         atol = rtol * np.concatenate([parameter_units(a.data, scale), parameter_units(b.data, scale)])

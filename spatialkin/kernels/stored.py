@@ -4,7 +4,7 @@
 span's states corrected by Newton in that span's charts (spatialkin.kernels.curve.corrected_many), the user's
 parameters of a re-charted surface read back from the corrected points (spatialkin.kernels.surfaces.inverse,
 as spatialkin.tracing.result.user_params), and the whole turns removed from a re-charted surface's u
-(as spatialkin.tracing.result.unwrap_turns): the same kernels and the same operations in the same order, so
+(unwrap_turns, which the closed forms call too): the same kernels and the same operations in the same order, so
 that the results agree to the bit.
 
 References

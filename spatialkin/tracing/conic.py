@@ -18,7 +18,7 @@ import numpy as np
 from scipy.special import ellipeinc
 
 from .exact import EXACT_SAMPLES, ExactSolution, counting, surface_parameters
-from .result import unwrap_turns
+from ..kernels.stored import unwrap_turns
 from .traits import traits
 
 LINE, ELLIPSE, HYPERBOLA, PARABOLA = "line", "ellipse", "hyperbola", "parabola"

@@ -14,7 +14,6 @@ from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, descri
 from .traits import traits
 
 #: One turn (rad).
-TWO_PI = 2.0 * np.pi
 
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.
@@ -245,11 +244,6 @@ def set_states(y, points, a, b):
                 d[:, j] = np.mod(d[:, j] + np.pi, 2.0 * np.pi) - np.pi
         y[:, 2 * k:2 * k + 2] += d
     return y
-
-
-def unwrap_turns(u):
-    """The angles u (N,) in place, whole turns removed from the jumps between neighbours (continuous)."""
-    u[1:] -= TWO_PI * np.add.accumulate(np.rint((u[1:] - u[:-1]) / TWO_PI))
 
 
 def user_params(surfaces, y, points, a_chart, b_chart):

@@ -11,7 +11,7 @@ from .sidebyside import OUR_TOL
 
 #: Columns of bench_kinds.csv: times in seconds, errors in length units, stage seconds per call.
 COLUMNS = (["pair kind", "ours s", "OCC s", "OCC/ours", "our error", "OCC error", "our curves", "OCC curves"]
-           + [f"{stages.LABELS[s]} s" for s in stages.STAGES] + ["compiled kernels s"])
+           + [f"{stages.LABELS[s]} s" for s in stages.STAGES] + ["compiled kernels s", "ours with points read s"])
 #: The ratio axis reaches this many times past the largest ratio (room for the time labels).
 LABEL_ROOM = 60.0
 #: Errors below this are drawn at it (a log axis has no zero).
@@ -22,7 +22,8 @@ def write_kinds_csv(rows, path):
     """One line per pair kind (sidebyside.KindRow), written whole or not at all."""
     write_table(path, COLUMNS, ([r.kind, cell(r.ours, ".6g"), cell(r.occ, ".6g"), cell(r.ratio, ".4g"),
                                  cell(r.our_error, ".3e"), cell(r.occ_error, ".3e"), r.our_curves, r.occ_curves]
-                                + [f"{r.profile.seconds[s]:.6g}" for s in stages.STAGES] + [cell(r.kernel, ".6g")]
+                                + [f"{r.profile.seconds[s]:.6g}" for s in stages.STAGES]
+                                + [cell(r.kernel, ".6g"), cell(r.ours_points, ".6g")]
                                 for r in rows))
 
 

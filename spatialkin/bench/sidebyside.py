@@ -49,6 +49,9 @@ class KindRow:
     kernel : float
         Seconds per call spent inside the compiled kernels (spatialkin.kernels, their own time from cProfile):
         what remains of a call if every line of Python around them went (issue 19, item 2).
+    ours_points : float
+        Median wall time of one sk.intersect call followed by reading every returned curve's points, s and params
+        (a closed form samples them on first read; OCC's result curves are not sampled either), seconds.
     """
     kind: str
     ours: float
@@ -59,6 +62,7 @@ class KindRow:
     occ_curves: int
     profile: stages.StageProfile
     kernel: float = float("nan")
+    ours_points: float = float("nan")
 
     @property
     def ratio(self):
@@ -95,11 +99,14 @@ def measure(kind, a, b, calls, profile_calls, occ_samples):
         inter = GeomAPI_IntSS(*geoms, baselines.OCC_DEFAULT_TOL)
         if not inter.IsDone():
             raise RuntimeError(f"GeomAPI_IntSS did not finish on {kind}")
-    ours, occ = [], []
+    ours, occ, ours_points = [], [], []
     for _ in range(calls):
         t0 = time.perf_counter()
         intersect(*pair, tol=OUR_TOL)
         ours.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        read_points(intersect(*pair, tol=OUR_TOL))
+        ours_points.append(time.perf_counter() - t0)
         if has_occ:
             t0 = time.perf_counter()
             GeomAPI_IntSS(*geoms, baselines.OCC_DEFAULT_TOL)
@@ -111,7 +118,12 @@ def measure(kind, a, b, calls, profile_calls, occ_samples):
     kernel, _ = kernel_seconds(lambda: [intersect(*pair, tol=OUR_TOL) for _ in range(profile_calls)])
     return KindRow(kind, statistics.median(ours), statistics.median(occ) if occ else np.nan,
                    curve_error(curves, pair, OUR_SAMPLES), occ_error, len(curves), occ_curves,
-                   profile_of(pair, profile_calls), kernel / profile_calls)
+                   profile_of(pair, profile_calls), kernel / profile_calls, statistics.median(ours_points))
+
+
+def read_points(curves):
+    """Every curve's stored points, arc lengths and parameters read (a closed form makes them on first read)."""
+    return [(c.points, c.s, c.params) for c in curves]
 
 
 def kind_rows(quick=False, echo=print):
@@ -127,13 +139,15 @@ def kind_rows(quick=False, echo=print):
 
 def occ_table(rows, calls):
     """The side-by-side table as text lines."""
-    head = (f"{'pair kind':<18} {'ours ms':>8} {'OCC ms':>8} {'OCC/ours':>8} {'our error':>9} {'OCC error':>9} "
-            f"{'curves':>7}")
+    head = (f"{'pair kind':<18} {'ours ms':>8} {'OCC ms':>8} {'OCC/ours':>8} {'+points':>8} {'OCC/that':>8} "
+            f"{'our error':>9} {'OCC error':>9} {'curves':>7}")
     lines = [f"sk.intersect (tol {OUR_TOL:g}) vs GeomAPI_IntSS (tol {baselines.OCC_DEFAULT_TOL:g}), interleaved, "
              f"median of {calls} calls each; error: largest distance to either surface of the returned points "
-             "and dense samples", head, "-" * len(head)]
+             "and dense samples; +points: ours with every curve's points, s and params read (closed forms sample "
+             "them on first read)", head, "-" * len(head)]
     for r in rows:
-        lines.append(f"{r.kind:<18} {1e3 * r.ours:>8.3f} {1e3 * r.occ:>8.3f} {r.ratio:>8.2f} {r.our_error:>9.1e} "
+        lines.append(f"{r.kind:<18} {1e3 * r.ours:>8.3f} {1e3 * r.occ:>8.3f} {r.ratio:>8.2f} "
+                     f"{1e3 * r.ours_points:>8.3f} {r.occ / r.ours_points:>8.2f} {r.our_error:>9.1e} "
                      f"{r.occ_error:>9.1e} {r.our_curves:>3}/{r.occ_curves:<3}")
     ratios = np.array([r.ratio for r in rows])
     if np.all(np.isfinite(ratios)):

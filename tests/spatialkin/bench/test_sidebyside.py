@@ -71,6 +71,9 @@ def test_rows_and_profile(rows):
         # curves before their points, which are sampled, in compiled code, when first read)
         closed_form = all(c.topology.mode == "closed_form" for c in curves)
         assert (0.0 <= r.kernel if closed_form else 0.0 < r.kernel) and r.kernel < r.profile.total
+        assert np.isfinite(r.ours_points) and r.ours_points > 0.0        # timed with the points read (no bound)
+        for (points, s, params), c in zip(sidebyside.read_points(curves), curves):
+            assert points.shape == (len(s), 3) and params.shape == (len(s), 4) and s[-1] == c.length
     lines = sidebyside.profile_table(rows)
     assert len(lines) == 3 + 15 + 1
 

@@ -5,7 +5,7 @@ surfaces that re-chart (a sphere: spatialkin.kernels.surfaces.recharted_sphere, 
 the direction of travel, then along the curve's curvature vector there when it is known), reads the state in the
 new charts, and projects it back onto the curve in the plane normal to its tangent (Newton, minimum-norm steps
 where that plane is ill-posed). ``segment_start`` does these steps, the same kernels in the same order as
-spatialkin.tracing.segments.charts_at, spatialkin.tracing.ivp.curvature_vector and
+spatialkin.tracing.segments.charts_at, the curve's curvature vector (curve_derivatives) and
 spatialkin.tracing.segments.project_state do one by one from Python, so that the results agree to the bit.
 
 References

@@ -180,12 +180,6 @@ def at_outer_edge(a, b, y, sign, bounds=None):
     return False
 
 
-def curvature_vector(y, a, b):
-    """C'' (3,) of the curve at the state y (charts a, b), or None at a singular point."""
-    dy, ddy, d1, d2 = np.empty(4), np.empty(4), np.empty(3), np.empty(3)
-    return d2 if kc.curve_derivatives(np.ascontiguousarray(y, dtype=float), a, b, 1.0, dy, ddy, d1, d2) else None
-
-
 def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     """Integrate one direction from point (on the curve, unit tangent N1 x N2/|.| there).
 

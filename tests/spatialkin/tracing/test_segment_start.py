@@ -1,7 +1,7 @@
 """A segment's start, and a located start, in one compiled call (spatialkin.tracing.segments.segment_start,
 start.locate_on_curve; kernels.restart).
 
-Oracle: the Python steps it replaces, one by one (segments.charts_at, ivp.curvature_vector, charts_at along the
+Oracle: the Python steps it replaces, one by one (segments.charts_at, curvature_vector, charts_at along the
 curvature vector, segments.project_state): the same charts, state, point and tangent, bit for bit (tolerance 0:
 the same kernels in the same order), at points along traced curves of re-charting (sphere) and non-re-charting
 pairs, in both directions of travel, from states nudged off the curve. The same for a start located on the curve
@@ -12,7 +12,7 @@ import pytest
 
 import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
-from spatialkin.tracing.ivp import curvature_vector
+from spatialkin.kernels import curve as kc
 from spatialkin.tracing.segments import charts_at, project_state, segment_start
 from spatialkin.tracing.traits import traits
 from spatialkin.tracing.trace import make_settings
@@ -23,6 +23,13 @@ KINDS = ("sphere-cylinder", "sphere-cone", "sphere-torus", "cylinder-torus", "to
 NUDGE = 1e-6
 #: Points checked along each curve.
 SAMPLES = 7
+
+
+def curvature_vector(y, a, b):
+    """C'' (3,) of the curve at the state y (charts a, b), or None at a singular point (as the tracer's Python read
+    it before segment_start)."""
+    dy, ddy, d1, d2 = np.empty(4), np.empty(4), np.empty(3), np.empty(3)
+    return d2 if kc.curve_derivatives(np.ascontiguousarray(y, dtype=float), a, b, 1.0, dy, ddy, d1, d2) else None
 
 
 def python_start(a_user, b_user, point, direction, y_prev, settings):

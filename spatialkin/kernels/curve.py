@@ -266,10 +266,7 @@ def project_through(ys, a, b, normal, targets, gap_tol, max_iter, points, tangen
     arc length on its chords)."""
     for k in range(ys.shape[0]):
         status[k] = project_to_curve(ys[k], a, b, targets[k], normal, gap_tol, max_iter)
-        curve_frame(ys[k], a, b, points[k], tangents[k])
-        if dot(tangents[k], normal) < 0.0:
-            for i in range(3):
-                tangents[k, i] = -tangents[k, i]
+        frame_along(ys[k], a, b, normal, True, points[k], tangents[k])
 
 
 @jit
@@ -295,11 +292,17 @@ def _project_row(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent
         for i in range(3):
             t[i] = normal[i]
     status = project_to_curve(y, a, b, q, t, gap_tol, max_iter)
+    frame_along(y, a, b, normal, fixed, point, tangent)
+    return status
+
+
+@jit
+def frame_along(y, a, b, normal, fixed, point, tangent):
+    """curve_frame of y into point and tangent, the tangent turned along the fixed vector normal (when fixed)."""
     curve_frame(y, a, b, point, tangent)
     if fixed and dot(tangent, normal) < 0.0:
         for i in range(3):
             tangent[i] = -tangent[i]
-    return status
 
 
 @jit

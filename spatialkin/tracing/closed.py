@@ -24,6 +24,7 @@ from ..kernels import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, basis
 from .exact import SampledResult, exact_curve
 from .placement import SAME
+from .result import in_sk_order
 from .status import BOUNDARY, open_outcome, outcome
 from .topology import Topology
 from .trace import check_options, scene_lengths
@@ -124,9 +125,7 @@ def closed_form(a, b, settings):
             if curve is None or curve.length > MAX_LENGTH_SHARE * settings.max_length:
                 return None                                  # (the tracer would stop at max_length)
             curves.append(curve)
-    if len(curves) > 1:
-        curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
-    return curves
+    return in_sk_order(curves, lambda c: c.sol.first_point())
 
 
 # --- small vectors as lists of floats (numpy costs more than the arithmetic on them) ---------------------------

@@ -36,7 +36,6 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(GL_NODES)
 #: it): their length comes from the two ends, their knots are made on first use.
 ENDWISE = (LINE, ELLIPSE)
 #: The first and the last of the knots.
-ENDS = [0, -1]
 
 
 def basis(shape, t, order=0, lib=np):
@@ -137,8 +136,9 @@ class ConicSolution(ExactSolution):
         """The conic parameters (N,) of the stored points, evenly spaced from t_lo to t_hi (made on first use)."""
         if self._t_knots is None:
             t_lo, t_hi, step, samples = self._t_range
-            self._t_knots = t_lo + step * counting(samples)
-            self._t_knots[-1] = t_hi
+            t_knots = t_lo + step * counting(samples)
+            t_knots[-1] = t_hi
+            self._t_knots = t_knots                  # (whole: a concurrent first read never sees it unfinished)
         return self._t_knots
 
     def make_knots(self):
@@ -150,6 +150,10 @@ class ConicSolution(ExactSolution):
         knots = arcs - self.s0
         knots[0] = 0.0
         return knots
+
+    def first_point(self):
+        """The first stored point (3,) (the first row of samples' points, without making the others)."""
+        return self._samples[0][0] if self._samples is not None else self.conic.at(self.t_knots[:1])[0]
 
     def samples(self):
         """(points (N, 3), params (N, 4)) at t_knots: the exact points (a closed curve's last is its first) and the

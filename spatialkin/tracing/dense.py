@@ -269,19 +269,26 @@ class TracedSolution(CurveSolution):
         the chords from its start to the node (or apex) passed and on to its end (one straight chord where no
         node is near): the curve's two branches there are nearly straight, whatever the charts do at the node."""
         sol = span.seg.sol
-        ends = np.empty((2, 3))
-        ks.evaluate(span.seg.a, np.ascontiguousarray(np.stack([sol.y0[:2], sol.y1[:2]])), ends)
         w = np.clip((span.shift + span.flip * np.asarray(s, dtype=float)) / sol.length, 0.0, 1.0)[:, None]
-        straight = span.seg.normal / np.linalg.norm(span.seg.normal)
-        if len(self.nodes):
-            node = self.nodes[np.argmin(np.linalg.norm(self.nodes - ends.mean(axis=0), axis=1))]
+        if sol.arc is not None:                 # the jump's own chords, start to node to end, and its arc on them
+            start, node, end = sol.arc.points
+            ends = np.stack([start, end])
+            d = sol.arc.chord_position(w[:, 0] * sol.length)[:, None]
+        else:
+            ends = np.empty((2, 3))
+            ks.evaluate(span.seg.a, np.ascontiguousarray(np.stack([sol.y0[:2], sol.y1[:2]])), ends)
+            node = (self.nodes[np.argmin(np.linalg.norm(self.nodes - ends.mean(axis=0), axis=1))] if len(self.nodes)
+                    else None)
+            d = None
+        if node is not None:
             first, second = np.linalg.norm(node - ends[0]), np.linalg.norm(ends[1] - node)
             if first + second <= 2.0 * max(np.linalg.norm(ends[1] - ends[0]), 1e-300) and first > 0 and second > 0:
-                d = w * (first + second) if sol.arc is None else sol.arc.chord_position(w[:, 0] * sol.length)[:, None]
+                d = w * (first + second) if d is None else d
                 chords = np.stack([(node - ends[0]) / first, (ends[1] - node) / second])
                 side = (d[:, 0] > first).astype(np.int64)
                 return (np.where(d <= first, ends[0] + (node - ends[0]) * (d / first),
                                  node + (ends[1] - node) * ((d - first) / second)), side, chords,
                         np.abs(d[:, 0] - first), node)
+        straight = span.seg.normal / np.linalg.norm(span.seg.normal)
         return (ends[0] * (1 - w) + ends[1] * w, np.zeros(len(w), dtype=np.int64), np.stack([straight, straight]),
                 np.full(len(w), np.inf), None)

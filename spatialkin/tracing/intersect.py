@@ -9,7 +9,7 @@ from ..kernels import near as kn
 from .dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS
 from .exact import contact_point, exact_curve
 from .packed import packed, packed_grid
-from .result import Curve, TracingError
+from .result import Curve, TracingError, in_sk_order
 from .segments import NEWTON_MAX_ITER
 from .start import locate_on_curve, newton_fixed
 from .certificate import certificates
@@ -130,8 +130,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     curves = kept
     if stages.ON:
         stages.switch("result")
-    if len(curves) > 1:
-        curves.sort(key=lambda c: (-c.length, tuple(np.round(c.points[0], 9))))
+    in_sk_order(curves)
     proofs = certificates(a, b, curves, topo) if certify else [None] * len(curves)
     return [Curve(dataclasses.replace(c, topology=topo, certificate=proof)) for c, proof in zip(curves, proofs)]
 

@@ -14,8 +14,6 @@ It is split into segments at events that need Python between two integrations:
 At every segment start the state is projected back onto the curve by Newton, and the right-hand side
 carries a pull-back term, so the gap between the surfaces stays flat however long the branch is.
 """
-import functools
-
 import numpy as np
 
 from ..kernels import branch_ode as kb
@@ -116,7 +114,7 @@ def segment_system(a, b, settings, sign, s_arm, shared, bounds):
                   ep, kb.COUNT)
 
 
-def segment_events(system, a, b, settings, compiled, near_edge=False, bounds=None, recharts=None):
+def segment_events(system, settings, compiled, near_edge, bounds, recharts):
     """(Events, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles, closure.
 
     The compiled method watches levels instead of the first three (as its kernel did before it was a solve_ivp
@@ -127,19 +125,16 @@ def segment_events(system, a, b, settings, compiled, near_edge=False, bounds=Non
     that the curve's end on the edge has one step's accuracy, not the whole branch's drift. The compiled method
     probes the bounds inside each step too (spatialkin.kernels.rk.PROBES), so that a curve grazing out of a trim
     and back within one step ends there, and the area hand-over likewise, so that no step passes over an apex (a
-    horn torus's cusp, whose guarded zone a step can span). bounds: finite_bounds(a, b), and recharts: whether each
-    surface re-charts, when the caller has them."""
+    horn torus's cusp, whose guarded zone a step can span). bounds: the charts' finite_bounds rows, recharts:
+    whether each surface re-charts."""
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
-    plan, kinds = event_plan(compiled, near_edge, flagged, tuple(finite_bounds(a, b) if bounds is None else bounds),
-                             (traits(a).recharts, traits(b).recharts) if recharts is None else recharts,
-                             settings.close)
+    plan, kinds = event_plan(compiled, near_edge, flagged, bounds, recharts, settings.close)
     return [Event(system, i, d, level=level, probed=probed) for i, d, level, probed in plan], list(kinds)
 
 
-@functools.lru_cache(maxsize=256)
 def event_plan(compiled, near_edge, flagged, bounds, recharts, close):
-    """segment_events' plan, made once per case: ((event index, direction, level, probed), ...) and the kinds
+    """segment_events' plan: ((event index, direction, level, probed), ...) and the kinds
     (what integrate_branch does at each), for the method (compiled or not), near_edge, whether an area element is
     watched (flagged), the finite_bounds rows, whether each surface re-charts, and whether closure is watched."""
     handoff = ("handoff", None)
@@ -163,12 +158,12 @@ def event_plan(compiled, near_edge, flagged, bounds, recharts, close):
             tuple(kind for _, _, kind, _ in plan))
 
 
-def at_outer_edge(a, b, y, sign, bounds=None):
+def at_outer_edge(a, b, y, sign, bounds):
     """True where y lies on (or past) an edge of a trimmed surface and the direction of travel leaves it (a curve
-    running along the edge does not leave it). bounds: finite_bounds(a, b), when the caller has them; the
-    direction of travel is evaluated only at an edge."""
+    running along the edge does not leave it). bounds: finite_bounds(a, b); the direction of travel is evaluated
+    only at an edge."""
     dy = None
-    for k, _, idx, bound, lower, _ in finite_bounds(a, b) if bounds is None else bounds:
+    for k, _, idx, bound, lower, _ in bounds:
         inside = y[idx] - bound if lower else bound - y[idx]
         if not inside <= EDGE_TOL * max(1.0, abs(bound)):
             continue
@@ -205,7 +200,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     for _ in range(MAX_SEGMENTS):
         y_prev = y
         mark = stages.enter("correction") if stages.ON else None
-        # charts_at, curvature_vector, charts_at along the curvature and project_state in one compiled call
+        # the charts (re-charted along the curvature vector), the state and its projection in one compiled call
         a, b, y, point, tangent, ok = segment_start(a_user, b_user, recharts, point, sign * tangent, y, settings)
         if mark is not None:
             stages.leave(mark)
@@ -230,7 +225,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             break
         system = segment_system(a, b, settings, sign, s_arm - s, shared, bounds)
         if (compiled, near_edge) not in watched:
-            watched[compiled, near_edge] = segment_events(system, a, b, settings, compiled, near_edge, bounds, recharts)
+            watched[compiled, near_edge] = segment_events(system, settings, compiled, near_edge, bounds, recharts)
         events, kinds = watched[compiled, near_edge]
         for event in events:
             event.system = system

@@ -196,8 +196,8 @@ class CompiledRK45(OdeSolver):
         """OdeSolver.__init__'s state (its attributes, the same values; a test compares them), with its checks of
         y0 (real, one-dimensional, finite) made on a real vector's few floats instead of by numpy's generic
         dtype tests: OdeSolver.__init__ costs a few microseconds per segment. fun is never called by this method
-        (the compiled kernels evaluate the right-hand side); fun, fun_single and fun_vectorized are kept as
-        OdeSolver keeps them, counting nfev."""
+        (the compiled kernels evaluate the right-hand side): fun and fun_single count nfev, fun_vectorized is None
+        and vectorized is recorded but not used (unlike OdeSolver, which wraps fun both ways)."""
         y0 = np.asarray(y0)
         if y0.dtype.kind == "c":
             raise ValueError("`y0` is complex, but the chosen solver does not support integration in a complex "

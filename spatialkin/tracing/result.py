@@ -37,7 +37,9 @@ class TracingError(RuntimeError):
 
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
 class CurveResult:
-    """What tracing found about one component: a plain record, complete when built; ``sol`` evaluates it.
+    """What tracing found about one component: a plain record; ``sol`` evaluates it. (A closed form's,
+    spatialkin.tracing.exact.SampledResult, makes its points, s and params on first read, the same arrays
+    whenever that is.)
 
     The fields are the attributes of the same names of Curve (see there); ``topology`` is the search that found
     the component (sk.intersect; None for sk.trace), ``certificate`` what was verified (certify=True; else None).
@@ -244,11 +246,24 @@ def set_states(y, points, a, b):
     return y
 
 
+def in_sk_order(curves, first_point=lambda c: c.points[0]):
+    """The CurveResults sorted as sk.intersect returns them: longest first, then by first point (rounded to 9
+    decimals); first_point reads a curve's first point (a closed form's without sampling the others)."""
+    if len(curves) > 1:
+        curves.sort(key=lambda c: (-c.length, tuple(np.round(first_point(c), 9))))
+    return curves
+
+
+def in_own_chart(chart, surface):
+    """True where chart (packed data) is a chart of its own (a re-charted sphere), not the surface's data."""
+    return chart is not surface.data and not np.array_equal(chart, surface.data)
+
+
 def user_params(surfaces, y, points, a_chart, b_chart):
     """(u1, v1, u2, v2) in the surfaces' own charts: a re-charted sphere's (u, v) come from the point."""
     out = np.array(y, dtype=float, copy=True)
     for k, (surf, chart) in enumerate(zip(surfaces, (a_chart, b_chart))):
-        if chart is not surf.data and not np.array_equal(chart, surf.data):
+        if in_own_chart(chart, surf):
             uv = np.empty((len(points), 2))
             ks.inverse(surf.data, np.ascontiguousarray(points), uv)
             out[:, 2 * k:2 * k + 2] = uv

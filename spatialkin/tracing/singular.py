@@ -81,7 +81,9 @@ def jump_across(branch, seg, t_event, y_event, settings):
     (an apex's degenerate zone, the narrow wedge between branches crossing at a shallow angle).
 
     Returns (segment index, its local time, state there in its charts, the same in seg's charts, state
-    after, unit direction, length), or None if no point of the same branch is found.
+    after, unit direction, length, node, arc): length the curve's arc over the jump (arc, a JumpArc) or, where
+    that cannot be measured (arc None), the chord's; node the singular point passed (snapped onto the proven
+    one). None if no point of the same branch is found.
     """
     a, b = seg.a, seg.b
     flags = (area_flag(a), area_flag(b))
@@ -140,9 +142,11 @@ class JumpArc:
     series and integrated exactly (the Gauss-Legendre sum), so that an arc length inside the jump maps to its point
     on the chords (chord_position: Newton on the integral), not in proportion to the chords' length."""
 
-    def __init__(self, lengths, speeds):
+    def __init__(self, lengths, speeds, points=None):
         """lengths (2,): the sides' chords; speeds (2, ARC_NODES): the speed at each side's Gauss-Legendre nodes
-        (0.5 x length x (1 + x_i), x_i the nodes on [-1, 1])."""
+        (0.5 x length x (1 + x_i), x_i the nodes on [-1, 1]); points (3, 3): the jump's start, node and end (the
+        chords' ends), when known."""
+        self.points = points
         self.sides = []                                     # per side: (chord length, speed series, its integral)
         for length, speed in zip(lengths, speeds):
             series = legendre.legfit(_ARC_X, speed, ARC_NODES - 1)
@@ -167,6 +171,16 @@ class JumpArc:
             out[rows] = offset + tau
             offset += length
         return out
+
+    def arc_of_point(self, p):
+        """Arc length from the start of the curve's point nearest to p (3,), read on the chords: p's projection on
+        the first chord while it lies within it, on the second past the node."""
+        start, node, end = self.points
+        first, second = self.sides[0][0], self.sides[1][0]
+        along = float(np.dot(p - start, node - start)) / first
+        if along > first:
+            along = first + float(np.dot(p - node, end - node)) / second
+        return self.arc_position(along)
 
     def arc_position(self, d):
         """Arc length from the start at distance d along the chords (a float)."""
@@ -206,7 +220,7 @@ def jump_arc(a, b, points, states, settings):
             return None
         lengths.append(length)
         speeds.append(1.0 / along)
-    return JumpArc(lengths, speeds)
+    return JumpArc(lengths, speeds, np.array(points, dtype=float))
 
 
 def locate_node(a, b, y_from, y_to, d, y_event):
@@ -262,5 +276,5 @@ def closes_within_jump(jump, start, direction, min_cosine):
     travelled = jump.s0 + along > 2.0 * length         # not the start's own neighbourhood
     if (0.0 < along <= length and travelled and lateral <= JUMP_STRAIGHTNESS * length
             and float(np.dot(d, direction)) >= min_cosine):
-        return jump.s0 + (along if jump.sol.arc is None else jump.sol.arc.arc_position(along))
+        return jump.s0 + (along if jump.sol.arc is None else jump.sol.arc.arc_of_point(start))
     return None

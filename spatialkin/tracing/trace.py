@@ -15,7 +15,7 @@ from .arclength import remeasure_branch
 from .ivp import integrate_branch
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from .dense import Span, TracedSolution
-from .result import Curve, CurveResult, TracingError, DUPLICATE_SPACING
+from .result import Curve, CurveResult, TracingError, in_own_chart, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
 from .status import CLOSED, open_outcome
 from .traits import check_surface, traits
@@ -268,7 +268,7 @@ def _corrected(a, b, y_all, span_of, spans, settings):
     cuts = np.empty(len(breaks) + 2, dtype=np.int64)
     cuts[0], cuts[1:-1], cuts[-1] = 0, breaks + 1, n
     segs = [spans[k].seg for k in span_of[cuts[:-1]].tolist()]
-    own = [np.array([chart is not surf.data and not np.array_equal(chart, surf.data) for chart in charts])
+    own = [np.array([in_own_chart(chart, surf) for chart in charts])
            for surf, charts in ((a, [seg.a for seg in segs]), (b, [seg.b for seg in segs]))]
     kst.corrected_spans(np.ascontiguousarray(y_all, dtype=float), cuts, np.array([seg.a for seg in segs]),
                         np.array([seg.b for seg in segs]), np.array([seg.normal for seg in segs], dtype=float),

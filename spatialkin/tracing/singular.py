@@ -129,11 +129,11 @@ def snapped_node(node, settings):
     """The node located by a jump (to about the jump's accuracy; at a horn torus's cusp, where the area element
     grows with the square of the distance, 0.01 x the scale off), replaced by the singular point the topology stage
     proved there (Newton on grad g, or an apex; settings.nodes, when known) if one lies within SNAP x scale."""
-    known = settings.nodes
-    if known is None or not len(known):
+    if settings.nodes is None or not len(settings.nodes):
         return node
-    d = np.linalg.norm(np.asarray(known).reshape(-1, 3) - node, axis=1)
-    return np.asarray(known).reshape(-1, 3)[np.argmin(d)] if d.min() <= SNAP * settings.scale else node
+    known = np.asarray(settings.nodes).reshape(-1, 3)
+    d = np.linalg.norm(known - node, axis=1)
+    return known[np.argmin(d)] if d.min() <= SNAP * settings.scale else node
 
 
 class JumpArc:

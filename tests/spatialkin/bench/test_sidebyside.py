@@ -54,7 +54,7 @@ def test_occ_surfaces_are_the_same_surfaces():
 
 def test_rows_and_profile(rows):
     """15 rows; our errors are the measured distances of the returned points and dense samples; every profile
-    sums to its call, and the compiled kernels' time is a part of it (zero for a closed form)."""
+    sums to its call, and the compiled kernels' own time is measured (zero for a closed form)."""
     assert len(rows) == 15
     for r, (name, a, b) in zip(rows, pair_kind_cases()):
         assert r.kind == name and r.our_curves >= 1
@@ -67,10 +67,11 @@ def test_rows_and_profile(rows):
         assert set(r.profile.seconds) == set(stages.STAGES)
         assert r.profile.covered <= r.profile.total * (1 + 1e-12)
         assert r.profile.covered >= 0.5 * r.profile.total
-        # the compiled kernels' own time: a part of the call (none in a closed form: sk.intersect returns its
-        # curves before their points, which are sampled, in compiled code, when first read)
+        # the compiled kernels' own time (none in a closed form: sk.intersect returns its curves before their
+        # points, which are sampled, in compiled code, when first read); it is timed in other calls than the
+        # profile (cProfile would slow the Python down), so it is not compared with the profile's total
         closed_form = all(c.topology.mode == "closed_form" for c in curves)
-        assert (0.0 <= r.kernel if closed_form else 0.0 < r.kernel) and r.kernel < r.profile.total
+        assert 0.0 <= r.kernel if closed_form else 0.0 < r.kernel
         assert np.isfinite(r.ours_points) and r.ours_points > 0.0        # timed with the points read (no bound)
         for (points, s, params), c in zip(sidebyside.read_points(curves), curves):
             assert points.shape == (len(s), 3) and params.shape == (len(s), 4) and s[-1] == c.length

@@ -19,7 +19,7 @@ import numpy as np
 from ..kernels import branch_ode as kb
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
-from .ode import COMPILED, BudgetExceeded, Event, System, integrate, step_points
+from .ode import COMPILED, BudgetExceeded, Event, System, Watch, integrate, step_points
 from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment, area_flag,
                        finite_bounds, newton_fixed, project_state, segment_start)
 from .status import outcome
@@ -115,7 +115,7 @@ def segment_system(a, b, settings, sign, s_arm, shared, bounds):
 
 
 def segment_events(system, settings, compiled, near_edge, bounds, recharts):
-    """(Events, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles, closure.
+    """(Events as a Watch, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles, closure.
 
     The compiled method watches levels instead of the first three (as its kernel did before it was a solve_ivp
     method): where the sine or the area element nears a hard case, the segment ends at the last step before (that
@@ -130,7 +130,8 @@ def segment_events(system, settings, compiled, near_edge, bounds, recharts):
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
     plan, kinds = event_plan(compiled, near_edge, flagged, bounds, recharts, settings.close)
-    return [Event(system, i, d, level=level, probed=probed) for i, d, level, probed in plan], list(kinds)
+    return Watch([Event(system, i, d, level=level, probed=probed) for i, d, level, probed in plan],
+                 system.n_events), list(kinds)
 
 
 def event_plan(compiled, near_edge, flagged, bounds, recharts, close):

@@ -195,6 +195,16 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
         parallel normals, keeps the steps above gap_tol while the point sits on both surfaces), or -1 if
         Newton failed (singular system or no convergence within max_iter).
     """
+    status, _, _, _ = newton_from(y, a, b, q, t, gap_tol, max_iter, frame(a, y[0], y[1]), frame(b, y[2], y[3]))
+    return status
+
+
+@jit
+def newton_from(y, a, b, q, t, gap_tol, max_iter, f1, f2):
+    """project_to_curve from the frames f1 = frame(a, y[0], y[1]) and f2 = frame(b, y[2], y[3]) at the given y
+    (made by the caller, who needed them too). Returns (iterations or -1 as project_to_curve, fresh, f1, f2):
+    with fresh, f1 and f2 are the frames at the returned y (Newton stopped on its test before a step), else at
+    the y before the last step."""
     m = np.empty((4, 4))
     r = np.empty(4)
     dx = np.empty(4)
@@ -203,13 +213,16 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
     step = np.inf
     prev_step = np.inf
     for it in range(max_iter + 1):
-        p1, su1, sv1 = frame(a, y[0], y[1])
-        p2, su2, sv2 = frame(b, y[2], y[3])
+        if it > 0:
+            f1 = frame(a, y[0], y[1])
+            f2 = frame(b, y[2], y[3])
+        p1, su1, sv1 = f1
+        p2, su2, sv2 = f2
         gap = (p1[0] - p2[0], p1[1] - p2[1], p1[2] - p2[2])
         plane = ((p1[0] - q[0]) * t[0] + (p1[1] - q[1]) * t[1] + (p1[2] - q[2]) * t[2]) if use_plane else 0.0
         err = max(norm(gap), abs(plane))
         if it > 0 and err <= gap_tol and (step <= gap_tol or step > STAGNATION * prev_step):
-            return it
+            return it, True, f1, f2
         prev_step = step
         if it == max_iter:
             break
@@ -230,10 +243,10 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
             else:
                 # a parametrisation degenerates (an apex, a pole): take the minimum-norm step instead
                 if not gap_correction(su1, sv1, su2, sv2, gap, dx):
-                    return -1
+                    return -1, True, f1, f2
         else:
             if not gap_correction(su1, sv1, su2, sv2, gap, dx):
-                return -1
+                return -1, True, f1, f2
         for i in range(4):
             y[i] += dx[i]
         # the size of the step in space, measured on both surfaces
@@ -242,8 +255,8 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
                    norm((su2[0] * dx[2] + sv2[0] * dx[3], su2[1] * dx[2] + sv2[1] * dx[3],
                          su2[2] * dx[2] + sv2[2] * dx[3])))
         if err <= gap_tol and step <= gap_tol:
-            return it + 1
-    return -1
+            return it + 1, False, f1, f2
+    return -1, True, f1, f2          # (the loop ends at max_iter before a step: the frames are y's)
 
 
 @jit
@@ -278,21 +291,40 @@ def corrected_many(ys, a, b, normal, gap_tol, max_iter, points, gaps):
     tangent = np.empty(3)
     fixed = dot(normal, normal) > 0.0
     for k in range(ys.shape[0]):
-        p1 = frame(a, ys[k, 0], ys[k, 1])[0]
-        p2 = frame(b, ys[k, 2], ys[k, 3])[0]
+        f1 = frame(a, ys[k, 0], ys[k, 1])
+        f2 = frame(b, ys[k, 2], ys[k, 3])
+        p1, p2 = f1[0], f2[0]
         gaps[k] = math.sqrt((p1[0] - p2[0]) ** 2 + (p1[1] - p2[1]) ** 2 + (p1[2] - p2[2]) ** 2)
-        _project_row(ys[k], a, b, normal, fixed, gap_tol, max_iter, q, t, points[k], tangent)
+        _project_frames(ys[k], a, b, normal, fixed, gap_tol, max_iter, q, t, points[k], tangent, f1, f2)
 
 
 @jit
 def _project_row(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent):
     """One row of project_many (q, t: work vectors); returns Newton's iterations or -1."""
-    curve_frame(y, a, b, q, t)
+    return _project_frames(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent, frame(a, y[0], y[1]),
+                           frame(b, y[2], y[3]))
+
+
+@jit
+def _project_frames(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent, f1, f2):
+    """_project_row from the frames f1, f2 at y: curve_frame, project_to_curve and frame_along of y, each surface
+    evaluated once where two of them evaluate it at the same parameters (the same values: the same kernels)."""
+    for i in range(3):                                  # curve_frame(y, a, b, q, t)
+        q[i] = f1[0][i]
+    tangent_from_normals(f1[1], f1[2], f2[1], f2[2], t)
     if fixed:
         for i in range(3):
             t[i] = normal[i]
-    status = project_to_curve(y, a, b, q, t, gap_tol, max_iter)
-    frame_along(y, a, b, normal, fixed, point, tangent)
+    status, fresh, f1, f2 = newton_from(y, a, b, q, t, gap_tol, max_iter, f1, f2)
+    if not fresh:
+        f1 = frame(a, y[0], y[1])
+        f2 = frame(b, y[2], y[3])
+    for i in range(3):                                  # frame_along(y, a, b, normal, fixed, point, tangent)
+        point[i] = f1[0][i]
+    tangent_from_normals(f1[1], f1[2], f2[1], f2[2], tangent)
+    if fixed and dot(tangent, normal) < 0.0:
+        for i in range(3):
+            tangent[i] = -tangent[i]
     return status
 
 

@@ -14,12 +14,15 @@ It is split into segments at events that need Python between two integrations:
 At every segment start the state is projected back onto the curve by Newton, and the right-hand side
 carries a pull-back term, so the gap between the surfaces stays flat however long the branch is.
 """
+import functools
+import math
+
 import numpy as np
 
 from ..kernels import branch_ode as kb
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
-from .ode import COMPILED, BudgetExceeded, Event, System, integrate, step_points
+from .ode import COMPILED, BudgetExceeded, Event, System, Watch, integrate, step_points
 from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment, area_flag,
                        finite_bounds, newton_fixed, project_state, segment_start)
 from .status import outcome
@@ -115,7 +118,7 @@ def segment_system(a, b, settings, sign, s_arm, shared, bounds):
 
 
 def segment_events(system, settings, compiled, near_edge, bounds, recharts):
-    """(Events, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles, closure.
+    """(Events as a Watch, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles, closure.
 
     The compiled method watches levels instead of the first three (as its kernel did before it was a solve_ivp
     method): where the sine or the area element nears a hard case, the segment ends at the last step before (that
@@ -130,13 +133,16 @@ def segment_events(system, settings, compiled, near_edge, bounds, recharts):
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
     plan, kinds = event_plan(compiled, near_edge, flagged, bounds, recharts, settings.close)
-    return [Event(system, i, d, level=level, probed=probed) for i, d, level, probed in plan], list(kinds)
+    return Watch([Event(system, i, d, level=level, probed=probed) for i, d, level, probed in plan],
+                 system.n_events), list(kinds)
 
 
+@functools.lru_cache(maxsize=256)
 def event_plan(compiled, near_edge, flagged, bounds, recharts, close):
     """segment_events' plan: ((event index, direction, level, probed), ...) and the kinds
     (what integrate_branch does at each), for the method (compiled or not), near_edge, whether an area element is
-    watched (flagged), the finite_bounds rows, whether each surface re-charts, and whether closure is watched."""
+    watched (flagged), the finite_bounds rows, whether each surface re-charts, and whether closure is watched (all
+    hashable: made once per combination)."""
     handoff = ("handoff", None)
     if compiled:
         plan = [(kb.HANDOFF_SINE, -1, handoff, "before")] + (
@@ -302,7 +308,8 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             yp, p_e, t_e, _ = project_state(y, a, b, settings)
             if mark is not None:
                 stages.leave(mark)
-            close_enough = np.linalg.norm(p_e - start) <= radius
+            gap = p_e - start
+            close_enough = math.sqrt(gap.dot(gap)) <= radius           # (np.linalg.norm's sum and root)
             if close_enough and float(np.dot(sign * t_e, direction)) >= CLOSURE_COSINE:
                 remaining = float(np.dot(start - p_e, sign * t_e))
                 branch.status, branch.message = outcome("closed", s=s + remaining)

@@ -19,7 +19,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import DenseOutput, OdeSolver, solve_ivp
+from scipy.integrate import DenseOutput, OdeSolution, OdeSolver, solve_ivp
 
 from ..kernels import rk
 
@@ -114,6 +114,44 @@ def event_mode(level, probed, terminal):
     return rk.TERMINAL if terminal else rk.CROSSING
 
 
+class Watch(tuple):
+    """The Events a CompiledRK45 watches (a tuple of them, in order) with the arrays rk.advance takes for them:
+    made once for Events that several integrations share (a branch's segments), so that each CompiledRK45 reads
+    them instead of filling its own.
+
+    Attributes
+    ----------
+    active : ndarray (n_events,) of bool
+        The watched entries of the System's event vector.
+    directions : ndarray (n_events,)
+        Each watched event's direction (0 elsewhere).
+    modes : ndarray (n_events,) of int64
+        Each watched event's mode (event_mode; 0 elsewhere).
+    position : dict
+        Event index -> position in the tuple.
+
+    The arrays are read, never written, by the engine; ValueError for an event index given twice.
+    """
+
+    def __new__(cls, events, n_events):
+        self = super().__new__(cls, events)
+        self.active = np.zeros(n_events, dtype=np.bool_)
+        self.directions = np.zeros(n_events)
+        self.modes = np.zeros(n_events, dtype=np.int64)
+        self.position = {}
+        for k, event in enumerate(self):
+            if event.index in self.position:
+                raise ValueError(f"event {event.index} given twice")
+            self.position[event.index] = k
+            self.active[event.index] = True
+            self.directions[event.index] = event.direction
+            self.modes[event.index] = event.mode
+        return self
+
+    def __getnewargs__(self):
+        return tuple(self), len(self.active)
+
+
 class StepsDense(DenseOutput):
     """Dense output of one CompiledRK45 step: the RK45 polynomial of each of its internal steps (step lengths
     hs: the last polynomial may reach past a terminal event's time ts[-1])."""
@@ -131,21 +169,40 @@ class StepsDense(DenseOutput):
         return out.T
 
 
+class StepsSolution(OdeSolution):
+    """scipy's OdeSolution over the solver steps of a CompiledRK45 run (what solve_ivp builds with dense_output):
+    ``ts`` (k + 1,) the solver steps' ends, increasing, from the start, ``interpolants`` their k StepsDense. Its
+    attributes are OdeSolution's, set here without OdeSolution's checks of ts (integrate makes ts from the
+    engine's steps, each past the last, as solve_ivp keeps them); it evaluates as OdeSolution."""
+
+    def __init__(self, ts, interpolants):
+        self.ts = ts
+        self.interpolants = interpolants
+        self.n_segments = len(interpolants)
+        self.t_min = ts[0]
+        self.t_max = ts[-1]
+        self.ascending = True
+        self.side = "left"
+        self.ts_sorted = ts
+
+
 class EventLog:
     """What CompiledRK45 records for integrate: the events it located, (event position in its list, t, y) in
-    time order, and its internal steps (t, y arrays per solver step)."""
+    time order, its internal steps (t, y arrays per solver step) and each solver step's end and dense output
+    (dense: (t, StepsDense) per solver step)."""
 
     def __init__(self):
         self.hits = []
         self.steps = []
+        self.dense = []
         self.budget_exceeded = False
 
 
 class CompiledRK45(OdeSolver):
     """scipy's RK45 run in compiled code, many steps per solver step, stopping at the events it is given.
 
-    Options (through solve_ivp): ``system`` (System, required); ``watch`` and ``log``: the Events to watch
-    (given to this solver, not as solve_ivp's events: each crossing is located in compiled code on the step's dense
+    Options (through solve_ivp): ``system`` (System, required); ``watch`` and ``log``: the Events to watch (a
+    sequence, or a Watch made once for them) (given to this solver, not as solve_ivp's events: each crossing is located in compiled code on the step's dense
     output, as solve_ivp locates events, and recorded in the EventLog ``log``; at a terminal one the integration
     ends there); ``rtol``, ``atol``, ``max_step``, ``first_step``, ``max_nfev`` (past it the steps taken are
     kept and the next solver step fails with BUDGET_MESSAGE, log.budget_exceeded set), ``steps_per_call``.
@@ -172,18 +229,9 @@ class CompiledRK45(OdeSolver):
         self.max_nfev = NO_BUDGET if max_nfev is None else int(max_nfev)
         self.steps_per_call = int(steps_per_call)
         self.log = EventLog() if log is None else log
-        n_events = system.n_events
-        self.active = np.zeros(n_events, dtype=np.bool_)
-        self.directions = np.zeros(n_events)
-        self.modes = np.zeros(n_events, dtype=np.int64)
-        self.position = {}
-        for k, event in enumerate(watch):
-            if event.index in self.position:
-                raise ValueError(f"event {event.index} given twice")
-            self.position[event.index] = k
-            self.active[event.index] = True
-            self.directions[event.index] = event.direction
-            self.modes[event.index] = event.mode
+        plan = watch if isinstance(watch, Watch) else Watch(watch, system.n_events)
+        self.active, self.directions, self.modes, self.position = plan.active, plan.directions, plan.modes, \
+            plan.position
         self.y = np.array(self.y, dtype=float)
         self.f = np.empty(self.n)
         self.g = system.event_values(self.t, self.y, self.active)
@@ -198,11 +246,12 @@ class CompiledRK45(OdeSolver):
         dtype tests: OdeSolver.__init__ costs a few microseconds per segment. fun is never called by this method
         (the compiled kernels evaluate the right-hand side): fun and fun_single count nfev, fun_vectorized is None
         and vectorized is recorded but not used (unlike OdeSolver, which wraps fun both ways)."""
-        y0 = np.asarray(y0)
-        if y0.dtype.kind == "c":
-            raise ValueError("`y0` is complex, but the chosen solver does not support integration in a complex "
-                             "domain.")
-        y0 = y0.astype(float, copy=False)
+        if not (type(y0) is np.ndarray and y0.dtype == np.float64):      # (a float array is used as it is)
+            y0 = np.asarray(y0)
+            if y0.dtype.kind == "c":
+                raise ValueError("`y0` is complex, but the chosen solver does not support integration in a complex "
+                                 "domain.")
+            y0 = y0.astype(float, copy=False)
         if y0.ndim != 1:
             raise ValueError("`y0` must be 1-dimensional.")
         if not all(math.isfinite(value) for value in y0.tolist()):
@@ -246,6 +295,7 @@ class CompiledRK45(OdeSolver):
         self.t_old, self.t, self.y, self.h = self.t, t, y, h
         self._dense = StepsDense(ts, ys, hs, qs)
         self.log.steps.append((ts, ys))
+        self.log.dense.append((t, self._dense))
         return True, None
 
     def _dense_output_impl(self):
@@ -263,22 +313,42 @@ def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, m
         return solve_ivp(budgeted(system.rhs, max_nfev), t_span, y0, method=method, rtol=rtol, atol=atol,
                          dense_output=True, events=events, args=system.args, max_step=max_step)
     log = EventLog()
-    res = solve_ivp(system.rhs, t_span, y0, method=CompiledRK45, rtol=rtol, atol=atol, dense_output=True,
-                    args=system.args, max_step=max_step, system=system, watch=events, log=log, max_nfev=max_nfev)
-    t_events = [[] for _ in events]
-    y_events = [[] for _ in events]
-    for k, t_e, y_e in log.hits:
-        t_events[k].append(t_e)
-        y_events[k].append(y_e)
+    # the dense output is made here from the log (solve_ivp's OdeSolution of the same steps, without its checks)
+    res = solve_ivp(system.rhs, t_span, y0, method=CompiledRK45, rtol=rtol, atol=atol, args=system.args,
+                    max_step=max_step, system=system, watch=events, log=log, max_nfev=max_nfev)
+    res.sol = steps_solution(res, log.dense)
     n = len(y0)
     no_t, no_y = np.empty(0), np.empty((0, n))        # the events not met share these (empty: nothing to change)
-    res.t_events = [np.array(t) if t else no_t for t in t_events]
-    res.y_events = [np.array(y).reshape(len(y), n) if y else no_y for y in y_events]
-    if res.status == 0 and log.hits and events[log.hits[-1][0]].terminal:
-        res.status, res.message = 1, "A termination event occurred."
+    res.t_events = [no_t] * len(events)
+    res.y_events = [no_y] * len(events)
+    if log.hits:
+        met = {}
+        for k, t_e, y_e in log.hits:
+            met.setdefault(k, []).append((t_e, y_e))
+        for k, hits in met.items():
+            res.t_events[k] = np.array([t_e for t_e, _ in hits])
+            res.y_events[k] = np.array([y_e for _, y_e in hits]).reshape(len(hits), n)
+        if res.status == 0 and events[log.hits[-1][0]].terminal:
+            res.status, res.message = 1, "A termination event occurred."
     res.steps = log.steps
     res.budget_exceeded = log.budget_exceeded
     return res
+
+
+def steps_solution(res, dense):
+    """The dense output solve_ivp(..., dense_output=True) gives a CompiledRK45 run, as a StepsSolution, from its
+    solver steps' (t, StepsDense) (EventLog.dense): a step ending where the last one kept ended is dropped, as
+    solve_ivp drops it (and res.t, res.y, which solve_ivp keeps whole without a dense output, lose it too)."""
+    times, interpolants = [res.t[0]], []
+    for t, step in dense:
+        if len(times) > 1 and times[-1] == t:
+            continue
+        times.append(t)
+        interpolants.append(step)
+    if len(times) < len(res.t):
+        kept = [0] + [k + 1 for k, (t, _) in enumerate(dense) if k == 0 or dense[k - 1][0] != t]
+        res.t, res.y = res.t[kept], res.y[:, kept]
+    return StepsSolution(np.array(times), interpolants)
 
 
 def budgeted(rhs, limit=None):

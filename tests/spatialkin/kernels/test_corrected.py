@@ -37,3 +37,25 @@ def test_corrected_many_is_project_many_with_the_gaps_before_projection():
         assert np.all(st >= 0)                                          # ... and every projection converged
         ks.evaluate(b, np.ascontiguousarray(ours[:, 2:]), on_b)
         assert np.max(np.linalg.norm(points - on_b, axis=1)) <= GAP_TOL  # onto both surfaces
+
+
+def test_project_many_is_curve_frame_project_to_curve_and_frame_along():
+    """project_many evaluates each surface once where its three steps evaluate it at the same parameters (the frames
+    handed on): oracle the three kernels called one by one, as project_many called them before, to the bit (the
+    rows, points, tangents and Newton's iterations), with and without a fixed plane normal, also where Newton
+    fails (max_iter 1) or ends with a step (the frames then made again)."""
+    a, b, y = states()
+    for normal in (np.zeros(3), np.array([0.3, -0.2, 0.9])):
+        fixed = bool(normal @ normal > 0)
+        for max_iter in (1, 2, NEWTON_MAX_ITER):
+            ours, p, t, st = y.copy(), np.empty((len(y), 3)), np.empty((len(y), 3)), np.empty(len(y), dtype=np.int64)
+            kc.project_many(ours, a, b, normal, GAP_TOL, max_iter, p, t, st)
+            for k in range(len(y)):
+                row, q, tangent, point, along = y[k].copy(), np.empty(3), np.empty(3), np.empty(3), np.empty(3)
+                kc.curve_frame(row, a, b, q, tangent)
+                status = kc.project_to_curve(row, a, b, q, normal if fixed else tangent, GAP_TOL, max_iter)
+                kc.frame_along(row, a, b, normal, fixed, point, along)
+                assert status == st[k]
+                assert np.array_equal(row, ours[k]) and np.array_equal(point, p[k]) and np.array_equal(along, t[k])
+            if max_iter == 1:
+                assert np.any(st < 0)

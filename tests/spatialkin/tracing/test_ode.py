@@ -114,3 +114,61 @@ def test_compiled_rk45_base_state_is_odesolvers():
         with pytest.raises(ValueError) as got:
             CompiledRK45(system.rhs, 0.0, bad, length, system=system)
         assert str(got.value) == str(want.value)
+
+
+def test_integrate_builds_solve_ivps_dense_output_and_reads_its_watch():
+    """integrate calls solve_ivp without a dense output and makes it from CompiledRK45's log (StepsSolution): oracle
+    solve_ivp's own OdeSolution of the same run (dense_output=True), the same times, interpolants, attributes and
+    values to the bit, res.t and res.y alike; a Watch made once gives the same run as the list of its Events."""
+    from scipy.integrate import OdeSolution, solve_ivp
+    from spatialkin.tracing.ode import STEPS_PER_CALL, EventLog, StepsSolution, Watch, steps_solution
+    system, y0, length = looper_system()
+    atol = np.full(4, RTOL)
+    for steps_per_call in (5, None):         # several solver steps (the log read by steps_solution), and integrate's
+        options = dict(rtol=RTOL, atol=atol, args=system.args, system=system)
+        theirs = solve_ivp(system.rhs, (0.0, length), y0, method=CompiledRK45, dense_output=True,
+                           steps_per_call=steps_per_call or STEPS_PER_CALL, **options)
+        if steps_per_call:
+            log = EventLog()
+            ours = solve_ivp(system.rhs, (0.0, length), y0, method=CompiledRK45, log=log, steps_per_call=steps_per_call,
+                             **options)
+            ours.sol = steps_solution(ours, log.dense)
+        else:
+            ours = integrate(system, (0.0, length), y0, COMPILED, [], RTOL, atol)
+        assert isinstance(ours.sol, StepsSolution) and isinstance(ours.sol, OdeSolution)
+        assert len(ours.sol.interpolants) == len(theirs.sol.interpolants) == len(theirs.t) - 1
+        assert len(theirs.t) > (10 if steps_per_call else 1)
+        for name in ("n_segments", "t_min", "t_max", "ascending", "side"):
+            assert getattr(ours.sol, name) == getattr(theirs.sol, name), name
+        np.testing.assert_array_equal(ours.sol.ts, theirs.sol.ts)
+        np.testing.assert_array_equal(ours.sol.ts_sorted, theirs.sol.ts_sorted)
+        np.testing.assert_array_equal(ours.t, theirs.t)
+        np.testing.assert_array_equal(ours.y, theirs.y)
+        s = np.concatenate([np.linspace(0.0, length, 301), theirs.t])
+        np.testing.assert_array_equal(ours.sol(s), theirs.sol(s))
+        for t in theirs.t:
+            np.testing.assert_array_equal(ours.sol(t), theirs.sol(t))
+    events = [Event(system, kb.POLE_B, -1), Event(system, kb.CLOSURE, 1, terminal=False)]
+    watch = Watch(events, system.n_events)
+    assert list(watch) == events and watch.modes[kb.POLE_B] == events[0].mode and watch.active.sum() == 2
+    one = integrate(system, (0.0, length), y0, COMPILED, events, RTOL, atol)
+    two = integrate(system, (0.0, length), y0, COMPILED, watch, RTOL, atol)
+    assert one.status == two.status and one.nfev == two.nfev
+    for a, b in zip(one.t_events + one.y_events, two.t_events + two.y_events):
+        np.testing.assert_array_equal(a, b)
+    with pytest.raises(ValueError, match="twice"):
+        Watch([events[0], events[0]], system.n_events)
+
+
+def test_steps_solution_drops_a_step_that_ends_where_the_last_one_did():
+    """solve_ivp keeps no interpolant (and no time) for a solver step ending where the last one kept ended (after
+    the first): steps_solution does the same, oracle the rule written out on a made-up log."""
+    from scipy.optimize import OptimizeResult
+    from spatialkin.tracing.ode import steps_solution
+    dense = [(1.0, "a"), (1.0, "b"), (2.0, "c"), (2.0, "d"), (2.0, "e"), (3.0, "f")]
+    res = OptimizeResult(t=np.array([0.0] + [t for t, _ in dense]), y=np.arange(7.0)[None] * np.ones((4, 1)))
+    sol = steps_solution(res, dense)
+    assert sol.interpolants == ["a", "c", "f"]
+    np.testing.assert_array_equal(sol.ts, [0.0, 1.0, 2.0, 3.0])
+    np.testing.assert_array_equal(res.t, [0.0, 1.0, 2.0, 3.0])
+    np.testing.assert_array_equal(res.y[0], [0.0, 1.0, 3.0, 6.0])

@@ -15,7 +15,6 @@ tangency or a touch of a trim edge or corner within GRAZE x tolerance, a plane t
 surfaces, near-parallel configurations whose conic would be huge, both surfaces unbounded.
 """
 import collections
-import functools
 import math
 
 import numpy as np
@@ -70,9 +69,10 @@ def closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pul
 
 class Placed:
     """A surface as the closed forms read it, once per call: its traits and name, and its frame's origin (3 floats),
-    rotation (3 rows of 3 floats) and trims (u_min, u_max, v_min, v_max) as floats, read from its packed data."""
+    rotation (3 rows of 3 floats) and its columns (the local axes in global coordinates), trims (u_min, u_max,
+    v_min, v_max) as floats, read from its packed data; a quadric's (mu, rho) (quadric_form; None for a plane)."""
 
-    __slots__ = ("surface", "kind", "name", "origin", "rot", "bounds")
+    __slots__ = ("surface", "kind", "name", "origin", "rot", "axes", "bounds", "form")
 
     def __init__(self, surface, kind):
         data = surface.data.tolist()
@@ -81,7 +81,9 @@ class Placed:
         self.name = kind.name
         self.origin = data[ks.ORIGIN:ks.ORIGIN + 3]
         self.rot = [data[ks.ROT:ks.ROT + 3], data[ks.ROT + 3:ks.ROT + 6], data[ks.ROT + 6:ks.ROT + 9]]
+        self.axes = [data[ks.ROT + j:ks.ROT + 9:3] for j in range(3)]        # (column j: [row[j] for row in rot])
         self.bounds = data[ks.BOUNDS:ks.BOUNDS + 4]
+        self.form = quadric_form(self) if self.name in QUADRICS else None
 
 
 def closed_form(a, b, settings):
@@ -143,9 +145,8 @@ def combine(rows, f, g):
     return [c[0] + f * p[0] + g * q[0], c[1] + f * p[1] + g * q[1], c[2] + f * p[2] + g * q[2]]
 
 
-#: scalar_basis(shape, t, order=0): (f, g) of spatialkin.tracing.conic at one float t (math, not numpy), or their
-#: derivatives (conic.basis with lib=math, called without a Python frame of its own).
-scalar_basis = functools.partial(basis, lib=math)
+#: (f, g) of spatialkin.tracing.conic at one float t, or their derivatives, are basis(shape, t, order, math): its
+#: arguments passed by position (a functools.partial with lib=math as a keyword costs three times the call).
 
 
 def to_global(rot, x):
@@ -183,8 +184,8 @@ def sphere_circle(a, b, graze, scale):
 def plane_line(a, b, graze, scale):
     """[(LINE, rows)] of two planes (Placed); [] for parallel planes apart; None for (nearly) coplanar ones or a
     line farther than LARGE x scale."""
-    (oa, ra), (ob, rb) = (a.origin, a.rot), (b.origin, b.rot)
-    n1, n2 = [row[2] for row in ra], [row[2] for row in rb]
+    oa, ob = a.origin, b.origin
+    n1, n2 = a.axes[2], b.axes[2]
     along = cross(n1, n2)
     sin = math.sqrt(dot(along, along))
     gap = dot(n2, [ob[i] - oa[i] for i in range(3)])
@@ -213,11 +214,11 @@ def plane_conics(plane, quadric, graze, scale):
     of an untrimmed plane about the quadric's axis (or a sphere's), () when nothing is there; None where
     declined."""
     origin, rot = quadric.origin, quadric.rot
-    p_origin, p_rot = plane.origin, plane.rot
-    normal = [row[2] for row in p_rot]
+    p_origin = plane.origin
+    normal = plane.axes[2]
     n = to_local(rot, normal)
     d = dot(normal, [p_origin[i] - origin[i] for i in range(3)])     # the plane: n . q = d (local)
-    mu, rho = quadric_form(quadric)
+    mu, rho = quadric.form
     name = quadric.name
     if name == "sphere" and abs(abs(d) - math.sqrt(rho)) <= graze:
         return None                                          # tangent
@@ -257,7 +258,7 @@ def plane_conics(plane, quadric, graze, scale):
             if (name == "sphere" or sin <= SAME) and not any(map(math.isfinite, plane.bounds)):
                 if not inside_axial(quadric, centre[2], graze):
                     return None if inside_axial(quadric, centre[2], -graze) else ()
-                axis = normal if name == "sphere" else [row[2] for row in rot]
+                axis = normal if name == "sphere" else quadric.axes[2]
                 return np.array(combine([origin, to_global(rot, centre), zero], 1.0, 0.0)), np.array(axis), minor
             if minor <= major:
                 local = [(ELLIPSE, [centre, [minor * x for x in e1], [major * x for x in e2]])]
@@ -286,14 +287,14 @@ def linear_trims(surfaces):
     trims = []
     for k, surf in enumerate(surfaces):
         axes = surf.kind.parameter_axes
-        origin, rot = surf.origin, surf.rot
+        o0, o1, o2 = surf.origin
         for j, value in enumerate(surf.bounds):
             if math.isfinite(value):
                 axis = axes[j // 2]
                 if axis is None:
                     return None
-                w = [row[axis] for row in rot]
-                trims.append((w, value + dot(w, origin), 1.0 if j % 2 else -1.0, (k, j)))
+                w = surf.axes[axis]
+                trims.append((w, value + (w[0] * o0 + w[1] * o1 + w[2] * o2), 1.0 if j % 2 else -1.0, (k, j)))
     return trims
 
 
@@ -335,18 +336,24 @@ def quadratic(a2, a1, a0):
 def clip(shape, rows, trims, graze):
     """[(t_lo, t_hi, ends)] of the arcs of the conic inside every trim; ends is None for a whole ellipse, else
     ((surface, edge) at t_lo, at t_hi); None where declined (a touch, a corner, an unbounded arc)."""
-    linear = [(dot(w, rows[0]) - bound, dot(w, rows[1]), dot(w, rows[2]), side) for w, bound, side, _ in trims]
+    (c0, c1, c2), (p0, p1, p2), (q0, q1, q2) = rows
+    linear = []                                              # (alpha, beta, gamma, side): the trim is alpha + beta f + gamma g
     events = []
-    for (alpha, beta, gamma, _), (_, _, _, edge) in zip(linear, trims):
+    for (w0, w1, w2), bound, side, edge in trims:
+        alpha = w0 * c0 + w1 * c1 + w2 * c2 - bound         # (dot(w, rows[k]) written out)
+        beta = w0 * p0 + w1 * p1 + w2 * p2
+        gamma = w0 * q0 + w1 * q1 + w2 * q2
+        linear.append((alpha, beta, gamma, side))
         roots = crossings(shape, beta, gamma, -alpha, graze)
         if roots is None:
             return None
-        events += [(t, edge) for t in roots]
+        for t in roots:
+            events.append((t, edge))
     events.sort()
     periodic = shape == ELLIPSE
 
     def inside(t):
-        f, g = scalar_basis(shape, t)
+        f, g = basis(shape, t, 0, math)
         for alpha, beta, gamma, side in linear:
             if not (alpha + beta * f + gamma * g) * side <= 0.0:
                 return False
@@ -360,10 +367,13 @@ def clip(shape, rows, trims, graze):
         events.append((events[0][0] + TWO_PI, events[0][1]))
     elif inside(events[0][0] - 1.0) or inside(events[-1][0] + 1.0):
         return None                                          # an unbounded arc
-    points = [combine(rows, *scalar_basis(shape, t)) for t, _ in events]
-    for p, q in zip(points, points[1:]):
-        if math.dist(p, q) <= graze:
+    last = None
+    for t, _ in events:
+        f, g = basis(shape, t, 0, math)
+        point = (c0 + f * p0 + g * q0, c1 + f * p1 + g * q1, c2 + f * p2 + g * q2)      # (combine(rows, f, g))
+        if last is not None and math.dist(last, point) <= graze:
             return None                                      # a corner, or two trims crossed at one point
+        last = point
     return [(t0, t1, (e0, e1)) for (t0, e0), (t1, e1) in zip(events, events[1:]) if inside(0.5 * (t0 + t1))]
 
 
@@ -371,11 +381,11 @@ def clip(shape, rows, trims, graze):
 def normal(surf, point):
     """The surface's (Placed) normal at a point on it: a positive multiple of S_u x S_v (the gradient of its
     implicit function: diag(1, 1, mu) q for a quadric, local z for a plane)."""
+    if surf.form is None:
+        return surf.axes[2]
     origin, rot = surf.origin, surf.rot
-    if surf.name == "plane":
-        return [row[2] for row in rot]
-    q = to_local(rot, [point[i] - origin[i] for i in range(3)])
-    q[2] *= quadric_form(surf)[0]
+    q = to_local(rot, [point[0] - origin[0], point[1] - origin[1], point[2] - origin[2]])
+    q[2] *= surf.form[0]
     return to_global(rot, q)
 
 
@@ -383,13 +393,13 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
     """The CurveResult of the arc t in [t_lo, t_hi] (ends None: the whole closed conic) of the surfaces (Placed),
     run along N_a x N_b; None where the surfaces are nearly tangent on it."""
     t_mid = 0.5 * (t_lo + t_hi)
-    point = combine(rows, *scalar_basis(shape, t_mid))
+    point = combine(rows, *basis(shape, t_mid, 0, math))
     na, nb = normal(placed[0], point), normal(placed[1], point)
     along = cross(na, nb)
     if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
         return None
     centre, P, Q = np.array(rows)                            # (rows of one array)
-    if dot(along, combine([[0.0] * 3, rows[1], rows[2]], *scalar_basis(shape, t_mid, 1))) < 0:
+    if dot(along, combine([[0.0] * 3, rows[1], rows[2]], *basis(shape, t_mid, 1, math))) < 0:
         Q, t_lo, t_hi = -Q, -t_hi, -t_lo                     # run it backwards: C(-t), g odd
         ends = None if ends is None else ends[::-1]
     closed = ends is None

@@ -35,7 +35,8 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(GL_NODES)
 #: The shapes whose arc length S(t) is computed value by value (the same at a t whatever else is evaluated with
 #: it): their length comes from the two ends, their knots are made on first use.
 ENDWISE = (LINE, ELLIPSE)
-#: The first and the last of the knots.
+#: A quarter turn, the last of quarter_turn's angles (np.linspace ends on its stop).
+QUARTER = 0.5 * math.pi
 
 
 def basis(shape, t, order=0, lib=np):
@@ -59,7 +60,8 @@ class Conic:
 
     def __init__(self, shape, centre, P, Q, t_lo=0.0, t_hi=0.0):
         self.shape, self.centre, self.P, self.Q = shape, centre, P, Q
-        self.p2, self.q2 = float(P @ P), float(Q @ Q)
+        (p0, p1, p2), (q0, q1, q2) = P.tolist(), Q.tolist()
+        self.p2, self.q2 = p0 * p0 + p1 * p1 + p2 * p2, q0 * q0 + q1 * q1 + q2 * q2     # (P @ P, Q @ Q)
         if shape == ELLIPSE:
             self.m = 1.0 - self.p2 / self.q2              # |P| <= |Q|: 0 <= m < 1
             self.b = math.sqrt(self.q2)
@@ -87,7 +89,8 @@ class Conic:
         return np.sqrt(f * f * self.p2 + g * g * self.q2)
 
     def arc(self, t):
-        """Arc length S(t) (M,) from t = 0 (a hyperbola: from t_lo), increasing with t."""
+        """Arc length S(t) (M,) from t = 0 (a hyperbola: from t_lo), increasing with t, at t (M,) (a line's or an
+        ellipse's: or at one float t)."""
         shape = self.shape
         if shape == ELLIPSE:
             return self.b * ellipeinc(t, self.m) if self.m > 0 else self.b * t
@@ -118,13 +121,12 @@ class ConicSolution(ExactSolution):
         self.turn = closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0
         knots = None                            # (made on first use: make_knots)
         if self.turn:                           # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
-            length = conic.b * (4 * ellipeinc(quarter_turn(samples)[-1], conic.m))      # (ellipse_turn's last)
+            length = conic.b * (4 * ellipeinc(QUARTER, conic.m))      # (ellipse_turn's last: quarter_turn's last)
             self.s0 = 0.0 if t_lo == 0 else -length
         elif conic.shape in ENDWISE:
             step = self._t_range[2]
-            ends = conic.arc(np.array([t_lo + step * 0.0, t_hi]))     # (t_knots' first and last)
-            self.s0 = float(ends[0])
-            length = ends[1] - self.s0
+            self.s0 = float(conic.arc(t_lo + step * 0.0))            # (t_knots' first and last, one by one)
+            length = conic.arc(t_hi) - self.s0
         else:
             knots = self.make_knots()
             length = knots[-1]

@@ -398,9 +398,9 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
     along = cross(na, nb)
     if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
         return None
-    centre, P, Q = np.array(rows)                            # (rows of one array)
-    if dot(along, combine([[0.0] * 3, rows[1], rows[2]], *basis(shape, t_mid, 1, math))) < 0:
-        Q, t_lo, t_hi = -Q, -t_hi, -t_lo                     # run it backwards: C(-t), g odd
+    centre, P, Q = rows
+    if dot(along, combine([[0.0] * 3, P, Q], *basis(shape, t_mid, 1, math))) < 0:
+        Q, t_lo, t_hi = [-x for x in Q], -t_hi, -t_lo       # run it backwards: C(-t), g odd
         ends = None if ends is None else ends[::-1]
     closed = ends is None
     surfaces = (placed[0].surface, placed[1].surface)

@@ -56,11 +56,12 @@ def basis(shape, t, order=0, lib=np):
 
 class Conic:
     """The conic C(t) = centre + P f(t) + Q g(t) of the given shape (see the module docstring), with the arc
-    length S(t) from t = 0 (a hyperbola's quadrature covers [t_lo, t_hi])."""
+    length S(t) from t = 0 (a hyperbola's quadrature covers [t_lo, t_hi]). centre, P and Q are given as 3 floats
+    each and read as arrays (3,), made on first use (the arc length needs only |P|^2 and |Q|^2)."""
 
     def __init__(self, shape, centre, P, Q, t_lo=0.0, t_hi=0.0):
-        self.shape, self.centre, self.P, self.Q = shape, centre, P, Q
-        (p0, p1, p2), (q0, q1, q2) = P.tolist(), Q.tolist()
+        self.shape, self.rows = shape, (centre, P, Q)
+        (p0, p1, p2), (q0, q1, q2) = P, Q
         self.p2, self.q2 = p0 * p0 + p1 * p1 + p2 * p2, q0 * q0 + q1 * q1 + q2 * q2     # (P @ P, Q @ Q)
         if shape == ELLIPSE:
             self.m = 1.0 - self.p2 / self.q2              # |P| <= |Q|: 0 <= m < 1
@@ -72,6 +73,21 @@ class Conic:
             count = max(1, math.ceil((t_hi - t_lo) / width))
             self.edges = np.linspace(t_lo, t_hi, count + 1)
             self.cum = np.concatenate([[0.0], np.cumsum(self._panel(self.edges[:-1], self.edges[1:]))])
+
+    @functools.cached_property
+    def centre(self):
+        """The centre (3,) (a line's point at t = 0)."""
+        return np.array(self.rows[0])
+
+    @functools.cached_property
+    def P(self):
+        """P (3,)."""
+        return np.array(self.rows[1])
+
+    @functools.cached_property
+    def Q(self):
+        """Q (3,)."""
+        return np.array(self.rows[2])
 
     def basis(self, t, order=0):
         """(f, g) (M,) each, or their derivatives of the given order (0, 1, 2) at t (M,)."""

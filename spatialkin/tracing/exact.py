@@ -46,28 +46,27 @@ def even(start, stop, count):
 
 #: The fields of a SampledResult taken from its dense output's samples (ExactSolution.samples) on first access.
 SAMPLED_FIELDS = ("points", "s", "params")
-#: CurveResult's fields with a default value, and those with a default factory (name, factory).
+#: CurveResult's fields with a default value, and those with a default factory (name: factory; a SampledResult
+#: not given one makes it on first access, as the sampled fields).
 _DEFAULTS = {f.name: f.default for f in dataclasses.fields(CurveResult) if f.default is not dataclasses.MISSING}
-_FACTORIES = tuple((f.name, f.default_factory) for f in dataclasses.fields(CurveResult)
-                   if f.default_factory is not dataclasses.MISSING)
+_FACTORIES = {f.name: f.default_factory for f in dataclasses.fields(CurveResult)
+              if f.default_factory is not dataclasses.MISSING}
 #: All of CurveResult's field names, and those a SampledResult must be given.
 _FIELDS = frozenset(f.name for f in dataclasses.fields(CurveResult))
-_REQUIRED = _FIELDS - set(_DEFAULTS) - {name for name, _ in _FACTORIES} - set(SAMPLED_FIELDS)
+_REQUIRED = _FIELDS - set(_DEFAULTS) - set(_FACTORIES) - set(SAMPLED_FIELDS)
 
 
 class SampledResult(CurveResult):
     """A CurveResult of a closed form whose points, s and params, unless given (all three), are its dense output's
     stored samples (``sol.samples()`` and ``sol.knots``: the exact points and the surfaces' parameters at the
     knots), made on first access: what sk.intersect returns costs no sampling until a caller reads them, and reads
-    the same arrays then."""
+    the same arrays then. The fields with a default factory (nodes, solver_gap) are made on first access too."""
 
     def __init__(self, *, points=None, s=None, params=None, **fields):
         # CurveResult's own init with its defaults and its checks (__post_init__), its fields written as its
         # generated init writes them (to the instance's dict), at half its cost (tests: test_exact.py)
         state = self.__dict__
         state.update(_DEFAULTS)
-        for name, make in _FACTORIES:
-            state[name] = make()
         state.update(fields)
         if not (_REQUIRED <= state.keys() <= _FIELDS):
             raise TypeError(f"SampledResult: missing {sorted(_REQUIRED - state.keys())} or unknown "
@@ -77,13 +76,19 @@ class SampledResult(CurveResult):
         self.__post_init__()
 
     def __getattr__(self, name):
-        """A sampled field not made yet (Python asks only for attributes the instance does not hold)."""
+        """A sampled field or a default factory's not made yet (Python asks only for attributes the instance does
+        not hold)."""
         state = self.__dict__
-        if name in SAMPLED_FIELDS and "sol" in state:
-            sol = state["sol"]
-            points, params = sol.samples()
-            state.update(points=points, s=sol.knots, params=params)
-            return state[name]
+        if "sol" in state:
+            if name in SAMPLED_FIELDS:
+                sol = state["sol"]
+                points, params = sol.samples()
+                state.update(points=points, s=sol.knots, params=params)
+                return state[name]
+            make = _FACTORIES.get(name)
+            if make is not None:
+                state[name] = value = make()
+                return value
         raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
 

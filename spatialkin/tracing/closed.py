@@ -69,10 +69,11 @@ def closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pul
 
 class Placed:
     """A surface as the closed forms read it, once per call: its traits and name, and its frame's origin (3 floats),
-    rotation (3 rows of 3 floats) and its columns (the local axes in global coordinates), trims (u_min, u_max,
-    v_min, v_max) as floats, read from its packed data; a quadric's (mu, rho) (quadric_form; None for a plane)."""
+    rotation (9 floats, row by row: its local axis j is rot[j::3]) and local z axis (a plane's normal), trims
+    (u_min, u_max, v_min, v_max) as floats, read from its packed data; a quadric's (mu, rho) (quadric_form; None
+    for a plane)."""
 
-    __slots__ = ("surface", "kind", "name", "origin", "rot", "axes", "bounds", "form")
+    __slots__ = ("surface", "kind", "name", "origin", "rot", "z", "bounds", "form")
 
     def __init__(self, surface, kind):
         data = surface.data.tolist()
@@ -80,8 +81,8 @@ class Placed:
         self.kind = kind
         self.name = kind.name
         self.origin = data[ks.ORIGIN:ks.ORIGIN + 3]
-        self.rot = [data[ks.ROT:ks.ROT + 3], data[ks.ROT + 3:ks.ROT + 6], data[ks.ROT + 6:ks.ROT + 9]]
-        self.axes = [data[ks.ROT + j:ks.ROT + 9:3] for j in range(3)]        # (column j: [row[j] for row in rot])
+        self.rot = rot = data[ks.ROT:ks.ROT + 9]
+        self.z = rot[2::3]
         self.bounds = data[ks.BOUNDS:ks.BOUNDS + 4]
         self.form = quadric_form(self) if self.name in QUADRICS else None
 
@@ -150,25 +151,26 @@ def combine(rows, f, g):
 
 
 def to_global(rot, x):
-    """rot x (the local vector x in global coordinates): dot(row, x) for each row."""
-    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = rot
+    """rot x (the local vector x in global coordinates; rot: 9 floats, row by row): dot(row, x) for each row."""
+    r00, r01, r02, r10, r11, r12, r20, r21, r22 = rot
     return [r00 * x[0] + r01 * x[1] + r02 * x[2], r10 * x[0] + r11 * x[1] + r12 * x[2],
             r20 * x[0] + r21 * x[1] + r22 * x[2]]
 
 
 def to_local(rot, x):
     """rot^T x."""
-    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = rot
+    r00, r01, r02, r10, r11, r12, r20, r21, r22 = rot
     return [r00 * x[0] + r10 * x[1] + r20 * x[2], r01 * x[0] + r11 * x[1] + r21 * x[2],
             r02 * x[0] + r12 * x[1] + r22 * x[2]]
 
 
 # --- the conics: (shape, [centre, P, Q]) in global coordinates ------------------------------------------------
 def sphere_circle(a, b, graze, scale):
-    """(centre, axis, radius) of the circle of two spheres, the axis from a's centre to b's (as the topology
-    stage's common axis); () when they do not meet; None near tangency or coincidence."""
-    d = b.frame.origin - a.frame.origin
-    dist = math.sqrt(d @ d)
+    """(centre, axis, radius) of the circle of two spheres (centre and axis 3 floats each), the axis from a's centre
+    to b's (as the topology stage's common axis); () when they do not meet; None near tangency or coincidence."""
+    (a0, a1, a2), (b0, b1, b2) = a.frame.origin.tolist(), b.frame.origin.tolist()
+    d = [b0 - a0, b1 - a1, b2 - a2]
+    dist = math.sqrt(dot(d, d))
     ra, rb = a.radius, b.radius
     if dist <= SAME * scale:
         return None if abs(ra - rb) <= graze else ()
@@ -176,16 +178,16 @@ def sphere_circle(a, b, graze, scale):
         return None
     if dist > ra + rb or dist < abs(ra - rb):
         return ()
-    axis = d / dist
+    axis = [d[0] / dist, d[1] / dist, d[2] / dist]
     x = 0.5 * (dist * dist + ra * ra - rb * rb) / dist
-    return a.frame.origin + x * axis, axis, math.sqrt(ra * ra - x * x)
+    return [a0 + x * axis[0], a1 + x * axis[1], a2 + x * axis[2]], axis, math.sqrt(ra * ra - x * x)
 
 
 def plane_line(a, b, graze, scale):
     """[(LINE, rows)] of two planes (Placed); [] for parallel planes apart; None for (nearly) coplanar ones or a
     line farther than LARGE x scale."""
     oa, ob = a.origin, b.origin
-    n1, n2 = a.axes[2], b.axes[2]
+    n1, n2 = a.z, b.z
     along = cross(n1, n2)
     sin = math.sqrt(dot(along, along))
     gap = dot(n2, [ob[i] - oa[i] for i in range(3)])
@@ -214,23 +216,25 @@ def plane_conics(plane, quadric, graze, scale):
     of an untrimmed plane about the quadric's axis (or a sphere's), () when nothing is there; None where
     declined."""
     origin, rot = quadric.origin, quadric.rot
-    p_origin = plane.origin
-    normal = plane.axes[2]
+    (o0, o1, o2), (p0, p1, p2) = origin, plane.origin
+    normal = plane.z
     n = to_local(rot, normal)
-    d = dot(normal, [p_origin[i] - origin[i] for i in range(3)])     # the plane: n . q = d (local)
+    d = dot(normal, (p0 - o0, p1 - o1, p2 - o2))            # the plane: n . q = d (local)
     mu, rho = quadric.form
     name = quadric.name
     if name == "sphere" and abs(abs(d) - math.sqrt(rho)) <= graze:
         return None                                          # tangent
     if name == "cone" and abs(d) <= graze:
         return None                                          # through the apex
-    sin = math.hypot(n[0], n[1])
-    e1 = [n[1] / sin, -n[0] / sin, 0.0] if sin > SAME else [1.0, 0.0, 0.0]    # n x z, normal to the axis
+    n0, n1, n2 = n
+    sin = math.hypot(n0, n1)
+    e1 = [n1 / sin, -n0 / sin, 0.0] if sin > SAME else [1.0, 0.0, 0.0]    # n x z, normal to the axis
     e2 = cross(n, e1)
-    q0 = [d * x for x in n]
-    A = e2[0] * e2[0] + e2[1] * e2[1] + mu * e2[2] * e2[2]
-    B = e2[0] * q0[0] + e2[1] * q0[1] + mu * e2[2] * q0[2]
-    C = q0[0] * q0[0] + q0[1] * q0[1] + mu * q0[2] * q0[2] - rho
+    q0 = [d * n0, d * n1, d * n2]
+    (a0, a1, a2), (b0, b1, b2) = e2, q0
+    A = a0 * a0 + a1 * a1 + mu * a2 * a2
+    B = a0 * b0 + a1 * b1 + mu * a2 * b2
+    C = b0 * b0 + b1 * b1 + mu * b2 * b2 - rho
     zero = [0.0, 0.0, 0.0]
     if abs(A) <= (PARABOLA_A if name == "cone" else PARALLEL_A):
         if name == "cylinder":                               # parallel to the axis: two lines x = +-sqrt(-C)
@@ -252,13 +256,13 @@ def plane_conics(plane, quadric, graze, scale):
             return []
         if K == 0 or max(abs(y0), math.sqrt(abs(K)), math.sqrt(abs(K / A))) > LARGE * scale:
             return None
-        centre = [q0[i] + y0 * e2[i] for i in range(3)]
+        centre = [b0 + y0 * a0, b1 + y0 * a1, b2 + y0 * a2]
         if A > 0:
             major, minor = math.sqrt(K / A), math.sqrt(K)
             if (name == "sphere" or sin <= SAME) and not any(map(math.isfinite, plane.bounds)):
                 if not inside_axial(quadric, centre[2], graze):
                     return None if inside_axial(quadric, centre[2], -graze) else ()
-                axis = normal if name == "sphere" else quadric.axes[2]
+                axis = normal if name == "sphere" else quadric.z
                 return np.array(combine([origin, to_global(rot, centre), zero], 1.0, 0.0)), np.array(axis), minor
             if minor <= major:
                 local = [(ELLIPSE, [centre, [minor * x for x in e1], [major * x for x in e2]])]
@@ -268,8 +272,11 @@ def plane_conics(plane, quadric, graze, scale):
             u, v = (e2, e1) if K < 0 else (e1, e2)
             ku, kv = (math.sqrt(K / A), math.sqrt(-K)) if K < 0 else (math.sqrt(K), math.sqrt(-K / A))
             local = [(HYPERBOLA, [centre, [s * ku * x for x in u], [kv * x for x in v]]) for s in (1.0, -1.0)]
-    return [(shape, [[origin[i] + x for i, x in enumerate(to_global(rot, c))], to_global(rot, P), to_global(rot, Q)])
-            for shape, (c, P, Q) in local]
+    out = []
+    for shape, (c, P, Q) in local:
+        c0, c1, c2 = to_global(rot, c)
+        out.append((shape, [[o0 + c0, o1 + c1, o2 + c2], to_global(rot, P), to_global(rot, Q)]))
+    return out
 
 
 def inside_axial(quadric, z, margin):
@@ -293,7 +300,7 @@ def linear_trims(surfaces):
                 axis = axes[j // 2]
                 if axis is None:
                     return None
-                w = surf.axes[axis]
+                w = surf.rot[axis::3]
                 trims.append((w, value + (w[0] * o0 + w[1] * o1 + w[2] * o2), 1.0 if j % 2 else -1.0, (k, j)))
     return trims
 
@@ -382,7 +389,7 @@ def normal(surf, point):
     """The surface's (Placed) normal at a point on it: a positive multiple of S_u x S_v (the gradient of its
     implicit function: diag(1, 1, mu) q for a quadric, local z for a plane)."""
     if surf.form is None:
-        return surf.axes[2]
+        return surf.z
     origin, rot = surf.origin, surf.rot
     q = to_local(rot, [point[0] - origin[0], point[1] - origin[1], point[2] - origin[2]])
     q[2] *= surf.form[0]

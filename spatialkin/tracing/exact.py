@@ -65,12 +65,12 @@ class SampledResult(CurveResult):
     def __init__(self, *, points=None, s=None, params=None, **fields):
         # CurveResult's own init with its defaults and its checks (__post_init__), its fields written as its
         # generated init writes them (to the instance's dict), at half its cost (tests: test_exact.py)
+        if not (_REQUIRED <= fields.keys() <= _FIELDS):        # (the defaults are neither required nor unknown)
+            raise TypeError(f"SampledResult: missing {sorted(_REQUIRED - fields.keys())} or unknown "
+                            f"{sorted(fields.keys() - _FIELDS)} fields")
         state = self.__dict__
         state.update(_DEFAULTS)
         state.update(fields)
-        if not (_REQUIRED <= state.keys() <= _FIELDS):
-            raise TypeError(f"SampledResult: missing {sorted(_REQUIRED - state.keys())} or unknown "
-                            f"{sorted(state.keys() - _FIELDS)} fields")
         if points is not None:                  # (all three given, or none: read through __getattr__)
             state.update(points=points, s=s, params=params)
         self.__post_init__()

@@ -15,6 +15,7 @@ tangency or a touch of a trim edge or corner within GRAZE x tolerance, a plane t
 surfaces, near-parallel configurations whose conic would be huge, both surfaces unbounded.
 """
 import collections
+import functools
 import math
 
 import numpy as np
@@ -24,7 +25,7 @@ from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, bas
 from .exact import SampledResult, exact_curve
 from .placement import SAME
 from .result import in_sk_order
-from .status import BOUNDARY, open_outcome, outcome
+from .status import BOUNDARY, CLOSED, open_outcome, outcome
 from .topology import Topology
 from .trace import check_options, scene_lengths
 from .traits import traits
@@ -417,12 +418,17 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
             PARABOLA_CHECK * settings.tolerance):
         return None                                          # not quite parallel to the generatrix
     length = sol.length
-    if closed:
-        status, message = outcome("closed", s=length)
-    else:
-        (k0, j0), (k1, j1) = ends
-        status, message = open_outcome(
-            BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
-            BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=length)[1])
-    return SampledResult(closed=closed, length=length, status=status, message=message, tolerance=settings.tolerance,
-                         sol=sol, topology=topo)
+    status = CLOSED if closed else BOUNDARY                 # (arc_message's: closed, or both ends on an edge)
+    return SampledResult(closed=closed, length=length, status=status, tolerance=settings.tolerance, sol=sol,
+                         topology=topo, message_of=functools.partial(arc_message, ends, length))
+
+
+def arc_message(ends, length):
+    """The message of a component of the given length: closed (ends None), or open from the edge ends[0]
+    ((surface index, edge index)) at s = 0 to the edge ends[1] at s = length (SampledResult makes it on first
+    access)."""
+    if ends is None:
+        return outcome("closed", s=length)[1]
+    (k0, j0), (k1, j1) = ends
+    return open_outcome(BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
+                        BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=length)[1])[1]

@@ -54,30 +54,37 @@ _FACTORIES = {f.name: f.default_factory for f in dataclasses.fields(CurveResult)
 #: All of CurveResult's field names, and those a SampledResult must be given.
 _FIELDS = frozenset(f.name for f in dataclasses.fields(CurveResult))
 _REQUIRED = _FIELDS - set(_DEFAULTS) - set(_FACTORIES) - set(SAMPLED_FIELDS)
+#: The same, for a SampledResult given its message's maker (message_of) instead of its message.
+_REQUIRED_UNSAID, _FIELDS_UNSAID = _REQUIRED - {"message"}, _FIELDS - {"message"}
 
 
 class SampledResult(CurveResult):
     """A CurveResult of a closed form whose points, s and params, unless given (all three), are its dense output's
     stored samples (``sol.samples()`` and ``sol.knots``: the exact points and the surfaces' parameters at the
     knots), made on first access: what sk.intersect returns costs no sampling until a caller reads them, and reads
-    the same arrays then. The fields with a default factory (nodes, solver_gap) are made on first access too."""
+    the same arrays then. The fields with a default factory (nodes, solver_gap) are made on first access too, and
+    so is the message when its maker is given instead (message_of: a callable of no argument that pickles, such
+    as a functools.partial of a module-level function; called once, on first access)."""
 
-    def __init__(self, *, points=None, s=None, params=None, **fields):
+    def __init__(self, *, points=None, s=None, params=None, message_of=None, **fields):
         # CurveResult's own init with its defaults and its checks (__post_init__), its fields written as its
         # generated init writes them (to the instance's dict), at half its cost (tests: test_exact.py)
-        if not (_REQUIRED <= fields.keys() <= _FIELDS):        # (the defaults are neither required nor unknown)
-            raise TypeError(f"SampledResult: missing {sorted(_REQUIRED - fields.keys())} or unknown "
-                            f"{sorted(fields.keys() - _FIELDS)} fields")
+        required, known = (_REQUIRED, _FIELDS) if message_of is None else (_REQUIRED_UNSAID, _FIELDS_UNSAID)
+        if not (required <= fields.keys() <= known):          # (the defaults are neither required nor unknown)
+            raise TypeError(f"SampledResult: missing {sorted(required - fields.keys())} or unknown "
+                            f"{sorted(fields.keys() - known)} fields")
         state = self.__dict__
         state.update(_DEFAULTS)
         state.update(fields)
+        if message_of is not None:
+            state["_message_of"] = message_of
         if points is not None:                  # (all three given, or none: read through __getattr__)
             state.update(points=points, s=s, params=params)
         self.__post_init__()
 
     def __getattr__(self, name):
-        """A sampled field or a default factory's not made yet (Python asks only for attributes the instance does
-        not hold)."""
+        """A sampled field, a default factory's or the message not made yet (Python asks only for attributes the
+        instance does not hold)."""
         state = self.__dict__
         if "sol" in state:
             if name in SAMPLED_FIELDS:
@@ -85,6 +92,9 @@ class SampledResult(CurveResult):
                 points, params = sol.samples()
                 state.update(points=points, s=sol.knots, params=params)
                 return state[name]
+            if name == "message" and "_message_of" in state:
+                state["message"] = message = state["_message_of"]()
+                return message
             make = _FACTORIES.get(name)
             if make is not None:
                 state[name] = value = make()

@@ -1,6 +1,7 @@
 """The closed-form dense outputs' helpers (spatialkin.tracing.exact and .conic) against the numpy calls they stand
-for, bit for bit (tolerance 0: they promise numpy's own arithmetic), and the closed forms' settings (Scene) against
-make_settings (exactly equal, and the same errors for bad options)."""
+for, bit for bit (tolerance 0: they promise numpy's own arithmetic), the closed forms' settings (Scene) against
+make_settings (exactly equal, and the same errors for bad options), and their messages made on first access against
+the status table's."""
 import math
 
 import numpy as np
@@ -170,3 +171,74 @@ def test_sampled_result_init_is_curve_result_init():
         SampledResult(**{k: v for k, v in fields.items() if k != "sol"})
     with pytest.raises(TypeError):
         SampledResult(**fields, colour="red")
+
+
+def test_conic_arithmetic_is_numpy():
+    """A Conic's |P|^2 and |Q|^2 (the floats written out) are float(P @ P) and float(Q @ Q), its centre, P and Q
+    (arrays made on first use) np.array of the floats given, and a closed ellipse's quarter turn the last of
+    quarter_turn: bit for bit, over random vectors of magnitudes 1e-3 to 1e3."""
+    from spatialkin.tracing.conic import ELLIPSE, QUARTER, Conic
+    rng = np.random.default_rng(11)
+    for _ in range(DRAWS):
+        rows = [list(rng.normal(size=3) * 10.0 ** rng.uniform(-3, 3, 3)) for _ in range(3)]
+        conic = Conic(ELLIPSE, *rows)
+        P, Q = np.array(rows[1]), np.array(rows[2])
+        assert conic.p2 == float(P @ P) and conic.q2 == float(Q @ Q)
+        for got, given in zip((conic.centre, conic.P, conic.Q), rows):
+            assert np.array_equal(got, np.array(given)) and got.dtype == float
+    for samples in (5, 17, 65, 129):
+        assert quarter_turn(samples)[-1] == QUARTER
+
+
+def test_conic_arc_one_by_one():
+    """A line's and an ellipse's arc length at one float is their arc length at an array of it, bit for bit (the
+    ends of an open arc are measured one by one)."""
+    from spatialkin.tracing.conic import ELLIPSE, LINE, Conic
+    rng = np.random.default_rng(12)
+    for shape in (LINE, ELLIPSE):
+        for _ in range(DRAWS):
+            P, Q = rng.normal(size=3), rng.normal(size=3)
+            if P @ P > Q @ Q:
+                P, Q = Q, P
+            conic = Conic(shape, [0.0] * 3, P.tolist(), Q.tolist())
+            t = rng.uniform(-7.0, 7.0, 2)
+            for k in range(2):
+                assert conic.arc(float(t[k])) == conic.arc(t)[k]
+
+
+def test_messages_made_on_first_access():
+    """A closed form's status and message (made on first access, from spatialkin.tracing.closed.arc_message) are
+    those the status table gives for its ends (outcome and open_outcome, the oracle kept here), read first or
+    after pickling; a SampledResult takes a message or its maker, not both."""
+    import pickle
+    from spatialkin.tracing.closed import EDGES
+    from spatialkin.tracing.exact import SampledResult
+    from spatialkin.tracing.status import BOUNDARY, open_outcome, outcome
+    seen = set()
+    for a, b in pairs():
+        for c in sk.intersect(a, b):
+            r = c.result
+            if c.topology.mode != "closed_form" or "message" in r.__dict__:
+                continue                                    # (a circle about a common axis: given its message)
+            ends = r._message_of.args[0]
+            if ends is None:
+                expected = outcome("closed", s=c.length)
+            else:
+                (k0, j0), (k1, j1) = ends
+                expected = open_outcome(
+                    BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
+                    BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=c.length)[1])
+            unpickled = pickle.loads(pickle.dumps(c))
+            assert (c.status, c.message) == expected == (unpickled.status, unpickled.message)
+            seen.add(c.status)
+    assert seen == {"closed", "boundary"}
+    sphere = sk.Sphere(1.0)
+    sol = CircleSolution((sphere, sphere), np.zeros(3), np.array([0.0, 0.0, 1.0]), 1.0)
+    fields = dict(closed=True, length=sol.length, status="closed", tolerance=1e-10, sol=sol)
+    calls = []
+    lazy = SampledResult(**fields, message_of=lambda: calls.append(1) or "said")
+    assert "message" not in lazy.__dict__ and lazy.message == "said" and lazy.message == "said" and calls == [1]
+    with pytest.raises(TypeError):
+        SampledResult(**fields, message="m", message_of=lambda: "said")
+    with pytest.raises(TypeError):
+        SampledResult(**fields)

@@ -14,7 +14,7 @@ import numpy as np
 from ..vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult
-from .status import outcome
+from .status import MESSAGES, outcome
 
 #: Stored points of a circle or a segment in closed form.
 EXACT_SAMPLES = 65
@@ -163,15 +163,25 @@ class ExactSolution(CurveSolution):
 
 class CircleSolution(ExactSolution):
     """The circle of the given centre (3,), unit axis (3,) and radius, from the point centre + radius e1 (e1 normal
-    to the axis, along the coordinate axis least aligned with it) counterclockwise about the axis."""
+    to the axis, along the coordinate axis least aligned with it) counterclockwise about the axis. The centre and
+    the axis may be given as 3 floats each: they are read as arrays, made on first use."""
 
     shape = "circle"
 
     def __init__(self, surfaces, centre, axis, radius, samples=EXACT_SAMPLES):
-        self.centre, self.axis, self.radius = (np.asarray(centre, dtype=float), np.asarray(axis, dtype=float),
-                                               float(radius))
+        self._given, self.radius = (centre, axis), float(radius)
         self.count = samples
         super().__init__(surfaces, 2 * np.pi * self.radius, True, None)      # (the knots and e1, e2 on first use)
+
+    @functools.cached_property
+    def centre(self):
+        """The centre (3,)."""
+        return np.asarray(self._given[0], dtype=float)
+
+    @functools.cached_property
+    def axis(self):
+        """The unit axis (3,)."""
+        return np.asarray(self._given[1], dtype=float)
 
     def make_knots(self):
         return even(0.0, self.length, self.count)
@@ -255,9 +265,13 @@ def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent",
     axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve; topology the
     search that found it (CurveResult.topology)."""
     sol = CircleSolution(surfaces, *circle) if circle is not None else SegmentSolution(surfaces, *segment)
-    status, message = outcome(event, shape=sol.shape)
-    return SampledResult(closed=sol.closed, length=sol.length, status=status, message=message, tolerance=tolerance,
-                         sol=sol, topology=topology)
+    return SampledResult(closed=sol.closed, length=sol.length, status=MESSAGES[event][0], tolerance=tolerance,
+                         sol=sol, topology=topology, message_of=functools.partial(event_message, event, sol.shape))
+
+
+def event_message(event, shape):
+    """The message of the event of exact_curve for a curve of the given shape (made on first access)."""
+    return outcome(event, shape=shape)[1]
 
 
 def surface_parameters(surfaces, points):

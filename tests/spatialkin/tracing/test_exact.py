@@ -38,7 +38,8 @@ def test_quarter_turn_is_linspace():
 
 
 def test_circle_and_segment():
-    """The circle's frame as np.linalg.norm makes it, and points_at is at()[0] (circle and segment)."""
+    """The circle's frame as np.linalg.norm makes it, the same circle given as arrays or as floats, and points_at is
+    at()[0] (circle and segment)."""
     rng = np.random.default_rng(3)
     sphere = sk.Sphere(1.0)
     for _ in range(DRAWS):
@@ -47,6 +48,8 @@ def test_circle_and_segment():
         sol = CircleSolution((sphere, sphere), rng.normal(size=3), axis, rng.uniform(0.1, 3.0))
         e1 = np.cross(axis, np.eye(3)[np.argmin(np.abs(axis))])
         assert np.array_equal(sol.e1, e1 / np.linalg.norm(e1))
+        listed = CircleSolution((sphere, sphere), sol.centre.tolist(), axis.tolist(), sol.radius)    # (3 floats each)
+        assert all(np.array_equal(x, y) for x, y in zip(listed.at(sol.knots), sol.at(sol.knots)))
         assert np.array_equal(sol.knots, np.linspace(0.0, sol.length, len(sol.knots)))
         assert np.array_equal(sol.points_at(sol.knots), sol.at(sol.knots)[0])
         seg = SegmentSolution((sphere, sphere), rng.normal(size=3), rng.normal(size=3))
@@ -207,31 +210,35 @@ def test_conic_arc_one_by_one():
 
 
 def test_messages_made_on_first_access():
-    """A closed form's status and message (made on first access, from spatialkin.tracing.closed.arc_message) are
-    those the status table gives for its ends (outcome and open_outcome, the oracle kept here), read first or
-    after pickling; a SampledResult takes a message or its maker, not both."""
+    """A closed form's status and message (made on first access, by spatialkin.tracing.closed.arc_message or
+    exact.event_message) are those the status table gives for its ends or its event (outcome and open_outcome, the
+    oracle kept here), read first or after pickling; a SampledResult takes a message or its maker, not both."""
     import pickle
-    from spatialkin.tracing.closed import EDGES
-    from spatialkin.tracing.exact import SampledResult
+    from spatialkin.tracing.closed import EDGES, arc_message
+    from spatialkin.tracing.exact import SampledResult, event_message
     from spatialkin.tracing.status import BOUNDARY, open_outcome, outcome
     seen = set()
     for a, b in pairs():
         for c in sk.intersect(a, b):
             r = c.result
-            if c.topology.mode != "closed_form" or "message" in r.__dict__:
-                continue                                    # (a circle about a common axis: given its message)
-            ends = r._message_of.args[0]
-            if ends is None:
+            assert c.topology.mode == "closed_form" and "message" not in r.__dict__
+            maker = r._message_of
+            if maker.func is event_message:                 # a circle about a common axis (exact_curve)
+                assert maker.args == ("axis_circle", "circle")
+                expected = outcome("axis_circle", shape="circle")
+            elif maker.args[0] is None:                     # a closed conic (closed.arc_message)
+                assert maker.func is arc_message
                 expected = outcome("closed", s=c.length)
-            else:
-                (k0, j0), (k1, j1) = ends
+            else:                                           # an arc from one edge to another
+                assert maker.func is arc_message
+                (k0, j0), (k1, j1) = maker.args[0]
                 expected = open_outcome(
                     BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
                     BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=c.length)[1])
             unpickled = pickle.loads(pickle.dumps(c))
             assert (c.status, c.message) == expected == (unpickled.status, unpickled.message)
-            seen.add(c.status)
-    assert seen == {"closed", "boundary"}
+            seen.add((c.status, maker.func))
+    assert seen == {("closed", arc_message), ("boundary", arc_message), ("closed", event_message)}
     sphere = sk.Sphere(1.0)
     sol = CircleSolution((sphere, sphere), np.zeros(3), np.array([0.0, 0.0, 1.0]), 1.0)
     fields = dict(closed=True, length=sol.length, status="closed", tolerance=1e-10, sol=sol)

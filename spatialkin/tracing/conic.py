@@ -15,7 +15,7 @@ import functools
 import math
 
 import numpy as np
-from scipy.special import ellipeinc
+from scipy.special import cython_special, ellipeinc
 
 from .exact import EXACT_SAMPLES, ExactSolution, counting, surface_parameters
 from ..kernels.stored import unwrap_turns
@@ -109,7 +109,7 @@ class Conic:
         ellipse's: or at one float t)."""
         shape = self.shape
         if shape == ELLIPSE:
-            return self.b * ellipeinc(t, self.m) if self.m > 0 else self.b * t
+            return self.b * elliptic_e(t, self.m) if self.m > 0 else self.b * t
         if shape == PARABOLA:
             kt = self.k * t
             return 0.5 * t * np.sqrt(1.0 + kt * kt) + np.arcsinh(kt) / (2.0 * self.k) if self.k > 0 else t
@@ -137,7 +137,7 @@ class ConicSolution(ExactSolution):
         self.turn = closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0
         knots = None                            # (made on first use: make_knots)
         if self.turn:                           # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
-            length = conic.b * (4 * ellipeinc(QUARTER, conic.m))      # (ellipse_turn's last: quarter_turn's last)
+            length = conic.b * (4 * elliptic_e(QUARTER, conic.m))     # (ellipse_turn's last: quarter_turn's last)
             self.s0 = 0.0 if t_lo == 0 else -length
         elif conic.shape in ENDWISE:
             step = self._t_range[2]
@@ -228,6 +228,12 @@ class ConicSolution(ExactSolution):
         tangents = d1 / np.sqrt(speed2)[:, None]
         bend = (d2 - np.einsum("ij,ij->i", d2, tangents)[:, None] * tangents) / speed2[:, None]
         return tuple(x.reshape(shape + (3,)) for x in (self.conic.at(t), tangents, bend))
+
+
+def elliptic_e(t, m):
+    """E(t | m) (scipy.special.ellipeinc) at t (M,), or at one float t by its compiled scalar twin
+    (scipy.special.cython_special.ellipeinc: the same function, a float, without the ufunc's call)."""
+    return cython_special.ellipeinc(t, m) if type(t) is float else ellipeinc(t, m)
 
 
 def ellipse_turn(m, samples):

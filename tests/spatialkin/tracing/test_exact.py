@@ -249,3 +249,15 @@ def test_messages_made_on_first_access():
         SampledResult(**fields, message="m", message_of=lambda: "said")
     with pytest.raises(TypeError):
         SampledResult(**fields)
+
+
+def test_elliptic_e_scalar_is_ufunc():
+    """E(t | m) at one float (scipy.special.cython_special) is scipy.special.ellipeinc's, bit for bit, over t in
+    [-7, 7] (beyond a turn) and m in [0, 1); an array goes to the ufunc itself."""
+    from scipy.special import ellipeinc
+    from spatialkin.tracing.conic import QUARTER, elliptic_e
+    rng = np.random.default_rng(13)
+    t, m = rng.uniform(-7.0, 7.0, DRAWS * 20), rng.uniform(0.0, 1.0, DRAWS * 20)
+    ours = [elliptic_e(float(x), float(y)) for x, y in zip(t, m)] + [elliptic_e(QUARTER, float(y)) for y in m]
+    assert np.array_equal(ours, np.concatenate([ellipeinc(t, m), ellipeinc(QUARTER, m)]))
+    assert type(ours[0]) is float and np.array_equal(elliptic_e(t, m[0]), ellipeinc(t, m[0]))

@@ -147,8 +147,8 @@ def combine(rows, f, g):
     return [c[0] + f * p[0] + g * q[0], c[1] + f * p[1] + g * q[1], c[2] + f * p[2] + g * q[2]]
 
 
-#: (f, g) of spatialkin.tracing.conic at one float t, or their derivatives, are basis(shape, t, order, math): its
-#: arguments passed by position (a functools.partial with lib=math as a keyword costs three times the call).
+# (f, g) of spatialkin.tracing.conic at one float t, or their derivatives, are basis(shape, t, order, math): its
+# arguments passed by position (a functools.partial with lib=math as a keyword costs three times the call).
 
 
 def to_global(rot, x):
@@ -345,7 +345,7 @@ def clip(shape, rows, trims, graze):
     """[(t_lo, t_hi, ends)] of the arcs of the conic inside every trim; ends is None for a whole ellipse, else
     ((surface, edge) at t_lo, at t_hi); None where declined (a touch, a corner, an unbounded arc)."""
     (c0, c1, c2), (p0, p1, p2), (q0, q1, q2) = rows
-    linear = []                                              # (alpha, beta, gamma, side): the trim is alpha + beta f + gamma g
+    linear = []                                     # (alpha, beta, gamma, side): the trim's alpha + beta f + gamma g
     events = []
     for (w0, w1, w2), bound, side, edge in trims:
         alpha = w0 * c0 + w1 * c1 + w2 * c2 - bound         # (dot(w, rows[k]) written out)

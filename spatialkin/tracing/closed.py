@@ -25,7 +25,7 @@ from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, bas
 from .exact import SampledResult, exact_curve
 from .placement import SAME
 from .result import in_sk_order
-from .status import BOUNDARY, open_outcome, outcome
+from .status import BOUNDARY, CLOSED, open_outcome, outcome
 from .topology import Topology
 from .trace import check_options, scene_lengths
 from .traits import traits
@@ -70,9 +70,11 @@ def closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pul
 
 class Placed:
     """A surface as the closed forms read it, once per call: its traits and name, and its frame's origin (3 floats),
-    rotation (3 rows of 3 floats) and trims (u_min, u_max, v_min, v_max) as floats, read from its packed data."""
+    rotation (9 floats, row by row: its local axis j is rot[j::3]) and local z axis (a plane's normal), trims
+    (u_min, u_max, v_min, v_max) as floats, read from its packed data; a quadric's (mu, rho) (quadric_form; None
+    for a plane)."""
 
-    __slots__ = ("surface", "kind", "name", "origin", "rot", "bounds")
+    __slots__ = ("surface", "kind", "name", "origin", "rot", "z", "bounds", "form")
 
     def __init__(self, surface, kind):
         data = surface.data.tolist()
@@ -80,8 +82,10 @@ class Placed:
         self.kind = kind
         self.name = kind.name
         self.origin = data[ks.ORIGIN:ks.ORIGIN + 3]
-        self.rot = [data[ks.ROT:ks.ROT + 3], data[ks.ROT + 3:ks.ROT + 6], data[ks.ROT + 6:ks.ROT + 9]]
+        self.rot = rot = data[ks.ROT:ks.ROT + 9]
+        self.z = rot[2::3]
         self.bounds = data[ks.BOUNDS:ks.BOUNDS + 4]
+        self.form = quadric_form(self) if self.name in QUADRICS else None
 
 
 def closed_form(a, b, settings):
@@ -143,31 +147,31 @@ def combine(rows, f, g):
     return [c[0] + f * p[0] + g * q[0], c[1] + f * p[1] + g * q[1], c[2] + f * p[2] + g * q[2]]
 
 
-#: scalar_basis(shape, t, order=0): (f, g) of spatialkin.tracing.conic at one float t (math, not numpy), or their
-#: derivatives (conic.basis with lib=math, called without a Python frame of its own).
-scalar_basis = functools.partial(basis, lib=math)
+# (f, g) of spatialkin.tracing.conic at one float t, or their derivatives, are basis(shape, t, order, math): its
+# arguments passed by position (a functools.partial with lib=math as a keyword costs three times the call).
 
 
 def to_global(rot, x):
-    """rot x (the local vector x in global coordinates): dot(row, x) for each row."""
-    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = rot
+    """rot x (the local vector x in global coordinates; rot: 9 floats, row by row): dot(row, x) for each row."""
+    r00, r01, r02, r10, r11, r12, r20, r21, r22 = rot
     return [r00 * x[0] + r01 * x[1] + r02 * x[2], r10 * x[0] + r11 * x[1] + r12 * x[2],
             r20 * x[0] + r21 * x[1] + r22 * x[2]]
 
 
 def to_local(rot, x):
     """rot^T x."""
-    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = rot
+    r00, r01, r02, r10, r11, r12, r20, r21, r22 = rot
     return [r00 * x[0] + r10 * x[1] + r20 * x[2], r01 * x[0] + r11 * x[1] + r21 * x[2],
             r02 * x[0] + r12 * x[1] + r22 * x[2]]
 
 
 # --- the conics: (shape, [centre, P, Q]) in global coordinates ------------------------------------------------
 def sphere_circle(a, b, graze, scale):
-    """(centre, axis, radius) of the circle of two spheres, the axis from a's centre to b's (as the topology
-    stage's common axis); () when they do not meet; None near tangency or coincidence."""
-    d = b.frame.origin - a.frame.origin
-    dist = math.sqrt(d @ d)
+    """(centre, axis, radius) of the circle of two spheres (centre and axis 3 floats each), the axis from a's centre
+    to b's (as the topology stage's common axis); () when they do not meet; None near tangency or coincidence."""
+    (a0, a1, a2), (b0, b1, b2) = a.frame.origin.tolist(), b.frame.origin.tolist()
+    d = [b0 - a0, b1 - a1, b2 - a2]
+    dist = math.sqrt(dot(d, d))
     ra, rb = a.radius, b.radius
     if dist <= SAME * scale:
         return None if abs(ra - rb) <= graze else ()
@@ -175,16 +179,16 @@ def sphere_circle(a, b, graze, scale):
         return None
     if dist > ra + rb or dist < abs(ra - rb):
         return ()
-    axis = d / dist
+    axis = [d[0] / dist, d[1] / dist, d[2] / dist]
     x = 0.5 * (dist * dist + ra * ra - rb * rb) / dist
-    return a.frame.origin + x * axis, axis, math.sqrt(ra * ra - x * x)
+    return [a0 + x * axis[0], a1 + x * axis[1], a2 + x * axis[2]], axis, math.sqrt(ra * ra - x * x)
 
 
 def plane_line(a, b, graze, scale):
     """[(LINE, rows)] of two planes (Placed); [] for parallel planes apart; None for (nearly) coplanar ones or a
     line farther than LARGE x scale."""
-    (oa, ra), (ob, rb) = (a.origin, a.rot), (b.origin, b.rot)
-    n1, n2 = [row[2] for row in ra], [row[2] for row in rb]
+    oa, ob = a.origin, b.origin
+    n1, n2 = a.z, b.z
     along = cross(n1, n2)
     sin = math.sqrt(dot(along, along))
     gap = dot(n2, [ob[i] - oa[i] for i in range(3)])
@@ -213,23 +217,25 @@ def plane_conics(plane, quadric, graze, scale):
     of an untrimmed plane about the quadric's axis (or a sphere's), () when nothing is there; None where
     declined."""
     origin, rot = quadric.origin, quadric.rot
-    p_origin, p_rot = plane.origin, plane.rot
-    normal = [row[2] for row in p_rot]
+    (o0, o1, o2), (p0, p1, p2) = origin, plane.origin
+    normal = plane.z
     n = to_local(rot, normal)
-    d = dot(normal, [p_origin[i] - origin[i] for i in range(3)])     # the plane: n . q = d (local)
-    mu, rho = quadric_form(quadric)
+    d = dot(normal, (p0 - o0, p1 - o1, p2 - o2))            # the plane: n . q = d (local)
+    mu, rho = quadric.form
     name = quadric.name
     if name == "sphere" and abs(abs(d) - math.sqrt(rho)) <= graze:
         return None                                          # tangent
     if name == "cone" and abs(d) <= graze:
         return None                                          # through the apex
-    sin = math.hypot(n[0], n[1])
-    e1 = [n[1] / sin, -n[0] / sin, 0.0] if sin > SAME else [1.0, 0.0, 0.0]    # n x z, normal to the axis
+    n0, n1, n2 = n
+    sin = math.hypot(n0, n1)
+    e1 = [n1 / sin, -n0 / sin, 0.0] if sin > SAME else [1.0, 0.0, 0.0]    # n x z, normal to the axis
     e2 = cross(n, e1)
-    q0 = [d * x for x in n]
-    A = e2[0] * e2[0] + e2[1] * e2[1] + mu * e2[2] * e2[2]
-    B = e2[0] * q0[0] + e2[1] * q0[1] + mu * e2[2] * q0[2]
-    C = q0[0] * q0[0] + q0[1] * q0[1] + mu * q0[2] * q0[2] - rho
+    q0 = [d * n0, d * n1, d * n2]
+    (a0, a1, a2), (b0, b1, b2) = e2, q0
+    A = a0 * a0 + a1 * a1 + mu * a2 * a2
+    B = a0 * b0 + a1 * b1 + mu * a2 * b2
+    C = b0 * b0 + b1 * b1 + mu * b2 * b2 - rho
     zero = [0.0, 0.0, 0.0]
     if abs(A) <= (PARABOLA_A if name == "cone" else PARALLEL_A):
         if name == "cylinder":                               # parallel to the axis: two lines x = +-sqrt(-C)
@@ -251,13 +257,13 @@ def plane_conics(plane, quadric, graze, scale):
             return []
         if K == 0 or max(abs(y0), math.sqrt(abs(K)), math.sqrt(abs(K / A))) > LARGE * scale:
             return None
-        centre = [q0[i] + y0 * e2[i] for i in range(3)]
+        centre = [b0 + y0 * a0, b1 + y0 * a1, b2 + y0 * a2]
         if A > 0:
             major, minor = math.sqrt(K / A), math.sqrt(K)
             if (name == "sphere" or sin <= SAME) and not any(map(math.isfinite, plane.bounds)):
                 if not inside_axial(quadric, centre[2], graze):
                     return None if inside_axial(quadric, centre[2], -graze) else ()
-                axis = normal if name == "sphere" else [row[2] for row in rot]
+                axis = normal if name == "sphere" else quadric.z
                 return np.array(combine([origin, to_global(rot, centre), zero], 1.0, 0.0)), np.array(axis), minor
             if minor <= major:
                 local = [(ELLIPSE, [centre, [minor * x for x in e1], [major * x for x in e2]])]
@@ -267,8 +273,11 @@ def plane_conics(plane, quadric, graze, scale):
             u, v = (e2, e1) if K < 0 else (e1, e2)
             ku, kv = (math.sqrt(K / A), math.sqrt(-K)) if K < 0 else (math.sqrt(K), math.sqrt(-K / A))
             local = [(HYPERBOLA, [centre, [s * ku * x for x in u], [kv * x for x in v]]) for s in (1.0, -1.0)]
-    return [(shape, [[origin[i] + x for i, x in enumerate(to_global(rot, c))], to_global(rot, P), to_global(rot, Q)])
-            for shape, (c, P, Q) in local]
+    out = []
+    for shape, (c, P, Q) in local:
+        c0, c1, c2 = to_global(rot, c)
+        out.append((shape, [[o0 + c0, o1 + c1, o2 + c2], to_global(rot, P), to_global(rot, Q)]))
+    return out
 
 
 def inside_axial(quadric, z, margin):
@@ -286,14 +295,14 @@ def linear_trims(surfaces):
     trims = []
     for k, surf in enumerate(surfaces):
         axes = surf.kind.parameter_axes
-        origin, rot = surf.origin, surf.rot
+        o0, o1, o2 = surf.origin
         for j, value in enumerate(surf.bounds):
             if math.isfinite(value):
                 axis = axes[j // 2]
                 if axis is None:
                     return None
-                w = [row[axis] for row in rot]
-                trims.append((w, value + dot(w, origin), 1.0 if j % 2 else -1.0, (k, j)))
+                w = surf.rot[axis::3]
+                trims.append((w, value + (w[0] * o0 + w[1] * o1 + w[2] * o2), 1.0 if j % 2 else -1.0, (k, j)))
     return trims
 
 
@@ -335,18 +344,24 @@ def quadratic(a2, a1, a0):
 def clip(shape, rows, trims, graze):
     """[(t_lo, t_hi, ends)] of the arcs of the conic inside every trim; ends is None for a whole ellipse, else
     ((surface, edge) at t_lo, at t_hi); None where declined (a touch, a corner, an unbounded arc)."""
-    linear = [(dot(w, rows[0]) - bound, dot(w, rows[1]), dot(w, rows[2]), side) for w, bound, side, _ in trims]
+    (c0, c1, c2), (p0, p1, p2), (q0, q1, q2) = rows
+    linear = []                                     # (alpha, beta, gamma, side): the trim's alpha + beta f + gamma g
     events = []
-    for (alpha, beta, gamma, _), (_, _, _, edge) in zip(linear, trims):
+    for (w0, w1, w2), bound, side, edge in trims:
+        alpha = w0 * c0 + w1 * c1 + w2 * c2 - bound         # (dot(w, rows[k]) written out)
+        beta = w0 * p0 + w1 * p1 + w2 * p2
+        gamma = w0 * q0 + w1 * q1 + w2 * q2
+        linear.append((alpha, beta, gamma, side))
         roots = crossings(shape, beta, gamma, -alpha, graze)
         if roots is None:
             return None
-        events += [(t, edge) for t in roots]
+        for t in roots:
+            events.append((t, edge))
     events.sort()
     periodic = shape == ELLIPSE
 
     def inside(t):
-        f, g = scalar_basis(shape, t)
+        f, g = basis(shape, t, 0, math)
         for alpha, beta, gamma, side in linear:
             if not (alpha + beta * f + gamma * g) * side <= 0.0:
                 return False
@@ -360,10 +375,13 @@ def clip(shape, rows, trims, graze):
         events.append((events[0][0] + TWO_PI, events[0][1]))
     elif inside(events[0][0] - 1.0) or inside(events[-1][0] + 1.0):
         return None                                          # an unbounded arc
-    points = [combine(rows, *scalar_basis(shape, t)) for t, _ in events]
-    for p, q in zip(points, points[1:]):
-        if math.dist(p, q) <= graze:
+    last = None
+    for t, _ in events:
+        f, g = basis(shape, t, 0, math)
+        point = (c0 + f * p0 + g * q0, c1 + f * p1 + g * q1, c2 + f * p2 + g * q2)      # (combine(rows, f, g))
+        if last is not None and math.dist(last, point) <= graze:
             return None                                      # a corner, or two trims crossed at one point
+        last = point
     return [(t0, t1, (e0, e1)) for (t0, e0), (t1, e1) in zip(events, events[1:]) if inside(0.5 * (t0 + t1))]
 
 
@@ -371,11 +389,11 @@ def clip(shape, rows, trims, graze):
 def normal(surf, point):
     """The surface's (Placed) normal at a point on it: a positive multiple of S_u x S_v (the gradient of its
     implicit function: diag(1, 1, mu) q for a quadric, local z for a plane)."""
+    if surf.form is None:
+        return surf.z
     origin, rot = surf.origin, surf.rot
-    if surf.name == "plane":
-        return [row[2] for row in rot]
-    q = to_local(rot, [point[i] - origin[i] for i in range(3)])
-    q[2] *= quadric_form(surf)[0]
+    q = to_local(rot, [point[0] - origin[0], point[1] - origin[1], point[2] - origin[2]])
+    q[2] *= surf.form[0]
     return to_global(rot, q)
 
 
@@ -383,14 +401,14 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
     """The CurveResult of the arc t in [t_lo, t_hi] (ends None: the whole closed conic) of the surfaces (Placed),
     run along N_a x N_b; None where the surfaces are nearly tangent on it."""
     t_mid = 0.5 * (t_lo + t_hi)
-    point = combine(rows, *scalar_basis(shape, t_mid))
+    point = combine(rows, *basis(shape, t_mid, 0, math))
     na, nb = normal(placed[0], point), normal(placed[1], point)
     along = cross(na, nb)
     if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
         return None
-    centre, P, Q = np.array(rows)                            # (rows of one array)
-    if dot(along, combine([[0.0] * 3, rows[1], rows[2]], *scalar_basis(shape, t_mid, 1))) < 0:
-        Q, t_lo, t_hi = -Q, -t_hi, -t_lo                     # run it backwards: C(-t), g odd
+    centre, P, Q = rows
+    if dot(along, combine([[0.0] * 3, P, Q], *basis(shape, t_mid, 1, math))) < 0:
+        Q, t_lo, t_hi = [-x for x in Q], -t_hi, -t_lo       # run it backwards: C(-t), g odd
         ends = None if ends is None else ends[::-1]
     closed = ends is None
     surfaces = (placed[0].surface, placed[1].surface)
@@ -400,12 +418,17 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
             PARABOLA_CHECK * settings.tolerance):
         return None                                          # not quite parallel to the generatrix
     length = sol.length
-    if closed:
-        status, message = outcome("closed", s=length)
-    else:
-        (k0, j0), (k1, j1) = ends
-        status, message = open_outcome(
-            BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
-            BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=length)[1])
-    return SampledResult(closed=closed, length=length, status=status, message=message, tolerance=settings.tolerance,
-                         sol=sol, topology=topo)
+    status = CLOSED if closed else BOUNDARY                 # (arc_message's: closed, or both ends on an edge)
+    return SampledResult(closed=closed, length=length, status=status, tolerance=settings.tolerance, sol=sol,
+                         topology=topo, message_of=functools.partial(arc_message, ends, length))
+
+
+def arc_message(ends, length):
+    """The message of a component of the given length: closed (ends None), or open from the edge ends[0]
+    ((surface index, edge index)) at s = 0 to the edge ends[1] at s = length (SampledResult makes it on first
+    access)."""
+    if ends is None:
+        return outcome("closed", s=length)[1]
+    (k0, j0), (k1, j1) = ends
+    return open_outcome(BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
+                        BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=length)[1])[1]

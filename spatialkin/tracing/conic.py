@@ -15,7 +15,7 @@ import functools
 import math
 
 import numpy as np
-from scipy.special import ellipeinc
+from scipy.special import cython_special, ellipeinc
 
 from .exact import EXACT_SAMPLES, ExactSolution, counting, surface_parameters
 from ..kernels.stored import unwrap_turns
@@ -35,7 +35,8 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(GL_NODES)
 #: The shapes whose arc length S(t) is computed value by value (the same at a t whatever else is evaluated with
 #: it): their length comes from the two ends, their knots are made on first use.
 ENDWISE = (LINE, ELLIPSE)
-#: The first and the last of the knots.
+#: A quarter turn, the last of quarter_turn's angles (np.linspace ends on its stop).
+QUARTER = 0.5 * math.pi
 
 
 def basis(shape, t, order=0, lib=np):
@@ -55,11 +56,13 @@ def basis(shape, t, order=0, lib=np):
 
 class Conic:
     """The conic C(t) = centre + P f(t) + Q g(t) of the given shape (see the module docstring), with the arc
-    length S(t) from t = 0 (a hyperbola's quadrature covers [t_lo, t_hi])."""
+    length S(t) from t = 0 (a hyperbola's quadrature covers [t_lo, t_hi]). centre, P and Q are given as 3 floats
+    each and read as arrays (3,), made on first use (the arc length needs only |P|^2 and |Q|^2)."""
 
     def __init__(self, shape, centre, P, Q, t_lo=0.0, t_hi=0.0):
-        self.shape, self.centre, self.P, self.Q = shape, centre, P, Q
-        self.p2, self.q2 = float(P @ P), float(Q @ Q)
+        self.shape, self.rows = shape, (centre, P, Q)
+        (p0, p1, p2), (q0, q1, q2) = P, Q
+        self.p2, self.q2 = p0 * p0 + p1 * p1 + p2 * p2, q0 * q0 + q1 * q1 + q2 * q2     # (P @ P, Q @ Q)
         if shape == ELLIPSE:
             self.m = 1.0 - self.p2 / self.q2              # |P| <= |Q|: 0 <= m < 1
             self.b = math.sqrt(self.q2)
@@ -70,6 +73,21 @@ class Conic:
             count = max(1, math.ceil((t_hi - t_lo) / width))
             self.edges = np.linspace(t_lo, t_hi, count + 1)
             self.cum = np.concatenate([[0.0], np.cumsum(self._panel(self.edges[:-1], self.edges[1:]))])
+
+    @functools.cached_property
+    def centre(self):
+        """The centre (3,) (a line's point at t = 0)."""
+        return np.array(self.rows[0])
+
+    @functools.cached_property
+    def P(self):
+        """P (3,)."""
+        return np.array(self.rows[1])
+
+    @functools.cached_property
+    def Q(self):
+        """Q (3,)."""
+        return np.array(self.rows[2])
 
     def basis(self, t, order=0):
         """(f, g) (M,) each, or their derivatives of the given order (0, 1, 2) at t (M,)."""
@@ -87,10 +105,11 @@ class Conic:
         return np.sqrt(f * f * self.p2 + g * g * self.q2)
 
     def arc(self, t):
-        """Arc length S(t) (M,) from t = 0 (a hyperbola: from t_lo), increasing with t."""
+        """Arc length S(t) (M,) from t = 0 (a hyperbola: from t_lo), increasing with t, at t (M,) (a line's or an
+        ellipse's: or at one float t)."""
         shape = self.shape
         if shape == ELLIPSE:
-            return self.b * ellipeinc(t, self.m) if self.m > 0 else self.b * t
+            return self.b * elliptic_e(t, self.m) if self.m > 0 else self.b * t
         if shape == PARABOLA:
             kt = self.k * t
             return 0.5 * t * np.sqrt(1.0 + kt * kt) + np.arcsinh(kt) / (2.0 * self.k) if self.k > 0 else t
@@ -118,13 +137,12 @@ class ConicSolution(ExactSolution):
         self.turn = closed and conic.shape == ELLIPSE and conic.m > 0 and (samples - 1) % 4 == 0
         knots = None                            # (made on first use: make_knots)
         if self.turn:                           # t_lo is 0 or -2 pi: S(t_lo) = 0 or -length
-            length = conic.b * (4 * ellipeinc(quarter_turn(samples)[-1], conic.m))      # (ellipse_turn's last)
+            length = conic.b * (4 * elliptic_e(QUARTER, conic.m))     # (ellipse_turn's last: quarter_turn's last)
             self.s0 = 0.0 if t_lo == 0 else -length
         elif conic.shape in ENDWISE:
             step = self._t_range[2]
-            ends = conic.arc(np.array([t_lo + step * 0.0, t_hi]))     # (t_knots' first and last)
-            self.s0 = float(ends[0])
-            length = ends[1] - self.s0
+            self.s0 = float(conic.arc(t_lo + step * 0.0))            # (t_knots' first and last, one by one)
+            length = conic.arc(t_hi) - self.s0
         else:
             knots = self.make_knots()
             length = knots[-1]
@@ -210,6 +228,12 @@ class ConicSolution(ExactSolution):
         tangents = d1 / np.sqrt(speed2)[:, None]
         bend = (d2 - np.einsum("ij,ij->i", d2, tangents)[:, None] * tangents) / speed2[:, None]
         return tuple(x.reshape(shape + (3,)) for x in (self.conic.at(t), tangents, bend))
+
+
+def elliptic_e(t, m):
+    """E(t | m) (scipy.special.ellipeinc) at t (M,), or at one float t by its compiled scalar twin
+    (scipy.special.cython_special.ellipeinc: the same function, a float, without the ufunc's call)."""
+    return cython_special.ellipeinc(t, m) if type(t) is float else ellipeinc(t, m)
 
 
 def ellipse_turn(m, samples):

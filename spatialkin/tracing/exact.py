@@ -14,7 +14,7 @@ import numpy as np
 from ..vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult
-from .status import outcome
+from .status import MESSAGES, outcome
 
 #: Stored points of a circle or a segment in closed form.
 EXACT_SAMPLES = 65
@@ -46,44 +46,59 @@ def even(start, stop, count):
 
 #: The fields of a SampledResult taken from its dense output's samples (ExactSolution.samples) on first access.
 SAMPLED_FIELDS = ("points", "s", "params")
-#: CurveResult's fields with a default value, and those with a default factory (name, factory).
+#: CurveResult's fields with a default value, and those with a default factory (name: factory; a SampledResult
+#: not given one makes it on first access, as the sampled fields).
 _DEFAULTS = {f.name: f.default for f in dataclasses.fields(CurveResult) if f.default is not dataclasses.MISSING}
-_FACTORIES = tuple((f.name, f.default_factory) for f in dataclasses.fields(CurveResult)
-                   if f.default_factory is not dataclasses.MISSING)
+_FACTORIES = {f.name: f.default_factory for f in dataclasses.fields(CurveResult)
+              if f.default_factory is not dataclasses.MISSING}
 #: All of CurveResult's field names, and those a SampledResult must be given.
 _FIELDS = frozenset(f.name for f in dataclasses.fields(CurveResult))
-_REQUIRED = _FIELDS - set(_DEFAULTS) - {name for name, _ in _FACTORIES} - set(SAMPLED_FIELDS)
+_REQUIRED = _FIELDS - set(_DEFAULTS) - set(_FACTORIES) - set(SAMPLED_FIELDS)
+#: The same, for a SampledResult given its message's maker (message_of) instead of its message.
+_REQUIRED_UNSAID, _FIELDS_UNSAID = _REQUIRED - {"message"}, _FIELDS - {"message"}
 
 
 class SampledResult(CurveResult):
     """A CurveResult of a closed form whose points, s and params, unless given (all three), are its dense output's
     stored samples (``sol.samples()`` and ``sol.knots``: the exact points and the surfaces' parameters at the
     knots), made on first access: what sk.intersect returns costs no sampling until a caller reads them, and reads
-    the same arrays then."""
+    the same arrays then. The fields with a default factory (nodes, solver_gap) are made on first access too, and
+    so is the message when its maker is given instead (message_of: a callable of no argument that pickles, such
+    as a functools.partial of a module-level function; called once, on first access)."""
 
-    def __init__(self, *, points=None, s=None, params=None, **fields):
+    def __init__(self, *, points=None, s=None, params=None, message_of=None, **fields):
         # CurveResult's own init with its defaults and its checks (__post_init__), its fields written as its
         # generated init writes them (to the instance's dict), at half its cost (tests: test_exact.py)
+        required, known = (_REQUIRED, _FIELDS) if message_of is None else (_REQUIRED_UNSAID, _FIELDS_UNSAID)
+        if not (required <= fields.keys() <= known):          # (the defaults are neither required nor unknown)
+            raise TypeError(f"SampledResult: missing {sorted(required - fields.keys())} or unknown "
+                            f"{sorted(fields.keys() - known)} fields")
         state = self.__dict__
         state.update(_DEFAULTS)
-        for name, make in _FACTORIES:
-            state[name] = make()
         state.update(fields)
-        if not (_REQUIRED <= state.keys() <= _FIELDS):
-            raise TypeError(f"SampledResult: missing {sorted(_REQUIRED - state.keys())} or unknown "
-                            f"{sorted(state.keys() - _FIELDS)} fields")
+        if message_of is not None:
+            state["_message_of"] = message_of
         if points is not None:                  # (all three given, or none: read through __getattr__)
             state.update(points=points, s=s, params=params)
         self.__post_init__()
 
     def __getattr__(self, name):
-        """A sampled field not made yet (Python asks only for attributes the instance does not hold)."""
+        """A sampled field, a default factory's or the message not made yet (Python asks only for attributes the
+        instance does not hold)."""
         state = self.__dict__
-        if name in SAMPLED_FIELDS and "sol" in state:
-            sol = state["sol"]
-            points, params = sol.samples()
-            state.update(points=points, s=sol.knots, params=params)
-            return state[name]
+        if "sol" in state:
+            if name in SAMPLED_FIELDS:
+                sol = state["sol"]
+                points, params = sol.samples()
+                state.update(points=points, s=sol.knots, params=params)
+                return state[name]
+            if name == "message" and "_message_of" in state:
+                state["message"] = message = state["_message_of"]()
+                return message
+            make = _FACTORIES.get(name)
+            if make is not None:
+                state[name] = value = make()
+                return value
         raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
 
@@ -148,15 +163,25 @@ class ExactSolution(CurveSolution):
 
 class CircleSolution(ExactSolution):
     """The circle of the given centre (3,), unit axis (3,) and radius, from the point centre + radius e1 (e1 normal
-    to the axis, along the coordinate axis least aligned with it) counterclockwise about the axis."""
+    to the axis, along the coordinate axis least aligned with it) counterclockwise about the axis. The centre and
+    the axis may be given as 3 floats each: they are read as arrays, made on first use."""
 
     shape = "circle"
 
     def __init__(self, surfaces, centre, axis, radius, samples=EXACT_SAMPLES):
-        self.centre, self.axis, self.radius = (np.asarray(centre, dtype=float), np.asarray(axis, dtype=float),
-                                               float(radius))
+        self._given, self.radius = (centre, axis), float(radius)
         self.count = samples
         super().__init__(surfaces, 2 * np.pi * self.radius, True, None)      # (the knots and e1, e2 on first use)
+
+    @functools.cached_property
+    def centre(self):
+        """The centre (3,)."""
+        return np.asarray(self._given[0], dtype=float)
+
+    @functools.cached_property
+    def axis(self):
+        """The unit axis (3,)."""
+        return np.asarray(self._given[1], dtype=float)
 
     def make_knots(self):
         return even(0.0, self.length, self.count)
@@ -240,9 +265,13 @@ def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent",
     axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve; topology the
     search that found it (CurveResult.topology)."""
     sol = CircleSolution(surfaces, *circle) if circle is not None else SegmentSolution(surfaces, *segment)
-    status, message = outcome(event, shape=sol.shape)
-    return SampledResult(closed=sol.closed, length=sol.length, status=status, message=message, tolerance=tolerance,
-                         sol=sol, topology=topology)
+    return SampledResult(closed=sol.closed, length=sol.length, status=MESSAGES[event][0], tolerance=tolerance,
+                         sol=sol, topology=topology, message_of=functools.partial(event_message, event, sol.shape))
+
+
+def event_message(event, shape):
+    """The message of the event of exact_curve for a curve of the given shape (made on first access)."""
+    return outcome(event, shape=shape)[1]
 
 
 def surface_parameters(surfaces, points):

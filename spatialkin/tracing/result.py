@@ -62,9 +62,10 @@ class CurveResult:
     certificate: object = None
 
     def __post_init__(self):
+        state = self.__dict__                   # (frozen: written as object.__setattr__ writes, at a third of its cost)
         for name, kind in (("closed", bool), ("length", float), ("tolerance", float), ("nfev", int),
                            ("wall_time", float)):
-            object.__setattr__(self, name, kind(getattr(self, name)))
+            state[name] = kind(state[name])
         if self.status not in CURVE_STATUSES:
             raise ValueError(f"a curve's status is one of {CURVE_STATUSES}, got {self.status!r}")
 

@@ -276,6 +276,8 @@ def _by_code(code):
 
 def check_surface(name, value):
     """value when it is a surface of a registered kind, else TypeError naming the argument."""
+    if type(value) in _BY_CLASS:            # (a surface of a registered class: the common call)
+        return value
     try:
         traits(type(value))
     except UnknownSurfaceKindError:

@@ -1,6 +1,7 @@
 """The closed-form dense outputs' helpers (spatialkin.tracing.exact and .conic) against the numpy calls they stand
-for, bit for bit (tolerance 0: they promise numpy's own arithmetic), and the closed forms' settings (Scene) against
-make_settings (exactly equal, and the same errors for bad options)."""
+for, bit for bit (tolerance 0: they promise numpy's own arithmetic), the closed forms' settings (Scene) against
+make_settings (exactly equal, and the same errors for bad options), and their messages made on first access against
+the status table's."""
 import math
 
 import numpy as np
@@ -37,7 +38,8 @@ def test_quarter_turn_is_linspace():
 
 
 def test_circle_and_segment():
-    """The circle's frame as np.linalg.norm makes it, and points_at is at()[0] (circle and segment)."""
+    """The circle's frame as np.linalg.norm makes it, the same circle given as arrays or as floats, and points_at is
+    at()[0] (circle and segment)."""
     rng = np.random.default_rng(3)
     sphere = sk.Sphere(1.0)
     for _ in range(DRAWS):
@@ -46,6 +48,8 @@ def test_circle_and_segment():
         sol = CircleSolution((sphere, sphere), rng.normal(size=3), axis, rng.uniform(0.1, 3.0))
         e1 = np.cross(axis, np.eye(3)[np.argmin(np.abs(axis))])
         assert np.array_equal(sol.e1, e1 / np.linalg.norm(e1))
+        listed = CircleSolution((sphere, sphere), sol.centre.tolist(), axis.tolist(), sol.radius)    # (3 floats each)
+        assert all(np.array_equal(x, y) for x, y in zip(listed.at(sol.knots), sol.at(sol.knots)))
         assert np.array_equal(sol.knots, np.linspace(0.0, sol.length, len(sol.knots)))
         assert np.array_equal(sol.points_at(sol.knots), sol.at(sol.knots)[0])
         seg = SegmentSolution((sphere, sphere), rng.normal(size=3), rng.normal(size=3))
@@ -170,3 +174,90 @@ def test_sampled_result_init_is_curve_result_init():
         SampledResult(**{k: v for k, v in fields.items() if k != "sol"})
     with pytest.raises(TypeError):
         SampledResult(**fields, colour="red")
+
+
+def test_conic_arithmetic_is_numpy():
+    """A Conic's |P|^2 and |Q|^2 (the floats written out) are float(P @ P) and float(Q @ Q), its centre, P and Q
+    (arrays made on first use) np.array of the floats given, and a closed ellipse's quarter turn the last of
+    quarter_turn: bit for bit, over random vectors of magnitudes 1e-3 to 1e3."""
+    from spatialkin.tracing.conic import ELLIPSE, QUARTER, Conic
+    rng = np.random.default_rng(11)
+    for _ in range(DRAWS):
+        rows = [list(rng.normal(size=3) * 10.0 ** rng.uniform(-3, 3, 3)) for _ in range(3)]
+        conic = Conic(ELLIPSE, *rows)
+        P, Q = np.array(rows[1]), np.array(rows[2])
+        assert conic.p2 == float(P @ P) and conic.q2 == float(Q @ Q)
+        for got, given in zip((conic.centre, conic.P, conic.Q), rows):
+            assert np.array_equal(got, np.array(given)) and got.dtype == float
+    for samples in (5, 17, 65, 129):
+        assert quarter_turn(samples)[-1] == QUARTER
+
+
+def test_conic_arc_one_by_one():
+    """A line's and an ellipse's arc length at one float is their arc length at an array of it, bit for bit (the
+    ends of an open arc are measured one by one)."""
+    from spatialkin.tracing.conic import ELLIPSE, LINE, Conic
+    rng = np.random.default_rng(12)
+    for shape in (LINE, ELLIPSE):
+        for _ in range(DRAWS):
+            P, Q = rng.normal(size=3), rng.normal(size=3)
+            if P @ P > Q @ Q:
+                P, Q = Q, P
+            conic = Conic(shape, [0.0] * 3, P.tolist(), Q.tolist())
+            t = rng.uniform(-7.0, 7.0, 2)
+            for k in range(2):
+                assert conic.arc(float(t[k])) == conic.arc(t)[k]
+
+
+def test_messages_made_on_first_access():
+    """A closed form's status and message (made on first access, by spatialkin.tracing.closed.arc_message or
+    exact.event_message) are those the status table gives for its ends or its event (outcome and open_outcome, the
+    oracle kept here), read first or after pickling; a SampledResult takes a message or its maker, not both."""
+    import pickle
+    from spatialkin.tracing.closed import EDGES, arc_message
+    from spatialkin.tracing.exact import SampledResult, event_message
+    from spatialkin.tracing.status import BOUNDARY, open_outcome, outcome
+    seen = set()
+    for a, b in pairs():
+        for c in sk.intersect(a, b):
+            r = c.result
+            assert c.topology.mode == "closed_form" and "message" not in r.__dict__
+            maker = r._message_of
+            if maker.func is event_message:                 # a circle about a common axis (exact_curve)
+                assert maker.args == ("axis_circle", "circle")
+                expected = outcome("axis_circle", shape="circle")
+            elif maker.args[0] is None:                     # a closed conic (closed.arc_message)
+                assert maker.func is arc_message
+                expected = outcome("closed", s=c.length)
+            else:                                           # an arc from one edge to another
+                assert maker.func is arc_message
+                (k0, j0), (k1, j1) = maker.args[0]
+                expected = open_outcome(
+                    BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
+                    BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=c.length)[1])
+            unpickled = pickle.loads(pickle.dumps(c))
+            assert (c.status, c.message) == expected == (unpickled.status, unpickled.message)
+            seen.add((c.status, maker.func))
+    assert seen == {("closed", arc_message), ("boundary", arc_message), ("closed", event_message)}
+    sphere = sk.Sphere(1.0)
+    sol = CircleSolution((sphere, sphere), np.zeros(3), np.array([0.0, 0.0, 1.0]), 1.0)
+    fields = dict(closed=True, length=sol.length, status="closed", tolerance=1e-10, sol=sol)
+    calls = []
+    lazy = SampledResult(**fields, message_of=lambda: calls.append(1) or "said")
+    assert "message" not in lazy.__dict__ and lazy.message == "said" and lazy.message == "said" and calls == [1]
+    with pytest.raises(TypeError):
+        SampledResult(**fields, message="m", message_of=lambda: "said")
+    with pytest.raises(TypeError):
+        SampledResult(**fields)
+
+
+def test_elliptic_e_scalar_is_ufunc():
+    """E(t | m) at one float (scipy.special.cython_special) is scipy.special.ellipeinc's, bit for bit, over t in
+    [-7, 7] (beyond a turn) and m in [0, 1); an array goes to the ufunc itself."""
+    from scipy.special import ellipeinc
+    from spatialkin.tracing.conic import QUARTER, elliptic_e
+    rng = np.random.default_rng(13)
+    t, m = rng.uniform(-7.0, 7.0, DRAWS * 20), rng.uniform(0.0, 1.0, DRAWS * 20)
+    ours = [elliptic_e(float(x), float(y)) for x, y in zip(t, m)] + [elliptic_e(QUARTER, float(y)) for y in m]
+    assert np.array_equal(ours, np.concatenate([ellipeinc(t, m), ellipeinc(QUARTER, m)]))
+    assert type(ours[0]) is float and np.array_equal(elliptic_e(t, m[0]), ellipeinc(t, m[0]))

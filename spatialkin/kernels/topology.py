@@ -24,7 +24,8 @@ R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIA
 import numpy as np
 
 from .._jit import jit
-from .interval import (contains_zero, iadd, imul, intersect, iscale, isqr, isub, jet, point)
+from .interval import (contains_zero, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first, jet_second, level,
+                       point)
 from .surfaces import inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
@@ -47,13 +48,13 @@ SPLIT = 0.4860679774997897
 REFINE_ITER = 30
 
 
-@jit
+@jit(forceinline=True)
 def _line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, a, b):
     """(f, f') over [a, b] of f(t) = g on the parameter line (u = t, v = value) if fixed = 1, else (value, t)."""
     if fixed == 1:
-        j = jet(s_data, t_data, m, c, pad, cpad, (a, b), (value, value))
+        j = jet_first(s_data, t_data, m, c, pad, cpad, (a, b), (value, value))[0]
         return j[0], j[1]
-    j = jet(s_data, t_data, m, c, pad, cpad, (value, value), (a, b))
+    j = jet_first(s_data, t_data, m, c, pad, cpad, (value, value), (a, b))[0]
     return j[0], j[2]
 
 
@@ -93,7 +94,7 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
         if not contains_zero(f_x):
             continue
         mid = 0.5 * (a + b)
-        f_m, _ = _line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, mid, mid)
+        f_m, d_m = _line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, mid, mid)
         f_c = iadd(f_m, imul(d_x, isub((a, b), point(mid))))
         if not contains_zero(intersect(f_x, f_c)):
             continue
@@ -118,8 +119,7 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
                 stack[top, 1] = hi
                 top += 1
                 continue
-        flat = contains_zero(f_m) and abs(_mid(_line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, mid, mid)[1])) \
-            * (b - a) <= FLAT * (f_m[1] - f_m[0])
+        flat = contains_zero(f_m) and abs(_mid(d_m)) * (b - a) <= FLAT * (f_m[1] - f_m[0])
         if b - a <= min_width or (b - a <= coarse and flat):
             if count >= out.shape[0]:
                 return count, OVERFLOW, boxes
@@ -170,7 +170,9 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
 
     min_width (2,) is the smallest width per parameter; boxes are bisected along the parameter whose width is
     largest relative to it; a box within coarse times min_width where g at its midpoint is within round-off of
-    zero and its gradient moves g by less than FLAT times that across the box is unresolved at once (round-off: bisecting further cannot separate anything). Returns (records in out (K, 4) and kinds (K,), status, boxes visited).
+    zero and its gradient moves g by less than FLAT times that across the box is unresolved at once (round-off:
+    bisecting further cannot separate anything). Returns (records in out (K, 4) and kinds (K,), status, boxes
+    visited).
     """
     stack = np.empty((STACK, 4))
     for i in range(4):
@@ -185,7 +187,9 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         boxes += 1
         if boxes > max_boxes:
             return count, OVERFLOW, boxes
-        g, gu, gv, guu, guv, gvv = jet(s_data, t_data, m, c, pad, cpad, U, V)
+        # the jets in two stages: the second derivatives only for the boxes the first-order tests keep (over
+        # the box), and that reach the Krawczyk test (at the midpoint)
+        (g, gu, gv), box_state = jet_first(s_data, t_data, m, c, pad, cpad, U, V)
         if not contains_zero(g):
             continue
         phi = isub(iscale(gu, dv), iscale(gv, du))
@@ -193,11 +197,12 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             continue
         mu = _mid(U)
         mv = _mid(V)
-        gm, gum, gvm, guum, guvm, gvvm = jet(s_data, t_data, m, c, pad, cpad, point(mu), point(mv))
+        (gm, gum, gvm), mid_state = jet_first(s_data, t_data, m, c, pad, cpad, point(mu), point(mv))
         dU = isub(U, point(mu))
         dV = isub(V, point(mv))
         if not contains_zero(intersect(g, iadd(gm, iadd(imul(gu, dU), imul(gv, dV))))):
             continue
+        guu, guv, gvv = jet_second(s_data, t_data, m, pad, box_state)
         if not contains_zero(_second_order(gm, gum, gvm, guu, guv, gvv, dU, dV)):
             continue
         j10 = isub(iscale(guu, dv), iscale(guv, du))
@@ -206,6 +211,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         if not contains_zero(intersect(phi, iadd(phim, iadd(imul(j10, dU), imul(j11, dV))))):
             continue
         # Krawczyk: K = m - Y Phi(m) + (I - Y J(X)) (X - m), Y the inverse of the midpoint Jacobian
+        guum, guvm, gvvm = jet_second(s_data, t_data, m, pad, mid_state)
         a00 = _mid(gum)
         a01 = _mid(gvm)
         a10 = dv * _mid(guum) - du * _mid(guvm)
@@ -264,7 +270,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
     return count, DONE, boxes
 
 
-@jit
+@jit(forceinline=True)
 def _second_order(gm, gum, gvm, guu, guv, gvv, dU, dV):
     """The second-order Taylor form of g over the box m + dU x dV: g(m) + grad g(m) . d + d^T H(X) d / 2, with g
     and its gradient enclosed at the midpoint m and the Hessian over the box X (Lagrange's remainder lies in it).
@@ -276,7 +282,7 @@ def _second_order(gm, gum, gvm, guu, guv, gvv, dU, dV):
     return iadd(gm, iadd(linear, half))
 
 
-@jit
+@jit(forceinline=True)
 def _krawczyk_row(y0, y1, m_i, gm, phim, gu, gv, j10, j11, dU, dV, i):
     """Row i of the Krawczyk operator: m_i - (Y Phi(m))_i + sum_j (delta_ij - (Y J)_ij) (X_j - m_j)."""
     yphi = iadd(iscale(gm, y0), iscale(phim, y1))
@@ -291,10 +297,24 @@ def _krawczyk_row(y0, y1, m_i, gm, phim, gu, gv, j10, j11, dU, dV, i):
     return iadd(isub(point(m_i), yphi), iadd(imul(a0, dU), imul(a1, dV)))
 
 
-@jit
+@jit(forceinline=True)
 def _point_jet(s_data, t_data, m, c, u, v):
+    """(g, g_u, g_v, g_uu, g_uv, g_vv) at the point (u, v): the midpoints of jet's enclosures, unpadded."""
     j = jet(s_data, t_data, m, c, 0.0, 0.0, (u, u), (v, v))
     return (_mid(j[0]), _mid(j[1]), _mid(j[2]), _mid(j[3]), _mid(j[4]), _mid(j[5]))
+
+
+@jit(forceinline=True)
+def _point_first(s_data, t_data, m, c, u, v):
+    """(g, g_u, g_v) at the point (u, v): _point_jet's first three, to the bit."""
+    j = jet_first(s_data, t_data, m, c, 0.0, 0.0, (u, u), (v, v))[0]
+    return (_mid(j[0]), _mid(j[1]), _mid(j[2]))
+
+
+@jit(forceinline=True)
+def _point_level(s_data, t_data, m, c, u, v):
+    """g at the point (u, v): _point_jet's first, to the bit."""
+    return _mid(level(s_data, t_data, m, c, 0.0, 0.0, (u, u), (v, v)))
 
 
 @jit
@@ -329,10 +349,10 @@ def refine_line(s_data, t_data, m, c, fixed, value, a, b):
     t = 0.5 * (a + b)
     for _ in range(REFINE_ITER):
         if fixed == 1:
-            j = _point_jet(s_data, t_data, m, c, t, value)
+            j = _point_first(s_data, t_data, m, c, t, value)
             f, d = j[0], j[1]
         else:
-            j = _point_jet(s_data, t_data, m, c, value, t)
+            j = _point_first(s_data, t_data, m, c, value, t)
             f, d = j[0], j[2]
         if d == 0.0:
             break
@@ -355,7 +375,7 @@ def point_values(s_data, t_data, m, c, uv, out):
 @jit
 def level_enclosure(s_data, t_data, m, c, pad, cpad, u, v):
     """(lo, hi): a rigorous enclosure of g at the point (u, v) (its round-off and the placement's)."""
-    return jet(s_data, t_data, m, c, pad, cpad, (u, u), (v, v))[0]
+    return level(s_data, t_data, m, c, pad, cpad, (u, u), (v, v))
 
 
 @jit
@@ -402,7 +422,7 @@ def level_max(s_data, t_data, m, c, box, n):
     for j in range(n):
         v = spaced(box[2], box[3], n, j)
         for i in range(n):
-            top = max(top, abs(_point_jet(s_data, t_data, m, c, spaced(box[0], box[1], n, i), v)[0]))
+            top = max(top, abs(_point_level(s_data, t_data, m, c, spaced(box[0], box[1], n, i), v)))
     return top
 
 
@@ -413,7 +433,7 @@ def flat_fraction(s_data, t_data, m, c, fixed, value, lo, hi, n, floor):
     flat = 0
     for i in range(n):
         u, v = _on_line(fixed, value, lo + spaced(0.0, 1.0, n, i) * (hi - lo))
-        if abs(_point_jet(s_data, t_data, m, c, u, v)[0]) <= floor:
+        if abs(_point_level(s_data, t_data, m, c, u, v)) <= floor:
             flat += 1
     return flat / n
 

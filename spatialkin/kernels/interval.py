@@ -175,21 +175,44 @@ ZERO = (0.0, 0.0)
 
 
 @jit(forceinline=True)
-def local_first(data, U, V):
+def u_trig(data, U):
+    """(cos, sin) enclosures over U, as local_first reads them (zeros for a plane, which reads none)."""
+    if int(data[GEOMETRY]) == PLANE:
+        return ZERO, ZERO
+    return icos(U), isin(U)
+
+
+@jit(forceinline=True)
+def v_trig(data, V):
+    """(cos, sin) enclosures over V, as local_first reads them (zeros but for a sphere or a torus)."""
+    geometry = int(data[GEOMETRY])
+    if geometry == SPHERE or geometry == TORUS:
+        return icos(V), isin(V)
+    return ZERO, ZERO
+
+
+@jit(forceinline=True)
+def box_trig(data, U, V):
+    """(cos U, sin U, cos V, sin V): the enclosures local_first reads over the box U x V (u_trig, v_trig)."""
+    cu, su = u_trig(data, U)
+    cv, sv = v_trig(data, V)
+    return cu, su, cv, sv
+
+
+@jit(forceinline=True)
+def local_first(data, U, V, trig):
     """Interval local point and first derivatives of S over the box U x V: (s, s_u, s_v, parts), each of s, s_u,
-    s_v a 3-tuple of intervals, parts (6 intervals) what local_second reads (its products of sines and cosines)."""
+    s_v a 3-tuple of intervals, parts (6 intervals) what local_second reads (its products of sines and cosines);
+    trig is box_trig of the box (a search hands a box the half its parent shares with it)."""
     geometry = int(data[GEOMETRY])
     z = (0.0, 0.0)
     one = (1.0, 1.0)
     if geometry == PLANE:
         return (U, V, z), (one, z, z), (z, one, z), (z, z, z, z, z, z)
-    cu = icos(U)
-    su = isin(U)
+    cu, su, cv, sv = trig
     if geometry == SPHERE or geometry == TORUS:
         big = 0.0 if geometry == SPHERE else data[P0]
         small = data[P0] if geometry == SPHERE else data[P1]
-        cv = icos(V)
-        sv = isin(V)
         w = ishift(iscale(cv, small), big)
         ssv = iscale(sv, small)
         scv = iscale(cv, small)
@@ -322,15 +345,15 @@ def _placed(m, c, x, pad, cpad):
 @jit(forceinline=True)
 def level(s_data, t_data, m, c, pad, cpad, U, V):
     """Enclosure of g alone over the box U x V (the first entry of jet, to the bit)."""
-    x = local_first(s_data, U, V)[0]
+    x = local_first(s_data, U, V, box_trig(s_data, U, V))[0]
     return implicit_jet(t_data, _placed(m, c, x, pad, cpad))[0]
 
 
 @jit(forceinline=True)
-def jet_first(s_data, t_data, m, c, pad, cpad, U, V):
+def jet_first(s_data, t_data, m, c, pad, cpad, U, V, trig):
     """((g, g_u, g_v), state): enclosures of g and its gradient over the box U x V (the first three entries of
-    jet, to the bit), and what jet_second reads to finish the jet."""
-    x, xu, xv, parts = local_first(s_data, U, V)
+    jet, to the bit; trig is box_trig of the box), and what jet_second reads to finish the jet."""
+    x, xu, xv, parts = local_first(s_data, U, V, trig)
     q = _placed(m, c, x, pad, cpad)
     qu = transform(m, xu, pad)
     qv = transform(m, xv, pad)
@@ -357,6 +380,6 @@ def jet(s_data, t_data, m, c, pad, cpad, U, V):
     """Enclosures (g, g_u, g_v, g_uu, g_uv, g_vv) of g = F_T(S(u, v)) over the box U x V (intervals); pad is the
     relative rounding pad of M, cpad the absolute one of c. The searches take it in two stages (jet_first, then
     jet_second only for the boxes that need the second derivatives)."""
-    first, state = jet_first(s_data, t_data, m, c, pad, cpad, U, V)
+    first, state = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))
     guu, guv, gvv = jet_second(s_data, t_data, m, pad, state)
     return first[0], first[1], first[2], guu, guv, gvv

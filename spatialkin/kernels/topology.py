@@ -24,8 +24,8 @@ R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIA
 import numpy as np
 
 from .._jit import jit
-from .interval import (contains_zero, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first, jet_second, level,
-                       point)
+from .interval import (box_trig, contains_zero, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first, jet_second,
+                       level, point, u_trig, v_trig)
 from .surfaces import inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
@@ -52,9 +52,11 @@ REFINE_ITER = 30
 def _line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, a, b):
     """(f, f') over [a, b] of f(t) = g on the parameter line (u = t, v = value) if fixed = 1, else (value, t)."""
     if fixed == 1:
-        j = jet_first(s_data, t_data, m, c, pad, cpad, (a, b), (value, value))[0]
+        U, V = (a, b), (value, value)
+        j = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))[0]
         return j[0], j[1]
-    j = jet_first(s_data, t_data, m, c, pad, cpad, (value, value), (a, b))[0]
+    U, V = (value, value), (a, b)
+    j = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))[0]
     return j[0], j[2]
 
 
@@ -140,12 +142,12 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
 
 
 @jit
-def _put(arr, row, U, V):
-    """arr[row] = (U lo, U hi, V lo, V hi)."""
-    arr[row, 0] = U[0]
-    arr[row, 1] = U[1]
-    arr[row, 2] = V[0]
-    arr[row, 3] = V[1]
+def _put(arr, row, U, V, first=0):
+    """arr[row, first:first + 4] = (U lo, U hi, V lo, V hi)."""
+    arr[row, first] = U[0]
+    arr[row, first + 1] = U[1]
+    arr[row, first + 2] = V[0]
+    arr[row, first + 3] = V[1]
 
 
 @jit
@@ -175,8 +177,13 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
     visited).
     """
     stack = np.empty((STACK, 4))
+    # the trig enclosures of a box's U and V (cos lo, hi, sin lo, hi: U's in columns 0-3, V's in 4-7), where
+    # known (bit 1: U's, bit 2: V's): a bisected box's children share the side not cut, and its trig
+    trig = np.empty((STACK, 8))
+    known = np.empty(STACK, dtype=np.int64)
     for i in range(4):
         stack[0, i] = box[i]
+    known[0] = 0
     top = 1
     count = 0
     boxes = 0
@@ -187,9 +194,17 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         boxes += 1
         if boxes > max_boxes:
             return count, OVERFLOW, boxes
+        if known[top] & 1:
+            cu, su = (trig[top, 0], trig[top, 1]), (trig[top, 2], trig[top, 3])
+        else:
+            cu, su = u_trig(s_data, U)
+        if known[top] & 2:
+            cv, sv = (trig[top, 4], trig[top, 5]), (trig[top, 6], trig[top, 7])
+        else:
+            cv, sv = v_trig(s_data, V)
         # the jets in two stages: the second derivatives only for the boxes the first-order tests keep (over
         # the box), and that reach the Krawczyk test (at the midpoint)
-        (g, gu, gv), box_state = jet_first(s_data, t_data, m, c, pad, cpad, U, V)
+        (g, gu, gv), box_state = jet_first(s_data, t_data, m, c, pad, cpad, U, V, (cu, su, cv, sv))
         if not contains_zero(g):
             continue
         phi = isub(iscale(gu, dv), iscale(gv, du))
@@ -197,7 +212,8 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             continue
         mu = _mid(U)
         mv = _mid(V)
-        (gm, gum, gvm), mid_state = jet_first(s_data, t_data, m, c, pad, cpad, point(mu), point(mv))
+        (gm, gum, gvm), mid_state = jet_first(s_data, t_data, m, c, pad, cpad, point(mu), point(mv),
+                                              box_trig(s_data, point(mu), point(mv)))
         dU = isub(U, point(mu))
         dV = isub(V, point(mv))
         if not contains_zero(intersect(g, iadd(gm, iadd(imul(gu, dU), imul(gv, dV))))):
@@ -243,6 +259,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             if top >= STACK:
                 return count, OVERFLOW, boxes
             _put(stack, top, U, V)
+            known[top] = 0
             top += 1
             continue
         ru = (U[1] - U[0]) / min_width[0]
@@ -262,10 +279,16 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             cut = U[0] + SPLIT * (U[1] - U[0])
             stack[top, 1] = cut
             stack[top + 1, 0] = cut
+            _put(trig, top, cv, sv, 4)
+            _put(trig, top + 1, cv, sv, 4)
+            known[top] = known[top + 1] = 2
         else:
             cut = V[0] + SPLIT * (V[1] - V[0])
             stack[top, 3] = cut
             stack[top + 1, 2] = cut
+            _put(trig, top, cu, su, 0)
+            _put(trig, top + 1, cu, su, 0)
+            known[top] = known[top + 1] = 1
         top += 2
     return count, DONE, boxes
 
@@ -307,7 +330,7 @@ def _point_jet(s_data, t_data, m, c, u, v):
 @jit(forceinline=True)
 def _point_first(s_data, t_data, m, c, u, v):
     """(g, g_u, g_v) at the point (u, v): _point_jet's first three, to the bit."""
-    j = jet_first(s_data, t_data, m, c, 0.0, 0.0, (u, u), (v, v))[0]
+    j = jet_first(s_data, t_data, m, c, 0.0, 0.0, (u, u), (v, v), box_trig(s_data, (u, u), (v, v)))[0]
     return (_mid(j[0]), _mid(j[1]), _mid(j[2]))
 
 

@@ -229,7 +229,7 @@ def test_staged_jets_match_the_single_jet_to_the_bit(seed):
                 U, V = (u0, u0 + width), (v0, v0 + 0.7 * width)
                 for pad, cpad in pads:
                     want = _jet_single(s.data, t.data, m, c, pad, cpad, U, V)
-                    first, state = ki.jet_first(s.data, t.data, m, c, pad, cpad, U, V)
+                    first, state = ki.jet_first(s.data, t.data, m, c, pad, cpad, U, V, ki.box_trig(s.data, U, V))
                     assert ki.jet(s.data, t.data, m, c, pad, cpad, U, V) == want
                     assert first == want[:3]
                     assert ki.jet_second(s.data, t.data, m, pad, state) == want[3:]

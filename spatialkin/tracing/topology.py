@@ -367,7 +367,7 @@ def topology(a, b, scale, tolerance):
         # Q's own apexes on P: singular points of the curve (known, so that the tracer's jumps pass them exactly;
         # a chart's poles are no points of the curve's kind)
         for v in traits(q).apexes(q):
-            apex = q.point(0.0, v)
+            apex = points_at(q, (0.0, v))[0]
             if float(p.distance(apex)) <= 1e3 * tolerance and qp.on_level((0.0, v)):
                 topo.apexes.append(apex)
         # Q's trim edges, as curves on Q where F_P = 0

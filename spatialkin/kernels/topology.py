@@ -21,6 +21,8 @@ R. Krawczyk, Newton-Algorithmen zur Bestimmung von Nullstellen mit Fehlerschrank
 R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, ch. 8.
 """
 
+import math
+
 import numpy as np
 
 from .._jit import jit
@@ -46,6 +48,10 @@ FLAT = 8.0
 SPLIT = 0.4860679774997897
 #: Newton iterations refining a root inside its verified box.
 REFINE_ITER = 30
+#: Longest cycle of the refining Newton's iterates looked for: round-off often makes its last bits cycle rather
+#: than settle, and an iterate that repeats an earlier one bit for bit fixes the rest of the sequence (the step
+#: is a function of the iterate), so its REFINE_ITER-th iterate is known without taking the steps.
+CYCLE = 16
 
 
 @jit(forceinline=True)
@@ -341,11 +347,32 @@ def _point_level(s_data, t_data, m, c, u, v):
 
 
 @jit
+def _cycle_end(iterates, k, n):
+    """Row of iterates (rows 0..k the iterates so far) that is iterate n of the sequence when iterate k repeats one
+    of the CYCLE before it bit for bit (then they cycle: iterate n is that of its phase); -1 otherwise."""
+    for j in range(k - 1, max(k - CYCLE, 0) - 1, -1):
+        same = True
+        for i in range(iterates.shape[1]):
+            x = iterates[k, i]
+            y = iterates[j, i]
+            if not (x == y and math.copysign(1.0, x) == math.copysign(1.0, y)):
+                same = False
+                break
+        if same:
+            return j + (n - j) % (k - j)
+    return -1
+
+
+@jit
 def refine_extremal(s_data, t_data, m, c, du, dv, box, uv):
-    """Newton on (g, phi) from the box centre, kept inside the box; the root into uv (2,)."""
+    """Newton on (g, phi) from the box centre, kept inside the box, for REFINE_ITER steps or until it settles (or
+    cycles: _cycle_end); the root into uv (2,)."""
     u = 0.5 * (box[0] + box[1])
     v = 0.5 * (box[2] + box[3])
-    for _ in range(REFINE_ITER):
+    iterates = np.empty((REFINE_ITER + 1, 2))
+    iterates[0, 0] = u
+    iterates[0, 1] = v
+    for it in range(REFINE_ITER):
         g, gu, gv, guu, guv, gvv = _point_jet(s_data, t_data, m, c, u, v)
         phi = dv * gu - du * gv
         a10 = dv * guu - du * guv
@@ -362,15 +389,25 @@ def refine_extremal(s_data, t_data, m, c, du, dv, box, uv):
         v = nv
         if done:
             break
+        iterates[it + 1, 0] = u
+        iterates[it + 1, 1] = v
+        end = _cycle_end(iterates, it + 1, REFINE_ITER)
+        if end >= 0:
+            u = iterates[end, 0]
+            v = iterates[end, 1]
+            break
     uv[0] = u
     uv[1] = v
 
 
 @jit
 def refine_line(s_data, t_data, m, c, fixed, value, a, b):
-    """Newton on g along the parameter line inside [a, b]; returns the root."""
+    """Newton on g along the parameter line inside [a, b], for REFINE_ITER steps or until it settles (or cycles:
+    _cycle_end); returns the root."""
     t = 0.5 * (a + b)
-    for _ in range(REFINE_ITER):
+    iterates = np.empty((REFINE_ITER + 1, 1))
+    iterates[0, 0] = t
+    for it in range(REFINE_ITER):
         if fixed == 1:
             j = _point_first(s_data, t_data, m, c, t, value)
             f, d = j[0], j[1]
@@ -383,6 +420,10 @@ def refine_line(s_data, t_data, m, c, fixed, value, a, b):
         if nt == t:
             break
         t = nt
+        iterates[it + 1, 0] = t
+        end = _cycle_end(iterates, it + 1, REFINE_ITER)
+        if end >= 0:
+            return iterates[end, 0]
     return t
 
 

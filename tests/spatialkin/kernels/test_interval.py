@@ -243,3 +243,69 @@ def test_staged_jets_match_the_single_jet_to_the_bit(seed):
                 pad, cpad = pads[0]
                 assert kt.level_enclosure(s.data, t.data, m, c, pad, cpad, u, v) == \
                     _jet_single(s.data, t.data, m, c, pad, cpad, (u, u), (v, v))[0]
+
+
+def _refine_all_steps(step, x, keep_new):
+    """Newton's iterates x_k+1 = step(x_k) (None: stop at x_k) for REFINE_ITER steps or until an iterate equals the
+    one before (then the new one if keep_new, else the old), without looking for cycles (refine_extremal and
+    refine_line before they did): (the last iterate, whether some iterate repeated an earlier one bit for bit)."""
+    seen, repeated = [np.array(x).tobytes()], False
+    for _ in range(kt.REFINE_ITER):
+        new = step(x)
+        if new is None:
+            break
+        if new == x:
+            return (new if keep_new else x), repeated
+        x = new
+        repeated = repeated or np.array(x).tobytes() in seen
+        seen.append(np.array(x).tobytes())
+    return x, repeated
+
+
+def test_refinement_ends_where_all_its_steps_end():
+    """refine_extremal and refine_line, which stop when their iterates cycle, return the bits the full REFINE_ITER
+    steps give (the loops they replaced, _refine_all_steps) on every verified box of searches over the bench pairs
+    and random pairs, on many of which the iterates do cycle."""
+    from spatialkin.bench.kinds import pair_kind_cases
+    rng = np.random.default_rng(7)
+    pairs = [(a, b) for kind, a, b in pair_kind_cases()] + [(s, t) for s in surfaces(rng) for t in surfaces(rng)]
+    box = np.array([-math.pi, math.pi, -3.0, 3.0])
+    du, dv = math.cos(0.3091), math.sin(0.3091)
+    cycled = checked = 0
+    for s, t in pairs:
+        m, c = np.empty((3, 3)), np.empty(3)
+        mag = ki.relative_placement(s.data, t.data, m, c)
+        pad, cpad = ki.PLACEMENT_ULPS * ki.EPS, ki.PLACEMENT_ULPS * ki.EPS * mag
+        out, kinds = np.empty((4096, 4)), np.empty(4096, dtype=np.int64)
+        n, _, _ = kt.extremal_points(s.data, t.data, m, c, pad, cpad, du, dv, box, np.array([1e-13, 1e-13]), 1e6,
+                                     100_000, out, kinds)
+        for rec in out[:n][kinds[:n] == kt.VERIFIED]:
+            def step(x, rec=rec):
+                g, gu, gv, guu, guv, gvv = kt._point_jet(s.data, t.data, m, c, x[0], x[1])
+                phi, a10, a11 = dv * gu - du * gv, dv * guu - du * guv, dv * guv - du * gvv
+                det = gu * a11 - gv * a10
+                if det == 0.0:
+                    return None
+                return (min(max(x[0] - (a11 * g - gv * phi) / det, rec[0]), rec[1]),
+                        min(max(x[1] - (gu * phi - a10 * g) / det, rec[2]), rec[3]))
+            want, repeated = _refine_all_steps(step, (0.5 * (rec[0] + rec[1]), 0.5 * (rec[2] + rec[3])), True)
+            uv = np.empty(2)
+            kt.refine_extremal(s.data, t.data, m, c, du, dv, rec, uv)
+            assert uv.tobytes() == np.array(want).tobytes()
+            cycled += repeated
+            checked += 1
+        records, kinds = np.empty((64, 2)), np.empty(64, dtype=np.int64)
+        for fixed in (0, 1):
+            n, _, _ = kt.line_roots(s.data, t.data, m, c, pad, cpad, fixed, 0.1, box[2 - 2 * fixed],
+                                    box[3 - 2 * fixed], 1e-14, 1e-7, 100_000, records, kinds)
+            for lo, hi in records[:n][kinds[:n] == kt.VERIFIED]:
+                def step(x, lo=lo, hi=hi, fixed=fixed):
+                    j = kt._point_jet(s.data, t.data, m, c, *((x[0], 0.1) if fixed == 1 else (0.1, x[0])))
+                    d = j[1] if fixed == 1 else j[2]
+                    return None if d == 0.0 else (min(max(x[0] - j[0] / d, lo), hi),)
+                want, repeated = _refine_all_steps(step, (0.5 * (lo + hi),), False)
+                got = kt.refine_line(s.data, t.data, m, c, fixed, 0.1, lo, hi)
+                assert np.float64(got).tobytes() == np.float64(want[0]).tobytes()
+                cycled += repeated
+                checked += 1
+    assert checked >= 40 and cycled >= 5

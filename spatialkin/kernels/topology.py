@@ -28,7 +28,7 @@ import numpy as np
 from .._jit import jit
 from .interval import (box_trig, contains_zero, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first, jet_second,
                        level, point, u_trig, v_trig)
-from .surfaces import inverse_local, to_local
+from .surfaces import evaluate, inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
 #: Status of a search: completed, or stopped at its box budget (the result is then not a proof).
@@ -528,6 +528,14 @@ def keep_points(a_data, a_bounds, b_data, b_bounds, apexes, clearance, points, o
             if np.sqrt(d0 * d0 + d1 * d1 + d2 * d2) <= clearance:
                 kept = False
         out[k] = kept
+
+
+@jit
+def keep_surface_points(s_data, uv, a_data, a_bounds, b_data, b_bounds, apexes, clearance, points, out):
+    """The points (N, 3) of S at parameter points uv (N, 2) (surfaces.evaluate) into points, and which of them
+    keep_points keeps into out (N,): the two in one call."""
+    evaluate(s_data, uv, points)
+    keep_points(a_data, a_bounds, b_data, b_bounds, apexes, clearance, points, out)
 
 
 @jit

@@ -10,6 +10,13 @@ Boxes that can be neither discarded nor verified when they reach the minimum wid
 (singular or multiple roots: contacts, nodes, tangencies).
 
 Records are boxes (lo, hi per parameter) with a kind: VERIFIED (exactly one simple root inside) or UNRESOLVED.
+
+The searches read g in stages (spatialkin.kernels.interval: level, jet_first, jet_second, inlined into them): a
+box's second derivatives only when its first-order tests leave it in doubt, those at its midpoint only for the
+Krawczyk test; a bisected box's children reuse its sines and cosines on the side not cut; the refining Newton
+stops once its iterates cycle bit for bit (its last one is then known). None of this changes a bit of what
+they compute.
+
 line_search and extremal_search run a search and reduce its records to points in the same call (the refined
 roots, then the unresolved boxes' centres); line_on_level, level_max, flat_fraction and keep_points do the stage's
 per-point tests of many points in one call (the same bits as one point at a time: tests/spatialkin/tracing/

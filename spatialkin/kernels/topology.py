@@ -10,6 +10,13 @@ Boxes that can be neither discarded nor verified when they reach the minimum wid
 (singular or multiple roots: contacts, nodes, tangencies).
 
 Records are boxes (lo, hi per parameter) with a kind: VERIFIED (exactly one simple root inside) or UNRESOLVED.
+
+The searches read g in stages (spatialkin.kernels.interval: level, jet_first, jet_second, inlined into them): a
+box's second derivatives only when its first-order tests leave it in doubt, those at its midpoint only for the
+Krawczyk test; a bisected box's children reuse its sines and cosines on the side not cut; the refining Newton
+stops once its iterates cycle bit for bit (its last one is then known). None of this changes a bit of what
+they compute.
+
 line_search and extremal_search run a search and reduce its records to points in the same call (the refined
 roots, then the unresolved boxes' centres); line_on_level, level_max, flat_fraction and keep_points do the stage's
 per-point tests of many points in one call (the same bits as one point at a time: tests/spatialkin/tracing/
@@ -21,11 +28,14 @@ R. Krawczyk, Newton-Algorithmen zur Bestimmung von Nullstellen mit Fehlerschrank
 R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, ch. 8.
 """
 
+import math
+
 import numpy as np
 
 from .._jit import jit
-from .interval import (contains_zero, iadd, imul, intersect, iscale, isqr, isub, jet, point)
-from .surfaces import inverse_local, to_local
+from .interval import (box_trig, contains_zero, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first, jet_second,
+                       level, point, u_trig, v_trig)
+from .surfaces import evaluate, inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
 #: Status of a search: completed, or stopped at its box budget (the result is then not a proof).
@@ -45,15 +55,21 @@ FLAT = 8.0
 SPLIT = 0.4860679774997897
 #: Newton iterations refining a root inside its verified box.
 REFINE_ITER = 30
+#: Longest cycle of the refining Newton's iterates looked for: round-off often makes its last bits cycle rather
+#: than settle, and an iterate that repeats an earlier one bit for bit fixes the rest of the sequence (the step
+#: is a function of the iterate), so its REFINE_ITER-th iterate is known without taking the steps.
+CYCLE = 16
 
 
-@jit
+@jit(forceinline=True)
 def _line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, a, b):
     """(f, f') over [a, b] of f(t) = g on the parameter line (u = t, v = value) if fixed = 1, else (value, t)."""
     if fixed == 1:
-        j = jet(s_data, t_data, m, c, pad, cpad, (a, b), (value, value))
+        U, V = (a, b), (value, value)
+        j = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))[0]
         return j[0], j[1]
-    j = jet(s_data, t_data, m, c, pad, cpad, (value, value), (a, b))
+    U, V = (value, value), (a, b)
+    j = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))[0]
     return j[0], j[2]
 
 
@@ -93,7 +109,7 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
         if not contains_zero(f_x):
             continue
         mid = 0.5 * (a + b)
-        f_m, _ = _line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, mid, mid)
+        f_m, d_m = _line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, mid, mid)
         f_c = iadd(f_m, imul(d_x, isub((a, b), point(mid))))
         if not contains_zero(intersect(f_x, f_c)):
             continue
@@ -118,8 +134,7 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
                 stack[top, 1] = hi
                 top += 1
                 continue
-        flat = contains_zero(f_m) and abs(_mid(_line_jet(s_data, t_data, m, c, pad, cpad, fixed, value, mid, mid)[1])) \
-            * (b - a) <= FLAT * (f_m[1] - f_m[0])
+        flat = contains_zero(f_m) and abs(_mid(d_m)) * (b - a) <= FLAT * (f_m[1] - f_m[0])
         if b - a <= min_width or (b - a <= coarse and flat):
             if count >= out.shape[0]:
                 return count, OVERFLOW, boxes
@@ -140,12 +155,12 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
 
 
 @jit
-def _put(arr, row, U, V):
-    """arr[row] = (U lo, U hi, V lo, V hi)."""
-    arr[row, 0] = U[0]
-    arr[row, 1] = U[1]
-    arr[row, 2] = V[0]
-    arr[row, 3] = V[1]
+def _put(arr, row, U, V, first=0):
+    """arr[row, first:first + 4] = (U lo, U hi, V lo, V hi)."""
+    arr[row, first] = U[0]
+    arr[row, first + 1] = U[1]
+    arr[row, first + 2] = V[0]
+    arr[row, first + 3] = V[1]
 
 
 @jit
@@ -170,11 +185,18 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
 
     min_width (2,) is the smallest width per parameter; boxes are bisected along the parameter whose width is
     largest relative to it; a box within coarse times min_width where g at its midpoint is within round-off of
-    zero and its gradient moves g by less than FLAT times that across the box is unresolved at once (round-off: bisecting further cannot separate anything). Returns (records in out (K, 4) and kinds (K,), status, boxes visited).
+    zero and its gradient moves g by less than FLAT times that across the box is unresolved at once (round-off:
+    bisecting further cannot separate anything). Returns (records in out (K, 4) and kinds (K,), status, boxes
+    visited).
     """
     stack = np.empty((STACK, 4))
+    # the trig enclosures of a box's U and V (cos lo, hi, sin lo, hi: U's in columns 0-3, V's in 4-7), where
+    # known (bit 1: U's, bit 2: V's): a bisected box's children share the side not cut, and its trig
+    trig = np.empty((STACK, 8))
+    known = np.empty(STACK, dtype=np.int64)
     for i in range(4):
         stack[0, i] = box[i]
+    known[0] = 0
     top = 1
     count = 0
     boxes = 0
@@ -185,7 +207,17 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         boxes += 1
         if boxes > max_boxes:
             return count, OVERFLOW, boxes
-        g, gu, gv, guu, guv, gvv = jet(s_data, t_data, m, c, pad, cpad, U, V)
+        if known[top] & 1:
+            cu, su = (trig[top, 0], trig[top, 1]), (trig[top, 2], trig[top, 3])
+        else:
+            cu, su = u_trig(s_data, U)
+        if known[top] & 2:
+            cv, sv = (trig[top, 4], trig[top, 5]), (trig[top, 6], trig[top, 7])
+        else:
+            cv, sv = v_trig(s_data, V)
+        # the jets in two stages: the second derivatives only for the boxes the first-order tests keep (over
+        # the box), and that reach the Krawczyk test (at the midpoint)
+        (g, gu, gv), box_state = jet_first(s_data, t_data, m, c, pad, cpad, U, V, (cu, su, cv, sv))
         if not contains_zero(g):
             continue
         phi = isub(iscale(gu, dv), iscale(gv, du))
@@ -193,11 +225,13 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             continue
         mu = _mid(U)
         mv = _mid(V)
-        gm, gum, gvm, guum, guvm, gvvm = jet(s_data, t_data, m, c, pad, cpad, point(mu), point(mv))
+        (gm, gum, gvm), mid_state = jet_first(s_data, t_data, m, c, pad, cpad, point(mu), point(mv),
+                                              box_trig(s_data, point(mu), point(mv)))
         dU = isub(U, point(mu))
         dV = isub(V, point(mv))
         if not contains_zero(intersect(g, iadd(gm, iadd(imul(gu, dU), imul(gv, dV))))):
             continue
+        guu, guv, gvv = jet_second(s_data, t_data, m, pad, box_state)
         if not contains_zero(_second_order(gm, gum, gvm, guu, guv, gvv, dU, dV)):
             continue
         j10 = isub(iscale(guu, dv), iscale(guv, du))
@@ -206,6 +240,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
         if not contains_zero(intersect(phi, iadd(phim, iadd(imul(j10, dU), imul(j11, dV))))):
             continue
         # Krawczyk: K = m - Y Phi(m) + (I - Y J(X)) (X - m), Y the inverse of the midpoint Jacobian
+        guum, guvm, gvvm = jet_second(s_data, t_data, m, pad, mid_state)
         a00 = _mid(gum)
         a01 = _mid(gvm)
         a10 = dv * _mid(guum) - du * _mid(guvm)
@@ -237,6 +272,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             if top >= STACK:
                 return count, OVERFLOW, boxes
             _put(stack, top, U, V)
+            known[top] = 0
             top += 1
             continue
         ru = (U[1] - U[0]) / min_width[0]
@@ -256,15 +292,21 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             cut = U[0] + SPLIT * (U[1] - U[0])
             stack[top, 1] = cut
             stack[top + 1, 0] = cut
+            _put(trig, top, cv, sv, 4)
+            _put(trig, top + 1, cv, sv, 4)
+            known[top] = known[top + 1] = 2
         else:
             cut = V[0] + SPLIT * (V[1] - V[0])
             stack[top, 3] = cut
             stack[top + 1, 2] = cut
+            _put(trig, top, cu, su, 0)
+            _put(trig, top + 1, cu, su, 0)
+            known[top] = known[top + 1] = 1
         top += 2
     return count, DONE, boxes
 
 
-@jit
+@jit(forceinline=True)
 def _second_order(gm, gum, gvm, guu, guv, gvv, dU, dV):
     """The second-order Taylor form of g over the box m + dU x dV: g(m) + grad g(m) . d + d^T H(X) d / 2, with g
     and its gradient enclosed at the midpoint m and the Hessian over the box X (Lagrange's remainder lies in it).
@@ -276,7 +318,7 @@ def _second_order(gm, gum, gvm, guu, guv, gvv, dU, dV):
     return iadd(gm, iadd(linear, half))
 
 
-@jit
+@jit(forceinline=True)
 def _krawczyk_row(y0, y1, m_i, gm, phim, gu, gv, j10, j11, dU, dV, i):
     """Row i of the Krawczyk operator: m_i - (Y Phi(m))_i + sum_j (delta_ij - (Y J)_ij) (X_j - m_j)."""
     yphi = iadd(iscale(gm, y0), iscale(phim, y1))
@@ -291,18 +333,53 @@ def _krawczyk_row(y0, y1, m_i, gm, phim, gu, gv, j10, j11, dU, dV, i):
     return iadd(isub(point(m_i), yphi), iadd(imul(a0, dU), imul(a1, dV)))
 
 
-@jit
+@jit(forceinline=True)
 def _point_jet(s_data, t_data, m, c, u, v):
+    """(g, g_u, g_v, g_uu, g_uv, g_vv) at the point (u, v): the midpoints of jet's enclosures, unpadded."""
     j = jet(s_data, t_data, m, c, 0.0, 0.0, (u, u), (v, v))
     return (_mid(j[0]), _mid(j[1]), _mid(j[2]), _mid(j[3]), _mid(j[4]), _mid(j[5]))
 
 
+@jit(forceinline=True)
+def _point_first(s_data, t_data, m, c, u, v):
+    """(g, g_u, g_v) at the point (u, v): _point_jet's first three, to the bit."""
+    j = jet_first(s_data, t_data, m, c, 0.0, 0.0, (u, u), (v, v), box_trig(s_data, (u, u), (v, v)))[0]
+    return (_mid(j[0]), _mid(j[1]), _mid(j[2]))
+
+
+@jit(forceinline=True)
+def _point_level(s_data, t_data, m, c, u, v):
+    """g at the point (u, v): _point_jet's first, to the bit."""
+    return _mid(level(s_data, t_data, m, c, 0.0, 0.0, (u, u), (v, v)))
+
+
+@jit
+def _cycle_end(iterates, k, n):
+    """Row of iterates (rows 0..k the iterates so far) that is iterate n of the sequence when iterate k repeats one
+    of the CYCLE before it bit for bit (then they cycle: iterate n is that of its phase); -1 otherwise."""
+    for j in range(k - 1, max(k - CYCLE, 0) - 1, -1):
+        same = True
+        for i in range(iterates.shape[1]):
+            x = iterates[k, i]
+            y = iterates[j, i]
+            if not (x == y and math.copysign(1.0, x) == math.copysign(1.0, y)):
+                same = False
+                break
+        if same:
+            return j + (n - j) % (k - j)
+    return -1
+
+
 @jit
 def refine_extremal(s_data, t_data, m, c, du, dv, box, uv):
-    """Newton on (g, phi) from the box centre, kept inside the box; the root into uv (2,)."""
+    """Newton on (g, phi) from the box centre, kept inside the box, for REFINE_ITER steps or until it settles (or
+    cycles: _cycle_end); the root into uv (2,)."""
     u = 0.5 * (box[0] + box[1])
     v = 0.5 * (box[2] + box[3])
-    for _ in range(REFINE_ITER):
+    iterates = np.empty((REFINE_ITER + 1, 2))
+    iterates[0, 0] = u
+    iterates[0, 1] = v
+    for it in range(REFINE_ITER):
         g, gu, gv, guu, guv, gvv = _point_jet(s_data, t_data, m, c, u, v)
         phi = dv * gu - du * gv
         a10 = dv * guu - du * guv
@@ -319,20 +396,30 @@ def refine_extremal(s_data, t_data, m, c, du, dv, box, uv):
         v = nv
         if done:
             break
+        iterates[it + 1, 0] = u
+        iterates[it + 1, 1] = v
+        end = _cycle_end(iterates, it + 1, REFINE_ITER)
+        if end >= 0:
+            u = iterates[end, 0]
+            v = iterates[end, 1]
+            break
     uv[0] = u
     uv[1] = v
 
 
 @jit
 def refine_line(s_data, t_data, m, c, fixed, value, a, b):
-    """Newton on g along the parameter line inside [a, b]; returns the root."""
+    """Newton on g along the parameter line inside [a, b], for REFINE_ITER steps or until it settles (or cycles:
+    _cycle_end); returns the root."""
     t = 0.5 * (a + b)
-    for _ in range(REFINE_ITER):
+    iterates = np.empty((REFINE_ITER + 1, 1))
+    iterates[0, 0] = t
+    for it in range(REFINE_ITER):
         if fixed == 1:
-            j = _point_jet(s_data, t_data, m, c, t, value)
+            j = _point_first(s_data, t_data, m, c, t, value)
             f, d = j[0], j[1]
         else:
-            j = _point_jet(s_data, t_data, m, c, value, t)
+            j = _point_first(s_data, t_data, m, c, value, t)
             f, d = j[0], j[2]
         if d == 0.0:
             break
@@ -340,6 +427,10 @@ def refine_line(s_data, t_data, m, c, fixed, value, a, b):
         if nt == t:
             break
         t = nt
+        iterates[it + 1, 0] = t
+        end = _cycle_end(iterates, it + 1, REFINE_ITER)
+        if end >= 0:
+            return iterates[end, 0]
     return t
 
 
@@ -355,7 +446,7 @@ def point_values(s_data, t_data, m, c, uv, out):
 @jit
 def level_enclosure(s_data, t_data, m, c, pad, cpad, u, v):
     """(lo, hi): a rigorous enclosure of g at the point (u, v) (its round-off and the placement's)."""
-    return jet(s_data, t_data, m, c, pad, cpad, (u, u), (v, v))[0]
+    return level(s_data, t_data, m, c, pad, cpad, (u, u), (v, v))
 
 
 @jit
@@ -402,7 +493,7 @@ def level_max(s_data, t_data, m, c, box, n):
     for j in range(n):
         v = spaced(box[2], box[3], n, j)
         for i in range(n):
-            top = max(top, abs(_point_jet(s_data, t_data, m, c, spaced(box[0], box[1], n, i), v)[0]))
+            top = max(top, abs(_point_level(s_data, t_data, m, c, spaced(box[0], box[1], n, i), v)))
     return top
 
 
@@ -413,7 +504,7 @@ def flat_fraction(s_data, t_data, m, c, fixed, value, lo, hi, n, floor):
     flat = 0
     for i in range(n):
         u, v = _on_line(fixed, value, lo + spaced(0.0, 1.0, n, i) * (hi - lo))
-        if abs(_point_jet(s_data, t_data, m, c, u, v)[0]) <= floor:
+        if abs(_point_level(s_data, t_data, m, c, u, v)) <= floor:
             flat += 1
     return flat / n
 
@@ -444,6 +535,14 @@ def keep_points(a_data, a_bounds, b_data, b_bounds, apexes, clearance, points, o
             if np.sqrt(d0 * d0 + d1 * d1 + d2 * d2) <= clearance:
                 kept = False
         out[k] = kept
+
+
+@jit
+def keep_surface_points(s_data, uv, a_data, a_bounds, b_data, b_bounds, apexes, clearance, points, out):
+    """The points (N, 3) of S at parameter points uv (N, 2) (surfaces.evaluate) into points, and which of them
+    keep_points keeps into out (N,): the two in one call."""
+    evaluate(s_data, uv, points)
+    keep_points(a_data, a_bounds, b_data, b_bounds, apexes, clearance, points, out)
 
 
 @jit

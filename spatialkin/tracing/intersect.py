@@ -16,7 +16,7 @@ from .certificate import certificates
 from .closed import closed_form, closed_settings
 from . import stages
 from .status import CONTACT
-from .topology import topology
+from .topology import points_at, topology
 from .traits import check_surface
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
@@ -241,4 +241,4 @@ def edge_start(a, b, point, p_index, fixed, value, settings):
     y = newton_fixed(a, b, y, index, settings.gap_tol)
     if y is None:
         return None
-    return a.point(y[0], y[1]), y
+    return points_at(a, y[:2])[0], y                 # (Surface.point's evaluation, without its broadcasting)

@@ -234,10 +234,7 @@ class Reader:
 
     def line_points(self, fixed, value, along):
         """Points (N, 3) of S on the line (parameter `fixed` = value) at the other parameter's values along."""
-        uv = np.empty((len(along), 2))
-        uv[:, 1 - fixed] = along
-        uv[:, fixed] = value
-        return points_at(self.s, uv)
+        return points_at(self.s, line_params(fixed, value, along))
 
     def on_level(self, uv):
         """True when g at uv is zero within its round-off (a rigorous enclosure, widened ON_LEVEL times)."""
@@ -261,6 +258,14 @@ class Reader:
             raise TopologyError(f"the {name} search ran out of its budget of {MAX_BOXES} boxes: the intersection "
                                 "could not be resolved there (a tangency along a curve in a placement not "
                                 "recognised as symmetric?)", where=name)
+
+
+def line_params(fixed, value, along):
+    """Parameter points (N, 2) of the line (parameter `fixed` = value) at the other parameter's values along."""
+    uv = np.empty((len(along), 2))
+    uv[:, 1 - fixed] = along
+    uv[:, fixed] = value
+    return uv
 
 
 def points_at(surface, uv):
@@ -321,12 +326,12 @@ def topology(a, b, scale, tolerance):
             # the whole line lies on the other surface (a patch's edge in the other plane, a rim on it): it
             # is a piece of the intersection itself; starts on it, inside both trims, trace it
             along = np.linspace(t_lo, t_hi, LINE_PROBES)[1:-1]
-            topo.seeds += keep.select(reader.line_points(fixed, value, along))
+            topo.seeds += keep.select_on(reader.s, line_params(fixed, value, along))
             return np.empty(0), np.empty(0)
         roots, unresolved = found
         if len(roots):
-            pts = reader.line_points(fixed, value, roots)
-            for pt in pts[keep.many(pts)]:
+            pts, kept = keep.on(reader.s, line_params(fixed, value, roots))
+            for pt in pts[kept]:
                 if edge:
                     topo.edge_starts.append((pt, surf_index, fixed, value))
                 else:
@@ -367,7 +372,7 @@ def topology(a, b, scale, tolerance):
         # Q's own apexes on P: singular points of the curve (known, so that the tracer's jumps pass them exactly;
         # a chart's poles are no points of the curve's kind)
         for v in traits(q).apexes(q):
-            apex = q.point(0.0, v)
+            apex = points_at(q, (0.0, v))[0]
             if float(p.distance(apex)) <= 1e3 * tolerance and qp.on_level((0.0, v)):
                 topo.apexes.append(apex)
         # Q's trim edges, as curves on Q where F_P = 0
@@ -378,7 +383,7 @@ def topology(a, b, scale, tolerance):
         for lo, hi in split_range(box[2], box[3], bands):
             roots, unresolved = pq.extremal(np.array([box[0], box[1], lo, hi]), traits(p).parameter_units(scale),
                                             topo)
-            topo.seeds += keep.select(points_at(p, roots))
+            topo.seeds += keep.select_on(p, roots)
             loose += [(pq, uv) for uv in unresolved]
     classify(loose, topo, scale, keep)
     topo.seconds = time.perf_counter() - t0
@@ -589,6 +594,22 @@ class Keeper:
         """The kept rows of points (N, 3), as a list of (3,) arrays."""
         points = np.asarray(points, dtype=float).reshape(-1, 3)
         return list(points[self.many(points)]) if len(points) else []
+
+    def on(self, surface, uv):
+        """(points (N, 3) of the surface at parameter points uv (N, 2), (N,) bool: which are kept): points_at and
+        many in one compiled call (spatialkin.kernels.topology.keep_surface_points)."""
+        uv = np.ascontiguousarray(uv, dtype=float).reshape(-1, 2)
+        points = np.empty((len(uv), 3))
+        out = np.empty(len(uv), dtype=bool)
+        kt.keep_surface_points(surface.data, uv, self.data[0], self.bounds[0], self.data[1], self.bounds[1],
+                               self.apexes, self.clearance, points, out)
+        return points, out
+
+    def select_on(self, surface, uv):
+        """The kept points of the surface at parameter points uv (N, 2), as a list of (3,) arrays (select of
+        points_at, in one compiled call)."""
+        points, kept = self.on(surface, uv)
+        return list(points[kept])
 
 
 def classify(loose, topo, scale, keep):

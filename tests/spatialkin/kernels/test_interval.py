@@ -151,3 +151,161 @@ def test_second_order_form_encloses_g_and_is_tighter_on_small_boxes(seed):
                     if centred_over > 1e-9 * (np.max(np.abs(values)) + 1.0):
                         ratios.append(over / centred_over)
     assert len(ratios) >= 10 and max(ratios) <= 0.5 and np.median(ratios) <= 0.3
+
+
+def _icos_single(a):
+    """kernels.interval.icos before a point's cosine was taken once (cos at both ends), the oracle below."""
+    lo, hi = a
+    if hi - lo >= ki.TWO_PI:
+        return (-1.0, 1.0)
+    c0, c1 = math.cos(lo), math.cos(hi)
+    r0, r1 = min(c0, c1), max(c0, c1)
+    r0 -= ki.TRIG_ULPS * ki.EPS * abs(r0) + ki.TINY
+    r1 += ki.TRIG_ULPS * ki.EPS * abs(r1) + ki.TINY
+    if ki._has_multiple(lo, hi, 0.0):
+        r1 = 1.0
+    if ki._has_multiple(lo, hi, math.pi):
+        r0 = -1.0
+    return (max(r0, -1.0), min(r1, 1.0))
+
+
+def _jet_single(s_data, t_data, m, c, pad, cpad, U, V):
+    """kernels.interval.jet as one function (local_jet and jet before they were split in stages), in Python on the
+    same interval primitives: the oracle of the staged jets, to the bit."""
+    geometry = int(s_data[ki.GEOMETRY])
+    z, one = (0.0, 0.0), (1.0, 1.0)
+    zero3 = (z, z, z)
+    if geometry == ki.PLANE:
+        local = (U, V, z), (one, z, z), (z, one, z), zero3, zero3, zero3
+    else:
+        cu = _icos_single(U)
+        su = _icos_single(ki.widen((U[0] - ki.HALF_PI, U[1] - ki.HALF_PI), ki.HALF_PI_ERROR))
+        if geometry in (ki.SPHERE, ki.TORUS):
+            big = 0.0 if geometry == ki.SPHERE else s_data[ki.P0]
+            small = s_data[ki.P0] if geometry == ki.SPHERE else s_data[ki.P1]
+            cv = _icos_single(V)
+            sv = _icos_single(ki.widen((V[0] - ki.HALF_PI, V[1] - ki.HALF_PI), ki.HALF_PI_ERROR))
+            w = ki.ishift(ki.iscale(cv, small), big)
+            ssv, scv = ki.iscale(sv, small), ki.iscale(cv, small)
+            wcu, wsu = ki.imul(w, cu), ki.imul(w, su)
+            local = ((wcu, wsu, ssv), (ki.ineg(wsu), wcu, z),
+                     (ki.ineg(ki.imul(ssv, cu)), ki.ineg(ki.imul(ssv, su)), scv),
+                     (ki.ineg(wcu), ki.ineg(wsu), z), (ki.imul(ssv, su), ki.ineg(ki.imul(ssv, cu)), z),
+                     (ki.ineg(ki.imul(scv, cu)), ki.ineg(ki.imul(scv, su)), ki.ineg(ssv)))
+        else:
+            b = s_data[ki.P1]
+            rho = ki.ishift(ki.iscale(V, b), s_data[ki.P0])
+            rcu, rsu = ki.imul(rho, cu), ki.imul(rho, su)
+            bcu, bsu = ki.iscale(cu, b), ki.iscale(su, b)
+            local = ((rcu, rsu, V), (ki.ineg(rsu), rcu, z), (bcu, bsu, one), (ki.ineg(rcu), ki.ineg(rsu), z),
+                     (ki.ineg(bsu), bcu, z), zero3)
+    x, xu, xv, xuu, xuv, xvv = local
+    q0 = ki.transform(m, x, pad)
+    r = cpad + pad * (abs(c[0]) + abs(c[1]) + abs(c[2]))
+    q = tuple(ki.widen(ki.ishift(q0[i], c[i]), r) for i in range(3))
+    qu, qv = ki.transform(m, xu, pad), ki.transform(m, xv, pad)
+    quu, quv, qvv = ki.transform(m, xuu, pad), ki.transform(m, xuv, pad), ki.transform(m, xvv, pad)
+    f, grad, s = ki.implicit_jet(t_data, q)
+    return (f, ki.idot(grad, qu), ki.idot(grad, qv),
+            ki.iadd(ki.hessian_form(t_data, q, s, qu, qu), ki.idot(grad, quu)),
+            ki.iadd(ki.hessian_form(t_data, q, s, qu, qv), ki.idot(grad, quv)),
+            ki.iadd(ki.hessian_form(t_data, q, s, qv, qv), ki.idot(grad, qvv)))
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_staged_jets_match_the_single_jet_to_the_bit(seed):
+    """jet, jet_first, jet_second and level (compiled, their helpers inlined) give the same bits as the jet computed
+    in one piece (_jet_single, the code they replaced, in Python): over random boxes and at points (a box of zero
+    width, padded or not), for every pair of kinds; and the searches' point values (point_values,
+    level_enclosure) are that jet's."""
+    rng = np.random.default_rng(200 + seed)
+    for s in surfaces(rng):
+        for t in surfaces(rng):
+            m, c = np.empty((3, 3)), np.empty(3)
+            mag = ki.relative_placement(s.data, t.data, m, c)
+            pads = ((ki.PLACEMENT_ULPS * ki.EPS, ki.PLACEMENT_ULPS * ki.EPS * mag), (0.0, 0.0))
+            for width in (2.0, 1e-3, 0.0):
+                u0, v0 = rng.uniform(-3, 3, 2)
+                U, V = (u0, u0 + width), (v0, v0 + 0.7 * width)
+                for pad, cpad in pads:
+                    want = _jet_single(s.data, t.data, m, c, pad, cpad, U, V)
+                    first, state = ki.jet_first(s.data, t.data, m, c, pad, cpad, U, V, ki.box_trig(s.data, U, V))
+                    assert ki.jet(s.data, t.data, m, c, pad, cpad, U, V) == want
+                    assert first == want[:3]
+                    assert ki.jet_second(s.data, t.data, m, pad, state) == want[3:]
+                    assert ki.level(s.data, t.data, m, c, pad, cpad, U, V) == want[0]
+            uv = rng.uniform(-3, 3, (4, 2))
+            values = np.empty((4, 6))
+            kt.point_values(s.data, t.data, m, c, uv, values)
+            for (u, v), row in zip(uv, values):
+                want = _jet_single(s.data, t.data, m, c, 0.0, 0.0, (u, u), (v, v))
+                assert row.tolist() == [0.5 * (lo + hi) for lo, hi in want]
+                pad, cpad = pads[0]
+                assert kt.level_enclosure(s.data, t.data, m, c, pad, cpad, u, v) == \
+                    _jet_single(s.data, t.data, m, c, pad, cpad, (u, u), (v, v))[0]
+
+
+def _refine_all_steps(step, x, keep_new):
+    """Newton's iterates x_k+1 = step(x_k) (None: stop at x_k) for REFINE_ITER steps or until an iterate equals the
+    one before (then the new one if keep_new, else the old), without looking for cycles (refine_extremal and
+    refine_line before they did): (the last iterate, whether some iterate repeated an earlier one bit for bit)."""
+    seen, repeated = [np.array(x).tobytes()], False
+    for _ in range(kt.REFINE_ITER):
+        new = step(x)
+        if new is None:
+            break
+        if new == x:
+            return (new if keep_new else x), repeated
+        x = new
+        repeated = repeated or np.array(x).tobytes() in seen
+        seen.append(np.array(x).tobytes())
+    return x, repeated
+
+
+def test_refinement_ends_where_all_its_steps_end():
+    """refine_extremal and refine_line, which stop when their iterates cycle, return the bits the full REFINE_ITER
+    steps give (the loops they replaced, _refine_all_steps) on every verified box of searches over the bench pairs
+    and random pairs, on many of which the iterates do cycle."""
+    from spatialkin.bench.kinds import pair_kind_cases
+    rng = np.random.default_rng(7)
+    pairs = [(a, b) for kind, a, b in pair_kind_cases()] + [(s, t) for s in surfaces(rng) for t in surfaces(rng)]
+    box = np.array([-math.pi, math.pi, -3.0, 3.0])
+    du, dv = math.cos(0.3091), math.sin(0.3091)
+    cycled = checked = 0
+    for s, t in pairs:
+        m, c = np.empty((3, 3)), np.empty(3)
+        mag = ki.relative_placement(s.data, t.data, m, c)
+        pad, cpad = ki.PLACEMENT_ULPS * ki.EPS, ki.PLACEMENT_ULPS * ki.EPS * mag
+        out, kinds = np.empty((4096, 4)), np.empty(4096, dtype=np.int64)
+        n, _, _ = kt.extremal_points(s.data, t.data, m, c, pad, cpad, du, dv, box, np.array([1e-13, 1e-13]), 1e6,
+                                     100_000, out, kinds)
+        for rec in out[:n][kinds[:n] == kt.VERIFIED]:
+            def step(x, rec=rec):
+                g, gu, gv, guu, guv, gvv = kt._point_jet(s.data, t.data, m, c, x[0], x[1])
+                phi, a10, a11 = dv * gu - du * gv, dv * guu - du * guv, dv * guv - du * gvv
+                det = gu * a11 - gv * a10
+                if det == 0.0:
+                    return None
+                return (min(max(x[0] - (a11 * g - gv * phi) / det, rec[0]), rec[1]),
+                        min(max(x[1] - (gu * phi - a10 * g) / det, rec[2]), rec[3]))
+            want, repeated = _refine_all_steps(step, (0.5 * (rec[0] + rec[1]), 0.5 * (rec[2] + rec[3])), True)
+            uv = np.empty(2)
+            kt.refine_extremal(s.data, t.data, m, c, du, dv, rec, uv)
+            assert uv.tobytes() == np.array(want).tobytes()
+            cycled += repeated
+            checked += 1
+        records, kinds = np.empty((64, 2)), np.empty(64, dtype=np.int64)
+        for fixed in (0, 1):
+            n, _, _ = kt.line_roots(s.data, t.data, m, c, pad, cpad, fixed, 0.1, box[2 - 2 * fixed],
+                                    box[3 - 2 * fixed], 1e-14, 1e-7, 100_000, records, kinds)
+            for lo, hi in records[:n][kinds[:n] == kt.VERIFIED]:
+                def step(x, lo=lo, hi=hi, fixed=fixed):
+                    j = kt._point_jet(s.data, t.data, m, c, *((x[0], 0.1) if fixed == 1 else (0.1, x[0])))
+                    d = j[1] if fixed == 1 else j[2]
+                    return None if d == 0.0 else (min(max(x[0] - j[0] / d, lo), hi),)
+                want, repeated = _refine_all_steps(step, (0.5 * (lo + hi),), False)
+                got = kt.refine_line(s.data, t.data, m, c, fixed, 0.1, lo, hi)
+                assert np.float64(got).tobytes() == np.float64(want[0]).tobytes()
+                cycled += repeated
+                checked += 1
+    assert checked >= 40 and cycled >= 5

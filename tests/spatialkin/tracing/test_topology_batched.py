@@ -107,7 +107,8 @@ def readers(a, b):
 @pytest.mark.parametrize("k", range(len(pairs())))
 def test_keeper_matches_the_scalar_trim_test(k):
     """Keeper.many and Keeper.select against inside_trims on both surfaces and the apex clearance, point by point:
-    points near both surfaces (half inside the trims, half out), and some on an apex."""
+    points near both surfaces (half inside the trims, half out), and some on an apex; Keeper.on and select_on
+    against Surface.point and Keeper.many."""
     a, b = pairs()[k]
     rng = np.random.default_rng(k)
     pts = []
@@ -128,6 +129,13 @@ def test_keeper_matches_the_scalar_trim_test(k):
     assert [keeper(x) for x in pts] == expected
     assert np.array_equal(np.array(keeper.select(pts)).reshape(-1, 3), pts[np.array(expected, dtype=bool)])
     assert keeper.select(np.empty((0, 3))) == []
+    # Keeper.on and select_on (points and test in one compiled call) against Surface.point and many, to the bit
+    for s, rows in ((a, slice(0, 60)), (b, slice(60, 120))):
+        uv = s.parameters(pts[rows])
+        points, kept = keeper.on(s, uv)
+        assert points.tobytes() == s.point(uv[:, 0], uv[:, 1]).tobytes()
+        assert np.array_equal(kept, keeper.many(points))
+        assert np.array_equal(np.array(keeper.select_on(s, uv)).reshape(-1, 3), points[kept])
 
 
 @pytest.mark.parametrize("k", range(len(pairs())))

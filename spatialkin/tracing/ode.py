@@ -189,7 +189,8 @@ class StepsSolution(OdeSolution):
 class EventLog:
     """What CompiledRK45 records for integrate: the events it located, (event position in its list, t, y) in
     time order, its internal steps (t, y arrays per solver step) and each solver step's end and dense output
-    (dense: (t, StepsDense) per solver step)."""
+    (dense: (t, StepsDense) per solver step; OdeSolver's ConstantDenseOutput for a step of zero length, as
+    solve_ivp's solver.dense_output() gives)."""
 
     def __init__(self):
         self.hits = []
@@ -202,11 +203,12 @@ class CompiledRK45(OdeSolver):
     """scipy's RK45 run in compiled code, many steps per solver step, stopping at the events it is given.
 
     Options (through solve_ivp): ``system`` (System, required); ``watch`` and ``log``: the Events to watch (a
-    sequence, or a Watch made once for them) (given to this solver, not as solve_ivp's events: each crossing is located in compiled code on the step's dense
-    output, as solve_ivp locates events, and recorded in the EventLog ``log``; at a terminal one the integration
-    ends there); ``rtol``, ``atol``, ``max_step``, ``first_step``, ``max_nfev`` (past it the steps taken are
-    kept and the next solver step fails with BUDGET_MESSAGE, log.budget_exceeded set), ``steps_per_call``.
-    Forward in t only. ``integrate`` turns the log into solve_ivp's t_events and y_events.
+    sequence, or a Watch made once for them; given to this solver, not as solve_ivp's events: each crossing is
+    located in compiled code on the step's dense output, as solve_ivp locates events, and recorded in the EventLog
+    ``log``; at a terminal one the integration ends there); ``rtol``, ``atol``, ``max_step``, ``first_step``,
+    ``max_nfev`` (past it the steps taken are kept and the next solver step fails with BUDGET_MESSAGE,
+    log.budget_exceeded set), ``steps_per_call``. Forward in t only. ``integrate`` turns the log into solve_ivp's
+    t_events and y_events and its dense output (steps_solution).
     """
 
     def __init__(self, fun, t0, y0, t_bound, vectorized=False, system=None, watch=(), log=None, rtol=1e-3,
@@ -295,7 +297,9 @@ class CompiledRK45(OdeSolver):
         self.t_old, self.t, self.y, self.h = self.t, t, y, h
         self._dense = StepsDense(ts, ys, hs, qs)
         self.log.steps.append((ts, ys))
-        self.log.dense.append((t, self._dense))
+        # (solve_ivp's solver.dense_output(): this step's StepsDense, or OdeSolver's ConstantDenseOutput for a zero
+        # step)
+        self.log.dense.append((t, self.dense_output()))
         return True, None
 
     def _dense_output_impl(self):
@@ -314,9 +318,12 @@ def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, m
                          dense_output=True, events=events, args=system.args, max_step=max_step)
     log = EventLog()
     # the dense output is made here from the log (solve_ivp's OdeSolution of the same steps, without its checks)
+    # (an empty span: solve_ivp's own, one ConstantDenseOutput over [t0, t0], as no step is logged)
+    empty = t_span[0] == t_span[1]
     res = solve_ivp(system.rhs, t_span, y0, method=CompiledRK45, rtol=rtol, atol=atol, args=system.args,
-                    max_step=max_step, system=system, watch=events, log=log, max_nfev=max_nfev)
-    res.sol = steps_solution(res, log.dense)
+                    max_step=max_step, system=system, watch=events, log=log, max_nfev=max_nfev, dense_output=empty)
+    if not empty:
+        res.sol = steps_solution(res, log.dense)
     n = len(y0)
     no_t, no_y = np.empty(0), np.empty((0, n))        # the events not met share these (empty: nothing to change)
     res.t_events = [no_t] * len(events)
@@ -338,7 +345,9 @@ def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, m
 def steps_solution(res, dense):
     """The dense output solve_ivp(..., dense_output=True) gives a CompiledRK45 run, as a StepsSolution, from its
     solver steps' (t, StepsDense) (EventLog.dense): a step ending where the last one kept ended is dropped, as
-    solve_ivp drops it (and res.t, res.y, which solve_ivp keeps whole without a dense output, lose it too)."""
+    solve_ivp drops it (and res.t, res.y, which solve_ivp keeps whole without a dense output, lose it too). Not for
+    an empty span (t0 = t_bound: OdeSolver.step finishes it without a step of the method, nothing is logged;
+    integrate lets solve_ivp make that one)."""
     times, interpolants = [res.t[0]], []
     for t, step in dense:
         if len(times) > 1 and times[-1] == t:

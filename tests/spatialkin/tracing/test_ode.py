@@ -172,3 +172,18 @@ def test_steps_solution_drops_a_step_that_ends_where_the_last_one_did():
     np.testing.assert_array_equal(sol.ts, [0.0, 1.0, 2.0, 3.0])
     np.testing.assert_array_equal(res.t, [0.0, 1.0, 2.0, 3.0])
     np.testing.assert_array_equal(res.y[0], [0.0, 1.0, 3.0, 6.0])
+
+
+def test_integrate_over_an_empty_span_is_solve_ivps():
+    """An empty span (t0 = t_bound: no step of the method, nothing logged): integrate's res.t, res.y and dense output
+    are solve_ivp's own with dense_output=True (its ConstantDenseOutput over [t0, t0]), to the bit."""
+    from scipy.integrate import solve_ivp
+    system, y0, _ = looper_system()
+    atol = np.full(4, RTOL)
+    ours = integrate(system, (0.0, 0.0), y0, COMPILED, [], RTOL, atol)
+    theirs = solve_ivp(system.rhs, (0.0, 0.0), y0, method=CompiledRK45, rtol=RTOL, atol=atol, args=system.args,
+                       system=system, dense_output=True)
+    np.testing.assert_array_equal(ours.t, theirs.t)
+    np.testing.assert_array_equal(ours.y, theirs.y)
+    np.testing.assert_array_equal(ours.sol(0.0), theirs.sol(0.0))
+    np.testing.assert_array_equal(ours.sol(0.0), y0)

@@ -118,7 +118,8 @@ def segment_system(a, b, settings, sign, s_arm, shared, bounds):
 
 
 def segment_events(system, settings, compiled, near_edge, bounds, recharts):
-    """(Events as a Watch, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles, closure.
+    """(Events as a Watch, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles,
+    closure.
 
     The compiled method watches levels instead of the first three (as its kernel did before it was a solve_ivp
     method): where the sine or the area element nears a hard case, the segment ends at the last step before (that

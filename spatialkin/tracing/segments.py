@@ -135,9 +135,10 @@ def segment_start(a_user, b_user, recharts, point, direction, y_prev, settings):
 
 
 def finite_bounds(*surfaces):
-    """((surface index k, bound index j, state index, bound value, is a lower bound, slack)] of every finite bound
-    of the surfaces' data, j in (u_min, u_max, v_min, v_max) order (a tuple: hashable). slack is EDGE_ULPS ulp of the parameter's
-    range: the round-off by which a curve lying along the edge may cross it."""
+    """((surface index k, bound index j, state index, bound value, is a lower bound, slack), ...) of every finite
+    bound of the surfaces' data, j in (u_min, u_max, v_min, v_max) order (a tuple: hashable, event_plan's cache
+    key). slack is EDGE_ULPS ulp of the parameter's range: the round-off by which a curve lying along the edge may
+    cross it."""
     return tuple(row for k, data in enumerate(surfaces)
                  for row in _bounds_of(k, tuple(data[ks.BOUNDS:ks.BOUNDS + 4].tolist())))
 

@@ -17,8 +17,7 @@ import math
 import numpy as np
 from scipy.special import cython_special, ellipeinc
 
-from .exact import EXACT_SAMPLES, ExactSolution, counting, surface_parameters
-from ..kernels.stored import unwrap_turns
+from .exact import EXACT_SAMPLES, ExactSolution, counting
 from .traits import traits
 
 LINE, ELLIPSE, HYPERBOLA, PARABOLA = "line", "ellipse", "hyperbola", "parabola"
@@ -173,19 +172,9 @@ class ConicSolution(ExactSolution):
         """The first stored point (3,) (the first row of samples' points, without making the others)."""
         return self._samples[0][0] if self._samples is not None else self.conic.at(self.t_knots[:1])[0]
 
-    def samples(self):
-        """(points (N, 3), params (N, 4)) at t_knots: the exact points (a closed curve's last is its first) and the
-        surfaces' parameters, periodic u unwrapped along the curve (as the tracer's), made once."""
-        if self._samples is None:
-            points = self.conic.at(self.t_knots)
-            if self.closed:
-                points[-1] = points[0]
-            params = surface_parameters(self.surfaces, points)
-            for k, surf in enumerate(self.surfaces):
-                if traits(surf).periodic[0]:
-                    unwrap_turns(params[:, 2 * k])
-            self._samples = points, params
-        return self._samples
+    def sample_points(self):
+        """The exact points (N, 3) at t_knots (ExactSolution.samples makes the rest)."""
+        return self.conic.at(self.t_knots)
 
     @property
     def params(self):

@@ -11,10 +11,12 @@ import math
 
 import numpy as np
 
+from ..kernels.stored import unwrap_turns
 from ..vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult
 from .status import MESSAGES, outcome
+from .traits import traits
 
 #: Stored points of a circle or a segment in closed form.
 EXACT_SAMPLES = 65
@@ -126,13 +128,22 @@ class ExactSolution(CurveSolution):
 
     def samples(self):
         """(points (N, 3), params (N, 4)) at the knots: the exact points (a closed curve's last is its first) and
-        their parameters on the two surfaces (surface_parameters), made once."""
+        their parameters on the two surfaces (surface_parameters), periodic u unwrapped along the curve (as the
+        tracer's), made once."""
         if self._samples is None:
-            points = self.points_at(self.knots)
+            points = self.sample_points()
             if self.closed:
                 points[-1] = points[0]
-            self._samples = points, surface_parameters(self.surfaces, points)
+            params = surface_parameters(self.surfaces, points)
+            for k, surf in enumerate(self.surfaces):
+                if traits(surf).periodic[0]:
+                    unwrap_turns(params[:, 2 * k])
+            self._samples = points, params
         return self._samples
+
+    def sample_points(self):
+        """The exact points (N, 3) at the knots (a new array)."""
+        return self.points_at(self.knots)
 
     def at(self, s):
         """(points (M, 3), unit tangents (M, 3)) at the wrapped arc lengths s (M,)."""

@@ -264,3 +264,24 @@ def test_elliptic_e_scalar_is_ufunc():
     ours = [elliptic_e(float(x), float(y)) for x, y in zip(t, m)] + [elliptic_e(QUARTER, float(y)) for y in m]
     assert np.array_equal(ours, np.concatenate([ellipeinc(t, m), ellipeinc(QUARTER, m)]))
     assert type(ours[0]) is float and np.array_equal(elliptic_e(t, m[0]), ellipeinc(t, m[0]))
+
+
+def test_exact_circles_params_continuous():
+    """A circle in closed form (two spheres; a sphere about a cylinder's axis, exact_curve) stores its periodic u
+    unwrapped along the curve, as a conic and a traced curve do: neighbouring stored params differ by less than
+    pi, and every stored u is the surface's own (Surface.parameters, wrapped) plus whole turns, to 1e-12."""
+    frame = sk.Frame((0.1, -0.2, 0.3), np.linalg.qr(np.arange(9.0).reshape(3, 3) + np.eye(3))[0])
+    pairs = [(sk.Sphere(1.0, frame), sk.Sphere(0.8, sk.Frame((0.6, 0.4, -0.2)))),
+             (sk.Sphere(1.0), sk.Cylinder(0.6, sk.Frame(), (-2.0, 2.0)))]
+    wrapped_any = False
+    for a, b in pairs:
+        for first, second in ((a, b), (b, a)):
+            for c in sk.intersect(first, second):
+                params = c.params
+                assert np.all(np.abs(np.diff(params, axis=0)) < math.pi)
+                for k, surf in enumerate((first, second)):
+                    own = surf.parameters(c.points)[:, 0]
+                    turns = (params[:, 2 * k] - own) / (2 * math.pi)
+                    assert np.all(np.abs(turns - np.rint(turns)) <= 1e-12)
+                    wrapped_any = wrapped_any or bool(np.any(np.abs(np.diff(own)) > math.pi))
+    assert wrapped_any          # some circle does cross u = pi, where the wrapped parameters jump

@@ -173,8 +173,15 @@ def dragilev_into(y, a, b, sign, pullback, out):
 @jit
 def curve_frame(y, a, b, point, tangent):
     """Point M1(y) and unit tangent N1 x N2/|.| at y; returns sin of the normals' angle."""
-    p1, su1, sv1 = frame(a, y[0], y[1])
-    _, su2, sv2 = frame(b, y[2], y[3])
+    return frame_of(frame(a, y[0], y[1]), frame(b, y[2], y[3]), point, tangent)
+
+
+@jit
+def frame_of(f1, f2, point, tangent):
+    """curve_frame from the surfaces' frames f1 = frame(a, y[0], y[1]) and f2 = frame(b, y[2], y[3]) at the state
+    y, made by the caller."""
+    p1, su1, sv1 = f1
+    _, su2, sv2 = f2
     for i in range(3):
         point[i] = p1[i]
     return tangent_from_normals(su1, sv1, su2, sv2, tangent)
@@ -309,9 +316,7 @@ def _project_row(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent
 def _project_frames(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent, f1, f2):
     """_project_row from the frames f1, f2 at y: curve_frame, project_to_curve and frame_along of y, each surface
     evaluated once where two of them evaluate it at the same parameters (the same values: the same kernels)."""
-    for i in range(3):                                  # curve_frame(y, a, b, q, t)
-        q[i] = f1[0][i]
-    tangent_from_normals(f1[1], f1[2], f2[1], f2[2], t)
+    frame_of(f1, f2, q, t)                              # curve_frame(y, a, b, q, t)
     if fixed:
         for i in range(3):
             t[i] = normal[i]
@@ -319,12 +324,8 @@ def _project_frames(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tang
     if not fresh:
         f1 = frame(a, y[0], y[1])
         f2 = frame(b, y[2], y[3])
-    for i in range(3):                                  # frame_along(y, a, b, normal, fixed, point, tangent)
-        point[i] = f1[0][i]
-    tangent_from_normals(f1[1], f1[2], f2[1], f2[2], tangent)
-    if fixed and dot(tangent, normal) < 0.0:
-        for i in range(3):
-            tangent[i] = -tangent[i]
+    frame_of(f1, f2, point, tangent)                    # frame_along(y, a, b, normal, fixed, point, tangent)
+    turn_along(tangent, normal, fixed)
     return status
 
 
@@ -332,6 +333,12 @@ def _project_frames(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tang
 def frame_along(y, a, b, normal, fixed, point, tangent):
     """curve_frame of y into point and tangent, the tangent turned along the fixed vector normal (when fixed)."""
     curve_frame(y, a, b, point, tangent)
+    turn_along(tangent, normal, fixed)
+
+
+@jit
+def turn_along(tangent, normal, fixed):
+    """The tangent (3,) reversed in place when fixed and it points against the vector normal."""
     if fixed and dot(tangent, normal) < 0.0:
         for i in range(3):
             tangent[i] = -tangent[i]

@@ -33,8 +33,8 @@ import math
 import numpy as np
 
 from .._jit import jit
-from .interval import (box_trig, contains_zero, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first, jet_second,
-                       level, point, u_trig, v_trig)
+from .interval import (box_trig, contains_zero, down, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first,
+                       jet_second, level, point, u_trig, up, v_trig)
 from .surfaces import evaluate, inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
@@ -78,7 +78,7 @@ def _recip(d):
     """1 / d for an interval d not containing zero."""
     lo = 1.0 / d[1]
     hi = 1.0 / d[0]
-    return (lo - (abs(lo) * 2.220446049250313e-16 + 5e-324), hi + (abs(hi) * 2.220446049250313e-16 + 5e-324))
+    return down(lo), up(hi)
 
 
 @jit

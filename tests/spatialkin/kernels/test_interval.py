@@ -75,6 +75,34 @@ def test_outward_rounding_on_trigonometry():
     assert ki.icos((-1e-3, 1e-3))[1] == 1.0 and ki.isin((math.pi / 2 - 1e-9, math.pi / 2 + 1e-9))[1] == 1.0
 
 
+def _subnormal(x):
+    return x != 0.0 and abs(x) < np.finfo(float).tiny
+
+
+def test_pads_of_exact_zeros_stay_normal():
+    """An exact zero padded outward (a cylinder's zero slope, a zero tangent component) and its products with
+    numbers of order one are normal numbers, not subnormal ones (each operation on a subnormal costs a microcode
+    assist on Intel CPUs): no bound of the jets of a cylinder and a cone over boxes of the search, against each
+    other and a sphere, is subnormal. The pad itself still covers round-off below the normal range (2^-1075)."""
+    assert ki.TINY >= 2.0 ** -1074 and not _subnormal(ki.down(0.0)) and not _subnormal(ki.up(0.0))
+    fuzzy = (ki.down(0.0), ki.up(0.0))
+    assert not any(_subnormal(x) for x in ki.imul(fuzzy, (0.3, 0.8)) + ki.iscale(fuzzy, 1e-3))
+    rng = np.random.default_rng(11)
+    frame = sk.Frame(rng.uniform(-1, 1, 3), random_rotation(rng))
+    cases = [sk.Cylinder(0.8, frame), sk.Cone(0.5, frame), sk.Sphere(1.0, sk.Frame((0.3, -0.2, 0.1)))]
+    for s in cases[:2]:
+        for t in cases:
+            m, c = np.empty((3, 3)), np.empty(3)
+            mag = ki.relative_placement(s.data, t.data, m, c)
+            pad, cpad = ki.PLACEMENT_ULPS * ki.EPS, ki.PLACEMENT_ULPS * ki.EPS * mag
+            for _ in range(50):
+                u0, v0 = rng.uniform(-3, 3, 2)
+                w = 10 ** rng.uniform(-12, 0, 2)
+                enc = ki.jet(s.data, t.data, m, c, pad, cpad, (u0, u0 + w[0]), (v0, v0 + w[1]))
+                bounds = np.array(enc, dtype=float).ravel()
+                assert not np.any((bounds != 0) & (np.abs(bounds) < np.finfo(float).tiny))
+
+
 def test_line_roots_of_a_sphere_cut_by_planes():
     """On the meridian u = 0 of the unit sphere, g = sin v - z0 for the plane z = z0: one verified root at
     v = asin z0 per plane, its box holding the closed form."""

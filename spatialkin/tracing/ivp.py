@@ -109,7 +109,7 @@ def segment_system(a, b, settings, sign, s_arm, shared, bounds):
     """The System of one segment (charts a, b with their finite_bounds rows `bounds`; the closure armed past
     s_arm) with its event parameters: the branch's shared ones (branch_event_params) completed."""
     ep = shared.copy()
-    for _, _, idx, bound, lower, slack in bounds:
+    for _, _, idx, bound, lower, slack, _ in bounds:
         j = 2 * idx + (0 if lower else 1)
         ep[kb.P_BOUND + j], ep[kb.P_SLACK + j] = bound, slack
     ep[kb.P_CLOSURE_ARM] = s_arm
@@ -151,7 +151,7 @@ def event_plan(compiled, near_edge, flagged, bounds, recharts, close):
     else:
         plan = [(kb.SINGULAR, -1, ("singular", None), None)] + (
             [(kb.APEX, -1, ("apex", None), None)] if flagged else []) + [(kb.MINIMUM, 1, ("minimum", None), None)]
-    for k, j, idx, _, lower, _ in bounds:
+    for k, j, idx, _, lower, _, _ in bounds:
         edge = kb.EDGE + 2 * idx + (0 if lower else 1)
         plan.append((edge, -1, ("near_edge", None), "before") if compiled and not near_edge
                     else (edge, -1, ("boundary", (k, j)), None))
@@ -170,9 +170,9 @@ def at_outer_edge(a, b, y, sign, bounds):
     running along the edge does not leave it). bounds: finite_bounds(a, b); the direction of travel is evaluated
     only at an edge."""
     dy = None
-    for k, _, idx, bound, lower, _ in bounds:
+    for k, _, idx, bound, lower, _, size in bounds:
         inside = y[idx] - bound if lower else bound - y[idx]
-        if not inside <= EDGE_TOL * max(1.0, abs(bound)):
+        if not inside <= EDGE_TOL * max(min(1.0, size), abs(bound)):
             continue
         if dy is None:
             dy = kc.dragilev_rhs(0.0, y, a, b, sign, 0.0)

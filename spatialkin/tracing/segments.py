@@ -18,7 +18,8 @@ from .traits import traits
 #: A re-charting surface (a sphere) is re-charted when |cos(latitude)| falls below this (latitude beyond 60
 #: degrees).
 POLE_GUARD = 0.5
-#: A parameter this close to a bound (relative) counts as on the edge.
+#: A parameter this close to a bound (relative to the bound, or to its range where that is below 1: a length
+#: parameter of a small scene) counts as on the edge.
 EDGE_TOL = 1e-12
 #: A curve running along an edge drifts across it by round-off: an edge stops the integration only this many
 #: ulp (of the parameter's range) past it, and the end is then snapped onto the edge.
@@ -135,10 +136,10 @@ def segment_start(a_user, b_user, recharts, point, direction, y_prev, settings):
 
 
 def finite_bounds(*surfaces):
-    """((surface index k, bound index j, state index, bound value, is a lower bound, slack), ...) of every finite
-    bound of the surfaces' data, j in (u_min, u_max, v_min, v_max) order (a tuple: hashable, event_plan's cache
-    key). slack is EDGE_ULPS ulp of the parameter's range: the round-off by which a curve lying along the edge may
-    cross it."""
+    """((surface index k, bound index j, state index, bound value, is a lower bound, slack, size), ...) of every
+    finite bound of the surfaces' data, j in (u_min, u_max, v_min, v_max) order (a tuple: hashable, event_plan's
+    cache key). size is the magnitude of the parameter's range (its largest bound or its width), slack EDGE_ULPS
+    ulp of it: the round-off by which a curve lying along the edge may cross it."""
     return tuple(row for k, data in enumerate(surfaces)
                  for row in _bounds_of(k, tuple(data[ks.BOUNDS:ks.BOUNDS + 4].tolist())))
 
@@ -151,7 +152,7 @@ def _bounds_of(k, bounds):
         if math.isfinite(bound):
             pair = [x for x in bounds[2 * (j // 2):2 * (j // 2) + 2] if math.isfinite(x)]
             size = max(max(abs(x) for x in pair), max(pair) - min(pair))
-            rows.append((k, j, 2 * k + j // 2, bound, j % 2 == 0, EDGE_ULPS * np.spacing(size)))
+            rows.append((k, j, 2 * k + j // 2, bound, j % 2 == 0, EDGE_ULPS * np.spacing(size), size))
     return tuple(rows)
 
 

@@ -202,6 +202,26 @@ def test_invariant_under_order_translation_and_scale(seed):
             np.testing.assert_allclose(found, base, rtol=1e-6 if shift else 1e-9)
 
 
+def test_trimmed_plane_and_torus_at_extreme_scales():
+    """A tilted torus and a plane trimmed to a square, two loops inside the square: the same loops (lengths relative
+    1e-9) with the scene scaled by 1e-14, 1e-20 and 1e20. The plane's length parameters are then ~1e-14: the edge
+    test of a start used to count a parameter within 1e-12 (absolute, for ranges below 1) of a bound as on the
+    edge, so every start 'left the surface' and the loop was lost without an error."""
+    rot, rot2 = sk.rotation_about((1.0, 2.0, 0.5), 0.4), sk.rotation_about((-0.6, 0.3, 1.0), 1.1)
+    base = None
+    for scale in (1.0, 1e-14, 1e-20, 1e20):
+        torus = sk.Torus(1.2 * scale, 0.5 * scale, sk.Frame((0.0, 0.0, 0.0), rot))
+        plane = sk.Plane(sk.Frame(scale * np.array([0.31, -0.22, 0.27]), rot2), (-2 * scale, 2 * scale),
+                         (-2 * scale, 2 * scale))
+        for a, b in ((torus, plane), (plane, torus)):
+            found = sorted(c.length / scale for c in sk.intersect(a, b))
+            if base is None:
+                base = found
+                assert len(found) == 2
+            assert len(found) == len(base)
+            np.testing.assert_allclose(found, base, rtol=1e-9)
+
+
 def test_tiny_loop_and_contact_near_one():
     """A plane 1e-12 (relative) below the top of a sphere cuts a loop of radius sqrt(2e-12); at the top itself it
     touches in one contact point; a little above, nothing."""

@@ -52,7 +52,8 @@ P_CLOSURE_ARM = 27
 P_CLOSURE_OFFSET = 28
 P_START = 29            # 3 entries
 P_DIRECTION = 32        # 3 entries
-P_SIZE = 35
+P_AREA_WEIGHT = 35      # the apex and area hand-over events' factor (area_weight)
+P_SIZE = 36
 
 # --- layout of memo: the state of the last right-hand side, the normals' sine and M1 there ---------------------
 M_STATE = 0             # 4 entries
@@ -99,7 +100,7 @@ def remembered(y, memo):
 @jit
 def sine_at(y, a, b, memo):
     """sin of the normals' angle at y (degeneracy without flags), from the memo when it holds y."""
-    return memo[M_SINE] if remembered(y, memo) else degeneracy(y, a, b, 0, 0)
+    return memo[M_SINE] if remembered(y, memo) else degeneracy(y, a, b, 0.0, 0.0)
 
 
 @jit
@@ -110,7 +111,7 @@ def branch_event(i, t, y, args, ep):
         return sine_at(y, a, b, memo) - ep[P_SINGULAR_TOL]
     if i == APEX or i == HANDOFF_AREA:
         guard = ep[P_APEX_GUARD] if i == APEX else ep[P_HANDOFF_AREA]
-        return area_degeneracy(y, a, b, int(ep[P_FLAG_A]), int(ep[P_FLAG_B])) - guard
+        return (area_degeneracy(y, a, b, ep[P_FLAG_A], ep[P_FLAG_B]) - guard) * ep[P_AREA_WEIGHT]
     if i == MINIMUM:
         if t <= ep[P_MINIMUM_ARM]:
             return 1.0          # not at the segment's start, which may be the minimum just found

@@ -346,40 +346,45 @@ def turn_along(tangent, normal, fixed):
 
 @jit
 def degeneracy(y, a, b, area_a, area_b):
-    """Smallest of: sin(angle between the normals), and the relative area element sqrt(EG - F^2)/(E G)^(1/2)
-    of each surface whose flag (area_a, area_b) is set. Zero at a singular point of the curve or of a
-    parametrisation."""
+    """Smallest of: sin(angle between the normals), and the relative area element (relative_area) of each
+    surface whose area unit (area_a, area_b: the length of a unit step of its v, 0.0 for none) is set. Zero at a
+    singular point of the curve or of a parametrisation."""
     _, su1, sv1 = frame(a, y[0], y[1])
     _, su2, sv2 = frame(b, y[2], y[3])
     _, value = unit_tangent(su1, sv1, su2, sv2)
     if area_a:
-        value = min(value, relative_area(su1, sv1))
+        value = min(value, relative_area(su1, sv1, area_a))
     if area_b:
-        value = min(value, relative_area(su2, sv2))
+        value = min(value, relative_area(su2, sv2, area_b))
     return value
 
 
 @jit
 def area_degeneracy(y, a, b, area_a, area_b):
-    """Smallest relative area element of the flagged surfaces' parametrisations at y (1 if none flagged)."""
+    """Smallest relative area element of the watched surfaces' parametrisations at y (1 if none watched;
+    area_a, area_b: the length of a unit step of the surface's v, 0.0 where it is not watched)."""
     value = 1.0
     if area_a:
         _, su, sv = frame(a, y[0], y[1])
-        value = min(value, relative_area(su, sv))
+        value = min(value, relative_area(su, sv, area_a))
     if area_b:
         _, su, sv = frame(b, y[2], y[3])
-        value = min(value, relative_area(su, sv))
+        value = min(value, relative_area(su, sv, area_b))
     return value
 
 
 @jit
-def relative_area(su, sv):
-    """|su x sv| / (|su| |sv|) measured against the length scale of the larger derivative: zero where the
-    parametrisation degenerates (a derivative vanishes or they become parallel)."""
-    big = max(dot(su, su), dot(sv, sv))
+def relative_area(su, sv, unit):
+    """|su x sv'| / max(|su|, |sv'|)^2 with sv' = unit sv, the derivative along a step of v of length unit
+    (1 for an angle, the scene's scale for a length such as a cone's v; u is an angle on every watched surface):
+    zero where the parametrisation degenerates (a derivative vanishes or they become parallel), and the same
+    number for the same scene at any scale (a cone's is its distance from the axis over the scale, near the apex).
+    A unit of 1 leaves every bit as without it."""
+    svu = (unit * sv[0], unit * sv[1], unit * sv[2])
+    big = max(dot(su, su), dot(svu, svu))
     if big == 0.0:
         return 0.0
-    return norm(cross3(su, sv)) / big
+    return norm(cross3(su, svu)) / big
 
 
 @jit
@@ -390,7 +395,7 @@ def degeneracy_slope(y, a, b, sign, h):
     dy = dragilev_rhs(0.0, y, a, b, sign, 0.0)
     yp = y + h * dy
     ym = y - h * dy
-    return (degeneracy(yp, a, b, 0, 0) - degeneracy(ym, a, b, 0, 0)) / (2.0 * h)
+    return (degeneracy(yp, a, b, 0.0, 0.0) - degeneracy(ym, a, b, 0.0, 0.0)) / (2.0 * h)
 
 
 @jit

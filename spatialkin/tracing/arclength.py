@@ -63,7 +63,7 @@ def remeasure_segment(seg, pullback, gap_tol):
     if len(t) < 2 or np.any(seg.normal):
         return float(seg.s1 - seg.s0)
     y = np.ascontiguousarray(np.asarray(seg.y, dtype=float).T)
-    if min(kc.degeneracy(row, seg.a, seg.b, 0, 0) for row in y) >= CHECK_BELOW:
+    if min(kc.degeneracy(row, seg.a, seg.b, 0.0, 0.0) for row in y) >= CHECK_BELOW:
         return float(seg.s1 - seg.s0)
     h = np.diff(t)
     measured = step_lengths(seg, pullback, gap_tol)

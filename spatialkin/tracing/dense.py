@@ -11,7 +11,7 @@ from ..kernels import curve as kc
 from ..kernels import surfaces as ks
 from .curvature import curvature_vectors
 from .result import set_states, user_params
-from .segments import NEWTON_MAX_ITER, area_flag
+from .segments import NEWTON_MAX_ITER
 
 #: Inside a jump across a node or an apex, a Newton-corrected point farther than this fraction of the jump from
 #: the interpolated one has strayed (to another branch, or off through a degenerate chart): the interpolated
@@ -230,7 +230,7 @@ class TracedSolution(CurveSolution):
         anchor = NODE_ANCHOR * (span.hi - span.lo)
         close = near < anchor
         if node is not None and close.any():
-            flags = (area_flag(a), area_flag(b))
+            flags = span.seg.area
             for half in np.unique(side[close]):
                 rows = close & (side == half)
                 sign = 1.0 if half else -1.0

@@ -84,13 +84,23 @@ def known_apex(point, settings):
     return known_node(settings.apexes[np.argmin(np.linalg.norm(settings.apexes - point, axis=1))], settings)
 
 
+def area_weight(area_a, area_b):
+    """Factor of the apex and area hand-over events: the relative area element grows by 1 / unit per unit of a
+    length v (a cone's, unit the scene's scale), so below a unit of 1 it is weighted by the unit, keeping the
+    events 1-Lipschitz in the state (kernels.rk.within_reach probes a step on that bound); 1 otherwise (their
+    zeros are the same)."""
+    units = [u for u in (area_a, area_b) if u > 0.0]
+    return min([1.0] + units)
+
+
 def branch_event_params(a, b, settings, start, direction):
     """The event parameters (kb.P_SIZE,) every segment of a branch shares (charts a, b of the surfaces' kinds,
     the closure plane through start normal to direction): all but the bounds and the closure's arm, which
     segment_system sets."""
     ep = np.zeros(kb.P_SIZE)
     ep[kb.P_SINGULAR_TOL] = settings.singular_tol
-    ep[kb.P_FLAG_A], ep[kb.P_FLAG_B] = area_flag(a), area_flag(b)
+    ep[kb.P_FLAG_A], ep[kb.P_FLAG_B] = area_flag(a, settings.scale), area_flag(b, settings.scale)
+    ep[kb.P_AREA_WEIGHT] = area_weight(ep[kb.P_FLAG_A], ep[kb.P_FLAG_B])
     ep[kb.P_APEX_GUARD] = APEX_GUARD
     ep[kb.P_SLOPE_STEP] = SLOPE_STEP * settings.scale
     ep[kb.P_SLOPE_FLOOR] = SLOPE_FLOOR / settings.scale
@@ -200,6 +210,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     near_edge = False
     recharts = (traits(a_user).recharts, traits(b_user).recharts)
     shared = branch_event_params(a_user, b_user, settings, start, direction)
+    area = (float(shared[kb.P_FLAG_A]), float(shared[kb.P_FLAG_B]))        # every segment's area_flag
     # a re-chart turns a chart's axes only: every segment's charts have the user's bounds, and for one method and
     # near_edge the same events, made once per branch and pointed at each segment's System
     bounds = finite_bounds(a_user, b_user)
@@ -220,7 +231,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 s = branch.segments[-1].s1
                 continue
         if not ok:
-            sin_normals = kc.degeneracy(y, a, b, 0, 0)
+            sin_normals = kc.degeneracy(y, a, b, 0.0, 0.0)
             if sin_normals < NEWTON_NEAR_SINGULAR:
                 branch.status, branch.message = outcome("newton_singular", sin=sin_normals, s=s,
                                                         point=point.tolist())
@@ -250,7 +261,8 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 stages.leave(mark)
         branch.nfev += res.nfev
         ts, ys = step_points(res)
-        seg = Segment(s0=s, s1=s + ts[-1], sign=sign, sol=res.sol, a=a, b=b, t=ts, y=ys, compiled=compiled)
+        seg = Segment(s0=s, s1=s + ts[-1], sign=sign, sol=res.sol, a=a, b=b, t=ts, y=ys, compiled=compiled,
+                      area=area)
         if ts[-1] > 0:
             branch.segments.append(seg)
         s = seg.s1
@@ -264,7 +276,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 compiled = False         # the step size collapsed: solve_ivp's method from here on
                 kc.curve_frame(y, a, b, point, tangent)
                 continue
-            if kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT:
+            if kc.degeneracy(y, a, b, 0.0, 0.0) < NODE_SUSPECT:
                 branch.status, branch.message = outcome("solver_singular", s=s)
             else:
                 branch.status, branch.message = outcome("solver_failed", s=s, message=res.message)
@@ -283,7 +295,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             near_edge = True
             continue
         singular = kind == "singular" or (kind == "apex" and known_apex(point, settings)) or (
-            kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0, 0) < NODE_SUSPECT
+            kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0.0, 0.0) < NODE_SUSPECT
             and known_node(point, settings))
         if singular:
             jump = jump_across(branch, seg, res.t_events[hit][0], y, settings)
@@ -291,7 +303,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
                         if kind == "apex" else "singular point (branches cross or the surfaces touch)")
                 branch.status, branch.message = outcome("not_passed", what=what, s=s, point=point.tolist(),
-                                                        sin=kc.degeneracy(y, a, b, 0, 0))
+                                                        sin=kc.degeneracy(y, a, b, 0.0, 0.0))
                 break
             sign, y, point, tangent = take_jump(branch, seg, y, jump)
             s = branch.segments[-1].s1

@@ -46,6 +46,7 @@ class Segment:
     y: np.ndarray        # states at the step points (4, n)
     normal: np.ndarray = field(default_factory=lambda: np.zeros(3))   # fixed correction plane (jumps)
     compiled: bool = False   # integrated by the compiled method (never beside a hard case)
+    area: tuple = (0.0, 0.0)  # area_flag of a and b (the relative area element's units; 0.0: not watched)
 
 
 class LinearStates:
@@ -91,9 +92,12 @@ class Settings:
     apexes: np.ndarray = field(default_factory=lambda: np.empty((0, 3)))  # (K, 3) the surfaces' apexes
 
 
-def area_flag(data):
-    """Whether a degenerate parametrisation of this surface ends a branch (its traits' area watch)."""
-    return int(traits(data).area_watch)       # an int: the kernels take it as one (no bool specialisation)
+def area_flag(data, scale):
+    """The unit of the relative area element of this surface's parametrisation when it is watched (its traits'
+    area watch: a degenerate parametrisation ends a branch): the length of a unit step of v in a scene of this
+    scale (kernels.curve.relative_area); 0.0 when it is not watched."""
+    kind = traits(data)
+    return float(kind.parameter_units(scale)[1]) if kind.area_watch else 0.0
 
 
 def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):

@@ -86,7 +86,7 @@ def jump_across(branch, seg, t_event, y_event, settings):
     one). None if no point of the same branch is found.
     """
     a, b = seg.a, seg.b
-    flags = (area_flag(a), area_flag(b))
+    flags = (area_flag(a, settings.scale), area_flag(b, settings.scale))
     s_event = seg.s0 + t_event
     h = JUMP_LENGTH * settings.scale
     p_event, p_back, t = np.empty(3), np.empty(3), np.empty(3)
@@ -115,10 +115,10 @@ def jump_across(branch, seg, t_event, y_event, settings):
         if np.linalg.norm(p_after - target) > JUMP_STRAIGHTNESS * reach:
             return None
         if (kc.area_degeneracy(y, a, b, *flags) < 2 * APEX_GUARD
-                or kc.degeneracy(y, a, b, 0, 0) < 10 * NODE_CLEARANCE):
+                or kc.degeneracy(y, a, b, 0.0, 0.0) < 10 * NODE_CLEARANCE):
             h *= 2                      # still beside the singular point (a cusp, a shallow crossing)
             continue
-        node = snapped_node(locate_node(a, b, y_back, y, d, y_event), settings)
+        node = snapped_node(locate_node(a, b, y_back, y, d, y_event, flags), settings)
         arc = jump_arc(a, b, (p_back, node, p_after), (y_back, y), settings)
         length = arc.length if arc is not None else float(np.linalg.norm(p_after - p_back))
         return index, t_back, y_own, y_back, y, d, length, node, arc
@@ -223,11 +223,12 @@ def jump_arc(a, b, points, states, settings):
     return JumpArc(lengths, speeds, np.array(points, dtype=float))
 
 
-def locate_node(a, b, y_from, y_to, d, y_event):
+def locate_node(a, b, y_from, y_to, d, y_event, flags):
     """The singular point passed by a jump from y_from to y_to (direction d), to about the chord's sagitta:
     the sine of the normals' angle (at a node) or the relative area element (at an apex) grows like
     |s - s_node| on either side, so its values at a quarter and three quarters of the jump (corrected onto
-    the curve in planes normal to d) place the point between them. Falls back to the event point."""
+    the curve in planes normal to d) place the point between them (flags: the surfaces' area_flag). Falls back
+    to the event point."""
     pts, sines = [], []
     for w in (0.25, 0.75):
         y = y_from + w * (y_to - y_from)
@@ -236,7 +237,7 @@ def locate_node(a, b, y_from, y_to, d, y_event):
         kc.project_to_curve(y, a, b, p.copy(), d, 0.0, NEWTON_MAX_ITER)
         kc.curve_frame(y, a, b, p, t)
         pts.append(p)
-        sines.append(kc.degeneracy(y, a, b, area_flag(a), area_flag(b)))
+        sines.append(kc.degeneracy(y, a, b, *flags))
     total = sines[0] + sines[1]
     if total == 0.0 or float(np.dot(pts[1] - pts[0], d)) <= 0.0:
         p, t = np.empty(3), np.empty(3)
@@ -259,7 +260,8 @@ def take_jump(branch, seg, y_event, jump):
     branch.nodes.append((owner.s1, node))
     branch.segments.append(Segment(s0=owner.s1, s1=owner.s1 + length, sign=1.0,
                                    sol=LinearStates(y_back, y_after, length, arc), a=seg.a, b=seg.b,
-                                   t=np.array([0.0, length]), y=np.column_stack([y_back, y_after]), normal=d))
+                                   t=np.array([0.0, length]), y=np.column_stack([y_back, y_after]), normal=d,
+                                   area=seg.area))
     kc.curve_frame(y_after, seg.a, seg.b, point, tangent)
     sign = 1.0 if float(np.dot(tangent, d)) > 0 else -1.0
     return sign, y_after.copy(), point, tangent

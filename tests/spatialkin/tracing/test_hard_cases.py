@@ -1,4 +1,6 @@
 """Hard cases (ssi-notes): near tangency, crossing branches, parametrisation singularities, scale."""
+import math
+
 import numpy as np
 import pytest
 from oracles import (random_rotation, sphere_distance, torus_distance, torus_sphere_closed_form,
@@ -163,16 +165,33 @@ def test_no_intersection_and_bad_tolerance():
 
 @pytest.mark.parametrize("kind, size", [("horn", (1.0, 1.0)), ("spindle", (0.6, 1.0)), ("ring", (1.0, 0.97)),
                                         ("cone", 0.3), ("cone", 1.2)])
-def test_area_element_is_1_lipschitz_in_its_parameter(kind, size):
+@pytest.mark.parametrize("scale", [1e-3, 1.0, 1e3])
+def test_area_element_is_1_lipschitz_in_its_parameter(kind, size, scale):
     """The compiled engine probes the area hand-over inside a step only where a step end is within the step's reach
     of it (kernels.rk.within_reach), which is sound for an event 1-Lipschitz in the state's components: the relative
-    area element of a torus (in v, an angle) and of a cone (in v, a length) against the oracle of sampled
-    differences, to round-off."""
+    area element of a torus (in v, an angle) and of a cone (in v, a length), in its unit for a scene of this scale
+    and weighted as the events weigh it (tracing.ivp.area_weight), against the oracle of sampled differences, to
+    round-off; and a cone's is the same number for the same scene at every scale (the apex guard means the same
+    distance from the apex, relative to the scene)."""
     from spatialkin.kernels import curve as kc
-    surface = sk.Torus(*size) if kind != "cone" else sk.Cone(size, v_range=(-3.0, 3.0))
-    v = np.linspace(-3.0, 3.0, 20001) if kind == "cone" else np.linspace(-np.pi, np.pi, 20001)
+    from spatialkin.tracing.ivp import area_weight
+    from spatialkin.tracing.segments import area_flag
+    if kind == "cone":
+        surface = sk.Cone(size, v_range=(-3.0 * scale, 3.0 * scale))
+        v = np.linspace(-3.0, 3.0, 20001) * scale
+    else:
+        surface = sk.Torus(size[0] * scale, size[1] * scale)
+        v = np.linspace(-np.pi, np.pi, 20001)
+    unit = area_flag(surface.data, scale)
+    assert unit == (scale if kind == "cone" else 1.0)
+    weight = area_weight(unit, 0.0)
     values = np.empty(len(v))
     for i, vi in enumerate(v):
         d = surface.derivatives(0.3, vi)
-        values[i] = kc.relative_area(d[1].copy(), d[2].copy())
-    assert np.max(np.abs(np.diff(values)) / np.diff(v)) <= 1.0 + 1e-9
+        values[i] = kc.relative_area(d[1].copy(), d[2].copy(), unit)
+    assert np.max(np.abs(np.diff(values * weight)) / np.diff(v)) <= 1.0 + 1e-9
+    if kind == "cone":                      # against the scene at scale 1 (written apart: the numpy formula)
+        rho = np.abs(v / scale) * math.tan(size)
+        cos = math.cos(size)
+        expected = np.minimum(rho * cos, 1.0 / np.maximum(rho * cos, 1e-300))
+        np.testing.assert_allclose(values, expected, rtol=1e-12, atol=1e-15)

@@ -202,23 +202,35 @@ def test_invariant_under_order_translation_and_scale(seed):
             np.testing.assert_allclose(found, base, rtol=1e-6 if shift else 1e-9)
 
 
-def test_trimmed_plane_and_torus_at_extreme_scales():
-    """A tilted torus and a plane trimmed to a square, two loops inside the square: the same loops (lengths relative
-    1e-9) with the scene scaled by 1e-14, 1e-20 and 1e20. The plane's length parameters are then ~1e-14: the edge
-    test of a start used to count a parameter within 1e-12 (absolute, for ranges below 1) of a bound as on the
-    edge, so every start 'left the surface' and the loop was lost without an error."""
+def _extreme_scene(kind, scale):
+    """A tilted torus or sphere with a plane trimmed to a square or a cone trimmed along its axis (one nappe),
+    all lengths times scale."""
     rot, rot2 = sk.rotation_about((1.0, 2.0, 0.5), 0.4), sk.rotation_about((-0.6, 0.3, 1.0), 1.1)
+    origin = scale * np.array([0.31, -0.22, 0.27])
+    if kind == "plane-torus":
+        return (sk.Torus(1.2 * scale, 0.5 * scale, sk.Frame((0.0, 0.0, 0.0), rot)),
+                sk.Plane(sk.Frame(origin, rot2), (-2 * scale, 2 * scale), (-2 * scale, 2 * scale)))
+    return (sk.Sphere(scale, sk.Frame((0.0, 0.0, 0.0), rot)),
+            sk.Cone(0.5, sk.Frame(origin - 1.5 * scale * rot2[:, 2], rot2), (0.4 * scale, 3.0 * scale)))
+
+
+@pytest.mark.parametrize("kind, count", [("plane-torus", 2), ("sphere-cone", 1)])
+def test_extreme_scales(kind, count):
+    """The same curves (lengths relative 1e-9) with the scene scaled by 1e-14, 1e-20 and 1e20 (and 1e-30, 1e30 for
+    the cone). A plane's or cone's length parameters are then tiny or huge: the edge test of a start used to count a
+    parameter within 1e-12 (absolute, for ranges below 1) of a bound as on the edge, so every start of the plane
+    scene 'left the surface' and its loops were lost without an error; a cone's apex watch measured its relative
+    area element in the scene's units (a v of 1e-12 is near the apex), so the sphere-cone loop ran on to max_length
+    instead of closing."""
     base = None
-    for scale in (1.0, 1e-14, 1e-20, 1e20):
-        torus = sk.Torus(1.2 * scale, 0.5 * scale, sk.Frame((0.0, 0.0, 0.0), rot))
-        plane = sk.Plane(sk.Frame(scale * np.array([0.31, -0.22, 0.27]), rot2), (-2 * scale, 2 * scale),
-                         (-2 * scale, 2 * scale))
-        for a, b in ((torus, plane), (plane, torus)):
-            found = sorted(c.length / scale for c in sk.intersect(a, b))
+    for scale in (1.0, 1e-14, 1e-20, 1e20) + ((1e-30, 1e30) if kind == "sphere-cone" else ()):
+        a, b = _extreme_scene(kind, scale)
+        for first, second in ((a, b), (b, a)):
+            found = sorted(c.length / scale for c in sk.intersect(first, second))
             if base is None:
                 base = found
-                assert len(found) == 2
-            assert len(found) == len(base)
+                assert len(found) == count
+            assert len(found) == len(base), scale
             np.testing.assert_allclose(found, base, rtol=1e-9)
 
 

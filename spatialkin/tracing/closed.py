@@ -1,6 +1,7 @@
 """sk.intersect in closed form for the pairs that meet in conics: plane-plane (a line), plane-sphere and
 sphere-sphere (a circle), plane-cylinder (an ellipse, or two lines along the axis) and plane-cone (an ellipse, a
-parabola or a hyperbola), each clipped by the trims.
+parabola or a hyperbola), each clipped by the trims; and the pairs of quadrics whose intersection splits into two
+ellipses crossing at nodes (spatialkin.tracing.split: two equal cylinders with crossing axes, the Steinmetz curves).
 
 A plane cuts a quadric q^T diag(1, 1, mu) q = rho (local coordinates: a sphere, a cylinder, a double cone) in
 the conic x^2 + A y^2 + 2 B y + C = 0 of the plane's coordinates along e1 = n x z (normal to the axis) and
@@ -25,6 +26,7 @@ from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, bas
 from .exact import SampledResult, exact_curve
 from .placement import SAME
 from .result import in_sk_order
+from .split import split_planes
 from .status import BOUNDARY, CLOSED, open_outcome, outcome
 from .topology import Topology
 from .trace import check_options, scene_lengths
@@ -52,6 +54,10 @@ MODE = "closed_form"
 EDGES = ("u_min", "u_max", "v_min", "v_max")
 #: The quadrics a plane is cut with here.
 QUADRICS = ("sphere", "cylinder", "cone")
+#: Points per ellipse of a split pair checked on both surfaces (exact distance functions) before it is taken.
+SPLIT_CHECKS = 16
+#: Points of an arc through nodes among which the one with the largest angle between the normals orients it.
+NODE_PROBES = 8
 TWO_PI = 2.0 * math.pi
 
 #: What the closed forms read of the settings (a trace Settings has these fields too; closed_form takes either).
@@ -112,6 +118,8 @@ def closed_form(a, b, settings):
         if isinstance(conics, tuple):                       # a circle about a common axis: as the general path
             return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=conics,
                                                       event="axis_circle", topology=topo)]
+    elif names[0] in QUADRICS and names[1] in QUADRICS:
+        return split_conics(placed, graze, settings, topo)
     else:
         return None
     if not conics:
@@ -119,17 +127,68 @@ def closed_form(a, b, settings):
     trims = linear_trims(placed)
     if not trims:
         return None
+    return components(placed, conics, trims, graze, settings, topo)
+
+
+def components(placed, conics, trims, graze, settings, topo, nodes=()):
+    """The CurveResults (in sk.intersect's order) of the conics ([(shape, rows)]) on the surfaces (Placed), clipped by
+    the trims; nodes (K, 3) where two of them cross, each given to the arcs it lies on. None where declined."""
     curves = []
     for shape, rows in conics:
         arcs = clip(shape, rows, trims, graze)
         if arcs is None:
             return None
         for t_lo, t_hi, ends in arcs:
-            curve = component(placed, shape, rows, t_lo, t_hi, ends, settings, topo)
+            on = [x for x in nodes if on_arc(shape, rows, t_lo, t_hi, ends, x)]
+            curve = component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, on)
             if curve is None or curve.length > MAX_LENGTH_SHARE * settings.max_length:
                 return None                                  # (the tracer would stop at max_length)
             curves.append(curve)
     return in_sk_order(curves, lambda c: c.sol.first_point())
+
+
+class Cut:
+    """An untrimmed plane as plane_conics reads it (a Placed plane's origin, z and bounds), from its unit normal and
+    a point on it (arrays (3,))."""
+
+    __slots__ = ("origin", "z", "bounds")
+
+    def __init__(self, normal, point):
+        self.origin, self.z, self.bounds = point.tolist(), normal.tolist(), (-math.inf, math.inf, -math.inf, math.inf)
+
+
+def split_conics(placed, graze, settings, topo):
+    """The components of two quadrics (Placed) whose intersection splits into two ellipses (split.split_planes), cut
+    from the first by the two planes, checked on both surfaces (every sampled point within the tolerance) and
+    clipped by both trims, the nodes given to the arcs through them; None where declined (the pair does not split,
+    or a conic is not an ellipse, a circle about the axis, or off the second surface)."""
+    found = split_planes([(p.origin, p.rot, p.form) for p in placed], np.array(placed[0].origin), settings.scale)
+    trims = linear_trims(placed)
+    if found is None or trims is None:
+        return None
+    cuts, nodes = found
+    conics = []
+    for normal, point in cuts:
+        cut = plane_conics(Cut(normal, point), placed[0], graze, settings.scale)
+        if cut is None or isinstance(cut, tuple) or any(shape != ELLIPSE for shape, _ in cut):
+            return None
+        conics += cut
+    t = np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False)
+    for _, (c, p, q) in conics:
+        points = np.array(c) + np.cos(t)[:, None] * np.array(p) + np.sin(t)[:, None] * np.array(q)
+        if max(float(np.max(surf.surface.distance(points))) for surf in placed) > settings.tolerance:
+            return None
+    return components(placed, conics, trims, graze, settings, topo, nodes)
+
+
+def on_arc(shape, rows, t_lo, t_hi, ends, x):
+    """True when the point x (3,) of the conic (an ellipse, rows = centre, P, Q with P normal to Q) lies on its arc
+    [t_lo, t_hi] (ends None: the whole ellipse)."""
+    if ends is None:
+        return True
+    (c, p, q), d = rows, [x[0] - rows[0][0], x[1] - rows[0][1], x[2] - rows[0][2]]
+    t = math.atan2(dot(d, q) / dot(q, q), dot(d, p) / dot(p, p)) % TWO_PI
+    return t_lo <= t <= t_hi or t_lo <= t + TWO_PI <= t_hi
 
 
 # --- small vectors as lists of floats (numpy costs more than the arithmetic on them) ---------------------------
@@ -397,10 +456,22 @@ def normal(surf, point):
     return to_global(rot, q)
 
 
-def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
+def normals_sine(placed, point):
+    """sin of the angle between the surfaces' (Placed) normals at a point on both, squared."""
+    na, nb = normal(placed[0], point), normal(placed[1], point)
+    along = cross(na, nb)
+    return dot(along, along) / (dot(na, na) * dot(nb, nb))
+
+
+def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, nodes=()):
     """The CurveResult of the arc t in [t_lo, t_hi] (ends None: the whole closed conic) of the surfaces (Placed),
-    run along N_a x N_b; None where the surfaces are nearly tangent on it."""
+    run along N_a x N_b at its middle; None where the surfaces are nearly tangent there. nodes: the points (3,) on
+    the arc where it crosses another conic of the pair (its nodes; with nodes the arc is run along N_a x N_b where
+    the normals' angle is largest among NODE_PROBES points of it, away from the nodes, where N_a x N_b vanishes)."""
     t_mid = 0.5 * (t_lo + t_hi)
+    if len(nodes):
+        t_mid = max((t_lo + (k + 0.5) / NODE_PROBES * (t_hi - t_lo) for k in range(NODE_PROBES)),
+                    key=lambda t: normals_sine(placed, combine(rows, *basis(shape, t, 0, math))))
     point = combine(rows, *basis(shape, t_mid, 0, math))
     na, nb = normal(placed[0], point), normal(placed[1], point)
     along = cross(na, nb)
@@ -419,8 +490,9 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo):
         return None                                          # not quite parallel to the generatrix
     length = sol.length
     status = CLOSED if closed else BOUNDARY                 # (arc_message's: closed, or both ends on an edge)
+    extra = {"nodes": np.array(nodes, dtype=float).reshape(-1, 3)} if len(nodes) else {}
     return SampledResult(closed=closed, length=length, status=status, tolerance=settings.tolerance, sol=sol,
-                         topology=topo, message_of=functools.partial(arc_message, ends, length))
+                         topology=topo, message_of=functools.partial(arc_message, ends, length), **extra)
 
 
 def arc_message(ends, length):

@@ -1,0 +1,109 @@
+"""Quadric pairs whose intersection splits into two conics: the pencil A - lambda B of their 4 x 4 matrices holds a
+pair of real crossing planes, and the quartic curve is the two conics those planes cut from either quadric, crossing
+at the nodes where the planes' common line meets it.
+
+Two cylinders of equal radii whose axes cross (the Steinmetz curves: two ellipses through two nodes, a pipe tee),
+and cylinders and cones that share an inscribed sphere (Monge), are such pairs. Their nodes are where the tracer
+must jump between branches (near-parallel normals, a hand-over to solve_ivp's DOP853): traced, a Steinmetz pair
+took about 47 ms; in closed form it is the plane–cylinder case twice. spatialkin.tracing.closed clips the conics
+and makes the components; this module finds the planes and the nodes, and declines (None) everything else.
+
+Only a member whose two smallest eigenvalues are round-off (RANK_TOL) counts: a pair 1e-9 (relative) from
+splitting meets in two loops passing a waist, left to the general path. Parallel planes (coaxial surfaces: their
+parallels) are left to the topology stage's placements.
+
+References
+----------
+R. Goldman, J. Miller, Combining algebraic rigor with geometric robustness for the detection and calculation of
+conic sections in the intersection of two natural quadric surfaces, ACM SPM (1991).
+../shared/reference/ssi-notes.md: nodes and branch crossings.
+"""
+import math
+
+import numpy as np
+import scipy.linalg
+
+#: A member of the pencil is a pair of planes when its two smallest eigenvalues (in magnitude) are at most this
+#: fraction of its largest: round-off of the matrices, in coordinates scaled by the scene (the splitting pairs of
+#: the stress cases: below 1e-15; a pair of cylinders whose radii differ by 1e-9: 2e-9).
+RANK_TOL = 1e-12
+#: An eigenvalue of the pencil is real when its imaginary part is at most this fraction of its size.
+REAL_TOL = 1e-9
+#: The planes must cross: the sine of their angle above this (parallel planes are coaxial surfaces' parallels).
+CROSSING_SIN = 1e-6
+#: A node's line meets the quadric in two points farther apart than this (relative to the scale); closer, the line
+#: is nearly tangent (a tacnode) and the pair is declined.
+NODE_SEPARATION = 1e-6
+
+
+def quadric_matrix(origin, rot, form, centre, scale):
+    """The symmetric 4 x 4 matrix M of a quadric x^2 + y^2 + mu z^2 = rho (local; form = (mu, rho)) placed at origin
+    with rotation rot (9 floats, row by row), in the coordinates X = ((p - centre) / scale, 1): X^T M X = 0."""
+    r = np.array(rot, dtype=float).reshape(3, 3)
+    mu, rho = form
+    s = (r * np.array([1.0, 1.0, mu])) @ r.T
+    o = (np.array(origin, dtype=float) - centre) / scale
+    so = s @ o
+    m = np.empty((4, 4))
+    m[:3, :3] = s
+    m[:3, 3] = m[3, :3] = -so
+    m[3, 3] = o @ so - rho / (scale * scale)
+    return m
+
+
+def plane_pair(a, b):
+    """The two planes (P+, P-) (4-vectors of the scaled coordinates: X . P = 0) of a member of the pencil of the
+    matrices a, b that is a pair of real planes crossing each other; None when there is none."""
+    with np.errstate(all="ignore"):
+        values = scipy.linalg.eigvals(a, b)
+    for lam in values:
+        if not (np.isfinite(lam) and abs(lam.imag) <= REAL_TOL * max(1.0, abs(lam))):
+            continue
+        w, v = np.linalg.eigh(a - lam.real * b)
+        order = np.argsort(np.abs(w))
+        big = abs(w[order[3]])
+        if big == 0.0 or abs(w[order[1]]) > RANK_TOL * big or w[order[2]] * w[order[3]] >= 0.0:
+            continue                                       # not rank 2, or a real line (imaginary planes)
+        i, j = (order[2], order[3]) if w[order[2]] > 0 else (order[3], order[2])
+        p, q = math.sqrt(w[i]) * v[:, i], math.sqrt(-w[j]) * v[:, j]
+        planes = (p + q, p - q)
+        n0, n1 = planes[0][:3], planes[1][:3]
+        size = np.linalg.norm(n0) * np.linalg.norm(n1)
+        if size == 0.0 or np.linalg.norm(np.cross(n0, n1)) <= CROSSING_SIN * size:
+            continue
+        return planes
+    return None
+
+
+def split_planes(quadrics, centre, scale):
+    """The two crossing planes that split the intersection of two quadrics ((origin, rot, form) each), as
+    (unit normal (3,), a point on it (3,)) in global coordinates, and the nodes (K, 3) where both planes meet the
+    first quadric (K = 0 or 2); None when the pair does not split (or splits only in parallel planes, or the nodes
+    nearly coincide)."""
+    a, b = (quadric_matrix(*q, centre, scale) for q in quadrics)
+    planes = plane_pair(a, b)
+    if planes is None:
+        return None
+    out = []
+    for plane in planes:
+        n, d = plane[:3], plane[3]
+        norm2 = float(n @ n)
+        out.append((n / math.sqrt(norm2), centre - scale * d / norm2 * n))
+    (n0, p0), (n1, p1) = out
+    # the planes' common line, p + t e (scaled coordinates), on the first quadric: a quadratic in t
+    e = np.cross(n0, n1)
+    e /= np.linalg.norm(e)
+    rows = np.array([n0, n1, e])
+    foot = np.linalg.solve(rows, [n0 @ (p0 - centre) / scale, n1 @ (p1 - centre) / scale, 0.0])
+    x, y = np.append(foot, 1.0), np.append(e, 0.0)
+    qa, qb, qc = y @ a @ y, 2.0 * (x @ a @ y), x @ a @ x
+    disc = qb * qb - 4.0 * qa * qc
+    if qa == 0.0:
+        return None
+    if disc < 0.0:
+        return out, np.empty((0, 3))
+    root = math.sqrt(disc)
+    if root / abs(qa) <= NODE_SEPARATION:
+        return None
+    ts = ((-qb - root) / (2.0 * qa), (-qb + root) / (2.0 * qa))
+    return out, np.array([centre + scale * (foot + t * e) for t in ts])

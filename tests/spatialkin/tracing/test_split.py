@@ -1,0 +1,100 @@
+"""Quadric pairs whose intersection splits into two ellipses through nodes, in closed form
+(spatialkin.tracing.split): against the general path (the topology stage and the tracer, closed forms off) as the
+oracle, and against the Steinmetz curves' own closed form (nodes, ellipse lengths)."""
+import math
+
+import numpy as np
+import pytest
+from oracles import random_rotation
+from scipy.special import ellipe
+
+import spatialkin as sk
+from spatialkin.tracing import intersect as intersect_module
+
+SCALE_TOL = 1e-14        # points on both surfaces, relative to the scale
+LENGTH_RTOL = 1e-9       # lengths against the traced oracle (its arc length is integrated at rtol 1e-10)
+
+
+def scenes():
+    """(name, a, b): equal cylinders with crossing axes (perpendicular and oblique, trims cutting through one
+    ellipse), a cylinder and a cone sharing an inscribed sphere, two cones sharing one."""
+    rng = np.random.default_rng(7)
+    out = []
+    for k, angle in enumerate((math.pi / 2, 0.9)):
+        rot = random_rotation(rng)
+        o = rng.uniform(-2, 2, 3)
+        tilt = sk.rotation_about(rot[:, 1], angle) @ rot
+        a = sk.Cylinder(0.7, sk.Frame(o, rot), v_range=(-3.0, 3.0))
+        b = sk.Cylinder(0.7, sk.Frame(o, tilt), v_range=(-0.5, 3.0) if k else (-3.0, 3.0))
+        out.append((f"steinmetz-{k}", a, b))
+    rot = random_rotation(rng)
+    o = rng.uniform(-2, 2, 3)
+    r, d = 0.8, 2.0
+    axis = rot[:, 0]
+    cone_rot = np.column_stack([rot[:, 1], rot[:, 2], axis])
+    out.append(("monge-cylinder-cone", sk.Cylinder(r, sk.Frame(o, rot), v_range=(-3.0, 3.0)),
+                sk.Cone(math.asin(r / d), sk.Frame(o - d * axis, cone_rot), v_range=(0.5, 4.0))))
+    other = sk.rotation_about(rot[:, 1], 1.1) @ cone_rot
+    out.append(("monge-cone-cone", sk.Cone(math.asin(r / d), sk.Frame(o - d * axis, cone_rot), v_range=(0.5, 4.0)),
+                sk.Cone(math.asin(r / 2.5), sk.Frame(o - 2.5 * other[:, 2], other), v_range=(0.5, 5.0))))
+    return out
+
+
+def traced(a, b, monkeypatch):
+    with monkeypatch.context() as m:
+        m.setattr(intersect_module, "CLOSED_FORMS", False)
+        return sk.intersect(a, b)
+
+
+@pytest.mark.parametrize("name, a, b", scenes(), ids=[s[0] for s in scenes()])
+def test_split_pairs_match_the_general_path(name, a, b, monkeypatch):
+    """Each order: in closed form (no right-hand-side evaluations), the same curves as the general path: count,
+    statuses, lengths (1e-9), nodes per curve (the same points, 1e-9 x scale); every point on both surfaces."""
+    scale = 0.7 if name.startswith("steinmetz") else 0.8
+    for first, second in ((a, b), (b, a)):
+        fast, oracle = sk.intersect(first, second), traced(first, second, monkeypatch)
+        assert len(fast) == len(oracle) >= 2
+        assert all(c.nfev == 0 for c in fast) and all(c.nfev > 0 for c in oracle)
+        for c, o in zip(sorted(fast, key=lambda c: c.length), sorted(oracle, key=lambda c: c.length)):
+            assert c.status == o.status and c.closed == o.closed
+            assert abs(c.length - o.length) <= LENGTH_RTOL * o.length
+            assert c.max_distance <= SCALE_TOL * scale
+            assert len(c.nodes) == len(o.nodes)
+            for node in o.nodes:
+                assert np.min(np.linalg.norm(c.nodes - node, axis=1)) <= 1e-9 * scale
+            # the dense output passes through its nodes
+            s = np.linspace(0.0, c.length, 4001)
+            for node in c.nodes:
+                assert np.min(np.linalg.norm(c(s) - node, axis=1)) <= 2e-3 * scale
+
+
+def test_steinmetz_closed_form():
+    """Perpendicular equal cylinders (radius r, axes crossing): two ellipses of semi-axes r and r sqrt(2) (length
+    4 r sqrt(2) E(1/2)), both through the two nodes at r along the common perpendicular, to round-off."""
+    rot = random_rotation(np.random.default_rng(3))
+    o, r = np.array([0.4, -1.0, 0.2]), 1.3
+    a = sk.Cylinder(r, sk.Frame(o, rot))
+    b = sk.Cylinder(r, sk.Frame(o, np.column_stack([rot[:, 1], rot[:, 2], rot[:, 0]])), v_range=(-5.0, 5.0))
+    curves = sk.intersect(a, b)
+    exact = 4.0 * r * math.sqrt(2.0) * ellipe(0.5)
+    nodes = np.array([o + r * rot[:, 1], o - r * rot[:, 1]])
+    assert len(curves) == 2
+    for c in curves:
+        assert c.closed and c.status == "closed" and c.nfev == 0
+        assert abs(c.length - exact) <= 1e-14 * exact
+        assert len(c.nodes) == 2
+        assert max(np.min(np.linalg.norm(c.nodes - n, axis=1)) for n in nodes) <= 1e-14 * r
+
+
+@pytest.mark.parametrize("offset", [1e-9, 1e-6])
+def test_near_split_pairs_take_the_general_path(offset, monkeypatch):
+    """Radii 1 and 1 - offset: the pencil's nearest member is not a pair of planes within round-off (its small
+    eigenvalues are about 2 x offset), so the pair is traced: two loops passing a waist, as the general path finds
+    them."""
+    rot = random_rotation(np.random.default_rng(5))
+    o = np.array([0.1, 0.2, -0.3])
+    a = sk.Cylinder(1.0, sk.Frame(o, rot), v_range=(-3.0, 3.0))
+    b = sk.Cylinder(1.0 - offset, sk.Frame(o, np.column_stack([rot[:, 1], rot[:, 2], rot[:, 0]])),
+                    v_range=(-3.0, 3.0))
+    curves = sk.intersect(a, b)
+    assert len(curves) == 2 and all(c.nfev > 0 and len(c.nodes) == 0 for c in curves)

@@ -23,6 +23,8 @@ import math
 import numpy as np
 import scipy.linalg
 
+from ..vectors import cross
+
 #: A member of the pencil is a pair of planes when its two smallest eigenvalues (in magnitude) are at most this
 #: fraction of its largest: round-off of the matrices, in coordinates scaled by the scene (the splitting pairs of
 #: the stress cases: below 1e-15; a pair of cylinders whose radii differ by 1e-9: 2e-9).
@@ -69,7 +71,7 @@ def plane_pair(a, b):
         planes = (p + q, p - q)
         n0, n1 = planes[0][:3], planes[1][:3]
         size = np.linalg.norm(n0) * np.linalg.norm(n1)
-        if size == 0.0 or np.linalg.norm(np.cross(n0, n1)) <= CROSSING_SIN * size:
+        if size == 0.0 or np.linalg.norm(cross(n0, n1)) <= CROSSING_SIN * size:
             continue
         return planes
     return None
@@ -91,7 +93,7 @@ def split_planes(quadrics, centre, scale):
         out.append((n / math.sqrt(norm2), centre - scale * d / norm2 * n))
     (n0, p0), (n1, p1) = out
     # the planes' common line, p + t e (scaled coordinates), on the first quadric: a quadratic in t
-    e = np.cross(n0, n1)
+    e = cross(n0, n1)
     e /= np.linalg.norm(e)
     rows = np.array([n0, n1, e])
     foot = np.linalg.solve(rows, [n0 @ (p0 - centre) / scale, n1 @ (p1 - centre) / scale, 0.0])

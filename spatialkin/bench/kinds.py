@@ -27,6 +27,8 @@ CONE_HALF_ANGLE = 0.5
 CONE_V_RANGE = (0.4, 3.0)
 #: The cone's apex lies this far behind the scene centre along its axis (the piece passes through the centre).
 CONE_APEX_BACK = 1.5
+#: The angle between the axes of the Steinmetz pair (special_cases).
+STEINMETZ_ANGLE = 1.2
 #: The two placements of a pair (first surface, second surface): origin offset, rotation axis and angle.
 PLACEMENTS = (((0.0, 0.0, 0.0), (1.0, 2.0, 0.5), 0.4),
               ((0.31, -0.22, 0.27), (-0.6, 0.3, 1.0), 1.1))
@@ -54,6 +56,16 @@ def pair_kind_cases():
     """[(name 'kind-kind', a, b)] for the 15 pair kinds, each surface in its own placement."""
     return [(f"{p}-{q}", surface(p, 0), surface(q, 1))
             for p, q in itertools.combinations_with_replacement(KINDS, 2)]
+
+
+def special_cases():
+    """[(name, a, b)] of special placements beside the general ones: two equal cylinders whose axes cross at
+    STEINMETZ_ANGLE (the Steinmetz curves: two ellipses through two nodes, a pipe tee), in the first placement."""
+    a = surface("cylinder", 0)
+    axis = a.frame.rotation[:, 0]                       # normal to a's axis, through its origin
+    rot = rotation_about(axis, STEINMETZ_ANGLE) @ a.frame.rotation
+    b = Cylinder(CYLINDER_RADIUS, Frame(a.frame.origin, rot), (-CYLINDER_HALF, CYLINDER_HALF))
+    return [("steinmetz cyl-cyl", a, b)]
 
 
 # --- the same surfaces as OpenCascade geometry (cadquery-ocp) ----------------------------------------------

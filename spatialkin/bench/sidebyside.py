@@ -12,7 +12,7 @@ import numpy as np
 from ..tracing import stages
 from ..tracing.intersect import intersect
 from . import baselines
-from .kinds import occ_surface, pair_kind_cases
+from .kinds import occ_surface, pair_kind_cases, special_cases
 from .runner import curve_error, kernel_seconds, points_error
 
 #: Accuracy asked of sk.intersect (relative to the scene scale): the library's default.
@@ -127,19 +127,19 @@ def read_points(curves):
     return [(c.points, c.s, c.params) for c in curves]
 
 
-def kind_rows(quick=False, echo=print):
-    """A KindRow for each of the 15 pair kinds (spatialkin.bench.kinds)."""
+def kind_rows(quick=False, echo=print, cases=None):
+    """A KindRow for each of the 15 pair kinds (spatialkin.bench.kinds), or for the given [(name, a, b)]."""
     calls, profile_calls, samples = ((QUICK_CALLS, QUICK_PROFILE_CALLS, QUICK_OCC_SAMPLES) if quick
                                      else (CALLS, PROFILE_CALLS, OCC_SAMPLES))
     rows = []
-    for kind, a, b in pair_kind_cases():
+    for kind, a, b in pair_kind_cases() if cases is None else cases:
         echo(f"... {kind}")
         rows.append(measure(kind, a, b, calls, profile_calls, samples))
     return rows
 
 
-def occ_table(rows, calls):
-    """The side-by-side table as text lines."""
+def occ_table(rows, calls, summary=True):
+    """The side-by-side table as text lines (with summary, the ratios' median and extremes)."""
     head = (f"{'pair kind':<18} {'ours ms':>8} {'OCC ms':>8} {'OCC/ours':>8} {'+points':>8} {'OCC/that':>8} "
             f"{'our error':>9} {'OCC error':>9} {'curves':>7}")
     lines = [f"sk.intersect (tol {OUR_TOL:g}) vs GeomAPI_IntSS (tol {baselines.OCC_DEFAULT_TOL:g}), interleaved, "
@@ -151,7 +151,7 @@ def occ_table(rows, calls):
                      f"{1e3 * r.ours_points:>8.3f} {r.occ / r.ours_points:>8.2f} {r.our_error:>9.1e} "
                      f"{r.occ_error:>9.1e} {r.our_curves:>3}/{r.occ_curves:<3}")
     ratios = np.array([r.ratio for r in rows])
-    if np.all(np.isfinite(ratios)):
+    if summary and np.all(np.isfinite(ratios)):
         lines.append(f"OCC/ours: median {np.median(ratios):.2f}, min {ratios.min():.2f} "
                      f"({rows[int(np.argmin(ratios))].kind}), max {ratios.max():.2f} "
                      f"({rows[int(np.argmax(ratios))].kind})")
@@ -190,9 +190,13 @@ def run(quick=False, echo=print):
     rows = kind_rows(quick=quick, echo=echo)
     for line in profile_table(rows) + [""]:
         echo(line)
+    special = kind_rows(quick=quick, echo=echo, cases=special_cases())
     if baselines.occ_available():
         for line in occ_table(rows, QUICK_CALLS if quick else CALLS):
             echo(line)
+        echo("special placements (not in the median above): " + "; ".join(
+            f"{r.kind}: ours {1e3 * r.ours:.3f} ms, OCC {1e3 * r.occ:.3f} ms, OCC/ours {r.ratio:.2f}, "
+            f"errors {r.our_error:.1e} / {r.occ_error:.1e}, curves {r.our_curves}/{r.occ_curves}" for r in special))
     else:
         echo("OpenCascade (cadquery-ocp) not installed: the side-by-side table is skipped")
     return rows

@@ -6,8 +6,9 @@ import itertools
 import numpy as np
 import pytest
 
+import spatialkin as sk
 from spatialkin.bench import baselines, sidebyside
-from spatialkin.bench.kinds import KINDS, occ_surface, pair_kind_cases
+from spatialkin.bench.kinds import KINDS, STEINMETZ_ANGLE, occ_surface, pair_kind_cases, special_cases
 from spatialkin.surfaces import Cone
 from spatialkin.tracing import stages
 from spatialkin.tracing.intersect import intersect
@@ -36,6 +37,18 @@ def test_fifteen_pair_kinds_all_bounded():
     for _, a, b in cases:
         for s in (a, b):
             assert np.isfinite(extent(s))          # trimmed where the kind is unbounded
+
+
+def test_special_case_is_a_steinmetz_pair():
+    """The bench's special placement: two equal cylinders whose axes cross (at their origins, at STEINMETZ_ANGLE),
+    met in closed form in two ellipses through two nodes, within round-off of both surfaces."""
+    (name, a, b), = special_cases()
+    assert a.radius == b.radius and np.allclose(a.frame.origin, b.frame.origin)
+    cosine = abs(a.frame.rotation[:, 2] @ b.frame.rotation[:, 2])
+    assert abs(cosine - np.cos(STEINMETZ_ANGLE)) < 1e-15
+    curves = sk.intersect(a, b)
+    assert len(curves) == 2 and all(c.nfev == 0 and len(c.nodes) == 2 for c in curves)
+    assert max(c.max_distance for c in curves) < 1e-14
 
 
 @needs_occ

@@ -29,7 +29,7 @@ from .result import in_sk_order
 from .split import split_planes
 from .status import BOUNDARY, CLOSED, open_outcome, outcome
 from .topology import Topology
-from .trace import check_options, scene_lengths
+from .trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
 from .traits import traits
 
 #: A curve within this many times the tolerance of touching a trim level, a corner, or the other surface
@@ -56,6 +56,9 @@ EDGES = ("u_min", "u_max", "v_min", "v_max")
 QUADRICS = ("sphere", "cylinder", "cone")
 #: Points per ellipse of a split pair checked on both surfaces (exact distance functions) before it is taken.
 SPLIT_CHECKS = 16
+#: A split pair's ellipses must lie this close (relative to the scale, or the round-off of the coordinates' magnitude
+#: where larger) to both surfaces; farther, the pair is only nearly split (a waist, not a node) and is traced.
+SPLIT_FIT = 1e-13
 #: Points of an arc through nodes among which the one with the largest angle between the normals orients it.
 NODE_PROBES = 8
 TWO_PI = 2.0 * math.pi
@@ -139,7 +142,7 @@ def components(placed, conics, trims, graze, settings, topo, nodes=()):
         if arcs is None:
             return None
         for t_lo, t_hi, ends in arcs:
-            on = [x for x in nodes if on_arc(shape, rows, t_lo, t_hi, ends, x)]
+            on = [x for x in nodes if on_arc(shape, rows, t_lo, t_hi, ends, x, settings.tolerance)]
             curve = component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, on)
             if curve is None or curve.length > MAX_LENGTH_SHARE * settings.max_length:
                 return None                                  # (the tracer would stop at max_length)
@@ -174,18 +177,23 @@ def split_conics(placed, graze, settings, topo):
             return None
         conics += cut
     t = np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False)
+    magnitude = max(map(abs, placed[0].origin + placed[1].origin))
+    fit = max(SPLIT_FIT * settings.scale, ROUNDOFF_ULPS * EPS * max(settings.scale, magnitude))
     for _, (c, p, q) in conics:
         points = np.array(c) + np.cos(t)[:, None] * np.array(p) + np.sin(t)[:, None] * np.array(q)
-        if max(float(np.max(surf.surface.distance(points))) for surf in placed) > settings.tolerance:
+        if max(float(np.max(surf.surface.distance(points))) for surf in placed) > fit:
             return None
     return components(placed, conics, trims, graze, settings, topo, nodes)
 
 
-def on_arc(shape, rows, t_lo, t_hi, ends, x):
+def on_arc(shape, rows, t_lo, t_hi, ends, x, near=0.0):
     """True when the point x (3,) of the conic (an ellipse, rows = centre, P, Q with P normal to Q) lies on its arc
     [t_lo, t_hi] (ends None: the whole ellipse)."""
     if ends is None:
         return True
+    for t in (t_lo, t_hi):                                   # a node at an end of the arc (a trim through it)
+        if math.dist(combine(rows, *basis(shape, t, 0, math)), x) <= near:
+            return True
     (c, p, q), d = rows, [x[0] - rows[0][0], x[1] - rows[0][1], x[2] - rows[0][2]]
     t = math.atan2(dot(d, q) / dot(q, q), dot(d, p) / dot(p, p)) % TWO_PI
     return t_lo <= t <= t_hi or t_lo <= t + TWO_PI <= t_hi

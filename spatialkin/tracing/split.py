@@ -8,8 +8,9 @@ must jump between branches (near-parallel normals, a hand-over to solve_ivp's DO
 took about 47 ms; in closed form it is the plane–cylinder case twice. spatialkin.tracing.closed clips the conics
 and makes the components; this module finds the planes and the nodes, and declines (None) everything else.
 
-Only a member whose two smallest eigenvalues are round-off (RANK_TOL) counts: a pair 1e-9 (relative) from
-splitting meets in two loops passing a waist, left to the general path. Parallel planes (coaxial surfaces: their
+Only a member whose two smallest eigenvalues are round-off (RANK_TOL) counts, and closed.split_conics then checks
+the ellipses on both surfaces (closed.SPLIT_FIT): a pair 1e-12 (relative) from splitting meets in loops passing a
+waist, left to the general path. Parallel planes (coaxial surfaces: their
 parallels) are left to the topology stage's placements.
 
 References

@@ -98,3 +98,47 @@ def test_near_split_pairs_take_the_general_path(offset, monkeypatch):
                     v_range=(-3.0, 3.0))
     curves = sk.intersect(a, b)
     assert len(curves) == 2 and all(c.nfev > 0 and len(c.nodes) == 0 for c in curves)
+
+
+def test_axes_missing_by_1e_12_take_the_general_path():
+    """Equal cylinders whose axes miss each other by 1.4e-12 of the radius (found by review): the pencil's member
+    passes the rank test, but its ellipses lie 1.6e-12 x scale off the surfaces, beyond the split's fit
+    (SPLIT_FIT = 1e-13 x scale): the pair is traced, one closed loop through a waist, not two ellipses."""
+    a = sk.Cylinder(94.57052564861789, sk.Frame(
+        [1353.2678431571949, -2387.5946620871246, -1600.3622979617073],
+        [[0.7800252477520986, 0.4272470765078407, -0.4571876512820313],
+         [0.21480940712346172, 0.5033990822167108, 0.8369266889248066],
+         [0.5877223251506989, -0.751032156194977, 0.30088730262438745]]),
+        v_range=(-782.7284790805767, 525.5265277088945))
+    b = sk.Cylinder(94.57052564861789, sk.Frame(
+        [1283.3316068619595, -2490.6013033854665, -1640.1609520825164],
+        [[0.16042999218244255, -0.037761356225052826, -0.9863246410712784],
+         [-0.9576422565524837, -0.24804617995757972, -0.14626825039467317],
+         [-0.23913077190819307, 0.9680119692361745, -0.07595591709732102]]))
+    curves = sk.intersect(a, b)
+    assert len(curves) == 1 and curves[0].closed and curves[0].nfev > 0 and len(curves[0].nodes) == 0
+    assert curves[0].max_distance <= 1e-14 * a.radius
+
+
+def test_a_trim_through_both_nodes():
+    """Equal cylinders with crossing axes, b's trim passing exactly through both nodes (found by review): in either
+    order two arcs, each listing both nodes (at its ends), inside b's trim to round-off."""
+    a = sk.Cylinder(0.0030864655572198463, sk.Frame(
+        [-0.005240491689181651, -0.00326973829279299, -0.006688478077075634],
+        [[0.2960055335119358, -0.3163746880178444, -0.9012700932084267],
+         [-0.7968238493062175, 0.4385355061637703, -0.4156421092845478],
+         [0.5267375791674034, 0.841185869243711, -0.12228596026349896]]))
+    b = sk.Cylinder(0.0030864655572198463, sk.Frame(
+        [-0.013145632202375291, -0.004178989381569043, -0.005467704828156544],
+        [[0.15760193548415166, 0.2099763047935231, -0.9649205052007688],
+         [-0.7453483893428486, 0.6662696958798612, 0.02324802908158952],
+         [0.6477788267886427, 0.7155380100158305, 0.26151089420311896]]),
+        v_range=(-0.005843944592629173, 0.006501917636250212))
+    lo, hi = b.v_range
+    for first, second in ((a, b), (b, a)):
+        curves = sk.intersect(first, second)
+        assert len(curves) == 2 and all(c.nfev == 0 for c in curves)
+        assert [len(c.nodes) for c in curves] == [2, 2]
+        for c in curves:
+            v = (c(np.linspace(0.0, c.length, 2001)) - b.frame.origin) @ b.frame.rotation[:, 2]
+            assert lo - v.min() <= 1e-15 * a.radius and v.max() - hi <= 1e-15 * a.radius

@@ -41,7 +41,7 @@ from ..kernels import interval as ki
 from ..kernels import surfaces as ks
 from ..kernels import topology as kt
 from .placement import bounding_ball, check_not_coincident, common_axis, ruled_along
-from .traits import traits
+from .traits import power_of_two, traits
 
 #: The fixed direction d (an angle in the plane of scaled parameters) whose extremes seed the closed loops;
 #: any direction works, a generic one keeps straight pieces of the level from lying along d's normal.
@@ -58,7 +58,8 @@ COARSE = 1e-7
 MAX_BOXES = 400_000
 #: Records kept per search.
 MAX_RECORDS = 4096
-#: Parameter offsets of the rings searched round a pole or an apex that lies on the other surface: far enough
+#: Parameter offsets of the rings searched round a pole or an apex that lies on the other surface, in units of v
+#: (step_units: radians for a sphere's pole, about the scene scale for a cone's length v): far enough
 #: for a good start (the tracer then passes the apex from a clear incoming chord), and near, for the branches of
 #: a loop through the apex smaller than the first ring.
 RINGS = (2e-2, 1e-5)
@@ -357,13 +358,14 @@ def topology(a, b, scale, tolerance):
             add_line_roots(pq, 1, box[2], box[0], box[1], "v seam", None, False)
         # rings round poles and apexes on Q
         bands = []
+        v_unit = step_units(p, scale)[1]         # RINGS are in units of v (a cone's v is a length)
         for v, apex in zip(apexes, apex_points):
             if float(q.distance(apex)) > 1e3 * tolerance:
                 continue
-            bands.append((v - RINGS[-1], v + RINGS[-1]))
+            bands.append((v - RINGS[-1] * v_unit, v + RINGS[-1] * v_unit))
             topo.apexes.append(apex)
             found = 0
-            for ring in [v + sign * r for r in RINGS for sign in (-1.0, 1.0)]:
+            for ring in [v + sign * r * v_unit for r in RINGS for sign in (-1.0, 1.0)]:
                 if box[2] <= ring <= box[3]:
                     roots, unresolved = add_line_roots(pq, 1, ring, box[0], box[1], "apex ring", None, False)
                     found += len(roots) + len(unresolved)
@@ -429,6 +431,7 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
     is a circle of tangency; a root where the parallel collapses (a pole, an apex) is a contact point."""
     roots, unresolved = pq.line(0, -math.pi, box[2], box[3], topo, "meridian")
     apexes = traits(p).collapse_lines(p)
+    v_unit = step_units(p, scale)[1]                 # (a cone's or cylinder's v is a length)
     q_rim = traits(q).trim_breaks_revolution(q)
     found = [(v, True) for v in roots]
     for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2])):
@@ -439,13 +442,13 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
         side = pq.values([[-math.pi, lo], [-math.pi, hi]])[:, 0]
         clear = not pq.on_level((-math.pi, lo)) and not pq.on_level((-math.pi, hi))
         if clear and side[0] * side[1] < 0:
-            found.append((brentq(lambda x: pq.values([-math.pi, x])[0, 0], lo, hi, xtol=1e-15), True))
+            found.append((brentq(lambda x: pq.values([-math.pi, x])[0, 0], lo, hi, xtol=1e-15 * v_unit), True))
         else:
-            found.append((double_root(pq, 0, -math.pi, v), False))
+            found.append((double_root(pq, 0, -math.pi, v, v_unit), False))
     for v, simple in found:
         pt = p.point(0.0, v)
         radius = math.hypot(*p.frame.to_local(pt)[:2])
-        if radius <= 1e-9 * scale or any(abs(v - w) < 1e-12 for w in apexes):
+        if radius <= 1e-9 * scale or any(abs(v - w) < 1e-12 * v_unit for w in apexes):
             if keep(pt):
                 topo.contacts.append(pt)
             continue
@@ -496,9 +499,17 @@ def ruled_components(p, q, pq, box, topo, scale):
         topo.seeds.append(p.point(u, v_mid if lo < v_mid < hi else 0.5 * (lo + hi)))
 
 
-def double_root(reader, fixed, value, t):
+def step_units(surface, scale):
+    """(2,) the length of a unit step of (u, v) of the surface (traits' parameter_units: 1 for an angle, the scale
+    for a length) rounded to a power of two (power_of_two): the units of the stops and moves of the Newton and
+    root-finder iterations here, so that they do not depend on the scene's scale."""
+    return np.array([power_of_two(x) for x in traits(surface).parameter_units(scale)])
+
+
+def double_root(reader, fixed, value, t, unit=1.0):
     """A multiple root of g on a parameter line, refined from t as the zero of its derivative along the line
-    (Newton); t itself where that does not settle within 1e-5 of it."""
+    (Newton); t itself where that does not settle within 1e-5 of it. unit: the length of a unit step of the line's
+    parameter (step_units; the tests are in units of it)."""
     x = t
     for _ in range(CRITICAL_ITER):
         g = reader.values([x, value] if fixed == 1 else [value, x])[0]
@@ -507,9 +518,9 @@ def double_root(reader, fixed, value, t):
             break
         step = d1 / d2
         x -= step
-        if abs(step) <= 1e-15 * max(1.0, abs(x)):
+        if abs(step) <= 1e-15 * max(unit, abs(x)):
             break
-    return x if abs(x - t) <= 1e-5 * max(1.0, abs(t)) else t
+    return x if abs(x - t) <= 1e-5 * max(unit, abs(t)) else t
 
 
 def clip_line(p, u, v_lo, v_hi, q):
@@ -616,13 +627,15 @@ def classify(loose, topo, scale, keep):
     """Unresolved boxes: each cluster is a singular point of the level (a contact, a node, a degenerate point)
     or a double root on a line; contacts are kept, nodes seed their four arms, the rest seed where they are."""
     clusters, done = [], []
+    units = {}
     for reader, uv in loose:
         pt = reader.s.point(*uv)
         if any(np.linalg.norm(pt - c[2]) <= CLUSTER * scale for c in clusters):
             continue
         clusters.append((reader, uv, pt))
     for reader, uv, pt in clusters:
-        crit = critical_point(reader, uv)
+        unit = units.setdefault(id(reader), step_units(reader.s, scale))
+        crit = critical_point(reader, uv, unit)
         if crit is None:
             if keep(pt):
                 topo.seeds.append(pt)
@@ -637,7 +650,7 @@ def classify(loose, topo, scale, keep):
             if keep(pt):
                 topo.seeds.append(pt)
             continue
-        lam, vec = hessian_eigen(reader, crit)
+        lam, vec = hessian_eigen(reader, crit, unit)
         if lam is None:
             if keep(at):
                 topo.seeds.append(at)
@@ -689,8 +702,12 @@ def tiny_loop_start(reader, crit, lam, vec):
     return None
 
 
-def critical_point(reader, uv):
-    """Newton on grad g = 0 from uv; the critical point (2,), or None if Newton does not settle nearby."""
+def critical_point(reader, uv, units):
+    """Newton on grad g = 0 from uv; the critical point (2,), or None if Newton does not settle nearby. units (2,):
+    the length of a unit step of (u, v) (step_units: 1 for an angle, about the scene scale for a length); the
+    convergence and the move allowed are measured in the scaled parameters uv / units, so that a length
+    parameter's tests do not depend on the scene's scale."""
+    units = np.asarray(units, dtype=float)
     x = np.array(uv, dtype=float)
     for _ in range(CRITICAL_ITER):
         g = reader.values(x)[0]
@@ -702,20 +719,23 @@ def critical_point(reader, uv):
         if not np.all(np.isfinite(step)):
             return x
         x = x + step
-        if np.max(np.abs(step)) <= 1e-15 * max(1.0, np.max(np.abs(x))):
+        if np.max(np.abs(step / units)) <= 1e-15 * max(1.0, np.max(np.abs(x / units))):
             break
-    if np.max(np.abs(x - uv)) > 1e-3 * max(1.0, np.max(np.abs(uv))):
+    if np.max(np.abs((x - uv) / units)) > 1e-3 * max(1.0, np.max(np.abs(uv / units))):
         return None
     return x
 
 
-def hessian_eigen(reader, uv):
+def hessian_eigen(reader, uv, units):
     """Eigenvalues and vectors of the Hessian of g in the metric of S at uv, or (None, None) where the metric
-    degenerates (a pole or an apex)."""
+    degenerates (a pole or an apex). units (2,) as in critical_point: the degeneracy is judged on the metric of
+    the scaled parameters uv / units (whose entries are all lengths squared), not on a mix of lengths and angles
+    (a cylinder's diag(r^2, 1) would read as degenerate for r below 1e-7 in the user's unit)."""
     g = reader.values(uv)[0]
     hess = np.array([[g[3], g[4]], [g[4], g[5]]])
     d = reader.s.derivatives(*uv)
     metric = np.array([[d[1] @ d[1], d[1] @ d[2]], [d[1] @ d[2], d[2] @ d[2]]])
-    if np.linalg.det(metric) <= 1e-14 * np.trace(metric) ** 2:
+    scaled = metric * np.outer(units, units)
+    if np.linalg.det(scaled) <= 1e-14 * np.trace(scaled) ** 2:
         return None, None
     return scipy.linalg.eigh(hess, metric)

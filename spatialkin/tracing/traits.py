@@ -23,7 +23,7 @@ import numpy as np
 from ..kernels import surfaces as ks
 
 __all__ = ["SurfaceTraits", "UnknownSurfaceKindError", "register", "unregister", "traits", "check_surface",
-           "ANGLE", "LENGTH", "POINT", "AXIS", "NORMAL", "TRANSLATION", "SCALING", "GEOMETRIES", "FULL_TURN"]
+           "power_of_two", "ANGLE", "LENGTH", "POINT", "AXIS", "NORMAL", "TRANSLATION", "SCALING", "GEOMETRIES", "FULL_TURN"]
 
 # --- vocabulary of the traits ----------------------------------------------------------------------------------
 #: Units of a surface parameter: an angle (radians, unit step 1) or a length (the user's unit, unit step = scale).
@@ -201,6 +201,14 @@ class SurfaceTraits:
 
     def __repr__(self):
         return f"<{type(self).__name__} {self.name!r} code={self.code} geometry={self.geometry}>"
+
+
+def power_of_two(x):
+    """The power of two nearest to x > 0 (1 for x not positive and finite). Tolerances that feed iterations (Newton
+    and root-finder stops, solve_ivp's time unit) are taken relative to the scene's scale rounded so: a scene scaled
+    by 2^k then runs on the same numbers to the bit, and one whose scale is within a factor sqrt(2) of 1 on the
+    same numbers as with the absolute tolerance."""
+    return math.ldexp(1.0, round(math.log2(x))) if x > 0.0 and math.isfinite(x) else 1.0
 
 
 # --- the registry ------------------------------------------------------------------------------------------------

@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .._jit import jit
-from .linalg import PIVOT_EPS, lu_factor, lu_solve
+from .linalg import PIVOT_EPS, balance_columns, lu_factor, lu_solve, unbalance
 from .surfaces import frame, second
 
 #: A Newton step longer than this fraction of the previous one has stopped contracting (round-off floor).
@@ -216,6 +216,7 @@ def newton_from(y, a, b, q, t, gap_tol, max_iter, f1, f2):
     r = np.empty(4)
     dx = np.empty(4)
     piv = np.empty(4, dtype=np.int64)
+    scales = np.empty(4)
     use_plane = dot(t, t) > 0.0
     step = np.inf
     prev_step = np.inf
@@ -245,8 +246,10 @@ def newton_from(y, a, b, q, t, gap_tol, max_iter, f1, f2):
             m[3, 2] = 0.0
             m[3, 3] = 0.0
             r[3] = -plane
+            balance_columns(m, scales)          # (the pivot test independent of the parameters' units)
             if lu_factor(m, piv):
                 lu_solve(m, piv, r, dx)
+                unbalance(dx, scales)
             else:
                 # a parametrisation degenerates (an apex, a pole): take the minimum-norm step instead
                 if not gap_correction(su1, sv1, su2, sv2, gap, dx):
@@ -511,6 +514,7 @@ def newton_fixed_row(y, a, b, fixed, gap_tol, max_iter):
     r = np.empty(3)
     dx = np.empty(3)
     piv = np.empty(3, dtype=np.int64)
+    scales = np.empty(3)
     done = False
     for _ in range(max_iter):
         p1, su1, sv1 = frame(a, y[0], y[1])
@@ -530,9 +534,11 @@ def newton_fixed_row(y, a, b, fixed, gap_tol, max_iter):
             col += 1
         for j in range(3):
             r[j] = -gap[j]
+        balance_columns(m, scales)              # (the pivot test independent of the parameters' units)
         if not lu_factor(m, piv):
             break
         lu_solve(m, piv, r, dx)
+        unbalance(dx, scales)
         col = 0
         for i in range(4):
             if i == fixed:

@@ -2,9 +2,11 @@
 
 Used by the curve kernels' 3 x 3 and 4 x 4 Newton systems and by planar linkages' Schur complements.
 """
+import math
+
 from .._jit import jit
 
-__all__ = ["PIVOT_EPS", "lu_factor", "lu_solve"]
+__all__ = ["PIVOT_EPS", "lu_factor", "lu_solve", "balance_columns", "unbalance"]
 
 #: Below this, a pivot is treated as zero (relative to the largest entry of the matrix).
 PIVOT_EPS = 1e-14
@@ -59,3 +61,30 @@ def lu_solve(m, piv, r, x):
         for j in range(i + 1, n):
             x[i] -= m[i, j] * x[j]
         x[i] /= m[i, i]
+
+
+@jit
+def balance_columns(m, scales):
+    """Scale each column of m in place by a power of two (into scales, (n,)) that puts its largest entry in
+    [0.5, 1): exact, so lu_factor of the balanced m gives the same numbers up to those powers, but its pivot test
+    (relative to the largest entry) no longer depends on the units of the unknowns. A Newton system of
+    surface parameters mixes columns of lengths (an angle's derivative, a radius) and of numbers (a length
+    parameter's): unbalanced, scaling the scene by 2^k moves the test by 2^k. A zero column keeps scale 1."""
+    n = m.shape[1]
+    for j in range(n):
+        big = 0.0
+        for i in range(m.shape[0]):
+            big = max(big, abs(m[i, j]))
+        scales[j] = 1.0
+        if big > 0.0 and math.isfinite(big):
+            _, e = math.frexp(big)
+            scales[j] = math.ldexp(1.0, -e)
+            for i in range(m.shape[0]):
+                m[i, j] *= scales[j]
+
+
+@jit
+def unbalance(x, scales):
+    """The solution of the original system from that of the balanced one (balance_columns), in place."""
+    for j in range(x.shape[0]):
+        x[j] *= scales[j]

@@ -277,6 +277,10 @@ def evaluate(data, uv, out):
         to_global(data, loc[POINT], out[k])
 
 
+#: Below this sine of their angle two directions are parallel (recharted_sphere's cross products).
+UNIT_CROSS_FLOOR = 1e-12
+
+
 @jit
 def recharted_sphere(data, point, tangent, bend, out):
     """out = sphere data with its chart turned so that point is at (u, v) = (0, 0).
@@ -304,9 +308,9 @@ def recharted_sphere(data, point, tangent, bend, out):
             c[i] = point[i] + bend[i] / k2 - data[ORIGIN + i]
         nc = math.sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2])
         if nc > 0.0 and (x[0] * c[0] + x[1] * c[1] + x[2] * c[2]) > 0.5 * nc:
-            _unit_cross(x, c, z)
+            _unit_cross(x, c, z, UNIT_CROSS_FLOOR * nc)     # (c is a length: the floor relative to it)
     if z[0] == 0.0 and z[1] == 0.0 and z[2] == 0.0:
-        _unit_cross(x, tangent, z)
+        _unit_cross(x, tangent, z, UNIT_CROSS_FLOOR)
     if z[0] == 0.0 and z[1] == 0.0 and z[2] == 0.0:
         axis = np.zeros(3)
         smallest = 0                           # the first axis where |x| is least (as np.argmin)
@@ -314,9 +318,9 @@ def recharted_sphere(data, point, tangent, bend, out):
             if abs(x[i]) < abs(x[smallest]):
                 smallest = i
         axis[smallest] = 1.0
-        _unit_cross(x, axis, z)
+        _unit_cross(x, axis, z, UNIT_CROSS_FLOOR)
     y = np.empty(3)
-    _unit_cross(z, x, y)
+    _unit_cross(z, x, y, UNIT_CROSS_FLOOR)
     for i in range(3):
         out[ROT + 3 * i] = x[i]
         out[ROT + 3 * i + 1] = y[i]
@@ -324,11 +328,12 @@ def recharted_sphere(data, point, tangent, bend, out):
 
 
 @jit
-def _unit_cross(a, b, out):
-    """out = a x b normalised, or zeros where |a x b| < 1e-12."""
+def _unit_cross(a, b, out, floor):
+    """out = a x b normalised, or zeros where |a x b| < floor (UNIT_CROSS_FLOOR times |a| |b|: a a unit
+    vector, b a unit vector or a length)."""
     out[0] = a[1] * b[2] - a[2] * b[1]
     out[1] = a[2] * b[0] - a[0] * b[2]
     out[2] = a[0] * b[1] - a[1] * b[0]
     n = math.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2])
     for i in range(3):
-        out[i] = out[i] / n if n >= 1e-12 else 0.0
+        out[i] = out[i] / n if n >= floor else 0.0

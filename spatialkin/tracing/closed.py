@@ -162,9 +162,9 @@ class Cut:
 
 def split_conics(placed, graze, settings, topo):
     """The components of two quadrics (Placed) whose intersection splits into two ellipses (split.split_planes), cut
-    from the first by the two planes, checked on both surfaces (every sampled point within the tolerance) and
-    clipped by both trims, the nodes given to the arcs through them; None where declined (the pair does not split,
-    or a conic is not an ellipse, a circle about the axis, or off the second surface)."""
+    from the first by the two planes, checked on both surfaces (SPLIT_CHECKS points of each within SPLIT_FIT x scale,
+    or the coordinates' round-off) and clipped by both trims, the nodes given to the arcs through them; None where
+    declined (the pair does not split, or a conic is not an ellipse, a circle about the axis, or off a surface)."""
     found = split_planes([(p.origin, p.rot, p.form) for p in placed], np.array(placed[0].origin), settings.scale)
     trims = linear_trims(placed)
     if found is None or trims is None:

@@ -26,7 +26,7 @@ from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, bas
 from .exact import SampledResult, exact_curve
 from .placement import SAME
 from .result import in_sk_order
-from .split import split_planes
+from .split import may_split, split_planes
 from .status import BOUNDARY, CLOSED, open_outcome, outcome
 from .topology import Topology
 from .trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
@@ -165,6 +165,8 @@ def split_conics(placed, graze, settings, topo):
     from the first by the two planes, checked on both surfaces (SPLIT_CHECKS points of each within SPLIT_FIT x scale,
     or the coordinates' round-off) and clipped by both trims, the nodes given to the arcs through them; None where
     declined (the pair does not split, or a conic is not an ellipse, a circle about the axis, or off a surface)."""
+    if not may_split([(p.name, p.origin, p.z, p.form) for p in placed], settings.scale):
+        return None
     found = split_planes([(p.origin, p.rot, p.form) for p in placed], np.array(placed[0].origin), settings.scale)
     trims = linear_trims(placed)
     if found is None or trims is None:

@@ -32,11 +32,40 @@ from ..vectors import cross
 RANK_TOL = 1e-12
 #: An eigenvalue of the pencil is real when its imaginary part is at most this fraction of its size.
 REAL_TOL = 1e-9
+#: The axes of a pair that may split cross within this (relative to the scale), and the spheres inscribed about
+#: their crossing have radii equal within it (may_split: a loose necessary condition; the pencil decides).
+AXES_GAP = 1e-6
 #: The planes must cross: the sine of their angle above this (parallel planes are coaxial surfaces' parallels).
 CROSSING_SIN = 1e-6
 #: A node's line meets the quadric in two points farther apart than this (relative to the scale); closer, the line
 #: is nearly tangent (a tacnode) and the pair is declined.
 NODE_SEPARATION = 1e-6
+
+
+def may_split(quadrics, scale):
+    """A necessary condition for a split, cheap to test first: both quadrics are cylinders or cones (a sphere's
+    pencil with them holds no pair of crossing planes), their axes cross (within AXES_GAP x scale), and a sphere
+    about the crossing is inscribed in both (a cylinder's radius; a cone's distance from its apex times the sine
+    of its half angle; equal within AXES_GAP x scale). quadrics: (name, origin (3 floats), axis (3 floats),
+    (mu, rho)) each, the cone's origin its apex."""
+    (n1, o1, z1, f1), (n2, o2, z2, f2) = quadrics
+    if "sphere" in (n1, n2):
+        return False
+    n = cross(z1, z2)
+    sin = math.sqrt(float(n @ n))
+    if sin <= CROSSING_SIN:
+        return False
+    d = np.subtract(o2, o1)
+    if abs(float(d @ n)) > AXES_GAP * scale * sin:
+        return False
+    # the crossing: o1 + s z1 = o2 + t z2 (least squares on the two lines)
+    c = float(np.dot(z1, z2))
+    s1 = (float(d @ z1) - c * float(d @ z2)) / (sin * sin)
+    cross_point = np.add(o1, s1 * np.asarray(z1))
+    radii = [math.sqrt(rho) if name == "cylinder" else
+             float(np.linalg.norm(cross_point - np.asarray(o))) * math.sqrt(-mu / (1.0 - mu))
+             for name, o, (mu, rho) in ((n1, o1, f1), (n2, o2, f2))]
+    return abs(radii[0] - radii[1]) <= AXES_GAP * scale
 
 
 def quadric_matrix(origin, rot, form, centre, scale):

@@ -142,3 +142,25 @@ def test_a_trim_through_both_nodes():
         for c in curves:
             v = (c(np.linspace(0.0, c.length, 2001)) - b.frame.origin) @ b.frame.rotation[:, 2]
             assert lo - v.min() <= 1e-15 * a.radius and v.max() - hi <= 1e-15 * a.radius
+
+
+def test_may_split_is_necessary_and_cheap_to_refuse():
+    """may_split (the test run before the pencil's eigenvalues) holds for every splitting scene above and fails on
+    the bench's general pairs of quadrics (which do not split: the pencil finds no pair of planes in them either)."""
+    from spatialkin.bench.kinds import pair_kind_cases
+    from spatialkin.tracing.closed import Placed
+    from spatialkin.tracing.split import may_split, split_planes
+    from spatialkin.tracing.traits import traits
+
+    def args(a, b):
+        placed = [Placed(s, traits(s)) for s in (a, b)]
+        return placed, [(p.name, p.origin, p.z, p.form) for p in placed]
+
+    for _, a, b in scenes():
+        assert may_split(args(a, b)[1], 0.7) and may_split(args(b, a)[1], 0.7)
+    for name, a, b in pair_kind_cases():
+        if "plane" in name or "torus" in name or name == "sphere-sphere":
+            continue
+        placed, quads = args(a, b)
+        assert not may_split(quads, 1.0)
+        assert split_planes([(p.origin, p.rot, p.form) for p in placed], np.array(placed[0].origin), 1.0) is None

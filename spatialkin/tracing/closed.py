@@ -59,6 +59,9 @@ SPLIT_CHECKS = 16
 #: A split pair's ellipses must lie this close (relative to the scale, or the round-off of the coordinates' magnitude
 #: where larger) to both surfaces; farther, the pair is only nearly split (a waist, not a node) and is traced.
 SPLIT_FIT = 1e-13
+#: A plane through a cone's apex touches it along a ruling when the axis projected on the plane makes the half angle
+#: with the axis to within this (in cosine; a plane tangent to the cone within round-off).
+RULING_COS = 1e-9
 #: Points of an arc through nodes among which the one with the largest angle between the normals orients it.
 NODE_PROBES = 8
 TWO_PI = 2.0 * math.pi
@@ -163,8 +166,10 @@ class Cut:
 def split_conics(placed, graze, settings, topo):
     """The components of two quadrics (Placed) whose intersection splits into two ellipses (split.split_planes), cut
     from the first by the two planes, checked on both surfaces (SPLIT_CHECKS points of each within SPLIT_FIT x scale,
-    or the coordinates' round-off) and clipped by both trims, the nodes given to the arcs through them; None where
-    declined (the pair does not split, or a conic is not an ellipse, a circle about the axis, or off a surface)."""
+    or the coordinates' round-off) and clipped by both trims, the nodes given to the arcs through them; a plane
+    tangent to a cone along a ruling that lies on the other surface too (a cone touching a cylinder or a cone all
+    along a line) gives that ruling, clipped, as a segment of tangency (status 'tangent'). None where declined (the
+    pair does not split, or a conic is not an ellipse or that ruling, a circle about the axis, or off a surface)."""
     if not may_split([(p.name, p.origin, p.z, p.form) for p in placed], settings.scale):
         return None
     found = split_planes([(p.origin, p.rot, p.form) for p in placed], np.array(placed[0].origin), settings.scale)
@@ -172,20 +177,84 @@ def split_conics(placed, graze, settings, topo):
     if found is None or trims is None:
         return None
     cuts, nodes = found
-    conics = []
+    conics, rulings = [], []
     for normal, point in cuts:
         cut = plane_conics(Cut(normal, point), placed[0], graze, settings.scale)
-        if cut is None or isinstance(cut, tuple) or any(shape != ELLIPSE for shape, _ in cut):
+        if cut is None:
+            ruling = tangent_ruling(placed, normal, point, graze)
+            if ruling is None:
+                return None
+            rulings.append(ruling)
+            continue
+        if isinstance(cut, tuple) or any(shape != ELLIPSE for shape, _ in cut):
             return None
         conics += cut
-    t = np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False)
     magnitude = max(map(abs, placed[0].origin + placed[1].origin))
     fit = max(SPLIT_FIT * settings.scale, ROUNDOFF_ULPS * EPS * max(settings.scale, magnitude))
-    for _, (c, p, q) in conics:
-        points = np.array(c) + np.cos(t)[:, None] * np.array(p) + np.sin(t)[:, None] * np.array(q)
+    t = np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False)
+    samples = [np.array(c) + np.cos(t)[:, None] * np.array(p) + np.sin(t)[:, None] * np.array(q)
+               for _, (c, p, q) in conics]
+    segments = []
+    for apex, direction in rulings:
+        span = line_span(trims, apex, direction)
+        if span is None:
+            return None
+        if span:
+            ends = (apex + span[0] * direction, apex + span[1] * direction)
+            segments.append(ends)
+            samples.append(np.linspace(*ends, SPLIT_CHECKS))
+    for points in samples:
         if max(float(np.max(surf.surface.distance(points))) for surf in placed) > fit:
             return None
-    return components(placed, conics, trims, graze, settings, topo, nodes)
+    curves = components(placed, conics, trims, graze, settings, topo, nodes) if conics else []
+    if curves is None:
+        return None
+    surfaces = (placed[0].surface, placed[1].surface)
+    curves += [exact_curve(surfaces, settings.tolerance, segment=ends, topology=topo) for ends in segments]
+    return in_sk_order(curves, lambda c: c.sol.first_point() if hasattr(c.sol, "first_point") else c.sol.p0)
+
+
+def tangent_ruling(placed, normal, point, graze):
+    """(apex (3,), unit direction (3,)) of the ruling along which the plane (unit normal and a point on it, arrays)
+    touches a cone of the pair (Placed): the plane passes through the cone's apex (within graze) and holds exactly
+    one of its rulings (the axis projected on the plane, at the half angle to the axis); None otherwise."""
+    for quadric in placed:
+        if quadric.name != "cone":
+            continue
+        apex = np.array(quadric.origin)
+        if abs(float(normal @ (apex - point))) > graze:
+            continue
+        axis = np.array(quadric.z)
+        along = axis - float(axis @ normal) * normal
+        size = float(np.linalg.norm(along))
+        if size == 0.0:
+            continue
+        along /= size
+        cos_half = 1.0 / math.sqrt(1.0 - quadric.form[0])            # (mu = -tan^2 of the half angle)
+        if abs(float(along @ axis) - cos_half) <= RULING_COS:
+            return apex, along
+    return None
+
+
+def line_span(trims, origin, direction):
+    """(t_lo, t_hi) of the line origin + t direction (arrays) inside every trim (linear_trims' rows), () where it
+    misses them, None where it is unbounded."""
+    lo, hi = -math.inf, math.inf
+    for w, bound, side, _ in trims:
+        a0 = dot(w, origin) - bound                                 # the trim's value at t, times side: <= 0 inside
+        a1 = dot(w, direction)
+        if a1 == 0.0:
+            if a0 * side > 0.0:
+                return ()
+            continue
+        cut = -a0 / a1
+        if side * a1 > 0.0:
+            hi = min(hi, cut)
+        else:
+            lo = max(lo, cut)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        return None
+    return (lo, hi) if lo < hi else ()
 
 
 def on_arc(shape, rows, t_lo, t_hi, ends, x, near=0.0):

@@ -37,8 +37,9 @@ REAL_TOL = 1e-9
 AXES_GAP = 1e-6
 #: The planes must cross: the sine of their angle above this (parallel planes are coaxial surfaces' parallels).
 CROSSING_SIN = 1e-6
-#: A node's line meets the quadric in two points farther apart than this (relative to the scale); closer, the line
-#: is nearly tangent (a tacnode) and the pair is declined.
+#: The planes' common line meets the quadric in two points farther apart than this (relative to the scale), two
+#: nodes; closer, it touches the quadric and the conics touch there: one node (a cone touching a cylinder along a
+#: ruling meets it in that ruling and an ellipse touching it; the point is then known to about sqrt(round-off)).
 NODE_SEPARATION = 1e-6
 
 
@@ -110,8 +111,8 @@ def plane_pair(a, b):
 def split_planes(quadrics, centre, scale):
     """The two crossing planes that split the intersection of two quadrics ((origin, rot, form) each), as
     (unit normal (3,), a point on it (3,)) in global coordinates, and the nodes (K, 3) where both planes meet the
-    first quadric (K = 0 or 2); None when the pair does not split (or splits only in parallel planes, or the nodes
-    nearly coincide)."""
+    first quadric (K = 0, 1 where the line touches it, or 2); None when the pair does not split (or splits only in
+    parallel planes)."""
     a, b = (quadric_matrix(*q, centre, scale) for q in quadrics)
     planes = plane_pair(a, b)
     if planes is None:
@@ -132,10 +133,11 @@ def split_planes(quadrics, centre, scale):
     disc = qb * qb - 4.0 * qa * qc
     if qa == 0.0:
         return None
-    if disc < 0.0:
-        return out, np.empty((0, 3))
-    root = math.sqrt(disc)
+    root = math.sqrt(abs(disc))
     if root / abs(qa) <= NODE_SEPARATION:
-        return None
-    ts = ((-qb - root) / (2.0 * qa), (-qb + root) / (2.0 * qa))
+        ts = (-qb / (2.0 * qa),)                  # the line touches the quadric: the conics touch there (one node)
+    elif disc < 0.0:
+        return out, np.empty((0, 3))
+    else:
+        ts = ((-qb - root) / (2.0 * qa), (-qb + root) / (2.0 * qa))
     return out, np.array([centre + scale * (foot + t * e) for t in ts])

@@ -23,7 +23,8 @@ import numpy as np
 from ..kernels import surfaces as ks
 
 __all__ = ["SurfaceTraits", "UnknownSurfaceKindError", "register", "unregister", "traits", "check_surface",
-           "power_of_two", "ANGLE", "LENGTH", "POINT", "AXIS", "NORMAL", "TRANSLATION", "SCALING", "GEOMETRIES", "FULL_TURN"]
+           "power_of_two", "ANGLE", "LENGTH", "POINT", "AXIS", "NORMAL", "TRANSLATION", "SCALING", "GEOMETRIES",
+           "FULL_TURN"]
 
 # --- vocabulary of the traits ----------------------------------------------------------------------------------
 #: Units of a surface parameter: an angle (radians, unit step 1) or a length (the user's unit, unit step = scale).

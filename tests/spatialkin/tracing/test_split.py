@@ -164,3 +164,53 @@ def test_may_split_is_necessary_and_cheap_to_refuse():
         placed, quads = args(a, b)
         assert not may_split(quads, 1.0)
         assert split_planes([(p.origin, p.rot, p.form) for p in placed], np.array(placed[0].origin), 1.0) is None
+
+
+def tangent_ruling_scene(rng, alpha=0.6, r=0.9):
+    """A cylinder (radius r) and a cone (half angle alpha) touching all along a ruling: the cone's apex on the
+    cylinder, its axis through the cylinder's axis at r / sin(alpha) from the apex (so the ruling through the apex
+    parallel to the cylinder's axis lies on both), in a random frame; and that ruling (point, direction)."""
+    rot, o = random_rotation(rng), rng.uniform(-2, 2, 3)
+    h = r / math.tan(alpha)
+    apex_local = np.array([r, 0.0, h])
+    axis_local = -apex_local / np.linalg.norm(apex_local)
+    e1 = np.cross(axis_local, [0.0, 1.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    cone_rot = rot @ np.column_stack([e1, np.cross(axis_local, e1), axis_local])
+    cylinder = sk.Cylinder(r, sk.Frame(o, rot), v_range=(-4.0 * r, 4.0 * r))
+    cone = sk.Cone(alpha, sk.Frame(o + rot @ apex_local, cone_rot), v_range=(0.2 * r, 4.0 * r))
+    return cylinder, cone, (o + rot @ apex_local, -rot[:, 2])
+
+
+def test_cone_touching_a_cylinder_along_a_ruling():
+    """A cone touching a cylinder all along a ruling (the general path's search cannot resolve a tangency along a
+    line in this placement: it ran out of its box budget, TopologyError): in closed form, in either order, the
+    ruling, clipped by both trims, as a segment of tangency, and an ellipse on both surfaces. Oracles: the ruling
+    (through the apex, along the cylinder's axis) and its ends on the cone's trim (v = 0.2 r and 4 r, so
+    t = v / cos(alpha)); the ellipse's length from its own plane's tilt (semi-axes r and r / cos of the tilt,
+    4 a E(1 - b^2 / a^2)); the brute-force grid oracle's samples all near the curves."""
+    from ssi_oracle import brute_force
+    from scipy.spatial import cKDTree
+    alpha, r = 0.6, 0.9
+    cylinder, cone, (apex, direction) = tangent_ruling_scene(np.random.default_rng(21), alpha, r)
+    for a, b in ((cylinder, cone), (cone, cylinder)):
+        curves = sk.intersect(a, b)
+        assert sorted(c.status for c in curves) == ["closed", "tangent"]
+        assert all(c.nfev == 0 and c.max_distance <= 1e-14 * r for c in curves)
+        segment = next(c for c in curves if c.status == "tangent")
+        ends = segment(np.array([0.0, segment.length]))
+        along = (ends - apex) @ direction
+        np.testing.assert_allclose(np.sort(along), np.array([0.2, 4.0]) * r / math.cos(alpha), rtol=1e-14)
+        assert np.abs(ends - apex - np.outer(along, direction)).max() <= 1e-14 * r
+        ellipse = next(c for c in curves if c.status == "closed")
+        assert len(ellipse.nodes) == 1                  # where it touches the ruling
+        node = ellipse.nodes[0]
+        assert np.linalg.norm(node - apex - ((node - apex) @ direction) * direction) <= 1e-7 * r
+        points = ellipse(np.linspace(0.0, ellipse.length, 400, endpoint=False))
+        normal = np.linalg.svd(points - points.mean(axis=0))[2][2]
+        cos_tilt = abs(normal @ cylinder.frame.rotation[:, 2])
+        major = r / cos_tilt
+        assert abs(ellipse.length - 4.0 * major * ellipe(1.0 - (r / major) ** 2)) <= 1e-12 * ellipse.length
+    samples = brute_force(cylinder, cone)["samples"]
+    dense = np.vstack([c(np.linspace(0.0, c.length, 4000)) for c in curves])
+    assert cKDTree(dense).query(samples)[0].max() <= 5e-3 * r

@@ -26,7 +26,7 @@ from .ode import COMPILED, BudgetExceeded, Event, System, Watch, integrate, step
 from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment, area_flag,
                        finite_bounds, newton_fixed, project_state, segment_start)
 from .status import outcome
-from .singular import APEX_GUARD, closes_within_jump, jump_across, take_jump
+from .singular import APEX_GUARD, closes_within_jump, jump_across, jump_past_edge, take_jump
 from .traits import traits
 from . import stages
 
@@ -304,6 +304,14 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                         if kind == "apex" else "singular point (branches cross or the surfaces touch)")
                 branch.status, branch.message = outcome("not_passed", what=what, s=s, point=point.tolist(),
                                                         sin=kc.degeneracy(y, a, b, 0.0, 0.0))
+                break
+            clipped = jump_past_edge(jump, a, b, bounds, settings.gap_tol)
+            if clipped is not None:              # the curve leaves a trimmed surface inside the jump: it ends there
+                jump, (k, j) = clipped
+                sign, y, point, tangent = take_jump(branch, seg, y, jump)
+                s = branch.segments[-1].s1
+                branch.status, branch.message = outcome("edge", edge=("u_min", "u_max", "v_min", "v_max")[j],
+                                                        surface="ab"[k], s=s)
                 break
             sign, y, point, tangent = take_jump(branch, seg, y, jump)
             s = branch.segments[-1].s1

@@ -12,7 +12,7 @@ from numpy.polynomial import legendre
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
 from .result import set_states
-from .segments import NEWTON_MAX_ITER, LinearStates, Segment, area_flag
+from .segments import NEWTON_MAX_ITER, LinearStates, Segment, area_flag, newton_fixed
 
 # --- named limits -------------------------------------------------------------------------------------
 #: A singular point (a node where branches cross, the apex of a spindle or horn torus or a cone) is passed by a
@@ -265,6 +265,47 @@ def take_jump(branch, seg, y_event, jump):
     kc.curve_frame(y_after, seg.a, seg.b, point, tangent)
     sign = 1.0 if float(np.dot(tangent, d)) > 0 else -1.0
     return sign, y_after.copy(), point, tangent
+
+
+#: An edge crossed this close to the node inside a jump (a fraction of the jump's length) is taken to pass through it
+#: (jump_past_edge).
+EDGE_AT_NODE = 1e-3
+
+
+def jump_past_edge(jump, a, b, bounds, gap_tol, near=EDGE_AT_NODE):
+    """The jump (jump_across's tuple) ended where the curve leaves a trimmed surface inside it, when it lands past
+    an edge (bounds: finite_bounds rows, in the charts a, b; past by more than the edge's slack): the landing state
+    is the curve's point on that edge (Newton with the edge parameter held, from the states' linear interpolation at
+    the edge), or, where that Newton fails (the edge through the node itself, where the surfaces touch), that
+    interpolated state; the jump's length is the arc to that point (its JumpArc's, through the node), or, where that
+    point lies within `near` x the jump's length of the node (an edge through or beside the node, where Newton
+    cannot tell the branches apart), the arc to the node: the end is then off the edge by at most the edge's
+    distance from the node. Returns (the shortened jump, (surface index, bound index)), or None when the jump lands
+    inside every trim."""
+    index, t_back, y_own, y_back, y_after, d, length, node, arc = jump
+    for k, j, idx, bound, lower, slack, _ in bounds:
+        past = (bound - y_after[idx]) if lower else (y_after[idx] - bound)
+        if not past > slack:
+            continue
+        run = y_after[idx] - y_back[idx]
+        if run == 0.0:
+            continue
+        w = min(max((bound - y_back[idx]) / run, 0.0), 1.0)
+        guess = y_back + w * (y_after - y_back)
+        guess[idx] = bound
+        snapped = newton_fixed(a, b, guess, idx, gap_tol)
+        y_edge = guess if snapped is None else snapped
+        p_edge, t = np.empty(3), np.empty(3)
+        kc.curve_frame(y_edge, a, b, p_edge, t)
+        if arc is not None and float(np.linalg.norm(p_edge - node)) <= near * length:
+            reach = arc.arcs[0]                       # the edge through the node: the arc to the node
+        elif arc is not None and arc.points is not None:
+            reach = arc.arc_of_point(p_edge)
+        else:
+            reach = w * length
+        reach = min(max(reach, 0.0), length)
+        return (index, t_back, y_own, y_back, y_edge, d, reach, node, arc), (k, j)
+    return None
 
 
 def closes_within_jump(jump, start, direction, min_cosine):

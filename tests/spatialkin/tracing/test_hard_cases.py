@@ -195,3 +195,26 @@ def test_area_element_is_1_lipschitz_in_its_parameter(kind, size, scale):
         cos = math.cos(size)
         expected = np.minimum(rho * cos, 1.0 / np.maximum(rho * cos, 1e-300))
         np.testing.assert_allclose(values, expected, rtol=1e-12, atol=1e-15)
+
+
+def test_viviani_trimmed_at_its_node():
+    """Viviani's curve (a sphere of radius 2r through the axis of a cylinder of radius r) with the cylinder trimmed
+    at the height of its node: the upper lobe, from the node to the node. The jump across the node used to land
+    beyond the trim (7.1e-4 r outside, 1.4e-3 r too long); now it ends at the edge: in either order the curve lies
+    inside the trim to round-off, and its length is the lobe's, 2 r int_0^pi sqrt(1 + cos^2 u) du (scipy.quad),
+    to 1e-9."""
+    from scipy.integrate import quad
+    r = 0.7
+    rot = sk.rotation_about((0.3, 0.5, 1.0), 0.6)
+    o = np.array([0.2, -0.1, 0.4])
+    sphere = sk.Sphere(2 * r, sk.Frame(o, rot))
+    cylinder = sk.Cylinder(r, sk.Frame(o + r * rot[:, 0], rot), v_range=(0.0, 3 * r))
+    lobe = 2 * r * quad(lambda u: math.sqrt(1 + math.cos(u) ** 2), 0, math.pi, epsabs=1e-13, epsrel=1e-13)[0]
+    for a, b in ((sphere, cylinder), (cylinder, sphere)):
+        curves = sk.intersect(a, b)
+        assert len(curves) == 1 and curves[0].status == "boundary"
+        c = curves[0]
+        height = (c(np.linspace(0.0, c.length, 4001)) - cylinder.frame.origin) @ rot[:, 2]
+        assert height.min() >= -1e-15 * r
+        assert abs(c.length - lobe) <= 1e-9 * lobe
+        assert c.max_distance <= 1e-14 * r

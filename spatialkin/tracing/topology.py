@@ -657,16 +657,20 @@ def classify(loose, topo, scale, keep):
             continue
         big = max(abs(lam[0]), abs(lam[1]), 1e-300)
         nonzero = np.abs(lam) > EIGEN_RATIO * big
-        if not keep(at):
-            continue
+        inside = keep(at)
         if np.all(nonzero) and lam[0] * lam[1] > 0:
+            if not inside:
+                continue
             start = tiny_loop_start(reader, crit, lam, vec)
             if start is not None:
                 topo.seeds.append(start)
             else:
                 topo.contacts.append(at)
         elif np.all(nonzero):
-            topo.nodes.append(at)
+            # a node: its arms seed the branches, each where it lies inside the trims (the node itself may lie
+            # just outside an edge that the branches cross beside it)
+            if inside:
+                topo.nodes.append(at)
             ratio = math.sqrt(-lam[0] / lam[1])
             d = reader.s.derivatives(*crit)
             for w in (vec[:, 0] + ratio * vec[:, 1], vec[:, 0] - ratio * vec[:, 1]):
@@ -675,7 +679,7 @@ def classify(loose, topo, scale, keep):
                     arm = reader.s.point(*(crit + sense * step * w))
                     if keep(arm):
                         topo.seeds.append(arm)
-        else:
+        elif inside:
             topo.seeds.append(at)
 
 

@@ -214,3 +214,28 @@ def test_cone_touching_a_cylinder_along_a_ruling():
     samples = brute_force(cylinder, cone)["samples"]
     dense = np.vstack([c(np.linspace(0.0, c.length, 4000)) for c in curves])
     assert cKDTree(dense).query(samples)[0].max() <= 5e-3 * r
+
+
+def test_general_path_finds_both_arcs_beside_an_outside_node(monkeypatch):
+    """Equal cylinders with crossing axes, a's trim passing just beside both nodes (found by review): both ellipses
+    leave through that edge next to a node that lies outside the trim. The topology stage used to drop a node's arms
+    with the node (outside the trim), so one arc had no seed and the general path returned one arc of two. Now it
+    seeds the arms inside: the general path (closed forms off) finds both, their lengths the closed form's to 1e-7
+    (an end taken through the node, beside the edge), and the closed form itself both, exactly on the surfaces."""
+    a = sk.Cylinder(0.0012617220940868451, sk.Frame(
+        [-0.0020201759091821115, 0.003413274975558246, -0.0017599610186184796],
+        [[0.4782520415715582, -0.30479982461043276, -0.8236334449559988],
+         [-0.630693973089143, 0.5334332920280015, -0.563625793647878],
+         [0.6111465430170312, 0.7890158362628843, 0.06288014857420104]]),
+        v_range=(-0.0006467355906349223, 0.004400152694542784))
+    b = sk.Cylinder(0.0012617220940868451, sk.Frame(
+        [-0.0015430859494380176, 0.0037077011455990913, -0.0017272423646580394],
+        [[-0.6721605985872134, 0.5634076663551795, -0.4803872721035495],
+         [-0.21025951735873155, -0.7673538478988253, -0.605771415201262],
+         [-0.7099232811134962, -0.3061696810709337, 0.6342468457359253]]))
+    exact = sorted(c.length for c in sk.intersect(a, b))
+    assert len(exact) == 2
+    for first, second in ((a, b), (b, a)):
+        found = sorted(c.length for c in traced(first, second, monkeypatch))
+        assert len(found) == 2
+        np.testing.assert_allclose(found, exact, rtol=1e-7)

@@ -26,6 +26,7 @@ from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, bas
 from .exact import SampledResult, exact_curve
 from .placement import SAME
 from .result import in_sk_order
+from .segments import EDGE_NAMES
 from .split import may_split, split_planes
 from .status import BOUNDARY, CLOSED, open_outcome, outcome
 from .topology import Topology
@@ -50,8 +51,6 @@ PARABOLA_CHECK = 0.1
 MAX_LENGTH_SHARE = 0.5
 #: Topology.mode of the curves found here.
 MODE = "closed_form"
-#: The edges of a trim, in the order of the bounds in a surface's data.
-EDGES = ("u_min", "u_max", "v_min", "v_max")
 #: The quadrics a plane is cut with here.
 QUADRICS = ("sphere", "cylinder", "cone")
 #: Points per ellipse of a split pair checked on both surfaces (exact distance functions) before it is taken.
@@ -581,5 +580,5 @@ def arc_message(ends, length):
     if ends is None:
         return outcome("closed", s=length)[1]
     (k0, j0), (k1, j1) = ends
-    return open_outcome(BOUNDARY, outcome("edge", edge=EDGES[j0], surface="ab"[k0], s=0.0)[1],
-                        BOUNDARY, outcome("edge", edge=EDGES[j1], surface="ab"[k1], s=length)[1])[1]
+    return open_outcome(BOUNDARY, outcome("edge", edge=EDGE_NAMES[j0], surface="ab"[k0], s=0.0)[1],
+                        BOUNDARY, outcome("edge", edge=EDGE_NAMES[j1], surface="ab"[k1], s=length)[1])[1]

@@ -23,8 +23,8 @@ from ..kernels import branch_ode as kb
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
 from .ode import COMPILED, BudgetExceeded, Event, System, Watch, integrate, step_points
-from .segments import (EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment, area_flag,
-                       finite_bounds, newton_fixed, project_state, segment_start)
+from .segments import (EDGE_NAMES, EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment,
+                       area_flag, finite_bounds, newton_fixed, project_state, segment_start)
 from .status import outcome
 from .singular import APEX_GUARD, closes_within_jump, jump_across, jump_past_edge, take_jump
 from .traits import traits
@@ -310,8 +310,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 jump, (k, j) = clipped
                 sign, y, point, tangent = take_jump(branch, seg, y, jump)
                 s = branch.segments[-1].s1
-                branch.status, branch.message = outcome("edge", edge=("u_min", "u_max", "v_min", "v_max")[j],
-                                                        surface="ab"[k], s=s)
+                branch.status, branch.message = outcome("edge", edge=EDGE_NAMES[j], surface="ab"[k], s=s)
                 break
             sign, y, point, tangent = take_jump(branch, seg, y, jump)
             s = branch.segments[-1].s1
@@ -342,7 +341,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if kind == "boundary":
             k, j = info
             name = "ab"[k]
-            which = ("u_min", "u_max", "v_min", "v_max")[j]
+            which = EDGE_NAMES[j]
             branch.status, branch.message = outcome("edge", edge=which, surface=name, s=s)
             edge_state = y.copy()
             edge_state[2 * k + j // 2] = (a, b)[k][ks.BOUNDS + j]

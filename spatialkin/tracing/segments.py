@@ -18,6 +18,8 @@ from .traits import traits
 #: A re-charting surface (a sphere) is re-charted when |cos(latitude)| falls below this (latitude beyond 60
 #: degrees).
 POLE_GUARD = 0.5
+#: The edges of a trim, in the order of the bounds in a surface's data (finite_bounds rows' j).
+EDGE_NAMES = ("u_min", "u_max", "v_min", "v_max")
 #: A parameter this close to a bound (relative to the bound, or to its range where that is below 1: a length
 #: parameter of a small scene) counts as on the edge.
 EDGE_TOL = 1e-12

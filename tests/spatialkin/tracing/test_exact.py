@@ -217,7 +217,8 @@ def test_messages_made_on_first_access():
     exact.event_message) are those the status table gives for its ends or its event (outcome and open_outcome, the
     oracle kept here), read first or after pickling; a SampledResult takes a message or its maker, not both."""
     import pickle
-    from spatialkin.tracing.closed import EDGES, arc_message
+    from spatialkin.tracing.closed import arc_message
+    from spatialkin.tracing.segments import EDGE_NAMES as EDGES
     from spatialkin.tracing.exact import SampledResult, event_message
     from spatialkin.tracing.status import BOUNDARY, open_outcome, outcome
     seen = set()

@@ -190,10 +190,10 @@ def run(quick=False, echo=print):
     rows = kind_rows(quick=quick, echo=echo)
     for line in profile_table(rows) + [""]:
         echo(line)
-    special = kind_rows(quick=quick, echo=echo, cases=special_cases())
     if baselines.occ_available():
         for line in occ_table(rows, QUICK_CALLS if quick else CALLS):
             echo(line)
+        special = kind_rows(quick=quick, echo=echo, cases=special_cases())
         echo("special placements (not in the median above): " + "; ".join(
             f"{r.kind}: ours {1e3 * r.ours:.3f} ms, OCC {1e3 * r.occ:.3f} ms, OCC/ours {r.ratio:.2f}, "
             f"errors {r.our_error:.1e} / {r.occ_error:.1e}, curves {r.our_curves}/{r.occ_curves}" for r in special))

@@ -210,7 +210,7 @@ def split_conics(placed, graze, settings, topo):
         return None
     surfaces = (placed[0].surface, placed[1].surface)
     curves += [exact_curve(surfaces, settings.tolerance, segment=ends, topology=topo) for ends in segments]
-    return in_sk_order(curves, lambda c: c.sol.first_point() if hasattr(c.sol, "first_point") else c.sol.p0)
+    return in_sk_order(curves, lambda c: c.sol.first_point())
 
 
 def tangent_ruling(placed, normal, point, graze):

@@ -145,6 +145,10 @@ class ExactSolution(CurveSolution):
         """The exact points (N, 3) at the knots (a new array)."""
         return self.points_at(self.knots)
 
+    def first_point(self):
+        """The first stored point (3,), without making the others (the same bits as samples()'s first row)."""
+        return self._samples[0][0] if self._samples is not None else self.points_at(self.knots[:1])[0]
+
     def at(self, s):
         """(points (M, 3), unit tangents (M, 3)) at the wrapped arc lengths s (M,)."""
         raise NotImplementedError

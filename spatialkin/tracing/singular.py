@@ -12,7 +12,7 @@ from numpy.polynomial import legendre
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
 from .result import set_states
-from .segments import NEWTON_MAX_ITER, LinearStates, Segment, area_flag, newton_fixed
+from .segments import NEWTON_MAX_ITER, LinearStates, Segment, newton_fixed
 
 # --- named limits -------------------------------------------------------------------------------------
 #: A singular point (a node where branches cross, the apex of a spindle or horn torus or a cone) is passed by a
@@ -86,7 +86,7 @@ def jump_across(branch, seg, t_event, y_event, settings):
     one). None if no point of the same branch is found.
     """
     a, b = seg.a, seg.b
-    flags = (area_flag(a, settings.scale), area_flag(b, settings.scale))
+    flags = seg.area
     s_event = seg.s0 + t_event
     h = JUMP_LENGTH * settings.scale
     p_event, p_back, t = np.empty(3), np.empty(3), np.empty(3)

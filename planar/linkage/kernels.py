@@ -152,10 +152,10 @@ def linkage_events(t, y, args, eargs, active, out):
 
 @jit
 def linkage_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
-                   modes, args, eargs):
+                   modes, args, eargs, method):
     """spatialkin.kernels.rk.advance bound to linkage_fun and linkage_events."""
     return advance(linkage_fun, linkage_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
-                   max_steps, max_nfev, g, active, directions, modes)
+                   max_steps, max_nfev, g, active, directions, modes, method)
 
 
 # --- J_q by block elimination of the explicit joints -----------------------------------------------------------

@@ -1,5 +1,5 @@
 """Following a one-parameter family F(y) = 0 along its input coordinate, by arc length (solve_ivp with the
-compiled engine, spatialkin.tracing.ode.CompiledRK45, or any solve_ivp method, with the same jitted events).
+compiled engine, spatialkin.tracing.ode.CompiledDOP853 or CompiledRK45, or any solve_ivp method, with the same jitted events).
 
 A mechanism's configuration curve: y holds the unknowns and the input (a crank angle). The curve is traced
 from an assembled state in the direction where the input grows, over one period of the input (a full
@@ -155,8 +155,8 @@ def trace_cycle(kernels, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL
     rtol : float
         Relative and absolute tolerance of the integration.
     method : str
-        'compiled' (spatialkin.tracing.ode.CompiledRK45: scipy RK45's steps in compiled code) or a solve_ivp
-        method.
+        'compiled' (spatialkin.tracing.ode.CompiledDOP853: scipy DOP853's steps in compiled code), 'compiled-rk45'
+        (CompiledRK45: RK45's) or a solve_ivp method.
 
     Returns
     -------

@@ -149,7 +149,7 @@ def branch_events(t, y, args, ep, active, out):
 
 @jit
 def branch_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
-                   modes, args, ep):
+                   modes, args, ep, method):
     """spatialkin.kernels.rk.advance bound to branch_fun and branch_events."""
     return rk.advance(branch_fun, branch_events, args, ep, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
-                      max_steps, max_nfev, g, active, directions, modes)
+                      max_steps, max_nfev, g, active, directions, modes, method)

@@ -85,10 +85,10 @@ def rssr_events(t, y, args, eargs, active, out):
 
 @jit
 def rssr_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
-                   modes, args, eargs):
+                   modes, args, eargs, method):
     """spatialkin.kernels.rk.advance bound to rssr_fun and rssr_events."""
     return advance(rssr_fun, rssr_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
-                   max_steps, max_nfev, g, active, directions, modes)
+                   max_steps, max_nfev, g, active, directions, modes, method)
 
 
 @jit

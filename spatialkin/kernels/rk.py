@@ -1,11 +1,14 @@
-"""The one compiled Runge–Kutta engine: Dormand–Prince 5(4) with scipy RK45's steps, stopping at events.
+"""The one compiled Runge–Kutta engine: Dormand–Prince 5(4) or 8(5,3) with scipy's steps, stopping at events.
 
 Every curve of the library (intersection branches, continuation of mechanisms) is integrated by
-``solve_ivp(..., method=spatialkin.tracing.ode.CompiledRK45)``; that OdeSolver calls ``advance`` here, which
-takes many RK45 steps inside compiled code and returns after a step over which one of the system's events
-crosses zero in its direction (located on the step's dense output as solve_ivp locates events for its own
-methods) or reaches a level. The tableau, error norm, step-size control, initial step and dense output are
-scipy's (scipy.integrate._ivp.rk.RK45, common.select_initial_step): the steps are RK45's, to round-off.
+``solve_ivp(..., method=spatialkin.tracing.ode.CompiledRK45)`` (or ``CompiledDOP853``); that OdeSolver calls
+``advance`` here, which takes many steps of its method (RK45 or DOP853) inside compiled code and returns after a
+step over which one of the system's events crosses zero in its direction (located on the step's dense output as
+solve_ivp locates events for its own methods) or reaches a level. The tableaus, error norms, step-size control,
+initial step and dense output are scipy's (scipy.integrate._ivp.rk.RK45 and DOP853, common.select_initial_step):
+the steps are scipy's, to round-off. Every step's dense output is held as a polynomial in x = (t - t_old) / h,
+``y_old + h (q[0] x + q[1] x^2 + ...)``: RK45's own (4 columns), DOP853's (7 columns) rewritten from scipy's
+Horner form in x and 1 - x (the same polynomial, to round-off).
 
 A system supplies two jitted functions, bound at compile time by a small jitted wrapper in its own kernel
 module (numba caches a kernel only when the functions it calls are globals, not values):
@@ -17,9 +20,12 @@ module (numba caches a kernel only when the functions it calls are globals, not 
 References
 ----------
 Dormand, J. R., Prince, P. J., "A family of embedded Runge-Kutta formulae", J. Comput. Appl. Math. 6 (1980);
-scipy.integrate._ivp.rk.RK45 and common.select_initial_step (the coefficients and the control copied here).
+Hairer, E., Norsett, S. P., Wanner, G., "Solving Ordinary Differential Equations I", Sec. II.10 (DOP853);
+scipy.integrate._ivp.rk.RK45, DOP853 and common.select_initial_step (RK45's coefficients and the control copied
+here, DOP853's read from scipy's dop853_coefficients).
 """
 import numpy as np
+from scipy.integrate._ivp import dop853_coefficients as _dop853   # scipy's DOP853 tableau (no public name)
 
 from .._jit import jit
 
@@ -43,16 +49,25 @@ TERMINAL = 1
 LEVEL_BEFORE = 2
 #: A level: the integration ends at the end of the first step that reaches it (the step kept).
 LEVEL_AFTER = 3
-#: TERMINAL and LEVEL_BEFORE, the event also probed at PROBES interior points of each step's dense output: a
+#: TERMINAL and LEVEL_BEFORE, the event also probed at PROBES[method] interior points of each step's dense output: a
 #: crossing out and back within one step (a curve grazing out of a trim edge for a fraction of a step) is found
-#: when it spans more than about 1/(PROBES + 1) of the step. Only for events 1-Lipschitz in the state's largest
+#: when it spans more than about 1/(PROBES[method] + 1) of the step. Only for events 1-Lipschitz in the state's largest
 #: component (a parameter against a bound; a relative area element, tests/spatialkin/tracing/test_hard_cases.py):
 #: a step is probed only where such an event's value at an end is within the step's reach (step_reach: a bound on
 #: how far any component of the dense output moves within the step).
 TERMINAL_PROBED = 4
 LEVEL_BEFORE_PROBED = 5
-#: Interior points of a step at which probed events are evaluated (evenly spaced).
-PROBES = 8
+#: Interior points of a step at which probed events are evaluated (evenly spaced), per method: DOP853's steps are
+#: about four times RK45's at the same rtol, so about four times as many probes keep their spacing.
+PROBES = (8, 32)
+
+# --- the methods (advance's `method`) -----------------------------------------------------------------------
+#: Dormand–Prince 5(4), scipy's RK45.
+RK45 = 0
+#: Dormand–Prince 8(5,3), scipy's DOP853.
+DOP853 = 1
+#: Columns of a step's dense-output polynomial (q), per method.
+DENSE_COLUMNS = (4, 7)
 
 # --- RK45 (Dormand–Prince) coefficients, as in scipy.integrate._ivp.rk.RK45 ---------------------------------
 C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
@@ -80,6 +95,30 @@ MAX_FACTOR = 10.0
 ERROR_EXPONENT = -1.0 / 5.0
 #: Order of the error estimator (scipy's select_initial_step takes it).
 ERROR_ORDER = 4
+
+# --- DOP853 coefficients, scipy's (dop853_coefficients) -------------------------------------------------------
+#: Stages of a step (the 13th, f at the step's end, is the next step's first), and the extended tableau's rows
+#: (three more stages for the dense output).
+DOP853_STAGES = 12
+DOP853_EXTENDED = 16
+A8 = np.ascontiguousarray(_dop853.A, dtype=float)            # (16, 16): rows 13-15 the dense output's stages
+C8 = np.ascontiguousarray(_dop853.C, dtype=float)            # (16,)
+B8 = np.ascontiguousarray(_dop853.B, dtype=float)            # (12,)
+E3 = np.ascontiguousarray(_dop853.E3, dtype=float)           # (13,)
+E5 = np.ascontiguousarray(_dop853.E5, dtype=float)           # (13,)
+D8 = np.ascontiguousarray(_dop853.D, dtype=float)            # (4, 16)
+#: scipy's Dop853DenseOutput is y_old + x (F0 + (1-x)(F1 + x (F2 + (1-x)(F3 + x (F4 + (1-x)(F5 + x F6)))))); row
+#: m of this matrix gives the coefficient of x^(m+1) of that polynomial from F0..F6 (integers, exact).
+DOP853_POWERS = np.array([
+    [1, 1, 0, 0, 0, 0, 0],
+    [0, -1, 1, 1, 0, 0, 0],
+    [0, 0, -1, -2, 1, 1, 0],
+    [0, 0, 0, 1, -2, -3, 1],
+    [0, 0, 0, 0, 1, 3, -3],
+    [0, 0, 0, 0, 0, -1, 3],
+    [0, 0, 0, 0, 0, 0, -1]], dtype=float)
+DOP853_ERROR_EXPONENT = -1.0 / 8.0
+DOP853_ERROR_ORDER = 7
 
 
 @jit
@@ -112,20 +151,21 @@ def copy_into(out, x):
 
 @jit
 def dense_state(t_old, h, y_old, q, t, out):
-    """RK45 dense output on one step: out = y_old + h Q p(x), x = (t - t_old)/h, p = (x, x^2, x^3, x^4)."""
+    """A step's dense output: out = y_old + h Q p(x), x = (t - t_old)/h, p = (x, x^2, ..., x^c), Q (n, c)."""
     x = (t - t_old) / h
-    p0 = x
-    p1 = x * x
-    p2 = p1 * x
-    p3 = p2 * x
     for i in range(out.shape[0]):
-        out[i] = y_old[i] + h * (q[i, 0] * p0 + q[i, 1] * p1 + q[i, 2] * p2 + q[i, 3] * p3)
+        p = x
+        acc = q[i, 0] * p
+        for m in range(1, q.shape[1]):
+            p *= x
+            acc += q[i, m] * p
+        out[i] = y_old[i] + h * acc
 
 
 @jit
 def dense_into(ts, ys, hs, qs, t, out):
     """The dense state at time t into out (n,), from stored steps ts (m,), ys (m, n), their lengths hs (m - 1,)
-    and qs (m - 1, n, 4); outside [ts[0], ts[-1]] the first or last step's polynomial is extended (as scipy's
+    and qs (m - 1, n, c); outside [ts[0], ts[-1]] the first or last step's polynomial is extended (as scipy's
     OdeSolution)."""
     m = ts.shape[0]
     if m < 2:
@@ -215,7 +255,10 @@ def step_reach(step, q):
     """Bound on |y_i(t) - y_i(t_old)| over the step, every component i: |step| x max_i sum_m |q[i, m]|."""
     reach = 0.0
     for i in range(q.shape[0]):
-        reach = max(reach, abs(q[i, 0]) + abs(q[i, 1]) + abs(q[i, 2]) + abs(q[i, 3]))
+        total = abs(q[i, 0])
+        for m in range(1, q.shape[1]):
+            total += abs(q[i, m])
+        reach = max(reach, total)
     return abs(step) * reach
 
 
@@ -245,38 +288,91 @@ def is_level(mode):
     return mode == LEVEL_BEFORE or mode == LEVEL_AFTER or mode == LEVEL_BEFORE_PROBED
 
 
+@jit
+def step_speed(q):
+    """Bound on |dy_i/dt| over the step, every component i: the dense output's derivative is
+    sum_m (m + 1) q[i, m] x^m with 0 <= x <= 1 (dense_state), so max_i sum_m (m + 1) |q[i, m]|, widened by 1e-12
+    (relative) over its round-off."""
+    speed = 0.0
+    for i in range(q.shape[0]):
+        total = abs(q[i, 0])
+        for m in range(1, q.shape[1]):
+            total += (m + 1) * abs(q[i, m])
+        speed = max(speed, total)
+    return speed * (1.0 + 1e-12)
+
+
+@jit
+def keeps_sign(g, t_from, t, speed):
+    """True when an event of value g at t_from, 1-Lipschitz in the state's largest component (its rate at most
+    speed, step_speed), cannot be zero between t_from and t: it keeps g's sign there."""
+    return speed * abs(t - t_from) < abs(g)
+
+
 @jit(inline="always")
-def probe_level(events, args, eargs, probed, values, t_old, step, y_old, q, directions, modes, out):
-    """The first probed level event (LEVEL_BEFORE_PROBED, mask `probed`) reached at an interior probe of the step,
-    or -1."""
-    for k in range(1, PROBES + 1):
-        tk = t_old + step * k / (PROBES + 1)
+def probe_level(events, args, eargs, probed, values, t_old, step, y_old, q, directions, modes, probes, g_lo, g_hi,
+                last, speed, out):
+    """The first probed level event (LEVEL_BEFORE_PROBED, mask `probed`; values g_lo, g_hi at the step's ends, not
+    reached at its end) reached at one of `probes` evenly spaced interior points of the step, or -1. A point is
+    evaluated only where some probed event may have changed sign since the last point evaluated and may still
+    change it before the end (keeps_sign): elsewhere each keeps the sign of one of those values, reached at
+    neither, so the answer is that of evaluating every point. last (n_events,) is a work array."""
+    t_last = t_old
+    t_end = t_old + step
+    for i in range(g_lo.shape[0]):
+        last[i] = g_lo[i]
+    for k in range(1, probes + 1):
+        tk = t_old + step * k / (probes + 1)
+        unsettled = False
+        due = False
+        for i in range(g_lo.shape[0]):
+            if probed[i] and not keeps_sign(g_hi[i], t_end, tk, speed):
+                unsettled = True
+                due = due or not keeps_sign(last[i], t_last, tk, speed)
+        if not unsettled:
+            return -1
+        if not due:
+            continue
         dense_state(t_old, step, y_old, q, tk, out)
         events(tk, out, args, eargs, probed, values)
         i = level_reached(values, probed, directions, modes, LEVEL_BEFORE_PROBED)
         if i >= 0:
             return i
+        t_last = tk
+        for i in range(g_lo.shape[0]):
+            last[i] = values[i]
     return -1
 
 
 @jit(inline="always")
-def probe_crossing(events, args, eargs, only, values, index, t_old, step, y_old, q, g_lo, direction, out):
-    """(lo, hi, g_lo, g_hi) of the first interval between interior probes of the step over which event `index`
-    crosses zero in its direction (its value g_lo at the step's start), or lo > hi when none does."""
+def probe_crossing(events, args, eargs, only, values, index, t_old, step, y_old, q, g_lo, g_hi, direction, probes,
+                   speed, out):
+    """(lo, hi, g_lo, g_hi) of the first interval between `probes` evenly spaced interior points of the step (and
+    its ends) over which event `index` (values g_lo, g_hi at the step's ends) crosses zero in its direction, or
+    lo > hi when none does. Points where the event provably keeps the sign of the last value evaluated are
+    skipped (keeps_sign); from the first point where it provably keeps g_hi's sign to the end, the last interval
+    runs to the step's end."""
     t_lo = t_old
-    for k in range(1, PROBES + 1):
-        tk = t_old + step * k / (PROBES + 1)
+    t_end = t_old + step
+    for k in range(1, probes + 1):
+        tk = t_old + step * k / (probes + 1)
+        if keeps_sign(g_hi, t_end, tk, speed):
+            break
+        if keeps_sign(g_lo, t_lo, tk, speed):
+            continue
         dense_state(t_old, step, y_old, q, tk, out)
         events(tk, out, args, eargs, only, values)
         if crosses(g_lo, values[index], direction):
             return t_lo, tk, g_lo, values[index]
         t_lo, g_lo = tk, values[index]
+    if t_lo > t_old and crosses(g_lo, g_hi, direction):
+        return t_lo, t_end, g_lo, g_hi
     return 1.0, 0.0, 0.0, 0.0
 
 
 @jit(inline="always")
-def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol):
-    """scipy's select_initial_step for an error estimator of order ERROR_ORDER (forward in t)."""
+def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol, order):
+    """scipy's select_initial_step for an error estimator of the given order (forward in t)."""
     n = y0.shape[0]
     scale = np.empty(n)
     for i in range(n):
@@ -299,18 +395,86 @@ def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol):
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
-        h1 = (0.01 / max(d1, d2)) ** (1.0 / (ERROR_ORDER + 1))
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
     return min(100.0 * h0, h1, t_bound - t0, max_step)
 
 
 @jit(inline="always")
+def rk45_attempt(fun, args, t, t_new, step, y, k, y_new, stage, err, scale, rtol, atol):
+    """One RK45 step of length step from (t, y), k[0] = f there: the stages into k, the new state into y_new (f
+    there into k[6]); returns scipy RK45's scaled error norm."""
+    for s in range(1, 6):                                   # the Dormand–Prince stages
+        combine(stage, y, step, A[s], k, s)
+        fun(t + C[s] * step, stage, args, k[s])
+    combine(y_new, y, step, B, k, 6)
+    fun(t_new, y_new, args, k[6])
+    combine(err, None, step, E, k, 7)
+    for i in range(y.shape[0]):
+        scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+    return rms(err, scale)
+
+
+@jit(inline="always")
+def dop853_attempt(fun, args, t, t_new, step, y, k, y_new, stage, scale, rtol, atol):
+    """One DOP853 step of length step from (t, y), k[0] = f there: the stages into k, the new state into y_new (f
+    there into k[DOP853_STAGES]); returns scipy DOP853's error norm (its 5th- and 3rd-order estimates)."""
+    for s in range(1, DOP853_STAGES):
+        combine(stage, y, step, A8[s], k, s)
+        fun(t + C8[s] * step, stage, args, k[s])
+    combine(y_new, y, step, B8, k, DOP853_STAGES)
+    fun(t_new, y_new, args, k[DOP853_STAGES])
+    n = y.shape[0]
+    err5 = 0.0
+    err3 = 0.0
+    for i in range(n):
+        scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+        e5 = 0.0
+        e3 = 0.0
+        for j in range(DOP853_STAGES + 1):
+            e5 += E5[j] * k[j, i]
+            e3 += E3[j] * k[j, i]
+        e5 /= scale[i]
+        e3 /= scale[i]
+        err5 += e5 * e5
+        err3 += e3 * e3
+    if err5 == 0.0 and err3 == 0.0:
+        return 0.0
+    return abs(step) * err5 / np.sqrt((err5 + 0.01 * err3) * n)
+
+
+@jit(inline="always")
+def dop853_dense(fun, args, t, step, y, y_new, k, stage, f, q):
+    """A DOP853 step's dense output into q (n, 7) (dense_state's form): its three extra stages into k, then scipy's
+    coefficients F (Dop853DenseOutput; f a work array (7,)) rewritten in powers of x."""
+    for s in range(DOP853_STAGES + 1, DOP853_EXTENDED):
+        combine(stage, y, step, A8[s], k, s)
+        fun(t + C8[s] * step, stage, args, k[s])
+    for i in range(y.shape[0]):
+        delta = y_new[i] - y[i]
+        f[0] = delta
+        f[1] = step * k[0, i] - delta
+        f[2] = 2.0 * delta - step * (k[DOP853_STAGES, i] + k[0, i])
+        for r in range(4):
+            acc = 0.0
+            for j in range(DOP853_EXTENDED):
+                acc += D8[r, j] * k[j, i]
+            f[3 + r] = step * acc
+        for m in range(7):
+            acc = 0.0
+            for r in range(7):
+                acc += DOP853_POWERS[m, r] * f[r]
+            q[i, m] = acc / step
+
+
+@jit(inline="always")
 def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev,
-            g, active, directions, modes):
-    """RK45 steps from (t, y, f = fun(t, y)) with proposed step h towards t_bound, stopping at events.
+            g, active, directions, modes, method):
+    """Steps of `method` (RK45 or DOP853) from (t, y, f = fun(t, y)) with proposed step h towards t_bound,
+    stopping at events.
 
     Returns at t_bound, after max_steps steps, after a step over which active events cross zero in their
     directions (each crossing located on the step's dense output, as solve_ivp locates events; at a terminal
-    one the step is cut there; TERMINAL_PROBED also at PROBES interior points of a step within reach), where a
+    one the step is cut there; TERMINAL_PROBED also at PROBES[method] interior points of a step within reach), where a
     level event is reached (modes: LEVEL_BEFORE, LEVEL_AFTER; LEVEL_BEFORE_PROBED probed likewise), when the step
     size falls below the round-off floor, or when more than max_nfev evaluations were spent. With fresh, f is
     computed first, and h <= 0 asks for scipy's initial step.
@@ -331,6 +495,8 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         direction in which it is reached.
     modes : ndarray (n_events,) of int
         CROSSING, TERMINAL, LEVEL_BEFORE, LEVEL_AFTER, TERMINAL_PROBED or LEVEL_BEFORE_PROBED.
+    method : int
+        RK45 or DOP853.
 
     Returns
     -------
@@ -345,7 +511,7 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
     ts : ndarray (m,)
         Step points, ts[0] the start (the last one a terminal event's time).
     ys : ndarray (m, n)
-    hs, qs : ndarray (m - 1,), (m - 1, n, 4)
+    hs, qs : ndarray (m - 1,), (m - 1, n, DENSE_COLUMNS[method])
         Each step's length and dense-output coefficients (dense_state; the last step's polynomial may reach
         past a terminal event).
     hits : ndarray (k,) of int
@@ -359,7 +525,7 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
     ts = np.empty(max_steps + 1)
     ys = np.empty((max_steps + 1, n))
     hs = np.empty(max_steps)
-    qs = np.empty((max_steps, n, 4))
+    qs = np.empty((max_steps, n, DENSE_COLUMNS[method]))
     hits = np.empty(ne, dtype=np.int64)
     hit_ts = np.empty(ne)
     hit_ys = np.empty((ne, n))
@@ -374,14 +540,19 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         fun(t, y, args, f)
         nfev += 1
         if h <= 0.0:
-            h = initial_step(fun, args, t, y, f, t_bound, max_step, rtol, atol)
+            h = initial_step(fun, args, t, y, f, t_bound, max_step, rtol, atol,
+                             DOP853_ERROR_ORDER if method == DOP853 else ERROR_ORDER)
             nfev += 1
-    k = np.empty((7, n))
+    k = np.empty((DOP853_EXTENDED if method == DOP853 else 7, n))
+    last = DOP853_STAGES if method == DOP853 else 6             # the row of k holding f at the step's end
+    exponent = DOP853_ERROR_EXPONENT if method == DOP853 else ERROR_EXPONENT
     y_new = np.empty(n)
     stage = np.empty(n)
     err = np.empty(n)
+    coefficients = np.empty(7)
     scale = np.empty(n)
     g_new = np.empty(g.shape[0])
+    g_last = np.empty(g.shape[0])
     probed = np.zeros(ne, dtype=np.bool_)               # the probed level events
     any_probed = False
     for i in range(ne):
@@ -407,45 +578,47 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
                 t_new = t_bound
             step = t_new - t
             copy_into(k[0], f)
-            for s in range(1, 6):                               # the Dormand–Prince stages
-                combine(stage, y, step, A[s], k, s)
-                fun(t + C[s] * step, stage, args, k[s])
-            combine(y_new, y, step, B, k, 6)
-            fun(t_new, y_new, args, k[6])
-            nfev += 6
-            combine(err, None, step, E, k, 7)
-            for i in range(n):
-                scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
-            error_norm = rms(err, scale)
+            if method == DOP853:
+                error_norm = dop853_attempt(fun, args, t, t_new, step, y, k, y_new, stage, scale, rtol, atol)
+                nfev += DOP853_STAGES
+            else:
+                error_norm = rk45_attempt(fun, args, t, t_new, step, y, k, y_new, stage, err, scale, rtol, atol)
+                nfev += 6
             if error_norm < 1.0:
                 if error_norm == 0.0:
                     factor = MAX_FACTOR
                 else:
-                    factor = min(MAX_FACTOR, SAFETY * error_norm ** ERROR_EXPONENT)
+                    factor = min(MAX_FACTOR, SAFETY * error_norm ** exponent)
                 if rejected:
                     factor = min(1.0, factor)
                 h = step * factor
                 accepted = True
             else:
-                h = step * max(MIN_FACTOR, SAFETY * error_norm ** ERROR_EXPONENT)
+                h = step * max(MIN_FACTOR, SAFETY * error_norm ** exponent)
                 rejected = True
                 if nfev > max_nfev:
                     status = BUDGET
                     break
         if not accepted:
             break
-        events(t_new, y_new, args, eargs, active, g_new)
-        for m in range(4):                                       # this step's dense output
-            combine(qs[count - 1, :, m], None, 1.0, P[:, m], k, 7)
+        events(t_new, y_new, args, eargs, active, g_new)        # (first: a system may reuse the last evaluation)
+        if method == DOP853:                                     # this step's dense output
+            dop853_dense(fun, args, t, step, y, y_new, k, stage, coefficients, qs[count - 1])
+            nfev += DOP853_EXTENDED - DOP853_STAGES - 1
+        else:
+            for m in range(4):
+                combine(qs[count - 1, :, m], None, 1.0, P[:, m], k, 7)
         before = level_reached(g_new, active, directions, modes, LEVEL_BEFORE, LEVEL_BEFORE_PROBED)
         reach = step_reach(step, qs[count - 1])
+        speed = -1.0                                             # (made when first needed)
         if before < 0 and any_probed:
             near = False
             for i in range(ne):
                 near = near or (probed[i] and within_reach(g[i], g_new[i], reach))
             if near:
+                speed = step_speed(qs[count - 1])
                 before = probe_level(events, args, eargs, probed, values, t, step, y, qs[count - 1], directions,
-                                     modes, stage)
+                                     modes, PROBES[method], g, g_new, g_last, speed, stage)
         if before >= 0:                                          # a hard case ahead: this step is dropped
             hits[0] = before
             hit_ts[0] = t
@@ -463,8 +636,11 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
                 if modes[i] != TERMINAL_PROBED or not within_reach(g_lo, g_hi, reach):
                     continue
                 only[i] = True
+                if speed < 0.0:
+                    speed = step_speed(qs[count - 1])
                 lo, hi, g_lo, g_hi = probe_crossing(events, args, eargs, only, values, i, t, step, y,
-                                                    qs[count - 1], g[i], directions[i], stage)
+                                                    qs[count - 1], g_lo, g_hi, directions[i], PROBES[method], speed,
+                                                    stage)
                 if lo > hi:
                     only[i] = False
                     continue
@@ -500,7 +676,7 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         count += 1
         t = t_new
         copy_into(y, y_new)
-        copy_into(f, k[6])
+        copy_into(f, k[last])
         for i in range(ne):
             g[i] = g_new[i]
         after = level_reached(g_new, active, directions, modes, LEVEL_AFTER)

@@ -22,7 +22,7 @@ import numpy as np
 from ..kernels import branch_ode as kb
 from ..kernels import curve as kc
 from ..kernels import surfaces as ks
-from .ode import COMPILED, BudgetExceeded, Event, System, Watch, integrate, step_points
+from .ode import COMPILED_SOLVERS, BudgetExceeded, Event, System, Watch, integrate, step_points
 from .segments import (EDGE_NAMES, EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment,
                        area_flag, finite_bounds, newton_fixed, project_state, segment_start)
 from .status import outcome
@@ -55,7 +55,7 @@ WATCH_BELOW = 1e-2
 SLOPE_FLOOR = 1e-6
 #: The minimum event is armed only this far (relative to the scale) into a segment.
 MINIMUM_ARM = 1e-9
-#: The solve_ivp method the compiled one (spatialkin.tracing.ode.CompiledRK45) hands hard cases to.
+#: The solve_ivp method the compiled ones (spatialkin.tracing.ode.CompiledDOP853, CompiledRK45) hand hard cases to.
 FALLBACK_METHOD = "DOP853"
 #: The compiled integrator hands over to solve_ivp this many times before a watched threshold (the sine's
 #: WATCH_BELOW or the singular tolerance, APEX_GUARD), so that solve_ivp's events see the whole approach.
@@ -206,7 +206,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     start, direction = point.copy(), sign * tangent
     s, s_arm = 0.0, 0.0
     radius = CLOSURE_RADIUS * settings.scale
-    compiled = settings.method == COMPILED
+    compiled = settings.method in COMPILED_SOLVERS
     near_edge = False
     recharts = (traits(a_user).recharts, traits(b_user).recharts)
     shared = branch_event_params(a_user, b_user, settings, start, direction)
@@ -247,7 +247,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         events, kinds = watched[compiled, near_edge]
         for event in events:
             event.system = system
-        method = COMPILED if compiled else (FALLBACK_METHOD if settings.method == COMPILED else settings.method)
+        method = settings.method if compiled or settings.method not in COMPILED_SOLVERS else FALLBACK_METHOD
         mark = stages.enter("integration") if stages.ON else None
         try:
             res = integrate(system, (0.0, settings.max_length - s), y, method, events, settings.rtol, settings.atol,
@@ -294,11 +294,13 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if kind == "near_edge":
             near_edge = True
             continue
+        # (a trim edge met beside a node, where the traced path is off the curve by gap / sine, may be the node's
+        # own crossing of the edge: it is taken through the node, and the jump ends on the edge)
         singular = kind == "singular" or (kind == "apex" and known_apex(point, settings)) or (
-            kind in ("minimum", "chart") and kc.degeneracy(y, a, b, 0.0, 0.0) < NODE_SUSPECT
+            kind in ("minimum", "chart", "boundary") and kc.degeneracy(y, a, b, 0.0, 0.0) < NODE_SUSPECT
             and known_node(point, settings))
-        if singular:
-            jump = jump_across(branch, seg, res.t_events[hit][0], y, settings)
+        jump = jump_across(branch, seg, res.t_events[hit][0], y, settings) if singular else None
+        if singular and not (jump is None and kind == "boundary"):
             if jump is None:
                 what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
                         if kind == "apex" else "singular point (branches cross or the surfaces touch)")

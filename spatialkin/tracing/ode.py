@@ -5,6 +5,7 @@ system=system, watch=events, ...)``. One of its steps runs many RK45 steps insid
 (spatialkin.kernels.rk) and stops at the events it watches: each crossing is located on the step's dense output
 in compiled code, as solve_ivp locates events for its own methods (to 4 ulp), and the integration ends at a
 terminal one; ``integrate`` hands them back as solve_ivp's t_events and y_events. The steps are scipy RK45's.
+``CompiledDOP853`` (the library's default, method name COMPILED) is the same with scipy DOP853's steps.
 
 A ``System`` carries a curve's jitted kernels: the right-hand side in solve_ivp's form, the vector of its
 event values, and ``advance`` (the engine bound to both). An ``Event`` is one entry of that vector as solve_ivp
@@ -25,8 +26,10 @@ from ..kernels import rk
 
 #: Most RK45 steps one CompiledRK45 step takes (solve_ivp's per-step Python work is paid once per this many).
 STEPS_PER_CALL = 256
-#: The compiled method's name in settings and in method= arguments.
+#: The compiled methods' names in settings and in method= arguments: DOP853's steps (the library's default) and
+#: RK45's.
 COMPILED = "compiled"
+COMPILED_RK45 = "compiled-rk45"
 #: Evaluation budget standing for none.
 NO_BUDGET = 2 ** 62
 #: CompiledRK45's messages when it stops short (solve_ivp status -1).
@@ -51,7 +54,7 @@ class System:
     advance : callable
         spatialkin.kernels.rk.advance bound to the system's kernels:
         ``advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
-        modes, args, eargs)``.
+        modes, args, eargs, method)``.
     args, eargs : tuple or ndarray
         Parameters of the right-hand side and of the events.
     n_events : int
@@ -153,7 +156,8 @@ class Watch(tuple):
 
 
 class StepsDense(DenseOutput):
-    """Dense output of one CompiledRK45 step: the RK45 polynomial of each of its internal steps (step lengths
+    """Dense output of one CompiledRK45 or CompiledDOP853 step: the polynomial of each of its internal steps
+    (spatialkin.kernels.rk.dense_state; step lengths
     hs: the last polynomial may reach past a terminal event's time ts[-1])."""
 
     def __init__(self, ts, ys, hs, qs):
@@ -210,6 +214,8 @@ class CompiledRK45(OdeSolver):
     log.budget_exceeded set), ``steps_per_call``. Forward in t only. ``integrate`` turns the log into solve_ivp's
     t_events and y_events and its dense output (steps_solution).
     """
+    #: The engine's method (spatialkin.kernels.rk.RK45 or DOP853).
+    METHOD = rk.RK45
 
     def __init__(self, fun, t0, y0, t_bound, vectorized=False, system=None, watch=(), log=None, rtol=1e-3,
                  atol=1e-6, max_step=np.inf, first_step=None, max_nfev=None, steps_per_call=STEPS_PER_CALL,
@@ -282,7 +288,7 @@ class CompiledRK45(OdeSolver):
         status, t, h, nfev, ts, ys, hs, qs, hits, hit_ts, hit_ys = self.system.advance(
             self.t, y, self.f, self.h, self.fresh, self.t_bound, self.rtol, self.atol, self.max_step,
             self.steps_per_call, self.max_nfev - self.nfev, self.g, self.active, self.directions, self.modes,
-            self.system.args, self.system.eargs)
+            self.system.args, self.system.eargs, self.METHOD)
         self.fresh = False
         self.nfev += nfev
         if status in (rk.STEP_FAILED, rk.BUDGET):
@@ -306,12 +312,24 @@ class CompiledRK45(OdeSolver):
         return self._dense
 
 
+class CompiledDOP853(CompiledRK45):
+    """CompiledRK45 with scipy DOP853's steps (its tableau, error norm, step control and dense output; the same
+    options, events and log): fewer, longer steps at the same rtol."""
+    METHOD = rk.DOP853
+
+
+#: The OdeSolver of each compiled method's name.
+COMPILED_SOLVERS = {COMPILED: CompiledDOP853, COMPILED_RK45: CompiledRK45}
+
+
 def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, max_nfev=None):
-    """solve_ivp on a System with dense output and the given Events: by CompiledRK45 (method COMPILED), its
+    """solve_ivp on a System with dense output and the given Events: by CompiledDOP853 (method COMPILED) or
+    CompiledRK45 (COMPILED_RK45), its
     located events returned as solve_ivp returns its own (t_events, y_events, status 1 at a terminal one; past
     max_nfev evaluations status -1 with the steps taken and res.budget_exceeded), or by a solve_ivp method whose
     right-hand side raises BudgetExceeded past max_nfev evaluations (level events are the compiled method's)."""
-    if method != COMPILED:
+    solver = COMPILED_SOLVERS.get(method)
+    if solver is None:
         if any(event.level for event in events):
             raise ValueError(f"level events need the compiled method, not {method!r}")
         return solve_ivp(budgeted(system.rhs, max_nfev), t_span, y0, method=method, rtol=rtol, atol=atol,
@@ -320,7 +338,7 @@ def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, m
     # the dense output is made here from the log (solve_ivp's OdeSolution of the same steps, without its checks)
     # (an empty span: solve_ivp's own, one ConstantDenseOutput over [t0, t0], as no step is logged)
     empty = t_span[0] == t_span[1]
-    res = solve_ivp(system.rhs, t_span, y0, method=CompiledRK45, rtol=rtol, atol=atol, args=system.args,
+    res = solve_ivp(system.rhs, t_span, y0, method=solver, rtol=rtol, atol=atol, args=system.args,
                     max_step=max_step, system=system, watch=events, log=log, max_nfev=max_nfev, dense_output=empty)
     if not empty:
         res.sol = steps_solution(res, log.dense)

@@ -1,7 +1,7 @@
 """A traced curve's dense output packed into flat arrays, for the compiled distance kernels (spatialkin.kernels.near).
 
 ``packed(sol)`` reads a TracedSolution's spans, their segments' charts and scipy OdeSolutions, and each step's
-dense output (CompiledRK45's StepsDense, or solve_ivp's DOP853 where the compiled method handed over) into the
+dense output (the compiled methods' StepsDense, or solve_ivp's DOP853 where the compiled method handed over) into the
 tables kernels.near documents, once per curve (a curve does not change). A closed form has no table (None), nor a traced
 curve none of whose spans the tables can hold; a span they cannot hold (a jump across a node or an apex,
 another solve_ivp method) is marked so, and a point whose Newton meets it is left to the
@@ -102,7 +102,7 @@ def _pack(sol):
 
 def _kinds(ode):
     """The kinds (kernels.near) of the dense outputs of a segment's solution, or None when the tables cannot hold
-    it (not scipy's OdeSolution ascending in time, or a dense output neither CompiledRK45's nor DOP853's)."""
+    it (not scipy's OdeSolution ascending in time, or a dense output neither the compiled methods' nor DOP853's)."""
     if not isinstance(ode, OdeSolution) or not ode.ascending or ode.side != "left":
         return None
     kinds = []

@@ -1,5 +1,5 @@
-"""trace_cycle with the compiled engine (solve_ivp with spatialkin.tracing.ode.CompiledRK45) against closed
-forms and against scipy's own RK45 with the same jitted events."""
+"""trace_cycle with the compiled engine (solve_ivp with spatialkin.tracing.ode.CompiledDOP853, the default, and
+CompiledRK45) against closed forms and against scipy's own DOP853 and RK45 with the same jitted events."""
 import math
 
 import numpy as np
@@ -53,9 +53,9 @@ def ellipse_events(t, y, args, eargs, active, out):
 
 @jit
 def ellipse_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
-                   modes, args, eargs):
+                   modes, args, eargs, method):
     return advance(ellipse_fun, ellipse_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
-                   max_steps, max_nfev, g, active, directions, modes)
+                   max_steps, max_nfev, g, active, directions, modes, method)
 
 
 @jit
@@ -70,24 +70,30 @@ def wave_events(t, y, args, eargs, active, out):
 
 @jit
 def wave_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
-                   modes, args, eargs):
+                   modes, args, eargs, method):
     return advance(wave_fun, wave_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
-                   max_steps, max_nfev, g, active, directions, modes)
+                   max_steps, max_nfev, g, active, directions, modes, method)
 
 
 ELLIPSE = CurveKernels(ellipse_rhs, ellipse_events, ellipse_advance)
 WAVE = CurveKernels(wave_rhs, wave_events, wave_advance)
 
 
-def traces(kernels, y0, a, period):
-    compiled = trace_cycle(kernels, y0, (a,), period, 100.0, rtol=RTOL)
-    reference = trace_cycle(kernels, y0, (a,), period, 100.0, rtol=RTOL, method="RK45")
+@pytest.fixture(params=[("compiled", "DOP853"), ("compiled-rk45", "RK45")], ids=["dop853", "rk45"])
+def methods(request):
+    """A compiled method and scipy's method of the same steps."""
+    return request.param
+
+
+def traces(kernels, y0, a, period, methods):
+    compiled = trace_cycle(kernels, y0, (a,), period, 100.0, rtol=RTOL, method=methods[0])
+    reference = trace_cycle(kernels, y0, (a,), period, 100.0, rtol=RTOL, method=methods[1])
     return compiled, reference
 
 
-def test_locks_of_an_ellipse_match_the_closed_form_and_solve_ivp():
+def test_locks_of_an_ellipse_match_the_closed_form_and_solve_ivp(methods):
     a = 1.5
-    compiled, reference = traces(ELLIPSE, np.array([1.0, 0.0]), a, 2 * np.pi)
+    compiled, reference = traces(ELLIPSE, np.array([1.0, 0.0]), a, 2 * np.pi, methods)
     assert len(compiled.locks) == 2 and not compiled.full_turn and compiled.period == 0.0
     for lock, phi in zip(compiled.locks, (a, -a)):                 # met in this order from the start
         assert abs(lock[1] - phi) < CLOSED_FORM_TOL and abs(lock[0]) < math.sqrt(CLOSED_FORM_TOL)
@@ -103,9 +109,9 @@ def test_locks_of_an_ellipse_match_the_closed_form_and_solve_ivp():
     assert np.all(states[:, 0] > -CLOSED_FORM_TOL)
 
 
-def test_full_turn_closes_after_one_period():
+def test_full_turn_closes_after_one_period(methods):
     a = 0.5
-    compiled, reference = traces(WAVE, np.array([0.0, 0.0]), a, 2 * np.pi)
+    compiled, reference = traces(WAVE, np.array([0.0, 0.0]), a, 2 * np.pi, methods)
     assert compiled.full_turn and compiled.period == 2 * np.pi
     length = 4 * math.sqrt(1 + a * a) * ellipe(a * a / (1 + a * a))      # arc length of q = a sin(phi)
     assert abs(compiled.length - length) < CLOSED_FORM_TOL

@@ -10,7 +10,7 @@ import spatialkin as sk
 from spatialkin.bench.cases import looper_pair
 from spatialkin.kernels import branch_ode as kb
 from spatialkin.kernels import curve as kc
-from spatialkin.tracing.ode import COMPILED, BudgetExceeded, CompiledRK45, Event, System, integrate, step_points
+from spatialkin.tracing.ode import COMPILED_RK45 as COMPILED, BudgetExceeded, CompiledRK45, Event, System, integrate, step_points
 
 #: The same steps: as many, at the same points to this (relative). Not bit for bit: the error estimate
 #: h sum E_j k_j cancels to ~1e-5 of the k_j, so summing in numpy's order or ours moves it in its 12th digit or

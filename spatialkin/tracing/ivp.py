@@ -45,6 +45,9 @@ NODE_SUSPECT = 1e-4
 #: A minimum of the sine below NODE_SUSPECT is a node only within this distance (relative to the scale) of a
 #: singular point proven by the topology stage (when the trace comes from sk.intersect).
 KNOWN_NODE = 1e-3
+#: An apex event away from a proven apex is not watched again until a segment starts with the relative area element
+#: above this many times APEX_GUARD.
+APEX_REARM = 2.0
 #: Where Newton fails with the normals closer to parallel than this (sine), the branch ends at a singular point.
 NEWTON_NEAR_SINGULAR = 1e-3
 #: Arc-length step (relative to the curve scale) of the difference that gives the slope of that sine.
@@ -127,9 +130,9 @@ def segment_system(a, b, settings, sign, s_arm, shared, bounds):
                   ep, kb.COUNT)
 
 
-def segment_events(system, settings, compiled, near_edge, bounds, recharts):
+def segment_events(system, settings, compiled, near_edge, bounds, recharts, watch_apex=True):
     """(Events as a Watch, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles,
-    closure.
+    closure (the apex unless watch_apex is False).
 
     The compiled method watches levels instead of the first three (as its kernel did before it was a solve_ivp
     method): where the sine or the area element nears a hard case, the segment ends at the last step before (that
@@ -142,7 +145,7 @@ def segment_events(system, settings, compiled, near_edge, bounds, recharts):
     horn torus's cusp, whose guarded zone a step can span). bounds: the charts' finite_bounds rows, recharts:
     whether each surface re-charts."""
     ep = system.eargs
-    flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B])
+    flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B]) and watch_apex
     plan, kinds = event_plan(compiled, near_edge, flagged, bounds, recharts, settings.close)
     return Watch([Event(system, i, d, level=level, probed=probed) for i, d, level, probed in plan],
                  system.n_events), list(kinds)
@@ -208,6 +211,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     radius = CLOSURE_RADIUS * settings.scale
     compiled = settings.method in COMPILED_SOLVERS
     near_edge = False
+    watch_apex = True
     recharts = (traits(a_user).recharts, traits(b_user).recharts)
     shared = branch_event_params(a_user, b_user, settings, start, direction)
     area = (float(shared[kb.P_FLAG_A]), float(shared[kb.P_FLAG_B]))        # every segment's area_flag
@@ -242,9 +246,12 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             branch.status, branch.message = outcome("leaves_edge", s=s)
             break
         system = segment_system(a, b, settings, sign, s_arm - s, shared, bounds)
-        if (compiled, near_edge) not in watched:
-            watched[compiled, near_edge] = segment_events(system, settings, compiled, near_edge, bounds, recharts)
-        events, kinds = watched[compiled, near_edge]
+        if not watch_apex and kc.area_degeneracy(y, a, b, area[0], area[1]) > APEX_REARM * APEX_GUARD:
+            watch_apex = True            # clear of the apex passed beside: watched again
+        if (compiled, near_edge, watch_apex) not in watched:
+            watched[compiled, near_edge, watch_apex] = segment_events(system, settings, compiled, near_edge, bounds,
+                                                                      recharts, watch_apex)
+        events, kinds = watched[compiled, near_edge, watch_apex]
         for event in events:
             event.system = system
         method = settings.method if compiled or settings.method not in COMPILED_SOLVERS else FALLBACK_METHOD
@@ -324,6 +331,9 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 return branch
             continue
         if kind in ("minimum", "chart"):
+            continue
+        if kind == "apex":                   # beside an apex the topology stage proved off the curve: go round it,
+            watch_apex = False               # unwatched until clear of it (else its event fires again at each start)
             continue
         if kind == "closure":
             mark = stages.enter("correction") if stages.ON else None

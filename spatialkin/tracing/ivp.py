@@ -59,7 +59,7 @@ SLOPE_FLOOR = 1e-6
 #: The minimum event is armed only this far (relative to the scale) into a segment.
 MINIMUM_ARM = 1e-9
 #: The solve_ivp method the compiled ones (spatialkin.tracing.ode.CompiledDOP853, CompiledRK45) hand hard cases to.
-FALLBACK_METHOD = "DOP853"
+FALLBACK_METHOD = "compiled"
 #: The compiled integrator hands over to solve_ivp this many times before a watched threshold (the sine's
 #: WATCH_BELOW or the singular tolerance, APEX_GUARD), so that solve_ivp's events see the whole approach.
 HANDOFF_MARGIN = 2.0

@@ -93,8 +93,8 @@ def _pack(sol):
     ints = (np.array(x, dtype=np.int64) for x in (ode_off, ode_first, kinds, pt_off, poly_first))
     return (numbers.reshape(len(spans), 5), charts_a, charts_b, _joined(ode_t, (0,)), *ints,
             _joined([d.ts for d in steps], (0,)), _joined([d.hs[:len(d.ts) - 1] for d in steps], (0,)),
-            _joined([d.ys[:len(d.ts) - 1] for d in steps], (0, 4)), _joined([d.qs[:len(d.ts) - 1] for d in steps],
-                                                                            (0, 4, 4)),
+            _joined([d.ys[:len(d.ts) - 1] for d in steps], (0, 4)), _joined(_widened([d.qs[:len(d.ts) - 1]
+                                                                                      for d in steps]), (0, 4, 4)),
             np.array([d.t_old for d in dop], dtype=float), np.array([d.h for d in dop], dtype=float),  # (D,) each
             _joined([d.y_old[None] for d in dop], (0, 4)), _joined([d.F[None] for d in dop], (0, kn.DOP853_POWER, 4)),
             np.array(remap_off, dtype=np.int64), _joined(remap_new, (0,)), _joined(remap_old, (0,)))
@@ -114,6 +114,15 @@ def _kinds(ode):
         else:
             return None
     return kinds
+
+
+def _widened(qs):
+    """Dense-output coefficient arrays (m, n, c) of the compiled methods, padded with zero columns to the widest c
+    (RK45's 4 beside DOP853's 7 where a compiled-rk45 branch handed over to the compiled DOP853): a zero coefficient
+    adds nothing to spatialkin.kernels.rk.dense_state's sum, so the states are the same to the bit."""
+    width = max((q.shape[2] for q in qs), default=0)
+    return [q if q.shape[2] == width else np.concatenate([q, np.zeros(q.shape[:2] + (width - q.shape[2],))], axis=2)
+            for q in qs]
 
 
 def _joined(arrays, empty):

@@ -1,7 +1,8 @@
-"""The one Runge–Kutta engine (spatialkin.kernels.rk) as solve_ivp's method CompiledRK45 (spatialkin.tracing.ode).
+"""The one Runge–Kutta engine (spatialkin.kernels.rk) as solve_ivp's methods CompiledRK45 and CompiledDOP853
+(spatialkin.tracing.ode).
 
-Oracle: scipy's own RK45 on the same jitted right-hand side (the looper pair's Dragilev system): the same steps
-to round-off, the same dense output, the same located events; the budget and bad options raise typed errors.
+Oracle: scipy's own RK45 and DOP853 on the same jitted right-hand side (the looper pair's Dragilev system): the same
+steps to round-off, the same dense output, the same located events; the budget and bad options raise typed errors.
 """
 import numpy as np
 import pytest
@@ -10,7 +11,7 @@ import spatialkin as sk
 from spatialkin.bench.cases import looper_pair
 from spatialkin.kernels import branch_ode as kb
 from spatialkin.kernels import curve as kc
-from spatialkin.tracing.ode import COMPILED_RK45 as COMPILED, BudgetExceeded, CompiledRK45, Event, System, integrate, step_points
+from spatialkin.tracing.ode import COMPILED_RK45 as COMPILED, COMPILED as COMPILED_DOP853, BudgetExceeded, CompiledRK45, Event, System, integrate, step_points
 
 #: The same steps: as many, at the same points to this (relative). Not bit for bit: the error estimate
 #: h sum E_j k_j cancels to ~1e-5 of the k_j, so summing in numpy's order or ours moves it in its 12th digit or
@@ -33,14 +34,23 @@ def looper_system():
                   ep, kb.COUNT), y0, curve.length
 
 
-def test_compiled_rk45_takes_scipys_rk45_steps():
+#: Each compiled method and scipy's method whose steps it takes.
+PAIRS = pytest.mark.parametrize("compiled, method", [(COMPILED, "RK45"), (COMPILED_DOP853, "DOP853")],
+                                ids=["rk45", "dop853"])
+
+
+@PAIRS
+def test_compiled_methods_take_scipys_steps(compiled, method):
+    """The same steps as scipy's method (as many, the same times to SAME_STEP_RTOL, the same evaluations: DOP853's
+    three dense-output stages counted as scipy counts them), and its dense output (DOP853's polynomial rewritten in
+    powers of x) to SAME_DENSE_TOL everywhere."""
     system, y0, length = looper_system()
     atol = np.full(4, RTOL)
-    ours = integrate(system, (0.0, length), y0, COMPILED, [], RTOL, atol)
-    scipy = integrate(system, (0.0, length), y0, "RK45", [], RTOL, atol)
+    ours = integrate(system, (0.0, length), y0, compiled, [], RTOL, atol)
+    scipy = integrate(system, (0.0, length), y0, method, [], RTOL, atol)
     t, y = step_points(ours)
     assert ours.status == scipy.status == 0
-    assert len(ours.t) < len(t) == len(scipy.t) > 20          # many RK steps per solver step, the same steps
+    assert len(ours.t) < len(t) == len(scipy.t) > 10          # many RK steps per solver step, the same steps
     np.testing.assert_allclose(t, scipy.t, rtol=SAME_STEP_RTOL, atol=0)
     np.testing.assert_allclose(y[:, 0], scipy.y[:, 0], rtol=0, atol=0)
     np.testing.assert_allclose(ours.sol(scipy.t), scipy.y, rtol=0, atol=SAME_DENSE_TOL)
@@ -49,9 +59,10 @@ def test_compiled_rk45_takes_scipys_rk45_steps():
     assert ours.nfev == scipy.nfev
 
 
-def test_events_are_located_as_solve_ivp_locates_them():
+@PAIRS
+def test_events_are_located_as_solve_ivp_locates_them(compiled, method):
     """A terminal event (a pole guard of the sphere's chart, v2 leaving |cos v2| > 0.9) and a non-terminal one
-    (the closure plane, armed at once): the same times as scipy's RK45 with the same Event objects."""
+    (the closure plane, armed at once): the same times as scipy's method with the same Event objects."""
     system, y0, length = looper_system()
     ep = system.eargs.copy()
     ep[kb.P_POLE_GUARD] = 0.9
@@ -63,9 +74,9 @@ def test_events_are_located_as_solve_ivp_locates_them():
     ep[kb.P_CLOSURE_OFFSET] = 1e-3
     system = System(system.rhs, system.events, system.advance, system.args, ep, system.n_events)
     results = []
-    for method in (COMPILED, "RK45"):
+    for name in (compiled, method):
         events = [Event(system, kb.POLE_B, -1), Event(system, kb.CLOSURE, 1, terminal=False)]
-        results.append(integrate(system, (0.0, 2 * length), y0, method, events, RTOL, np.full(4, RTOL)))
+        results.append(integrate(system, (0.0, 2 * length), y0, name, events, RTOL, np.full(4, RTOL)))
     ours, scipy = results
     assert [te.size for te in ours.t_events] == [te.size for te in scipy.t_events]
     assert sum(te.size for te in ours.t_events) >= 1

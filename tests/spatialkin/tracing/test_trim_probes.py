@@ -80,16 +80,38 @@ def test_grazing_excursion_ends_the_traced_arc(monkeypatch, order, depth):
         assert uv[:, 0].min() >= plane.u_range[0] - TRIM_SLACK and uv[:, 0].max() <= plane.u_range[1] + TRIM_SLACK
 
 
-def test_step_reach_bounds_the_dense_output():
+
+
+@pytest.mark.parametrize("columns", [4, 7])
+def test_step_reach_and_speed_bound_the_dense_output(columns):
+    """step_reach bounds how far the dense output (RK45's 4 columns, DOP853's 7) moves from the step's start and
+    step_speed bounds its rate (oracle: the polynomial and its derivative sampled at 401 points, the derivative by
+    central differences of dense_state), so that the probes' skipping (keeps_sign) only skips points where a
+    1-Lipschitz event cannot have changed sign."""
     rng = np.random.default_rng(7)
     for _ in range(50):
-        q = rng.normal(size=(4, 4))
+        q = rng.normal(size=(4, columns))
         step = float(rng.uniform(0.01, 2.0))
         y_old = rng.normal(size=4)
-        reach = rk.step_reach(step, q)
-        out = np.empty(4)
-        worst = 0.0
-        for t in np.linspace(0.0, step, 401):
+        reach, speed = rk.step_reach(step, q), rk.step_speed(q)
+        out, lo, hi = np.empty(4), np.empty(4), np.empty(4)
+        worst, fastest = 0.0, 0.0
+        dt = 1e-6 * step
+        for t in np.linspace(dt, step - dt, 401):
             rk.dense_state(0.0, step, y_old, q, t, out)
             worst = max(worst, float(np.max(np.abs(out - y_old))))
+            rk.dense_state(0.0, step, y_old, q, t - dt, lo)
+            rk.dense_state(0.0, step, y_old, q, t + dt, hi)
+            fastest = max(fastest, float(np.max(np.abs(hi - lo))) / (2 * dt))
         assert worst <= reach * (1 + 1e-12)
+        assert fastest <= speed * (1 + 1e-6)
+        assert fastest >= 0.05 * speed           # (a bound, not a gross one, on random coefficients)
+
+
+def test_probes_skip_only_where_the_sign_is_kept():
+    """keeps_sign: an event of value g at t_from with rate at most speed keeps its sign up to t exactly when
+    speed |t - t_from| < |g| (the boundary case counts as possibly zero)."""
+    assert rk.keeps_sign(1.0, 0.0, 0.5, 1.9)
+    assert not rk.keeps_sign(1.0, 0.0, 0.5, 2.0)
+    assert rk.keeps_sign(-1.0, 1.0, 0.5, 1.9)
+    assert not rk.keeps_sign(0.0, 0.0, 0.0, 1.0)

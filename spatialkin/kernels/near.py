@@ -14,8 +14,8 @@ The curve's dense output is read from flat tables (built by spatialkin.tracing.p
 * dense outputs (G): dense output g has kind ``kinds[g]``; poly_first[g] indexes its kind's tables:
   RK45_STEPS (spatialkin.tracing.ode.StepsDense): its times ``pt[pt_off[g]:pt_off[g + 1]]`` (ts), and the
   polynomial from its time i is number poly_first[g] + i of ``rk_h`` (length), ``rk_y`` (start state) and
-  ``rk_q`` (Q (4, c), spatialkin.kernels.rk.dense_state); DOP853 (scipy's Dop853DenseOutput): ``dop_t0`` (t_old), ``dop_h``, ``dop_y`` (y_old)
-  and ``dop_f`` (F (7, 4)).
+  ``rk_q`` (Q (4, c), spatialkin.kernels.rk.dense_state); DOP853 (scipy's Dop853DenseOutput): ``dop_t0`` (t_old),
+  ``dop_h``, ``dop_y`` (y_old) and ``dop_f`` (F (7, 4)).
 
 Every state is then corrected onto both surfaces by the same Newton (project_to_curve in the plane normal to the
 tangent) as TracedSolution.evaluate, and the foot point is found by the same Newton in s as

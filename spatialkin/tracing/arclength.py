@@ -20,7 +20,7 @@ from .segments import NEWTON_MAX_ITER
 
 #: Only segments where the normals' sine falls below this are measured: elsewhere M1 stays within
 #: (gap / sine) < 1e-8 of the curve and the path's excess length is below round-off. The compiled method
-#: hands over to solve_ivp's DOP853 above it, so its segments are never measured.
+#: hands over (to its fine events) above it, so its segments are never measured.
 CHECK_BELOW = 1e-2
 #: Gauss–Legendre nodes per solver step (4, 8 and 16 agree to 5e-12 on the near-node above).
 NODES = 8

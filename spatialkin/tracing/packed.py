@@ -1,7 +1,7 @@
 """A traced curve's dense output packed into flat arrays, for the compiled distance kernels (spatialkin.kernels.near).
 
 ``packed(sol)`` reads a TracedSolution's spans, their segments' charts and scipy OdeSolutions, and each step's
-dense output (the compiled methods' StepsDense, or solve_ivp's DOP853 where the compiled method handed over) into the
+dense output (the compiled methods' StepsDense, or solve_ivp's DOP853 where a solve_ivp method integrated) into the
 tables kernels.near documents, once per curve (a curve does not change). A closed form has no table (None), nor a traced
 curve none of whose spans the tables can hold; a span they cannot hold (a jump across a node or an apex,
 another solve_ivp method) is marked so, and a point whose Newton meets it is left to the

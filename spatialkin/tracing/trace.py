@@ -49,7 +49,7 @@ ROUNDOFF_ULPS = 64
 EPS = np.finfo(float).eps
 #: solve_ivp's methods, "compiled": solve_ivp with spatialkin.tracing.ode.CompiledDOP853 (scipy's DOP853 steps,
 #: many per solver step in compiled code), and "compiled-rk45" (CompiledRK45: scipy's RK45 steps), both handing hard
-#: cases to solve_ivp's DOP853.
+#: cases to the compiled DOP853 with the fine events (spatialkin.tracing.ivp.FALLBACK_METHOD).
 METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", "compiled", "compiled-rk45")
 
 

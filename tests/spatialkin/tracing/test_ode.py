@@ -11,7 +11,9 @@ import spatialkin as sk
 from spatialkin.bench.cases import looper_pair
 from spatialkin.kernels import branch_ode as kb
 from spatialkin.kernels import curve as kc
-from spatialkin.tracing.ode import COMPILED_RK45 as COMPILED, COMPILED as COMPILED_DOP853, BudgetExceeded, CompiledRK45, Event, System, integrate, step_points
+from spatialkin.tracing.ode import COMPILED as COMPILED_DOP853
+from spatialkin.tracing.ode import COMPILED_RK45 as COMPILED
+from spatialkin.tracing.ode import BudgetExceeded, CompiledRK45, Event, System, integrate, step_points
 
 #: The same steps: as many, at the same points to this (relative). Not bit for bit: the error estimate
 #: h sum E_j k_j cancels to ~1e-5 of the k_j, so summing in numpy's order or ours moves it in its 12th digit or

@@ -1,5 +1,6 @@
 """Following a one-parameter family F(y) = 0 along its input coordinate, by arc length (solve_ivp with the
-compiled engine, spatialkin.tracing.ode.CompiledDOP853 or CompiledRK45, or any solve_ivp method, with the same jitted events).
+compiled engine, spatialkin.tracing.ode.CompiledDOP853 or CompiledRK45, or any solve_ivp method, with the same
+jitted events).
 
 A mechanism's configuration curve: y holds the unknowns and the input (a crank angle). The curve is traced
 from an assembled state in the direction where the input grows, over one period of the input (a full

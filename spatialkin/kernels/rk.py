@@ -68,6 +68,13 @@ RK45 = 0
 DOP853 = 1
 #: Columns of a step's dense-output polynomial (q), per method.
 DENSE_COLUMNS = (4, 7)
+#: Order of each method's error estimator (scipy's error_estimator_order: select_initial_step takes it, and the step
+#: control's exponent is -1 / (order + 1)).
+ERROR_ORDERS = (4, 7)
+#: Rows of the stage array k, per method (RK45's 7; DOP853's 16, its dense output's three stages included) ...
+STAGE_ROWS = (7, 16)
+#: ... and the row holding f at the step's end (the next step's first stage).
+END_ROWS = (6, 12)
 
 # --- RK45 (Dormand–Prince) coefficients, as in scipy.integrate._ivp.rk.RK45 ---------------------------------
 C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
@@ -92,15 +99,12 @@ P = np.array([
 SAFETY = 0.9
 MIN_FACTOR = 0.2
 MAX_FACTOR = 10.0
-ERROR_EXPONENT = -1.0 / 5.0
-#: Order of the error estimator (scipy's select_initial_step takes it).
-ERROR_ORDER = 4
 
 # --- DOP853 coefficients, scipy's (dop853_coefficients) -------------------------------------------------------
 #: Stages of a step (the 13th, f at the step's end, is the next step's first), and the extended tableau's rows
 #: (three more stages for the dense output).
-DOP853_STAGES = 12
-DOP853_EXTENDED = 16
+DOP853_STAGES = END_ROWS[1]
+DOP853_EXTENDED = STAGE_ROWS[1]
 A8 = np.ascontiguousarray(_dop853.A, dtype=float)            # (16, 16): rows 13-15 the dense output's stages
 C8 = np.ascontiguousarray(_dop853.C, dtype=float)            # (16,)
 B8 = np.ascontiguousarray(_dop853.B, dtype=float)            # (12,)
@@ -117,8 +121,6 @@ DOP853_POWERS = np.array([
     [0, 0, 0, 0, 1, 3, -3],
     [0, 0, 0, 0, 0, -1, 3],
     [0, 0, 0, 0, 0, 0, -1]], dtype=float)
-DOP853_ERROR_EXPONENT = -1.0 / 8.0
-DOP853_ERROR_ORDER = 7
 
 
 @jit
@@ -251,15 +253,22 @@ def level_reached(g, active, directions, modes, mode, other=-1):
 
 
 @jit
-def step_reach(step, q):
-    """Bound on |y_i(t) - y_i(t_old)| over the step, every component i: |step| x max_i sum_m |q[i, m]|."""
-    reach = 0.0
+def coefficient_bound(q, derivative):
+    """max_i sum_m w_m |q[i, m]| over a step's dense-output coefficients, w_m = 1 (derivative False) or m + 1 (the
+    weights of the polynomial's derivative in x)."""
+    bound = 0.0
     for i in range(q.shape[0]):
         total = abs(q[i, 0])
         for m in range(1, q.shape[1]):
-            total += abs(q[i, m])
-        reach = max(reach, total)
-    return abs(step) * reach
+            total += (m + 1) * abs(q[i, m]) if derivative else abs(q[i, m])
+        bound = max(bound, total)
+    return bound
+
+
+@jit
+def step_reach(step, q):
+    """Bound on |y_i(t) - y_i(t_old)| over the step, every component i: |step| x max_i sum_m |q[i, m]|."""
+    return abs(step) * coefficient_bound(q, False)
 
 
 @jit
@@ -293,13 +302,7 @@ def step_speed(q):
     """Bound on |dy_i/dt| over the step, every component i: the dense output's derivative is
     sum_m (m + 1) q[i, m] x^m with 0 <= x <= 1 (dense_state), so max_i sum_m (m + 1) |q[i, m]|, widened by 1e-12
     (relative) over its round-off."""
-    speed = 0.0
-    for i in range(q.shape[0]):
-        total = abs(q[i, 0])
-        for m in range(1, q.shape[1]):
-            total += (m + 1) * abs(q[i, m])
-        speed = max(speed, total)
-    return speed * (1.0 + 1e-12)
+    return coefficient_bound(q, True) * (1.0 + 1e-12)
 
 
 @jit
@@ -399,6 +402,13 @@ def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol, order):
     return min(100.0 * h0, h1, t_bound - t0, max_step)
 
 
+@jit
+def error_scale(scale, y, y_new, rtol, atol):
+    """scale = atol + max(|y|, |y_new|) rtol, the step's error scale (scipy's, both methods)."""
+    for i in range(y.shape[0]):
+        scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+
+
 @jit(inline="always")
 def rk45_attempt(fun, args, t, t_new, step, y, k, y_new, stage, err, scale, rtol, atol):
     """One RK45 step of length step from (t, y), k[0] = f there: the stages into k, the new state into y_new (f
@@ -409,8 +419,7 @@ def rk45_attempt(fun, args, t, t_new, step, y, k, y_new, stage, err, scale, rtol
     combine(y_new, y, step, B, k, 6)
     fun(t_new, y_new, args, k[6])
     combine(err, None, step, E, k, 7)
-    for i in range(y.shape[0]):
-        scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+    error_scale(scale, y, y_new, rtol, atol)
     return rms(err, scale)
 
 
@@ -424,10 +433,10 @@ def dop853_attempt(fun, args, t, t_new, step, y, k, y_new, stage, scale, rtol, a
     combine(y_new, y, step, B8, k, DOP853_STAGES)
     fun(t_new, y_new, args, k[DOP853_STAGES])
     n = y.shape[0]
+    error_scale(scale, y, y_new, rtol, atol)
     err5 = 0.0
     err3 = 0.0
     for i in range(n):
-        scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
         e5 = 0.0
         e3 = 0.0
         for j in range(DOP853_STAGES + 1):
@@ -540,12 +549,11 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         fun(t, y, args, f)
         nfev += 1
         if h <= 0.0:
-            h = initial_step(fun, args, t, y, f, t_bound, max_step, rtol, atol,
-                             DOP853_ERROR_ORDER if method == DOP853 else ERROR_ORDER)
+            h = initial_step(fun, args, t, y, f, t_bound, max_step, rtol, atol, ERROR_ORDERS[method])
             nfev += 1
-    k = np.empty((DOP853_EXTENDED if method == DOP853 else 7, n))
-    last = DOP853_STAGES if method == DOP853 else 6             # the row of k holding f at the step's end
-    exponent = DOP853_ERROR_EXPONENT if method == DOP853 else ERROR_EXPONENT
+    k = np.empty((STAGE_ROWS[method], n))
+    last = END_ROWS[method]
+    exponent = -1.0 / (ERROR_ORDERS[method] + 1)
     y_new = np.empty(n)
     stage = np.empty(n)
     err = np.empty(n)

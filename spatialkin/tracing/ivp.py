@@ -310,7 +310,9 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             kind in ("minimum", "chart", "boundary") and kc.degeneracy(y, a, b, 0.0, 0.0) < NODE_SUSPECT
             and known_node(point, settings))
         jump = jump_across(branch, seg, res.t_events[hit][0], y, settings) if singular else None
-        if singular and not (jump is None and kind == "boundary"):
+        if jump is None and kind == "boundary":
+            singular = False                 # (no way through the node: the edge ends the branch, as any edge)
+        if singular:
             if jump is None:
                 what = ("a parametrisation degenerates (apex of a cone or axis point of a horn/spindle torus)"
                         if kind == "apex" else "singular point (branches cross or the surfaces touch)")

@@ -13,6 +13,7 @@ from ..kernels import curve as kc
 from ..kernels import stored as kst
 from .arclength import remeasure_branch
 from .ivp import integrate_branch
+from .ode import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from .dense import Span, TracedSolution
 from .result import Curve, CurveResult, TracingError, in_own_chart, DUPLICATE_SPACING
@@ -30,9 +31,9 @@ DEFAULT_RTOL = 1e-10
 DEFAULT_SINGULAR_TOL = 1e-7
 #: Pull-back rate times the curve scale: the gap decays like exp(-PULLBACK * s / scale).
 DEFAULT_PULLBACK = 1.0
-#: The integrator: solve_ivp with the compiled Dormand–Prince 8(5,3) (scipy's DOP853 for hard cases), or a solve_ivp
-#: method.
-DEFAULT_METHOD = "compiled"
+#: The integrator: solve_ivp with the compiled Dormand–Prince 8(5,3) (spatialkin.tracing.ode.COMPILED), or a
+#: solve_ivp method.
+DEFAULT_METHOD = COMPILED
 #: Longest solver step, in scene scales. DOP853's error estimate (its 5th- and 3rd-order estimates combined) can
 #: be optimistic on long steps: on a circle of radius 0.93 (aligned plane-torus stress case) steps of 0.75 were
 #: accepted with 40 times the tolerance's local error, and the loop's length came out 4.8e-9 (relative) off. With
@@ -50,7 +51,7 @@ EPS = np.finfo(float).eps
 #: solve_ivp's methods, "compiled": solve_ivp with spatialkin.tracing.ode.CompiledDOP853 (scipy's DOP853 steps,
 #: many per solver step in compiled code), and "compiled-rk45" (CompiledRK45: scipy's RK45 steps), both handing hard
 #: cases to the compiled DOP853 with the fine events (spatialkin.tracing.ivp.FALLBACK_METHOD).
-METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", "compiled", "compiled-rk45")
+METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", *COMPILED_SOLVERS)
 
 
 def extent(surface):
@@ -134,8 +135,8 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
         smaller characteristic length of the two surfaces): distance to both surfaces <= tol * scale.
     method : str
         'compiled' (default): solve_ivp with spatialkin.tracing.ode.CompiledDOP853 (scipy's DOP853 steps, many
-        per solver step in compiled code), handing singular points and apexes to solve_ivp's DOP853;
-        'compiled-rk45' the same with scipy's RK45 steps (CompiledRK45); or a solve_ivp method ('DOP853',
+        per solver step in compiled code), handing singular points and apexes to the same engine with the fine
+        events (spatialkin.tracing.ivp.FALLBACK_METHOD); 'compiled-rk45' the same with scipy's RK45 steps (CompiledRK45); or a solve_ivp method ('DOP853',
         'RK45', ...) for the whole curve.
     rtol, atol : float
         solve_ivp tolerances on (u1, v1, u2, v2); atol defaults to rtol for angles and rtol * scale for lengths.

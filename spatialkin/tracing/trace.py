@@ -136,8 +136,8 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     method : str
         'compiled' (default): solve_ivp with spatialkin.tracing.ode.CompiledDOP853 (scipy's DOP853 steps, many
         per solver step in compiled code), handing singular points and apexes to the same engine with the fine
-        events (spatialkin.tracing.ivp.FALLBACK_METHOD); 'compiled-rk45' the same with scipy's RK45 steps (CompiledRK45); or a solve_ivp method ('DOP853',
-        'RK45', ...) for the whole curve.
+        events (spatialkin.tracing.ivp.FALLBACK_METHOD); 'compiled-rk45' the same with scipy's RK45 steps
+        (CompiledRK45); or a solve_ivp method ('DOP853', 'RK45', ...) for the whole curve.
     rtol, atol : float
         solve_ivp tolerances on (u1, v1, u2, v2); atol defaults to rtol for angles and rtol * scale for lengths.
     max_length : float, optional

@@ -34,7 +34,7 @@ import numpy as np
 
 from .._jit import jit
 from .interval import (box_trig, contains_zero, down, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first,
-                       jet_second, level, point, u_trig, up, v_trig)
+                       jet_second, level, mag, point, u_trig, up, v_trig)
 from .surfaces import evaluate, inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
@@ -183,10 +183,10 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
     """Isolate the solutions of g = 0, phi = dv g_u - du g_v = 0 (the level's tangent normal to (du, dv)) in the
     box (u_lo, u_hi, v_lo, v_hi) of S's parameters.
 
-    min_width (2,) is the smallest width per parameter; boxes are bisected along the parameter whose width is
-    largest relative to it; a box within coarse times min_width where g at its midpoint is within round-off of
-    zero and its gradient moves g by less than FLAT times that across the box is unresolved at once (round-off:
-    bisecting further cannot separate anything). Returns (records in out (K, 4) and kinds (K,), status, boxes
+    min_width (2,) is the smallest width per parameter; boxes are bisected along the parameter that spreads g or
+    phi most over the box (_cut_u: the smear), among those still wider than min_width; a box within coarse times
+    min_width where g at its midpoint is within round-off of zero and its gradient moves g by less than FLAT times
+    that across the box is unresolved at once (round-off: bisecting further cannot separate anything). Returns (records in out (K, 4) and kinds (K,), status, boxes
     visited).
     """
     stack = np.empty((STACK, 4))
@@ -288,7 +288,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             return count, OVERFLOW, boxes
         _put(stack, top, U, V)
         _put(stack, top + 1, U, V)
-        if ru >= rv:
+        if _cut_u(ru, rv, gu, gv, j10, j11, U[1] - U[0], V[1] - V[0]):
             cut = U[0] + SPLIT * (U[1] - U[0])
             stack[top, 1] = cut
             stack[top + 1, 0] = cut
@@ -304,6 +304,34 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             known[top] = known[top + 1] = 1
         top += 2
     return count, DONE, boxes
+
+
+@jit(forceinline=True)
+def _share(a, b):
+    """a / (a + b) (0.5 where both vanish)."""
+    total = a + b
+    return 0.5 if not total > 0.0 else a / total
+
+
+@jit(forceinline=True)
+def _cut_u(ru, rv, gu, gv, j10, j11, wu, wv):
+    """True when a box is bisected along u: the parameter whose share of the spread of g or phi over the box
+    (|d/du| wu against |d/dv| wv, their enclosures' magnitudes times the widths: the smear) is largest, among those
+    still wider than the smallest width (ru, rv: the widths over it). Along a near-tangency the level g is flat
+    along one parameter and bent across it; cutting the relatively wider side there kept halving the flat one to
+    no effect (a plane 1e-9 off a cone's tangent plane: 173 349 boxes, 364 by the smear).
+
+    References
+    ----------
+    R. B. Kearfott, M. Novoa, INTBIS, a portable interval Newton/bisection package, ACM TOMS 16 (1990): the
+    maximal-smear rule."""
+    if ru <= 1.0:
+        return False
+    if rv <= 1.0:
+        return True
+    share = max(_share(mag(gu) * wu, mag(gv) * wv), _share(mag(j10) * wu, mag(j11) * wv))
+    other = max(_share(mag(gv) * wv, mag(gu) * wu), _share(mag(j11) * wv, mag(j10) * wu))
+    return share >= other
 
 
 @jit(forceinline=True)

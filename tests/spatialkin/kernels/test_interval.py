@@ -144,6 +144,24 @@ def test_extremal_points_of_a_tilted_circle():
         assert abs(dv * g[0, 1] - du * g[0, 2]) < 1e-12 * np.hypot(g[0, 1], g[0, 2])
 
 
+
+def test_bisection_follows_the_smear():
+    """_cut_u cuts the parameter whose enclosed derivative times width spreads g or phi most (the maximal smear),
+    whatever the widths alone say, and never one already at its smallest width (ratio <= 1). Oracle: the shares
+    by hand."""
+    flat, steep = (0.0, 0.0), (-2.0, 2.0)
+    # g spreads along u only (|g_u| wu = 0.2, |g_v| wv = 0): u, though v is ten times wider relative to its floor
+    assert kt._cut_u(10.0, 100.0, (-1.0, 2.0), flat, flat, flat, 0.1, 1.0)
+    # phi spreads along v only: v
+    assert not kt._cut_u(100.0, 10.0, flat, flat, flat, steep, 1.0, 0.1)
+    # shares g: u 2/3 (|g_u| wu = 1, |g_v| wv = 0.5), phi: v 3/4 (0.25 against 0.75): v has the larger share
+    assert not kt._cut_u(5.0, 5.0, (-1.0, 0.5), (0.0, 0.5), (0.25, 0.25), (-0.75, 0.0), 1.0, 1.0)
+    # nothing spreads (both shares 1/2): u, as ties go
+    assert kt._cut_u(5.0, 5.0, flat, flat, flat, flat, 1.0, 1.0)
+    # at its smallest width a side is never cut
+    assert not kt._cut_u(1.0, 5.0, steep, flat, steep, flat, 1.0, 1.0)
+    assert kt._cut_u(5.0, 0.5, flat, steep, flat, steep, 1.0, 1.0)
+
 @pytest.mark.parametrize("seed", range(3))
 def test_second_order_form_encloses_g_and_is_tighter_on_small_boxes(seed):
     """The 2-D search's second-order Taylor form (kernels.topology._second_order) contains g at points inside

@@ -318,3 +318,36 @@ def test_search_budget_is_a_typed_error(monkeypatch):
     monkeypatch.setattr(tp, "MAX_BOXES", 5)
     with pytest.raises(sk.TopologyError, match="budget"):
         sk.intersect(sk.Torus(2.0, 0.5), sk.Cylinder(0.4, sk.Frame((2.0, 0.1, 0.0)), v_range=(-2, 2)))
+
+
+@pytest.mark.parametrize("offset", [-1e-9, 1e-9])
+def test_plane_nearly_tangent_to_a_cone_along_a_ruling(offset):
+    """A plane offset by 1e-9 from a cone's tangent plane along a ruling (one nappe, v in [0, h]): inside, a
+    parabola hugging the ruling from the trim edge to the trim edge; outside, nothing (it cuts the nappe trimmed
+    away). The level g is within 1e-9 of zero along the whole ruling, so the search has to cut across the ruling
+    (its bisection follows the smear |dg/du| wu against |dg/dv| wv); cutting the relatively wider side instead
+    took 173 349 and 95 369 boxes. Oracle: the parabola w -> offset n + s(w) e1 + w e2 with s(w) =
+    (w^2 + offset^2 cos 2a / cos^2 a) / (2 |offset| tan a), its length 2 [w/2 sqrt(1 + (w/c)^2) + c/2 asinh(w/c)]
+    at the trim edge w = W (c = |offset| tan a)."""
+    a, h = 0.6, 1.5
+    rot = random_rotation(np.random.default_rng(11))
+    origin = np.array([0.2, -0.1, 0.3])
+    cone = sk.Cone(a, sk.Frame(origin, rot), v_range=(0.0, h))
+    e1, e2 = np.array([math.sin(a), 0.0, math.cos(a)]), np.array([0.0, 1.0, 0.0])
+    normal = np.array([math.cos(a), 0.0, -math.sin(a)])         # outward, normal to the ruling u = 0
+    plane = sk.Plane(sk.Frame(origin + rot @ (offset * normal), rot @ np.column_stack([e2, e1, normal])))
+    for p, q in ((cone, plane), (plane, cone)):
+        curves = sk.intersect(p, q, TOL)
+        scale = 1.0
+        topo = tp.topology(p, q, scale, TOL * scale)
+        assert topo.boxes < 1000
+        if offset > 0:
+            assert curves == []
+            continue
+        assert len(curves) == 1 and curves[0].status == "boundary"
+        c = abs(offset) * math.tan(a)
+        s_edge = (h + offset * math.sin(a)) / math.cos(a)            # the point's height s cos a - offset sin a
+        w_edge = math.sqrt(2.0 * c * s_edge - offset ** 2 * math.cos(2 * a) / math.cos(a) ** 2)
+        exact = 2.0 * (0.5 * w_edge * math.hypot(1.0, w_edge / c) + 0.5 * c * math.asinh(w_edge / c))
+        assert abs(curves[0].length - exact) < 1e-9 * exact
+        assert on_both(curves, p, q) < 1e-14

@@ -216,6 +216,39 @@ def test_cone_touching_a_cylinder_along_a_ruling():
     assert cKDTree(dense).query(samples)[0].max() <= 5e-3 * r
 
 
+def test_cone_nearly_touching_a_cylinder_along_a_ruling():
+    """The cone of test_cone_touching_a_cylinder_along_a_ruling moved off the cylinder by 1e-8 and 1e-10 of the
+    radius, out and in (the general path: the level is within that of zero all along the ruling, so the search cut
+    along it and ran out of its budget, TopologyError, until it bisected by the smear). The node splits and the
+    ellipse and the two thin branches beside the ruling join into one open curve from the trim edge back to it:
+    status 'boundary', on both surfaces to round-off. Oracle: as the offset goes to 0 the curve tends to the exact
+    touching's ellipse plus the ruling from its node to a trim end, twice (closed form); one sign takes each end,
+    and the length's distance to that limit shrinks with the offset (measured 1.2e-3 at 1e-8, 2.5e-4 at 1e-10)."""
+    cylinder, cone, (apex, _) = tangent_ruling_scene(np.random.default_rng(0))
+    touching = sk.intersect(cylinder, cone)
+    ruling = next(c for c in touching if c.status == "tangent")
+    ellipse = next(c for c in touching if c.status == "closed")
+    limits = np.sort([ellipse.length + 2.0 * np.linalg.norm(end - ellipse.nodes[0])
+                      for end in ruling(np.array([0.0, ruling.length]))])
+    axis = cylinder.frame.rotation[:, 2]
+    foot = cylinder.frame.origin + ((apex - cylinder.frame.origin) @ axis) * axis
+    radial = (apex - foot) / np.linalg.norm(apex - foot)
+    for sign in (1.0, -1.0):
+        gaps = []
+        for offset in (1e-8, 1e-10):
+            moved = sk.Cone(cone.half_angle, sk.Frame(cone.frame.origin + sign * offset * radial,
+                                                      cone.frame.rotation), cone.v_range)
+            for a, b in ((cylinder, moved), (moved, cylinder)):
+                curves = sk.intersect(a, b)
+                assert [c.status for c in curves] == ["boundary"]
+                points = np.vstack([curves[0].points, curves[0](np.linspace(0.0, curves[0].length, 2000))])
+                assert max(cylinder.distance(points).max(), moved.distance(points).max()) <= 1e-14
+                gaps.append(np.abs(curves[0].length - limits) / limits)
+        side = np.argmin(gaps[0])
+        assert side == (0 if sign > 0 else 1)
+        assert all(np.argmin(g) == side for g in gaps)
+        assert gaps[0][side] < 2e-3 and gaps[2][side] < 5e-4 and gaps[2][side] < gaps[0][side] / 3
+
 def test_general_path_finds_both_arcs_beside_an_outside_node(monkeypatch):
     """Equal cylinders with crossing axes, a's trim passing just beside both nodes (found by review): both ellipses
     leave through that edge next to a node that lies outside the trim. The topology stage used to drop a node's arms

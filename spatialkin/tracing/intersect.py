@@ -16,7 +16,8 @@ from .certificate import certificates
 from .closed import closed_form, closed_settings
 from . import stages
 from .status import CONTACT
-from .topology import points_at, topology
+from .rescue import LOST_RADIUS, crossing_starts
+from .topology import TopologyError, points_at, topology
 from .traits import check_surface
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
@@ -97,30 +98,16 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         pending += [(seed, None, bool(exact)) for seed, exact in zip(seeds, on)]
     if stages.ON:
         stages.switch("dedupe")
-    pending = drop_traced(pending, curves, radius)
-    while pending:
-        point, y, _ = pending.pop(0)
-        if y is None:
-            if stages.ON:
-                stages.switch("correction")
-            try:
-                point, y = locate_on_curve(a, b, point, settings.gap_tol)
-            except TracingError:
-                continue
-            if stages.ON:
-                stages.switch("dedupe")
-            if any(near_curve(c, point, radius)[0] for c in curves):
-                continue
-        if stages.ON:
-            stages.switch("trace_setup")
-        try:
-            curve = trace_from(a, b, point, y, settings, time.perf_counter())
-        except TracingError:
-            continue            # the seed sits on a singular point: the arms' seeds trace it
-        curves.append(curve)
-        if stages.ON:
-            stages.switch("dedupe")
-        pending = drop_traced(pending, [curve], radius)
+    failed = trace_pending(a, b, drop_traced(pending, curves, radius), curves, settings, radius)
+    lost = lost_starts(failed, curves, LOST_RADIUS * settings.scale)
+    if lost:                # every start of a component was lost: start it from the lines through their middles
+        rescued = crossing_starts(a, b, settings.scale, settings.tolerance, lost)
+        trace_pending(a, b, drop_traced([(x, None, False) for x in rescued], curves, radius), curves, settings, radius)
+        lost = lost_starts(lost, curves, LOST_RADIUS * settings.scale)
+        if lost:
+            raise TopologyError(f"{len(lost)} start(s) of the topology stage could be neither located on the curve nor "
+                                f"traced, and no component found passes near them (first {lost[0].tolist()}): the "
+                                "surfaces nearly touch there; the result would miss a component", where="starts")
     if stages.ON:
         stages.switch("dedupe")
     kept = []
@@ -134,6 +121,49 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     proofs = certificates(a, b, curves, topo) if certify else [None] * len(curves)
     return [Curve(dataclasses.replace(c, topology=topo, certificate=proof)) for c, proof in zip(curves, proofs)]
 
+
+def trace_pending(a, b, pending, curves, settings, radius):
+    """Trace the components of the pending starts ((point, y, on the curve) each; y None: to be located first),
+    appending each to curves (a list, changed in place) and dropping the starts on it; returns the starts (3,) that
+    could be neither located nor traced."""
+    failed = []
+    while pending:
+        point, y, _ = pending.pop(0)
+        if y is None:
+            if stages.ON:
+                stages.switch("correction")
+            try:
+                point, y = locate_on_curve(a, b, point, settings.gap_tol)
+            except TracingError:
+                failed.append(np.asarray(point, dtype=float))
+                continue
+            if stages.ON:
+                stages.switch("dedupe")
+            if any(near_curve(c, point, radius)[0] for c in curves):
+                continue
+        if stages.ON:
+            stages.switch("trace_setup")
+        try:
+            curve = trace_from(a, b, point, y, settings, time.perf_counter())
+        except TracingError:
+            failed.append(np.asarray(point, dtype=float))
+            continue            # the seed sits on a singular point: the arms' seeds trace it
+        curves.append(curve)
+        if stages.ON:
+            stages.switch("dedupe")
+        pending = drop_traced(pending, [curve], radius)
+    return failed
+
+
+def lost_starts(points, curves, radius):
+    """The points (a list of (3,)) farther than radius from every curve (CurveResults)."""
+    if not points:
+        return []
+    points = np.array(points, dtype=float).reshape(-1, 3)
+    near = np.zeros(len(points), dtype=bool)
+    for curve in curves:
+        near |= near_curve(curve, points, radius)
+    return list(points[~near])
 
 def drop_traced(pending, curves, radius):
     """The pending starts (point, y, on the curve) less those on the curve (within the accuracy asked) and

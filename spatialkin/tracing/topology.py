@@ -197,20 +197,20 @@ class Reader:
         """Smallest box width on [lo, hi]: MIN_WIDTH_ULPS ulps of its magnitude."""
         return MIN_WIDTH_ULPS * ki.EPS * max(abs(lo), abs(hi), 1e-300)
 
-    def line(self, fixed, value, t0, t1, topo, name, probe=False):
+    def line(self, fixed, value, t0, t1, topo, name, probe=False, budget=None):
         """Roots of g on the line (parameter `fixed` of S = value, the other in [t0, t1]): (verified (K,),
         unresolved (L,)) of the other parameter; with probe, None where the line lies on T (line_on_level), not
-        searched."""
+        searched. budget: the most boxes (MAX_BOXES when None; past it TopologyError)."""
         out = np.empty((MAX_RECORDS, 2))
         kinds = np.empty(MAX_RECORDS, dtype=np.int64)
         width = max(self.min_width(t0, t1), 1e-15 * (t1 - t0))
         n, status, boxes, verified = kt.line_search(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
                                                     int(fixed), float(value), float(t0), float(t1), width,
-                                                    COARSE * (t1 - t0), MAX_BOXES, out, kinds,
-                                                    LINE_PROBES if probe else 0, ON_LEVEL)
+                                                    COARSE * (t1 - t0), MAX_BOXES if budget is None else budget,
+                                                    out, kinds, LINE_PROBES if probe else 0, ON_LEVEL)
         if status == kt.WHOLE_LINE:
             return None
-        self._account(topo, name, status, boxes, verified, n - verified)
+        self._account(topo, name, status, boxes, verified, n - verified, budget)
         return out[:verified, 0].copy(), out[verified:n, 0].copy()
 
     def extremal(self, box, unit, topo):
@@ -250,13 +250,14 @@ class Reader:
         return out
 
     @staticmethod
-    def _account(topo, name, status, boxes, verified, unresolved):
+    def _account(topo, name, status, boxes, verified, unresolved, budget=None):
         topo.boxes += int(boxes)
         topo.verified += verified
         topo.unresolved += unresolved
         topo.searches.append((name, int(boxes)))
         if status == kt.OVERFLOW:
-            raise TopologyError(f"the {name} search ran out of its budget of {MAX_BOXES} boxes: the intersection "
+            budget = MAX_BOXES if budget is None else budget
+            raise TopologyError(f"the {name} search ran out of its budget of {budget} boxes: the intersection "
                                 "could not be resolved there (a tangency along a curve in a placement not "
                                 "recognised as symmetric?)", where=name)
 
@@ -291,18 +292,7 @@ def topology(a, b, scale, tolerance):
     """
     t0 = time.perf_counter()
     check_not_coincident(a, b, scale)
-    balls = {id(a): bounding_ball(a), id(b): bounding_ball(b)}
-    if balls[id(a)] is None and balls[id(b)] is None:
-        raise ValueError(f"intersect needs a bounded pair: {type(a).__name__} and {type(b).__name__} are both "
-                         "unbounded (give a Plane u_range and v_range, a Cylinder or Cone a v_range)")
-    axis = common_axis(a, b, scale)
-    ruled = ruled_along(a, b, scale) if axis is None else None
-    p_user, q, mode = choose_roles(a, b, axis, ruled)
-    if mode == "ruled" and balls[id(p_user)] is None and balls[id(q)] is None:
-        raise ValueError("intersect needs a bounded pair")
-    p = traits(p_user).aligned(p_user, axis) if mode == "coaxial" else p_user
-    if mode == "general":
-        p = traits(p).general_chart(p, q)
+    p_user, q, mode, p, balls = search_roles(a, b, scale)
     topo = Topology(P=p_user, Q=q, mode=mode)
     box, u_periodic, v_periodic = domain(p, balls[id(q)])
     if not box[0] < box[1] or not box[2] < box[3]:
@@ -391,6 +381,24 @@ def topology(a, b, scale, tolerance):
     topo.seconds = time.perf_counter() - t0
     return topo
 
+
+
+def search_roles(a, b, scale):
+    """(P as given, Q, mode, P in the chart searched, {id: bounding ball}) of a pair that is not coincident: the roles
+    and chart of topology()'s searches (ValueError for an unbounded pair)."""
+    balls = {id(a): bounding_ball(a), id(b): bounding_ball(b)}
+    if balls[id(a)] is None and balls[id(b)] is None:
+        raise ValueError(f"intersect needs a bounded pair: {type(a).__name__} and {type(b).__name__} are both "
+                         "unbounded (give a Plane u_range and v_range, a Cylinder or Cone a v_range)")
+    axis = common_axis(a, b, scale)
+    ruled = ruled_along(a, b, scale) if axis is None else None
+    p_user, q, mode = choose_roles(a, b, axis, ruled)
+    if mode == "ruled" and balls[id(p_user)] is None and balls[id(q)] is None:
+        raise ValueError("intersect needs a bounded pair")
+    p = traits(p_user).aligned(p_user, axis) if mode == "coaxial" else p_user
+    if mode == "general":
+        p = traits(p).general_chart(p, q)
+    return p_user, q, mode, p, balls
 
 def place_seams(reader, box, u_periodic, v_periodic, apexes):
     """Cut the periodic parameters' seams (box is changed in place) where g does not vanish all along them: not

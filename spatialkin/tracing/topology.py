@@ -79,7 +79,7 @@ LOOP_FLOOR = 0.1
 #: values tell a simple root (sign change) from a multiple one.
 CLUSTER_SIDE = 1e-6
 #: Eigenvalues of the Hessian of g below this fraction of the largest are zero (a degenerate singular point).
-EIGEN_RATIO = 1e-6
+EIGEN_RATIO = 1e-10
 #: Seeds on the arms of a node sit this far (relative to the scale) from it.
 NODE_OFFSET = 2e-2
 #: Where the seams of periodic parameters are cut (offsets from -pi, tried in turn): any position proves the
@@ -636,10 +636,12 @@ def classify(loose, topo, scale, keep):
     or a double root on a line; contacts are kept, nodes seed their four arms, the rest seed where they are."""
     clusters, done = [], []
     units = {}
+    firsts = np.empty((len(loose), 3))                     # the clusters' first points, as rows
     for reader, uv in loose:
         pt = reader.s.point(*uv)
-        if any(np.linalg.norm(pt - c[2]) <= CLUSTER * scale for c in clusters):
+        if clusters and np.min(np.sum((firsts[:len(clusters)] - pt) ** 2, axis=1)) <= (CLUSTER * scale) ** 2:
             continue
+        firsts[len(clusters)] = pt
         clusters.append((reader, uv, pt))
     for reader, uv, pt in clusters:
         unit = units.setdefault(id(reader), step_units(reader.s, scale))

@@ -351,3 +351,26 @@ def test_plane_nearly_tangent_to_a_cone_along_a_ruling(offset):
         exact = 2.0 * (0.5 * w_edge * math.hypot(1.0, w_edge / c) + 0.5 * c * math.asinh(w_edge / c))
         assert abs(curves[0].length - exact) < 1e-9 * exact
         assert on_both(curves, p, q) < 1e-14
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_elongated_contacts_of_two_stacked_tori(seed):
+    """Two equal tori (R 1, r 0.3) on parallel axes, one 0.6 up its axis and 1e-3 aside: their tube circles meet
+    where the two centre circles cross, so the tori touch at exactly two points, each a contact whose Hessian of g
+    has eigenvalues 4e-6 and 16 (the tubes part slowly along the circles). Taken for degenerate points (below 1e-6
+    of the largest eigenvalue), their seeds could not be located: sk.intersect returned []. Oracle: the contacts
+    (eps/2, +-sqrt(1 - eps^2/4), 0.3) in the first torus's frame, within 1e-9 (along the flat direction the contact
+    is fixed only to the gradient's round-off over the small eigenvalue, about 1e-15 / 4e-6; measured 1.3e-10); on
+    both surfaces to round-off."""
+    eps = 1e-3
+    rot = random_rotation(np.random.default_rng(seed))
+    origin = np.random.default_rng(seed + 10).uniform(-1, 1, 3)
+    a = sk.Torus(1.0, 0.3, sk.Frame(origin, rot))
+    b = sk.Torus(1.0, 0.3, sk.Frame(origin + rot @ np.array([eps, 0.0, 0.6]), rot))
+    truth = np.array([origin + rot @ np.array([eps / 2, s * math.sqrt(1 - eps * eps / 4), 0.3]) for s in (1, -1)])
+    for p, q in ((a, b), (b, a)):
+        curves = sk.intersect(p, q, TOL)
+        assert [c.status for c in curves] == ["contact", "contact"]
+        got = np.array([c.points[0] for c in curves])
+        assert np.min(np.linalg.norm(got[:, None] - truth[None], axis=2), axis=1).max() < 1e-9
+        assert on_both(curves, p, q) < 1e-15

@@ -38,8 +38,9 @@ from .interval import (box_trig, contains_zero, down, iadd, imul, intersect, isc
 from .surfaces import evaluate, inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
-#: Status of a search: completed, or stopped at its box budget (the result is then not a proof).
-DONE, OVERFLOW = 0, -1
+#: Status of a search: completed, or stopped short (the result is then not a proof): at its box budget, with its
+#: record of roots and unresolved boxes full, or with its box stack full.
+DONE, OVERFLOW, RECORDS_FULL, STACK_FULL = 0, -1, -2, -3
 #: Status of a line search that found the whole line on the level (line_search with probes): not searched.
 WHOLE_LINE = 1
 #: A contracted box is searched again (rather than bisected) when each side shrank to this fraction or less.
@@ -89,7 +90,8 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
     and g' moves it by less than FLAT times that round-off across the box (a multiple root: bisecting cannot
     separate anything), is returned unresolved.
 
-    Returns (number of records written to out (K, 2) and kinds (K,), status DONE or OVERFLOW, boxes visited).
+    Returns (number of records written to out (K, 2) and kinds (K,), status (DONE, or the reason it stopped
+    short), boxes visited).
     """
     stack = np.empty((STACK, 2))
     top = 0
@@ -117,7 +119,7 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
             n = isub(point(mid), imul(f_m, _recip(d_x)))
             if n[0] > a and n[1] < b:
                 if count >= out.shape[0]:
-                    return count, OVERFLOW, boxes
+                    return count, RECORDS_FULL, boxes
                 out[count, 0] = n[0]
                 out[count, 1] = n[1]
                 kinds[count] = VERIFIED
@@ -129,7 +131,7 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
                 continue
             if hi - lo <= CONTRACTION * (b - a):
                 if top >= STACK:
-                    return count, OVERFLOW, boxes
+                    return count, STACK_FULL, boxes
                 stack[top, 0] = lo
                 stack[top, 1] = hi
                 top += 1
@@ -137,14 +139,14 @@ def line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width,
         flat = contains_zero(f_m) and abs(_mid(d_m)) * (b - a) <= FLAT * (f_m[1] - f_m[0])
         if b - a <= min_width or (b - a <= coarse and flat):
             if count >= out.shape[0]:
-                return count, OVERFLOW, boxes
+                return count, RECORDS_FULL, boxes
             out[count, 0] = a
             out[count, 1] = b
             kinds[count] = UNRESOLVED
             count += 1
             continue
         if top + 2 > STACK:
-            return count, OVERFLOW, boxes
+            return count, STACK_FULL, boxes
         cut = a + SPLIT * (b - a)
         stack[top, 0] = a
         stack[top, 1] = cut
@@ -257,7 +259,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             l = _krawczyk_row(y10, y11, mv, gm, phim, gu, gv, j10, j11, dU, dV, 1)
             if k[0] > U[0] and k[1] < U[1] and l[0] > V[0] and l[1] < V[1]:
                 if not _record(out, kinds, count, k, l, VERIFIED):
-                    return count, OVERFLOW, boxes
+                    return count, RECORDS_FULL, boxes
                 count += 1
                 continue
             ku = intersect(k, U)
@@ -270,7 +272,7 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
                 contracted = True
         if contracted:
             if top >= STACK:
-                return count, OVERFLOW, boxes
+                return count, STACK_FULL, boxes
             _put(stack, top, U, V)
             known[top] = 0
             top += 1
@@ -281,11 +283,11 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
                 and abs(a00) * (U[1] - U[0]) + abs(a01) * (V[1] - V[0]) <= FLAT * (gm[1] - gm[0]))
         if (ru <= 1.0 and rv <= 1.0) or tiny:
             if not _record(out, kinds, count, U, V, UNRESOLVED):
-                return count, OVERFLOW, boxes
+                return count, RECORDS_FULL, boxes
             count += 1
             continue
         if top + 2 > STACK:
-            return count, OVERFLOW, boxes
+            return count, STACK_FULL, boxes
         _put(stack, top, U, V)
         _put(stack, top + 1, U, V)
         if _cut_u(ru, rv, gu, gv, j10, j11, U[1] - U[0], V[1] - V[0]):

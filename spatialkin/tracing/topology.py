@@ -255,11 +255,14 @@ class Reader:
         topo.verified += verified
         topo.unresolved += unresolved
         topo.searches.append((name, int(boxes)))
-        if status == kt.OVERFLOW:
+        if status != kt.DONE:
             budget = MAX_BOXES if budget is None else budget
-            raise TopologyError(f"the {name} search ran out of its budget of {budget} boxes: the intersection "
-                                "could not be resolved there (a tangency along a curve in a placement not "
-                                "recognised as symmetric?)", where=name)
+            what = {kt.OVERFLOW: f"ran out of its budget of {budget} boxes",
+                    kt.RECORDS_FULL: f"found more than {MAX_RECORDS} roots and unresolved boxes",
+                    kt.STACK_FULL: f"went deeper than its stack of {kt.STACK} boxes"}[status]
+            raise TopologyError(f"the {name} search {what}: the intersection could not be resolved there (a "
+                                "tangency along a curve, or an elongated contact, in a placement not recognised as "
+                                "symmetric?)", where=name)
 
 
 def line_params(fixed, value, along):

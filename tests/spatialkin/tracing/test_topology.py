@@ -314,10 +314,16 @@ def test_certificate_radii_hold_the_true_points():
 
 
 def test_search_budget_is_a_typed_error(monkeypatch):
-    """A search that runs out of boxes raises TopologyError naming it, never a partial answer."""
+    """A search that runs out of boxes, or of room for its roots and unresolved boxes, raises TopologyError naming
+    the search and which limit, never a partial answer."""
+    pair = (sk.Torus(2.0, 0.5), sk.Cylinder(0.4, sk.Frame((2.0, 0.1, 0.0)), v_range=(-2, 2)))
     monkeypatch.setattr(tp, "MAX_BOXES", 5)
-    with pytest.raises(sk.TopologyError, match="budget"):
-        sk.intersect(sk.Torus(2.0, 0.5), sk.Cylinder(0.4, sk.Frame((2.0, 0.1, 0.0)), v_range=(-2, 2)))
+    with pytest.raises(sk.TopologyError, match="budget of 5 boxes"):
+        sk.intersect(*pair)
+    monkeypatch.setattr(tp, "MAX_BOXES", 400_000)
+    monkeypatch.setattr(tp, "MAX_RECORDS", 1)
+    with pytest.raises(sk.TopologyError, match="search found more than 1 roots and unresolved boxes"):
+        sk.intersect(*pair)
 
 
 @pytest.mark.parametrize("offset", [-1e-9, 1e-9])

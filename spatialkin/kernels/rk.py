@@ -49,10 +49,12 @@ TERMINAL = 1
 LEVEL_BEFORE = 2
 #: A level: the integration ends at the end of the first step that reaches it (the step kept).
 LEVEL_AFTER = 3
-#: TERMINAL and LEVEL_BEFORE, the event also probed at PROBES[method] interior points of each step's dense output: a
-#: crossing out and back within one step (a curve grazing out of a trim edge for a fraction of a step) is found
-#: when it spans more than about 1/(PROBES[method] + 1) of the step. Only for events 1-Lipschitz in the state's largest
-#: component (a parameter against a bound; a relative area element, tests/spatialkin/tracing/test_hard_cases.py):
+#: TERMINAL and LEVEL_BEFORE, the event also probed at PROBES[method] interior points of each step's dense output,
+#: and between two of them where neither its rate nor its bend excludes a dip to zero (hidden_crossing): a crossing
+#: out and back within one step (a curve grazing out of a trim edge for a fraction of a step) is found down to
+#: DIP_FLOOR of the step (the bend bound is rigorous for events linear in the state: the trim edges). Only for events
+#: 1-Lipschitz in the state's largest component (a parameter against a bound; a relative area element,
+#: tests/spatialkin/tracing/test_hard_cases.py):
 #: a step is probed only where such an event's value at an end is within the step's reach (step_reach: a bound on
 #: how far any component of the dense output moves within the step).
 TERMINAL_PROBED = 4
@@ -60,6 +62,17 @@ LEVEL_BEFORE_PROBED = 5
 #: Interior points of a step at which probed events are evaluated (evenly spaced), per method: DOP853's steps are
 #: about four times RK45's at the same rtol, so about four times as many probes keep their spacing.
 PROBES = (8, 32)
+#: Between two evaluated points where a probed event has one sign, it may still dip to zero and back (a curve grazing
+#: 1e-7 out of a trim edge for 1e-3 of its length passes between probes 3e-3 apart). hidden_crossing bisects such an
+#: interval until the event's rate (step_speed) or its bend (step_bend: for an event linear in the state, a trim
+#: edge, a bound on its second derivative) proves it keeps its sign, or down to this fraction of the step (a touch
+#: within round-off then counts as no crossing).
+DIP_FLOOR = 2.0 ** -40
+#: Intervals a hidden_crossing search holds at once (each bisection of the deepest adds one), and the most points it
+#: evaluates: a curve running along an edge (the event within round-off of zero all along) cannot be told from a
+#: dip anywhere, and is given up after that many (as a touch).
+DIP_STACK = 48
+DIP_EVALUATIONS = 96
 
 # --- the methods (advance's `method`) -----------------------------------------------------------------------
 #: Dormand–Prince 5(4), scipy's RK45.
@@ -306,6 +319,62 @@ def step_speed(q):
 
 
 @jit
+def step_bend(step, q):
+    """Bound on |d^2 y_i/dt^2| over the step, every component i: the dense output's second derivative is
+    sum_m (m + 1) m q[i, m] x^(m-1) / step, so max_i sum_m (m + 1) m |q[i, m]| / |step|, widened by 1e-12
+    (relative) over its round-off."""
+    bound = 0.0
+    for i in range(q.shape[0]):
+        total = 0.0
+        for m in range(1, q.shape[1]):
+            total += (m + 1) * m * abs(q[i, m])
+        bound = max(bound, total)
+    return bound / abs(step) * (1.0 + 1e-12)
+
+
+@jit
+def may_dip(g_a, g_b, width, speed, bend):
+    """True when an event with values g_a, g_b of one sign at the ends of an interval of the given width may reach
+    zero inside it: neither its rate (speed: a zero needs |g_a| + |g_b| <= speed x width) nor its bend (bend: the
+    event lies above the chord less bend x width^2 / 8) excludes it."""
+    low = min(abs(g_a), abs(g_b))
+    return abs(g_a) + abs(g_b) <= speed * width and low <= 0.125 * bend * width * width
+
+
+@jit(inline="always")
+def hidden_crossing(events, args, eargs, mask, values, index, t_old, step, y_old, q, t_a, t_b, g_a, g_b, direction,
+                    speed, bend, out):
+    """(lo, hi, g_lo, g_hi) of the first piece of [t_a, t_b] (event `index`, values g_a, g_b there, not crossing
+    between them) over which the event crosses zero in its direction, found by bisecting, first half first, every
+    piece where may_dip cannot exclude a dip to zero, down to DIP_FLOOR of the step and for at most DIP_EVALUATIONS
+    points; lo > hi when there is none.
+    Evaluates the events of `mask` (into values) on the step's dense output."""
+    stack = np.empty((DIP_STACK, 4))
+    stack[0, 0], stack[0, 1], stack[0, 2], stack[0, 3] = t_a, t_b, g_a, g_b
+    top = 1
+    floor = DIP_FLOOR * abs(step)
+    evaluations = 0
+    while top > 0:
+        top -= 1
+        a, b, ga, gb = stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3]
+        if crosses(ga, gb, direction):
+            return a, b, ga, gb
+        if abs(b - a) <= floor or not may_dip(ga, gb, abs(b - a), speed, bend) or top + 2 > DIP_STACK:
+            continue
+        if evaluations == DIP_EVALUATIONS:
+            break
+        evaluations += 1
+        m = a + 0.5 * (b - a)
+        dense_state(t_old, step, y_old, q, m, out)
+        events(m, out, args, eargs, mask, values)
+        gm = values[index]
+        stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3] = m, b, gm, gb          # (second half last)
+        stack[top + 1, 0], stack[top + 1, 1], stack[top + 1, 2], stack[top + 1, 3] = a, m, ga, gm
+        top += 2
+    return 1.0, 0.0, 0.0, 0.0
+
+
+@jit
 def keeps_sign(g, t_from, t, speed):
     """True when an event of value g at t_from, 1-Lipschitz in the state's largest component (its rate at most
     speed, step_speed), cannot be zero between t_from and t: it keeps g's sign there."""
@@ -314,12 +383,13 @@ def keeps_sign(g, t_from, t, speed):
 
 @jit(inline="always")
 def probe_level(events, args, eargs, probed, values, t_old, step, y_old, q, directions, modes, probes, g_lo, g_hi,
-                last, speed, out):
+                last, now, speed, bend, out):
     """The first probed level event (LEVEL_BEFORE_PROBED, mask `probed`; values g_lo, g_hi at the step's ends, not
-    reached at its end) reached at one of `probes` evenly spaced interior points of the step, or -1. A point is
-    evaluated only where some probed event may have changed sign since the last point evaluated and may still
-    change it before the end (keeps_sign): elsewhere each keeps the sign of one of those values, reached at
-    neither, so the answer is that of evaluating every point. last (n_events,) is a work array."""
+    reached at its end) reached at one of `probes` evenly spaced interior points of the step, or between two of
+    them (hidden_crossing), or -1. A point is evaluated only where some probed event may have changed sign since
+    the last point evaluated and may still change it before the end (keeps_sign): elsewhere each keeps the sign of
+    one of those values, reached at neither, so the answer is that of evaluating every point. last, now
+    (n_events,) are work arrays."""
     t_last = t_old
     t_end = t_old + step
     for i in range(g_lo.shape[0]):
@@ -333,7 +403,7 @@ def probe_level(events, args, eargs, probed, values, t_old, step, y_old, q, dire
                 unsettled = True
                 due = due or not keeps_sign(last[i], t_last, tk, speed)
         if not unsettled:
-            return -1
+            break
         if not due:
             continue
         dense_state(t_old, step, y_old, q, tk, out)
@@ -341,17 +411,39 @@ def probe_level(events, args, eargs, probed, values, t_old, step, y_old, q, dire
         i = level_reached(values, probed, directions, modes, LEVEL_BEFORE_PROBED)
         if i >= 0:
             return i
+        for i in range(g_lo.shape[0]):
+            now[i] = values[i]
+        i = dipped_level(events, args, eargs, probed, values, t_old, step, y_old, q, directions, t_last, tk, last,
+                         now, speed, bend, out)
+        if i >= 0:
+            return i
         t_last = tk
         for i in range(g_lo.shape[0]):
-            last[i] = values[i]
+            last[i] = now[i]
+    return dipped_level(events, args, eargs, probed, values, t_old, step, y_old, q, directions, t_last, t_end, last,
+                        g_hi, speed, bend, out)
+
+
+@jit(inline="always")
+def dipped_level(events, args, eargs, probed, values, t_old, step, y_old, q, directions, t_a, t_b, g_a, g_b, speed,
+                 bend, out):
+    """The first probed level event (mask `probed`, values g_a, g_b at t_a, t_b, reached at neither) that
+    hidden_crossing finds reached between t_a and t_b, or -1."""
+    for i in range(g_a.shape[0]):
+        if probed[i]:
+            lo, hi, _, _ = hidden_crossing(events, args, eargs, probed, values, i, t_old, step, y_old, q, t_a, t_b,
+                                           g_a[i], g_b[i], directions[i], speed, bend, out)
+            if lo <= hi:
+                return i
     return -1
 
 
 @jit(inline="always")
 def probe_crossing(events, args, eargs, only, values, index, t_old, step, y_old, q, g_lo, g_hi, direction, probes,
-                   speed, out):
+                   speed, bend, out):
     """(lo, hi, g_lo, g_hi) of the first interval between `probes` evenly spaced interior points of the step (and
     its ends) over which event `index` (values g_lo, g_hi at the step's ends) crosses zero in its direction, or
+    between two of them where it dips to zero and back (hidden_crossing: the piece of the first crossing), or
     lo > hi when none does. Points where the event provably keeps the sign of the last value evaluated are
     skipped (keeps_sign); from the first point where it provably keeps g_hi's sign to the end, the last interval
     runs to the step's end."""
@@ -365,12 +457,14 @@ def probe_crossing(events, args, eargs, only, values, index, t_old, step, y_old,
             continue
         dense_state(t_old, step, y_old, q, tk, out)
         events(tk, out, args, eargs, only, values)
-        if crosses(g_lo, values[index], direction):
-            return t_lo, tk, g_lo, values[index]
-        t_lo, g_lo = tk, values[index]
-    if t_lo > t_old and crosses(g_lo, g_hi, direction):
-        return t_lo, t_end, g_lo, g_hi
-    return 1.0, 0.0, 0.0, 0.0
+        g_k = values[index]
+        lo, hi, g_a, g_b = hidden_crossing(events, args, eargs, only, values, index, t_old, step, y_old, q, t_lo, tk,
+                                           g_lo, g_k, direction, speed, bend, out)
+        if lo <= hi:
+            return lo, hi, g_a, g_b
+        t_lo, g_lo = tk, g_k
+    return hidden_crossing(events, args, eargs, only, values, index, t_old, step, y_old, q, t_lo, t_end, g_lo, g_hi,
+                           direction, speed, bend, out)
 
 
 @jit(inline="always")
@@ -561,6 +655,7 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
     scale = np.empty(n)
     g_new = np.empty(g.shape[0])
     g_last = np.empty(g.shape[0])
+    g_now = np.empty(g.shape[0])
     probed = np.zeros(ne, dtype=np.bool_)               # the probed level events
     any_probed = False
     for i in range(ne):
@@ -618,15 +713,17 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
                 combine(qs[count - 1, :, m], None, 1.0, P[:, m], k, 7)
         before = level_reached(g_new, active, directions, modes, LEVEL_BEFORE, LEVEL_BEFORE_PROBED)
         reach = step_reach(step, qs[count - 1])
-        speed = -1.0                                             # (made when first needed)
+        speed = -1.0                                             # (made when first needed, with bend)
+        bend = -1.0
         if before < 0 and any_probed:
             near = False
             for i in range(ne):
                 near = near or (probed[i] and within_reach(g[i], g_new[i], reach))
             if near:
                 speed = step_speed(qs[count - 1])
+                bend = step_bend(step, qs[count - 1])
                 before = probe_level(events, args, eargs, probed, values, t, step, y, qs[count - 1], directions,
-                                     modes, PROBES[method], g, g_new, g_last, speed, stage)
+                                     modes, PROBES[method], g, g_new, g_last, g_now, speed, bend, stage)
         if before >= 0:                                          # a hard case ahead: this step is dropped
             hits[0] = before
             hit_ts[0] = t
@@ -646,9 +743,10 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
                 only[i] = True
                 if speed < 0.0:
                     speed = step_speed(qs[count - 1])
+                    bend = step_bend(step, qs[count - 1])
                 lo, hi, g_lo, g_hi = probe_crossing(events, args, eargs, only, values, i, t, step, y,
                                                     qs[count - 1], g_lo, g_hi, directions[i], PROBES[method], speed,
-                                                    stage)
+                                                    bend, stage)
                 if lo > hi:
                     only[i] = False
                     continue

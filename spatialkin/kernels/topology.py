@@ -188,8 +188,8 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
     min_width (2,) is the smallest width per parameter; boxes are bisected along the parameter that spreads g or
     phi most over the box (_cut_u: the smear), among those still wider than min_width; a box within coarse times
     min_width where g at its midpoint is within round-off of zero and its gradient moves g by less than FLAT times
-    that across the box is unresolved at once (round-off: bisecting further cannot separate anything). Returns (records in out (K, 4) and kinds (K,), status, boxes
-    visited).
+    that across the box is unresolved at once (round-off: bisecting further cannot separate anything). Returns
+    (records in out (K, 4) and kinds (K,), status (DONE, or why it stopped short), boxes visited).
     """
     stack = np.empty((STACK, 4))
     # the trig enclosures of a box's U and V (cos lo, hi, sin lo, hi: U's in columns 0-3, V's in 4-7), where

@@ -71,7 +71,8 @@ def test_a_lost_component_raises_never_an_empty_list(monkeypatch):
 
 def test_middle_lines_and_clusters_by_hand():
     """The lines u = middle and v = middle of each pair, a periodic u's also half a turn on (wrapped into the box,
-    its seam -pi included); equal coordinates give no line; lost starts within the cluster radius share one representative."""
+    its seam -pi included); equal coordinates give no line; lost starts within the cluster radius share one
+    representative."""
     box = np.array([-math.pi, math.pi, -1.0, 1.0])
     uv = np.array([[-1.0, 0.2], [1.0, 0.2], [3.0, -0.4]])
     lines = rescue.middle_lines(uv, box, (True, False))

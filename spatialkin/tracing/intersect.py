@@ -18,7 +18,7 @@ from . import stages
 from .status import CONTACT
 from .rescue import LOST_RADIUS, crossing_starts
 from .topology import TopologyError, points_at, topology
-from .traits import check_surface
+from .traits import check_surface, traits
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
@@ -180,14 +180,40 @@ def drop_traced(pending, curves, radius):
 
 
 def near_curve(curve, points, radius):
-    """Mask (M,) of the points (M, 3) lying within radius of the curve (a CurveResult). A point farther than radius
-    plus half the longest step from every stored point is farther than radius from the curve (each arc between
-    two stored points lies within half its length of one of them); a point within radius of a foot point found
-    by Newton in s from the nearest stored point is near; the closest point decides the rest. A traced curve is
-    tested in compiled code (spatialkin.kernels.near: there a point within radius of one of Newton's iterates,
-    each a point of the curve, is near too), except where Newton meets a span the compiled tables do not hold (a
-    jump across a node or an apex): there, and on the other curves, the dense output's methods decide."""
+    """Mask (M,) of the points (M, 3) lying within radius of the curve (a CurveResult), on a sheet of each cone of
+    the pair that the curve visits (other_sheet: beside a cone's apex two components on its two nappes pass
+    within any distance of each other). A point farther than radius plus half the longest step from every stored
+    point is farther than radius from the curve (each arc between two stored points lies within half its length
+    of one of them); a point within radius of a foot point found by Newton in s from the nearest stored point is
+    near; the closest point decides the rest. A traced curve is tested in compiled code (spatialkin.kernels.near:
+    there a point within radius of one of Newton's iterates, each a point of the curve, is near too), except where
+    Newton meets a span the compiled tables do not hold (a jump across a node or an apex): there, and on the other
+    curves, the dense output's methods decide."""
     points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
+    near = within_radius(curve, points, radius)
+    if near.any():
+        near &= ~other_sheet(curve, points)
+    return near
+
+
+def other_sheet(curve, points):
+    """Mask (M,) of the points (M, 3) on a nappe of a cone of the curve's pair (CurveResult) that the curve never
+    visits: farther than the curve's tolerance beyond the plane through the apex normal to the axis, on the side
+    none of its stored points is on (a curve through the apex has points on both and passes every point)."""
+    out = np.zeros(len(points), dtype=bool)
+    guard = curve.tolerance
+    for surface in getattr(curve.sol, "surfaces", ()):
+        if traits(surface).name != "cone":
+            continue
+        heights = surface.frame.to_local(curve.points)[..., 2]
+        side = 1.0 if np.all(heights > guard) else -1.0 if np.all(heights < -guard) else 0.0
+        if side:
+            out |= side * surface.frame.to_local(points)[..., 2] < -guard
+    return out
+
+
+def within_radius(curve, points, radius):
+    """near_curve without the sheets' test (points (M, 3) contiguous)."""
     if not (curve.length > 0 and len(curve.points) > 1 and len(points)):
         return curve.sol.closest(points)[1] <= radius if len(points) else np.zeros(0, dtype=bool)
     table = packed(curve.sol)

@@ -26,9 +26,10 @@ from .topology import Keeper, Reader, Topology, TopologyError, domain, line_para
 #: within 2e-5 of it, measured; a missed loop's have no component near them).
 LOST_RADIUS = 1e-3
 #: Lost starts within this (relative to the scale) of one kept as a cluster's representative belong to its cluster;
-#: at most MAX_CLUSTERS representatives are paired (each pair costs two or four line searches).
+#: at most MAX_CLUSTERS representatives are paired (each pair costs two or four line searches; a thin loop has
+#: two clusters, one at each end).
 CLUSTER_RADIUS = 1e-3
-MAX_CLUSTERS = 12
+MAX_CLUSTERS = 6
 #: Box budget of one rescue line: a line that runs along the thin loop (g within its depth of zero all along) may
 #: not resolve; it is skipped, and the line across the loop seeds it.
 RESCUE_BOXES = 20_000

@@ -165,6 +165,7 @@ def lost_starts(points, curves, radius):
         near |= near_curve(curve, points, radius)
     return list(points[~near])
 
+
 def drop_traced(pending, curves, radius):
     """The pending starts (point, y, on the curve) less those on the curve (within the accuracy asked) and
     within radius of one of the curves, tested in one query per curve; the others are kept and tested once

@@ -119,7 +119,8 @@ def closed_form(a, b, settings):
         conics = plane_line(*placed, graze, settings.scale)
     elif "plane" in names and (names[0] in QUADRICS or names[1] in QUADRICS):
         plane, quadric = placed if names[0] == "plane" else placed[::-1]
-        conics = plane_conics(plane, quadric, graze, settings.scale)
+        apex_gap = ROUNDOFF_ULPS * EPS * max(settings.scale, *map(abs, plane.origin + quadric.origin))
+        conics = plane_conics(plane, quadric, graze, settings.scale, apex_gap)
         if isinstance(conics, tuple):                       # a circle about a common axis: as the general path
             return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=conics,
                                                       event="axis_circle", topology=topo)]
@@ -349,10 +350,13 @@ def quadric_form(quadric):
     return -tan * tan, 0.0
 
 
-def plane_conics(plane, quadric, graze, scale):
+def plane_conics(plane, quadric, graze, scale, apex_gap=None):
     """[(shape, rows)] (global) of the plane and the quadric (Placed); a tuple (centre, axis, radius) for the circle
     of an untrimmed plane about the quadric's axis (or a sphere's), () when nothing is there; None where
-    declined."""
+    declined. A plane within apex_gap of a cone's apex passes through it (declined; graze when None: the split
+    pairs' planes, known to about that): a user's plane farther from it cuts a conic of its own, however small
+    (a plane 1e-7 from the apex, tilted less than the half angle: an ellipse 3.6e-7 long, which the general path's
+    search does not look for so close to an apex on the plane)."""
     origin, rot = quadric.origin, quadric.rot
     (o0, o1, o2), (p0, p1, p2) = origin, plane.origin
     normal = plane.z
@@ -362,7 +366,7 @@ def plane_conics(plane, quadric, graze, scale):
     name = quadric.name
     if name == "sphere" and abs(abs(d) - math.sqrt(rho)) <= graze:
         return None                                          # tangent
-    if name == "cone" and abs(d) <= graze:
+    if name == "cone" and abs(d) <= (graze if apex_gap is None else apex_gap):
         return None                                          # through the apex
     n0, n1, n2 = n
     sin = math.hypot(n0, n1)

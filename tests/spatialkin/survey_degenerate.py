@@ -251,6 +251,47 @@ def fam_plane_torus_two_edges(rng, eps):
     c = (rout + eps) / math.sqrt(2)
     return tor, sk.Plane(sk.Frame(o + 0.1 * R[:, 2], R), (-3, c), (-3, c))
 
+
+def fam_plane_torus_side(rng, eps):
+    """Plane parallel to the torus axis touching the outer equator (tangent at a point, saddle-free)."""
+    R, o = rot(rng), rng.uniform(-1, 1, 3)
+    Rp = R @ np.array([[0, 0, 1], [0, 1, 0], [-1, 0, 0]]).T
+    return sk.Torus(1.0, 0.3, sk.Frame(o, R)), sk.Plane(sk.Frame(o + (1.3 - eps) * R[:, 0], Rp), (-2, 2), (-2, 2))
+
+
+def fam_cyl_cyl_parallel(rng, eps):
+    """Parallel axes, radii sum = distance - eps (touching along a ruling), trimmed."""
+    R, o = rot(rng), rng.uniform(-1, 1, 3)
+    return (sk.Cylinder(0.5, sk.Frame(o, R), v_range=(-1, 1)),
+            sk.Cylinder(0.4, sk.Frame(o + (0.9 - eps) * R[:, 0], R), v_range=(-0.5, 1.5)))
+
+
+def fam_cone_torus_apex(rng, eps):
+    """Cone apex on the torus surface (outer equator), axis along the torus axis."""
+    R, o = rot(rng), rng.uniform(-1, 1, 3)
+    return sk.Torus(1.0, 0.3, sk.Frame(o, R)), sk.Cone(0.3, sk.Frame(o + (1.3 - eps) * R[:, 0], R), v_range=(-1, 1))
+
+
+def fam_sphere_plane_trim_circle(rng, eps):
+    """Sphere circle on a trimmed plane inscribed in the square (touching 4 edges)."""
+    R, o = rot(rng), rng.uniform(-1, 1, 3)
+    pl = sk.Plane(sk.Frame(o, R), (-0.5, 0.5), (-0.5, 0.5))
+    return pl, sk.Sphere(math.sqrt(0.25 + 0.09) + eps, sk.Frame(o + 0.3 * R[:, 2], R))
+
+
+def fam_torus_torus_cross(rng, eps):
+    """Two tori with perpendicular axes, tubes tangent at a point."""
+    R, o = rot(rng), rng.uniform(-1, 1, 3)
+    R2 = R @ sk.rotation_about((1, 0, 0), math.pi / 2)
+    return sk.Torus(1.0, 0.3, sk.Frame(o, R)), sk.Torus(1.0, 0.3, sk.Frame(o + (2.6 - eps) * R[:, 0], R2))
+
+
+def fam_cone_plane_apex_near(rng, eps):
+    """Plane through near the cone apex, generic tilt (small ellipse/hyperbola)."""
+    R, o = rot(rng), rng.uniform(-1, 1, 3)
+    Rp = sk.rotation_about(R[:, 0], 0.3) @ R
+    return sk.Cone(0.5, sk.Frame(o, R), v_range=(-1, 1)), sk.Plane(sk.Frame(o + eps * R[:, 2], Rp), (-2, 2), (-2, 2))
+
 FAMILIES = [fam_torus_sphere_off, fam_torus_sphere_inner, fam_plane_torus_top, fam_cyl_torus_inner,
             fam_steinmetz_off, fam_steinmetz_radius, fam_sphere_sphere_torus, fam_cone_cyl_coaxial_off,
             fam_torus_torus_off, fam_plane_cyl_rim, fam_sphere_cyl_rim, fam_torus_plane_edge,
@@ -258,7 +299,9 @@ FAMILIES = [fam_torus_sphere_off, fam_torus_sphere_inner, fam_plane_torus_top, f
             fam_two_spheres_near_same, fam_plane_cyl_ruling, fam_viviani_trim, fam_cone_apex_on_sphere,
             fam_torus_spindle, fam_cone_apex_on_cyl, fam_cone_cone_apexes, fam_villarceau_off,
             fam_sphere_on_tube_circle, fam_saddle_tiny, fam_torus_torus_linked, fam_cyl_cyl_trim_node,
-            fam_sphere_cone_trim_apex, fam_torus_cyl_edge_graze, fam_plane_torus_two_edges]
+            fam_sphere_cone_trim_apex, fam_torus_cyl_edge_graze, fam_plane_torus_two_edges, fam_plane_torus_side,
+            fam_cyl_cyl_parallel, fam_cone_torus_apex, fam_sphere_plane_trim_circle, fam_torus_torus_cross,
+            fam_cone_plane_apex_near]
 
 
 def answer(p, q):

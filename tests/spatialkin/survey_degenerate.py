@@ -5,7 +5,7 @@ flagged "!!!". An empty list beside non-empty ones, or one component fewer, is a
 honest refusal. The oracle is the intersection's invariance under rigid motion and argument order (and, for the
 families whose truth is known, the README's and the tests' closed forms).
 
-Run from the repository: ``python tests/spatialkin/survey_degenerate.py [family ...]`` (about 3 minutes on 2 cores
+Run from the repository: ``python tests/spatialkin/survey_degenerate.py [family ...]`` (about 4 minutes on 2 cores
 for all; the README's "Every component" section gives what it found on 26 Nov 2026 and the tests that keep each
 fix).
 """

@@ -1,4 +1,4 @@
-"""The consistency survey of near-degenerate pairs (tests/spatialkin/survey_degenerate.py; all 31 families: run it
+"""The consistency survey of near-degenerate pairs (tests/spatialkin/survey_degenerate.py; all 37 families: run it
 as a script) on the families of trims grazed, corners, near-tangent circles and split pairs that found or could find
 a silent miss: in 3 placements and both argument orders, at offsets 1e-9 to 1e-3 of either sign, every answer
 (statuses and lengths to 4 digits) the same. Oracles: the intersection's invariance under rigid motion and argument

@@ -119,8 +119,7 @@ def closed_form(a, b, settings):
         conics = plane_line(*placed, graze, settings.scale)
     elif "plane" in names and (names[0] in QUADRICS or names[1] in QUADRICS):
         plane, quadric = placed if names[0] == "plane" else placed[::-1]
-        apex_gap = ROUNDOFF_ULPS * EPS * max(settings.scale, *map(abs, plane.origin + quadric.origin))
-        conics = plane_conics(plane, quadric, graze, settings.scale, apex_gap)
+        conics = plane_conics(plane, quadric, graze, settings.scale, roundoff(placed, settings.scale))
         if isinstance(conics, tuple):                       # a circle about a common axis: as the general path
             return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=conics,
                                                       event="axis_circle", topology=topo)]
@@ -134,6 +133,12 @@ def closed_form(a, b, settings):
     if not trims:
         return None
     return components(placed, conics, trims, graze, settings, topo)
+
+
+def roundoff(placed, scale):
+    """The round-off of the pair's (Placed) coordinates: ROUNDOFF_ULPS ulps of the larger of the scale and their
+    origins' largest coordinate (the floor trace.scene_lengths puts under the tolerance)."""
+    return ROUNDOFF_ULPS * EPS * max(scale, *map(abs, placed[0].origin + placed[1].origin))
 
 
 def components(placed, conics, trims, graze, settings, topo, nodes=()):
@@ -189,8 +194,7 @@ def split_conics(placed, graze, settings, topo):
         if isinstance(cut, tuple) or any(shape != ELLIPSE for shape, _ in cut):
             return None
         conics += cut
-    magnitude = max(map(abs, placed[0].origin + placed[1].origin))
-    fit = max(SPLIT_FIT * settings.scale, ROUNDOFF_ULPS * EPS * max(settings.scale, magnitude))
+    fit = max(SPLIT_FIT * settings.scale, roundoff(placed, settings.scale))
     t = np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False)
     samples = [np.array(c) + np.cos(t)[:, None] * np.array(p) + np.sin(t)[:, None] * np.array(q)
                for _, (c, p, q) in conics]

@@ -24,7 +24,8 @@ from scipy.integrate import DenseOutput, OdeSolution, OdeSolver, solve_ivp
 
 from ..kernels import rk
 
-#: Most RK45 steps one CompiledRK45 step takes (solve_ivp's per-step Python work is paid once per this many).
+#: Most engine steps one CompiledRK45 or CompiledDOP853 step takes (solve_ivp's per-step Python work is paid once
+#: per this many).
 STEPS_PER_CALL = 256
 #: The compiled methods' names in settings and in method= arguments: DOP853's steps (the library's default) and
 #: RK45's.

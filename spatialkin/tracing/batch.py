@@ -117,9 +117,11 @@ def _on_workers(workers, chunks, options, errors, count):
     """The chunks' results from the kept pool, in order. With errors='raise' the chunks not started yet are
     cancelled at the first one that holds a failure (the caller raises it)."""
     pool = _pool(workers)
-    futures = [pool.submit(_intersect_chunk, start, chunk, options, "return") for start, chunk in chunks]
+    futures = []
     done = []
-    try:
+    try:        # a pool that found a dead worker before this batch refuses the submission itself
+        for start, chunk in chunks:
+            futures.append(pool.submit(_intersect_chunk, start, chunk, options, "return"))
         for future in futures:
             done.append(future.result())
             if errors == "raise" and any(isinstance(r, Exception) for r in done[-1]):

@@ -109,13 +109,28 @@ def test_a_failing_pair_on_workers_is_named_or_returned_in_place():
     same_curves(results[bad + 1], sk.intersect(*pairs[bad + 1]))
 
 
+#: How long the test waits for the pool's manager thread to notice a killed worker (s): it wakes on the worker's
+#: exit at once; the bound only keeps a broken interpreter from hanging the suite.
+NOTICE_TIMEOUT = 120.0
+
+
 def test_a_dead_worker_is_named_and_the_next_batch_gets_a_new_pool():
+    """A worker killed between two batches: the next batch raises RuntimeError naming the death, and the one after
+    runs on a new pool. The test waits until the pool has noticed the death (its manager thread marks it broken)
+    before the next batch, so that batch cannot run on the surviving worker first (a race, not a failure)."""
     import os
     import signal
+    import time
     pairs = looper_sweep(2 * batch.MIN_CHUNKS_PER_WORKER * batch.CHUNK)
     sk.intersect_many(pairs, workers=2)                      # the kept pool exists
     pool = batch._POOL["executor"]
-    os.kill(next(iter(pool._processes)), signal.SIGKILL)     # a worker dies (the OOM killer, a crash)
+    victim = next(iter(pool._processes.values()))
+    os.kill(victim.pid, signal.SIGKILL)                      # a worker dies (the OOM killer, a crash)
+    victim.join(NOTICE_TIMEOUT)
+    deadline = time.monotonic() + NOTICE_TIMEOUT
+    while not pool._broken and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert pool._broken, f"the pool did not notice its killed worker within {NOTICE_TIMEOUT} s"
     with pytest.raises(RuntimeError, match=r"a worker process of sk.intersect_many died"):
         sk.intersect_many(pairs, workers=2)
     assert "executor" not in batch._POOL

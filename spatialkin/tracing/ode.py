@@ -323,7 +323,7 @@ class CompiledDOP853(CompiledRK45):
 COMPILED_SOLVERS = {COMPILED: CompiledDOP853, COMPILED_RK45: CompiledRK45}
 
 
-def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, max_nfev=None):
+def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, max_nfev=None, first_step=None):
     """solve_ivp on a System with dense output and the given Events: by CompiledDOP853 (method COMPILED) or
     CompiledRK45 (COMPILED_RK45), its
     located events returned as solve_ivp returns its own (t_events, y_events, status 1 at a terminal one; past
@@ -334,13 +334,14 @@ def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, m
         if any(event.level for event in events):
             raise ValueError(f"level events need the compiled method, not {method!r}")
         return solve_ivp(budgeted(system.rhs, max_nfev), t_span, y0, method=method, rtol=rtol, atol=atol,
-                         dense_output=True, events=events, args=system.args, max_step=max_step)
+                         dense_output=True, events=events, args=system.args, max_step=max_step, first_step=first_step)
     log = EventLog()
     # the dense output is made here from the log (solve_ivp's OdeSolution of the same steps, without its checks)
     # (an empty span: solve_ivp's own, one ConstantDenseOutput over [t0, t0], as no step is logged)
     empty = t_span[0] == t_span[1]
     res = solve_ivp(system.rhs, t_span, y0, method=solver, rtol=rtol, atol=atol, args=system.args,
-                    max_step=max_step, system=system, watch=events, log=log, max_nfev=max_nfev, dense_output=empty)
+                    max_step=max_step, first_step=first_step, system=system, watch=events, log=log, max_nfev=max_nfev,
+                    dense_output=empty)
     if not empty:
         res.sol = steps_solution(res, log.dense)
     n = len(y0)

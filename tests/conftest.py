@@ -8,6 +8,48 @@ os.environ.setdefault("SPATIALKIN_FIRST_RUN", "compile")
 
 _REPORT = []
 
+#: Tests that take long or start processes, marked ``slow`` (deselect with ``-m "not slow"``): the stress suites,
+#: the notebooks, worker pools and whole-command runs. A path selects a module or folder, a ``::`` id one test.
+SLOW = (
+    "tests/spatialkin/tracing/test_stress.py",
+    "tests/spatialkin/tracing/test_topology_stress.py",
+    "tests/spatialkin/tracing/test_survey.py",
+    "tests/notebooks/",
+    "tests/spatialkin/continuation/test_continuation.py::test_locks_of_an_ellipse_match_the_closed_form_and_solve_ivp",
+    "tests/spatialkin/continuation/test_continuation.py::test_full_turn_closes_after_one_period",
+    "tests/spatialkin/tracing/test_batch.py::test_workers_give_the_same_curves_in_order",
+    "tests/spatialkin/tracing/test_batch.py::test_a_failing_pair_on_workers_is_named_or_returned_in_place",
+    "tests/spatialkin/tracing/test_batch.py::test_a_dead_worker_is_named_and_the_next_batch_gets_a_new_pool",
+    "tests/spatialkin/tracing/test_batch.py::test_a_script_with_workers",
+    "tests/spatialkin/design/test_design_sweep.py::test_local_processes_give_the_same_table",
+    "tests/spatialkin/design/test_design_sweep.py::test_dask_local_cluster_gives_the_same_table",
+    "tests/spatialkin/design/test_design_sweep.py::test_workers_fork_when_the_main_script_is_no_file",
+    "tests/spatialkin/test_firstrun.py::test_interpreted_run_gives_the_compiled_table",
+    "tests/spatialkin/bench/test_bench.py::test_bench_quick_command",
+)
+#: Tests that compare rendered pictures with stored baselines, marked ``images``.
+IMAGES = (
+    "tests/spatialkin/render/test_images.py",
+    "tests/planar/frenet/test_frenet.py::test_image_",
+)
+
+
+def _selected(nodeid, table):
+    path, _, name = nodeid.partition("::")
+    for entry in table:
+        where, _, test = entry.partition("::")
+        if (path == where or (where.endswith("/") and path.startswith(where))) and name.startswith(test):
+            return True
+    return False
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        if _selected(item.nodeid, SLOW):
+            item.add_marker(pytest.mark.slow)
+        if _selected(item.nodeid, IMAGES):
+            item.add_marker(pytest.mark.images)
+
 
 @pytest.fixture(scope="session")
 def stress_report():

@@ -13,4 +13,4 @@ from .tracing.topology import TopologyError
 __all__ = ["Frame", "rotation_about", "rotation_to_z", "Surface", "Torus", "Sphere", "Plane", "Cylinder",
            "Cone", "Curve", "TracingError", "trace", "intersect", "intersect_many", "BatchError", "auxiliary_starts", "CoincidentSurfacesError",
            "TopologyError"]
-__version__ = "0.1.0"
+__version__ = "0.2.0"

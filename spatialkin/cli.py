@@ -1,6 +1,6 @@
 """Command line: ``spatialkin looper --out DIR [--config FILE.toml]`` (the main job), ``spatialkin demo``
 (torus ∩ sphere of the looper, every component), ``spatialkin bench [--out DIR] [--quick]`` (speed against
-error: work–precision table, goal ratios, CSV and PNG) and ``spatialkin --version``.
+error: work–precision table, ratios against the peers, CSV and PNG) and ``spatialkin --version``.
 
 Every bad input ends in one line on stderr and exit status 2.
 """

@@ -177,7 +177,7 @@ def load_config(path=None):
         except tomllib.TOMLDecodeError as err:
             raise ValueError(f"{path}: not valid TOML: {err}") from None
         if "omega" in user:
-            raise ValueError(f"{path}: 'omega' is now 'speed_rpm' (the crank speed in rpm)")
+            raise ValueError(f"{path}: no key 'omega': the crank speed is 'speed_rpm' (in rpm)")
         unknown = set(user) - set(DEFAULTS)
         if unknown:
             raise ValueError(f"{path}: unknown keys {sorted(unknown)}; allowed: {sorted(DEFAULTS)}")

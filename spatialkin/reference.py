@@ -6,7 +6,10 @@ the rocker centre P2 turned a quarter turn about x (its z, the rocker shaft, alo
 
 References
 ----------
-Seed 002 and ../shared/reference/looper-drive.md (the scheme and the reference geometry).
+The scheme (torus ∩ sphere for the spatial five-link crank-rocker that drives the looper of blind-stitch sewing
+machines) is that of "Investigation of the trajectories of characteristic points of spatial mechanisms of
+technological machines of the light industry" (in Ukrainian; [Looper]). The reference geometry is assumed: the
+paper gives no dimensions.
 """
 import math
 

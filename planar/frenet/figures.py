@@ -1,9 +1,14 @@
-"""The seed's pictures as functions returning matplotlib figures (kept apart from the kinematics).
+"""The pictures of Pylypaka et al. as functions returning matplotlib figures (kept apart from the kinematics).
 
-* positions(link, ...): a family of link positions with point trajectories (seed Fig. 3, 8, 10, 12, 15, 16)
+* positions(link, ...): a family of link positions with point trajectories (the paper's Fig. 3, 8, 10, 12, 15, 16)
 * vectors(link, ...): velocity or acceleration vectors along trajectories, a scale factor m and a density
   set by the step ds (Fig. 4, 6, 9, 11, 13b)
 * magnitudes(link, ...): |v| or |a| against the crank angle (Fig. 5, 7, 14)
+
+References
+----------
+S. Pylypaka, A. Chepyzhniy, T. Kresan, "Determining kinematic characteristics of planar mechanisms' driven member
+using Frenet trihedron", 2017.
 """
 import numpy as np
 

@@ -1,8 +1,13 @@
-"""Jitted laws phi(s) of seed 000's crank mechanisms and the driven link's s-derivatives.
+"""Jitted laws phi(s) of the crank mechanisms of Pylypaka et al. (2017) and the driven link's s-derivatives.
 
 Each law kernel fills phi, phi', phi'' at the arc lengths s (flat arrays); link_derivatives fills the
 positions of the link's points and their first and second s-derivatives from the law (computed once per s
 by the caller and shared by every point rho). Formulas: planar.frenet.laws and planar.frenet.link.
+
+References
+----------
+S. Pylypaka, A. Chepyzhniy, T. Kresan, "Determining kinematic characteristics of planar mechanisms' driven member
+using Frenet trihedron", 2017.
 """
 import math
 

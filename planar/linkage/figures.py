@@ -2,12 +2,14 @@
 
 * mechanism(motion, indices): the linkage drawn at chosen positions
 * paths(motion, joints): trajectories of joints over the solved angles
-* velocity_plans(motion, index): the seed's velocity plans - each crank alone (the other stopped) and the
+* velocity_plans(motion, index): the velocity plans of Koshel and Koshel - each crank alone (the other stopped) and the
   full motion - from the pole p, drawn from the analytic velocities
 
 References
 ----------
-Seed 001 (../shared/reference/fnf-sixbar.md): velocity plans by stopping one crank, superposition.
+S. O. Koshel, A. V. Koshel, "Double-crank mechanism kinematic study of warp knitting machine", Visnyk KNUTD
+(Bulletin of the Kyiv National University of Technologies and Design), 2014, no. 2 (in Ukrainian):
+velocity plans by stopping one crank, superposition.
 """
 import math
 

@@ -1,5 +1,5 @@
 """The batch entry ``sk.intersect_many`` on a sweep of the looper's pair: cost per configuration against the pure
-kernel cost, and points per second against the closed form's (issue 19, item 3).
+kernel cost, and points per second against the closed form's.
 
 The sweep varies the looper sphere's radius by up to +-SPREAD (two loops throughout). In one run, interleaved
 (A B C A B C ...): a Python loop of ``sk.intersect``, ``intersect_many`` in this process and on two workers (their

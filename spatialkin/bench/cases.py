@@ -6,8 +6,11 @@ against formulas independent of the tracer.
 
 References
 ----------
-../shared/reference/ssi-notes.md (torus ∩ sphere: alpha cos v + beta sin v = gamma per torus angle) and
-../shared/reference/looper-drive.md (the looper drive, A cos v1 + B sin v1 + C = 0 per crank angle).
+"Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
+light industry" (in Ukrainian; [Looper]): the torus and sphere parametrisations, from which torus ∩ sphere is
+alpha cos v + beta sin v = gamma per torus angle, and the looper drive A cos v1 + B sin v1 + C = 0 per crank angle.
+N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design and Manufacturing, Springer, 2002:
+the topology of an intersection, set by the critical radii.
 """
 from dataclasses import dataclass
 

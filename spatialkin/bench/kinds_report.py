@@ -1,12 +1,11 @@
 """The per-pair-kind side-by-side run (spatialkin.bench.sidebyside) written out: a CSV and a two-panel PNG (our
-speed over OpenCascade's per pair kind, against the goal; both errors), each written whole or not at all."""
+speed over OpenCascade's per pair kind, against parity; both errors), each written whole or not at all."""
 import numpy as np
 
 from ..io import atomic_path
 from ..tracing import stages
 from .report import write_table
 from .baselines import OCC_DEFAULT_TOL
-from .runner import GOAL_OCC_RATIO
 from .sidebyside import OUR_TOL
 
 #: Columns of bench_kinds.csv: times in seconds, errors in length units, stage seconds per call.
@@ -33,7 +32,7 @@ def cell(value, spec):
 
 
 def plot_kinds(rows, path, title):
-    """Left: OCC time / our time per pair kind (log), with the goal and parity; right: both errors (log)."""
+    """Left: OCC time / our time per pair kind (log), with parity; right: both errors (log)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -43,17 +42,16 @@ def plot_kinds(rows, path, title):
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 0.32 * len(rows) + 1.8), sharey=True)
     ratios = np.array([r.ratio for r in rows])
     measured = np.isfinite(ratios)
-    colours = ["tab:green" if q >= GOAL_OCC_RATIO else "tab:orange" if q >= 1 else "tab:red" for q in ratios]
+    colours = ["tab:green" if q >= 1 else "tab:red" for q in ratios]
     left.barh(y, np.where(measured, ratios, 0.0), color=colours)
     if not measured.any():
         left.text(0.5, 0.5, "OpenCascade (cadquery-ocp) not installed:\nno side-by-side times",
                   transform=left.transAxes, ha="center", va="center", fontsize=8)
-    left.axvline(GOAL_OCC_RATIO, color="k", ls="--", lw=1, label=f"goal: {GOAL_OCC_RATIO:g}x faster")
     left.axvline(1.0, color="grey", ls=":", lw=1, label="parity")
     left.set_xscale("log")
     finite = ratios[np.isfinite(ratios)]
     left.set_xlim(min(0.5, float(finite.min()) / 2) if finite.size else 0.1,
-                  LABEL_ROOM * max(GOAL_OCC_RATIO, float(finite.max()) if finite.size else 1.0))
+                  LABEL_ROOM * max(1.0, float(finite.max()) if finite.size else 1.0))
     left.set_xlabel("OpenCascade time / sk.intersect time (above 1: ours faster)")
     left.set_yticks(y, names)
     left.invert_yaxis()

@@ -48,20 +48,19 @@ def table(rows):
     return lines
 
 
-def goal_lines(g, goals_module):
-    """The three goal ratios, measured, against what the issue asks."""
-    def verdict(ok):
-        return "reached" if ok else "NOT reached"
+def comparison_lines(c, runner_module):
+    """The measured ratios against the peers (c: runner.Comparisons) and the start-up time, one line each;
+    runner_module is where COMPARE_ERROR is defined (spatialkin.bench.runner)."""
+    def measured(value, detail):
+        return detail if np.isnan(value) else f"{value:.1f}x; {detail}"
+    startup = "not measured (--quick)" if np.isnan(c.startup) else f"{c.startup:.2f} s"
+    angles = f", {c.looper_angles} crank angles" if c.looper_angles else ""
     return [
-        f"goal 1: closed loop within {goals_module.GOAL_ERROR:g} of both surfaces vs GeomAPI_IntSS at its default "
-        f"tolerance: {g.occ_ratio:.1f}x faster per curve (asked {goals_module.GOAL_OCC_RATIO:g}x, "
-        f"{verdict(g.occ_ratio >= goals_module.GOAL_OCC_RATIO)}); {g.occ_detail}",
-        f"goal 2: looper full turn, {goals_module.LOOPER_ANGLES} crank angles with velocities and accelerations: "
-        f"{g.looper_ratio:.1f}x faster than the per-angle root solve (asked {goals_module.GOAL_LOOPER_RATIO:g}x, "
-        f"{verdict(g.looper_ratio >= goals_module.GOAL_LOOPER_RATIO)}); {g.looper_detail}",
-        f"goal 3: import + first intersect in a fresh process (warm numba cache): {g.startup:.2f} s "
-        f"(asked < {goals_module.GOAL_STARTUP_SECONDS:g} s, "
-        f"{'not measured (--quick)' if np.isnan(g.startup) else verdict(g.startup < goals_module.GOAL_STARTUP_SECONDS)})",
+        f"vs OpenCascade: closed loop within {runner_module.COMPARE_ERROR:g} of both surfaces, OCC IntSS time / "
+        f"trace time per curve: {measured(c.occ_ratio, c.occ_detail)}",
+        f"vs per-angle root solve: looper full turn{angles} with velocities and accelerations, scipy root time / "
+        f"LooperDrive time: {measured(c.looper_ratio, c.looper_detail)}",
+        f"start-up: import + first intersect in a fresh process (warm numba cache): {startup}",
     ]
 
 

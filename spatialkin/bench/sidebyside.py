@@ -48,7 +48,7 @@ class KindRow:
         Mean stage profile of one sk.intersect call.
     kernel : float
         Seconds per call spent inside the compiled kernels (spatialkin.kernels, their own time from cProfile):
-        what remains of a call if every line of Python around them went (issue 19, item 2).
+        what remains of a call if every line of Python around them went.
     ours_points : float
         Median wall time of one sk.intersect call followed by reading every returned curve's points, s and params
         (a closed form samples them on first read; OCC's result curves are not sampled either), seconds.

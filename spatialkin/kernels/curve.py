@@ -5,9 +5,11 @@ arc length of the intersection curve.
 
 References
 ----------
-Seed 002 and ../shared/reference/looper-drive.md: n = N1 x N2 / |N1 x N2| and the two Gram systems.
-../shared/reference/ssi-notes.md: pull-back -lambda (M1 - M2) and Newton projection keep the gap flat;
-a corrector in the plane normal to the tangent (pseudo-arclength, as SISL does).
+"Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
+light industry" (in Ukrainian; [Looper]): Dragilev's method, n = N1 x N2 / |N1 x N2| and the two Gram systems.
+N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design and Manufacturing, Springer, 2002:
+integrating the tangent alone drifts off the surfaces; the pull-back -lambda (M1 - M2) and Newton projection keep
+the gap flat; a corrector in the plane normal to the tangent (pseudo-arclength).
 """
 import math
 
@@ -198,7 +200,7 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
     -------
     int
         Number of iterations used (>= 0) on convergence (|M1 - M2| <= gap_tol and the last step below
-        gap_tol, or no longer contracting: near tangency round-off in the gap, amplified by the nearly
+        gap_tol, or stopped contracting: near tangency round-off in the gap, amplified by the nearly
         parallel normals, keeps the steps above gap_tol while the point sits on both surfaces), or -1 if
         Newton failed (singular system or no convergence within max_iter).
     """

@@ -24,8 +24,8 @@ boxes whose first-order tests leave them in doubt).
 
 The jets' helpers are compiled with ``forceinline`` (LLVM's alwaysinline) into the kernels that call them: their
 tuples of intervals then stay in registers rather than pass through memory at every call, and the parts a caller
-does not read are dropped (spatialkin.kernels.topology's searches run 1.2-4 times faster so; floating-point
-operations are not reordered or fused, so their results are the same bits).
+does not read are dropped, which speeds up spatialkin.kernels.topology's searches (floating-point operations are
+not reordered or fused, so their results are the same bits).
 
 References
 ----------
@@ -44,10 +44,10 @@ EPS = 2.220446049250313e-16
 #: half the smallest subnormal; any larger pad is as rigorous). Not the smallest subnormal itself: an exact zero
 #: (a cylinder's zero cone slope, a zero component of a tangent) padded by it turns into subnormal bounds, and
 #: every operation on a subnormal costs a microcode assist on Intel CPUs (about 100 cycles): the searches of the
-#: pairs with a cylinder or a cone as the parametrised surface ran 3-9x slower for it. Nor the smallest normal
-#: number: its products with numbers below 1 are subnormal again. A pad of 1e-250 keeps such products normal
-#: and lies far below any g the searches read (a torus's quartic at scale 1e-30 is about 1e-120). No box
-#: decision changed over the stress cases.
+#: pairs with a cylinder or a cone as the parametrised surface would run several times slower for it. Nor the
+#: smallest normal number: its products with numbers below 1 are subnormal again. A pad of 1e-250 keeps such
+#: products normal and lies far below any g the searches read (a torus's quartic at scale 1e-30 is about 1e-120):
+#: over the stress cases every box decision is the one the pad 2^-1075 gives.
 TINY = 1e-250
 #: ulps by which sin and cos results are widened (glibc's are within one ulp).
 TRIG_ULPS = 2.0

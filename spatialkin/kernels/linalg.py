@@ -67,7 +67,7 @@ def lu_solve(m, piv, r, x):
 def balance_columns(m, scales):
     """Scale each column of m in place by a power of two (into scales, (n,)) that puts its largest entry in
     [0.5, 1): exact, so lu_factor of the balanced m gives the same numbers up to those powers, but its pivot test
-    (relative to the largest entry) no longer depends on the units of the unknowns. A Newton system of
+    (relative to the largest entry) does not depend on the units of the unknowns. A Newton system of
     surface parameters mixes columns of lengths (an angle's derivative, a radius) and of numbers (a length
     parameter's): unbalanced, scaling the scene by 2^k moves the test by 2^k. A zero column keeps scale 1."""
     n = m.shape[1]

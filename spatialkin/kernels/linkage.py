@@ -5,7 +5,8 @@ the rocker's ball centre, L the coupler length; params packs O1 (3), T1 (9, row-
 
 References
 ----------
-Seed 002, reference [3] (../shared/reference/looper-drive.md): RSSR as sphere ∩ sphere ∩ circle.
+"Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
+light industry" (in Ukrainian; [Looper]): the classic RSSR solved as sphere ∩ sphere ∩ circle.
 """
 import math
 

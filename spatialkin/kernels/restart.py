@@ -10,7 +10,8 @@ spatialkin.tracing.segments.project_state do one by one from Python, so that the
 
 References
 ----------
-../shared/reference/ssi-notes.md: a corrector in the plane normal to the tangent (pseudo-arclength).
+N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design and Manufacturing, Springer, 2002
+(marching: a corrector in the plane normal to the tangent, as in pseudo-arclength continuation).
 """
 import numpy as np
 

@@ -1,15 +1,15 @@
 """The stored points of a traced curve: the solver's states at its steps, span by span, corrected onto the curve.
 
-``corrected_spans`` does in one compiled call what spatialkin.tracing.trace did span by span from Python: each
-span's states corrected by Newton in that span's charts (spatialkin.kernels.curve.corrected_many), the user's
-parameters of a re-charted surface read back from the corrected points (spatialkin.kernels.surfaces.inverse,
-as spatialkin.tracing.result.user_params), and the whole turns removed from a re-charted surface's u
-(unwrap_turns, which the closed forms call too): the same kernels and the same operations in the same order, so
-that the results agree to the bit.
+``corrected_spans`` does in one compiled call, span by span: each span's states corrected by Newton in that span's
+charts (spatialkin.kernels.curve.corrected_many), the user's parameters of a re-charted surface read back from the
+corrected points (spatialkin.kernels.surfaces.inverse, as spatialkin.tracing.result.user_params), and the whole turns
+removed from a re-charted surface's u (unwrap_turns, which the closed forms call too): the same kernels and the same
+operations in the same order as a span-by-span loop over them in Python, so that the results agree with it to the bit.
 
 References
 ----------
-../shared/reference/ssi-notes.md: Newton projection of the solver's states onto both surfaces.
+N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design and Manufacturing, Springer, 2002
+(marching: Newton projection of the predicted points onto both surfaces).
 """
 import math
 

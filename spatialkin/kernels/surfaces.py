@@ -27,8 +27,9 @@ spatialkin.kernels.interval; a kind over an existing geometry (another chart, tr
 
 References
 ----------
-Seed 002 (../shared/seeds/002_*.txt), decoded in ../shared/reference/looper-drive.md: the torus and sphere
-parametrisations and their first derivatives.
+"Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
+light industry" (in Ukrainian; [Looper]): the torus and sphere parametrisations and their
+first derivatives (decoded from the paper, whose printed formulas are damaged).
 """
 import math
 

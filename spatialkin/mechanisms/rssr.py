@@ -1,7 +1,12 @@
-"""The classic spatial four-link crank-rocker RSSR (seed 002's reference [3]), through the same pipeline:
+"""The classic spatial four-link crank-rocker RSSR (the mechanism [Looper] starts from), through the same pipeline:
 the configuration curve F(phi, psi) = |C(psi) - B(phi)|^2 - L^2 = 0 traced once by arc length (solve_ivp on
 a jitted right-hand side), re-parametrised by the crank angle, differentiated analytically, mapped to time
 by the trajectory pipeline and to the links by the serial-chain propagation.
+
+References
+----------
+"Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
+light industry" (in Ukrainian; [Looper]): the RSSR as sphere ∩ sphere ∩ circle.
 """
 import math
 

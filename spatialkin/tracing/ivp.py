@@ -61,7 +61,7 @@ SLOPE_FLOOR = 1e-6
 MINIMUM_ARM = 1e-9
 #: The method the compiled ones (spatialkin.tracing.ode.CompiledDOP853, CompiledRK45) hand hard cases to, with the
 #: fine events (singular, apex, minimum, edges as crossings): the compiled DOP853, solve_ivp's DOP853 steps and event
-#: location in compiled code (solve_ivp's own DOP853 until 26 Nov 2026: the same steps, Python per step).
+#: location in compiled code (the same steps as solve_ivp's own DOP853, without Python per step).
 FALLBACK_METHOD = "compiled"
 #: The compiled integrator hands over this many times before a watched threshold (the sine's WATCH_BELOW or the
 #: singular tolerance, APEX_GUARD), so that the fine events see the whole approach.
@@ -137,16 +137,15 @@ def segment_events(system, settings, compiled, near_edge, bounds, recharts, watc
     """(Events as a Watch, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles,
     closure (the apex unless watch_apex is False).
 
-    The compiled method watches levels instead of the first three (as its kernel did before it was a solve_ivp
-    method): where the sine or the area element nears a hard case, the segment ends at the last step before (that
-    step dropped) and the hand-over (FALLBACK_METHOD) goes on with the fine events; a sphere's chart ends the
-    segment at the end of the step that passes its pole guard. A bound is a level too, until the branch is
-    near_edge: then the next segment, started on the curve (projected) at most a step from the bound, ends exactly
-    at the crossing, so that the curve's end on the edge has one step's accuracy, not the whole branch's drift. The
-    compiled method probes the bounds inside each step too (spatialkin.kernels.rk.PROBES), so that a curve grazing
-    out of a trim and back within one step ends there, and the area hand-over likewise, so that no step passes over
-    an apex (a horn torus's cusp, whose guarded zone a step can span). bounds: the charts' finite_bounds rows,
-    recharts: whether each surface re-charts."""
+    The compiled method watches levels instead of the first three: where the sine or the area element nears a hard case,
+    the segment ends at the last step before (that step dropped) and the hand-over (FALLBACK_METHOD) goes on with the
+    fine events; a sphere's chart ends the segment at the end of the step that passes its pole guard. A bound is a level
+    too, until the branch is near_edge: then the next segment, started on the curve (projected) at most a step from the
+    bound, ends exactly at the crossing, so that the curve's end on the edge has one step's accuracy, not the whole
+    branch's drift. The compiled method probes the bounds inside each step too (spatialkin.kernels.rk.PROBES), so that a
+    curve grazing out of a trim and back within one step ends there, and the area hand-over likewise, so that no step
+    passes over an apex (a horn torus's cusp, whose guarded zone a step can span). bounds: the charts' finite_bounds
+    rows, recharts: whether each surface re-charts."""
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B]) and watch_apex
     plan, kinds = event_plan(compiled, near_edge, flagged, bounds, recharts, settings.close)

@@ -166,7 +166,7 @@ def newton_fixed(a, b, y, fixed, gap_tol, max_iter=30):
     """Newton on M1(u1, v1) - M2(u2, v2) = 0 for the three parameters other than y[fixed], which is held.
 
     Returns the solved (4,) state, or None if Newton fails. This cuts one surface with a parameter line of
-    the other (the seed's auxiliary curve, the edge of a trimmed surface, a given crank angle).
+    the other (an auxiliary curve such as the sphere's equator, the edge of a trimmed surface, a given crank angle).
     """
     ys = np.array(y, dtype=float).reshape(1, 4)
     ok = np.zeros(1, dtype=np.bool_)

@@ -3,8 +3,9 @@ horn torus or a cone, a horn torus's cusp.
 
 References
 ----------
-../shared/reference/ssi-notes.md: a sign flip of N1 x N2 marks a node passed (SISL); the corrector in the
-plane normal to the direction of travel keeps to the same branch.
+N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design and Manufacturing, Springer, 2002
+(singular points of intersection curves): a sign flip of N1 x N2 marks a node passed; the corrector in the plane
+normal to the direction of travel keeps to the same branch.
 """
 import numpy as np
 from numpy.polynomial import legendre

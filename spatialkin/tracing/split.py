@@ -4,8 +4,8 @@ at the nodes where the planes' common line meets it.
 
 Two cylinders of equal radii whose axes cross (the Steinmetz curves: two ellipses through two nodes, a pipe tee),
 and cylinders and cones that share an inscribed sphere (Monge), are such pairs. Their nodes are where the tracer
-must jump between branches (near-parallel normals, a hand-over to solve_ivp's DOP853): traced, a Steinmetz pair
-took about 47 ms; in closed form it is the plane–cylinder case twice. spatialkin.tracing.closed clips the conics
+must jump between branches (near-parallel normals, a hand-over to the fine DOP853 events), which makes tracing them
+slow; in closed form it is the plane–cylinder case twice. spatialkin.tracing.closed clips the conics
 and makes the components; this module finds the planes and the nodes, and declines (None) everything else.
 
 Only a member whose two smallest eigenvalues are round-off (RANK_TOL) counts, and closed.split_conics then checks
@@ -17,7 +17,8 @@ References
 ----------
 R. Goldman, J. Miller, Combining algebraic rigor with geometric robustness for the detection and calculation of
 conic sections in the intersection of two natural quadric surfaces, ACM SPM (1991).
-../shared/reference/ssi-notes.md: nodes and branch crossings.
+N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design and Manufacturing, Springer, 2002
+(singular points of intersection curves: nodes and branch crossings).
 """
 import math
 

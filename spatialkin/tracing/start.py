@@ -1,9 +1,10 @@
-"""Start points: a point near the curve, parameters near it, or the seed's auxiliary-curve cut.
+"""Start points: a point near the curve, parameters near it, or the cut of an auxiliary curve ([Looper]).
 
 References
 ----------
-Seed 002 (../shared/reference/looper-drive.md): the start from the sphere's equator M3(u2) = M2(u2, 0),
-solving M1(u1, v1) = M3(u2) for (u1, v1, u2) with v2 = 0.
+[Looper] "Investigation of the trajectories of characteristic points of spatial mechanisms of technological
+machines of the light industry" (in Ukrainian): the start from the sphere's equator M3(u2) = M2(u2, 0), solving
+M1(u1, v1) = M3(u2) for (u1, v1, u2) with v2 = 0.
 """
 import math
 
@@ -56,9 +57,9 @@ def locate_on_curve(a, b, guess, gap_tol, y_guess=None):
 
 
 def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
-    """The seed's start: cut surface a with the parameter line v2 = v of surface b.
+    """The start of [Looper]: cut surface a with the parameter line v2 = v of surface b.
 
-    For the sphere b and v = 0 this is the equator of the seed (M3(u2) = M2(u2, 0)). Every crossing of the
+    For the sphere b and v = 0 this is the equator of [Looper] (M3(u2) = M2(u2, 0)). Every crossing of the
     line with a is found (sign changes of a's implicit function over `samples` points of u2 in [-pi, pi)),
     then M1(u1, v1) = M2(u2, v) is solved by Newton for (u1, v1, u2).
 

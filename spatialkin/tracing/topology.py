@@ -25,7 +25,8 @@ along it (found on one cross-section; a double root is a line of tangency).
 
 References
 ----------
-../shared/reference/ssi-notes.md: seeding from critical points, loops lost by grids.
+N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design and Manufacturing, Springer, 2002
+(starts from critical points; small loops that sampling on a grid misses).
 H. Hong, An efficient method for analyzing the topology of plane real algebraic curves, Math. Comput. Simul. 42
 (1996): the extremes of a coordinate along a curve as its critical points.
 """

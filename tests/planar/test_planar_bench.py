@@ -1,4 +1,6 @@
 """The planar bench's oracles and peers agree with independent computations (no timing asserted)."""
+import functools
+
 import numpy as np
 import pytest
 
@@ -40,3 +42,42 @@ def test_pylinkage_adapter_or_absent(n):
     phi = 2 * np.pi * np.arange(max(n, 8)) / max(n, 8)
     ref = bench.slider_closed_form(0.5, 1.0, 4.0, phi)
     assert np.allclose(out["slider"][0], ref[1][0], atol=1e-9)
+
+
+def test_report_prints_the_measurement_rows(monkeypatch):
+    """report prints, per case, its header and one row per solver with every measured column (rate or time,
+    error, ratio), and the peers' differences; it returns the ratios printed in those rows (oracle: the rows of
+    slider_case and sixbar_case, recorded as they are made). No timing is asserted."""
+    made = {}
+
+    def record(name, func):
+        def wrapped(*args, **kwargs):
+            made[name] = func(*args, **kwargs)
+            return made[name]
+        return wrapped
+    monkeypatch.setattr(bench, "slider_case", record("slider", functools.partial(bench.slider_case, n=360)))
+    monkeypatch.setattr(bench, "sixbar_case", record("sixbar", functools.partial(bench.sixbar_case, n=73)))
+    lines = []
+    ratios = bench.report(quick=True, echo=lines.append)
+    text = "\n".join(lines)
+    assert "goal" not in text.lower() and "reached" not in text
+    slider_rows, diff = made["slider"]
+    at = lines.index(next(line for line in lines if line.startswith("planar (a): ")))
+    assert lines[at + 1].split() == ["solver", "positions/s", "max", "rel.", "error", "ratio"]
+    for line, (name, rate, err, ratio) in zip(lines[at + 2:], slider_rows):
+        assert line.startswith(name)
+        cells = line[len(name):].split()
+        assert float(cells[0]) == pytest.approx(rate, rel=1e-3) and float(cells[1]) == pytest.approx(err, rel=0.01)
+        assert (len(cells) == 2) if ratio is None else (cells[2] == f"{ratio:.1f}x")
+    assert (diff is None) == any(line.startswith("pylinkage: not installed") for line in lines)
+    sixbar_rows, (dq, dv, da) = made["sixbar"]
+    at = lines.index(next(line for line in lines if line.startswith("planar (b): ")))
+    assert lines[at + 1].split() == ["solver", "time", "[ms]", "speed-up"]
+    for line, (name, seconds, ratio) in zip(lines[at + 2:], sixbar_rows):
+        assert line.startswith(name)
+        cells = line[len(name):].split()
+        assert float(cells[0]) == pytest.approx(1e3 * seconds, abs=0.01) and cells[1] == f"{ratio:.1f}x"
+    assert lines[at + 2 + len(sixbar_rows)] == (f"max difference pipeline vs root solve: positions {dq:.1e} mm, "
+                                                f"velocities {dv:.1e}, accelerations {da:.1e} (relative)")
+    assert ratios == {"Frenet module vs pylinkage": slider_rows[1][3] if len(slider_rows) > 1 else None,
+                      "six-link full turn vs per-angle root solve": sixbar_rows[0][2]}

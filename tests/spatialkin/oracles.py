@@ -1,6 +1,12 @@
 """Independent oracles (numpy only, no spatialkin kernels): exact distances, closed forms, topology.
 
-From ../shared/reference/ssi-notes.md.
+Exact distances to the torus (both circles of the meridian plane, which matter for horn and spindle tori) and the
+sphere; the closed form alpha cos v + beta sin v = gamma of torus ∩ sphere per torus angle; the critical sphere radii
+|d_min - r|, d_min + r, |d_max - r|, d_max + r that fix the torus-sphere topology.
+
+References
+----------
+N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design and Manufacturing, Springer, 2002.
 """
 import numpy as np
 

@@ -17,7 +17,8 @@ steinmetz   equal cylinders with intersecting axes: two ellipses crossing at two
 viviani     sphere R and cylinder R/2 through its centre: a figure-eight, one component
 trimmed     rectangular patches (and trimmed cylinders) cutting curves into arcs, or missing them
 tangent     tangency along a curve (torus and plane z = r, sphere and coaxial cylinder, cylinder on a plane...)
-issue       the examples of issue 14
+simple      the first scenes a user tries: coaxial sphere, cylinder, plane, cone and torus pairs, coincident
+            surfaces, a patch that misses a torus
 special     coincident surfaces and unbounded pairs (the expected outcome is a ValueError or a typed result)
 
 Run ``python ssi_cases.py`` for the oracle self-check: the brute force against every closed form, and the
@@ -1211,8 +1212,8 @@ def trimmed_family(rng):
             ok = add(f"sphere-cylinder/trimmed-{made.get(kind_, 0)}", cyl, sph, curves, min(r, R), attempt, extra)
         if ok:
             made[kind_] = made.get(kind_, 0) + 1
-    # patches that miss the curves entirely (the issue's example among them)
-    out.append(finish(Case("trimmed/plane-torus/miss-issue", "trimmed", sk.Torus(2.0, 0.5),
+    # patches that miss the curves entirely (one far beside the torus, one over its hole)
+    out.append(finish(Case("trimmed/plane-torus/miss-far", "trimmed", sk.Torus(2.0, 0.5),
                            sk.Plane(u_range=(5, 6), v_range=(5, 6)), 0, "generic", None, scale=0.5)))
     out.append(finish(Case("trimmed/plane-torus/miss-hole", "trimmed", sk.Plane(u_range=(-1, 1), v_range=(-1, 1)),
                            sk.Torus(2.0, 0.5), 0, "generic", None, scale=0.5)))
@@ -1287,14 +1288,14 @@ def tangent_family(rng):
     return out
 
 
-def issue_family():
+def simple_family():
     out = []
     z, e = np.zeros(3), np.eye(3)
 
     def coax(name, a, b, scale, expect):
         tr = coaxial_truth(a, b, z, e[2], scale)
         assert tr["count"] == expect and tr["kind"] != "coincident", (name, tr)
-        out.append(finish(Case(f"issue/{name}", "issue", a, b, tr["count"], tr["kind"], tr["samples"], scale=scale)))
+        out.append(finish(Case(f"simple/{name}", "simple", a, b, tr["count"], tr["kind"], tr["samples"], scale=scale)))
 
     coax("sphere10-cylinder5", sk.Sphere(10.0), sk.Cylinder(5.0, v_range=(-12, 12)), 5.0, 2)
     coax("sphere10-plane-z3", sk.Sphere(10.0), sk.Plane(F((0, 0, 3))), 10.0, 1)
@@ -1304,10 +1305,10 @@ def issue_family():
     coax("cone1-cylinder0.5", sk.Cone(1.0), sk.Cylinder(0.5, v_range=(-3, 3)), 0.5, 2)
     coax("torus-plane-z0.5", sk.Torus(2.0, 0.5), sk.Plane(F((0, 0, 0.5))), 0.5, 1)
     coax("sphere1.5-cylinder1.5", sk.Sphere(1.5), sk.Cylinder(1.5), 1.5, 1)
-    out.append(Case("issue/same-sphere", "issue", sk.Sphere(10.0), sk.Sphere(10.0), None, "coincident", scale=10.0))
-    out.append(Case("issue/same-torus", "issue", sk.Torus(2.0, 0.5), sk.Torus(2.0, 0.5), None, "coincident",
+    out.append(Case("simple/same-sphere", "simple", sk.Sphere(10.0), sk.Sphere(10.0), None, "coincident", scale=10.0))
+    out.append(Case("simple/same-torus", "simple", sk.Torus(2.0, 0.5), sk.Torus(2.0, 0.5), None, "coincident",
                     scale=0.5))
-    out.append(finish(Case("issue/torus-patch-miss", "issue", sk.Torus(2.0, 0.5),
+    out.append(finish(Case("simple/torus-patch-miss", "simple", sk.Torus(2.0, 0.5),
                            sk.Plane(u_range=(5, 6), v_range=(5, 6)), 0, "generic", None, scale=0.5)))
     return out
 
@@ -1354,7 +1355,7 @@ def all_cases():
     cases += viviani_family(np.random.default_rng(1409))
     cases += trimmed_family(np.random.default_rng(1410))
     cases += tangent_family(np.random.default_rng(1411))
-    cases += issue_family()
+    cases += simple_family()
     cases += special_family(np.random.default_rng(1412))
     names = [c.name for c in cases]
     assert len(names) == len(set(names)), "case names must be unique"

@@ -6,8 +6,8 @@ honest refusal. The oracle is the intersection's invariance under rigid motion a
 families whose truth is known, the README's and the tests' closed forms).
 
 Run from the repository: ``python tests/spatialkin/survey_degenerate.py [family ...]`` (about 4 minutes on 2 cores
-for all; the README's "Every component" section gives what it found on 26 Nov 2026 and the tests that keep each
-fix).
+for all; the README's "Every component" section gives what it finds and names the tests that keep each family
+consistent).
 """
 import math
 import sys

@@ -68,7 +68,7 @@ def test_record_holds_geometry_speed_versions_errors(reference_run):
     assert max(record["measured_error"][k] for k in ("C_to_torus", "C_to_sphere", "coupler_vs_rocker_chain")) < 1e-12
     a = record["analysis"]
     assert a["turns_fully"] and a["dead_positions_deg"] == [] and a["blocked_ranges_deg"] == []
-    # the swing as in ../shared/reference/looper-drive.md (u2 77.805..114.962 deg, v2 +-18.348 deg)
+    # the rocker's swing on the reference geometry, from an independent script (u2 77.805..114.962 deg, v2 +-18.348)
     np.testing.assert_allclose(a["u2_range_deg"], [77.805, 114.962], atol=5e-4)
     np.testing.assert_allclose(a["v2_range_deg"], [-18.348, 18.348], atol=5e-4)
     peak = record["peaks_at_machine_speed"]["ball_v_m_per_s"]

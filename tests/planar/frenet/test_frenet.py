@@ -1,5 +1,8 @@
 """Planar Frenet-trihedron module against its oracles: geometric constraints, closed forms (3), (4),
-finite differences, the seed's boundary cases, the corrected derivatives (15), (16), two image tests."""
+finite differences, the paper's boundary cases, the corrected derivatives (15), (16), two image tests.
+
+Formula and figure numbers are those of S. Pylypaka, A. Chepyzhniy, T. Kresan, "Determining kinematic
+characteristics of planar mechanisms' driven member using Frenet trihedron", 2017."""
 import os
 
 import numpy as np
@@ -43,8 +46,8 @@ def test_velocity_and_acceleration_against_differences(name):
 
 
 @pytest.mark.parametrize("name", LAWS)
-def test_frame_components_are_the_seeds_formulas(name):
-    """(V_tau, V_n) and (W_tau, W_n) equal formulas (3) and (4) of frenet-planar.md to 1e-12, and the link's
+def test_frame_components_are_the_papers_formulas(name):
+    """(V_tau, V_n) and (W_tau, W_n) equal formulas (3) and (4) of the paper to 1e-12, and the link's
     angular velocity and acceleration are V (k + phi') and V^2 phi'' (differences of gamma, 1e-8)."""
     law = LAWS[name]()
     link = planar.DrivenLink(law, omega=2.0)
@@ -111,7 +114,7 @@ def test_corrected_derivatives_at_d_equal_r():
 
 
 @pytest.mark.parametrize("e, L", [(2.0, 4.0), (1.0, 3.0)])
-def test_boundary_cases_of_the_seed(e, L):
+def test_boundary_cases_of_the_paper(e, L):
     """e + 1/k = L (Fig. 8-11): the rod lines up with the crank once a turn; positions exact, no NaN."""
     law = planar.CrankSlider(0.5, e, L)
     link = planar.DrivenLink(law)

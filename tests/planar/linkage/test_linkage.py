@@ -1,6 +1,9 @@
-"""The general planar linkage and seed 001's double-crank six-link (reference geometry of
-../shared/reference/fnf-sixbar.md). Oracles: the constraint equations themselves, an independent solver of
-the classical angle loop equations, finite differences, the seed's superposition identities."""
+"""The general planar linkage and the double-crank six-link of the FNF warp-knitting machine (its reference geometry is
+assumed: the paper gives no dimensions). Oracles: the constraint equations themselves, an independent solver of the
+classical angle loop equations, finite differences, the paper's superposition identities.
+
+S. O. Koshel, A. V. Koshel, "Double-crank mechanism kinematic study of warp knitting machine", Visnyk KNUTD
+(Bulletin of the Kyiv National University of Technologies and Design), 2014, no. 2 (in Ukrainian)."""
 import math
 
 import numpy as np
@@ -110,7 +113,7 @@ def test_continuity_and_period(sol):
         assert np.linalg.norm(p[-1] - p[0]) < CONSTRAINT_TOL, j   # back after one input turn
 
 
-def test_superposition_and_seed_identities(sol):
+def test_superposition_and_velocity_plan_identities(sol):
     scale = max(np.max(np.linalg.norm(sol.velocity(j), axis=1)) for j in MOVING)
     for j in JOINTS:
         total = sol.velocity(j)

@@ -7,7 +7,7 @@ import functools
 import numpy as np
 import pytest
 
-from spatialkin.bench import baselines, runner, sidebyside
+from spatialkin.bench import baselines, report, runner, sidebyside
 from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.bench.cases import looper_closed_form, torus_sphere_cases
 from spatialkin.cli import main
@@ -87,21 +87,69 @@ def test_occ_rows_measure_their_curves(cases):
 
 
 def test_bench_quick_command(tmp_path, capsys, monkeypatch):
-    """`spatialkin bench --quick --out DIR` runs (cut to one case and one method here), prints the goal ratios
-    and writes a CSV whose errors agree with the printed rows."""
+    """`spatialkin bench --quick --out DIR` runs (cut to one case and one method here), prints the measurement
+    table (one line per row, every column), the ratios against the peers and the start-up line, and writes a
+    CSV whose rows are the printed ones, with errors within the tracer's tolerance."""
     monkeypatch.setattr(runner, "torus_sphere_cases", lambda: torus_sphere_cases()[1:2])
     monkeypatch.setattr(runner, "tracer_rows", functools.partial(runner.tracer_rows, methods=("DOP853",)))
     monkeypatch.setattr(runner, "looper_rows", functools.partial(runner.looper_rows, n=91))
     monkeypatch.setattr(sidebyside, "pair_kind_cases", lambda: pair_kind_cases()[:2])   # the 15 in test_sidebyside
     assert main(["bench", "--quick", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert "goal 1" in out and "goal 2" in out and "goal 3" in out
-    assert "sk.intersect stage profile" in out and "plane-sphere" in out
+    lines = out.splitlines()
+    head = next(i for i, line in enumerate(lines) if line.startswith("case "))
+    for column in ("case", "solver", "method", "rtol/tol", "curves", "ms/call", "ms/curve", "max error", "len err",
+                   "nfev", "notes"):
+        assert column in lines[head]
     with open(tmp_path / "bench.csv") as f:
         rows = list(csv.DictReader(f))
+    printed = lines[head + 2:head + 2 + len(rows)]
+    assert all(line.startswith(f"{r['case']:<13} {r['solver']:<11} {r['method']:<7} ")
+               for line, r in zip(printed, rows))
+    assert all(float(line[len(lines[head].split("max error")[0]):].split()[0]) == pytest.approx(float(r["error"]),
+                                                                                             rel=0.06)
+               for line, r in zip(printed, rows))
+    assert {"trace", "intersect", "LooperDrive", "closed form", "scipy root"} <= {r["solver"] for r in rows}
+    assert any(line.startswith("vs per-angle root solve: looper full turn, 91 crank angles") for line in lines)
+    assert any(line.startswith("vs OpenCascade: closed loop within 1e-10") for line in lines)
+    assert "start-up: import + first intersect in a fresh process (warm numba cache): not measured (--quick)" in lines
+    assert "goal" not in out.lower() and "reached" not in out
+    assert "sk.intersect stage profile" in out and "plane-sphere" in out
     traced = [r for r in rows if r["solver"] == "trace"]
     assert traced and all(float(r["error"]) < 1e-12 * 30 for r in traced)
     assert (tmp_path / "bench.png").stat().st_size > 0
+
+
+def _row(case, solver, method, rtol, per_curve, error, curves=2, expected=2):
+    return runner.Row(case, solver, method, rtol, curves, expected, per_curve * curves, per_curve, error)
+
+
+def test_comparisons_are_the_rows_ratios():
+    """The ratio against OpenCascade is OCC's time per curve (default tolerance) over the fastest tracer setting
+    that is within COMPARE_ERROR and finds every component in every case (a setting failing in another case is
+    not picked); the looper's is the root solve's time over LooperDrive's. Oracle: the same quotients of the
+    synthetic rows' times, by hand."""
+    tol = baselines.OCC_DEFAULT_TOL
+    rows = [_row("looper", "trace", "DOP853", 1e-8, 4e-3, 1e-12),
+            _row("looper", "trace", "RK45", 1e-6, 1e-3, 1e-11),          # fastest, but misses a loop elsewhere
+            _row("ring-2", "trace", "RK45", 1e-6, 1e-3, 1e-11, curves=1),
+            _row("ring-2", "trace", "DOP853", 1e-8, 4e-3, 1e-12),
+            _row("looper", "trace", "RK23", 1e-4, 5e-4, 1e-7),           # faster, but not within COMPARE_ERROR
+            _row("looper", "OCC IntSS", "-", tol, 2e-2, 3e-8),
+            runner.Row("looper drive", "LooperDrive", "-", np.nan, 91, 91, 0.01, 0.01 / 91, 1e-13),
+            runner.Row("looper drive", "closed form", "-", np.nan, 91, 91, 1e-4, 1e-4 / 91, 0.0),
+            runner.Row("looper drive", "scipy root", "-", np.nan, 91, 91, 0.25, 0.25 / 91, 1e-13)]
+    c = runner.comparisons(rows, startup=np.nan)
+    assert c.occ_ratio == pytest.approx(2e-2 / 4e-3) and "trace DOP853 rtol 1e-08" in c.occ_detail
+    assert c.looper_ratio == pytest.approx(25.0)
+    lines = report.comparison_lines(c, runner)
+    assert lines[0].startswith("vs OpenCascade: ") and lines[0].endswith(c.occ_detail) and "5.0x; " in lines[0]
+    assert lines[1].startswith("vs per-angle root solve: looper full turn, 91 crank angles") and "25.0x; " in lines[1]
+    assert lines[2].endswith("not measured (--quick)")
+    missing = runner.comparisons([r for r in rows if r.solver != "OCC IntSS"], startup=1.25)
+    assert np.isnan(missing.occ_ratio)
+    assert report.comparison_lines(missing, runner)[0].endswith(": OCP not installed")
+    assert report.comparison_lines(missing, runner)[2].endswith(": 1.25 s")
 
 
 

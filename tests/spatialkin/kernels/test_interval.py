@@ -200,7 +200,7 @@ def test_second_order_form_encloses_g_and_is_tighter_on_small_boxes(seed):
 
 
 def _icos_single(a):
-    """kernels.interval.icos before a point's cosine was taken once (cos at both ends), the oracle below."""
+    """kernels.interval.icos with the cosine taken at both ends even for a point (two cos calls), the oracle below."""
     lo, hi = a
     if hi - lo >= ki.TWO_PI:
         return (-1.0, 1.0)
@@ -216,8 +216,8 @@ def _icos_single(a):
 
 
 def _jet_single(s_data, t_data, m, c, pad, cpad, U, V):
-    """kernels.interval.jet as one function (local_jet and jet before they were split in stages), in Python on the
-    same interval primitives: the oracle of the staged jets, to the bit."""
+    """kernels.interval.jet as one function (local_jet and jet not split in stages), in Python on the same interval
+    primitives: the oracle of the staged jets, to the bit."""
     geometry = int(s_data[ki.GEOMETRY])
     z, one = (0.0, 0.0), (1.0, 1.0)
     zero3 = (z, z, z)
@@ -261,7 +261,7 @@ def _jet_single(s_data, t_data, m, c, pad, cpad, U, V):
 @pytest.mark.parametrize("seed", range(2))
 def test_staged_jets_match_the_single_jet_to_the_bit(seed):
     """jet, jet_first, jet_second and level (compiled, their helpers inlined) give the same bits as the jet computed
-    in one piece (_jet_single, the code they replaced, in Python): over random boxes and at points (a box of zero
+    in one piece (_jet_single, in Python): over random boxes and at points (a box of zero
     width, padded or not), for every pair of kinds; and the searches' point values (point_values,
     level_enclosure) are that jet's."""
     rng = np.random.default_rng(200 + seed)
@@ -293,8 +293,8 @@ def test_staged_jets_match_the_single_jet_to_the_bit(seed):
 
 def _refine_all_steps(step, x, keep_new):
     """Newton's iterates x_k+1 = step(x_k) (None: stop at x_k) for REFINE_ITER steps or until an iterate equals the
-    one before (then the new one if keep_new, else the old), without looking for cycles (refine_extremal and
-    refine_line before they did): (the last iterate, whether some iterate repeated an earlier one bit for bit)."""
+    one before (then the new one if keep_new, else the old), without looking for cycles as refine_extremal and
+    refine_line do: (the last iterate, whether some iterate repeated an earlier one bit for bit)."""
     seen, repeated = [np.array(x).tobytes()], False
     for _ in range(kt.REFINE_ITER):
         new = step(x)
@@ -310,7 +310,7 @@ def _refine_all_steps(step, x, keep_new):
 
 def test_refinement_ends_where_all_its_steps_end():
     """refine_extremal and refine_line, which stop when their iterates cycle, return the bits the full REFINE_ITER
-    steps give (the loops they replaced, _refine_all_steps) on every verified box of searches over the bench pairs
+    steps give (the plain loops of _refine_all_steps) on every verified box of searches over the bench pairs
     and random pairs, on many of which the iterates do cycle."""
     from spatialkin.bench.kinds import pair_kind_cases
     rng = np.random.default_rng(7)

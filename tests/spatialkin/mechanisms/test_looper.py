@@ -1,5 +1,10 @@
 """The looper drive against the closed form per crank angle (A cos v1 + B sin v1 + C = 0), its finite
-differences, and the rigid-chain identities."""
+differences, and the rigid-chain identities.
+
+The reference geometry is assumed (the paper, "Investigation of the trajectories of characteristic points of spatial
+mechanisms of technological machines of the light industry" (in Ukrainian; [Looper]), gives no dimensions); its swing
+and branches were measured by an independent script.
+"""
 import os
 
 import numpy as np
@@ -54,7 +59,7 @@ def test_reference_drive_is_built_on_the_reference_pair(drive):
 
 
 def test_reference_branches_and_swing(drive):
-    """The reference (looper-drive.md): branch 0 has v1 in about 107-114 deg, u2 in 77.8-115 deg,
+    """The reference geometry (independent script): branch 0 has v1 in about 107-114 deg, u2 in 77.8-115 deg,
     v2 within +-18.3 deg; branch 1 near v1 = 76 deg."""
     u1 = np.radians(np.arange(0, 360, 0.5))
     m0, m1 = drive.solve(u1, branch=0), drive.solve(u1, branch=1)
@@ -161,7 +166,7 @@ def test_looper_job_config_errors_are_clear(tmp_path, capsys):
 
 
 def test_analysis_of_the_reference(drive):
-    """The reference crank turns fully on both branches; swing ranges as in looper-drive.md; the
+    """The reference crank turns fully on both branches; swing ranges as measured independently; the
     transmission angle is 90 deg where C moves normal to the plane of the coupler line and the pin axis,
     as at crank angle 0 (C moves along the pin axis there by the symmetry of the reference)."""
     a = drive.analyse(branch=0)
@@ -183,8 +188,8 @@ def test_dead_positions_are_the_edges_of_the_blocked_ranges(blocked_drive):
     assert np.all(d.assembly_margin(a.crank_angles) > 0)
 
 
-def test_seed_start_and_assembly_agree_with_solve(drive):
-    """The seed's start (the sphere's equator cut by the torus) and assembly at any crank angle give the
+def test_equator_start_and_assembly_agree_with_solve(drive):
+    """The start of [Looper] (the sphere's equator cut by the torus) and assembly at any crank angle give the
     states that solve() returns at those crank angles, each on its branch."""
     for y in drive.seed_starts():
         branch = int(drive.branch_of(y))

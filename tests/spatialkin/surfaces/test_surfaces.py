@@ -1,4 +1,8 @@
-"""Surface kernels against oracles: closed-form points, finite-difference derivatives, exact distances."""
+"""Surface kernels against oracles: closed-form points, finite-difference derivatives, exact distances.
+
+[Looper]: "Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines
+of the light industry" (in Ukrainian): the torus and sphere parametrisations.
+"""
 import numpy as np
 import pytest
 from oracles import random_rotation, sphere_distance, torus_distance
@@ -43,7 +47,7 @@ def test_derivatives_match_finite_differences(kind):
 
 
 def test_closed_form_points():
-    """The seed's formulas for the torus and sphere (looper-drive.md), frame applied by hand."""
+    """The torus and sphere formulas of [Looper], frame applied by hand."""
     rng = np.random.default_rng(2)
     rot = random_rotation(rng)
     origin = np.array([1.0, -2.0, 0.5])

@@ -231,9 +231,9 @@ def test_short_max_length_left_to_tracer(monkeypatch):
 @pytest.mark.parametrize("offset", [1e-7, -1e-7, 1e-9])
 def test_a_plane_beside_a_cone_apex_cuts_a_small_ellipse(offset):
     """A plane `offset` from a double cone's apex, tilted 0.3 (less than the half angle 0.5): a small ellipse on one
-    nappe. Declined when the plane passed within 1e3 tolerances of the apex, it went to the general path, whose search
-    does not look so close to an apex on the other surface: [] in some placements, the loop in others. Now only a
-    plane through the apex to round-off is declined. Oracle: the rulings' crossings with the plane, apex + t(u) d(u)
+    nappe. The closed form declines only a plane through the apex to round-off: the general path's search does not
+    look so close to an apex on the other surface (a wider margin, such as 1e3 tolerances, would return [] in some
+    placements, the loop in others). Oracle: the rulings' crossings with the plane, apex + t(u) d(u)
     with t = offset / (n . d(u)) for the nappe the plane meets, their chord sums of 4096 and 8192 points
     Richardson-extrapolated; lengths to 1e-9 (relative) plus the coordinates' round-off (1e-15: the 3.8e-9 ellipse
     at 1e-9 is fixed to 2.7e-8 of itself), points on both surfaces to 1e-15, in both orders and three placements."""

@@ -1,11 +1,10 @@
 """The stored points of a traced curve in one compiled call (spatialkin.tracing.trace._corrected on
 spatialkin.kernels.stored.corrected_spans).
 
-Oracle: the span-by-span Python it replaces (kept here: corrected_many per span, result.user_params,
-numpy's unwrap_turns), on the very arguments sk.intersect hands _corrected for re-charting (sphere) and
-non-re-charting pairs, both argument orders: the same points, parameters and gaps, bit for bit (tolerance 0: the
-same kernels and operations in the same order). The compiled unwrap_turns against numpy's (the one the closed forms
-called before they called it) on angles with jumps of many turns, also bit for bit.
+Oracle: the same work span by span from Python (corrected_many per span, result.user_params, a numpy unwrap_turns), on
+the very arguments sk.intersect hands _corrected for re-charting (sphere) and non-re-charting pairs, both argument
+orders: the same points, parameters and gaps, bit for bit (tolerance 0: the same kernels and operations in the same
+order). The compiled unwrap_turns against the numpy one on angles with jumps of many turns, also bit for bit.
 """
 import numpy as np
 import pytest
@@ -26,7 +25,7 @@ SEVERAL_SPANS = ("sphere-cylinder", "sphere-torus")
 
 
 def python_corrected(a, b, y_all, span_of, spans, settings):
-    """The oracle: _corrected as it was, one compiled call and user_params per span from Python."""
+    """The oracle: the spans corrected one by one from Python, one compiled call and user_params per span."""
     points = np.empty((len(y_all), 3))
     params = np.empty((len(y_all), 4))
     raw_gap = np.empty(len(y_all))

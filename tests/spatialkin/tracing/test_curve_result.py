@@ -17,7 +17,7 @@ ROUND_OFF = 1e-14
 
 @pytest.fixture(scope="module")
 def looper_curve():
-    """A closed loop of the seed's torus ∩ sphere, traced from a point."""
+    """A closed loop of a looper-like torus ∩ sphere (a spindle torus R 8, r 50), traced from a point."""
     torus, sphere = sk.Torus(8.0, 50.0), sk.Sphere(30.0, sk.Frame((20.0, 0.0, 40.0)))
     return sk.trace(torus, sphere, (20.0, 0.0, 10.0)), (torus, sphere)
 

@@ -1,5 +1,5 @@
 """De-duplication of starts: the compiled near_curve (spatialkin.kernels.near on spatialkin.tracing.packed) against
-the Python one it replaced (kept here as the oracle), and its dense output against scipy's."""
+a plain Python one on the curve's dense output (the oracle), and its dense output against scipy's."""
 from types import SimpleNamespace
 
 import numpy as np
@@ -28,7 +28,7 @@ BIG, SMALL, CENTRE = 3.0, 1.0, np.array([1.0, 0.5, 0.7])
 
 
 def reference_near_curve(curve, points, radius):
-    """The Python near_curve this kernel replaced (spatialkin 5b6a3a9), unchanged: the oracle."""
+    """near_curve in plain Python (k-d tree candidates, then foot points on the dense output): the oracle."""
     points = np.asarray(points, dtype=float).reshape(-1, 3)
     out = np.zeros(len(points), dtype=bool)
     ask = np.ones(len(points), dtype=bool)
@@ -45,7 +45,7 @@ def reference_near_curve(curve, points, radius):
 
 
 def reference_covered(curve, others, radius):
-    """The Python covered this replaced (spatialkin 5b6a3a9), unchanged: the oracle."""
+    """covered in plain Python (every point of the curve within radius of a longer curve): the oracle."""
     if curve.closed or curve.status == "contact":
         return False
     return any(other.length >= curve.length and np.max(other.sol.closest(curve.points)[1]) <= radius

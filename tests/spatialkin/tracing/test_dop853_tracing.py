@@ -1,6 +1,6 @@
 """The tracer on the compiled DOP853 engine (the default 'compiled'): lengths against closed forms where DOP853's
-optimistic error estimate on long steps used to show (the step cap, spatialkin.tracing.trace.MAX_STEP), the hand-over
-to the same compiled engine, and an apex passed beside without re-firing its event at every restart."""
+optimistic error estimate on long steps would show without the step cap (spatialkin.tracing.trace.MAX_STEP), the
+hand-over to the same compiled engine, and an apex passed beside without re-firing its event at every restart."""
 import math
 import sys
 from pathlib import Path
@@ -25,9 +25,9 @@ def case(name):
 @pytest.mark.parametrize("method", ["compiled", "compiled-rk45"])
 def test_circle_of_a_plane_across_a_torus_axis_has_its_length(method):
     """aligned/plane-torus/0: the plane normal to the torus's axis at distance d cuts it in two circles, the inner
-    of radius R - sqrt(r^2 - d^2) (closed form). DOP853's steps of 0.75 there (a circle of radius 0.93) were accepted
-    with 40 times the tolerance's local error, and the loop's length was 2.8e-8 off; capped at 0.2 x scale it is
-    within LENGTH_TOL x scale, both methods."""
+    of radius R - sqrt(r^2 - d^2) (closed form). Uncapped, DOP853 accepts steps of 0.75 there (a circle of radius
+    0.93) with 40 times the tolerance's local error, and the loop's length is 2.8e-8 off; with steps capped at
+    0.2 x scale it is within LENGTH_TOL x scale, both methods."""
     c = case("aligned/plane-torus/0")
     plane, torus = c.a, c.b
     axis = torus.frame.rotation[:, 2]
@@ -41,10 +41,10 @@ def test_circle_of_a_plane_across_a_torus_axis_has_its_length(method):
 
 
 def test_apex_beside_the_curve_is_passed_once(monkeypatch):
-    """aligned/cone-cone/0: the curve passes 1.3e-3 from an apex that the topology stage proved off it. Its apex
-    event used to fire again at the start of every following segment (10 000 empty segments, 4.9 s); now the branch
-    goes round it with the apex unwatched until clear of it: a handful of integrations, all by the compiled engine
-    (the hand-over too), and the same curves as with RK45's steps."""
+    """aligned/cone-cone/0: the curve passes 1.3e-3 from an apex that the topology stage proved off it. Watched at
+    every segment start, its apex event would fire again at the start of each following segment (up to MAX_SEGMENTS
+    empty segments); the branch goes round it with the apex unwatched until clear of it: a handful of integrations
+    (at most 20), all by the compiled engine (the hand-over too), and the same curves as with RK45's steps."""
     c = case("aligned/cone-cone/0")
     methods = []
     original = ivp.integrate

@@ -177,10 +177,10 @@ def test_sampled_result_init_is_curve_result_init():
 
 
 def test_conic_arithmetic_is_numpy():
-    """A Conic's |P|^2 and |Q|^2 (the floats written out) are float(P @ P) and float(Q @ Q) to 2 ulp (bit for bit
-    on the machine this was written on, where 200 000 draws agreed), its centre, P and Q (arrays made on first
-    use) np.array of the floats given, and a closed ellipse's quarter turn the last of quarter_turn: bit for bit,
-    over random vectors of magnitudes 1e-3 to 1e3."""
+    """A Conic's |P|^2 and |Q|^2 (the floats written out) are float(P @ P) and float(Q @ Q) to 2 ulp (a margin for a
+    build whose dot product sums in another order), its centre, P and Q (arrays made on first use) np.array of the
+    floats given, and a closed ellipse's quarter turn the last of quarter_turn: bit for bit, over random vectors of
+    magnitudes 1e-3 to 1e3."""
     from spatialkin.tracing.conic import ELLIPSE, QUARTER, Conic
     rng = np.random.default_rng(11)
     for _ in range(DRAWS):

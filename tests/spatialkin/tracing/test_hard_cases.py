@@ -199,10 +199,9 @@ def test_area_element_is_1_lipschitz_in_its_parameter(kind, size, scale):
 
 def test_viviani_trimmed_at_its_node():
     """Viviani's curve (a sphere of radius 2r through the axis of a cylinder of radius r) with the cylinder trimmed
-    at the height of its node: the upper lobe, from the node to the node. The jump across the node used to land
-    beyond the trim (7.1e-4 r outside, 1.4e-3 r too long); now it ends at the edge: in either order the curve lies
-    inside the trim to round-off, and its length is the lobe's, 2 r int_0^pi sqrt(1 + cos^2 u) du (scipy.quad),
-    to 1e-9."""
+    at the height of its node: the upper lobe, from the node to the node. A jump across the node that ignored the
+    trim would land beyond it (7.1e-4 r outside); the curve ends at the edge: in either order it lies inside the
+    trim to round-off, and its length is the lobe's, 2 r int_0^pi sqrt(1 + cos^2 u) du (scipy.quad), to 1e-9."""
     from scipy.integrate import quad
     r = 0.7
     rot = sk.rotation_about((0.3, 0.5, 1.0), 0.6)

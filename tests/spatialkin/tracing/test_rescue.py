@@ -35,11 +35,11 @@ def loop_points(t, origin, rot, sign):
 
 @pytest.mark.parametrize("seed", [0, 3])
 def test_thin_loop_beside_a_near_tangency_is_found(seed):
-    """The interior search seeds this loop only at its two ends, where Newton cannot locate it: sk.intersect returned
-    [] (every placement tried). Now the lines through the middle of the lost starts seed it. Its arcs stop beside the
-    ends (status 'singular': not passed) and cover the rest: every point of the exact loop away from the ends within
-    1e-9 of them, their lengths the loop's (quadrature of the closed form) less 1.1e-6 (measured), on both surfaces
-    to round-off."""
+    """The interior search seeds this loop only at its two ends, where Newton cannot locate it (every placement
+    tried); the lines through the middle of the lost starts seed it. Its arcs stop beside the ends (status
+    'singular': not passed) and cover the rest: every point of the exact loop away from the ends within 1e-9 of
+    them, their lengths the loop's (quadrature of the closed form) less 1.1e-6 (measured), on both surfaces to
+    round-off."""
     sphere, cylinder, origin, rot = off_axis_pair(seed)
     end = math.acos(OFFSET / (2 * RADIUS))
 

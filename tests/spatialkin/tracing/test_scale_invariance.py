@@ -1,20 +1,21 @@
 """sk.intersect does not depend on the scene's scale: stress cases scaled by exact powers of two (2^-27, 2^27: the
 scaled scene is similar to the bit) give the same curves, statuses and counts, lengths within 1e-8 relative.
 
-Each case below changed under such a scaling before its tolerance was made relative to the scale:
+Each case below depends on a tolerance being relative to the scale; in absolute units it would change under such a
+scaling:
 
-- contact/sphere-cylinder/far-at, contact/sphere-cone/ruling-at: the contact point was lost (topology.classify:
+- contact/sphere-cylinder/far-at, contact/sphere-cone/ruling-at: the contact point would be lost (topology.classify:
   the Hessian's metric tested for degeneracy in mixed units; critical_point's stop and move tests absolute in a
   length parameter);
-- contact/sphere-cylinder/node-at, viviani/sphere-cylinder/3: the node was not recognised (the same), the
+- contact/sphere-cylinder/node-at, viviani/sphere-cylinder/3: the node would not be recognised (the same), the
   figure-eight traced to max_length or as a wrong loop;
 - contact/plane-cone/ruling-in: the rings round the cone's apex at absolute offsets of its length v;
 - scaled/coaxial/cone-cone/0/x1e-4: parallels taken for the apex (an absolute 1e-12 in a cone's v);
-- tiny/plane-torus/1e-06: a tiny loop ended 'singular' (the Newton systems' pivot test across columns of
+- tiny/plane-torus/1e-06: a tiny loop ending 'singular' (the Newton systems' pivot test across columns of
   lengths and of numbers).
 
-Still scale-dependent, not tested here (their fixes, in the tracer's time unit, expose two fragile stress cases
-and wait): contact/sphere-cylinder/outside-out at 2^-27 (solve_ivp's event location to an absolute 4 ulp of 1: a
+Still scale-dependent, not tested here (making them relative, in the tracer's time unit, exposes two fragile stress
+cases): contact/sphere-cylinder/outside-out at 2^-27 (solve_ivp's event location to an absolute 4 ulp of 1: a
 1e-12 loop never closes) and scaled/random/cylinder-cone/0/+1e5 at 2^-27 (at_outer_edge's leaving rate and the
 compiled integrator's first step in absolute units).
 """

@@ -1,11 +1,11 @@
 """A segment's start, and a located start, in one compiled call (spatialkin.tracing.segments.segment_start,
 start.locate_on_curve; kernels.restart).
 
-Oracle: the Python steps it replaces, one by one (segments.charts_at, curvature_vector, charts_at along the
+Oracle: the same steps taken one by one from Python (segments.charts_at, curvature_vector, charts_at along the
 curvature vector, segments.project_state): the same charts, state, point and tangent, bit for bit (tolerance 0:
 the same kernels in the same order), at points along traced curves of re-charting (sphere) and non-re-charting
 pairs, in both directions of travel, from states nudged off the curve. The same for a start located on the curve
-(start.locate_on_curve on kernels.restart.locate) against the steps it took one by one.
+(start.locate_on_curve on kernels.restart.locate) against its steps taken one by one.
 """
 import numpy as np
 import pytest
@@ -26,14 +26,14 @@ SAMPLES = 7
 
 
 def curvature_vector(y, a, b):
-    """C'' (3,) of the curve at the state y (charts a, b), or None at a singular point (as the tracer's Python read
-    it before segment_start)."""
+    """C'' (3,) of the curve at the state y (charts a, b), or None at a singular point (read from Python, one call
+    of kernels.curve.curve_derivatives)."""
     dy, ddy, d1, d2 = np.empty(4), np.empty(4), np.empty(3), np.empty(3)
     return d2 if kc.curve_derivatives(np.ascontiguousarray(y, dtype=float), a, b, 1.0, dy, ddy, d1, d2) else None
 
 
 def python_start(a_user, b_user, point, direction, y_prev, settings):
-    """The oracle: integrate_branch's steps before it was one call."""
+    """The oracle: a segment's start as separate Python steps (charts_at, the curvature vector, project_state)."""
     a, b, y = charts_at(a_user, b_user, point, direction, y_prev)
     if traits(a_user).recharts or traits(b_user).recharts:
         bend = curvature_vector(y, a, b)
@@ -75,7 +75,7 @@ def test_segment_start_matches_python_steps(kind, order):
 
 
 def python_locate(a, b, guess, gap_tol, y_guess=None):
-    """The oracle: start.locate_on_curve's steps before they were one call ((point, y_user) or None)."""
+    """The oracle: start.locate_on_curve's steps as separate Python calls ((point, y_user) or None)."""
     from spatialkin.kernels import curve as kc
     from spatialkin.tracing.segments import NEWTON_MAX_ITER
     point = np.asarray(guess, dtype=float).copy()

@@ -101,9 +101,9 @@ def test_near_split_pairs_take_the_general_path(offset, monkeypatch):
 
 
 def test_axes_missing_by_1e_12_take_the_general_path():
-    """Equal cylinders whose axes miss each other by 1.4e-12 of the radius (found by review): the pencil's member
-    passes the rank test, but its ellipses lie 1.6e-12 x scale off the surfaces, beyond the split's fit
-    (SPLIT_FIT = 1e-13 x scale): the pair is traced, one closed loop through a waist, not two ellipses."""
+    """Equal cylinders whose axes miss each other by 1.4e-12 of the radius: the pencil's member passes the rank
+    test, but its ellipses lie 1.6e-12 x scale off the surfaces, beyond the split's fit (SPLIT_FIT = 1e-13 x
+    scale): the pair is traced, one closed loop through a waist, not two ellipses."""
     a = sk.Cylinder(94.57052564861789, sk.Frame(
         [1353.2678431571949, -2387.5946620871246, -1600.3622979617073],
         [[0.7800252477520986, 0.4272470765078407, -0.4571876512820313],
@@ -121,8 +121,8 @@ def test_axes_missing_by_1e_12_take_the_general_path():
 
 
 def test_a_trim_through_both_nodes():
-    """Equal cylinders with crossing axes, b's trim passing exactly through both nodes (found by review): in either
-    order two arcs, each listing both nodes (at its ends), inside b's trim to round-off."""
+    """Equal cylinders with crossing axes, b's trim passing exactly through both nodes: in either order two arcs,
+    each listing both nodes (at its ends), inside b's trim to round-off."""
     a = sk.Cylinder(0.0030864655572198463, sk.Frame(
         [-0.005240491689181651, -0.00326973829279299, -0.006688478077075634],
         [[0.2960055335119358, -0.3163746880178444, -0.9012700932084267],
@@ -184,7 +184,7 @@ def tangent_ruling_scene(rng, alpha=0.6, r=0.9):
 
 def test_cone_touching_a_cylinder_along_a_ruling():
     """A cone touching a cylinder all along a ruling (the general path's search cannot resolve a tangency along a
-    line in this placement: it ran out of its box budget, TopologyError): in closed form, in either order, the
+    line in this placement: it runs out of its box budget, TopologyError): in closed form, in either order, the
     ruling, clipped by both trims, as a segment of tangency, and an ellipse on both surfaces. Oracles: the ruling
     (through the apex, along the cylinder's axis) and its ends on the cone's trim (v = 0.2 r and 4 r, so
     t = v / cos(alpha)); the ellipse's length from its own plane's tilt (semi-axes r and r / cos of the tilt,
@@ -218,8 +218,8 @@ def test_cone_touching_a_cylinder_along_a_ruling():
 
 def test_cone_nearly_touching_a_cylinder_along_a_ruling():
     """The cone of test_cone_touching_a_cylinder_along_a_ruling moved off the cylinder by 1e-8 and 1e-10 of the
-    radius, out and in (the general path: the level is within that of zero all along the ruling, so the search cut
-    along it and ran out of its budget, TopologyError, until it bisected by the smear). The node splits and the
+    radius, out and in (the general path: the level is within that of zero all along the ruling, so a search that
+    cut along it would run out of its budget; it bisects by the smear). The node splits and the
     ellipse and the two thin branches beside the ruling join into one open curve from the trim edge back to it:
     status 'boundary', on both surfaces to round-off. Oracle: as the offset goes to 0 the curve tends to the exact
     touching's ellipse plus the ruling from its node to a trim end, twice (closed form); one sign takes each end,
@@ -250,11 +250,11 @@ def test_cone_nearly_touching_a_cylinder_along_a_ruling():
         assert gaps[0][side] < 2e-3 and gaps[2][side] < 5e-4 and gaps[2][side] < gaps[0][side] / 3
 
 def test_general_path_finds_both_arcs_beside_an_outside_node(monkeypatch):
-    """Equal cylinders with crossing axes, a's trim passing just beside both nodes (found by review): both ellipses
-    leave through that edge next to a node that lies outside the trim. The topology stage used to drop a node's arms
-    with the node (outside the trim), so one arc had no seed and the general path returned one arc of two. Now it
-    seeds the arms inside: the general path (closed forms off) finds both, their lengths the closed form's to 1e-7
-    (an end taken through the node, beside the edge), and the closed form itself both, exactly on the surfaces."""
+    """Equal cylinders with crossing axes, a's trim passing just beside both nodes: both ellipses leave through that
+    edge next to a node that lies outside the trim. The topology stage seeds a node's arms inside the trim even
+    though the node itself lies outside (dropping them with the node would leave one arc without a start): the
+    general path (closed forms off) finds both, their lengths the closed form's to 1e-7 (an end taken through the
+    node, beside the edge), and the closed form itself both, exactly on the surfaces."""
     a = sk.Cylinder(0.0012617220940868451, sk.Frame(
         [-0.0020201759091821115, 0.003413274975558246, -0.0017599610186184796],
         [[0.4782520415715582, -0.30479982461043276, -0.8236334449559988],

@@ -1,4 +1,4 @@
-"""The topology stage of sk.intersect on the cases that used to lose components, and its special configurations.
+"""The topology stage of sk.intersect on cases where components are easily lost, and its special configurations.
 Oracles: closed-form circles, lines and lengths; exact distance functions (oracles.py)."""
 import math
 import warnings
@@ -26,7 +26,7 @@ def on_both(curves, a, b):
     return worst
 
 
-def test_reproduce_shaft_through_a_ball():
+def test_shaft_through_a_ball():
     """Sphere(10) and Cylinder(5) about one axis: two circles of radius 5 (length 10 pi), in either order, with
     the axis moved, tilted, or the sphere off-centre along it."""
     for frame in (sk.Frame(), sk.Frame((1.0, 2.0, 3.0)), sk.Frame((0, 0, 0), sk.rotation_about((1, 1, 0), 0.7))):
@@ -38,7 +38,7 @@ def test_reproduce_shaft_through_a_ball():
             assert all(c.closed for c in curves) and on_both(curves, a, b) < 1e-13
 
 
-def test_reproduce_sphere_plane_and_cone_sphere():
+def test_sphere_plane_and_cone_sphere():
     """Plane z = 3 cuts Sphere(10) in a circle of radius sqrt(91); a 30-degree cone cuts Sphere(5) in a circle of
     radius 2.5."""
     curves = sk.intersect(sk.Sphere(10.0), sk.Plane(sk.Frame((0, 0, 3))))
@@ -120,7 +120,7 @@ def test_curve_running_along_a_patch_edge_is_traced_whole():
 def test_dense_points_pass_exactly_through_a_node():
     """Oblique Steinmetz curve (equal cylinders, axes crossing at 50 degrees): the two ellipses lie in the planes
     normal to e1 - e2 and e1 + e2; dense evaluations within 1e-5 of a node stay on their own ellipse's plane
-    (within 1e-9; they used to land on the other branch, 4e-6 off)."""
+    (within 1e-9; the other branch passes within 4e-6 there)."""
     rot = random_rotation(np.random.default_rng(11))
     e1 = rot[:, 2]
     tilt = rot @ np.array([[1.0, 0.0, 0.0], [0.0, math.cos(0.87), -math.sin(0.87)], [0.0, math.sin(0.87), math.cos(0.87)]])
@@ -147,8 +147,8 @@ def test_arc_length_through_a_near_node_waist():
     """Two perpendicular cylinders of radii 1 and 1 - 1e-8 (axes crossing): two loops, each passing twice
     through a waist 1e-8 wide beside the Steinmetz nodes. Closed form of a loop, psi in [0, 2 pi):
     (sqrt(r^2 - r2^2 sin^2 psi), r2 sin psi, r2 cos psi); its length by adaptive quadrature (scipy.quad).
-    Every loop, in either order, has that length to 1e-10 relative (the solver's time overshot it by up to
-    6e-8 through the waists before the curve's speed was measured there: tracing/arclength.py)."""
+    Every loop, in either order, has that length to 1e-10 relative (the solver's time alone overshoots it by up to
+    6e-8 through the waists; the curve's speed is measured there: tracing/arclength.py)."""
     from scipy.integrate import quad
     r, r2 = 1.0, 1.0 - 1e-8
 
@@ -217,11 +217,10 @@ def _extreme_scene(kind, scale):
 @pytest.mark.parametrize("kind, count", [("plane-torus", 2), ("sphere-cone", 1)])
 def test_extreme_scales(kind, count):
     """The same curves (lengths relative 1e-9) with the scene scaled by 1e-14, 1e-20 and 1e20 (and 1e-30, 1e30 for
-    the cone). A plane's or cone's length parameters are then tiny or huge: the edge test of a start used to count a
-    parameter within 1e-12 (absolute, for ranges below 1) of a bound as on the edge, so every start of the plane
-    scene 'left the surface' and its loops were lost without an error; a cone's apex watch measured its relative
-    area element in the scene's units (a v of 1e-12 is near the apex), so the sphere-cone loop ran on to max_length
-    instead of closing."""
+    the cone). A plane's or cone's length parameters are then tiny or huge: an edge test of a start with an absolute
+    margin (1e-12 for ranges below 1) would count every start of the plane scene as on the edge, and its loops
+    would be lost without an error; a cone's apex watch in the scene's units (a v of 1e-12 is near the apex) would
+    run the sphere-cone loop on to max_length instead of closing it. Both are relative to the scale."""
     base = None
     for scale in (1.0, 1e-14, 1e-20, 1e20) + ((1e-30, 1e30) if kind == "sphere-cone" else ()):
         a, b = _extreme_scene(kind, scale)
@@ -363,8 +362,8 @@ def test_plane_nearly_tangent_to_a_cone_along_a_ruling(offset):
 def test_elongated_contacts_of_two_stacked_tori(seed):
     """Two equal tori (R 1, r 0.3) on parallel axes, one 0.6 up its axis and 1e-3 aside: their tube circles meet
     where the two centre circles cross, so the tori touch at exactly two points, each a contact whose Hessian of g
-    has eigenvalues 4e-6 and 16 (the tubes part slowly along the circles). Taken for degenerate points (below 1e-6
-    of the largest eigenvalue), their seeds could not be located: sk.intersect returned []. Oracle: the contacts
+    has eigenvalues 4e-6 and 16 (the tubes part slowly along the circles): a degeneracy test at 1e-6 of the
+    largest eigenvalue would take them for degenerate points, whose starts cannot be located. Oracle: the contacts
     (eps/2, +-sqrt(1 - eps^2/4), 0.3) in the first torus's frame, within 1e-9 (along the flat direction the contact
     is fixed only to the gradient's round-off over the small eigenvalue, about 1e-15 / 4e-6; measured 1.3e-10); on
     both surfaces to round-off."""
@@ -385,9 +384,9 @@ def test_elongated_contacts_of_two_stacked_tori(seed):
 @pytest.mark.parametrize("seed", [1, 2])
 def test_two_nappes_beside_an_apex_are_two_components(seed):
     """A double cone whose apex lies 1e-7 inside a unit sphere, its axis tangent to the sphere there: each nappe
-    leaves the sphere in a loop round the axis, and the two loops pass 2e-7 apart beside the apex. The seed of the
-    second was taken for a point of the first (within 1e-6 of it) and dropped: one loop of two came back. Starts on
-    a nappe that a curve never visits are no longer its. Oracle: each loop is the rulings' exits from the sphere,
+    leaves the sphere in a loop round the axis, and the two loops pass 2e-7 apart beside the apex, so a start of
+    the second lies within 1e-6 of the first and must not be dropped as a point of it. Starts on a nappe that a
+    curve never visits are not its. Oracle: each loop is the rulings' exits from the sphere,
     apex + t(u) d(u) with t(u) the positive root of |apex + t d - centre|^2 = 1; its length by chord sums of 4096
     and 8192 exact points, Richardson-extrapolated (to 1e-9); each traced loop on one nappe, on both surfaces to the
     tolerance asked (its points beside the apex, where the cone's parametrisation degenerates, 3e-12 off)."""

@@ -1,4 +1,4 @@
-"""The topology stage's batched helpers against the scalar code they replaced (kept here as the oracles): the
+"""The topology stage's batched helpers against scalar Python versions of the same computations (the oracles): the
 results must be the same to the bit, since the stage's seeds and decisions are built from them."""
 import math
 

@@ -2,7 +2,7 @@
 
 The cases (``ssi_cases.py``, ~520 of them: random, axis-aligned and coaxial placements, the same scenes scaled
 by 1e-4 and 1e4 and moved 1e5 from the origin, contacts within 1e-9 x scale, loops down to 1e-6 x scale,
-Villarceau, Steinmetz and Viviani nodes, trimmed patches, tangency along curves, the examples of issue 14,
+Villarceau, Steinmetz and Viviani nodes, trimmed patches, tangency along curves, the simple coaxial scenes,
 coincident and unbounded pairs) carry their truth from a closed form, or ask the brute-force oracle
 (``ssi_oracle.py``: a grid root search written from the parametrisations, no spatialkin internals).
 
@@ -53,8 +53,8 @@ CONDITION_ULPS = 4          # ulp of the coordinates / sin(normals' angle): how 
 CASE_TIMEOUT = 120          # seconds per sk.intersect call
 REPORT_EXAMPLES = 6         # failing cases listed per family in the summary
 
-#: Cases that fail today, each with what fails and why (reported in the summary; they do not fail the test, a
-#: new failure does). Measured on 2026-11-23: all 522 cases pass.
+#: Cases known to fail, each with what fails and why (reported in the summary; they do not fail the test, a
+#: new failure does). Empty: every case passes.
 KNOWN_FAILURES = {}
 
 QUICK = os.environ.get("SSI_STRESS_QUICK", "") == "1"
@@ -304,7 +304,7 @@ def test_topology_stress(stress_report):
         stress_report.extend(f"    {name}: {KNOWN_FAILURES[name]}" for name in known)
     fixed = [c.name for c, r in results if not r and c.name in KNOWN_FAILURES]
     if fixed:
-        stress_report.append(f"  now passing, listed as known failures: {', '.join(fixed)}")
+        stress_report.append(f"  passing, although listed as known failures: {', '.join(fixed)}")
     new = [name for name in failed if name not in KNOWN_FAILURES]
     assert not new, f"{len(new)} of {len(results)} cases failed beyond the known ones: {new[:10]}"
 

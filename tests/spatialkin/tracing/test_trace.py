@@ -1,4 +1,8 @@
-"""sk.trace: start points, closure, dense evaluation, drift, singular points and edges, against oracles."""
+"""sk.trace: start points, closure, dense evaluation, drift, singular points and edges, against oracles.
+
+[Looper]: "Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines
+of the light industry" (in Ukrainian): the looper drive as torus ∩ sphere, started from the sphere's equator.
+"""
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -11,12 +15,12 @@ TOL = 1e-10
 
 @pytest.fixture(scope="module")
 def looper_pair():
-    """The reference geometry of ../shared/reference/looper-drive.md (mm)."""
+    """The looper drive's reference geometry (mm; assumed: the [Looper] paper gives no dimensions)."""
     return reference.looper_pair()
 
 
 def test_auxiliary_start_is_on_both_surfaces(looper_pair):
-    """The seed's start: the sphere's equator cut by the torus; oracle: exact distances and v2 = 0."""
+    """The start of [Looper]: the sphere's equator cut by the torus; oracle: exact distances and v2 = 0."""
     torus, sphere = looper_pair
     starts = sk.auxiliary_starts(torus, sphere)
     assert len(starts) >= 2
@@ -27,7 +31,8 @@ def test_auxiliary_start_is_on_both_surfaces(looper_pair):
 
 
 def test_looper_curve_closes_with_reference_length(looper_pair):
-    """From the seed's start at v1 ≈ 110° the ball-centre path is the 59.7 mm loop of the reference."""
+    """From the equator start at v1 ≈ 110° the ball-centre path is a closed loop 59.7 mm long (the reference
+    geometry's path, measured by an independent script)."""
     torus, sphere = looper_pair
     starts = sk.auxiliary_starts(torus, sphere)
     start = starts[np.argmin(np.abs(starts[:, 1] - np.radians(110)))]
@@ -115,8 +120,8 @@ def test_villarceau_circles_pass_through_their_nodes():
     """A plane through the torus centre tilted by asin(r/R) cuts two Villarceau circles of radius R about
     (0, +-r, 0), crossing at the two points where the plane touches the torus. Each circle is traced as one
     closed curve straight through both nodes, without jumping to the other circle. Its length is 2 pi R to
-    5e-10 R: each jump across a node counts the curve's arc, not its chord (the chords made it 1.3e-9 R to
-    1.8e-9 R short; 2.5e-10 R at most now, both argument orders)."""
+    5e-10 R in both argument orders: each jump across a node counts the curve's arc, not its chord (the chords
+    would make it 1.3e-9 R to 1.8e-9 R short)."""
     big, small = 3.0, 1.0
     theta = np.arcsin(small / big)
     normal = np.array([np.sin(theta), 0.0, np.cos(theta)])

@@ -121,8 +121,8 @@ def test_probes_skip_only_where_the_sign_is_kept():
 def test_grazing_between_two_probes_ends_the_arc(depth):
     """A torus cut by the plane 0.1 up its axis (two circles) with the plane trimmed at u <= r_out - depth: the outer
     circle (radius r_out = R + sqrt(r^2 - 0.01)) leaves the trim for an arc of about 2 sqrt(2 r_out depth), 1e-3
-    long at 1e-7, between two probes 3e-3 apart, and was traced as a closed loop 1e-7 outside the patch (2000
-    tolerances). Now the probes bisect where neither the event's rate nor its bend (rk.step_bend) excludes a dip
+    long at 1e-7, between two probes 3e-3 apart: probes alone would trace a closed loop 1e-7 outside the patch (2000
+    tolerances). The probes bisect where neither the event's rate nor its bend (rk.step_bend) excludes a dip
     (rk.hidden_crossing): one arc from edge to edge. Oracle: its length r_out (2 pi - 2 phi), phi = acos((r_out -
     depth) / r_out), within the ends' conditioning (each end on the edge to the tolerance, 1e-10 x the scale 0.3,
     moves along a curve crossing the edge at the angle phi by that over sin phi: 1.5e-7 at 1e-7, 1.5e-6 at 1e-9,

@@ -2,12 +2,21 @@
 
 Two families, one subpackage each:
 
-* ``planar.frenet`` (seed 000): laws phi(s) of a crank mechanism's driven link relative to the Frenet
-  trihedron on the crank pin and the link's kinematics, on spatialkin's trajectory pipeline;
-* ``planar.linkage`` (seed 001): general planar linkages of revolute joints with geared driving cranks, such
-  as the double-crank six-link with a class III group (``planar.examples.fnf_sixbar()``).
+* ``planar.frenet``: laws phi(s) of a crank mechanism's driven link relative to the Frenet trihedron on the
+  crank pin and the link's kinematics, on spatialkin's trajectory pipeline (CrankSlider, CrankRocker,
+  DrivenLink);
+* ``planar.linkage``: general planar linkages of revolute joints with geared driving cranks, such as the
+  double-crank six-link with a class III group of a warp-knitting machine (``planar.examples.fnf_sixbar()``).
 
-Their public names are re-exported here.
+Their public names are re-exported here. Angles in radians, lengths in the user's unit, arrays with the point
+index first.
+
+References
+----------
+S. Pylypaka, A. Chepyzhniy, T. Kresan, "Determining kinematic characteristics of planar mechanisms' driven
+member using Frenet trihedron", 2017.
+S. O. Koshel, A. V. Koshel, "Double-crank mechanism kinematic study of warp knitting machine", Visnyk KNUTD
+(Bulletin of the Kyiv National University of Technologies and Design), 2014, no. 2 (in Ukrainian).
 """
 from . import frenet, linkage
 from .frenet import CrankRocker, CrankSlider, DrivenLink, Law, LawFromFunctions, LawFromGamma

@@ -1,5 +1,26 @@
 """spatialkin: surface-surface intersection by arc length (Dragilev's method) and the kinematics of
-spatial mechanisms of sewing and knitting machines."""
+spatial mechanisms of sewing and knitting machines.
+
+The intersection line of two surfaces is parametrised by its arc length and found as the solution of a Cauchy
+problem (Dragilev's method); the looper drive of blind-stitch sewing machines, a spatial five-link crank-rocker,
+moves its ball centre along such a line, torus ∩ sphere ([Looper]).
+
+- ``Frame``, ``rotation_about``, ``rotation_to_z``: placements (global = origin + rotation @ local);
+- ``Torus``, ``Sphere``, ``Plane``, ``Cylinder``, ``Cone``: placed surfaces (``point``, ``distance``);
+- ``trace`` (one component from a start), ``intersect`` (every component; ``certify=True`` for a proof),
+  ``intersect_many`` (many pairs): ``Curve`` objects, parametrised by arc length;
+- ``TracingError``, ``TopologyError``, ``CoincidentSurfacesError``, ``BatchError``: what they raise;
+- ``spatialkin.mechanisms.LooperDrive`` (the looper drive's motion) and ``spatialkin.design`` (sensitivities,
+  fits and sweeps of its geometry).
+
+Angles are in radians, lengths in the user's unit, arrays have the point index first.
+
+References
+----------
+[Looper] "Investigation of the trajectories of characteristic points of spatial mechanisms of technological
+machines of the light industry" (Дослідження траєкторій характерних точок просторових механізмів технологічних
+машин галузей легкої промисловості; in Ukrainian).
+"""
 from .frame import Frame, rotation_about, rotation_to_z
 from .surfaces import Cone, Cylinder, Plane, Sphere, Surface, Torus
 from .tracing.result import Curve, TracingError

@@ -6,7 +6,43 @@ from .vectors import cross
 
 
 def rotation_about(axis, angle):
-    """Rotation matrix (3, 3) by angle (radians) about axis (3,), right-hand rule (Rodrigues)."""
+    """Rotation matrix by an angle about an axis through the origin, by the right-hand rule (Rodrigues).
+
+    Parameters
+    ----------
+    axis : array_like, shape (3,)
+        Direction of the axis, any non-zero length (it is normalised).
+    angle : float
+        Angle of the turn in radians, anticlockwise seen from the tip of `axis`.
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+        The proper rotation R = I + sin(angle) K + (1 - cos(angle)) K^2, K the cross-product matrix of the unit
+        axis: R @ x turns the vector x.
+
+    Raises
+    ------
+    ValueError
+        Naming `axis` when it is not a finite 3-vector or is zero, naming `angle` when it is not a finite real
+        number.
+
+    Examples
+    --------
+    A quarter turn about z takes x to y:
+
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> R = sk.rotation_about((0.0, 0.0, 2.0), np.pi / 2)
+    >>> R.shape
+    (3, 3)
+    >>> np.allclose(R @ (1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+    True
+    >>> sk.rotation_about((0.0, 0.0, 0.0), 1.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: axis must be a non-zero vector
+    """
     k = check_vector("axis", axis)
     n = np.linalg.norm(k)
     if n == 0:
@@ -18,8 +54,36 @@ def rotation_about(axis, angle):
 
 
 def rotation_to_z(z_axis):
-    """A rotation whose third column is the unit vector along z_axis (the first two completed
-    deterministically)."""
+    """A rotation whose third column (local z) is the unit vector along z_axis.
+
+    The first two columns are completed deterministically: local x is the unit vector along e x z, e the
+    coordinate axis least aligned with z, and local y = z x x.
+
+    Parameters
+    ----------
+    z_axis : array_like, shape (3,)
+        Direction of the local z axis in global coordinates, any non-zero length.
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+        Proper rotation (orthonormal, determinant +1); its columns are the local x, y, z axes.
+
+    Raises
+    ------
+    ValueError
+        Naming `z_axis` when it is not a finite 3-vector or is zero.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> R = sk.rotation_to_z((1.0, 1.0, 0.0))
+    >>> np.allclose(R[:, 2], np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0))
+    True
+    >>> np.allclose(R.T @ R, np.eye(3)), round(float(np.linalg.det(R)), 6)
+    (True, 1.0)
+    """
     z = check_vector("z_axis", z_axis)
     n = np.linalg.norm(z)
     if n == 0:
@@ -32,19 +96,53 @@ def rotation_to_z(z_axis):
 
 
 class Frame:
-    """A placement: global = origin + rotation @ local.
+    """A placement of local coordinates in global ones: global = origin + rotation @ local.
+
+    Surfaces are placed by a frame (a torus or a cone about its local z axis, a sphere centred at its origin, a
+    plane spanned by its local x and y); mechanisms place their shafts by frames. Both arrays are stored
+    read-only.
 
     Parameters
     ----------
-    origin : array_like (3,)
-        Position of the local origin in global coordinates.
-    rotation : array_like (3, 3)
-        Proper rotation; its columns are the local x, y, z axes in global coordinates.
+    origin : array_like, shape (3,), optional
+        Position of the local origin in global coordinates (the user's length unit); default the global origin.
+    rotation : array_like, shape (3, 3), optional
+        Proper rotation (orthonormal within 1e-9 entrywise, determinant +1); its columns are the local x, y, z
+        axes in global coordinates. Default: the identity.
+
+    Attributes
+    ----------
+    origin : ndarray, shape (3,)
+    rotation : ndarray, shape (3, 3)
 
     Raises
     ------
     ValueError
-        For non-finite entries, wrong shapes, a non-orthonormal or a left-handed rotation.
+        Naming `origin` or `rotation`: non-finite entries, a wrong shape, a rotation that is not orthonormal or
+        is left-handed (a reflection).
+
+    See Also
+    --------
+    rotation_about, rotation_to_z : rotations to build a frame from.
+
+    Examples
+    --------
+    A frame at (1, 2, 3) turned a quarter turn about z: its local x is the global y.
+
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> frame = sk.Frame((1.0, 2.0, 3.0), sk.rotation_about((0.0, 0.0, 1.0), np.pi / 2))
+    >>> np.allclose(frame.to_global((1.0, 0.0, 0.0)), (1.0, 3.0, 3.0))
+    True
+    >>> local = [[0.5, 0.0, 0.0], [0.0, 0.0, 2.0]]
+    >>> np.allclose(frame.to_local(frame.to_global(local)), local)
+    True
+    >>> np.allclose(sk.Frame.from_z_axis((0.0, 0.0, 0.0), (0.0, 3.0, 0.0)).rotation[:, 2], (0.0, 1.0, 0.0))
+    True
+    >>> sk.Frame(rotation=np.diag([1.0, 1.0, -1.0]))
+    Traceback (most recent call last):
+    ...
+    ValueError: rotation must be right-handed (det = +1), got a reflection (det = -1)
     """
 
     __slots__ = ("origin", "rotation")
@@ -58,15 +156,31 @@ class Frame:
 
     @classmethod
     def from_z_axis(cls, origin, z_axis):
-        """A frame at origin whose local z points along z_axis."""
+        """A frame at origin whose local z points along z_axis (its x and y as rotation_to_z completes them).
+
+        Parameters
+        ----------
+        origin : array_like, shape (3,)
+        z_axis : array_like, shape (3,)
+            Any non-zero length.
+
+        Returns
+        -------
+        Frame
+
+        Raises
+        ------
+        ValueError
+            Naming the argument that is not a finite 3-vector, or a zero z_axis.
+        """
         return cls(origin, rotation_to_z(z_axis))
 
     def to_global(self, local_points):
-        """Map local points (..., 3) to global coordinates."""
+        """Global coordinates (..., 3) of local points (..., 3): origin + rotation @ p for each point p."""
         return self.origin + np.asarray(local_points, dtype=float) @ self.rotation.T
 
     def to_local(self, points):
-        """Map global points (..., 3) to local coordinates."""
+        """Local coordinates (..., 3) of global points (..., 3): rotation.T @ (p - origin) for each point p."""
         return (np.asarray(points, dtype=float) - self.origin) @ self.rotation
 
     def __repr__(self):

@@ -2,13 +2,15 @@
 
 The crank pin A runs on a circle of curvature k (radius 1/k) at arc length s; the link passes through A at
 the angle phi(s) to the tangent tau (anticlockwise). Each law gives phi, phi' and phi'' (' = d/ds) at once.
-Convention (../shared/reference/frenet-planar.md): A(s) = (sin ks, -cos ks)/k, tau = (cos ks, sin ks),
+Convention (that of the paper's eq. (11)): A(s) = (sin ks, -cos ks)/k, tau = (cos ks, sin ks),
 n = (-sin ks, cos ks), the crank angle is ks.
 
 References
 ----------
-Seed 000 and ../shared/reference/frenet-planar.md (formulas reconstructed; the printed (15), (16) have the
-wrong sign of the gamma term: the corrected derivatives are used).
+S. Pylypaka, A. Chepyzhniy, T. Kresan, "Determining kinematic characteristics of planar mechanisms' driven
+member using Frenet trihedron", 2017. The laws' derivatives are derived from its schemes and checked against
+finite differences; its printed crank-rocker derivatives (15), (16) have the wrong sign of the gamma term, and
+the corrected ones are used (at d = 1/k they give phi' = -k/2, the uniform turn of a chord through the pin).
 """
 import numpy as np
 
@@ -57,17 +59,61 @@ class Law:
 
 
 class CrankSlider(Law):
-    """Offset crank-slider: the slider (rho = L) on the guide y = side * e.
+    """Offset crank-slider: the slider (rho = L) on the straight guide y = side * e.
+
+    The crank pin A runs on the circle of radius 1/k about the origin O (A = (sin ks, -cos ks)/k); the rod AB
+    of length L keeps its slider B on the guide, so sin(ks + phi) = (k h + cos ks) / (k L), h = side * e [1]_.
+    phi' and phi'' come in closed form.
 
     Parameters
     ----------
-    k : float          curvature of the crank circle (1 / crank radius)
-    e : float          guide offset (>= 0)
-    L : float          rod length A to slider
-    side : +1 or -1    which side of the crank centre the guide lies on
-    branch : 0 or 1    assembly: 0 takes phi = asin(q) - ks, 1 takes pi - asin(q) - ks
+    k : float
+        Curvature of the crank circle, 1 / crank radius (per length unit), > 0.
+    e : float
+        Guide offset from the crank centre (length), >= 0.
+    L : float
+        Rod length from the pin A to the slider B (length), > 0.
+    side : {1, -1}
+        Which side of the crank centre the guide lies on.
+    branch : {0, 1}
+        Assembly: 0 takes phi = asin(q) - ks, 1 takes pi - asin(q) - ks, q = (k h + cos ks) / (k L).
 
-    Raises ValueError unless e + 1/k <= L (the rod must reach the guide at every crank angle).
+    Attributes
+    ----------
+    k, e, L : float
+    side, branch : int
+    h : float
+        side * e, the guide's y.
+
+    Raises
+    ------
+    ValueError
+        Naming `k`, `e`, `L`, `side` or `branch` when out of range; unless e + 1/k <= L (the rod must reach
+        the guide at every crank angle).
+
+    References
+    ----------
+    .. [1] S. Pylypaka, A. Chepyzhniy, T. Kresan, "Determining kinematic characteristics of planar mechanisms'
+       driven member using Frenet trihedron", 2017.
+
+    Examples
+    --------
+    Crank radius 2 (k = 0.5), guide offset 1, rod 4: the slider stays on the guide y = 1 over a turn
+    (s from 0 to 2 pi / k):
+
+    >>> import numpy as np
+    >>> import planar
+    >>> law = planar.CrankSlider(0.5, 1.0, 4.0)
+    >>> s = np.linspace(0.0, 4 * np.pi, 9)
+    >>> phi, dphi, ddphi = law.evaluate(s)
+    >>> phi.shape, dphi.shape, ddphi.shape
+    ((9,), (9,), (9,))
+    >>> np.allclose(planar.DrivenLink(law).position(s, 4.0)[:, 1], 1.0)
+    True
+    >>> planar.CrankSlider(0.5, 2.0, 3.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: the crank-slider needs e + 1/k <= L to turn fully: e + 1/k = 4 > L = 3
     """
 
     def __init__(self, k, e, L, side=1, branch=0):
@@ -87,9 +133,51 @@ class CrankSlider(Law):
 
 
 class CrankRocker(Law):
-    """Crank-rocker through a fixed stone at distance d from the crank centre O; in this convention the
-    stone sits at (d, 0). d > r (r = 1/k): a rocking stone; d = r: the link turns uniformly at -k/2 per unit
-    s; d < r: a rotating stone (no arccos break: phi = atan2(cos ks, kd - sin ks) - ks, continuous)."""
+    """Crank-rocker through a fixed stone at distance d from the crank centre O (the stone at (d, 0)).
+
+    The link slides through the stone, so it lies along the line from the crank pin A to the stone:
+    phi = atan2(cos ks, kd - sin ks) - ks, continuous in s, with phi' = -k^2 d (kd - sin ks) / D and
+    phi'' = -d k^3 (k^2 d^2 - 1) cos ks / D^2, D = 1 + k^2 d^2 - 2 kd sin ks [1]_ (the paper's printed (15), (16)
+    have the wrong sign of the gamma term; these are the corrected derivatives). d > r (r = 1/k): a rocking stone;
+    d = r: the link turns uniformly at -k/2 per unit s; d < r: a rotating stone.
+
+    Parameters
+    ----------
+    k : float
+        Curvature of the crank circle, 1 / crank radius (per length unit), > 0.
+    d : float
+        Distance of the stone from the crank centre (length), > 0.
+
+    Attributes
+    ----------
+    k, d : float
+    stone : ndarray, shape (2,)
+        The stone's position (d, 0).
+
+    Raises
+    ------
+    ValueError
+        Naming `k` or `d` when it is not a positive finite number.
+
+    References
+    ----------
+    .. [1] S. Pylypaka, A. Chepyzhniy, T. Kresan, "Determining kinematic characteristics of planar mechanisms'
+       driven member using Frenet trihedron", 2017.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import planar
+    >>> law = planar.CrankRocker(0.5, 4.0)                 # a rocking stone, d > 1/k = 2
+    >>> s = np.linspace(0.0, 4 * np.pi, 7)
+    >>> link = planar.DrivenLink(law)
+    >>> pin = link.position(s, 0.0)
+    >>> reach = np.linalg.norm(law.stone - pin, axis=1)    # the link's point at the stone
+    >>> np.allclose(link.position(s, reach), law.stone)
+    True
+    >>> np.allclose(planar.CrankRocker(0.5, 2.0).evaluate(s[:3])[1], -0.25)    # d = 1/k: phi' = -k/2
+    True
+    """
 
     def __init__(self, k, d):
         self.k = check_positive("k", k)
@@ -100,11 +188,25 @@ class CrankRocker(Law):
 
     @property
     def stone(self):
+        """The stone's position (d, 0) (2,)."""
         return np.array([self.d, 0.0])
 
 
 class LawFromFunctions(Law):
-    """A law from user functions phi(s), phi'(s), phi''(s) (vectorised callables) on a circle of curvature k."""
+    """A law from user functions phi(s), phi'(s), phi''(s) (vectorised callables) on a circle of curvature k.
+
+    Parameters
+    ----------
+    k : float
+        Curvature of the crank circle (per length unit), > 0.
+    phi, dphi, ddphi : callable
+        s (array) -> phi (radians), phi' and phi'' (derivatives in s), broadcast to the shape of s.
+
+    Raises
+    ------
+    ValueError
+        Naming `k` or a function that is not callable; at evaluation, when the functions return non-finite values.
+    """
 
     def __init__(self, k, phi, dphi, ddphi):
         self.k = check_positive("k", k)
@@ -122,7 +224,15 @@ class LawFromFunctions(Law):
 
 
 class LawFromGamma(LawFromFunctions):
-    """A law from the link's angle to Ox, gamma(s), with gamma' and gamma'': phi = gamma - ks (eq. (1))."""
+    """A law from the link's angle to Ox, gamma(s), with gamma' and gamma'': phi = gamma - ks (eq. (1)).
+
+    Parameters
+    ----------
+    k : float
+        Curvature of the crank circle (per length unit), > 0.
+    gamma, dgamma, ddgamma : callable
+        s (array) -> the link's angle to the x-axis (radians) and its first and second derivatives in s.
+    """
 
     def __init__(self, k, gamma, dgamma, ddgamma):
         k = check_positive("k", k)

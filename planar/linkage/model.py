@@ -14,8 +14,10 @@ joints): one small LU on the joints the distance constraints couple (planar.link
 
 References
 ----------
-Seed 001 (../shared/reference/fnf-sixbar.md): the double-crank six-link of the FNF warp-knitting machine,
-velocity plans by stopping one crank at a time, superposition.
+S. O. Koshel, A. V. Koshel, "Double-crank mechanism kinematic study of warp knitting machine", Visnyk KNUTD
+(Bulletin of the Kyiv National University of Technologies and Design), 2014, no. 2 (in Ukrainian): the
+double-crank six-link of the FNF warp-knitting machine, velocity plans by stopping one crank at a time,
+superposition (exact: at a fixed position the velocities are linear in the crank rates).
 """
 import math
 from dataclasses import dataclass
@@ -63,9 +65,23 @@ LINKAGE_KERNELS = CurveKernels(kn.linkage_rhs, kn.linkage_events, kn.linkage_adv
 
 @dataclass(frozen=True)
 class Crank:
-    """A driving crank: pin = pivot + radius (cos theta, sin theta), theta = phase + ratio * phi, phi the
-    linkage's input angle (crank 1's angle: ratio 1, phase 0). A gear pair z1, z2 in external mesh gives
-    ratio -z1/z2."""
+    """A driving crank: pin = pivot + radius (cos theta, sin theta), theta = phase + ratio * phi.
+
+    phi is the linkage's input angle (crank 1's angle: ratio 1, phase 0), angles in radians. A gear pair z1, z2
+    in external mesh gives ratio -z1/z2.
+
+    Parameters
+    ----------
+    name : str
+    pivot, pin : str
+        Joint names: the pivot (usually fixed) and the pin.
+    radius : float
+        Pivot to pin (length), > 0.
+    ratio : float
+        d theta / d phi, a gear ratio (a fraction with denominator up to 64), non-zero.
+    phase : float
+        theta at phi = 0 (radians).
+    """
     name: str
     pivot: str
     pin: str
@@ -76,8 +92,18 @@ class Crank:
 
 @dataclass(frozen=True)
 class Link:
-    """A rigid link through its joints; shape (k, 2) gives their coordinates in the link's own frame
-    (a binary link may give length instead)."""
+    """A rigid link through its joints.
+
+    Parameters
+    ----------
+    name : str
+    joints : tuple of str
+        Its joints (at least two, distinct).
+    shape : array_like, shape (k, 2), optional
+        The joints' coordinates in the link's own frame (length).
+    length : float, optional
+        For a binary link instead of shape: the distance between its two joints.
+    """
     name: str
     joints: tuple
     shape: tuple = None
@@ -133,10 +159,14 @@ def _block_layout(ci, n):
 class Linkage:
     """A planar linkage of revolute joints driven by geared cranks.
 
+    The loop-closure equations are written in the moving joints' coordinates, so any group (a dyad, a class III
+    triad) is solved as one system; the configuration curve is traced once by arc length and each requested
+    input angle solved exactly by Newton (see the module's description).
+
     Parameters
     ----------
     fixed : dict name -> (x, y)
-        Fixed joints (frame pivots).
+        Fixed joints (frame pivots), in the user's length unit.
     cranks : list of Crank
         Driving cranks; the first is the input (its ratio must be 1 and phase 0).
     links : list of Link
@@ -144,7 +174,40 @@ class Linkage:
     hint : dict name -> (x, y), optional
         Approximate moving-joint positions at input angle hint_angle: selects the assembly.
     hint_angle : float
-        Input angle of the hint (and of the start of the traced configuration curve).
+        Input angle of the hint (and of the start of the traced configuration curve), radians.
+
+    Attributes
+    ----------
+    fixed : dict name -> ndarray (2,)
+    cranks, links : list
+    moving : list of str
+        The moving joints, in the order of the state vector.
+    joints : list of str
+        Fixed then moving joints.
+    period : float
+        The input's period: 2 pi times the least common multiple of the gear ratios' denominators.
+
+    Raises
+    ------
+    ValueError
+        For no crank, a first crank that is not the input, non-positive radii or lengths, a link with fewer than
+        two distinct joints or a bad shape, a ratio that is not a gear ratio, or equations that do not drive the
+        linkage to one degree of freedom.
+
+    Examples
+    --------
+    A four-bar whose crank cannot turn fully (its rocker and coupler line up at about +-90.9 deg):
+
+    >>> import numpy as np
+    >>> import planar
+    >>> four = planar.Linkage(
+    ...     fixed={"O": (0.0, 0.0), "P": (4.0, 0.0)}, cranks=[planar.Crank("1", "O", "A", 2.0)],
+    ...     links=[planar.Link("2", ("A", "B"), length=3.0), planar.Link("3", ("P", "B"), length=1.5)],
+    ...     hint={"A": (2.0, 0.0), "B": (4.69, 1.33)})
+    >>> four.moving
+    ['A', 'B']
+    >>> np.round(np.degrees(four.lock_positions()), 1).tolist()
+    [90.9, -90.9]
     """
 
     def __init__(self, fixed, cranks, links, hint=None, hint_angle=0.0):
@@ -239,6 +302,7 @@ class Linkage:
 
     @property
     def joints(self):
+        """Every joint's name: the fixed ones, then the moving ones."""
         return list(self.fixed) + self.moving
 
     def residual(self, state):
@@ -381,10 +445,63 @@ class Linkage:
     def solve(self, crank_angles, omega=1.0, assembly=None):
         """Positions, velocities and accelerations at the given input angles, the input turning at omega.
 
+        The configuration curve through the assembly is traced once (cached); each angle is solved exactly by
+        Newton from its prediction, velocities and accelerations come analytically, and each crank's share of
+        the velocity is -J_q^-1 dF/dtheta_k theta_k' (the velocities are linear in the crank rates at a fixed
+        position, as the velocity plans of [1]_ use by stopping one crank at a time).
+
+        Parameters
+        ----------
+        crank_angles : float or array_like, shape (N,)
+            Input angles phi (radians; crank 1's angle), any real values.
+        omega : float
+            Input rate (rad per unit time), finite and non-zero; crank k turns at ratio_k * omega.
+        assembly : int, optional
+            Number of the assembly in assemblies(hint_angle); default the one nearest the hint.
+
+        Returns
+        -------
+        LinkageMotion
+            ``position(joint)``, ``velocity(joint, crank=None)``, ``acceleration(joint)`` (N, 2) each, in fixed
+            axes; link angles, angular velocities and accelerations.
+
         Raises
         ------
+        ValueError
+            Naming `crank_angles` (not finite, empty) or `omega` (zero, not finite); a linkage that cannot be
+            assembled at hint_angle; a bad `assembly` number.
         LockError
-            When a requested angle lies beyond a lock position of the assembly.
+            When a requested angle lies beyond a lock position of the assembly (a subclass of ValueError).
+
+        References
+        ----------
+        .. [1] S. O. Koshel, A. V. Koshel, "Double-crank mechanism kinematic study of warp knitting machine",
+           Visnyk KNUTD (Bulletin of the Kyiv National University of Technologies and Design), 2014, no. 2 (in
+           Ukrainian).
+
+        Examples
+        --------
+        The two cranks' shares of the six-link's velocities add up to the velocity:
+
+        >>> import numpy as np
+        >>> import planar
+        >>> mech = planar.examples.fnf_sixbar()
+        >>> sol = mech.solve(np.radians([0.0, 90.0, 180.0]), omega=1.0)
+        >>> sol.position("K").shape
+        (3, 2)
+        >>> np.allclose(sol.velocity("K", crank=1) + sol.velocity("K", crank=2), sol.velocity("K"))
+        True
+
+        Beyond a lock position:
+
+        >>> four = planar.Linkage(
+        ...     fixed={"O": (0.0, 0.0), "P": (4.0, 0.0)}, cranks=[planar.Crank("1", "O", "A", 2.0)],
+        ...     links=[planar.Link("2", ("A", "B"), length=3.0), planar.Link("3", ("P", "B"), length=1.5)],
+        ...     hint={"A": (2.0, 0.0), "B": (4.69, 1.33)})
+        >>> four.solve(np.radians([100.0]))
+        Traceback (most recent call last):
+        ...
+        planar.linkage.motion.LockError: the linkage cannot reach input angle(s) 100 deg on this assembly: ...
         """
         angles = check_angles("crank_angles", crank_angles)
         omega = check_omega(omega)

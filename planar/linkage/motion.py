@@ -10,6 +10,15 @@ from spatialkin.trajectory import time_map, to_time
 class LockError(ValueError):
     """Requested input angles lie beyond a lock position of the driven group (or on one).
 
+    A subclass of ValueError, raised by Linkage.solve.
+
+    Parameters
+    ----------
+    locks : array_like
+        Input angles (rad) of the lock positions of the assembly.
+    angles : array_like
+        The requested angles that cannot be reached.
+
     Attributes
     ----------
     locks : ndarray
@@ -39,6 +48,21 @@ def _cross(a, b):
 class LinkageMotion:
     """Motion of a Linkage at input angles (N,), the input turning at the constant rate omega.
 
+    Made by Linkage.solve. Positions in the linkage's length unit, velocities in length per unit time,
+    accelerations in length per unit time squared (the time unit that of 1/omega), all in fixed axes.
+
+    Parameters
+    ----------
+    linkage : Linkage
+    states : ndarray, shape (N, n+1)
+        Solved scaled states (joint coordinates / mean length, input angle).
+    omega : float
+        Input rate (rad per unit time).
+    d1, d2 : ndarray, shape (N, n+1)
+        First and second derivatives of the states along the configuration curve.
+    parts : ndarray
+        Each crank's share of the joints' first derivatives.
+
     Attributes
     ----------
     crank_angles : ndarray (N,)
@@ -47,6 +71,20 @@ class LinkageMotion:
         Input rate (rad per unit time); crank k turns at ratio_k * omega.
     states : ndarray (N, n+1)
         Scaled configuration states (joint coordinates / mean length, input angle).
+    linkage : Linkage
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import planar
+    >>> mech = planar.examples.fnf_sixbar()
+    >>> sol = mech.solve(np.radians([0.0, 45.0, 90.0]), omega=2.0)
+    >>> len(sol), sol.crank_angles.shape
+    (3, (3,))
+    >>> np.allclose(np.linalg.norm(sol.position("K") - sol.position("E"), axis=1), 58.0)   # rocker EK
+    True
+    >>> sol.angular_velocity("6").shape
+    (3,)
     """
 
     def __init__(self, linkage, states, omega, d1, d2, parts):
@@ -89,15 +127,80 @@ class LinkageMotion:
         return crank - 1
 
     def position(self, joint):
-        """(N, 2) position of a joint."""
+        """Position of a joint at each input angle, in fixed axes.
+
+        Parameters
+        ----------
+        joint : str
+            A joint's name (fixed or moving; see ``linkage.joints``).
+
+        Returns
+        -------
+        ndarray, shape (N, 2)
+            (x, y) in the linkage's length unit (a fixed joint's position repeated).
+
+        Raises
+        ------
+        ValueError
+            Naming `joint` when the linkage has no such joint.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import planar
+        >>> mech = planar.examples.fnf_sixbar()
+        >>> sol = mech.solve(np.radians([0.0, 90.0]))
+        >>> sol.position("K").round(1).tolist()[0]
+        [95.0, 155.0]
+        >>> sol.position("E").tolist()
+        [[153.0, 155.0], [153.0, 155.0]]
+        >>> sol.position("Z")
+        Traceback (most recent call last):
+        ...
+        ValueError: joint must be one of ['O1', 'O2', 'E', 'A', 'D', 'B', 'C', 'K'], got 'Z'
+        """
         i = self._index(joint)
         if i is None:
             return np.tile(self.linkage.fixed[joint], (len(self), 1))
         return self._q[:, i].copy()
 
     def velocity(self, joint, crank=None):
-        """(N, 2) velocity of a joint; with crank=k only crank k's share (the other cranks stopped), so that
-        the shares add up to the velocity."""
+        """Velocity of a joint, or one crank's share of it, at each input angle, in fixed axes.
+
+        Parameters
+        ----------
+        joint : str
+            A joint's name.
+        crank : int, optional
+            None (default): the velocity; k (1-based): only crank k's share, the other cranks stopped. At a fixed
+            position the velocities are linear in the crank rates, so the shares add up to the velocity.
+
+        Returns
+        -------
+        ndarray, shape (N, 2)
+            In length per unit time (zero for a fixed joint).
+
+        Raises
+        ------
+        ValueError
+            Naming `joint` (unknown) or `crank` (not None or 1..number of cranks).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import planar
+        >>> mech = planar.examples.fnf_sixbar()
+        >>> sol = mech.solve(np.radians([10.0, 100.0]), omega=1.0)
+        >>> np.allclose(sol.velocity("C", crank=1) + sol.velocity("C", crank=2), sol.velocity("C"))
+        True
+
+        Against central differences of the position in the input angle (omega = 1):
+
+        >>> h = 1e-6
+        >>> q = mech.solve([1.0 - h, 1.0, 1.0 + h]).position("K")
+        >>> np.allclose((q[2] - q[0]) / (2 * h), mech.solve([1.0]).velocity("K")[0], atol=1e-6)
+        True
+        """
         i = self._index(joint)
         if i is None:
             return np.zeros((len(self), 2))
@@ -106,7 +209,37 @@ class LinkageMotion:
         return self._parts[:, self._crank(crank), i].copy()
 
     def acceleration(self, joint):
-        """(N, 2) acceleration of a joint (constant input rate)."""
+        """Acceleration of a joint at each input angle (constant input rate), in fixed axes.
+
+        Parameters
+        ----------
+        joint : str
+            A joint's name.
+
+        Returns
+        -------
+        ndarray, shape (N, 2)
+            In length per unit time squared (zero for a fixed joint).
+
+        Raises
+        ------
+        ValueError
+            Naming `joint` when the linkage has no such joint.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import planar
+        >>> mech = planar.examples.fnf_sixbar()
+        >>> slow = mech.solve(np.radians([30.0, 200.0]), omega=1.0)
+        >>> fast = mech.solve(np.radians([30.0, 200.0]), omega=3.0)
+        >>> np.allclose(fast.acceleration("K"), 9 * slow.acceleration("K"))
+        True
+        >>> h = 1e-5
+        >>> v = mech.solve([1.0 - h, 1.0 + h]).velocity("K")
+        >>> np.allclose((v[1] - v[0]) / (2 * h), mech.solve([1.0]).acceleration("K")[0], atol=1e-5)
+        True
+        """
         i = self._index(joint)
         if i is None:
             return np.zeros((len(self), 2))

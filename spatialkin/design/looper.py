@@ -12,27 +12,63 @@ TURN_SAMPLES = 3601
 
 
 class LooperDesign:
-    """A looper drive's geometry as named design parameters (see spatialkin.design.params).
+    """A looper drive's geometry as named design parameters, some of them free, with bounds.
+
+    The crank frame is the fixed reference; the parameters (spatialkin.design.params.PARAMETERS) are the three
+    lengths R1, r1, R2 (crank_radius, coupler_length, rocker_length), the rocker centre (rocker_x, rocker_y,
+    rocker_z), the rocker frame's rotation Rz(rocker_rz) Ry(rocker_ry) Rx(rocker_rx) and the looper tip
+    (tip_x, tip_y, tip_z). The free ones form the vector ``x`` that fits move and sensitivities differentiate by.
 
     Parameters
     ----------
     values : dict
         {name: float} for every name in PARAMETERS (lengths in the user's unit, angles in radians).
     free : sequence of str, optional
-        The parameters a fit may move and sensitivities differentiate by; default all.
+        The parameters a fit may move and sensitivities differentiate by; default all. Kept in the order of
+        PARAMETERS.
     bounds : dict, optional
-        {name: (low, high)} overriding the default bounds (default_bounds).
+        {name: (low, high)} overriding the default bounds (default_bounds: lengths within a factor 0.5 to 2,
+        positions within half the drive's size, angles within pi/4).
     crank_frame : Frame, optional
         The fixed crank frame (default: global axes).
-    looper_link : str
-        'rocker_arm' or 'rocker_shaft', the link carrying the looper tip.
-    branch : int
-        Assembly branch (0 or 1).
+    looper_link : {'rocker_arm', 'rocker_shaft'}
+        The link carrying the looper tip.
+    branch : {0, 1}
+        Assembly branch.
+
+    Attributes
+    ----------
+    values : dict
+        {name: float}, every parameter.
+    free : tuple of str (P,)
+    bounds : dict
+        {name: (low, high)}.
+    x, lower, upper : ndarray, shape (P,)
+        The free parameters' values and bounds.
 
     Raises
     ------
     ValueError
-        Naming the argument: unknown or missing parameters, non-finite values, bounds not around the values.
+        Naming the argument: unknown or missing parameters, non-finite values, bounds not around the values, a
+        crank_frame that is not a Frame, an unknown looper_link or branch.
+
+    See Also
+    --------
+    spatialkin.mechanisms.LooperDrive : the drive itself (``design.drive()``).
+
+    Examples
+    --------
+    >>> from spatialkin.design import LooperDesign
+    >>> design = LooperDesign.reference(free=("rocker_length", "crank_radius"))
+    >>> design.free, design.x.tolist()
+    (('crank_radius', 'rocker_length'), [8.0, 30.0])
+    >>> longer = design.replace(x=[8.0, 31.0])
+    >>> longer.drive().rocker_length
+    31.0
+    >>> design.replace(x=[8.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: x must have shape (2,) for free=['crank_radius', 'rocker_length'], got (1,)
     """
 
     def __init__(self, values, free=None, bounds=None, crank_frame=None, looper_link="rocker_arm", branch=0):
@@ -61,7 +97,45 @@ class LooperDesign:
 
     @classmethod
     def from_drive(cls, drive, free=None, bounds=None, branch=0):
-        """The design vector of a LooperDrive (its crank frame stays the fixed reference)."""
+        """The design vector of a LooperDrive (its crank frame stays the fixed reference).
+
+        Parameters
+        ----------
+        drive : LooperDrive
+            The drive whose lengths, rocker frame (origin and the angles of its rotation) and looper tip become
+            the values.
+        free : sequence of str, optional
+            Names of the free parameters (default all).
+        bounds : dict, optional
+            {name: (low, high)} overriding the default bounds.
+        branch : {0, 1}
+            Assembly branch.
+
+        Returns
+        -------
+        LooperDesign
+
+        Raises
+        ------
+        ValueError
+            Naming `drive` when it is not a LooperDrive, or `free` / `bounds` for unknown names or bad bounds.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from spatialkin.mechanisms import LooperDrive
+        >>> from spatialkin.design import LooperDesign
+        >>> drive = LooperDrive.reference()
+        >>> design = LooperDesign.from_drive(drive, free=("rocker_length", "crank_radius"))
+        >>> design.values["coupler_length"], design.values["rocker_z"]
+        (50.0, 75.0)
+        >>> np.allclose(design.drive().rocker_frame.rotation, drive.rocker_frame.rotation)
+        True
+        >>> LooperDesign.from_drive(drive, free=("crank_length",))
+        Traceback (most recent call last):
+        ...
+        ValueError: free: unknown design parameters ['crank_length']; known: [...]
+        """
         if not isinstance(drive, LooperDrive):
             raise ValueError(f"drive must be a LooperDrive, got {type(drive).__name__}")
         rx, ry, rz = angles_from_rotation(drive.rocker_frame.rotation)
@@ -73,7 +147,7 @@ class LooperDesign:
 
     @classmethod
     def reference(cls, free=None, bounds=None):
-        """The reference drive of ../shared/reference/looper-drive.md (LooperDrive.reference())."""
+        """The design of the reference drive, LooperDrive.reference() (lengths in mm; assumed dimensions)."""
         return cls.from_drive(LooperDrive.reference(), free, bounds)
 
     # --- the vector --------------------------------------------------------------------------------
@@ -84,10 +158,12 @@ class LooperDesign:
 
     @property
     def lower(self):
+        """Lower bounds (P,) of the free parameters."""
         return np.array([self.bounds[n][0] for n in self.free])
 
     @property
     def upper(self):
+        """Upper bounds (P,) of the free parameters."""
         return np.array([self.bounds[n][1] for n in self.free])
 
     def replace(self, x=None, free=None, **values):
@@ -104,11 +180,13 @@ class LooperDesign:
         return LooperDesign(new, free, dict(self.bounds), self.crank_frame, self.looper_link, self.branch)
 
     def with_free(self, free):
+        """The same values with other free parameters."""
         return self.replace(free=free)
 
     # --- the drive ---------------------------------------------------------------------------------
     @property
     def rocker_rotation(self):
+        """The rocker frame's rotation (3, 3), Rz(rocker_rz) Ry(rocker_ry) Rx(rocker_rx)."""
         v = self.values
         return rotation_from_angles(v["rocker_rx"], v["rocker_ry"], v["rocker_rz"])
 
@@ -124,7 +202,58 @@ class LooperDesign:
 
     def sensitivities(self, crank_angles=None, omega=1.0, free=None, turning=True):
         """Exact sensitivities of every output at the crank angles (default: a full turn in 0.1 deg steps).
-        See spatialkin.design.sensitivity.sensitivities."""
+
+        The motion's outputs (ball centre, looper tip, rocker angles with their velocities and accelerations, the
+        transmission angle, the rocker's turning points and swing, the assembly margin) and their exact
+        derivatives by the free parameters, by the implicit function theorem on the closure torus = sphere in
+        Taylor arithmetic [1]_ [2]_ (spatialkin.design.sensitivity.sensitivities).
+
+        Parameters
+        ----------
+        crank_angles : array_like, shape (N,), optional
+            Crank angles (radians). With turning=True they must increase and should sample a full turn; default
+            3601 angles over [0, 2 pi].
+        omega : float
+            Crank rate (rad per unit time): velocities scale with omega, accelerations with omega^2.
+        free : sequence of str, optional
+            Parameters to differentiate by (P of them); default self.free.
+        turning : bool
+            Also refine the rocker's turning points and give the swing and the assembly margin.
+
+        Returns
+        -------
+        Sensitivities
+            Every output with its derivative ``d_<output>`` (the output's shape + (P,)); lengths in the drive's
+            unit, angles in radians, time in the unit of 1/omega.
+
+        Raises
+        ------
+        ValueError
+            For unknown `free` names; crank angles that do not increase (turning=True); a drive that cannot be
+            assembled at the angles (see LooperDrive.solve); Newton failing at a turning point.
+
+        References
+        ----------
+        .. [1] A. Griewank, A. Walther, Evaluating Derivatives, SIAM, 2008, ch. 13.
+        .. [2] "Investigation of the trajectories of characteristic points of spatial mechanisms of technological
+           machines of the light industry" (in Ukrainian).
+
+        Examples
+        --------
+        The swing's derivative by the crank radius against a difference quotient:
+
+        >>> import numpy as np
+        >>> from spatialkin.design import LooperDesign
+        >>> design = LooperDesign.reference(free=("crank_radius",))
+        >>> angles = np.linspace(0.0, 2 * np.pi, 361)
+        >>> sens = design.sensitivities(angles)
+        >>> sens.ball_center.shape, sens.d_ball_center.shape, sens.d_swing.shape
+        ((361, 3), (361, 3, 1), (1,))
+        >>> h = 1e-6
+        >>> moved = design.replace(x=design.x + h).sensitivities(angles)
+        >>> bool(abs((moved.swing - sens.swing) / h - sens.d_swing[0]) < 1e-5)
+        True
+        """
         from .sensitivity import sensitivities
         angles = np.linspace(0.0, 2 * np.pi, TURN_SAMPLES) if crank_angles is None else crank_angles
         return sensitivities(self, angles, omega, None if free is None else check_names(free), turning)
@@ -136,7 +265,50 @@ class LooperDesign:
         return dead_positions(self, None if free is None else check_names(free))
 
     def fit(self, targets, free=None, **options):
-        """Fit the free parameters to targets; see spatialkin.design.fit.fit."""
+        """Fit the free parameters to targets by scipy.optimize.least_squares with exact Jacobians.
+
+        Within the design's bounds, method 'trf'; the fitted drive assembles over the full turn with a margin
+        (see spatialkin.design.fit).
+
+        Parameters
+        ----------
+        targets : Targets or dict
+            Tip points at crank angles, a swing, a timing of the rocker's turning points, bounds on the
+            transmission angle and the assembly margin (radians, the drive's length unit); a dict is read by
+            Targets.from_dict (the TOML layout, degrees).
+        free : sequence of str, optional
+            Parameters to fit; default self.free.
+        **options
+            xtol, ftol, gtol, max_nfev, verbose: passed to least_squares.
+
+        Returns
+        -------
+        FitResult
+            ``design`` (the fitted LooperDesign), ``result`` (scipy's OptimizeResult), ``achieved`` (dict: swing,
+            turning points, min_transmission, assembly_margin, cost, tip_points and tip_miss) and ``success``.
+
+        Raises
+        ------
+        ValueError
+            For bad targets or free names, or a start outside its bounds or that cannot be assembled over the
+            full turn.
+
+        Examples
+        --------
+        Widen the rocker's swing by 2 degrees with the crank radius and the rocker length:
+
+        >>> import numpy as np
+        >>> from spatialkin.design import LooperDesign, Targets
+        >>> design = LooperDesign.reference(free=("crank_radius", "rocker_length"))
+        >>> swing = design.sensitivities(np.linspace(0.0, 2 * np.pi, 361)).swing      # rad
+        >>> fitted = design.fit(Targets(swing=swing + np.radians(2.0)))
+        >>> fitted.success
+        True
+        >>> round(float(np.degrees(fitted.achieved["swing"] - swing)), 6)
+        2.0
+        >>> fitted.design.free
+        ('crank_radius', 'rocker_length')
+        """
         from .fit import fit
         return fit(self, targets, free=free, **options)
 

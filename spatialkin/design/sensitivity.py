@@ -19,8 +19,9 @@ arithmetic and carries its exact derivatives.
 
 References
 ----------
-Seed 002 and ../shared/reference/looper-drive.md (the closure: torus ∩ sphere); A. Griewank, A. Walther,
-Evaluating Derivatives, SIAM 2008, ch. 13 (Taylor arithmetic of implicit functions).
+"Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
+light industry" (in Ukrainian; [Looper]): the closure, torus ∩ sphere. A. Griewank, A. Walther, Evaluating
+Derivatives, SIAM 2008, ch. 13 (Taylor arithmetic of implicit functions).
 """
 from dataclasses import dataclass, field
 
@@ -254,6 +255,12 @@ def sensitivities(design, crank_angles, omega=1.0, free=None, turning=True):
     Returns
     -------
     Sensitivities
+
+    Raises
+    ------
+    ValueError
+        For crank angles that do not increase (turning=True), crank angles where the drive cannot be assembled
+        (LooperDrive.solve), or Newton failing at a turning point of the rocker.
     """
     free = design.free if free is None else free
     drive = design.drive()

@@ -40,7 +40,30 @@ REASON_WIDTH = 160
 
 
 def grid_space(**axes):
-    """The Cartesian product of parameter axes: {name: (M,)} with M = product of the axes' lengths."""
+    """The Cartesian product of parameter axes: {name: (M,)} with M = product of the axes' lengths.
+
+    Parameters
+    ----------
+    **axes
+        name=values (K,) for design parameters (spatialkin.design.params.PARAMETERS).
+
+    Returns
+    -------
+    dict
+        {name: ndarray (M,)}, the last axis varying fastest.
+
+    Raises
+    ------
+    ValueError
+        With no axis, or naming an unknown parameter.
+
+    Examples
+    --------
+    >>> from spatialkin.design import grid_space
+    >>> space = grid_space(crank_radius=[7.0, 8.0], rocker_length=[29.0, 30.0, 31.0])
+    >>> space["crank_radius"].tolist(), space["rocker_length"].tolist()
+    ([7.0, 7.0, 7.0, 8.0, 8.0, 8.0], [29.0, 30.0, 31.0, 29.0, 30.0, 31.0])
+    """
     if not axes:
         raise ValueError("grid_space needs at least one axis name=values")
     check_names(tuple(axes), "axes")
@@ -187,7 +210,38 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
     Returns
     -------
     numpy structured array or pandas.DataFrame (M rows)
-        The swept parameters, the outputs, 'ok' (bool) and 'reason' (str, empty when ok).
+        The swept parameters, the outputs (angles in rad, lengths in the drive's unit, time in 1/omega with
+        omega = 1), 'ok' (bool) and 'reason' (str, empty when ok). A geometry that fails (cannot be assembled,
+        a worker died) is a row with ok False, NaN outputs and the reason: a sweep never loses its run.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument: a space that is not a non-empty dict of 1-D arrays of one length over known
+        parameters, unknown outputs, samples < 3, chunk < 1, processes < 0, a base that is not a LooperDesign,
+        as_frame=True without pandas.
+
+    See Also
+    --------
+    grid_space, random_space : design spaces.
+    LooperDesign.sensitivities : the outputs of one geometry, with their derivatives.
+
+    Examples
+    --------
+    Three crank radii of the reference drive, in this process (processes=0):
+
+    >>> import numpy as np
+    >>> from spatialkin.design import grid_space, sweep
+    >>> space = grid_space(crank_radius=[7.0, 8.0, 9.0])
+    >>> table = sweep(space, ("swing",), processes=0, progress=False, as_frame=False)
+    >>> table.dtype.names
+    ('crank_radius', 'swing', 'ok', 'reason')
+    >>> table["ok"].tolist(), np.round(table["swing"], 3).tolist()
+    ([True, True, True], [0.685, 0.649, 0.61])
+    >>> sweep(space, ("speed",))
+    Traceback (most recent call last):
+    ...
+    ValueError: outputs: unknown ['speed']; known [...]
     """
     names, rows = check_space(space)
     outputs = tuple([outputs] if isinstance(outputs, str) else outputs)

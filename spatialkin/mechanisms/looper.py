@@ -9,8 +9,9 @@ torus ∩ sphere, traced once by arc length and re-parametrised by the crank ang
 
 References
 ----------
-Seed 002 and ../shared/reference/looper-drive.md (the scheme, the surfaces, the start from the sphere's
-equator, the reference geometry).
+"Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
+light industry" (in Ukrainian; [Looper]): the scheme, the two surfaces, the start where the sphere's equator meets
+the torus. The reference geometry (spatialkin.reference) is assumed: the paper gives no dimensions.
 """
 import math
 import time
@@ -56,27 +57,82 @@ _MINUS_Y = (0.0, -1.0, 0.0)
 class LooperDrive:
     """Spatial five-link crank-rocker (R-R-S-R-R) of a blind-stitch sewing machine's looper.
 
+    The ball centre C of the coupler runs on the torus of the crank (major radius R1, minor radius r1, about the
+    crank shaft) and on the sphere of the rocker (radius R2 about the rocker centre P2): its path is
+    torus ∩ sphere, traced once by arc length (Dragilev's method) and re-parametrised by the crank angle u1 [1]_.
+    Lengths are in the user's unit (mm for the reference drive), angles in radians.
+
     Parameters
     ----------
     crank_radius : float
-        R1, distance of the crank pin axis from the crank shaft.
+        R1, distance of the crank pin axis from the crank shaft (the torus's major radius), > 0.
     coupler_length : float
-        r1, distance of the ball centre C from the crank pin axis.
+        r1, distance of the ball centre C from the crank pin axis (the torus's minor radius), > 0.
     rocker_length : float
-        R2, distance of C from the rocker centre.
-    crank_frame : Frame
-        Origin on the crank shaft; local z along the shaft. u1 is measured from local x.
-    rocker_frame : Frame
-        Origin at the rocker centre P2; local z along the rocker shaft. (u2, v2) are the sphere's angles.
-    looper_tip : array_like (3,)
-        The looper tip in the frame of `looper_link` (rocker arm: x along the arm to C).
-    looper_link : str
-        'rocker_arm' or 'rocker_shaft'.
+        R2, distance of C from the rocker centre (the sphere's radius), > 0.
+    crank_frame : Frame, optional
+        Origin on the crank shaft; local z along the shaft. u1 is measured from local x. Default: global axes.
+    rocker_frame : Frame, optional
+        Origin at the rocker centre P2; local z along the rocker shaft. (u2, v2) are the sphere's angles
+        (longitude about the shaft, latitude). Default: global axes.
+    looper_tip : array_like, shape (3,)
+        The looper tip in the frame of `looper_link` (rocker arm: x along the arm from P2 to C).
+    looper_link : {'rocker_arm', 'rocker_shaft'}
+        The link that carries the looper.
+
+    Attributes
+    ----------
+    torus : Torus
+        The crank's torus, M1(u1, v1).
+    sphere : Sphere
+        The rocker's sphere, M2(u2, v2).
+    size : float
+        R1 + r1 + R2, the mechanism's length scale.
+    blocked_ranges : list of (float, float)
+        Crank-angle intervals (radians, in [0, 2 pi)) where the mechanism cannot be assembled; empty when the
+        crank turns fully.
 
     Raises
     ------
     ValueError
-        For non-positive lengths, or a mechanism that cannot be assembled at any crank angle.
+        Naming the argument for non-positive lengths, a non-finite looper_tip or an unknown looper_link; or for a
+        mechanism that cannot be assembled at any crank angle.
+    TypeError
+        Naming `crank_frame` or `rocker_frame` when it is not a spatialkin.Frame.
+
+    See Also
+    --------
+    LooperDrive.reference : the reference drive.
+    spatialkin.design.LooperDesign : its geometry as design parameters.
+
+    References
+    ----------
+    .. [1] "Investigation of the trajectories of characteristic points of spatial mechanisms of technological
+       machines of the light industry" (in Ukrainian).
+
+    Examples
+    --------
+    The reference geometry, with the rocker shaft along +y:
+
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> from spatialkin.mechanisms import LooperDrive
+    >>> rocker = sk.Frame((6.0, 0.0, 75.0), sk.rotation_about((1.0, 0.0, 0.0), -np.pi / 2))
+    >>> drive = LooperDrive(8.0, 50.0, 30.0, crank_frame=sk.Frame(), rocker_frame=rocker,
+    ...                     looper_tip=(40.0, 0.0, 12.0))
+    >>> drive.blocked_ranges                    # the crank turns fully
+    []
+    >>> motion = drive.solve(np.radians([0.0, 90.0, 180.0, 270.0]), omega=10.0)
+    >>> motion.ball_center.shape
+    (4, 3)
+    >>> np.allclose(np.linalg.norm(motion.ball_center - rocker.origin, axis=1), 30.0)   # C on the sphere
+    True
+    >>> np.allclose(drive.torus.distance(motion.ball_center), 0.0, atol=1e-9)            # and on the torus
+    True
+    >>> LooperDrive(8.0, 50.0, 1.0, rocker_frame=rocker)
+    Traceback (most recent call last):
+    ...
+    ValueError: the mechanism cannot be assembled at any crank angle: ...
     """
 
     def __init__(self, crank_radius, coupler_length, rocker_length, crank_frame=None, rocker_frame=None,
@@ -113,15 +169,42 @@ class LooperDrive:
 
     @classmethod
     def reference(cls):
-        """The reference geometry of ../shared/reference/looper-drive.md (mm), looper tip 40 mm along the
-        rocker arm and 12 mm off it: spatialkin.reference."""
+        """The reference looper drive (lengths in mm), defined in spatialkin.reference.
+
+        R1 = 8 (crank radius), r1 = 50 (coupler length), R2 = 30 (rocker length); the crank frame is the global
+        axes, the rocker centre P2 = (6, 0, 75) with the rocker shaft along +y; the looper tip 40 mm along the
+        rocker arm and 12 mm off it. The scheme is that of [1]_; the reference geometry is assumed: the paper
+        gives no dimensions.
+
+        Returns
+        -------
+        LooperDrive
+
+        References
+        ----------
+        .. [1] "Investigation of the trajectories of characteristic points of spatial mechanisms of technological
+           machines of the light industry" (in Ukrainian).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from spatialkin.mechanisms import LooperDrive
+        >>> drive = LooperDrive.reference()
+        >>> drive.crank_radius, drive.coupler_length, drive.rocker_length
+        (8.0, 50.0, 30.0)
+        >>> drive.rocker_frame.origin.tolist(), np.allclose(drive.rocker_frame.rotation[:, 2], (0.0, 1.0, 0.0))
+        ([6.0, 0.0, 75.0], True)
+        >>> drive.blocked_ranges
+        []
+        """
         return cls(ref.CRANK_RADIUS, ref.COUPLER_LENGTH, ref.ROCKER_LENGTH, Frame(), ref.rocker_frame(),
                    looper_tip=ref.LOOPER_TIP)
 
     # --- assembly ---------------------------------------------------------------------------------
     def assembly_margin(self, crank_angles):
         """How far (length) the rocker length lies inside the range of distances from the rocker centre to
-        the coupler's circle at each crank angle; negative where the mechanism cannot be assembled."""
+        the coupler's circle at each crank angle (radians, any shape); negative where the mechanism cannot be
+        assembled."""
         u1 = np.asarray(crank_angles, dtype=float)
         rot = self.crank_frame.rotation
         q = rot.T @ (self.rocker_frame.origin - self.crank_frame.origin)     # rocker centre, crank frame
@@ -194,7 +277,7 @@ class LooperDrive:
 
     # --- the cycle --------------------------------------------------------------------------------
     def seed_starts(self):
-        """The seed's start: states (K, 4) where the sphere's equator (v2 = 0) meets the torus."""
+        """The start of [Looper]'s method: states (K, 4) where the sphere's equator (v2 = 0) meets the torus."""
         return auxiliary_starts(self.torus, self.sphere)
 
     def loops(self):
@@ -243,9 +326,48 @@ class LooperDrive:
     def solve(self, crank_angles, omega=1.0, branch=0):
         """Motion at exactly the given crank angles, the crank turning at the constant rate omega.
 
+        The component of torus ∩ sphere through the assembly is traced once by arc length (cached per drive);
+        each requested angle is then solved exactly by Newton at the fixed crank angle, and velocities and
+        accelerations follow analytically from the curve's arc-length derivatives and the map s -> time.
+
+        Parameters
+        ----------
+        crank_angles : float or array_like, shape (N,)
+            Crank angles u1 (radians, any real values, in any order).
+        omega : float
+            Crank rate (radians per unit time), finite and non-zero; velocities come in length per that time
+            unit, accelerations in length per time unit squared.
+        branch : {0, 1}
+            Assembly branch: 0 where the coupler's circle leaves the rocker sphere as v1 grows, 1 where it
+            enters (see branch_of).
+
         Returns
         -------
         LooperMotion
+            Positions, velocities and accelerations at the crank angles, in fixed axes (N rows each).
+
+        Raises
+        ------
+        ValueError
+            Naming `crank_angles` (not finite, empty), `omega` (zero, not finite) or `branch`; for crank angles
+            where the mechanism cannot be assembled (inside blocked_ranges); where Newton fails next to a dead
+            position, the branch is not continuous, or a singular point of torus ∩ sphere lies.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from spatialkin.mechanisms import LooperDrive
+        >>> drive = LooperDrive.reference()
+        >>> motion = drive.solve(np.linspace(0.0, 2 * np.pi, 361), omega=1.0)
+        >>> motion.ball_center.shape, motion.ball_velocity.shape, motion.ball_acceleration.shape
+        ((361, 3), (361, 3), (361, 3))
+
+        The velocity against central differences of the position:
+
+        >>> h = 1e-5
+        >>> m = drive.solve([1.0 - h, 1.0, 1.0 + h])
+        >>> np.allclose((m.ball_center[2] - m.ball_center[0]) / (2 * h), m.ball_velocity[1], atol=1e-6)
+        True
         """
         u1 = check_drive(crank_angles, omega, branch)
         t0 = time.perf_counter()
@@ -308,15 +430,70 @@ def state_derivatives(drive, states):
 class LooperMotion:
     """The looper drive's motion at given crank angles (all in fixed axes; angles in radians).
 
+    Made by LooperDrive.solve. Lengths are in the drive's unit, time in the unit of 1/omega (omega in rad per
+    unit time); the crank turns at the constant rate omega.
+
+    Parameters
+    ----------
+    drive : LooperDrive
+    states : ndarray, shape (N, 4)
+        (u1, v1, u2, v2) on torus ∩ sphere at the crank angles u1.
+    omega : float
+        Crank rate (rad per unit time).
+    branch : int
+        The assembly branch.
+    wall_time : float
+        Seconds spent solving.
+    derivatives : tuple of ndarray, optional
+        (dy/ds (N, 4), d2y/ds2 (N, 4), C' (N, 3), C'' (N, 3)) at the states, else computed here.
+
     Attributes
     ----------
-    crank_angle : (N,)            u1, exactly as requested
-    coupler_angle : (N,)          v1
-    rocker_angles : (N, 2)        (u2, v2)
-    rocker_rates, rocker_accelerations : (N, 2)   d/dt and d2/dt2 of (u2, v2)
-    ball_center, ball_velocity, ball_acceleration : (N, 3)
-    ball : Trajectory             the ball centre with its arc-length derivatives (C', C'') and s -> time
-    ds_dt : (N,)                  speed of C (arc length of torus ∩ sphere per unit time)
+    crank_angle : ndarray, shape (N,)
+        u1, exactly as requested (radians).
+    coupler_angle : ndarray, shape (N,)
+        v1, the coupler's angle about the crank pin (radians).
+    coupler_rate, coupler_acceleration : ndarray, shape (N,)
+        dv1/dt (rad per unit time) and d2v1/dt2 (rad per unit time squared).
+    rocker_angles : ndarray, shape (N, 2)
+        (u2, v2), the rocker shaft's and the rocker arm's angles (radians).
+    rocker_rates, rocker_accelerations : ndarray, shape (N, 2)
+        d/dt and d2/dt2 of (u2, v2).
+    ball_center : ndarray, shape (N, 3)
+        Position of the ball centre C (length).
+    ball_velocity : ndarray, shape (N, 3)
+        dC/dt (length per unit time).
+    ball_acceleration : ndarray, shape (N, 3)
+        d2C/dt2 (length per unit time squared).
+    ball : Trajectory
+        The ball centre with its arc-length derivatives (C', C'') and the map s -> time.
+    ds_dt, d2s_dt2 : ndarray, shape (N,)
+        Speed of C (arc length of torus ∩ sphere per unit time) and its rate.
+    looper_tip : PointMotion
+        Position, velocity and acceleration (N, 3) each of the looper tip.
+    states : ndarray, shape (N, 4)
+        (u1, v1, u2, v2).
+    omega : float
+    branch : int
+    wall_time : float
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from spatialkin.mechanisms import LooperDrive
+    >>> drive = LooperDrive.reference()
+    >>> angles = np.radians([30.0, 120.0, 250.0])
+    >>> slow, fast = drive.solve(angles, omega=1.0), drive.solve(angles, omega=2.0)
+    >>> np.allclose(fast.ball_center, slow.ball_center)
+    True
+    >>> np.allclose(fast.ball_velocity, 2 * slow.ball_velocity)
+    True
+    >>> np.allclose(fast.ball_acceleration, 4 * slow.ball_acceleration)
+    True
+    >>> np.allclose(np.linalg.norm(slow.ball_velocity, axis=1), slow.ds_dt)
+    True
+    >>> slow.rocker_angles.shape, slow.looper_tip.position.shape
+    ((3, 2), (3, 3))
     """
 
     def __init__(self, drive, states, omega, branch, wall_time, derivatives=None):
@@ -375,6 +552,7 @@ class LooperMotion:
 
     @property
     def looper_tip(self):
+        """PointMotion of the looper tip (position, velocity, acceleration (N, 3) each, fixed axes)."""
         return self.point(self.drive.looper_link, self.drive.looper_tip)
 
     def path_bspline(self, which="ball", tol=1e-8):
@@ -409,10 +587,11 @@ class LooperMotion:
         return fit_spline(evaluate, lo, lo + 2 * math.pi if full else hi, tol * scale, periodic=full)
 
     def angular_velocity(self, link):
-        """Angular velocity (N, 3) of a link in fixed axes."""
+        """Angular velocity (N, 3) of a link in fixed axes (rad per unit time)."""
         return self.links()[link].omega
 
     def angular_acceleration(self, link):
+        """Angular acceleration (N, 3) of a link in fixed axes (rad per unit time squared)."""
         return self.links()[link].alpha
 
 

@@ -17,8 +17,29 @@ __all__ = ["Surface", "check_positive", "check_range", "check_surface"]
 
 
 class Surface:
-    """Base of the placed surfaces. A kind's class sets the shape parameters and the bounds; its registered
-    traits (spatialkin.tracing.traits) give the kind code and the kernel geometry packed into ``data``."""
+    """Base of the placed surfaces: a frame, shape parameters and optional trims, packed for the kernels.
+
+    A kind's class (Torus, Sphere, Plane, Cylinder, Cone) sets the shape parameters and the trims; its registered
+    traits (spatialkin.tracing.traits) give the kind code and the kernel geometry packed into ``data`` (read-only).
+    Every kind is a map M(u, v) = frame(local point) of its local parametrisation; ``point`` evaluates it,
+    ``distance`` is the exact distance to the untrimmed surface.
+
+    Parameters
+    ----------
+    frame : Frame or None
+        Placement of the local coordinates (None: the global axes).
+    p0, p1 : float
+        The kind's two shape parameters as the kernels read them.
+    u_range, v_range : (float, float) or None
+        Trims (min, max) of u and v, either end possibly infinite; None leaves the parameter untrimmed.
+
+    Raises
+    ------
+    TypeError
+        When `frame` is not a spatialkin.Frame.
+    ValueError
+        Naming `u_range` or `v_range` when it is not a pair min < max (no NaN).
+    """
 
     def __init__(self, frame, p0=0.0, p1=0.0, u_range=None, v_range=None):
         if frame is None:
@@ -63,16 +84,51 @@ class Surface:
 
     @property
     def u_range(self):
+        """(min, max) of u: the trim (a plane's u, in length units), or (-inf, inf) when untrimmed."""
         data = self.data
         return data[ks.BOUNDS], data[ks.BOUNDS + 1]         # (indexed: a tuple of a slice costs 7x as much)
 
     @property
     def v_range(self):
+        """(min, max) of v: the trim (a plane's v, a cylinder's or cone's axial v), or (-inf, inf) when untrimmed."""
         data = self.data
         return data[ks.BOUNDS + 2], data[ks.BOUNDS + 3]
 
     def point(self, u, v):
-        """Global points (..., 3) at parameters u, v (broadcast together)."""
+        """Points of the surface at parameters (u, v), in global coordinates.
+
+        Parameters
+        ----------
+        u, v : float or array_like
+            Surface parameters, broadcast together to a shape (...): angles in radians (both of a torus; a sphere's
+            longitude u and latitude v; u of a cylinder or cone), lengths in the user's unit (a plane's u and v, the
+            axial v of a cylinder or cone). The trims (u_range, v_range) are not applied.
+
+        Returns
+        -------
+        ndarray, shape (..., 3)
+            The points M(u, v), in the user's length unit.
+
+        Raises
+        ------
+        ValueError
+            When u and v do not broadcast together (numpy's message).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import spatialkin as sk
+        >>> torus = sk.Torus(2.0, 0.5)
+        >>> np.allclose(torus.point(0.0, 0.0), (2.5, 0.0, 0.0))
+        True
+        >>> torus.point(np.linspace(0.0, np.pi, 5), 0.0).shape
+        (5, 3)
+        >>> u, v = np.meshgrid(np.linspace(0.0, 2 * np.pi, 4), np.linspace(-1.0, 1.0, 3))
+        >>> torus.point(u, v).shape
+        (3, 4, 3)
+        >>> np.allclose(torus.distance(torus.point(u, v)), 0.0)
+        True
+        """
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
         uv = np.ascontiguousarray(np.stack([u.ravel(), v.ravel()], axis=1))
         out = np.empty((uv.shape[0], 3))
@@ -92,7 +148,39 @@ class Surface:
         return n / np.linalg.norm(n)
 
     def distance(self, points):
-        """Exact unsigned distance (...,) from global points (..., 3) to the untrimmed surface."""
+        """Exact unsigned distance from global points to the untrimmed surface.
+
+        Parameters
+        ----------
+        points : array_like, shape (..., 3)
+            Global points, in the user's length unit.
+
+        Returns
+        -------
+        ndarray, shape (...)
+            Distance of each point to the nearest point of the whole surface (its trims ignored), in the same
+            unit: in closed form for every kind (no iteration), so it measures how far a point of an intersection
+            curve lies off the surface.
+
+        Raises
+        ------
+        ValueError
+            When `points` does not have shape (..., 3).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import spatialkin as sk
+        >>> sphere = sk.Sphere(2.0, sk.Frame((1.0, 0.0, 0.0)))
+        >>> sphere.distance([[1.0, 0.0, 0.0], [4.0, 0.0, 0.0], [1.0, 3.0, 0.0]]).round(6).tolist()
+        [2.0, 1.0, 1.0]
+        >>> sphere.distance(np.zeros((4, 5, 3))).shape
+        (4, 5)
+        >>> sphere.distance([1.0, 2.0])
+        Traceback (most recent call last):
+        ...
+        ValueError: points must have shape (..., 3), got (2,)
+        """
         pts = np.asarray(points, dtype=float)
         if pts.shape[-1:] != (3,):
             raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
@@ -102,7 +190,7 @@ class Surface:
         return out.reshape(pts.shape[:-1])
 
     def parameters(self, points):
-        """Parameters (..., 2) of the surface points nearest to global points (..., 3); u in (-pi, pi]."""
+        """Parameters (u, v) (..., 2) of the surface points nearest to global points (..., 3); u in (-pi, pi]."""
         pts = np.asarray(points, dtype=float)
         flat = np.ascontiguousarray(pts.reshape(-1, 3))
         out = np.empty((flat.shape[0], 2))

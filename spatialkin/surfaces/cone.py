@@ -11,9 +11,47 @@ from .cylinder import axial_trims_overlap
 
 
 class Cone(Surface):
-    """Circular double cone with its apex at frame.origin about the local z axis:
-    M(u, v) = frame(v tan(a) cos u, v tan(a) sin u, v), a the half angle; the apex (v = 0) is a singular
+    """Circular double cone with its apex at frame.origin about the local z axis.
+
+    M(u, v) = frame(v tan(a) cos u, v tan(a) sin u, v), a the half angle: u the angle round the axis (radians),
+    v the height along it (the user's length unit; v < 0 is the other nappe). The apex (v = 0) is a singular
     point of the surface. v_range optionally trims it along the axis.
+
+    Parameters
+    ----------
+    half_angle : float
+        a, the angle between the axis and the generatrices, radians in (0, pi/2).
+    frame : Frame, optional
+        Placement: origin at the apex, local z along the axis (default: the global axes).
+    v_range : (float, float), optional
+        Trim (min, max) of v, either end possibly infinite; None (default): both nappes, unbounded.
+
+    Attributes
+    ----------
+    half_angle : float
+    frame : Frame
+    v_range : (float, float)
+
+    Raises
+    ------
+    ValueError
+        Naming `half_angle` (not in (0, pi/2)) or `v_range` (not a pair min < max).
+    TypeError
+        When `frame` is not a spatialkin.Frame.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> cone = sk.Cone(np.pi / 4, v_range=(0.0, 2.0))
+    >>> np.allclose(cone.point(0.0, 1.0), (1.0, 0.0, 1.0))
+    True
+    >>> round(float(cone.distance([0.0, 0.0, 1.0])), 6)     # on the axis at height 1: sin(a) from the cone
+    0.707107
+    >>> sk.Cone(2.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: half_angle must lie in (0, pi/2), got 2.0
     """
 
     def __init__(self, half_angle, frame=None, v_range=None):

@@ -12,7 +12,40 @@ from .base import Surface, check_positive, own_axis, quadric_jets
 class Cylinder(Surface):
     """Circular cylinder of the given radius about the local z axis: M(u, v) = frame(r cos u, r sin u, v).
 
-    v_range optionally trims it along the axis.
+    u is the angle round the axis (radians), v the length along it (the user's unit); v_range optionally trims
+    the cylinder along its axis.
+
+    Parameters
+    ----------
+    radius : float
+        r (the user's length unit), > 0.
+    frame : Frame, optional
+        Placement: origin on the axis, local z along it (default: the global axes).
+    v_range : (float, float), optional
+        Trim (min, max) of v, either end possibly infinite; None (default): unbounded.
+
+    Attributes
+    ----------
+    radius : float
+    frame : Frame
+    v_range : (float, float)
+
+    Raises
+    ------
+    ValueError
+        Naming `radius` (not a positive finite number) or `v_range` (not a pair min < max).
+    TypeError
+        When `frame` is not a spatialkin.Frame.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> cylinder = sk.Cylinder(0.5, sk.Frame((1.0, 0.0, 0.0)), v_range=(-2.0, 2.0))
+    >>> np.allclose(cylinder.point(np.pi / 2, 1.0), (1.0, 0.5, 1.0))
+    True
+    >>> round(float(cylinder.distance([1.0, 0.0, 7.0])), 6)    # on the axis: r from the (untrimmed) surface
+    0.5
     """
 
     def __init__(self, radius, frame=None, v_range=None):

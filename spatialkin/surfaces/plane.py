@@ -17,7 +17,42 @@ OVERLAP_REACH = 1e6
 class Plane(Surface):
     """Plane through frame.origin spanned by the local x and y axes: M(u, v) = frame(u, v, 0).
 
-    u_range and v_range optionally trim it to a rectangle.
+    u and v are lengths (the user's unit) along the local x and y axes; u_range and v_range optionally trim the
+    plane to a rectangle (or a strip). Local z is its normal.
+
+    Parameters
+    ----------
+    frame : Frame, optional
+        Placement: origin on the plane, local z along the normal (default: the global axes, the plane z = 0).
+    u_range, v_range : (float, float), optional
+        Trims (min, max) of u and v, lengths; either end may be infinite; None (default) leaves it unbounded.
+
+    Attributes
+    ----------
+    frame : Frame
+    u_range, v_range : (float, float)
+        The trims, (-inf, inf) where unbounded.
+
+    Raises
+    ------
+    ValueError
+        Naming `u_range` or `v_range` when it is not a pair min < max (no NaN).
+    TypeError
+        When `frame` is not a spatialkin.Frame.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> plane = sk.Plane(sk.Frame((0.0, 0.0, 0.5)), u_range=(-1.0, 1.0), v_range=(-1.0, 1.0))
+    >>> np.allclose(plane.point(0.25, -0.5), (0.25, -0.5, 0.5))
+    True
+    >>> round(float(plane.distance([3.0, 3.0, 2.0])), 6)       # to the untrimmed plane
+    1.5
+    >>> sk.Plane(u_range=(1.0, -1.0))
+    Traceback (most recent call last):
+    ...
+    ValueError: u_range must satisfy min < max, got (1.0, -1.0)
     """
 
     def __init__(self, frame=None, u_range=None, v_range=None):

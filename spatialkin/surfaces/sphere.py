@@ -15,7 +15,46 @@ POLES = (-0.5 * math.pi, 0.5 * math.pi)
 class Sphere(Surface):
     """Sphere of the given radius centred at frame.origin; local z is the pole axis of (u, v).
 
-    M(u, v) = frame(R cos v cos u, R cos v sin u, R sin v); u longitude, v latitude.
+    M(u, v) = frame(R cos v cos u, R cos v sin u, R sin v): u the longitude, v the latitude (radians). In the
+    looper drive it is the surface of the ball centre about the rocker centre, R the rocker length [1]_.
+
+    Parameters
+    ----------
+    radius : float
+        R (the user's length unit), > 0.
+    frame : Frame, optional
+        Placement: origin at the centre, local z the pole axis of (u, v) (default: the global axes).
+
+    Attributes
+    ----------
+    radius : float
+    frame : Frame
+    center : ndarray, shape (3,)
+        The centre, frame.origin.
+
+    Raises
+    ------
+    ValueError
+        Naming `radius` when it is not a positive finite number.
+    TypeError
+        When `frame` is not a spatialkin.Frame.
+
+    References
+    ----------
+    .. [1] "Investigation of the trajectories of characteristic points of spatial mechanisms of technological
+       machines of the light industry" (in Ukrainian).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> sphere = sk.Sphere(2.0, sk.Frame((1.0, 0.0, 0.0)))
+    >>> np.allclose(sphere.point(0.0, np.pi / 2), (1.0, 0.0, 2.0))      # the north pole
+    True
+    >>> sphere.center.tolist()
+    [1.0, 0.0, 0.0]
+    >>> round(float(sphere.distance([1.0, 0.0, 5.0])), 6)
+    3.0
     """
 
     def __init__(self, radius, frame=None):
@@ -24,6 +63,7 @@ class Sphere(Surface):
 
     @property
     def center(self):
+        """The centre (3,), frame.origin."""
         return self.frame.origin
 
     def with_frame(self, frame):

@@ -12,7 +12,53 @@ from .base import Surface, check_positive, own_axis
 class Torus(Surface):
     """Torus about the local z axis: ring (minor < major), horn (minor = major) or spindle (minor > major).
 
-    M(u, v) = frame((R + r cos v) cos u, (R + r cos v) sin u, r sin v); u around the axis, v around the tube.
+    M(u, v) = frame((R + r cos v) cos u, (R + r cos v) sin u, r sin v), u round the axis and v round the tube
+    (radians). In the looper drive it is the surface of the coupler's ball centre: R the crank radius, r the
+    coupler length [1]_.
+
+    Parameters
+    ----------
+    major_radius : float
+        R, distance of the tube's centre circle from the axis (the user's length unit), > 0.
+    minor_radius : float
+        r, radius of the tube (same unit), > 0.
+    frame : Frame, optional
+        Placement: origin at the centre, local z along the axis (default: the global axes).
+
+    Attributes
+    ----------
+    major_radius, minor_radius : float
+    frame : Frame
+    shape : str
+        'ring', 'horn' or 'spindle'.
+
+    Raises
+    ------
+    ValueError
+        Naming `major_radius` or `minor_radius` when it is not a positive finite number.
+    TypeError
+        When `frame` is not a spatialkin.Frame.
+
+    References
+    ----------
+    .. [1] "Investigation of the trajectories of characteristic points of spatial mechanisms of technological
+       machines of the light industry" (in Ukrainian).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> torus = sk.Torus(2.0, 0.5, sk.Frame((0.0, 0.0, 1.0)))
+    >>> torus.shape
+    'ring'
+    >>> np.allclose(torus.point(np.pi / 2, np.pi / 2), (0.0, 2.0, 1.5))
+    True
+    >>> round(float(torus.distance([0.0, 0.0, 1.0])), 6)     # the centre lies R - r from the tube
+    1.5
+    >>> sk.Torus(2.0, -0.5)
+    Traceback (most recent call last):
+    ...
+    ValueError: minor_radius must be a positive finite number, got -0.5
     """
 
     def __init__(self, major_radius, minor_radius, frame=None):
@@ -22,7 +68,7 @@ class Torus(Surface):
 
     @property
     def shape(self):
-        """'ring', 'horn' or 'spindle'."""
+        """'ring' (minor < major radius), 'horn' (equal) or 'spindle' (minor > major)."""
         if self.minor_radius < self.major_radius:
             return "ring"
         return "horn" if self.minor_radius == self.major_radius else "spindle"

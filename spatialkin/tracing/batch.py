@@ -38,7 +38,30 @@ ERRORS = ("raise", "return")
 
 
 class BatchError(RuntimeError):
-    """A pair of sk.intersect_many failed (errors='raise'); ``index`` is its position, ``__cause__`` the error."""
+    """A pair of sk.intersect_many failed (errors='raise'): its index and the error it raised.
+
+    Parameters
+    ----------
+    index : int
+        Position of the failing pair in ``pairs``.
+    error : Exception
+        What sk.intersect raised for it (also the ``__cause__``); on a worker its traceback is attached as a note.
+
+    Attributes
+    ----------
+    index : int
+    error : Exception
+
+    Examples
+    --------
+    >>> import spatialkin as sk
+    >>> pairs = [(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0)))), (sk.Sphere(1.0), sk.Sphere(1.0))]
+    >>> try:
+    ...     sk.intersect_many(pairs)
+    ... except sk.BatchError as failure:
+    ...     print(failure.index, type(failure.error).__name__, failure.__cause__ is failure.error)
+    1 CoincidentSurfacesError True
+    """
 
     def __init__(self, index, error):
         super().__init__(f"pairs[{index}]: {type(error).__name__}: {error}")
@@ -53,14 +76,19 @@ def intersect_many(pairs, tol=1e-10, *, workers=1, errors="raise", method=DEFAUL
                    atol=None, max_length=None, singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK):
     """``sk.intersect`` of every pair: a list (one entry per pair, in order) of lists of Curve.
 
+    Each pair's result is what ``sk.intersect`` returns for it (the same curves, the same numbers), whether it
+    runs in this process or on worker processes. Every argument is checked before any pair is intersected.
+
     Parameters
     ----------
     pairs : iterable of (Surface, Surface)
+        The pairs (a, b) to intersect.
     tol, method, rtol, atol, max_length, singular_tol, pullback
         As in ``sk.intersect``, the same for every pair.
     workers : int or None
         Worker processes (None: one per CPU). 1 (default) runs in this process; a batch of fewer than
-        MIN_CHUNKS_PER_WORKER x CHUNK pairs per worker also does.
+        MIN_CHUNKS_PER_WORKER x CHUNK pairs per worker also does. A kept pool of forkserver workers (spawn where
+        there is no fork) serves later batches; from a script, call it under ``if __name__ == "__main__":``.
     errors : {'raise', 'return'}
         On a failing pair (TopologyError, CoincidentSurfacesError, ...): raise BatchError naming its index (its
         cause chained), or put the exception in that pair's place and go on.
@@ -68,6 +96,7 @@ def intersect_many(pairs, tol=1e-10, *, workers=1, errors="raise", method=DEFAUL
     Returns
     -------
     list of (list of Curve or Exception)
+        One entry per pair, in the pairs' order.
 
     Raises
     ------
@@ -75,6 +104,31 @@ def intersect_many(pairs, tol=1e-10, *, workers=1, errors="raise", method=DEFAUL
         A bad option or pair (named: ``pairs[k]``), before any pair is intersected.
     BatchError
         A pair failed and errors='raise'.
+    RuntimeError
+        A worker process died (its pool is discarded; the next call starts a new one).
+
+    Examples
+    --------
+    A sphere moved along the axis of a torus (a sweep of placements):
+
+    >>> import spatialkin as sk
+    >>> torus = sk.Torus(1.0, 0.4)
+    >>> pairs = [(torus, sk.Sphere(1.0, sk.Frame((1.0, 0.0, z)))) for z in (0.0, 0.3, 5.0)]
+    >>> results = sk.intersect_many(pairs, tol=1e-10)
+    >>> [len(curves) for curves in results]
+    [2, 2, 0]
+    >>> [round(c.length, 6) for c in results[1]] == [round(c.length, 6) for c in sk.intersect(*pairs[1])]
+    True
+
+    With errors='return' a failing pair leaves its exception in place:
+
+    >>> results = sk.intersect_many(pairs[:1] + [(sk.Sphere(1.0), sk.Sphere(1.0))], errors="return")
+    >>> [type(r).__name__ for r in results]
+    ['list', 'CoincidentSurfacesError']
+    >>> sk.intersect_many([(torus, "sphere")])
+    Traceback (most recent call last):
+    ...
+    TypeError: pairs[0][1] must be a spatialkin surface (...), got str
     """
     pairs = check_pairs(pairs)
     check_choice("errors", errors, ERRORS)

@@ -31,7 +31,7 @@ MAX_ROUNDS = 40
 #: curvature; two rounds in a row that do not halve the largest deviation, while it is below STALL_FLOOR times
 #: the curve's extent, have met the round-off of the curve's points: the tolerance cannot be reached. (Above it
 #: the spans are still long beside a sharp bend, where halving may not yet halve the error: a near-tangent loop's
-#: deviation went 0.197, 0.291, 0.189, 0.069 in its first rounds.)
+#: deviation goes 0.197, 0.291, 0.189, 0.069 in its first rounds.)
 STALL = 0.5
 STALL_FLOOR = 1e-6
 #: Most knots of one spline.

@@ -35,6 +35,45 @@ class Certificate:
     - points where the surfaces touch (contacts, circles or lines of tangency) or branches cross: there the
       system is singular and ``radii`` is inf (those points come from the singular-point classification, or
       in closed form for the coaxial and ruled configurations).
+
+    Parameters
+    ----------
+    radii : array_like, shape (N,)
+        Proven half-width of the box round each stored point of the curve (length unit; inf where not proven).
+    topology : Topology
+        The search of sk.intersect (spatialkin.tracing.topology).
+    components : int
+        How many curves sk.intersect returned.
+
+    Attributes
+    ----------
+    radii : ndarray, shape (N,)
+    components : int
+    mode : str
+    boxes, verified_roots, singular_points : int
+    search_seconds : float
+    all_points_proven : bool
+    max_distance_bound : float
+        The largest proven distance from a stored point to a true intersection point, radii.max() * sqrt(3).
+
+    References
+    ----------
+    .. [1] R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM, 2009 (the
+       Krawczyk operator, interval Newton).
+    .. [2] R. B. Kearfott, M. Novoa, "Algorithm 681: INTBIS, a portable interval Newton/bisection package", ACM
+       Trans. Math. Softw. 16(2), 1990, 152-157.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> torus, sphere = sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3)))
+    >>> curve = sk.intersect(torus, sphere, certify=True)[0]
+    >>> cert = curve.certificate
+    >>> cert.mode, cert.components, cert.all_points_proven
+    ('general', 2, True)
+    >>> bool(np.all(np.isfinite(cert.radii))), bool(cert.max_distance_bound < 1e-12)
+    (True, True)
     """
 
     def __init__(self, radii, topology, components):

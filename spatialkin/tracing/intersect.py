@@ -30,27 +30,20 @@ CLOSED_FORMS = True
 
 def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol=None, max_length=None,
               singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK, certify=False):
-    """Every component of a ∩ b.
-
-    Pairs that meet in conics (plane–plane, plane–sphere, plane–cylinder, plane–cone, sphere–sphere) are solved in
-    closed form (spatialkin.tracing.closed; its degenerate cases, and certify=True, take the general path). In
-    general, start points come from the topology stage (spatialkin.tracing.topology: an interval subdivision of one
-    surface's parameter domain that provably finds a start on every component); each component is traced
-    once by ``trace`` and the starts on it are skipped. The result does not depend on the argument order
-    (curves come longest first), on translation or on scale.
+    """Every component of the intersection of two surfaces, each traced once by arc length.
 
     Parameters
     ----------
     a, b : Surface
         Trimmed or not; at least one of them bounded (a sphere, a torus, or a trimmed plane, cylinder or cone).
     tol : float
-        Accuracy of every returned point, relative to the scene scale (see ``trace``).
+        Accuracy of every returned point and every dense evaluation, relative to the scene scale (see Notes).
     method, rtol, atol, max_length, singular_tol, pullback
         As in ``trace``.
     certify : bool
         Attach ``curve.certificate`` (spatialkin.tracing.certificate.Certificate) to every curve: what the
         search proved, and a proven radius round every stored point (needs the ``certify`` extra,
-        python-flint).
+        python-flint). Takes the general path for every pair.
 
     Returns
     -------
@@ -58,16 +51,100 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         Closed loops, open curves (ending exactly on a trim edge, status 'boundary', or at a singular point),
         single contact points (status 'contact', length 0) and circles or segments along which the surfaces
         touch (status 'tangent', in closed form: spatialkin.tracing.exact); empty when the surfaces do not meet.
+        Curves come longest first; the result does not depend on the argument order, on translation or on
+        scale.
 
     Raises
     ------
     CoincidentSurfacesError
         The two patches overlap in a piece of surface (the same sphere twice, coaxial equal cylinders, coplanar
-        planes whose rectangles overlap).
+        planes whose rectangles overlap). A subclass of ValueError.
     ValueError
-        Both surfaces unbounded, or bad arguments.
+        Both surfaces unbounded, or bad arguments (named).
+    TypeError
+        Naming `a` or `b` when it is not a spatialkin surface.
     TopologyError
         The search could not resolve the intersection within its budget (it never returns a guess instead).
+    ImportError
+        certify=True without python-flint.
+
+    See Also
+    --------
+    trace : one component, from a start near it.
+    intersect_many : many pairs in one call, optionally on worker processes.
+
+    Notes
+    -----
+    **The tolerance.** ``tol`` is relative to the scene scale, the smaller characteristic length of the two
+    surfaces (a sphere's or cylinder's radius, a torus's R + r, a cone's slant length when trimmed at both ends;
+    without one, the smaller half-diagonal of the trimmed planes' rectangles). Every returned point, and every
+    dense evaluation ``curve(s)``, lies within tol x scale of both surfaces: Newton corrects each point onto both
+    of them to a hundredth of that, and the distances are measured with the surfaces' exact distance functions
+    (``curve.max_distance``, ``curve.distances()``). ``curve.tolerance`` is that absolute length, never below
+    64 ulps of the coordinates' magnitude.
+
+    **How components are found.** Pairs that meet in conics (plane-plane, plane-sphere, plane-cylinder,
+    plane-cone, sphere-sphere) are solved in closed form (spatialkin.tracing.closed; its degenerate cases, and
+    certify=True, take the general path). Otherwise the topology stage (spatialkin.tracing.topology) recognises
+    special placements first: surfaces of revolution about one axis meet in parallels, a cylinder and a surface
+    invariant along its axis in lines along it, and circles or segments of tangency come in closed form. In
+    general it reads the intersection as the level g = F_Q(P(u, v)) = 0 on one surface's parameter domain and
+    seeds every component: each one meets an edge of the domain, crosses a seam, passes a collapsed point of the
+    chart (a pole, an apex), or is a closed loop holding a critical point where its tangent is normal to a fixed
+    direction. Those roots are found by interval subdivision with outward rounding [2]_ [3]_, a box dropped only
+    when an enclosure proves it root-free and a root kept once the interval Newton or Krawczyk operator proves it
+    isolated, so no component is missed, however small [4]_ [5]_; boxes that shrink to round-off without either
+    proof are singular points (contacts, nodes), classified by the Hessian. Each component is then traced once by
+    ``trace`` (Dragilev's method [1]_), and the starts lying on it are skipped.
+
+    References
+    ----------
+    .. [1] "Investigation of the trajectories of characteristic points of spatial mechanisms of technological
+       machines of the light industry" (in Ukrainian): the intersection line by arc length, a Cauchy problem.
+    .. [2] R. B. Kearfott, M. Novoa, "Algorithm 681: INTBIS, a portable interval Newton/bisection package",
+       ACM Trans. Math. Softw. 16(2), 1990, 152-157.
+    .. [3] R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM, 2009.
+    .. [4] N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design and Manufacturing,
+       Springer, 2002.
+    .. [5] H. Hong, "An efficient method for analyzing the topology of plane real algebraic curves", Math.
+       Comput. Simul. 42 (1996).
+
+    Examples
+    --------
+    A plane 0.6 above the centre of a unit sphere cuts it in a circle of radius 0.8 (in closed form):
+
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> curves = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))))
+    >>> len(curves), curves[0].closed
+    (1, True)
+    >>> round(curves[0].length, 6)        # 2 pi 0.8
+    5.026548
+
+    A torus and a sphere (the looper drive's pair) meet here in two loops, found by the topology stage:
+
+    >>> torus, sphere = sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3)))
+    >>> curves = sk.intersect(torus, sphere)
+    >>> len(curves), [c.closed for c in curves]
+    (2, [True, True])
+    >>> all(c.max_distance <= c.tolerance for c in curves)
+    True
+
+    With certify=True every curve carries what was proven:
+
+    >>> curves = sk.intersect(torus, sphere, certify=True)
+    >>> cert = curves[0].certificate
+    >>> cert.components, cert.all_points_proven, bool(cert.max_distance_bound < 1e-12)
+    (2, True, True)
+
+    Disjoint surfaces give no curves; coincident ones raise:
+
+    >>> sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((3.0, 0.0, 0.0))))
+    []
+    >>> sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0))
+    Traceback (most recent call last):
+    ...
+    spatialkin.tracing.placement.CoincidentSurfacesError: a and b are the same sphere and their patches overlap: ...
     """
     check_surface("a", a)
     check_surface("b", b)

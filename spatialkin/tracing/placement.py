@@ -16,8 +16,25 @@ SAME = 1e-12
 
 
 class CoincidentSurfacesError(ValueError):
-    """The two patches overlap in a piece of surface (the same sphere twice, coaxial equal cylinders, coplanar
-    planes ...): their intersection is two-dimensional, not a set of curves."""
+    """The two patches overlap in a piece of surface.
+
+    Their intersection is two-dimensional, not a set of curves: the same sphere twice, coaxial equal cylinders,
+    coplanar planes whose rectangles overlap.
+
+    Parameters
+    ----------
+    message : str
+        Which surfaces coincide, and where.
+
+    Examples
+    --------
+    >>> import spatialkin as sk
+    >>> try:
+    ...     sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0))
+    ... except sk.CoincidentSurfacesError as error:
+    ...     print(type(error).__name__, isinstance(error, ValueError))
+    CoincidentSurfacesError True
+    """
 
 
 def bounding_ball(surface):

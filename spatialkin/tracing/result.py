@@ -19,8 +19,40 @@ DUPLICATE_SPACING = 1e-9
 
 
 class TracingError(RuntimeError):
-    """Tracing could not start or go on; ``where`` is the point (3,) or None, ``status`` a short code
-    (spatialkin.tracing.status)."""
+    """Tracing could not start or go on: no curve point near the start, a singular start, nothing traced.
+
+    Raised by ``sk.trace`` (and by the mechanisms built on it); ``sk.intersect`` handles it internally and
+    raises TopologyError only when a component would be missed.
+
+    Parameters
+    ----------
+    message : str
+        What happened and where.
+    where : ndarray, shape (3,), optional
+        The point where tracing stopped or could not start (global coordinates), or None.
+    status : str
+        A short code of spatialkin.tracing.status (default 'failed'), e.g. 'no_start' or 'singular'.
+
+    Attributes
+    ----------
+    where : ndarray, shape (3,) or None
+    status : str
+
+    Raises
+    ------
+    ValueError
+        For a status that table does not know.
+
+    Examples
+    --------
+    >>> import spatialkin as sk
+    >>> far_apart = (sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((5.0, 0.0, 0.0))))
+    >>> try:
+    ...     sk.trace(*far_apart, (2.5, 0.0, 0.0))
+    ... except sk.TracingError as error:
+    ...     print(error.status, error.where.tolist())
+    no_start [2.5, 0.0, 0.0]
+    """
 
     def __init__(self, message, where=None, status=FAILED):
         super().__init__(message)
@@ -30,7 +62,21 @@ class TracingError(RuntimeError):
     @classmethod
     def of(cls, event, where=None, status=None, **fields):
         """The error of an event of spatialkin.tracing.status.MESSAGES at where: its message, the template filled
-        with fields, and its status (or the one given, for an event whose status depends on the case)."""
+        with fields, and its status (or the one given, for an event whose status depends on the case).
+
+        Parameters
+        ----------
+        event : str
+            A key of spatialkin.tracing.status.MESSAGES.
+        where : ndarray, shape (3,), optional
+        status : str, optional
+        **fields
+            Values for the message's template.
+
+        Returns
+        -------
+        TracingError
+        """
         own, message = outcome(event, **fields)
         return cls(message, where=where, status=status or own)
 
@@ -73,8 +119,15 @@ class CurveResult:
 class Curve:
     """One connected component of the intersection of two surfaces, parametrised by arc length.
 
-    Built once from a CurveResult (``Curve(result)``); its attributes are read-only. Evaluations go through the
-    dense output ``result.sol``; ``max_distance`` is measured on first access.
+    ``sk.trace`` and ``sk.intersect`` return curves; each is built once from a CurveResult (``Curve(result)``)
+    and its attributes are read-only. Evaluations go through the dense output ``result.sol``: ``curve(s)`` gives
+    points corrected onto both surfaces at any arc length; ``max_distance`` is measured on first access. Lengths
+    are in the user's unit, parameters of angle kind in radians, arrays with the point index first.
+
+    Parameters
+    ----------
+    result : CurveResult
+        The record of one component (from the tracer or a closed form).
 
     Attributes
     ----------
@@ -120,6 +173,28 @@ class Curve:
         The two surfaces.
     result : CurveResult
         The record the curve was built from.
+
+    Raises
+    ------
+    TypeError
+        When `result` is not a CurveResult.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> curve, = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))))
+    >>> curve.closed, curve.status, round(curve.length, 6)
+    (True, 'closed', 5.026548)
+    >>> n = len(curve.points)
+    >>> curve.points.shape == (n, 3) and curve.s.shape == (n,) and curve.params.shape == (n, 4)
+    True
+    >>> np.allclose(curve.points[:, 2], 0.6), np.allclose(np.linalg.norm(curve.points, axis=1), 1.0)
+    (True, True)
+    >>> curve(np.linspace(0.0, curve.length, 7)).shape
+    (7, 3)
+    >>> bool(curve.max_distance <= curve.tolerance)
+    True
     """
 
     def __init__(self, result):
@@ -129,15 +204,51 @@ class Curve:
 
     @property
     def result(self):
+        """The CurveResult this curve was built from."""
         return self._result
 
     @property
     def surfaces(self):
+        """(a, b): the two surfaces, in the order they were given."""
         return self._result.sol.surfaces
 
     # --- dense evaluation (the record's dense output) -------------------------------------------------------
     def __call__(self, s):
-        """Points (..., 3) on the curve at arc lengths s (...,), corrected onto both surfaces."""
+        """Points on the curve at arc lengths s (dense evaluation), corrected onto both surfaces.
+
+        Parameters
+        ----------
+        s : float or array_like, shape (...)
+            Arc lengths, in the user's length unit: in [0, length] for an open curve, any finite value for a
+            closed one (taken modulo its length).
+
+        Returns
+        -------
+        ndarray, shape (..., 3)
+            Global points, each within ``tolerance`` of both surfaces.
+
+        Raises
+        ------
+        ValueError
+            When s is not finite, or lies outside [0, length] on an open curve.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import spatialkin as sk
+        >>> curve, = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))))
+        >>> curve(0.0).shape, curve(np.linspace(0.0, curve.length, 5)).shape
+        ((3,), (5, 3))
+        >>> np.allclose(curve(curve.length), curve(0.0))       # a closed curve is periodic in s
+        True
+        >>> arc, = sk.intersect(sk.Sphere(1.0), sk.Plane(u_range=(-2.0, 2.0), v_range=(0.0, 2.0)))
+        >>> arc.closed, arc.status, round(arc.length, 6)      # half the equator, from edge to edge
+        (False, 'boundary', 3.141593)
+        >>> arc(4.0)
+        Traceback (most recent call last):
+        ...
+        ValueError: s must lie in [0, 3.14159265359] for this open curve
+        """
         return self._result.sol(s)
 
     def tangent(self, s):
@@ -176,37 +287,56 @@ class Curve:
 
     @functools.cached_property
     def max_distance(self):
+        """Largest measured distance (float, length unit) to either surface of the stored points and of dense
+        evaluations midway between them (exact distance functions; measured on first access)."""
         pts = self.points
         if len(self.s) > 1 and self.length > 0:
             pts = np.vstack([pts, self(0.5 * (self.s[1:] + self.s[:-1]))])
         return float(np.max(self.distances(pts))) if len(pts) else 0.0
 
     def to_bspline(self, tol=1e-8):
-        """A C2 quintic B-spline (scipy.interpolate.BSpline, parameter: the arc length s) within tol times the
-        scene scale of this curve, measured.
+        """A C2 quintic B-spline of the curve in its arc length, within tol times the scene scale (measured).
 
-        Built from the exact points, unit tangents and curvature vectors at its knots (quintic Hermite data);
-        the knots are refined until the distance between the spline and Newton-corrected points of the curve at
-        the same s, measured at nine points inside every span, stays below 0.9 tol x scale. A closed curve gives
-        a periodic spline (extrapolate='periodic').
+        Built from the exact points, unit tangents and curvature vectors at its knots (quintic Hermite data,
+        turned into B-spline control points by blossoming [1]_); the knots are refined until the distance
+        between the spline and Newton-corrected points of the curve at the same s, measured at nine points inside
+        every span, stays below 0.9 tol x scale. A closed curve gives a periodic spline (extrapolate='periodic').
 
         Parameters
         ----------
         tol : float
-            Allowed deviation, relative to the scene scale (the smaller surface size).
+            Allowed deviation, relative to the scene scale (the smaller surface size; see ``sk.intersect``).
 
         Returns
         -------
         scipy.interpolate.BSpline
-            Degree 5, triple interior knots; ``spline.deviation`` is the largest measured distance (length
-            unit), ``spline.checked`` how many curve points it was measured against.
+            Degree 5 in the arc length s (the user's length unit), triple interior knots, values (3,) per s;
+            ``spline.deviation`` is the largest measured distance (length unit), ``spline.checked`` how many curve
+            points it was measured against.
 
         Raises
         ------
         ValueError
             For a non-positive tol, or a curve of length zero (a contact point).
         SplineToleranceError
-            If tol lies below the round-off of the curve's points.
+            If tol lies below the round-off of the curve's points (spatialkin.tracing.bspline).
+
+        References
+        ----------
+        .. [1] L. Piegl, W. Tiller, The NURBS Book, 2nd ed., Springer, 1997 (blossoms and control points, ch. 2
+           and 5).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import spatialkin as sk
+        >>> curve = sk.trace(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))), (0.5, 0.9, 0.0))
+        >>> spline = curve.to_bspline(1e-8)                 # the scene scale is 1 here
+        >>> spline.k, bool(spline.deviation <= 1e-8)
+        (5, True)
+        >>> s = np.linspace(0.0, curve.length, 11)
+        >>> bool(np.max(np.linalg.norm(spline(s) - curve(s), axis=1)) <= 1e-8)
+        True
         """
         tol = check_positive("tol", tol)
         if self.length == 0:
@@ -228,8 +358,82 @@ Curve.__doc__ = (Curve.__doc__.replace("{statuses}", describe(CURVE_STATUSES, 8)
                  .replace("{precedence}", ", ".join(f"'{s}'" for s in END_PRECEDENCE)))
 #: The record's fields a Curve shows as read-only attributes of the same names (all but the dense output).
 RECORD_FIELDS = tuple(f.name for f in dataclasses.fields(CurveResult) if f.name != "sol")
+#: The example curve of the fields' docstrings: a circle of radius 0.8 on the unit sphere.
+_EXAMPLE = """
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> curve, = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))))
+"""
+#: The docstrings of the fields as Curve's attributes.
+FIELD_DOCS = {
+    "points": """Points on the curve, ndarray (N, 3), global coordinates in the user's length unit.
+
+    Solver steps (or exact samples of a closed form), each corrected onto both surfaces by Newton; a closed
+    curve's last point is its first, exactly.
+""" + _EXAMPLE + """    >>> curve.points.shape[1], bool((curve.points[-1] == curve.points[0]).all())
+    (3, True)
+    >>> np.allclose(curve.points[:, 2], 0.6)
+    True
+""",
+    "s": """Arc length at each point, ndarray (N,), increasing from 0 to ``length`` (the user's length unit).
+""" + _EXAMPLE + """    >>> bool(curve.s[0] == 0.0), bool(curve.s[-1] == curve.length)
+    (True, True)
+    >>> bool((np.diff(curve.s) > 0).all())
+    True
+    >>> np.allclose(curve(curve.s), curve.points)
+    True
+""",
+    "params": """Surface parameters (u1, v1, u2, v2) of each point, ndarray (N, 4).
+
+    (u1, v1) in the chart of surface a, (u2, v2) in that of surface b (angles in radians; a plane's u and v and
+    a cylinder's or cone's axial v in length units); periodic angles are continuous along the curve (not
+    wrapped).
+""" + _EXAMPLE + """    >>> sphere, plane = curve.surfaces
+    >>> np.allclose(sphere.point(curve.params[:, 0], curve.params[:, 1]), curve.points)
+    True
+    >>> np.allclose(plane.point(curve.params[:, 2], curve.params[:, 3]), curve.points)
+    True
+""",
+    "closed": """True for a closed loop (bool): the last point is the first, exactly; ``length`` is the period of s.
+""" + _EXAMPLE + """    >>> curve.closed
+    True
+""",
+    "length": """Arc length of the curve (float, the user's length unit); 0 for a contact point.
+""" + _EXAMPLE + """    >>> round(curve.length, 6)        # 2 pi 0.8
+    5.026548
+""",
+    "status": """How the curve ended (str): 'closed', or an open curve's ends' status ('boundary', 'singular', ...).
+
+    'contact' or 'tangent' for a point or a line where the surfaces touch. See the Curve class.
+""" + _EXAMPLE + """    >>> curve.status
+    'closed'
+""",
+    "message": """A sentence (str) on how the curve ended (both ends for an open curve).""",
+    "tolerance": """The accuracy asked for, an absolute length (float): tol times the scene scale, or 64 ulps of the
+    coordinates' magnitude where that is larger.""",
+    "nodes": """Singular points the curve passed straight through, ndarray (K, 3): nodes and apexes.""",
+    "solver_gap": """|M1 - M2| of the solver's own states at its steps before the Newton correction, ndarray (M,): a
+    diagnostic of drift.""",
+    "nfev": """Right-hand-side evaluations spent by solve_ivp on this curve (int; 0 for a closed form).""",
+    "wall_time": """Seconds spent tracing this curve (float).""",
+    "topology": """The search of sk.intersect that found the component (spatialkin.tracing.topology), or None.""",
+    "certificate": """What sk.intersect(..., certify=True) proved about this curve, or None without certify.
+
+    A spatialkin.tracing.certificate.Certificate: that no component is missed (the interval search) and, for
+    each stored point k, a radius ``radii[k]`` of a box round it holding a true intersection point.
+""" + _EXAMPLE + """    >>> curve.certificate is None
+    True
+    >>> torus, sphere = sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3)))
+    >>> loop = sk.intersect(torus, sphere, certify=True)[0]
+    >>> loop.certificate.radii.shape == (len(loop.points),), loop.certificate.all_points_proven
+    (True, True)
+""",
+}
 for _name in RECORD_FIELDS:
-    setattr(Curve, _name, property(operator.attrgetter(f"_result.{_name}"), doc=f"CurveResult.{_name}"))
+    setattr(Curve, _name, property(operator.attrgetter(f"_result.{_name}"),
+                                   doc=FIELD_DOCS.get(_name, f"CurveResult.{_name}")))
 
 
 # --- states and parameters: helpers of the dense output (spatialkin.tracing.dense) and of sk.trace ----------------

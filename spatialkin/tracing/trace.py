@@ -2,7 +2,11 @@
 
 References
 ----------
-Seed 002 (../shared/reference/looper-drive.md): the curve as the solution of the arc-length Cauchy problem.
+"Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
+light industry" (in Ukrainian; [Looper]): Dragilev's method, the intersection line parametrised by arc length as
+the solution of a Cauchy problem.
+E. Hairer, S. P. Nørsett, G. Wanner, Solving Ordinary Differential Equations I, 2nd ed., Springer, 1993: the
+Dormand-Prince pairs (DOP853), dense output and step-size control.
 """
 import math
 import time
@@ -35,8 +39,8 @@ DEFAULT_PULLBACK = 1.0
 #: solve_ivp method.
 DEFAULT_METHOD = COMPILED
 #: Longest solver step, in scene scales. DOP853's error estimate (its 5th- and 3rd-order estimates combined) can
-#: be optimistic on long steps: on a circle of radius 0.93 (aligned plane-torus stress case) steps of 0.75 were
-#: accepted with 40 times the tolerance's local error, and the loop's length came out 4.8e-9 (relative) off. With
+#: be optimistic on long steps: on a circle of radius 0.93 (the aligned plane-torus stress case) it accepts steps
+#: of 0.75 with 40 times the tolerance's local error, and the loop's length comes out 4.8e-9 (relative) off. With
 #: steps at most 0.2 the 319 traced stress cases' lengths lie within 1.8e-10 x scale of a reference (RK45 at
 #: rtol 1e-13) in 99% of cases, closer than RK45's steps (7.2e-10), for about 2% more time.
 MAX_STEP = 0.2
@@ -127,38 +131,91 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     Parameters
     ----------
     a, b : Surface
-        The two surfaces.
-    start : array_like (3,) or (4,)
-        A point near the curve, or parameters (u1, v1, u2, v2) near it.
+        The two surfaces (any kinds, trimmed or not).
+    start : array_like, shape (3,) or (4,)
+        A global point near the curve (the user's length unit), or parameters (u1, v1, u2, v2) near it (u1, v1
+        of surface a, u2, v2 of b). Newton moves it onto the curve first.
     tol : float
         Accuracy asked of every returned point and every dense evaluation, relative to the scene scale (the
-        smaller characteristic length of the two surfaces): distance to both surfaces <= tol * scale.
+        smaller characteristic length of the two surfaces: a sphere's or cylinder's radius, a torus's R + r):
+        distance to both surfaces <= tol * scale (``curve.tolerance``, an absolute length).
     method : str
         'compiled' (default): solve_ivp with spatialkin.tracing.ode.CompiledDOP853 (scipy's DOP853 steps, many
         per solver step in compiled code), handing singular points and apexes to the same engine with the fine
         events (spatialkin.tracing.ivp.FALLBACK_METHOD); 'compiled-rk45' the same with scipy's RK45 steps
-        (CompiledRK45); or a solve_ivp method ('DOP853', 'RK45', ...) for the whole curve.
+        (CompiledRK45); or a solve_ivp method ('DOP853', 'RK45', 'RK23', 'Radau', 'BDF', 'LSODA') for the whole
+        curve.
     rtol, atol : float
         solve_ivp tolerances on (u1, v1, u2, v2); atol defaults to rtol for angles and rtol * scale for lengths.
     max_length : float, optional
-        Longest arc length traced in each direction (default: 32 turns around the smaller surface extent).
+        Longest arc length traced in each direction, in the user's length unit (default: 32 turns round the
+        smaller surface extent).
     singular_tol : float
         A branch stops where sin(angle between the normals) falls below this.
     pullback : float
-        Pull-back rate times the scale (0 turns it off).
+        Pull-back rate times the scale: the gap |M1 - M2| of the integrated state decays like
+        exp(-pullback * s / scale) (0 turns it off).
     close : bool
         Detect closure (True) or trace on to max_length (False; for drift studies).
 
     Returns
     -------
     Curve
+        The component through the start: points (N, 3), arc lengths s (N,), parameters (N, 4), closed or open
+        (its ``status`` says how each end stopped), with dense evaluation ``curve(s)``.
 
     Raises
     ------
     ValueError
-        For bad arguments (named).
+        For bad arguments (named: `start`, `tol`, `method`, `rtol`, `atol`, `max_length`, `singular_tol`,
+        `pullback`).
+    TypeError
+        Naming `a` or `b` when it is not a spatialkin surface.
     TracingError
-        If no curve point is found near start, or start is a singular point of the intersection.
+        If no curve point is found near start (status 'no_start'), or start is a singular point of the
+        intersection (the normals parallel there).
+
+    See Also
+    --------
+    intersect : every component, each traced once, with no start needed.
+
+    Notes
+    -----
+    The curve M(s) common to both surfaces, s its arc length, solves the Cauchy problem
+    dM/ds = N_a x N_b / |N_a x N_b| (N_a, N_b the surfaces' normals), written for the parameters
+    (u1, v1, u2, v2) and integrated by scipy.integrate.solve_ivp from the located start in both directions
+    until the curve closes, leaves a trim or meets a singular point [1]_. Every stored point is then corrected
+    onto both surfaces by Newton, and the arc length is re-measured on the corrected curve. The integrator is
+    a Dormand-Prince pair with dense output [2]_.
+
+    References
+    ----------
+    .. [1] "Investigation of the trajectories of characteristic points of spatial mechanisms of technological
+       machines of the light industry" (in Ukrainian): Dragilev's method.
+    .. [2] E. Hairer, S. P. Nørsett, G. Wanner, Solving Ordinary Differential Equations I, 2nd ed., Springer,
+       1993.
+
+    Examples
+    --------
+    Two unit spheres one radius apart meet in a circle of radius sqrt(3)/2 in the plane x = 1/2:
+
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> a, b = sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0)))
+    >>> curve = sk.trace(a, b, (0.5, 0.9, 0.0))
+    >>> curve.closed, curve.status
+    (True, 'closed')
+    >>> round(curve.length, 6)          # 2 pi sqrt(3)/2
+    5.441398
+    >>> np.allclose(curve.points[:, 0], 0.5), bool(curve.max_distance <= curve.tolerance)
+    (True, True)
+
+    A start far from the curve:
+
+    >>> sk.trace(a, sk.Sphere(1.0, sk.Frame((5.0, 0.0, 0.0))), (2.5, 0.0, 0.0))
+    Traceback (most recent call last):
+    ...
+    spatialkin.tracing.result.TracingError: no intersection point found near start [2.5, 0.0, 0.0]: ...
     """
     check_surface("a", a)
     check_surface("b", b)

@@ -11,9 +11,13 @@ e^t, in t, or a linear equation). The arcs between crossings that lie inside eve
 oriented as the tracer runs them (along N_a x N_b), sampled as exact points with exact arc lengths
 (spatialkin.tracing.conic).
 
-``closed_form`` declines (returns None, and sk.intersect runs its general path) on everything degenerate: a
-tangency or a touch of a trim edge or corner within GRAZE x tolerance, a plane through a cone's apex, coincident
-surfaces, near-parallel configurations whose conic would be huge, both surfaces unbounded.
+An ellipse that touches a trim edge from inside to round-off (a circle inscribed in a plane's rectangle, a half
+circle ending in the corners of the edges it touches) keeps the trim's side: the touch is no crossing, and
+crossings of two trims at one point (a corner) are one end. ``closed_form`` declines (returns None, and
+sk.intersect runs its general path) on what is degenerate otherwise: a tangency of the surfaces or a touch of a
+trim edge from outside (the patch met in one point) or by a hyperbola's or parabola's vertex within GRAZE x
+tolerance, a plane through a cone's apex, coincident surfaces, near-parallel configurations whose conic would be
+huge, both surfaces unbounded.
 """
 import collections
 import functools
@@ -33,9 +37,11 @@ from .topology import Topology
 from .trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
 from .traits import traits
 
-#: A curve within this many times the tolerance of touching a trim level, a corner, or the other surface
-#: (tangency, a plane through an apex) is left to the general path.
+#: A curve within this many times the tolerance of touching the other surface (tangency, a plane through an apex)
+#: or of a vertex's touch of a trim level is left to the general path.
 GRAZE = 1e3
+#: crossings' answer where an ellipse touches a trim level (a double root: no crossing).
+TOUCH = "touch"
 #: A conic whose centre or semi-axes exceed this many scales (a plane nearly parallel to a cylinder's axis or to a
 #: cone's generatrix) is left to the general path: its points would lose digits.
 LARGE = 1e4
@@ -145,8 +151,9 @@ def components(placed, conics, trims, graze, settings, topo, nodes=()):
     """The CurveResults (in sk.intersect's order) of the conics ([(shape, rows)]) on the surfaces (Placed), clipped by
     the trims; nodes (K, 3) where two of them cross, each given to the arcs it lies on. None where declined."""
     curves = []
+    touch = roundoff(placed, settings.scale)
     for shape, rows in conics:
-        arcs = clip(shape, rows, trims, graze)
+        arcs = clip(shape, rows, trims, graze, touch)
         if arcs is None:
             return None
         for t_lo, t_hi, ends in arcs:
@@ -451,14 +458,15 @@ def linear_trims(surfaces):
     return trims
 
 
-def crossings(shape, beta, gamma, level, graze):
-    """The t where beta f(t) + gamma g(t) = level (see spatialkin.tracing.conic for f, g); None where the conic
-    touches the level within graze (its extremum there, or a line along it)."""
+def crossings(shape, beta, gamma, level, graze, touch):
+    """The t where beta f(t) + gamma g(t) = level (see spatialkin.tracing.conic for f, g); TOUCH where an ellipse's
+    extremum meets the level within touch (the round-off of the coordinates: a double root, no crossing); None
+    where a hyperbola's or parabola's vertex touches the level within graze, or a line runs along it."""
     if shape == ELLIPSE:
         amp = math.hypot(beta, gamma)
-        if abs(amp - abs(level)) <= graze:
-            return None
-        if abs(level) > amp:
+        if abs(amp - abs(level)) <= touch:
+            return TOUCH
+        if abs(level) >= amp:
             return []
         phi, half = math.atan2(gamma, beta), math.acos(level / amp)
         return [(phi - half) % TWO_PI, (phi + half) % TWO_PI]
@@ -486,9 +494,11 @@ def quadratic(a2, a1, a0):
     return [q / a2] if q == 0.0 else [q / a2, a0 / q]
 
 
-def clip(shape, rows, trims, graze):
+def clip(shape, rows, trims, graze, touch):
     """[(t_lo, t_hi, ends)] of the arcs of the conic inside every trim; ends is None for a whole ellipse, else
-    ((surface, edge) at t_lo, at t_hi); None where declined (a touch, a corner, an unbounded arc)."""
+    ((surface, edge) at t_lo, at t_hi); None where declined (a touch from outside, a vertex's touch, a line along an
+    edge, an unbounded arc). An ellipse touching an edge from inside (within touch) is not cut there; crossings
+    within touch of each other (a corner) are one end."""
     (c0, c1, c2), (p0, p1, p2), (q0, q1, q2) = rows
     linear = []                                     # (alpha, beta, gamma, side): the trim's alpha + beta f + gamma g
     events = []
@@ -496,10 +506,16 @@ def clip(shape, rows, trims, graze):
         alpha = w0 * c0 + w1 * c1 + w2 * c2 - bound         # (dot(w, rows[k]) written out)
         beta = w0 * p0 + w1 * p1 + w2 * p2
         gamma = w0 * q0 + w1 * q1 + w2 * q2
-        linear.append((alpha, beta, gamma, side))
-        roots = crossings(shape, beta, gamma, -alpha, graze)
+        roots = crossings(shape, beta, gamma, -alpha, graze, touch)
+        if roots is TOUCH:        # the ellipse's far extremum tells its side of the level it touches
+            far = math.atan2(gamma, beta) + (math.pi if -alpha > 0.0 else 0.0)
+            f, g = basis(shape, far, 0, math)
+            if (alpha + beta * f + gamma * g) * side > touch:
+                return None                                  # outside but for the touch point
+            continue                                         # inside: not cut, and not tested again
         if roots is None:
             return None
+        linear.append((alpha, beta, gamma, side))
         for t in roots:
             events.append((t, edge))
     events.sort()
@@ -520,14 +536,14 @@ def clip(shape, rows, trims, graze):
         events.append((events[0][0] + TWO_PI, events[0][1]))
     elif inside(events[0][0] - 1.0) or inside(events[-1][0] + 1.0):
         return None                                          # an unbounded arc
-    last = None
-    for t, _ in events:
+    kept, last = [], None
+    for t, edge in events:
         f, g = basis(shape, t, 0, math)
         point = (c0 + f * p0 + g * q0, c1 + f * p1 + g * q1, c2 + f * p2 + g * q2)      # (combine(rows, f, g))
-        if last is not None and math.dist(last, point) <= graze:
-            return None                                      # a corner, or two trims crossed at one point
-        last = point
-    return [(t0, t1, (e0, e1)) for (t0, e0), (t1, e1) in zip(events, events[1:]) if inside(0.5 * (t0 + t1))]
+        if last is None or math.dist(last, point) > touch:
+            kept.append((t, edge))
+        last = point                     # (a corner: two trims crossed at one point, kept once)
+    return [(t0, t1, (e0, e1)) for (t0, e0), (t1, e1) in zip(kept, kept[1:]) if inside(0.5 * (t0 + t1))]
 
 
 # --- the components ----------------------------------------------------------------------------------------------

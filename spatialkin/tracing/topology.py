@@ -42,7 +42,8 @@ from ..kernels import interval as ki
 from ..kernels import surfaces as ks
 from ..kernels import topology as kt
 from .placement import bounding_ball, check_not_coincident, common_axis, ruled_along
-from .traits import power_of_two, traits
+from .trace import EPS, ROUNDOFF_ULPS
+from .traits import LENGTH, power_of_two, traits
 
 #: The fixed direction d (an angle in the plane of scaled parameters) whose extremes seed the closed loops;
 #: any direction works, a generic one keeps straight pieces of the level from lying along d's normal.
@@ -97,8 +98,35 @@ CRITICAL_ITER = 40
 
 
 class TopologyError(RuntimeError):
-    """The topology stage could not prove where the components are (its box budget ran out, e.g. on a
-    tangency along a curve in a placement it does not recognise); ``where`` names the search."""
+    """The topology stage could not prove where every component is.
+
+    ``sk.intersect`` raises it rather than return an answer that may miss a component. It happens on a tangency along a curve in a placement the stage does not recognise, or surfaces that nearly
+    touch along a stretch: the interval search runs out of its box budget, fills its record of roots, or finds
+    starts it can neither place on a curve nor trace.
+
+    Parameters
+    ----------
+    message : str
+        What stopped and where.
+    where : str, optional
+        The search that stopped: 'interior', 'edge of P', 'meridian', ... or 'starts'.
+
+    Attributes
+    ----------
+    where : str or None
+
+    Examples
+    --------
+    >>> import spatialkin as sk
+    >>> def components_or_none(a, b):
+    ...     try:
+    ...         return sk.intersect(a, b)
+    ...     except sk.TopologyError as error:
+    ...         print("not resolved by the", error.where, "search")
+    ...         return None
+    >>> len(components_or_none(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0)))))
+    1
+    """
 
     def __init__(self, message, where=None):
         super().__init__(message)
@@ -446,11 +474,12 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
     v_unit = step_units(p, scale)[1]                 # (a cone's or cylinder's v is a length)
     q_rim = traits(q).trim_breaks_revolution(q)
     found = [(v, True) for v in roots]
+    linear_v = traits(p).units[1] == LENGTH      # v runs on past a trim (a cylinder's or cone's rim)
     for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2])):
         # a cluster across which g changes sign is a simple root blurred by round-off (a tiny parallel near a
-        # pole); one across which it keeps its sign is a multiple root (a tangency)
+        # pole); one across which it keeps its sign is a multiple root (a tangency); at a rim, g is read past it
         h = CLUSTER_SIDE * (box[3] - box[2])
-        lo, hi = max(v - h, box[2]), min(v + h, box[3])
+        lo, hi = (v - h, v + h) if linear_v else (max(v - h, box[2]), min(v + h, box[3]))
         side = pq.values([[-math.pi, lo], [-math.pi, hi]])[:, 0]
         clear = not pq.on_level((-math.pi, lo)) and not pq.on_level((-math.pi, hi))
         if clear and side[0] * side[1] < 0:
@@ -495,11 +524,12 @@ def ruled_components(p, q, pq, box, topo, scale):
     v_mid = traits(p).cross_section(box[2], box[3])
     roots, unresolved = pq.line(1, v_mid, -math.pi, math.pi, topo, "cross-section")
     for u, simple in [(u, True) for u in roots] + [(u, False) for u in merge_values(unresolved, 8 * COARSE * math.pi)]:
-        lo, hi = clip_line(p, u, box[2], box[3], q)
+        if not simple:
+            u = double_root(pq, 1, v_mid, u)       # (before the clip: a line of tangency may run along Q's edge)
+        lo, hi = clip_line(p, u, box[2], box[3], q, scale)
         if not lo < hi:
             continue
         if not simple:
-            u = double_root(pq, 1, v_mid, u)
             h = 1e-6
             side = pq.values([[u - h, v_mid], [u + h, v_mid]])[:, 0]
             if side[0] * side[1] > 0:
@@ -535,18 +565,20 @@ def double_root(reader, fixed, value, t, unit=1.0):
     return x if abs(x - t) <= 1e-5 * max(unit, abs(t)) else t
 
 
-def clip_line(p, u, v_lo, v_hi, q):
+def clip_line(p, u, v_lo, v_hi, q, scale):
     """The v-interval of the line u = const of the ruled P within [v_lo, v_hi] that lies inside Q's trim (the
-    trims of Q's length parameters, each along its local axis)."""
+    trims of Q's length parameters, each along its local axis). A line along a trim edge to round-off (ROUNDOFF_ULPS
+    of the coordinates' magnitude) lies on it, inside the closed trim."""
     ends = p.point(np.array([u, u]), np.array([v_lo, v_hi]))
     lo, hi = 0.0, 1.0
     local = q.frame.to_local(ends)
+    slack = ROUNDOFF_ULPS * EPS * max(scale, float(np.max(np.abs(ends))), float(np.max(np.abs(q.frame.origin))))
     limits = [(axis, *trim) for axis, trim in zip(traits(q).parameter_axes, (q.u_range, q.v_range))
               if axis is not None]
     for k, a, b in limits:
         x0, x1 = local[0, k], local[1, k]
-        if x1 == x0:
-            if not a <= x0 <= b:
+        if abs(x1 - x0) <= slack:
+            if not a - slack <= 0.5 * (x0 + x1) <= b + slack:
                 return 0.0, -1.0
             continue
         t_a, t_b = (a - x0) / (x1 - x0), (b - x0) / (x1 - x0)

@@ -198,8 +198,9 @@ def test_degenerate_placements_decline(monkeypatch):
     cyl = sk.Cylinder(0.8, sk.Frame(), (-1.0, 1.0))
     along = sk.Plane(sk.Frame((0.8, 0.0, 0.0), rotation_about((0.0, 1.0, 0.0), math.pi / 2)), (-2, 2), (-2, 2))
     assert declined(along, cyl)
-    # a circle touching the rectangle's edge (the sphere's circle in z = 0.6 has radius 0.8: edge u = 0.8)
-    edge = sk.Plane(sk.Frame((0.0, 0.0, 0.6), np.eye(3)), (-2.0, 0.8), (-2.0, 2.0))
+    # a circle touching the rectangle from outside (the sphere's circle in z = 0.6 has radius 0.8: edge u = 0.8):
+    # the patches meet in one point
+    edge = sk.Plane(sk.Frame((0.0, 0.0, 0.6), np.eye(3)), (0.8, 2.0), (-2.0, 2.0))
     assert declined(edge, sphere)
     # coincident: the general path raises
     for a, b in ((sphere, sk.Sphere(1.0)), (tangent, sk.Plane(sk.Frame((0.5, 0.0, 1.0), np.eye(3)), (-1, 1), (-1, 1)))):
@@ -208,6 +209,68 @@ def test_degenerate_placements_decline(monkeypatch):
             sk.intersect(a, b)
     with pytest.raises(ValueError):
         sk.intersect(sk.Plane(), sk.Cylinder(1.0))
+
+
+def moved(rotation, shift, origin, local=np.eye(3)):
+    """The frame at `origin` with axes `local`, moved by the rigid motion x -> rotation x + shift."""
+    return sk.Frame(rotation @ np.asarray(origin, float) + shift, rotation @ local)
+
+
+#: Circles touching a plane's rectangle from inside, at edges or corners, each with its oracle: (name, the pair
+#: from a rigid motion, the length, closed). The cylinder's circle in z = 2 has radius 1; the sphere's in z = 0.6
+#: has radius 0.8; the cylinder's rims are the circles in z = 0 and z = 4.
+TOUCHING = (
+    ("inscribed in a square", lambda R, t: (sk.Cylinder(1.0, moved(R, t, (0, 0, 0)), (0.0, 4.0)),
+                                            sk.Plane(moved(R, t, (0, 0, 2)), (-1.0, 1.0), (-1.0, 1.0))),
+     2 * math.pi, True),
+    ("touching three edges", lambda R, t: (sk.Cylinder(1.0, moved(R, t, (0, 0, 0)), (0.0, 4.0)),
+                                           sk.Plane(moved(R, t, (0, 0, 2)), (-1.0, 2.0), (-1.0, 1.0))),
+     2 * math.pi, True),
+    ("half, ending in two corners", lambda R, t: (sk.Cylinder(1.0, moved(R, t, (0, 0, 0)), (0.0, 4.0)),
+                                                  sk.Plane(moved(R, t, (0, 0, 2)), (0.0, 1.0), (-1.0, 1.0))),
+     math.pi, False),
+    ("quarter, between a corner and an edge", lambda R, t: (
+        sk.Cylinder(1.0, moved(R, t, (0, 0, 0)), (0.0, 4.0)), sk.Plane(moved(R, t, (0, 0, 2)), (0.0, 1.0), (0.0, 3.0))),
+     0.5 * math.pi, False),
+    ("sphere's circle touching one edge", lambda R, t: (
+        sk.Sphere(1.0, moved(R, t, (0, 0, 0))), sk.Plane(moved(R, t, (0, 0, 0.6)), (-2.0, 0.8), (-2.0, 2.0))),
+     2 * math.pi * 0.8, True),
+    ("on a cylinder's rim", lambda R, t: (sk.Cylinder(1.0, moved(R, t, (0, 0, 0)), (0.0, 4.0)),
+                                          sk.Plane(moved(R, t, (0, 0, 4)))), 2 * math.pi, True),
+)
+
+
+@pytest.mark.parametrize("name, pair, length, closed", TOUCHING, ids=[c[0] for c in TOUCHING])
+def test_circles_touching_trim_edges_from_inside(name, pair, length, closed):
+    """A circle touching a trim edge from inside stays whole there, and one ending in a corner ends there once:
+    one curve of the oracle's length (exact: 2 pi r, its half or quarter), closed or not, in both orders and in
+    placements moved by random rigid motions, its points within round-off of both trimmed patches."""
+    rng = np.random.default_rng(7)
+    motions = [(np.eye(3), np.zeros(3))] + [(rotation_about(rng.normal(size=3), rng.uniform(0.0, math.pi)),
+                                              rng.uniform(-3.0, 3.0, 3)) for _ in range(3)]
+    for rotation, shift in motions:
+        a, b = pair(rotation, shift)
+        for first, second in ((a, b), (b, a)):
+            curves = sk.intersect(first, second)
+            assert len(curves) == 1, (name, [(c.status, c.length) for c in curves])
+            curve = curves[0]
+            assert abs(curve.length - length) <= 1e-12 * length
+            assert curve.closed == closed and curve.status == ("closed" if closed else "boundary")
+            for surface in (a, b):
+                assert np.max(surface.distance(curve.points)) <= 1e-14 * 8
+
+
+def test_a_line_of_tangency_along_a_trim_edge_is_kept():
+    """A plane tangent to a cylinder along a ruling that is the plane's trim edge: the segment on the edge, length
+    2 (the plane's trim along the axis), status 'tangent', on either side of the edge and in both orders."""
+    cylinder = sk.Cylinder(1.0, sk.Frame(), (0.0, 4.0))
+    turn = rotation_about((0.0, 1.0, 0.0), math.pi / 2)      # the plane's local z along x, its v along y
+    for v_range in ((0.0, 1.0), (-1.0, 0.0), (-1.0, 1.0)):
+        plane = sk.Plane(sk.Frame((1.0, 0.0, 0.0), turn), (-3.0, -1.0), v_range)
+        for pair in ((cylinder, plane), (plane, cylinder)):
+            curves = sk.intersect(*pair)
+            assert [(c.status, c.closed) for c in curves] == [("tangent", False)], v_range
+            assert abs(curves[0].length - 2.0) <= 1e-12
 
 
 def test_nothing_and_orders():

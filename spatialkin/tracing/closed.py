@@ -27,7 +27,7 @@ import numpy as np
 
 from ..kernels import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, basis
-from .exact import SampledResult, exact_curve
+from .exact import SampledResult, contact_point, exact_curve
 from .placement import SAME
 from .result import in_sk_order
 from .segments import EDGE_NAMES
@@ -125,7 +125,10 @@ def closed_form(a, b, settings):
         conics = plane_line(*placed, graze, settings.scale)
     elif "plane" in names and (names[0] in QUADRICS or names[1] in QUADRICS):
         plane, quadric = placed if names[0] == "plane" else placed[::-1]
-        conics = plane_conics(plane, quadric, graze, settings.scale, roundoff(placed, settings.scale))
+        gap = roundoff(placed, settings.scale)
+        if quadric.name == "cone" and abs(dot(plane.z, [quadric.origin[k] - plane.origin[k] for k in range(3)])) <= gap:
+            return apex_components((a, b), placed, plane, quadric, graze, gap, settings, topo)
+        conics = plane_conics(plane, quadric, graze, settings.scale, gap)
         if isinstance(conics, tuple):                       # a circle about a common axis: as the general path
             return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=conics,
                                                       event="axis_circle", topology=topo)]
@@ -269,14 +272,16 @@ def line_span(trims, origin, direction):
 
 
 def on_arc(shape, rows, t_lo, t_hi, ends, x, near=0.0):
-    """True when the point x (3,) of the conic (an ellipse, rows = centre, P, Q with P normal to Q) lies on its arc
-    [t_lo, t_hi] (ends None: the whole ellipse)."""
+    """True when the point x (3,) of the conic (an ellipse, rows = centre, P, Q with P normal to Q, or a line,
+    centre + t Q) lies on its arc [t_lo, t_hi] (ends None: the whole ellipse)."""
     if ends is None:
         return True
     for t in (t_lo, t_hi):                                   # a node at an end of the arc (a trim through it)
         if math.dist(combine(rows, *basis(shape, t, 0, math)), x) <= near:
             return True
     (c, p, q), d = rows, [x[0] - rows[0][0], x[1] - rows[0][1], x[2] - rows[0][2]]
+    if shape == LINE:
+        return t_lo <= dot(d, q) / dot(q, q) <= t_hi
     t = math.atan2(dot(d, q) / dot(q, q), dot(d, p) / dot(p, p)) % TWO_PI
     return t_lo <= t <= t_hi or t_lo <= t + TWO_PI <= t_hi
 
@@ -430,6 +435,33 @@ def plane_conics(plane, quadric, graze, scale, apex_gap=None):
         c0, c1, c2 = to_global(rot, c)
         out.append((shape, [[o0 + c0, o1 + c1, o2 + c2], to_global(rot, P), to_global(rot, Q)]))
     return out
+
+
+def apex_components(surfaces, placed, plane, cone, graze, gap, settings, topo):
+    """a ∩ b for a plane through a cone's apex (to round-off): the double cone's rulings w = (tan cos phi,
+    tan sin phi, 1) (local) in the plane, n . w = 0. Tilted from the axis by more than the half angle, the plane
+    meets the cone in the apex alone (a contact point, where the apex lies inside both trims); by less, in two
+    rulings crossing at the apex (each clipped by the trims, the apex their node). None (declined) where the plane
+    is within graze of tangent to the cone along a ruling, or a ruling is unbounded."""
+    n0, n1, n2 = to_local(cone.rot, plane.z)
+    tan = math.sqrt(-cone.form[0])
+    reach = tan * math.hypot(n0, n1)                # n . w over phi: -... in [n2 - reach, n2 + reach]
+    if abs(reach - abs(n2)) <= graze / settings.scale:
+        return None                                          # tangent along a ruling (or nearly)
+    trims = linear_trims(placed)
+    if trims is None:
+        return None
+    apex = cone.origin
+    if reach < abs(n2):
+        inside = all((dot(w, apex) - bound) * side <= gap for w, bound, side, _ in trims)
+        return [contact_point(surfaces, apex, settings.tolerance)] if inside else []
+    psi, half = math.atan2(n1, n0), math.acos(-n2 / reach)
+    lines = []
+    for phi in (psi - half, psi + half):
+        w = [tan * math.cos(phi), tan * math.sin(phi), 1.0]
+        size = math.sqrt(dot(w, w))
+        lines.append((LINE, [list(apex), [0.0, 0.0, 0.0], to_global(cone.rot, [x / size for x in w])]))
+    return components(placed, lines, trims, graze, settings, topo, nodes=[list(apex)])
 
 
 def inside_axial(quadric, z, margin):

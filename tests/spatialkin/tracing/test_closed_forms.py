@@ -185,16 +185,17 @@ def declined(a, b):
 
 
 def test_degenerate_placements_decline(monkeypatch):
-    """Tangency, an apex, coincidence, a touch of a trim edge or a corner, both surfaces unbounded: declined, and
-    sk.intersect answers as its general path does (a contact point, an error)."""
+    """Tangency (at a point, along a cone's ruling through its apex), coincidence, a touch of a trim edge from
+    outside, both surfaces unbounded: declined, and sk.intersect answers as its general path does (a contact
+    point, a line of tangency, an error)."""
     sphere = sk.Sphere(1.0)
     tangent = sk.Plane(sk.Frame((0.0, 0.0, 1.0), np.eye(3)), (-1, 1), (-1, 1))
     assert declined(tangent, sphere)
     assert [c.status for c in sk.intersect(tangent, sphere)] == ["contact"]
     cone = sk.Cone(0.5, sk.Frame(), (-1.0, 2.0))
-    apex = sk.Plane(sk.Frame((0.0, 0.0, 0.0), rotation_about((1.0, 0.0, 0.0), 0.3)), (-1, 1), (-1, 1))
-    assert declined(apex, cone)
-    assert [c.status for c in sk.intersect(apex, cone)] == [c.status for c in general(apex, cone, monkeypatch)]
+    along = sk.Plane(sk.Frame((0.0, 0.0, 0.0), rotation_about((1.0, 0.0, 0.0), math.pi / 2 - 0.5)), (-3, 3), (-3, 3))
+    assert declined(along, cone)                          # through the apex, tangent along a ruling
+    assert [c.status for c in sk.intersect(along, cone)] == [c.status for c in general(along, cone, monkeypatch)]
     cyl = sk.Cylinder(0.8, sk.Frame(), (-1.0, 1.0))
     along = sk.Plane(sk.Frame((0.8, 0.0, 0.0), rotation_about((0.0, 1.0, 0.0), math.pi / 2)), (-2, 2), (-2, 2))
     assert declined(along, cyl)
@@ -324,3 +325,37 @@ def test_a_plane_beside_a_cone_apex_cuts_a_small_ellipse(offset):
             assert [c.status for c in curves] == ["closed"]
             assert abs(curves[0].length - exact) <= 1e-9 * exact + 1e-15
             assert curves[0].max_distance <= 1e-15
+
+
+@pytest.mark.parametrize("tilt", [0.0, 0.3, 0.5, 0.6, 1.2, math.pi / 2])
+def test_a_plane_through_a_cones_apex(tilt):
+    """A plane through the apex of a double cone (half angle 30 deg, trimmed to |z| <= 2), at the angle `tilt` to
+    the axis. Oracle: below the half angle it holds two rulings, each through the apex from rim to rim, of length
+    4 / cos(30 deg) whatever their direction, crossing at the apex (each curve's node); above it, the apex alone
+    (a contact point). Both orders, random rigid placements; points on both surfaces to round-off."""
+    alpha = math.pi / 6
+    rng = np.random.default_rng(11)
+    for _ in range(3):
+        rotation, shift = rotation_about(rng.normal(size=3), rng.uniform(0.0, math.pi)), rng.uniform(-3.0, 3.0, 3)
+        cone = sk.Cone(alpha, sk.Frame(shift, rotation), (-2.0, 2.0))
+        plane = sk.Plane(sk.Frame(shift, rotation @ rotation_about((0.0, 1.0, 0.0), math.pi / 2 - tilt)),
+                         (-5.0, 5.0), (-5.0, 5.0))
+        for pair in ((cone, plane), (plane, cone)):
+            curves = sk.intersect(*pair)
+            if tilt < alpha:
+                assert [(c.status, c.closed) for c in curves] == [("boundary", False)] * 2
+                for c in curves:
+                    assert abs(c.length - 4.0 / math.cos(alpha)) <= 1e-12
+                    np.testing.assert_allclose(c.result.nodes, [shift], rtol=0, atol=1e-14 * 8)
+            else:
+                assert [c.status for c in curves] == ["contact"]
+                np.testing.assert_allclose(curves[0].points, [shift], rtol=0, atol=1e-14 * 8)
+            for c in curves:
+                for surface in pair:
+                    assert np.max(surface.distance(c.points)) <= 1e-14 * 8
+
+
+def test_a_cones_apex_outside_the_planes_patch_is_no_contact():
+    cone = sk.Cone(math.pi / 6, sk.Frame(), (-2.0, 2.0))
+    plane = sk.Plane(sk.Frame(), (0.5, 1.0), (0.5, 1.0))     # through the apex, the axis its normal
+    assert sk.intersect(cone, plane) == [] and sk.intersect(plane, cone) == []

@@ -1,5 +1,6 @@
 """The README's examples run as written: every ```python block in order in one namespace (as a reader pastes
-them into one session), in a scratch folder; every ```toml block is a valid looper config."""
+them into one session), in a scratch folder; every ```toml block is a valid looper config; every picture it shows
+is in the repository; it describes the product, not its history."""
 import os
 import re
 from pathlib import Path
@@ -48,3 +49,19 @@ def test_toml_examples_are_valid_configs(tmp_path):
         for got, want in ((drive.crank_frame, reference.crank_frame), (drive.rocker_frame, reference.rocker_frame)):
             np.testing.assert_allclose(got.rotation, want.rotation, rtol=0, atol=1e-15)
             np.testing.assert_allclose(got.origin, want.origin, rtol=0, atol=0)
+
+
+def test_pictures_are_in_the_repository():
+    pictures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", README.read_text())
+    assert len(pictures) >= 2
+    for path in pictures:
+        file = README.parent / path
+        assert file.suffix == ".png" and file.is_file() and file.stat().st_size > 10_000, path
+
+
+#: Words of development history that a user-facing README does not carry (see the no-history rule).
+HISTORY = re.compile(r"seed[ -]?00\d|\.\./shared|this session|\bround\b of|farm-bench|\bissue \d+", re.I)
+
+
+def test_no_history():
+    assert not HISTORY.findall(README.read_text())

@@ -46,6 +46,8 @@ def positions(link, rhos, link_from=-4.0, link_to=None, count=12, samples=721, t
         ax.plot(path[:, 0], path[:, 1], lw=1.6, label=f"rho = {rho:g}")
     ax.set_aspect("equal")
     ax.legend(loc="upper right", fontsize=8)
+    ax.set_xlabel("x (length unit)")
+    ax.set_ylabel("y (length unit)")
     ax.set_title(title or "link positions and point trajectories")
     return fig
 
@@ -67,6 +69,8 @@ def vectors(link, rhos, kind="velocity", scale=0.5, ds=None, samples=721, title=
         ax.quiver(t.position[:, 0], t.position[:, 1], scale * vec[:, 0], scale * vec[:, 1], angles="xy",
                   scale_units="xy", scale=1.0, width=0.004)
     ax.set_aspect("equal")
+    ax.set_xlabel("x (length unit)")
+    ax.set_ylabel("y (length unit)")
     ax.set_title(title or f"{kind} vectors, m = {scale:g}")
     return fig
 

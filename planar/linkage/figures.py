@@ -53,6 +53,8 @@ def mechanism(motion, indices=(0,), ax=None, labels=True, title=None):
     ground = np.array(list(linkage.fixed.values()))
     ax.plot(ground[:, 0], ground[:, 1], "^", ms=JOINT_SIZE + 4, color=GROUND_COLOUR)
     ax.set_aspect("equal")
+    ax.set_xlabel("x (length unit)")
+    ax.set_ylabel("y (length unit)")
     ax.set_title(title or "mechanism at input angle(s) " + ", ".join(
         f"{math.degrees(motion.crank_angles[i]):.4g}" for i in indices[:4]) + " deg")
     return fig
@@ -72,6 +74,8 @@ def paths(motion, joints=("B", "C", "K"), ax=None, with_mechanism=True, title=No
         ax.plot(p[:, 0], p[:, 1], lw=1.4, label=f"path of {j}")
     ax.legend(loc="best", fontsize=8)
     ax.set_aspect("equal")
+    ax.set_xlabel("x (length unit)")
+    ax.set_ylabel("y (length unit)")
     ax.set_title(title or "joint trajectories")
     return fig
 

@@ -14,14 +14,14 @@ class Certificate:
 
     Proven (with outward-rounded interval arithmetic, so round-off cannot break it):
 
-    - **No component is missed.** The topology stage (spatialkin.tracing.topology) searched the whole
+    - **The search discarded no component.** The topology stage (spatialkin.tracing.topology) searched the whole
       parameter domain of one surface: every box it discarded provably holds no root of the conditions that
       every component must meet somewhere (a zero of g on an edge or a seam, on a ring round an apex, or a point
       of the level whose tangent is normal to a fixed direction); the roots it kept are isolated and unique in
-      their boxes (interval Newton, Krawczyk) or are singular points classified by the Hessian. Every kept root
-      lies on one of the returned curves (``components`` in all). ``boxes``, ``verified_roots`` and
-      ``singular_points`` count that search; ``mode`` says which configuration was recognised ('general',
-      'coaxial': parallels of a common axis, found on one meridian; 'ruled': lines along a cylinder's axis).
+      their boxes (interval Newton, Krawczyk) or are singular points classified by the Hessian. ``boxes``,
+      ``verified_roots`` and ``singular_points`` count that search; ``mode`` says which configuration was
+      recognised ('general', 'coaxial': parallels of a common axis, found on one meridian; 'ruled': lines along a
+      cylinder's axis); ``components`` is the number of curves returned.
     - **Each stored point is near a true point.** For stored point k a box of half-width ``radii[k]`` round it
       holds exactly one point of both (untrimmed) surfaces in the plane through it normal to the curve (the
       Krawczyk operator on F_a = 0, F_b = 0, t . (x - p) = 0, in arb ball arithmetic), so a true intersection
@@ -29,6 +29,8 @@ class Certificate:
 
     Not proven:
 
+    - that every root the search kept lies on one of the returned curves: that is decided by distance (the
+      de-duplication's radius), so two components closer than it may come back as one curve, certified;
     - the arcs between stored points (dense evaluations are Newton-corrected and measured, not proven);
     - that two returned curves are different components, or that a curve's pieces joined at a node belong
       together (the tracer passes nodes straight through);

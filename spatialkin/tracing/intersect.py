@@ -93,8 +93,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     chart (a pole, an apex), or is a closed loop holding a critical point where its tangent is normal to a fixed
     direction. Those roots are found by interval subdivision with outward rounding [2]_ [3]_, a box dropped only
     when an enclosure proves it root-free and a root kept once the interval Newton or Krawczyk operator proves it
-    isolated, so no component is missed, however small [4]_ [5]_; boxes that shrink to round-off without either
-    proof are singular points (contacts, nodes), classified by the Hessian. Each component is then traced once by
+    isolated, so the search seeds every component, however small [4]_ [5]_; boxes that shrink to round-off without
+    either proof are singular points (contacts, nodes), classified by the Hessian. Each component is then traced once by
     ``trace`` (Dragilev's method [1]_), and the starts lying on it are skipped.
 
     References

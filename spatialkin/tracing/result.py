@@ -421,8 +421,9 @@ FIELD_DOCS = {
     "topology": """The search of sk.intersect that found the component (spatialkin.tracing.topology), or None.""",
     "certificate": """What sk.intersect(..., certify=True) proved about this curve, or None without certify.
 
-    A spatialkin.tracing.certificate.Certificate: that no component is missed (the interval search) and, for
-    each stored point k, a radius ``radii[k]`` of a box round it holding a true intersection point.
+    A spatialkin.tracing.certificate.Certificate: what the interval search proved (no box it discarded holds a
+    component) and, for each stored point k, a radius ``radii[k]`` of a box round it holding a true intersection
+    point; and what it did not prove (see Certificate).
 """ + _EXAMPLE + """    >>> curve.certificate is None
     True
     >>> torus, sphere = sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3)))

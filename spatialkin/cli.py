@@ -1,6 +1,7 @@
 """Command line: ``spatialkin looper --out DIR [--config FILE.toml]`` (the main job), ``spatialkin demo``
 (torus ∩ sphere of the looper, every component), ``spatialkin bench [--out DIR] [--quick]`` (speed against
-error: work–precision table, ratios against the peers, CSV and PNG) and ``spatialkin --version``.
+error: work–precision table, ratios against the peers, CSV and PNG), ``spatialkin design --targets FILE.toml``
+(fit a looper drive to targets) and ``spatialkin --version``.
 
 Every bad input ends in one line on stderr and exit status 2.
 """
@@ -105,6 +106,8 @@ def parser():
     p_bench.add_argument("--out", default=None, help="folder for bench.csv, bench.png, bench_kinds.csv and bench_kinds.png (created if missing)")
     p_bench.add_argument("--quick", action="store_true", help="a short run: two cases, two tolerances, one repeat")
     p_bench.set_defaults(func=bench)
+    # listed here for --help; ``main`` hands `spatialkin design ...` to spatialkin/design/cli.py before parsing
+    sub.add_parser("design", help="fit a looper drive to targets and write its config (spatialkin design --help)")
     return top
 
 

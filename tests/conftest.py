@@ -14,7 +14,7 @@ SLOW = (
     "tests/spatialkin/tracing/test_stress.py",
     "tests/spatialkin/tracing/test_topology_stress.py",
     "tests/spatialkin/tracing/test_survey.py",
-    "tests/notebooks/",
+    "tests/notebooks/test_notebooks.py::test_notebook_runs",
     "tests/spatialkin/continuation/test_continuation.py::test_locks_of_an_ellipse_match_the_closed_form_and_solve_ivp",
     "tests/spatialkin/continuation/test_continuation.py::test_full_turn_closes_after_one_period",
     "tests/spatialkin/tracing/test_batch.py::test_workers_give_the_same_curves_in_order",

@@ -1,6 +1,7 @@
 """sk.intersect in closed form for the pairs that meet in conics: plane-plane (a line), plane-sphere and
-sphere-sphere (a circle), plane-cylinder (an ellipse, or two lines along the axis) and plane-cone (an ellipse, a
-parabola or a hyperbola), each clipped by the trims; and the pairs of quadrics whose intersection splits into two
+sphere-sphere (a circle), plane-cylinder (an ellipse, or two lines along the axis), plane-cone (an ellipse, a
+parabola or a hyperbola; through the apex, two rulings or the apex alone) and a trimmed plane normal to a torus's
+axis (two parallels), each clipped by the trims; and the pairs of quadrics whose intersection splits into two
 ellipses crossing at nodes (spatialkin.tracing.split: two equal cylinders with crossing axes, the Steinmetz curves).
 
 A plane cuts a quadric q^T diag(1, 1, mu) q = rho (local coordinates: a sphere, a cylinder, a double cone) in
@@ -102,7 +103,8 @@ class Placed:
         self.rot = rot = data[ks.ROT:ks.ROT + 9]
         self.z = rot[2::3]
         self.bounds = data[ks.BOUNDS:ks.BOUNDS + 4]
-        self.form = quadric_form(self) if self.name in QUADRICS else None
+        self.form = quadric_form(self) if self.name in QUADRICS else (
+            (data[ks.P0], data[ks.P1]) if self.name == "torus" else None)
 
 
 def closed_form(a, b, settings):
@@ -134,6 +136,9 @@ def closed_form(a, b, settings):
                                                       event="axis_circle", topology=topo)]
     elif names[0] in QUADRICS and names[1] in QUADRICS:
         return split_conics(placed, graze, settings, topo)
+    elif sorted(names) == ["plane", "torus"]:
+        plane, torus = placed if names[0] == "plane" else placed[::-1]
+        conics = torus_parallels(plane, torus, graze)
     else:
         return None
     if not conics:
@@ -464,6 +469,32 @@ def apex_components(surfaces, placed, plane, cone, graze, gap, settings, topo):
     return components(placed, lines, trims, graze, settings, topo, nodes=[list(apex)])
 
 
+def torus_parallels(plane, torus, graze):
+    """[(ELLIPSE, rows)] (global) of a trimmed plane normal to a torus's axis: the parallels of radius
+    R +- sqrt(r^2 - d^2) at the plane's height d, [] where it misses the tube; None (declined) where the plane is
+    not normal to the axis, within graze of touching the tube, or where the inner parallel nearly collapses (a
+    spindle or horn torus near its axis points). An untrimmed plane is left to the coaxial search (its circles are
+    whole)."""
+    if not any(map(math.isfinite, plane.bounds)):
+        return None
+    axis = torus.z
+    if dot(cross(plane.z, axis), cross(plane.z, axis)) > PARALLEL_A:
+        return None
+    (o0, o1, o2), (p0, p1, p2) = torus.origin, plane.origin
+    d = dot(axis, (p0 - o0, p1 - o1, p2 - o2))
+    big, small = torus.form
+    if abs(abs(d) - small) <= graze:
+        return None                                          # touching the tube along a circle
+    if abs(d) > small:
+        return []
+    half = math.sqrt(small * small - d * d)
+    if big - half <= graze:
+        return None
+    centre = [o0 + d * axis[0], o1 + d * axis[1], o2 + d * axis[2]]
+    e1, e2 = torus.rot[0::3], torus.rot[1::3]
+    return [(ELLIPSE, [centre, [rho * x for x in e1], [rho * x for x in e2]]) for rho in (big + half, big - half)]
+
+
 def inside_axial(quadric, z, margin):
     """True when the local height z lies inside the quadric's (Placed) v trim by more than margin (a sphere:
     always)."""
@@ -581,11 +612,15 @@ def clip(shape, rows, trims, graze, touch):
 # --- the components ----------------------------------------------------------------------------------------------
 def normal(surf, point):
     """The surface's (Placed) normal at a point on it: a positive multiple of S_u x S_v (the gradient of its
-    implicit function: diag(1, 1, mu) q for a quadric, local z for a plane)."""
+    implicit function: diag(1, 1, mu) q for a quadric, q - R (x, y, 0) / |(x, y)| for a torus, local z for a
+    plane)."""
     if surf.form is None:
         return surf.z
     origin, rot = surf.origin, surf.rot
     q = to_local(rot, [point[0] - origin[0], point[1] - origin[1], point[2] - origin[2]])
+    if surf.name == "torus":
+        ring = surf.form[0] / math.hypot(q[0], q[1])         # q less its nearest point of the core circle
+        return to_global(rot, [q[0] - ring * q[0], q[1] - ring * q[1], q[2]])
     q[2] *= surf.form[0]
     return to_global(rot, q)
 

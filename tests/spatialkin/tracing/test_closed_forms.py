@@ -359,3 +359,29 @@ def test_a_cones_apex_outside_the_planes_patch_is_no_contact():
     cone = sk.Cone(math.pi / 6, sk.Frame(), (-2.0, 2.0))
     plane = sk.Plane(sk.Frame(), (0.5, 1.0), (0.5, 1.0))     # through the apex, the axis its normal
     assert sk.intersect(cone, plane) == [] and sk.intersect(plane, cone) == []
+
+
+@pytest.mark.parametrize("height, rect", [(0.0, (-2.5, 2.5, -2.5, 2.5)), (0.3, (-2.0, 2.5, -3.0, 3.0)),
+                                          (0.3, (0.0, 3.0, -3.0, 3.0)), (-0.45, (-1.0, 3.0, -3.0, 1.0))])
+def test_a_trimmed_plane_normal_to_a_torus_axis(height, rect, monkeypatch):
+    """Torus(2, 0.5) and a plane normal to its axis at `height`, trimmed to a rectangle: its parallels of radius
+    2 +- sqrt(0.25 - height^2), in closed form, clipped by the rectangle (the outer one touching all four edges at
+    height 0 stays whole). Oracles: the exact lengths of the whole circles and the total, and the general path,
+    on random rigid placements in both orders."""
+    rng = np.random.default_rng(13)
+    half = math.sqrt(0.25 - height * height)
+    for _ in range(2):
+        rotation, shift = rotation_about(rng.normal(size=3), rng.uniform(0.0, math.pi)), rng.uniform(-3.0, 3.0, 3)
+        torus = sk.Torus(2.0, 0.5, sk.Frame(shift, rotation))
+        plane = sk.Plane(sk.Frame(shift + height * rotation[:, 2], rotation), rect[:2], rect[2:])
+        for a, b in ((torus, plane), (plane, torus)):
+            ours = sk.intersect(a, b)
+            assert all(c.topology.mode == "closed_form" for c in ours)
+            for c in ours:
+                if c.closed:
+                    assert min(abs(c.length - 2 * math.pi * (2.0 + s * half)) for s in (1, -1)) <= 1e-12 * c.length
+            if height == 0.0:        # (the general path ends the touching circle at an edge: not an oracle here)
+                assert [c.closed for c in ours] == [True, True]
+                assert abs(sum(c.length for c in ours) - 2 * math.pi * 4.0) <= 1e-12 * 8 * math.pi
+            else:
+                compare(ours, general(a, b, monkeypatch), settings_of(a, b).scale)

@@ -490,7 +490,8 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
         pt = p.point(0.0, v)
         radius = math.hypot(*p.frame.to_local(pt)[:2])
         if radius <= 1e-9 * scale or any(abs(v - w) < 1e-12 * v_unit for w in apexes):
-            if keep(pt):
+            # (a point on the axis is met once per side of a periodic meridian: a horn torus's centre at v = +-pi)
+            if keep(pt) and not any(np.linalg.norm(pt - c) <= 1e-9 * scale for c in topo.contacts):
                 topo.contacts.append(pt)
             continue
         if not simple:

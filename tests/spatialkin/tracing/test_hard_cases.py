@@ -129,6 +129,21 @@ def test_horn_torus_cusp():
     assert len(contacts) == 1 and np.linalg.norm(contacts[0].points[0]) < 1e-12
 
 
+def test_horn_torus_centre_on_a_coaxial_surface_is_one_contact():
+    """A horn torus (R = r = 1) and surfaces about its axis through its centre: the plane z = 0 meets it in the
+    circle of radius 2 (4 pi) and the centre alone, the sphere of radius 1 centred at (0, 0, 1) in a circle and the
+    centre. The centre is met at both ends of the periodic meridian (v = +-pi): one contact, not two."""
+    torus = sk.Torus(1.0, 1.0)
+    for other in (sk.Plane(sk.Frame(), (-3.0, 3.0), (-3.0, 3.0)), sk.Sphere(1.0, sk.Frame((0.0, 0.0, 1.0)))):
+        for pair in ((torus, other), (other, torus)):
+            curves = sk.intersect(*pair)
+            contacts = [c for c in curves if c.status == "contact"]
+            assert len(contacts) == 1 and np.linalg.norm(contacts[0].points[0]) < 1e-12
+            assert [c.closed for c in curves if c.status != "contact"] == [True]
+    plane_circle = [c for c in sk.intersect(torus, sk.Plane(sk.Frame(), (-3.0, 3.0), (-3.0, 3.0))) if c.closed]
+    assert abs(plane_circle[0].length - 4 * np.pi) < 1e-10 * 4 * np.pi      # (tol 1e-10 of the scale)
+
+
 def test_scales_from_1e_minus_3_to_1e3_in_one_scene():
     """A torus of major radius 1e3 and tube 1 with a sphere of radius 1e-3 on its tube, and a torus of size
     1e-3 cut by a sphere of radius 1e3: accuracy relative to the small scale (tol 1e-10), or the round-off

@@ -693,9 +693,11 @@ def classify(loose, topo, scale, keep):
         done.append(at)
         if not reader.on_level(crit):
             # a critical point off the level (a tiny loop's centre, a waist): the extremal roots seed what is
-            # there; this box's centre is a start too
-            if keep(pt):
-                topo.seeds.append(pt)
+            # there; this box's centre is a start too, and so is each side of a waist (the extremal roots of two
+            # branches passing it closely may be left unresolved with it, in one cluster)
+            for start in [pt] + waist_starts(reader, crit, unit):
+                if keep(start):
+                    topo.seeds.append(start)
             continue
         lam, vec = hessian_eigen(reader, crit, unit)
         if lam is None:
@@ -728,6 +730,31 @@ def classify(loose, topo, scale, keep):
                         topo.seeds.append(arm)
         elif inside:
             topo.seeds.append(at)
+
+
+def waist_starts(reader, crit, units):
+    """Points of the level on both sides of a saddle of g off the level (a waist between two branches passing it
+    closely): the roots of g along the Hessian's eigen-direction whose curvature has the sign opposite to g there,
+    each bracketed round the quadratic prediction (brentq); [] where crit is no saddle or a side has no root."""
+    lam, vec = hessian_eigen(reader, crit, units)
+    if lam is None or lam[0] * lam[1] >= 0.0:
+        return []
+    g0 = float(reader.values(crit)[0][0])
+    k = 0 if lam[0] * g0 < 0.0 else 1
+    w = vec[:, k]
+    guess = math.sqrt(2.0 * abs(g0) / abs(lam[k]))
+    out = []
+    for sense in (1.0, -1.0):
+        def along(t):
+            return float(reader.values(crit + sense * t * w)[0][0])
+        inside = 0.0
+        for t in guess * np.geomspace(0.25, 16.0, 13):
+            if along(t) * g0 <= 0.0:
+                root = brentq(along, inside, t, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+                out.append(reader.s.point(*(crit + sense * root * w)))
+                break
+            inside = t
+    return out
 
 
 def tiny_loop_start(reader, crit, lam, vec):

@@ -417,3 +417,24 @@ def test_two_nappes_beside_an_apex_are_two_components(seed):
         for c, h in zip(curves, heights):
             assert abs(c.length - exact[0 if h[0] > 0 else 1]) < 1e-9
         assert on_both(curves, p, q) < TOL
+
+
+#: Each loop of Viviani's pair opened by 1e-9 (sphere radius 2 (1 + 1e-9), centre 1 from the cylinder's axis):
+#: the integral of sqrt(1 + sin^2 t / (R^2 - 2 + 2 cos t)) over a turn, mpmath quad at 30 digits.
+OPENED_VIVIANI_LOOP = 7.640288416955098
+
+
+@pytest.mark.parametrize("shift, scale", [(0.0, 1.0), (1e5, 1.0), (1e5, 1e4), (1e9, 1e4)])
+def test_two_loops_beside_a_waist_far_from_the_origin(shift, scale):
+    """Viviani's pair with the sphere 1e-9 larger: two loops passing 1.8e-4 apart (relative) at a waist of g.
+    Moved far from the origin, the search leaves the loops' critical points unresolved in one cluster round the
+    waist; both sides of the waist still seed a loop: two loops, each of the quadrature's length (within the
+    coordinates' round-off carried by s: 1e-7 relative far away), in both orders."""
+    origin = np.array([shift, 0.0, 0.0])
+    cylinder = sk.Cylinder(scale, sk.Frame(origin), (-3.0 * scale, 3.0 * scale))
+    sphere = sk.Sphere(2.0 * scale * (1 + 1e-9), sk.Frame(origin + np.array([scale, 0.0, 0.0])))
+    for pair in ((cylinder, sphere), (sphere, cylinder)):
+        curves = sk.intersect(*pair)
+        assert [c.closed for c in curves] == [True, True]
+        for c in curves:
+            assert abs(c.length / scale - OPENED_VIVIANI_LOOP) <= (1e-9 if shift == 0.0 else 1e-7) * OPENED_VIVIANI_LOOP

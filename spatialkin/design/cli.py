@@ -20,11 +20,15 @@ The targets file (angles in degrees, lengths in the drive's unit):
     min_transmission_deg = 50.0
     min_assembly_margin = 0.5
     [weights]                     # optional: tip, swing, timing, transmission, margin
+    [tolerances]                  # optional: within which a target counts as met
+    tip = 0.01                    # length (default 1e-5 of R1 + r1 + R2)
+    angle_deg = 0.1               # swing, timing, transmission bound (default 0.01)
+    margin = 0.01                 # assembly-margin bound, length (default 1e-5 of R1 + r1 + R2)
 
 Parameter names: spatialkin.design.params.PARAMETERS.
 
 Every target is printed with what the fitted drive achieves, its miss and the tolerance within which it counts as
-met (tip points: 1e-5 of the drive's size R1 + r1 + R2; angles: 0.01 deg). A target missed by more than its
+met ([tolerances] above). A target missed by more than its
 tolerance is named in one line with the parameters held fixed that could reach it (confirmed by a fit with each
 freed) or that move it; the exit status is then 1, and the fitted config is written all the same.
 """

@@ -36,6 +36,8 @@ CLEARANCE = 5e-4
 #: Crank angles sampled for that check.
 CLEARANCE_SAMPLES = 3600
 _DEG = math.pi / 180
+#: Tolerances a targets table may set (spatialkin.design.report); in TOML the angle is 'angle_deg'.
+TOLERANCES = ("tip", "angle", "margin")
 
 
 @dataclass
@@ -51,6 +53,9 @@ class Targets:
     min_transmission : float or None, lower bound on the transmission angle over the turn
     min_margin : float or None, lower bound on the assembly margin (default MARGIN_FRACTION x size)
     weights : dict, overriding WEIGHTS (per length unit, per degree)
+    tolerances : dict, within which a target counts as met (spatialkin.design.report): 'tip' and 'margin' in the
+        length unit, 'angle' in radians; each defaults to report's TIP_TOLERANCE_SHARE x size, ANGLE_TOLERANCE,
+        MARGIN_TOLERANCE_SHARE x size
     """
     tip_angles: np.ndarray = field(default_factory=lambda: np.empty(0))
     tip_points: np.ndarray = field(default_factory=lambda: np.empty((0, 3)))
@@ -59,6 +64,7 @@ class Targets:
     min_transmission: float = None
     min_margin: float = None
     weights: dict = field(default_factory=dict)
+    tolerances: dict = field(default_factory=dict)
 
     def __post_init__(self):
         self.tip_angles = np.atleast_1d(np.asarray(self.tip_angles, dtype=float))
@@ -81,6 +87,11 @@ class Targets:
         unknown = set(self.weights) - set(WEIGHTS)
         if unknown:
             raise ValueError(f"targets: unknown weights {sorted(unknown)}; known {sorted(WEIGHTS)}")
+        unknown = set(self.tolerances) - set(TOLERANCES)
+        if unknown:
+            raise ValueError(f"targets: unknown tolerances {sorted(unknown)}; known {sorted(TOLERANCES)}")
+        self.tolerances = {name: check_positive(f"targets: tolerance {name}", value)
+                           for name, value in self.tolerances.items()}
         if not len(self.tip_angles) and self.swing is None and self.timing is None:
             raise ValueError("targets: give tip points, a swing or a timing to fit to")
 
@@ -99,10 +110,11 @@ class Targets:
             min_transmission_deg = 50.0   # optional
             min_assembly_margin = 0.5     # optional (length)
             [weights]                     # optional: tip, swing, timing, transmission, margin
+            [tolerances]                  # optional: tip (length), angle_deg, margin (length)
         """
         if not isinstance(table, dict):
             raise ValueError(f"targets must be a table, got {type(table).__name__}")
-        unknown = set(table) - {"tip", "rocker", "limits", "weights"}
+        unknown = set(table) - {"tip", "rocker", "limits", "weights", "tolerances"}
         if unknown:
             raise ValueError(f"targets: unknown keys {sorted(unknown)}; allowed tip, rocker, limits, weights")
         tips = table.get("tip", [])
@@ -127,7 +139,21 @@ class Targets:
         return cls(np.array(angles), np.array(points).reshape(-1, 3),
                    swing=None if swing is None else float(swing) * _DEG, timing=timing,
                    min_transmission=None if mu is None else float(mu) * _DEG,
-                   min_margin=limits.get("min_assembly_margin"), weights=dict(table.get("weights", {})))
+                   min_margin=limits.get("min_assembly_margin"), weights=dict(table.get("weights", {})),
+                   tolerances=tolerances_from(table.get("tolerances", {})))
+
+
+def tolerances_from(table):
+    """The tolerances of a TOML [tolerances] table ('angle_deg' in degrees) in Targets' units."""
+    if not isinstance(table, dict):
+        raise ValueError(f"targets: [tolerances] must be a table, got {type(table).__name__}")
+    keys = {"tip", "angle_deg", "margin"}
+    if set(table) - keys:
+        raise ValueError(f"targets: [tolerances] has unknown keys {sorted(set(table) - keys)}; allowed {sorted(keys)}")
+    out = {k: table[k] for k in ("tip", "margin") if k in table}
+    if "angle_deg" in table:
+        out["angle"] = check_positive("targets: tolerance angle_deg", table["angle_deg"]) * _DEG
+    return out
 
 
 @dataclass

@@ -13,7 +13,8 @@ import numpy as np
 
 from .params import PARAMETERS
 
-#: A tip target counts as met within this share of the drive's size (R1 + r1 + R2) ...
+#: Unless the targets set their own (Targets.tolerances), a tip target counts as met within this share of the
+#: drive's size (R1 + r1 + R2) ...
 TIP_TOLERANCE_SHARE = 1e-5
 #: ... an angle target (swing, the timing of the turning points, the transmission-angle bound) within this (rad)
 ANGLE_TOLERANCE = math.radians(0.01)
@@ -48,15 +49,19 @@ def target_rows(fitted, targets, grid, confirm=True):
     candidate to reach a missed target is confirmed by a fit with it freed as well (one fit per candidate)."""
     turn = fitted.sensitivities(grid, free=PARAMETERS)
     size = sum(fitted.values[n] for n in ("crank_radius", "coupler_length", "rocker_length"))
+    own = targets.tolerances
+    tip_tol = own.get("tip", TIP_TOLERANCE_SHARE * size)
+    angle_tol = own.get("angle", ANGLE_TOLERANCE)
+    margin_tol = own.get("margin", MARGIN_TOLERANCE_SHARE * size)
     rows = []           # (name, wanted, achieved, residual (k,), derivative (k, P), tolerance, unit, scale)
     if len(targets.tip_angles):
         tips = fitted.sensitivities(targets.tip_angles, free=PARAMETERS, turning=False)
         for angle, want, got, d_got in zip(targets.tip_angles, targets.tip_points, tips.tip, tips.d_tip):
             rows.append((f"tip at {math.degrees(angle):g} deg", want, got, got - want, d_got,
-                         TIP_TOLERANCE_SHARE * size, "length", 1.0))
+                         tip_tol, "length", 1.0))
     if targets.swing is not None:
         rows.append(("swing", targets.swing, turn.swing, np.array([turn.swing - targets.swing]),
-                     turn.d_swing[None], ANGLE_TOLERANCE, "deg", math.degrees(1.0)))
+                     turn.d_swing[None], angle_tol, "deg", math.degrees(1.0)))
     if targets.timing is not None:
         u2 = turn.turning_u2
         for name, k, want in (("u2 max at", int(np.argmax(u2)), targets.timing[0]),
@@ -64,16 +69,16 @@ def target_rows(fitted, targets, grid, confirm=True):
             got = turn.turning_points[k]
             rows.append((name, want % (2 * math.pi), got % (2 * math.pi),
                          np.array([math.remainder(got - want, 2 * math.pi)]), turn.d_turning_points[k][None],
-                         ANGLE_TOLERANCE, "deg", math.degrees(1.0)))
+                         angle_tol, "deg", math.degrees(1.0)))
     if targets.min_transmission is not None:
         short = max(targets.min_transmission - turn.min_transmission, 0.0)
         rows.append(("min transmission angle", targets.min_transmission, turn.min_transmission,
-                     np.array([-short]), turn.d_min_transmission[None], ANGLE_TOLERANCE, "deg",
+                     np.array([-short]), turn.d_min_transmission[None], angle_tol, "deg",
                      math.degrees(1.0)))
     if targets.min_margin is not None:
         short = max(targets.min_margin - turn.assembly_margin, 0.0)
         rows.append(("min assembly margin", targets.min_margin, turn.assembly_margin, np.array([-short]),
-                     turn.d_assembly_margin[None], MARGIN_TOLERANCE_SHARE * size, "length", 1.0))
+                     turn.d_assembly_margin[None], margin_tol, "length", 1.0))
     out = []
     for k, (name, want, got, residual, derivative, tolerance, unit, scale) in enumerate(rows):
         miss = float(np.linalg.norm(residual))

@@ -87,3 +87,17 @@ def test_a_bound_that_holds_is_met_with_no_miss(bound):
     targets = Targets.from_dict({"rocker": {"swing_deg": 37.0}, "limits": {bound: value}})
     rows = target_rows(LooperDesign.reference(), targets, GRID, confirm=False)
     assert rows[-1].miss == 0.0 and rows[-1].met
+
+
+def test_tolerances_set_in_the_targets_file(tmp_path, capsys):
+    """[tolerances] angle_deg = 5 with only the tip free (it does not move the rocker): the reference drive's own
+    swing, 37.16 deg, meets a 40 deg target (2.84 deg off) and misses a 45 deg one (7.84 deg off)."""
+    path = tmp_path / "targets.toml"
+    for swing, status in ((40.0, 0), (45.0, 1)):
+        path.write_text(f'[design]\nfree = ["tip_x"]\n[rocker]\nswing_deg = {swing}\n[tolerances]\nangle_deg = 5.0\n')
+        assert main(["design", "--targets", str(path), "--out", str(tmp_path / "f.toml")]) == status
+        assert "(tolerance 5 deg)" in capsys.readouterr().out
+    with pytest.raises(ValueError, match="tolerances"):
+        Targets.from_dict({"rocker": {"swing_deg": 40.0}, "tolerances": {"angle": 1.0}})
+    with pytest.raises(ValueError, match="angle_deg"):
+        Targets.from_dict({"rocker": {"swing_deg": 40.0}, "tolerances": {"angle_deg": -1.0}})

@@ -17,8 +17,8 @@ circle ending in the corners of the edges it touches) keeps the trim's side: the
 crossings of two trims at one point (a corner) are one end. ``closed_form`` declines (returns None, and
 sk.intersect runs its general path) on what is degenerate otherwise: a tangency of the surfaces or a touch of a
 trim edge from outside (the patch met in one point) or by a hyperbola's or parabola's vertex within GRAZE x
-tolerance, a plane through a cone's apex, coincident surfaces, near-parallel configurations whose conic would be
-huge, both surfaces unbounded.
+tolerance, a plane through a cone's apex tangent to it along a ruling, coincident surfaces, near-parallel
+configurations whose conic would be huge, both surfaces unbounded.
 """
 import collections
 import functools
@@ -450,7 +450,7 @@ def apex_components(surfaces, placed, plane, cone, graze, gap, settings, topo):
     is within graze of tangent to the cone along a ruling, or a ruling is unbounded."""
     n0, n1, n2 = to_local(cone.rot, plane.z)
     tan = math.sqrt(-cone.form[0])
-    reach = tan * math.hypot(n0, n1)                # n . w over phi: -... in [n2 - reach, n2 + reach]
+    reach = tan * math.hypot(n0, n1)                # n . w = n2 + reach cos(phi - psi): zero for two phi, one, none
     if abs(reach - abs(n2)) <= graze / settings.scale:
         return None                                          # tangent along a ruling (or nearly)
     trims = linear_trims(placed)

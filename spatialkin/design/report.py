@@ -85,8 +85,8 @@ def target_rows(fitted, targets, grid, confirm=True):
         reach, movers = ((), ()) if miss <= tolerance else reaching(fitted, residual, derivative, tolerance)
         if confirm:
             reach = tuple(n for n in reach if _met_when_freed(fitted, targets, grid, n, k))
-        out.append(TargetRow(name, _shown(want, scale), _shown(got, scale), miss * scale, tolerance * scale,
-                             unit, reach, movers))
+        out.append(TargetRow(name, np.asarray(want, float) * scale, np.asarray(got, float) * scale, miss * scale,
+                             tolerance * scale, unit, reach, movers))
     return out
 
 
@@ -118,10 +118,6 @@ def _met_when_freed(fitted, targets, grid, name, index):
     except ValueError:
         return False
     return target_rows(refit.design, targets, grid, confirm=False)[index].met
-
-
-def _shown(value, scale):
-    return value * scale if np.ndim(value) == 0 else np.asarray(value) * scale
 
 
 def format_rows(rows):

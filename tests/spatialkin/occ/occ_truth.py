@@ -165,31 +165,26 @@ def quadric(B, g):
 
 def implicit(B, g, p):
     """G(P), the surface's implicit function (a torus's quartic), for the self-checks."""
+    return implicit_and_gradient(B, g, p)[0]
+
+
+def implicit_and_gradient(B, g, p):
+    """(G(P), grad G(P)) of the surface's implicit function (a torus's quartic)."""
     if g.kind == "torus":
         o, x, y, z = axes(B, g)
         q = sub(p, o)
         big, small = B.num(g.params["R"]), B.num(g.params["r"])
         s = dot(q, q) + big * big - small * small
         qz = dot(q, z)
-        return s * s - 4 * big * big * (dot(q, q) - qz * qz)
+        return (s * s - 4 * big * big * (dot(q, q) - qz * qz),
+                sub(mul(q, 4 * s), mul(sub(q, mul(z, qz)), 8 * big * big)))
     mm, m, mu = quadric(B, g)
-    return dot(p, matvec(mm, p)) + 2 * dot(m, p) + mu
+    return dot(p, matvec(mm, p)) + 2 * dot(m, p) + mu, mul(add(matvec(mm, p), m), 2)
 
 
 def distance_estimate(B, g, p):
     """|G(P)| / |grad G(P)|: the distance from P to g to first order (for the truth's own checks)."""
-    if g.kind == "torus":
-        o, x, y, z = axes(B, g)
-        q = sub(p, o)
-        big, small = B.num(g.params["R"]), B.num(g.params["r"])
-        s = dot(q, q) + big * big - small * small
-        qz = dot(q, z)
-        value = s * s - 4 * big * big * (dot(q, q) - qz * qz)
-        grad = sub(mul(q, 4 * s), mul(sub(q, mul(z, qz)), 8 * big * big))
-    else:
-        mm, m, mu = quadric(B, g)
-        value = dot(p, matvec(mm, p)) + 2 * dot(m, p) + mu
-        grad = mul(add(matvec(mm, p), m), 2)
+    value, grad = implicit_and_gradient(B, g, p)
     gn = norm(grad, B)
     return abs(value) / gn if gn != 0 else abs(value)
 

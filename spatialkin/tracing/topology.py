@@ -100,9 +100,10 @@ CRITICAL_ITER = 40
 class TopologyError(RuntimeError):
     """The topology stage could not prove where every component is.
 
-    ``sk.intersect`` raises it rather than return an answer that may miss a component. It happens on a tangency along a curve in a placement the stage does not recognise, or surfaces that nearly
-    touch along a stretch: the interval search runs out of its box budget, fills its record of roots, or finds
-    starts it can neither place on a curve nor trace.
+    ``sk.intersect`` raises it rather than return an answer that may miss a component. It happens on a tangency
+    along a curve in a placement the stage does not recognise, or surfaces that nearly touch along a stretch: the
+    interval search runs out of its box budget, fills its record of roots, or finds starts it can neither place on
+    a curve nor trace.
 
     Parameters
     ----------
@@ -741,20 +742,22 @@ def waist_starts(reader, crit, units):
         return []
     g0 = float(reader.values(crit)[0][0])
     k = 0 if lam[0] * g0 < 0.0 else 1
-    w = vec[:, k]
     guess = math.sqrt(2.0 * abs(g0) / abs(lam[k]))
-    out = []
-    for sense in (1.0, -1.0):
-        def along(t):
-            return float(reader.values(crit + sense * t * w)[0][0])
-        inside = 0.0
-        for t in guess * np.geomspace(0.25, 16.0, 13):
-            if along(t) * g0 <= 0.0:
-                root = brentq(along, inside, t, xtol=1e-300, rtol=4 * np.finfo(float).eps)
-                out.append(reader.s.point(*(crit + sense * root * w)))
-                break
-            inside = t
-    return out
+    sides = (level_root(reader, crit, sense * vec[:, k], g0, guess) for sense in (1.0, -1.0))
+    return [point for point in sides if point is not None]
+
+
+def level_root(reader, crit, w, g0, guess):
+    """The point of the level g = 0 on the ray crit + t w (t > 0) from a critical point where g = g0, bracketed
+    round the quadratic prediction t = guess (brentq); None if g keeps its sign out to 16 guesses."""
+    def along(t):
+        return float(reader.values(crit + t * w)[0][0])
+    inside = 0.0
+    for t in guess * np.geomspace(0.25, 16.0, 13):
+        if along(t) * g0 <= 0.0:
+            return reader.s.point(*(crit + brentq(along, inside, t, xtol=1e-300, rtol=4 * np.finfo(float).eps) * w))
+        inside = t
+    return None
 
 
 def tiny_loop_start(reader, crit, lam, vec):
@@ -768,16 +771,7 @@ def tiny_loop_start(reader, crit, lam, vec):
     if g0 * lam[0] >= 0.0 or abs(g0) < LOOP_FLOOR * (hi - lo):
         return None
     k = int(np.argmin(np.abs(lam)))
-    w = vec[:, k]
-    guess = math.sqrt(2.0 * abs(g0) / abs(lam[k]))
-    def along(t):
-        return float(reader.values(crit + t * w)[0][0])
-    inside = 0.0
-    for t in guess * np.geomspace(0.25, 16.0, 13):
-        if along(t) * g0 <= 0.0:
-            return reader.s.point(*(crit + brentq(along, inside, t, xtol=1e-300, rtol=4 * np.finfo(float).eps) * w))
-        inside = t
-    return None
+    return level_root(reader, crit, vec[:, k], g0, math.sqrt(2.0 * abs(g0) / abs(lam[k])))
 
 
 def critical_point(reader, uv, units):

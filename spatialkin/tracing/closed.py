@@ -123,11 +123,11 @@ def closed_form(a, b, settings):
             return None if circle is None else []
         return [exact_curve((a, b), settings.tolerance, circle=circle, event="axis_circle", topology=topo)]
     placed = (Placed(a, kinds[0]), Placed(b, kinds[1]))
+    gap = roundoff(placed, settings.scale)
     if names == ("plane", "plane"):
         conics = plane_line(*placed, graze, settings.scale)
     elif "plane" in names and (names[0] in QUADRICS or names[1] in QUADRICS):
         plane, quadric = placed if names[0] == "plane" else placed[::-1]
-        gap = roundoff(placed, settings.scale)
         if quadric.name == "cone" and abs(dot(plane.z, [quadric.origin[k] - plane.origin[k] for k in range(3)])) <= gap:
             return apex_components((a, b), placed, plane, quadric, graze, gap, settings, topo)
         conics = plane_conics(plane, quadric, graze, settings.scale, gap)
@@ -135,7 +135,7 @@ def closed_form(a, b, settings):
             return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=conics,
                                                       event="axis_circle", topology=topo)]
     elif names[0] in QUADRICS and names[1] in QUADRICS:
-        return split_conics(placed, graze, settings, topo)
+        return split_conics(placed, graze, gap, settings, topo)
     elif sorted(names) == ["plane", "torus"]:
         plane, torus = placed if names[0] == "plane" else placed[::-1]
         conics = torus_parallels(plane, torus, graze)
@@ -146,7 +146,7 @@ def closed_form(a, b, settings):
     trims = linear_trims(placed)
     if not trims:
         return None
-    return components(placed, conics, trims, graze, settings, topo)
+    return components(placed, conics, trims, graze, gap, settings, topo)
 
 
 def roundoff(placed, scale):
@@ -155,11 +155,11 @@ def roundoff(placed, scale):
     return ROUNDOFF_ULPS * EPS * max(scale, *map(abs, placed[0].origin + placed[1].origin))
 
 
-def components(placed, conics, trims, graze, settings, topo, nodes=()):
+def components(placed, conics, trims, graze, touch, settings, topo, nodes=()):
     """The CurveResults (in sk.intersect's order) of the conics ([(shape, rows)]) on the surfaces (Placed), clipped by
-    the trims; nodes (K, 3) where two of them cross, each given to the arcs it lies on. None where declined."""
+    the trims (touch: the pair's roundoff, see clip); nodes (K, 3) where two of them cross, each given to the arcs it
+    lies on. None where declined."""
     curves = []
-    touch = roundoff(placed, settings.scale)
     for shape, rows in conics:
         arcs = clip(shape, rows, trims, graze, touch)
         if arcs is None:
@@ -183,7 +183,7 @@ class Cut:
         self.origin, self.z, self.bounds = point.tolist(), normal.tolist(), (-math.inf, math.inf, -math.inf, math.inf)
 
 
-def split_conics(placed, graze, settings, topo):
+def split_conics(placed, graze, gap, settings, topo):
     """The components of two quadrics (Placed) whose intersection splits into two ellipses (split.split_planes), cut
     from the first by the two planes, checked on both surfaces (SPLIT_CHECKS points of each within SPLIT_FIT x scale,
     or the coordinates' round-off) and clipped by both trims, the nodes given to the arcs through them; a plane
@@ -209,7 +209,7 @@ def split_conics(placed, graze, settings, topo):
         if isinstance(cut, tuple) or any(shape != ELLIPSE for shape, _ in cut):
             return None
         conics += cut
-    fit = max(SPLIT_FIT * settings.scale, roundoff(placed, settings.scale))
+    fit = max(SPLIT_FIT * settings.scale, gap)
     t = np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False)
     samples = [np.array(c) + np.cos(t)[:, None] * np.array(p) + np.sin(t)[:, None] * np.array(q)
                for _, (c, p, q) in conics]
@@ -225,7 +225,7 @@ def split_conics(placed, graze, settings, topo):
     for points in samples:
         if max(float(np.max(surf.surface.distance(points))) for surf in placed) > fit:
             return None
-    curves = components(placed, conics, trims, graze, settings, topo, nodes) if conics else []
+    curves = components(placed, conics, trims, graze, gap, settings, topo, nodes) if conics else []
     if curves is None:
         return None
     surfaces = (placed[0].surface, placed[1].surface)
@@ -466,7 +466,7 @@ def apex_components(surfaces, placed, plane, cone, graze, gap, settings, topo):
         w = [tan * math.cos(phi), tan * math.sin(phi), 1.0]
         size = math.sqrt(dot(w, w))
         lines.append((LINE, [list(apex), [0.0, 0.0, 0.0], to_global(cone.rot, [x / size for x in w])]))
-    return components(placed, lines, trims, graze, settings, topo, nodes=[list(apex)])
+    return components(placed, lines, trims, graze, gap, settings, topo, nodes=[list(apex)])
 
 
 def torus_parallels(plane, torus, graze):

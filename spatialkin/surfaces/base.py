@@ -6,6 +6,8 @@ Each kind (torus.py, sphere.py, plane.py, cylinder.py, cone.py) defines its clas
 the kind code and the kernel geometry it packs.
 """
 
+import math
+
 import numpy as np
 
 from ..frame import Frame
@@ -31,7 +33,12 @@ class Surface:
     p0, p1 : float
         The kind's two shape parameters as the kernels read them.
     u_range, v_range : (float, float) or None
-        Trims (min, max) of u and v, either end possibly infinite; None leaves the parameter untrimmed.
+        Trims (min, max) of u and v that the tracer watches as edges (ranges of a length: a plane's u and v, a
+        cylinder's or cone's axial v), either end possibly infinite; None leaves the parameter untrimmed.
+    region : tuple of tuples of spatialkin.surfaces.trims.Limit
+        The other trims (angular ranges, a plane's circle), cut from the traced curves afterwards.
+    shown : ((float, float), (float, float)) or None
+        The (u_range, v_range) the user gave, where they differ from the watched ones.
 
     Raises
     ------
@@ -41,7 +48,7 @@ class Surface:
         Naming `u_range` or `v_range` when it is not a pair min < max (no NaN).
     """
 
-    def __init__(self, frame, p0=0.0, p1=0.0, u_range=None, v_range=None):
+    def __init__(self, frame, p0=0.0, p1=0.0, u_range=None, v_range=None, region=(), shown=None):
         if frame is None:
             frame = Frame()
         if not isinstance(frame, Frame):
@@ -59,6 +66,8 @@ class Surface:
         data[ks.BOUNDS + 2:ks.BOUNDS + 4] = check_range("v_range", v_range)
         data.flags.writeable = False
         self.data = data
+        self.region = tuple(region)
+        self._shown = shown
 
     # --- the kind's traits --------------------------------------------------------------------------------------
     @property
@@ -83,16 +92,33 @@ class Surface:
         return float(traits(self).size(self))
 
     @property
+    def bounds(self):
+        """((u_min, u_max), (v_min, v_max)): the trims the tracer watches as edges (ranges of a length), infinite
+        where there is none; the angular trims and a plane's circle are in ``region``."""
+        data = self.data
+        return (data[ks.BOUNDS], data[ks.BOUNDS + 1]), (data[ks.BOUNDS + 2], data[ks.BOUNDS + 3])
+
+    @property
     def u_range(self):
-        """(min, max) of u: the trim (a plane's u, in length units), or (-inf, inf) when untrimmed."""
+        """(min, max) of u as trimmed (radians for an angle, the user's unit for a plane's u), or (-inf, inf)."""
+        if self._shown is not None:
+            return self._shown[0]
         data = self.data
         return data[ks.BOUNDS], data[ks.BOUNDS + 1]         # (indexed: a tuple of a slice costs 7x as much)
 
     @property
     def v_range(self):
-        """(min, max) of v: the trim (a plane's v, a cylinder's or cone's axial v), or (-inf, inf) when untrimmed."""
+        """(min, max) of v as trimmed (a plane's v, a cylinder's or cone's axial v, a sphere's latitude, a torus's
+        tube angle), or (-inf, inf) when untrimmed."""
+        if self._shown is not None:
+            return self._shown[1]
         data = self.data
         return data[ks.BOUNDS + 2], data[ks.BOUNDS + 3]
+
+    @property
+    def trimmed(self):
+        """True when any trim is set (a range of u or v, a plane's circle)."""
+        return bool(self.region) or bool(np.isfinite(self.data[ks.BOUNDS:ks.BOUNDS + 4]).any())
 
     def point(self, u, v):
         """Points of the surface at parameters (u, v), in global coordinates.
@@ -205,7 +231,18 @@ class Surface:
         return f"{type(self).__name__}({self._describe()}, frame={self.frame!r})"
 
 
-# --- pieces the kinds' traits share --------------------------------------------------------------------------------
+# --- pieces the kinds share --------------------------------------------------------------------------------
+def trims_given(surface):
+    """(u_range, v_range) as given to the constructor of a kind whose trims are all angles (None: untrimmed)."""
+    return tuple(None if not math.isfinite(r[0]) else r for r in (surface.u_range, surface.v_range))
+
+
+def trims_described(surface):
+    """', u_range=..., v_range=...' of the trims that are set, for a repr."""
+    return "".join(f", {name}={r}" for name, r in zip(("u_range", "v_range"), (surface.u_range, surface.v_range))
+                   if math.isfinite(r[0]))
+
+
 def own_axis(surface):
     """(AXIS, origin, local z): the symmetry of a surface of revolution about its own z axis."""
     return AXIS, surface.frame.origin, surface.frame.rotation[:, 2]

@@ -6,7 +6,8 @@ import numpy as np
 from ..kernels import surfaces as ks
 from ..tracing.placement import parallel
 from ..tracing.traits import ANGLE, LENGTH, SCALING, SurfaceTraits, register
-from .base import Surface, check_positive, own_axis, quadric_jets
+from .base import Surface, check_positive, check_range, own_axis, quadric_jets
+from .trims import TURN, angle_range, angular_groups
 from .cylinder import axial_trims_overlap
 
 
@@ -15,7 +16,7 @@ class Cone(Surface):
 
     M(u, v) = frame(v tan(a) cos u, v tan(a) sin u, v), a the half angle: u the angle round the axis (radians),
     v the height along it (the user's length unit; v < 0 is the other nappe). The apex (v = 0) is a singular
-    point of the surface. v_range optionally trims it along the axis.
+    point of the surface. v_range optionally trims it along the axis, u_range round it.
 
     Parameters
     ----------
@@ -25,17 +26,22 @@ class Cone(Surface):
         Placement: origin at the apex, local z along the axis (default: the global axes).
     v_range : (float, float), optional
         Trim (min, max) of v, either end possibly infinite; None (default): both nappes, unbounded.
+    u_range : (float, float), optional
+        Trim (min, max) of the angle u, radians, finite, at most a full turn wide; on both nappes the same u
+        (the lower nappe's points then lie opposite, at the angle u + pi). None (default): the full turn.
 
     Attributes
     ----------
     half_angle : float
     frame : Frame
-    v_range : (float, float)
+    u_range, v_range : (float, float)
+        The trims ((-inf, inf) where there is none).
 
     Raises
     ------
     ValueError
-        Naming `half_angle` (not in (0, pi/2)) or `v_range` (not a pair min < max).
+        Naming `half_angle` (not in (0, pi/2)), `v_range` (not a pair min < max) or `u_range` (not finite, or
+        wider than a full turn).
     TypeError
         When `frame` is not a spatialkin.Frame.
 
@@ -54,18 +60,22 @@ class Cone(Surface):
     ValueError: half_angle must lie in (0, pi/2), got 2.0
     """
 
-    def __init__(self, half_angle, frame=None, v_range=None):
+    def __init__(self, half_angle, frame=None, v_range=None, u_range=None):
         a = check_positive("half_angle", half_angle)
         if a >= math.pi / 2:
             raise ValueError(f"half_angle must lie in (0, pi/2), got {a}")
         self.half_angle = a
-        super().__init__(frame, 0.0, math.tan(a), v_range=v_range)
+        turn = angle_range("u_range", u_range)
+        super().__init__(frame, 0.0, math.tan(a), v_range=v_range,
+                         region=angular_groups(("u_min", "u_max"), TURN, turn, nappes=True),
+                         shown=None if turn is None else (turn, tuple(check_range("v_range", v_range))))
 
     def with_frame(self, frame):
-        return Cone(self.half_angle, frame, self.v_range)
+        return Cone(self.half_angle, frame, self.v_range, self.u_range if self.region else None)
 
     def _describe(self):
-        return f"half_angle={self.half_angle}, v_range={self.v_range}"
+        return f"half_angle={self.half_angle}, v_range={self.v_range}" + (f", u_range={self.u_range}"
+                                                                          if self.region else "")
 
 
 class ConeTraits(SurfaceTraits):

@@ -6,14 +6,15 @@ import numpy as np
 from ..kernels import surfaces as ks
 from ..tracing.placement import on_line, parallel
 from ..tracing.traits import ANGLE, LENGTH, TRANSLATION, SurfaceTraits, register
-from .base import Surface, check_positive, own_axis, quadric_jets
+from .base import Surface, check_positive, check_range, own_axis, quadric_jets
+from .trims import TURN, angle_range, angular_groups
 
 
 class Cylinder(Surface):
     """Circular cylinder of the given radius about the local z axis: M(u, v) = frame(r cos u, r sin u, v).
 
     u is the angle round the axis (radians), v the length along it (the user's unit); v_range optionally trims
-    the cylinder along its axis.
+    the cylinder along its axis, u_range round it (a half cylinder, a strip of a CAD face).
 
     Parameters
     ----------
@@ -23,17 +24,22 @@ class Cylinder(Surface):
         Placement: origin on the axis, local z along it (default: the global axes).
     v_range : (float, float), optional
         Trim (min, max) of v, either end possibly infinite; None (default): unbounded.
+    u_range : (float, float), optional
+        Trim (min, max) of the angle u, radians, finite, at most a full turn wide (any start: (-1, 1) and
+        (2 pi - 1, 2 pi + 1) are the same strip); None (default): the full turn.
 
     Attributes
     ----------
     radius : float
     frame : Frame
-    v_range : (float, float)
+    u_range, v_range : (float, float)
+        The trims ((-inf, inf) where there is none).
 
     Raises
     ------
     ValueError
-        Naming `radius` (not a positive finite number) or `v_range` (not a pair min < max).
+        Naming `radius` (not a positive finite number), `v_range` (not a pair min < max) or `u_range` (not
+        finite, or wider than a full turn).
     TypeError
         When `frame` is not a spatialkin.Frame.
 
@@ -46,17 +52,23 @@ class Cylinder(Surface):
     True
     >>> round(float(cylinder.distance([1.0, 0.0, 7.0])), 6)    # on the axis: r from the (untrimmed) surface
     0.5
+    >>> half = sk.Cylinder(1.0, v_range=(0.0, 4.0), u_range=(0.0, np.pi))      # the half y >= 0
+    >>> curve, = sk.intersect(half, sk.Plane(sk.Frame((0.0, 0.0, 2.0))))
+    >>> curve.status, round(curve.length, 9)
+    ('boundary', 3.141592654)
     """
 
-    def __init__(self, radius, frame=None, v_range=None):
+    def __init__(self, radius, frame=None, v_range=None, u_range=None):
         self.radius = check_positive("radius", radius)
-        super().__init__(frame, self.radius, 0.0, v_range=v_range)
+        turn = angle_range("u_range", u_range)
+        super().__init__(frame, self.radius, 0.0, v_range=v_range, region=angular_groups(("u_min", "u_max"), TURN, turn),
+                         shown=None if turn is None else (turn, tuple(check_range("v_range", v_range))))
 
     def with_frame(self, frame):
-        return Cylinder(self.radius, frame, self.v_range)
+        return Cylinder(self.radius, frame, self.v_range, self.u_range if self.region else None)
 
     def _describe(self):
-        return f"radius={self.radius}, v_range={self.v_range}"
+        return f"radius={self.radius}, v_range={self.v_range}" + (f", u_range={self.u_range}" if self.region else "")
 
 
 class CylinderTraits(SurfaceTraits):

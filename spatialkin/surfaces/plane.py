@@ -6,7 +6,9 @@ import numpy as np
 from ..kernels import surfaces as ks
 from ..tracing.placement import parallel
 from ..tracing.traits import LENGTH, NORMAL, SurfaceTraits, register
-from .base import Surface
+from .base import Surface, check_positive, check_range
+from .trims import RADIUS, level_groups
+from ..validation import check_nonnegative
 
 #: Coplanar rectangles are compared on a grid of this many samples per side of one of them.
 OVERLAP_SAMPLES = 64
@@ -18,7 +20,8 @@ class Plane(Surface):
     """Plane through frame.origin spanned by the local x and y axes: M(u, v) = frame(u, v, 0).
 
     u and v are lengths (the user's unit) along the local x and y axes; u_range and v_range optionally trim the
-    plane to a rectangle (or a strip). Local z is its normal.
+    plane to a rectangle (or a strip), radius to a disc about frame.origin (a cylinder's cap), inner_radius cuts
+    a hole out of it (an annulus). Local z is its normal.
 
     Parameters
     ----------
@@ -26,17 +29,24 @@ class Plane(Surface):
         Placement: origin on the plane, local z along the normal (default: the global axes, the plane z = 0).
     u_range, v_range : (float, float), optional
         Trims (min, max) of u and v, lengths; either end may be infinite; None (default) leaves it unbounded.
+    radius : float, optional
+        The face is the disc of this radius about frame.origin (within the rectangle, if one is given too).
+    inner_radius : float, optional
+        ... less the disc of this radius (0 <= inner_radius < radius): an annulus.
 
     Attributes
     ----------
     frame : Frame
     u_range, v_range : (float, float)
-        The trims, (-inf, inf) where unbounded.
+        The rectangle, (-inf, inf) where unbounded (with a radius: within its bounding square).
+    radius, inner_radius : float or None
+        The circles, None where there is none.
 
     Raises
     ------
     ValueError
-        Naming `u_range` or `v_range` when it is not a pair min < max (no NaN).
+        Naming `u_range` or `v_range` when it is not a pair min < max (no NaN), `radius` when not positive and
+        finite, `inner_radius` when not in [0, radius).
     TypeError
         When `frame` is not a spatialkin.Frame.
 
@@ -53,16 +63,35 @@ class Plane(Surface):
     Traceback (most recent call last):
     ...
     ValueError: u_range must satisfy min < max, got (1.0, -1.0)
+    >>> disc = sk.Plane(sk.Frame((0.0, 0.0, 1.0)), radius=0.5)          # the cap of a cylinder
+    >>> [round(c.length, 9) for c in sk.intersect(disc, sk.Sphere(2.0))]   # the circle of radius sqrt 3 misses it
+    []
     """
 
-    def __init__(self, frame=None, u_range=None, v_range=None):
-        super().__init__(frame, u_range=u_range, v_range=v_range)
+    def __init__(self, frame=None, u_range=None, v_range=None, radius=None, inner_radius=None):
+        self.radius = None if radius is None else check_positive("radius", radius)
+        self.inner_radius = None if inner_radius is None else check_nonnegative("inner_radius", inner_radius)
+        if self.inner_radius is not None and self.radius is not None and not self.inner_radius < self.radius:
+            raise ValueError(f"inner_radius must be less than radius, got {self.inner_radius} and {self.radius}")
+        u_range, v_range = check_range("u_range", u_range), check_range("v_range", v_range)
+        if self.radius is not None:        # the bounding square: the tracer's edges, the circle cut from the curves
+            u_range = (max(u_range[0], -self.radius), min(u_range[1], self.radius))
+            v_range = (max(v_range[0], -self.radius), min(v_range[1], self.radius))
+            for name, (lo, hi) in (("u_range", u_range), ("v_range", v_range)):
+                if not lo < hi:
+                    raise ValueError(f"{name} must meet the disc of radius {self.radius}, got ({lo}, {hi})")
+        circles = (0.0 if self.inner_radius is None else self.inner_radius,
+                   math.inf if self.radius is None else self.radius)
+        region = level_groups(("inner rim", "rim"), RADIUS, circles) if self.inner_radius or self.radius else ()
+        super().__init__(frame, u_range=u_range, v_range=v_range, region=region)
 
     def with_frame(self, frame):
-        return Plane(frame, self.u_range, self.v_range)
+        return Plane(frame, self.u_range, self.v_range, self.radius, self.inner_radius)
 
     def _describe(self):
-        return f"u_range={self.u_range}, v_range={self.v_range}"
+        return f"u_range={self.u_range}, v_range={self.v_range}" + "".join(
+            f", {name}={value}" for name, value in (("radius", self.radius), ("inner_radius", self.inner_radius))
+            if value is not None)
 
 
 class PlaneTraits(SurfaceTraits):

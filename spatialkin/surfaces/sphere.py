@@ -6,7 +6,8 @@ import numpy as np
 from ..frame import Frame
 from ..kernels import surfaces as ks
 from ..tracing.traits import ANGLE, FULL_TURN, POINT, SurfaceTraits, register
-from .base import Surface, check_positive, quadric_jets
+from .base import Surface, check_positive, check_range, quadric_jets, trims_described, trims_given
+from .trims import FULL_TURN_SLACK, HEIGHT, TURN, angle_range, angular_groups, level_groups
 
 #: The latitudes of the poles, where the chart (u longitude, v latitude) collapses.
 POLES = (-0.5 * math.pi, 0.5 * math.pi)
@@ -24,6 +25,12 @@ class Sphere(Surface):
         R (the user's length unit), > 0.
     frame : Frame, optional
         Placement: origin at the centre, local z the pole axis of (u, v) (default: the global axes).
+    u_range : (float, float), optional
+        Trim (min, max) of the longitude u, radians, finite, at most a full turn wide. None (default): the full
+        turn.
+    v_range : (float, float), optional
+        Trim (min, max) of the latitude v, radians within [-pi/2, pi/2] (a spherical cap, a zone). None
+        (default): pole to pole.
 
     Attributes
     ----------
@@ -31,11 +38,14 @@ class Sphere(Surface):
     frame : Frame
     center : ndarray, shape (3,)
         The centre, frame.origin.
+    u_range, v_range : (float, float)
+        The trims ((-inf, inf) where there is none).
 
     Raises
     ------
     ValueError
-        Naming `radius` when it is not a positive finite number.
+        Naming `radius` when it is not a positive finite number, `u_range` when not finite or wider than a
+        full turn, `v_range` when not a pair of latitudes min < max within [-pi/2, pi/2].
     TypeError
         When `frame` is not a spatialkin.Frame.
 
@@ -57,9 +67,15 @@ class Sphere(Surface):
     3.0
     """
 
-    def __init__(self, radius, frame=None):
+    def __init__(self, radius, frame=None, u_range=None, v_range=None):
         self.radius = check_positive("radius", radius)
-        super().__init__(frame, self.radius)
+        turn, zone = angle_range("u_range", u_range), latitudes(v_range)
+        heights = None if zone is None else tuple(self.radius * math.sin(x) if abs(x) < POLES[1] else x * math.inf
+                                                  for x in zone)
+        region = angular_groups(("u_min", "u_max"), TURN, turn)
+        region += () if heights is None else level_groups(("v_min", "v_max"), HEIGHT, heights)
+        super().__init__(frame, self.radius, region=region,
+                         shown=None if not region else tuple(t or (-math.inf, math.inf) for t in (turn, zone)))
 
     @property
     def center(self):
@@ -67,10 +83,21 @@ class Sphere(Surface):
         return self.frame.origin
 
     def with_frame(self, frame):
-        return Sphere(self.radius, frame)
+        return Sphere(self.radius, frame, *trims_given(self))
 
     def _describe(self):
-        return f"radius={self.radius}"
+        return f"radius={self.radius}" + trims_described(self)
+
+
+def latitudes(v_range):
+    """(lo, hi) of a sphere's latitude trim, checked (within the poles); None for None or pole to pole."""
+    if v_range is None:
+        return None
+    lo, hi = check_range("v_range", v_range)
+    if lo < POLES[0] * (1.0 + FULL_TURN_SLACK) or hi > POLES[1] * (1.0 + FULL_TURN_SLACK):
+        raise ValueError(f"v_range must be latitudes within [-pi/2, pi/2], got ({lo}, {hi})")
+    lo, hi = max(lo, POLES[0]), min(hi, POLES[1])
+    return None if (lo, hi) == POLES else (lo, hi)
 
 
 class SphereTraits(SurfaceTraits):

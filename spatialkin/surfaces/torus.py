@@ -6,7 +6,8 @@ import numpy as np
 from ..kernels import surfaces as ks
 from ..tracing.placement import parallel
 from ..tracing.traits import ANGLE, SurfaceTraits, register
-from .base import Surface, check_positive, own_axis
+from .base import Surface, check_positive, own_axis, trims_described, trims_given
+from .trims import TUBE, TURN, angle_range, angular_groups
 
 
 class Torus(Surface):
@@ -24,6 +25,10 @@ class Torus(Surface):
         r, radius of the tube (same unit), > 0.
     frame : Frame, optional
         Placement: origin at the centre, local z along the axis (default: the global axes).
+    u_range, v_range : (float, float), optional
+        Trims (min, max) of the angles u (round the axis) and v (round the tube), radians, finite, each at most
+        a full turn wide (a quarter torus, a CAD face of a torus). Only a ring torus takes trims. None
+        (default): the full turn.
 
     Attributes
     ----------
@@ -31,11 +36,14 @@ class Torus(Surface):
     frame : Frame
     shape : str
         'ring', 'horn' or 'spindle'.
+    u_range, v_range : (float, float)
+        The trims ((-inf, inf) where there is none).
 
     Raises
     ------
     ValueError
-        Naming `major_radius` or `minor_radius` when it is not a positive finite number.
+        Naming `major_radius` or `minor_radius` when it is not a positive finite number, `u_range` or `v_range`
+        when not finite or wider than a full turn, or set on a horn or spindle torus.
     TypeError
         When `frame` is not a spatialkin.Frame.
 
@@ -61,10 +69,18 @@ class Torus(Surface):
     ValueError: minor_radius must be a positive finite number, got -0.5
     """
 
-    def __init__(self, major_radius, minor_radius, frame=None):
+    def __init__(self, major_radius, minor_radius, frame=None, u_range=None, v_range=None):
         self.major_radius = check_positive("major_radius", major_radius)
         self.minor_radius = check_positive("minor_radius", minor_radius)
-        super().__init__(frame, self.major_radius, self.minor_radius)
+        turns = angle_range("u_range", u_range), angle_range("v_range", v_range)
+        if turns != (None, None) and self.minor_radius >= self.major_radius:
+            name = "u_range" if turns[0] is not None else "v_range"
+            raise ValueError(f"{name} trims only a ring torus (minor_radius < major_radius), got major_radius "
+                             f"{self.major_radius} and minor_radius {self.minor_radius}")
+        region = (angular_groups(("u_min", "u_max"), TURN, turns[0])
+                  + angular_groups(("v_min", "v_max"), TUBE, turns[1], major=self.major_radius))
+        super().__init__(frame, self.major_radius, self.minor_radius, region=region,
+                         shown=None if not region else tuple(t or (-math.inf, math.inf) for t in turns))
 
     @property
     def shape(self):
@@ -74,10 +90,10 @@ class Torus(Surface):
         return "horn" if self.minor_radius == self.major_radius else "spindle"
 
     def with_frame(self, frame):
-        return Torus(self.major_radius, self.minor_radius, frame)
+        return Torus(self.major_radius, self.minor_radius, frame, *trims_given(self))
 
     def _describe(self):
-        return f"major_radius={self.major_radius}, minor_radius={self.minor_radius}"
+        return f"major_radius={self.major_radius}, minor_radius={self.minor_radius}" + trims_described(self)
 
 
 class TorusTraits(SurfaceTraits):

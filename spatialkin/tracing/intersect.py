@@ -13,6 +13,7 @@ from .result import Curve, TracingError, in_sk_order
 from .segments import NEWTON_MAX_ITER
 from .start import locate_on_curve, newton_fixed
 from .certificate import certificates
+from .clip import clip_curves
 from .closed import closed_form, closed_settings
 from . import stages
 from .status import CONTACT
@@ -149,9 +150,10 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     check_surface("a", a)
     check_surface("b", b)
     if CLOSED_FORMS and not certify:      # (its settings are checked as make_settings checks them)
-        found = closed_form(a, b, closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback))
+        settings = closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback)
+        found = closed_form(a, b, settings)
         if found is not None:
-            return [Curve(c) for c in found]
+            return [Curve(c) for c in in_sk_order(clip_curves(a, b, found, settings.scale))]
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
     if stages.ON:
@@ -191,7 +193,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     for i, c in enumerate(curves):          # of two copies of one piece, the first is kept
         if not covered(c, kept + curves[i + 1:], radius):
             kept.append(c)
-    curves = kept
+    curves = clip_curves(a, b, kept, settings.scale)
     if stages.ON:
         stages.switch("result")
     in_sk_order(curves)

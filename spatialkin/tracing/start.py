@@ -28,7 +28,7 @@ def scene_scale(a, b):
     sizes = [x for x in (traits(s).scale_length(s) for s in (a, b)) if x is not None]
     if sizes:
         return min(sizes)
-    spans = [0.5 * np.hypot(u1 - u0, v1 - v0) for (u0, u1), (v0, v1) in ((s.u_range, s.v_range) for s in (a, b))]
+    spans = [0.5 * np.hypot(u1 - u0, v1 - v0) for (u0, u1), (v0, v1) in (s.bounds for s in (a, b))]
     spans = [x for x in spans if math.isfinite(x)]
     return min(spans) if spans else 1.0
 
@@ -70,7 +70,7 @@ def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
     """
     if not np.isfinite(v):
         raise ValueError(f"v must be finite, got {v}")
-    lo, hi = b.u_range
+    lo, hi = b.bounds[0]
     lo, hi = (-np.pi, np.pi) if not (np.isfinite(lo) and np.isfinite(hi)) else (lo, hi)
     u2 = np.linspace(lo, hi, int(samples) + 1)
     pts = b.point(u2, np.full_like(u2, v))

@@ -370,7 +370,7 @@ def topology(a, b, scale, tolerance):
         ruled_components(p, q, pq, box, topo, scale)
     else:
         # edges of P's trim (not the limits set by Q's ball: no root lies there)
-        for j, trim in enumerate((p.u_range, p.v_range)):
+        for j, trim in enumerate(p.bounds):
             for bound in trim:
                 if math.isfinite(bound):
                     add_line_roots(pq, j, bound, box[2 - 2 * j], box[3 - 2 * j], "edge of P", p_index, True)
@@ -457,7 +457,7 @@ def place_seams(reader, box, u_periodic, v_periodic, apexes):
 def q_edges(q, qp, p_ball, add_line_roots, q_index):
     """Roots of F_P on the trim edges of Q (a trimmed plane's sides, a cylinder's or cone's rims), each edge over
     the other parameter's range (limited by P's ball where it is an unbounded length)."""
-    for j, trim in enumerate((q.u_range, q.v_range)):
+    for j, trim in enumerate(q.bounds):
         if not any(math.isfinite(bound) for bound in trim):
             continue
         lo, hi = limited_range(q, 1 - j, p_ball)
@@ -575,7 +575,7 @@ def clip_line(p, u, v_lo, v_hi, q, scale):
     lo, hi = 0.0, 1.0
     local = q.frame.to_local(ends)
     slack = ROUNDOFF_ULPS * EPS * max(scale, float(np.max(np.abs(ends))), float(np.max(np.abs(q.frame.origin))))
-    limits = [(axis, *trim) for axis, trim in zip(traits(q).parameter_axes, (q.u_range, q.v_range))
+    limits = [(axis, *trim) for axis, trim in zip(traits(q).parameter_axes, q.bounds)
               if axis is not None]
     for k, a, b in limits:
         x0, x1 = local[0, k], local[1, k]
@@ -613,7 +613,7 @@ def merge_values(values, gap):
 def trim_bounds(surface, tolerance):
     """(u_lo, u_hi, v_lo, v_hi) (4,): the trims of a surface widened by a slack of 10 tolerances (as parameter
     slacks at the trims); all NaN when it has no trim."""
-    (u0, u1), (v0, v1) = surface.u_range, surface.v_range
+    (u0, u1), (v0, v1) = surface.bounds
     if not (math.isfinite(u0) or math.isfinite(u1) or math.isfinite(v0) or math.isfinite(v1)):
         return np.full(4, np.nan)
     u_slack, v_slack = traits(surface).trim_slack(surface, 10.0 * tolerance)

@@ -106,7 +106,7 @@ class SurfaceTraits:
     def natural_domain(self, surface):
         """((u_lo, u_hi), (v_lo, v_hi)) of the surface's own chart: the full turn for a periodic angle, else the
         trims (infinite where unbounded)."""
-        ranges = (surface.u_range, surface.v_range)
+        ranges = surface.bounds
         return tuple(FULL_TURN if self.periodic[j] else tuple(ranges[j]) for j in range(2))
 
     def parameter_units(self, scale):

@@ -16,6 +16,8 @@ villarceau  bitangent plane of a ring torus: two circles crossing at two points,
 steinmetz   equal cylinders with intersecting axes: two ellipses crossing at two nodes, one component
 viviani     sphere R and cylinder R/2 through its centre: a figure-eight, one component
 trimmed     rectangular patches (and trimmed cylinders) cutting curves into arcs, or missing them
+face        CAD faces: angular ranges of cylinders, cones, spheres and tori, a sphere's zone, a plane's disc or
+            annulus, cutting circles and ellipses into arcs
 tangent     tangency along a curve (torus and plane z = r, sphere and coaxial cylinder, cylinder on a plane...)
 simple      the first scenes a user tries: coaxial sphere, cylinder, plane, cone and torus pairs, coincident
             surfaces, a patch that misses a torus
@@ -1225,6 +1227,163 @@ def trimmed_family(rng):
     return out
 
 
+def face_family(rng, per_kind=4):
+    """CAD faces (angular ranges of cylinders, cones, spheres and tori, a sphere's zone, a plane's disc or
+    annulus) cut by a second surface along closed-form circles and ellipses: the truth is the curves clipped by
+    the oracle's face margins (atan2 angles, independent of spatialkin's half-planes); cases whose curve grazes
+    an edge or passes near a corner are skipped (clipped's robust flag)."""
+    out, made = [], {}
+
+    def turn(lo_width=0.4, hi_width=2 * np.pi - 0.4):
+        lo = rng.uniform(-np.pi, np.pi)
+        return lo, lo + rng.uniform(lo_width, hi_width)
+
+    def frame():
+        return rand_rot(rng), rng.uniform(-1, 1, 3)
+
+    for attempt in range(4000):
+        name = ["sphere-face/plane", "torus-face/perp-plane", "half-cylinder/perp-plane", "cylinder-strip/plane",
+                "cone-face/perp-plane", "disc/sphere", "disc/cylinder", "annulus/torus", "sphere-zone/sphere",
+                "cylinder-strip/sphere", "cone-face/sphere", "torus-face/meridian-plane"][attempt % 12]
+        if made.get(name, 0) >= per_kind:
+            continue
+        Rm, o = frame()
+        z = Rm[:, 2]
+        if name == "sphere-face/plane":
+            R = rng.uniform(0.5, 2.0)
+            zone = np.sort(rng.uniform(-np.pi / 2, np.pi / 2, 2)) if rng.uniform() < 0.7 else (-np.pi / 2, 1.0)
+            a = sk.Sphere(R, F(o, Rm), u_range=turn(), v_range=tuple(zone))
+            n = rand_rot(rng)[:, 2]
+            d = rng.uniform(-0.9, 0.9) * R
+            b = sk.Plane(F(o + d * n, _frame_with_z(n)))
+            curves = [(circle_points(o + d * n, n, np.sqrt(R ** 2 - d ** 2), 20000), True)]
+            scale = R
+        elif name == "torus-face/perp-plane":
+            big, small = rng.uniform(1.2, 2.0), rng.uniform(0.3, 0.6)
+            a = sk.Torus(big, small, F(o, Rm), u_range=turn(), v_range=turn() if rng.uniform() < 0.7 else None)
+            c = rng.uniform(-0.9, 0.9) * small
+            b = sk.Plane(F(o + c * z, Rm @ rot_z(rng.uniform(0, 6))))
+            curves = [(circle_points(o + c * z, z, big + sg * np.sqrt(small ** 2 - c ** 2), 20000), True)
+                      for sg in (1, -1)]
+            scale = small
+        elif name == "half-cylinder/perp-plane":
+            r = rng.uniform(0.5, 1.5)
+            a = sk.Cylinder(r, F(o, Rm), v_range=(-2.0, 2.0), u_range=turn())
+            c = rng.uniform(-1.5, 1.5)
+            b = sk.Plane(F(o + c * z, Rm @ rot_z(rng.uniform(0, 6))))
+            curves = [(circle_points(o + c * z, z, r, 20000), True)]
+            scale = r
+        elif name == "cylinder-strip/plane":
+            r = rng.uniform(0.5, 1.5)
+            a = sk.Cylinder(r, F(o, Rm), v_range=(-4.0, 4.0), u_range=turn())
+            tilt = rng.uniform(0.1, 0.9)
+            n_loc = np.array([np.sin(tilt), 0.0, np.cos(tilt)]) @ rot_z(rng.uniform(0, 6)).T
+            c = rng.uniform(-1.0, 1.0)
+            t = np.linspace(0.0, 2 * np.pi, 20000, endpoint=False)
+            zz = c - (n_loc[0] * r * np.cos(t) + n_loc[1] * r * np.sin(t)) / n_loc[2]
+            local = np.stack([r * np.cos(t), r * np.sin(t), zz], axis=1)
+            b = sk.Plane(F(o + c * z, _frame_with_z(Rm @ n_loc)))
+            curves = [(o + local @ Rm.T, True)]
+            scale = r
+        elif name == "cone-face/perp-plane":
+            half = rng.uniform(0.3, 1.0)
+            a = sk.Cone(half, F(o, Rm), v_range=(-2.0, 2.0), u_range=turn())
+            h = rng.choice([-1.0, 1.0]) * rng.uniform(0.3, 1.8)
+            b = sk.Plane(F(o + h * z, Rm @ rot_z(rng.uniform(0, 6))))
+            curves = [(circle_points(o + h * z, z, abs(h) * np.tan(half), 20000), True)]
+            scale = abs(h) * np.tan(half)
+        elif name == "disc/sphere":
+            radius = rng.uniform(0.5, 1.5)
+            inner = rng.uniform(0.1, 0.8) * radius if rng.uniform() < 0.5 else None
+            a = sk.Plane(F(o, Rm), radius=radius, inner_radius=inner)
+            off = np.array([*rng.uniform(-1, 1, 2) * radius, rng.uniform(-0.5, 0.5)])
+            rho = rng.uniform(abs(off[2]) + 0.2, 2.0 * radius + abs(off[2]))
+            b = sk.Sphere(rho, F(o + Rm @ off, rand_rot(rng)))
+            foot = o + Rm @ np.array([off[0], off[1], 0.0])
+            curves = [(circle_points(foot, z, np.sqrt(rho ** 2 - off[2] ** 2), 20000), True)]
+            scale = radius
+        elif name == "disc/cylinder":
+            radius = rng.uniform(0.5, 1.5)
+            a = sk.Plane(F(o, Rm), radius=radius, inner_radius=rng.uniform(0.1, 0.6) * radius)
+            off = np.array([*rng.uniform(-1, 1, 2) * radius, 0.0])
+            r = rng.uniform(0.2, 1.5) * radius
+            b = sk.Cylinder(r, F(o + Rm @ off, Rm @ rot_z(rng.uniform(0, 6))), v_range=(-1.0, 1.0))
+            curves = [(circle_points(o + Rm @ off, z, r, 20000), True)]
+            scale = min(radius, r)
+        elif name == "annulus/torus":
+            big, small = rng.uniform(1.2, 2.0), rng.uniform(0.3, 0.6)
+            c = rng.uniform(-0.9, 0.9) * small
+            cut = np.sqrt(small ** 2 - c ** 2)
+            outer = rng.uniform(0.3, 1.0) * (big + 1.5 * cut)
+            a = sk.Plane(F(o + c * z, Rm), radius=outer, inner_radius=rng.uniform(0.0, 0.9) * outer)
+            b = sk.Torus(big, small, F(o, Rm @ rot_z(rng.uniform(0, 6))))
+            curves = [(circle_points(o + c * z, z, big + sg * cut, 20000), True) for sg in (1, -1)]
+            scale = small
+        elif name == "cylinder-strip/sphere":           # off the axis, holding it: two loops z = cz +- sqrt(...)
+            r = rng.uniform(0.5, 1.0)
+            rho = rng.uniform(1.3, 2.0) * r
+            cxy = rng.uniform(-1, 1, 2) * (rho - r) * 0.6
+            cz = rng.uniform(-0.5, 0.5)
+            a = sk.Cylinder(r, F(o, Rm), v_range=(-4.0, 4.0), u_range=turn())
+            b = sk.Sphere(rho, F(o + Rm @ np.array([*cxy, cz]), rand_rot(rng)))
+            t = np.linspace(0.0, 2 * np.pi, 20000, endpoint=False)
+            h = np.sqrt(rho ** 2 - (r * np.cos(t) - cxy[0]) ** 2 - (r * np.sin(t) - cxy[1]) ** 2)
+            curves = [(o + np.stack([r * np.cos(t), r * np.sin(t), cz + sg * h], axis=1) @ Rm.T, True)
+                      for sg in (1, -1)]
+            scale = r
+        elif name == "cone-face/sphere":                 # the sphere holds the apex: one loop on each nappe
+            half = rng.uniform(0.3, 1.0)
+            ta = np.tan(half)
+            c = rng.uniform(-0.3, 0.3, 3)
+            rho = rng.uniform(0.6, 1.2)
+            a = sk.Cone(half, F(o, Rm), v_range=(-3.0, 3.0), u_range=turn())
+            b = sk.Sphere(rho, F(o + Rm @ c, rand_rot(rng)))
+            t = np.linspace(0.0, 2 * np.pi, 20000, endpoint=False)
+            qa, qb, qc = 1 + ta ** 2, -2 * (ta * (c[0] * np.cos(t) + c[1] * np.sin(t)) + c[2]), c @ c - rho ** 2
+            disc = np.sqrt(qb ** 2 - 4 * qa * qc)
+            curves = []
+            for sg in (1, -1):
+                v = (-qb + sg * disc) / (2 * qa)
+                curves.append((o + np.stack([v * ta * np.cos(t), v * ta * np.sin(t), v], axis=1) @ Rm.T, True))
+            scale = rho
+        elif name == "torus-face/meridian-plane":        # a plane through the axis: the two tube circles
+            big, small = rng.uniform(1.2, 2.0), rng.uniform(0.3, 0.6)
+            a = sk.Torus(big, small, F(o, Rm), u_range=turn(), v_range=turn() if rng.uniform() < 0.5 else None)
+            phi = rng.uniform(0, 2 * np.pi)
+            e = Rm @ np.array([np.cos(phi), np.sin(phi), 0.0])
+            n = np.cross(z, e)
+            b = sk.Plane(F(o + rng.uniform(-1, 1) * z, _frame_with_z(n)))
+            curves = [(circle_points(o + sg * big * e, n, small, 20000), True) for sg in (1, -1)]
+            scale = small
+        else:                                            # sphere-zone/sphere
+            R = rng.uniform(0.5, 2.0)
+            a = sk.Sphere(R, F(o, Rm), u_range=turn() if rng.uniform() < 0.5 else None,
+                          v_range=tuple(np.sort(rng.uniform(-np.pi / 2, np.pi / 2, 2))))
+            n = rand_rot(rng)[:, 2]
+            d = rng.uniform(0.3, 1.5) * R
+            rho = rng.uniform(abs(R - d) + 0.05 * R, R + d - 0.05 * R)
+            b = sk.Sphere(rho, F(o + d * n, rand_rot(rng)))
+            x = (d ** 2 + R ** 2 - rho ** 2) / (2 * d)          # the plane of the circle, from a's centre
+            curves = [(circle_points(o + x * n, n, np.sqrt(R ** 2 - x ** 2), 20000), True)]
+            scale = min(R, rho)
+        cnt, pts, robust = clipped(a, b, curves, scale)
+        if not robust:
+            continue
+        out.append(finish(Case(f"face/{name}-{made.get(name, 0)}", "face", a, b, cnt, "generic", pts, scale=scale)))
+        made[name] = made.get(name, 0) + 1
+    return out
+
+
+def _frame_with_z(n):
+    """A rotation (3, 3) whose third column is the unit vector n."""
+    n = np.asarray(n, dtype=float) / np.linalg.norm(n)
+    e1 = np.cross(n, [1.0, 0.0, 0.0])
+    if np.linalg.norm(e1) < 0.5:
+        e1 = np.cross(n, [0.0, 1.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    return np.column_stack([e1, np.cross(n, e1), n])
+
+
 def tangent_family(rng):
     """Tangency along a curve (and a few isolated contacts), from the coaxial closed form."""
     out = []
@@ -1354,6 +1513,7 @@ def all_cases():
     cases += steinmetz_family(np.random.default_rng(1408))
     cases += viviani_family(np.random.default_rng(1409))
     cases += trimmed_family(np.random.default_rng(1410))
+    cases += face_family(np.random.default_rng(1413))
     cases += tangent_family(np.random.default_rng(1411))
     cases += simple_family()
     cases += special_family(np.random.default_rng(1412))

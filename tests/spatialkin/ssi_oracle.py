@@ -256,6 +256,45 @@ def trim_margin(surface, x):
             margin = np.minimum(margin, c - lo)
         if np.isfinite(hi):
             margin = np.minimum(margin, hi - c)
+    return np.minimum(margin, face_margin(surface, p))
+
+
+def angle_margin(theta, lo, hi):
+    """Signed margin (radians) of angles theta inside [lo, hi] taken modulo 2 pi: the angle to the nearer end,
+    negative outside."""
+    t = lo + np.mod(theta - lo, TWO_PI)                  # in [lo, lo + 2 pi)
+    inside = t <= hi
+    return np.where(inside, np.minimum(t - lo, hi - t), -np.minimum(t - hi, lo + TWO_PI - t))
+
+
+def face_margin(surface, p):
+    """Signed margin (a length, >= 0 inside) of local points p on the surface inside its CAD-face trims: the
+    angle u round the axis (a cylinder, cone, sphere or torus; on a cone's lower nappe the point lies at u + pi),
+    a torus's tube angle or a sphere's latitude v, a plane's circles; read from the angles of the point
+    (atan2), each margin times the radius it turns on. +inf where the surface has none."""
+    k = kind(surface)
+    margin = np.full(p.shape[:-1], np.inf)
+    rho = np.hypot(p[..., 0], p[..., 1])
+    if k == "plane":
+        outer, inner = getattr(surface, "radius", None), getattr(surface, "inner_radius", None)
+        if outer is not None:
+            margin = np.minimum(margin, outer - rho)
+        if inner is not None:
+            margin = np.minimum(margin, rho - inner)
+        return margin
+    ur, vr = surface.u_range, surface.v_range
+    if np.isfinite(ur[0]):
+        theta = np.arctan2(p[..., 1], p[..., 0])
+        if k == "cone":
+            theta = np.where(p[..., 2] < 0, theta + np.pi, theta)
+        margin = np.minimum(margin, angle_margin(theta, ur[0], ur[1]) * rho)
+    if k == "torus" and np.isfinite(vr[0]):
+        r = float(surface.minor_radius)
+        phi = np.arctan2(p[..., 2], rho - float(surface.major_radius))
+        margin = np.minimum(margin, angle_margin(phi, vr[0], vr[1]) * r)
+    if k == "sphere" and np.isfinite(vr[0]):
+        lat = np.arctan2(p[..., 2], rho)
+        margin = np.minimum(margin, np.minimum(lat - vr[0], vr[1] - lat) * float(surface.radius))
     return margin
 
 

@@ -1,0 +1,257 @@
+"""Components cut by the trims that are not ranges of a length (spatialkin.surfaces.trims: angular ranges, a
+plane's circle): the tracer follows each component on the surfaces as the other trims leave them, and this module
+keeps the arcs that lie inside both regions.
+
+Every limit is 1-Lipschitz in the point, so along a curve parametrised by arc length its value f(s) changes by
+at most |s' - s| (plus the points' error, ``slack``). Between two samples s_k < s_k+1 a zero of f is possible
+only where |f_k| + |f_k+1| <= (s_k+1 - s_k) + 2 slack: those intervals are halved until they are cleared or
+shorter than ``FINEST`` x scale, so no crossing, and no pair of crossings between two samples, is missed (a
+curve that only touches an edge to within that length is taken as touching: no crossing). Each crossing is then
+solved on the dense output by Brent's method, exactly on the edge. The pieces between the crossings whose middle
+lies inside both regions (within slack: a curve lying along an edge is kept) are the arcs returned; neighbours
+are merged, and a closed component that never leaves is returned whole.
+
+References
+----------
+R. P. Brent, Algorithms for Minimization without Derivatives, Prentice-Hall, 1973 (the root on each crossing).
+R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM, 2009 (Lipschitz bounds on a
+function's range over an interval).
+"""
+import numpy as np
+from scipy.optimize import brentq
+
+from ..surfaces.trims import inside_region, limits
+from .dense import CurveSolution
+from .result import CurveResult
+from .status import BOUNDARY, CONTACT, TANGENT, open_outcome
+from .traits import traits
+
+#: Intervals that may hide a crossing are halved down to this length (relative to the scale).
+FINEST = 1e-9
+#: ... and at most this many intervals are kept while halving (a curve running along an edge stays unresolved
+#: there, which is what it is: on the edge).
+MOST_INTERVALS = 200_000
+#: A piece between two cuts is tested at this many points (its ends included).
+PIECE_SAMPLES = 7
+#: A piece within slack of an edge all along is a curve touching the edge from outside (dropped: the component
+#: meets the patch in one point of its edge) when shorter than this many sqrt(slack x scale), the length over
+#: which a curve bending at 1 / scale away from a straight edge stays within slack of it; longer, it runs along
+#: the edge (kept).
+TOUCH_LENGTH = 20.0
+#: The slack of the inside test and of the Lipschitz bound, in tolerances (the points' distance to the curve).
+SLACK_TOLERANCES = 4.0
+
+
+def clip_curves(a, b, curves, scale):
+    """The CurveResults cut to the regions of a and b (all of them when neither has one)."""
+    if not (a.region or b.region):
+        return curves
+    out = []
+    for curve in curves:
+        out += clip_curve(a, b, curve, scale)
+    return out
+
+
+def inside_both(a, b, points, slack):
+    """(N,) bool: points inside the regions of both surfaces, within slack."""
+    return inside_region(a, points, slack) & inside_region(b, points, slack)
+
+
+def clip_curve(a, b, curve, scale):
+    """The arcs (CurveResults) of one component inside both regions."""
+    slack = SLACK_TOLERANCES * curve.tolerance
+    if curve.length == 0.0:
+        return [curve] if inside_both(a, b, curve.points[:1], slack)[0] else []
+    edges = [(k, limit) for k, surface in enumerate((a, b)) for limit in limits(surface)]
+    cuts = sorted((cut for k, limit in edges for cut in crossings(curve, (a, b)[k], limit, k, slack, scale)),
+                  key=lambda cut: cut[0])
+    length = curve.length
+    if not cuts:
+        middle = curve.sol(np.array([0.5 * length]))
+        return [curve] if inside_both(a, b, middle, slack)[0] else []
+    if curve.closed:
+        ends = cuts + [(cuts[0][0] + length, *cuts[0][1:])]
+        pieces = list(zip(ends[:-1], ends[1:]))
+    else:
+        ends = [(0.0, None, None)] + cuts + [(length, None, None)]
+        pieces = list(zip(ends[:-1], ends[1:]))
+    keep = [kept_piece(a, b, curve, lo[0], hi[0], slack, scale) for lo, hi in pieces]
+    arcs = merged([piece for piece, kept in zip(pieces, keep) if kept], curve.closed, length)
+    if len(arcs) == 1 and curve.closed and arcs[0][1][0] - arcs[0][0][0] >= length:
+        return [curve]
+    return [window(curve, lo, hi) for lo, hi in arcs if hi[0] - lo[0] > curve.tolerance]
+
+
+def kept_piece(a, b, curve, s0, s1, slack, scale):
+    """True when the piece [s0, s1] of the curve between two cuts lies inside both regions: a sample of it
+    inside by more than slack; or, within slack of an edge all along, longer than a touch (TOUCH_LENGTH: a curve
+    lying along the edge, not one touching it from outside)."""
+    s = np.linspace(s0, s1, PIECE_SAMPLES)[1:-1]
+    points = curve.sol(s % curve.length if curve.closed else s)
+    if not inside_both(a, b, points, slack).all():
+        return False
+    if inside_both(a, b, points, -slack).any():
+        return True
+    return s1 - s0 > TOUCH_LENGTH * np.sqrt(slack * scale)
+
+
+def merged(pieces, closed, length):
+    """Neighbouring pieces (lo end, hi end) joined (a cut between two kept pieces is no end); on a closed curve
+    the last joins the first across s = length."""
+    out = []
+    for lo, hi in pieces:
+        if out and out[-1][1][0] == lo[0]:
+            out[-1] = (out[-1][0], hi)
+        else:
+            out.append((lo, hi))
+    if closed and len(out) > 1 and out[-1][1][0] == out[0][0][0] + length:
+        out[0] = (out[-1][0], (out[0][1][0] + length, *out[0][1][1:]))
+        out.pop()
+    return out
+
+
+def crossings(curve, surface, limit, k, slack, scale):
+    """[(s, limit, surface index k)] where the curve crosses the limit's edge (from inside to outside or back)."""
+    sol, length = curve.sol, curve.length
+    frame = surface.frame
+
+    def value(s):
+        return limit(frame.to_local(sol(np.atleast_1d(s)).reshape(-1, 3)))
+
+    s = np.unique(np.concatenate([curve.s, [0.0, length]]))
+    f = value(s)
+    lo_s, hi_s, lo_f, hi_f = s[:-1], s[1:], f[:-1], f[1:]
+    finest = FINEST * scale
+    done_s, done_f = [], []
+    while len(lo_s):
+        width = hi_s - lo_s
+        open_ = np.abs(lo_f) + np.abs(hi_f) <= width + 2.0 * slack
+        on_edge = (np.abs(lo_f) <= slack) & (np.abs(hi_f) <= slack)
+        split = open_ & ~on_edge & (width > finest)
+        settled = ~split
+        done_s.append(np.stack([lo_s[settled], hi_s[settled]], axis=1))
+        done_f.append(np.stack([lo_f[settled], hi_f[settled]], axis=1))
+        lo_s, hi_s, lo_f, hi_f = lo_s[split], hi_s[split], lo_f[split], hi_f[split]
+        if not len(lo_s) or len(lo_s) > MOST_INTERVALS:
+            if len(lo_s):
+                done_s.append(np.stack([lo_s, hi_s], axis=1))
+                done_f.append(np.stack([lo_f, hi_f], axis=1))
+            break
+        mid = 0.5 * (lo_s + hi_s)
+        f_mid = value(mid)
+        lo_s, hi_s = np.concatenate([lo_s, mid]), np.concatenate([mid, hi_s])
+        lo_f, hi_f = np.concatenate([lo_f, f_mid]), np.concatenate([f_mid, hi_f])
+    ss, ff = np.concatenate(done_s), np.concatenate(done_f)
+    change = (ff[:, 0] < 0.0) != (ff[:, 1] < 0.0)
+    cuts = []
+    for (s0, s1), (f0, f1) in zip(ss[change], ff[change]):
+        if max(abs(f0), abs(f1)) <= slack:               # along the edge, within the points' error: no root to solve
+            root = 0.5 * (s0 + s1)
+        else:
+            root = brentq(lambda x: float(value(x)[0]), s0, s1, xtol=1e-15 * max(scale, length), rtol=1e-15)
+        if not curve.closed and (root <= curve.tolerance or root >= length - curve.tolerance):
+            continue                                       # the curve ends on this edge already
+        if not limit.on_edge_side(frame.to_local(sol(np.array([root])).reshape(1, 3)))[0]:
+            continue                 # the line of a half-plane through the axis, beyond it: not this edge
+        cuts.append((float(root), limit, k))
+    return cuts
+
+
+def window(curve, lo, hi):
+    """The CurveResult of the arc [lo[0], hi[0]] of a component (hi past its length: across s = 0 of a closed
+    one); lo and hi are (s, limit or None, surface index or None): a limit ends the arc on its edge."""
+    s0, s1 = lo[0], hi[0]
+    length = curve.length
+    period = period_shift(curve)
+    knots = curve.s
+    inner = [(knots + turn * length, turn) for turn in ((0, 1) if curve.closed else (0,))]
+    gap = curve.tolerance
+    s_in, rows, turns = [], [], []
+    for shifted, turn in inner:
+        mask = (shifted > s0 + gap) & (shifted < s1 - gap)
+        if curve.closed and turn == 0:
+            mask &= knots < length           # the last point of a closed curve is its first, once
+        idx = np.nonzero(mask)[0]
+        s_in.append(shifted[idx])
+        rows.append(idx)
+        turns.append(np.full(len(idx), turn))
+    s_in, rows, turns = np.concatenate(s_in), np.concatenate(rows), np.concatenate(turns)
+    sol = WindowSolution(curve.sol, s0, s1 - s0, period)
+    ends_at = np.array([0.0, s1 - s0])
+    _, end_points, _, end_params = sol.evaluate(ends_at)
+    points = np.vstack([end_points[:1], curve.points[rows], end_points[1:]])
+    params = np.vstack([end_params[:1], curve.params[rows] + turns[:, None] * period, end_params[1:]])
+    align_angles(params, curve.sol.surfaces)
+    status, message = window_outcome(curve, lo, hi)
+    sol.knots = np.concatenate([[0.0], s_in - s0, [s1 - s0]])
+    return CurveResult(points=points, s=sol.knots, params=params, closed=False,
+                       length=s1 - s0, status=status, message=message, tolerance=curve.tolerance, sol=sol,
+                       nodes=nodes_within(curve, s0, s1), solver_gap=curve.solver_gap, nfev=curve.nfev,
+                       wall_time=curve.wall_time)
+
+
+def period_shift(curve):
+    """(4,): how far the parameters move over one period of a closed curve (whole turns of its angles; 0 for an
+    open one)."""
+    if not curve.closed or len(curve.params) < 2:
+        return np.zeros(4)
+    return curve.params[-1] - curve.params[0]
+
+
+def align_angles(params, surfaces):
+    """The angular columns of params (M, 4) made continuous (each row within pi of the one before), in place."""
+    for k, surface in enumerate(surfaces):
+        for j, angle in enumerate(traits(surface).angular):
+            if angle:
+                params[:, 2 * k + j] = np.unwrap(params[:, 2 * k + j])
+
+
+def window_outcome(curve, lo, hi):
+    """(status, message) of an arc: its ends on a trim edge ('boundary'), or the component's own ends."""
+    if curve.status in (TANGENT, CONTACT):
+        return curve.status, f"{curve.message}; cut by the trims"
+    ends = []
+    for end in (lo, hi):
+        s, limit, k = end
+        if limit is None:
+            ends.append((curve.status, curve.message))
+        else:
+            ends.append((BOUNDARY, f"reached the trim edge {limit.name} of surface {'ab'[k]} at s = {s:.6g} of "
+                                   "the untrimmed component"))
+    return open_outcome(ends[0][0], ends[0][1], ends[1][0], ends[1][1])
+
+
+def nodes_within(curve, s0, s1):
+    """The component's nodes (K, 3) that lie on the arc [s0, s1]."""
+    nodes = np.asarray(curve.nodes, dtype=float).reshape(-1, 3)
+    if not len(nodes):
+        return nodes
+    s, _ = curve.sol.closest(nodes)
+    s = np.where(curve.closed & (s < s0), s + curve.length, s)
+    return nodes[(s >= s0) & (s <= s1)]
+
+
+class WindowSolution(CurveSolution):
+    """Dense output of the arc [start, start + length] of a component (across s = 0 of a closed one): the
+    component's own, its parameters moved by a period's shift past s = 0."""
+
+    def __init__(self, whole, start, length, period):
+        super().__init__(whole.surfaces, length, False, None)
+        self.whole, self.start, self.period = whole, float(start), np.asarray(period, dtype=float)
+
+    def evaluate(self, s, with_params=True):
+        s = self.wrap(np.ravel(s))
+        at = self.start + s
+        _, points, tangents, params = self.whole.evaluate(at, with_params)
+        if params is not None and self.whole.closed:
+            params = params + np.floor_divide(at, self.whole.length)[:, None] * self.period
+        return s, points, tangents, params
+
+    def predicted_parameters(self, s):
+        shape = np.shape(s)
+        s = self.wrap(np.ravel(s))
+        at = self.start + s
+        params = self.whole.predicted_parameters(at).reshape(-1, 4)
+        if self.whole.closed:
+            params = params + np.floor_divide(at, self.whole.length)[:, None] * self.period
+        return params.reshape(shape + (4,))

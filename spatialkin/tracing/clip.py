@@ -145,10 +145,7 @@ def crossings(curve, surface, limit, k, slack, scale):
     change = (ff[:, 0] < 0.0) != (ff[:, 1] < 0.0)
     cuts = []
     for (s0, s1), (f0, f1) in zip(ss[change], ff[change]):
-        if max(abs(f0), abs(f1)) <= slack:               # along the edge, within the points' error: no root to solve
-            root = 0.5 * (s0 + s1)
-        else:
-            root = brentq(lambda x: float(value(x)[0]), s0, s1, xtol=1e-15 * max(scale, length), rtol=1e-15)
+        root = brentq(lambda x: float(value(x)[0]), s0, s1, xtol=1e-15 * max(scale, length), rtol=1e-15)
         if not curve.closed and (root <= curve.tolerance or root >= length - curve.tolerance):
             continue                                       # the curve ends on this edge already
         if not limit.on_edge_side(frame.to_local(sol(np.array([root])).reshape(1, 3)))[0]:

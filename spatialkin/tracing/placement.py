@@ -116,8 +116,44 @@ def trims_overlap(a, b):
     return traits(a).trims_overlap(a, b)
 
 
+#: Same-surface patches with angular or circular trims are compared on a grid of this many samples per
+#: parameter of a's patch (infinite length ranges cut at OVERLAP_REACH x its size).
+REGION_SAMPLES = 97
+OVERLAP_REACH = 1e3
+
+
+def regions_overlap(a, b):
+    """For the same surface given twice: True when a grid of a's patch has a point strictly inside b's patch (its
+    length trims and its region) and a's region; True when neither has a region (trims_overlap decides)."""
+    if not (a.region or b.region):
+        return True
+    reach = OVERLAP_REACH * a.size
+    (u0, u1), (v0, v1) = (np.clip(r, -reach, reach) for r in traits(a).natural_domain(a))
+    u, v = np.meshgrid(np.linspace(u0, u1, REGION_SAMPLES)[1:-1], np.linspace(v0, v1, REGION_SAMPLES)[1:-1])
+    points = a.point(u.ravel(), v.ravel())
+    inside = strictly_inside(a, points) & strictly_inside(b, points)
+    (bu0, bu1), (bv0, bv1) = b.bounds
+    uv = b.parameters(points)
+    inside &= (uv[:, 0] > bu0) & (uv[:, 0] < bu1) & (uv[:, 1] > bv0) & (uv[:, 1] < bv1)
+    return bool(inside.any())
+
+
+def strictly_inside(surface, points):
+    """(N,) bool: points strictly inside the surface's region (every group has a limit > 0)."""
+    local = surface.frame.to_local(points)
+    inside = np.ones(len(points), dtype=bool)
+    for group in surface.region:
+        inside &= np.max([limit(local) for limit in group], axis=0) > 0.0
+    return inside
+
+
 def check_not_coincident(a, b, scale):
-    """Raise CoincidentSurfacesError when the patches overlap in a piece of surface."""
+    """Raise CoincidentSurfacesError when the patches overlap in a piece of surface, or when they are patches of
+    one surface cut by angular or circular trims that do not overlap (they meet, if at all, along their edges)."""
+    if same_surface(a, b, scale) and trims_overlap(a, b) and (a.region or b.region) and not regions_overlap(a, b):
+        raise CoincidentSurfacesError(
+            f"a and b are patches of the same {type(a).__name__.lower()} that share no area: they meet, if at all, "
+            "along their trim edges, which sk.intersect does not compute for one surface given twice")
     if same_surface(a, b, scale) and trims_overlap(a, b):
         raise CoincidentSurfacesError(
             f"a and b are the same {type(a).__name__.lower()} and their patches overlap: the intersection is a "

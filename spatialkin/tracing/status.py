@@ -50,6 +50,7 @@ MESSAGES = {
                                  "sin = {sin:.2g}): no tangent to follow"),
     "nothing_traced": (None, "nothing could be traced from {point}: {message}"),
     "no_start": (NO_START, "no intersection point found near start {point}: Newton on M1 = M2 did not converge"),
+    "outside_trims": (NO_START, "the component through start {point} lies outside the trims of the surfaces"),
     # the ends of a branch (spatialkin.tracing.ivp)
     "closed": (CLOSED, "closed on its start after s = {s:.12g}"),
     "closed_in_jump": (CLOSED, "closed on its start, within a jump, after s = {s:.12g}"),

@@ -16,6 +16,7 @@ import numpy as np
 from ..kernels import curve as kc
 from ..kernels import stored as kst
 from .arclength import remeasure_branch
+from .clip import clip_curve
 from .ivp import integrate_branch
 from .ode import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
@@ -184,7 +185,9 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     The curve M(s) common to both surfaces, s its arc length, solves the Cauchy problem
     dM/ds = N_a x N_b / |N_a x N_b| (N_a, N_b the surfaces' normals), written for the parameters
     (u1, v1, u2, v2) and integrated by scipy.integrate.solve_ivp from the located start in both directions
-    until the curve closes, leaves a trim or meets a singular point [1]_. Every stored point is then corrected
+    until the curve closes, leaves a trim or meets a singular point [1]_; the trims that are not ranges of a
+    length (angular ranges, a plane's circle: spatialkin.tracing.clip) then cut it, and the arc nearest the
+    start is returned. Every stored point is then corrected
     onto both surfaces by Newton, and the arc length is re-measured on the corrected curve. The integrator is
     a Dormand-Prince pair with dense output [2]_.
 
@@ -223,7 +226,13 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor)
     point, y = start_point(a, b, start, settings.gap_tol)
-    return Curve(trace_from(a, b, point, y, settings, t_start))
+    whole = trace_from(a, b, point, y, settings, t_start)
+    if not (a.region or b.region):
+        return Curve(whole)
+    arcs = clip_curve(a, b, whole, settings.scale)
+    if not arcs:
+        raise TracingError.of("outside_trims", where=point, point=point.tolist())
+    return Curve(min(arcs, key=lambda arc: float(arc.sol.closest(point)[1])))
 
 
 def trace_from(a, b, point, y, settings, t_start):

@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from ..surfaces import Surface
+from ..surfaces import Plane, Surface
 from ..tracing.traits import traits
 from ..validation import check_range
 
@@ -21,9 +21,11 @@ def chord_length(points):
 
 
 def natural_domain(surface):
-    """((u_lo, u_hi), (v_lo, v_hi)) of a surface's own chart, infinite where the surface is unbounded (its
-    traits' natural domain)."""
-    return traits(surface).natural_domain(surface)
+    """((u_lo, u_hi), (v_lo, v_hi)) of a surface's face: its trims where it has them (an angular range too),
+    else its own chart's (the full turn of an angle), infinite where the surface is unbounded."""
+    own = traits(surface).natural_domain(surface)
+    return tuple(tuple(trim) if math.isfinite(trim[0]) and math.isfinite(trim[1]) else domain
+                 for trim, domain in zip((surface.u_range, surface.v_range), own))
 
 
 def _check_range(name, value, default):
@@ -53,8 +55,21 @@ def surface_grid(surface, u_range=None, v_range=None, resolution=SURFACE_RESOLUT
     if min(nu, nv) < MIN_RESOLUTION:
         raise ValueError(f"resolution must be at least ({MIN_RESOLUTION}, {MIN_RESOLUTION}), got {resolution!r}")
     (u_lo, u_hi), (v_lo, v_hi) = parameter_domain(surface, u_range, v_range)
+    if getattr(surface, "radius", None) is not None and isinstance(surface, Plane) and u_range is v_range is None:
+        return disc_grid(surface, nu, nv, (u_lo, u_hi), (v_lo, v_hi))
     u, v = np.meshgrid(np.linspace(u_lo, u_hi, nu), np.linspace(v_lo, v_hi, nv), indexing="ij")
     return surface.point(u, v)
+
+
+def disc_grid(plane, n_turn, n_radius, u_range, v_range):
+    """Points (n_turn, n_radius, 3) of a plane's disc or annulus on a polar grid (the turn closes), pressed into
+    its rectangle where one cuts the disc."""
+    inner = plane.inner_radius or 0.0
+    turn, rho = np.meshgrid(np.linspace(0.0, 2.0 * math.pi, n_turn), np.linspace(inner, plane.radius, n_radius),
+                            indexing="ij")
+    u = np.clip(rho * np.cos(turn), *u_range)
+    v = np.clip(rho * np.sin(turn), *v_range)
+    return plane.point(u, v)
 
 
 def looper_links(motion, index):

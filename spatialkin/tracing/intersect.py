@@ -16,7 +16,7 @@ from .certificate import certificates
 from .clip import clip_curves
 from .closed import closed_form, closed_settings
 from . import stages
-from .status import CONTACT
+from .status import CONTACT, FAILED
 from .rescue import LOST_RADIUS, crossing_starts
 from .topology import TopologyError, points_at, topology
 from .traits import check_surface, traits
@@ -177,16 +177,20 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         pending += [(seed, None, bool(exact)) for seed, exact in zip(seeds, on)]
     if stages.ON:
         stages.switch("dedupe")
-    failed = trace_pending(a, b, drop_traced(pending, curves, radius), curves, settings, radius)
+    reasons = []
+    failed = trace_pending(a, b, drop_traced(pending, curves, radius), curves, settings, radius, reasons)
     lost = lost_starts(failed, curves, LOST_RADIUS * settings.scale)
     if lost:                # every start of a component was lost: start it from the lines through their middles
         rescued = crossing_starts(a, b, settings.scale, settings.tolerance, lost)
-        trace_pending(a, b, drop_traced([(x, None, False) for x in rescued], curves, radius), curves, settings, radius)
+        trace_pending(a, b, drop_traced([(x, None, False) for x in rescued], curves, radius), curves, settings, radius,
+                      reasons)
         lost = lost_starts(lost, curves, LOST_RADIUS * settings.scale)
         if lost:
+            why = (f"tracing failed: {reasons[0]}" if reasons else
+                   "the surfaces nearly touch there")
             raise TopologyError(f"{len(lost)} start(s) of the topology stage could be neither located on the curve nor "
-                                f"traced, and no component found passes near them (first {lost[0].tolist()}): the "
-                                "surfaces nearly touch there; the result would miss a component", where="starts")
+                                f"traced, and no component found passes near them (first {lost[0].tolist()}): {why}; "
+                                "the result would miss a component", where="starts")
     if stages.ON:
         stages.switch("dedupe")
     kept = []
@@ -201,10 +205,10 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     return [Curve(dataclasses.replace(c, topology=topo, certificate=proof)) for c, proof in zip(curves, proofs)]
 
 
-def trace_pending(a, b, pending, curves, settings, radius):
+def trace_pending(a, b, pending, curves, settings, radius, reasons):
     """Trace the components of the pending starts ((point, y, on the curve) each; y None: to be located first),
     appending each to curves (a list, changed in place) and dropping the starts on it; returns the starts (3,) that
-    could be neither located nor traced."""
+    could be neither located nor traced (the messages of the tracing failures appended to reasons)."""
     failed = []
     while pending:
         point, y, _ = pending.pop(0)
@@ -224,9 +228,11 @@ def trace_pending(a, b, pending, curves, settings, radius):
             stages.switch("trace_setup")
         try:
             curve = trace_from(a, b, point, y, settings, time.perf_counter())
-        except TracingError:
+        except TracingError as err:
             failed.append(np.asarray(point, dtype=float))
-            continue            # the seed sits on a singular point: the arms' seeds trace it
+            if err.status == FAILED:
+                reasons.append(str(err))
+            continue            # the seed sits on a singular point (the arms' seeds trace it), or tracing failed
         curves.append(curve)
         if stages.ON:
             stages.switch("dedupe")

@@ -19,25 +19,27 @@ CONTACT = "contact"
 TANGENT = "tangent"
 NO_START = "no_start"
 
-#: status -> what it means, for a Curve (the first seven) and for a TracingError (any end status, or NO_START).
+#: status -> what it means, for a Curve (CURVE_STATUSES) and for a TracingError (FAILED, NO_START, or the status of
+#: the case it could not handle).
 MEANINGS = {
     CLOSED: "a closed loop: the last point is the first (exactly), ``length`` is the period",
     SINGULAR: "an end at a singular point that was not passed (branches cross, the surfaces touch, or a "
               "parametrisation degenerates: the apex of a cone, the axis point of a horn or spindle torus)",
     BOUNDARY: "an end exactly on a trim edge of a surface",
     MAX_LENGTH: "an end at max_length without closing",
-    FAILED: "an end where the integration or the Newton correction failed (the message says where)",
+    FAILED: "the integration or the Newton correction failed (a TracingError's; the message says where)",
     CONTACT: "a single point where the surfaces touch (length 0)",
     TANGENT: "a circle or a segment along which the surfaces touch, in closed form (the tracer cannot follow it: "
              "the normals are parallel all along)",
     NO_START: "no intersection point was found near the start given (a TracingError only)",
 }
 
-#: The statuses a Curve can carry.
-CURVE_STATUSES = (CLOSED, SINGULAR, BOUNDARY, MAX_LENGTH, FAILED, CONTACT, TANGENT)
+#: The statuses a Curve can carry ('failed' is a TracingError's only: a curve that cannot be traced to its end
+#: raises, saying where and why).
+CURVE_STATUSES = (CLOSED, SINGULAR, BOUNDARY, MAX_LENGTH, CONTACT, TANGENT)
 
 #: Precedence of an open curve's status when its two ends differ: the first listed wins.
-END_PRECEDENCE = (FAILED, SINGULAR, BOUNDARY, MAX_LENGTH)
+END_PRECEDENCE = (SINGULAR, BOUNDARY, MAX_LENGTH)
 
 #: event -> (status, message template): the messages written outside the integration loop. An open curve's
 #: status comes from its ends (END_PRECEDENCE), hence None for "open".
@@ -50,6 +52,7 @@ MESSAGES = {
                                  "sin = {sin:.2g}): no tangent to follow"),
     "nothing_traced": (None, "nothing could be traced from {point}: {message}"),
     "no_start": (NO_START, "no intersection point found near start {point}: Newton on M1 = M2 did not converge"),
+    "branch_failed": (FAILED, "the curve could not be traced past {point}: {message}"),
     "outside_trims": (NO_START, "the component through start {point} lies outside the trims of the surfaces"),
     # the ends of a branch (spatialkin.tracing.ivp)
     "closed": (CLOSED, "closed on its start after s = {s:.12g}"),

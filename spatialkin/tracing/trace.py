@@ -15,6 +15,7 @@ import numpy as np
 
 from ..kernels import curve as kc
 from ..kernels import stored as kst
+from ..kernels import surfaces as ks
 from .arclength import remeasure_branch
 from .clip import clip_curve
 from .ivp import integrate_branch
@@ -23,7 +24,7 @@ from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from .dense import Span, TracedSolution
 from .result import Curve, CurveResult, TracingError, in_own_chart, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
-from .status import CLOSED, open_outcome
+from .status import CLOSED, FAILED, open_outcome
 from .traits import check_surface, traits
 from . import stages
 from ..validation import check_choice, check_nonnegative, check_positive
@@ -326,11 +327,25 @@ def measured_branch(a, b, point, tangent, y, sign, settings):
     """One direction integrated from point (integrate_branch) with its arc length re-measured on the curve
     (remeasure_branch, timed as correction)."""
     branch = integrate_branch(a.data, b.data, point, tangent, y, sign, settings)
+    if branch.status == FAILED:
+        end = branch_end(branch, point)
+        raise TracingError.of("branch_failed", where=end, point=np.round(end, 12).tolist(), message=branch.message)
     mark = stages.enter("correction") if stages.ON else None
     branch = remeasure_branch(branch, settings.pullback, settings.gap_tol)
     if mark is not None:
         stages.leave(mark)
     return branch
+
+
+def branch_end(branch, start):
+    """The point (3,) where a branch stopped: its last state on its last segment's chart of a (start if it has
+    no segment)."""
+    if not branch.segments:
+        return np.asarray(start, dtype=float)
+    seg = branch.segments[-1]
+    end = np.empty((1, 3))
+    ks.evaluate(seg.a, np.ascontiguousarray(seg.y[:2, -1:].T), end)
+    return end[0]
 
 
 def _corrected(a, b, y_all, span_of, spans, settings):

@@ -15,10 +15,12 @@ Conventions of the translation (occ_draw.py): DRAW's ``cone`` radius is the radi
 at the apex; a placement given by its normal only takes OpenCascade's X direction (gp_Ax3); a left-handed
 placement (after ``tmirror``) is flipped into a proper rotation with the same surface; a ``mkface``/``trim``
 bound is mapped to spatialkin's range (a cone's v along the generatrix becomes the axial distance from the apex).
-A trim spatialkin has no form for makes the case ``NOT_EXPRESSIBLE`` unless the truth shows it cuts nothing (then
-it is kept in the truth's trims and named in ``inactive``). spatialkin needs one bounded surface: when both are
-unbounded and the intersection is bounded, one is trimmed along its axis to a range that contains the whole
-intersection with margin (``bound``; the truth has no end on it); an unbounded intersection is not expressible.
+An angular trim (``trimu``, a ``pcylinder``'s or ``ptorus``'s angle) is spatialkin's u_range; a disc or an
+annulus (a primitive's cap, a revolved segment normal to the axis, a ``mkface`` of a circle) is a plane's radius
+and inner_radius; a face spatialkin has no form for (an elliptic cylinder) or an unbounded intersection makes the
+script ``NOT_EXPRESSIBLE``. spatialkin needs one bounded surface: when both are unbounded and the intersection is
+bounded, one is trimmed along its axis to a range that contains the whole intersection with margin (``bound``; the
+truth has no end on it).
 
 References
 ----------
@@ -231,14 +233,14 @@ def not_expressible(source, what, why):
 
 def bound_cylinder(g, lo, hi):
     """An unbounded cylinder trimmed to v in [lo, hi], a range containing the whole intersection (see module)."""
-    return g.with_ranges(g.u_range, (lo, hi), inactive=g.inactive, bound="v")
+    return g.with_ranges(g.u_range, (lo, hi), bound="v")
 
 
 def bound_cone(g, lo, hi):
     """An unbounded cone trimmed to the axial range [lo, hi] from its apex (spatialkin's v), as OCC's v range."""
     a, big_r = g.params["angle"], g.params["radius"]
     vs = sorted((h * math.tan(abs(a)) - big_r) / math.sin(a) for h in (lo, hi))
-    return g.with_ranges(g.u_range, tuple(vs), inactive=g.inactive, bound="v")
+    return g.with_ranges(g.u_range, tuple(vs), bound="v")
 
 
 def rects(*geos):
@@ -578,11 +580,11 @@ def _():
 
 @case("intss/bug24418_2", INTSS + "bug24418_2", METHOD_PARALLEL,
       note="mksurface of the quarter torus (ptorus 25 24 90) then trimu 0 pi/2; the cone (pcone on the plane "
-           "(20, 20, 10): radius 10 to 8 over 40) trimmed to its face, v in [0, 40.05]. The torus's u trim is "
-           "kept in the truth and cuts nothing (the cone lies in x, y in [10, 30]): spatialkin gets the whole torus")
+           "(20, 20, 10): radius 10 to 8 over 40) trimmed to its face, v in [0, 40.05]. The torus's u trim cuts "
+           "nothing (the cone lies in x, y in [10, 30])")
 def _():
     t = D.ptorus_face(25, 24, angle_deg=90.0)
-    t = t.with_ranges((0.0, 1.5707963267948966), None, inactive=("u",))
+    t = t.with_ranges((0.0, 1.5707963267948966), None)
     c = D.pcone_lateral(10, 8, 40, place=D.place_of(D.plane("20 20 10 0 0 1")))
     c = c.with_ranges(None, (0.0, 40.049968789001575))
     return t, c, Swept([T.Parallel(t, c, T.axial_range(t, c))])

@@ -17,8 +17,12 @@ OpenCascade's parametrisations (position O, axes X, Y, Z, which a mirror can mak
 
 spatialkin's (spatialkin/surfaces/*.py): the same for the plane, cylinder, sphere and torus in a right-handed
 frame; the cone has its apex at the frame origin, M(u, v) = frame(v tan(a) cos u, v tan(a) sin u, v) with
-0 < a < pi/2 and v the axial coordinate. Trims: a plane's rectangle (u_range, v_range), a cylinder's or cone's
-axial v_range; nothing else.
+0 < a < pi/2 and v the axial coordinate. Trims: a plane's rectangle (u_range, v_range) and a disc or annulus
+about its origin (radius, inner_radius); a cylinder's or cone's axial v_range and angular u_range; a sphere's
+u_range and latitude v_range; a ring torus's u_range and tube angle v_range. The angle u about the axis is
+OpenCascade's once the frames agree; a frame made right-handed by flipping Y (a mirrored placement, or a cone
+of negative semi-angle, whose spatialkin frame turns Y and Z over) runs u the other way, so [u0, u1] becomes
+[-u1, -u0]. On a cone both nappes use the same u, as in OpenCascade.
 
 References
 ----------
@@ -89,9 +93,9 @@ class Geo:
     """A placed OpenCascade analytic surface with optional trims in its own (u, v).
 
     params: cylinder/sphere ``r``; cone ``angle`` (signed semi-angle, radians) and ``radius`` (at O); torus ``R``
-    and ``r``. ``inactive`` names trims that spatialkin cannot express but that provably cut nothing of this case
-    (the truth is computed with them, and has no end on them); ``bound`` names the range ("v") added to an
-    unbounded surface so that spatialkin accepts the pair (it contains the whole intersection, with margin).
+    and ``r``; a plane face bounded by a circle about O: ``radius`` (a disc) and ``inner_radius`` (an annulus).
+    ``bound`` names the range ("v") added to an unbounded surface so that spatialkin accepts the pair (it contains
+    the whole intersection, with margin).
     """
 
     kind: str
@@ -102,7 +106,6 @@ class Geo:
     params: dict
     u_range: tuple = None
     v_range: tuple = None
-    inactive: tuple = ()
     bound: str = ""
     label: str = ""
 
@@ -153,7 +156,7 @@ class Geo:
         return (big_r + v * math.sin(a)) / math.tan(abs(a))
 
     def describe(self):
-        p = ", ".join(f"{k}={v:.15g}" for k, v in self.params.items())
+        p = ", ".join(f"{k}={v:.15g}" for k, v in self.params.items() if v is not None)
         trims = []
         if self.u_range is not None:
             trims.append(f"u in [{self.u_range[0]:.15g}, {self.u_range[1]:.15g}]")
@@ -279,6 +282,17 @@ def rectangle(corner, edge_u, edge_v, label=""):
     return _geo("plane", c, x, y, np.cross(x, y), {}, u_range=(0.0, lu), v_range=(0.0, lv), label=label)
 
 
+def disc(centre, normal, radius, inner_radius=None, label=""):
+    """A planar face bounded by the circle of this radius about centre in the plane of this normal (a
+    ``pcylinder``'s or ``pcone``'s cap, a ``mkface`` of a circle, a revolved segment normal to the axis), less the
+    disc of inner_radius (an annulus); the in-plane axes by gp_Ax3's rule (a disc has no preferred one)."""
+    o, x, y, z = ax3(centre, normal)
+    params = {"radius": float(radius)}
+    if inner_radius is not None:
+        params["inner_radius"] = float(inner_radius)
+    return _geo("plane", o, x, y, z, params, label=label)
+
+
 def strip(p0, p1, direction, label="", extent=None):
     """The face swept by the segment p0-p1 along a direction orthogonal to it (a prism's face): a plane with
     u along the segment in [0, |p1 - p0|] and v along the direction, unbounded or in extent."""
@@ -313,50 +327,53 @@ def _frame(sk, o, x, y, z, left_handed):
     return sk.Frame(o, np.column_stack([x, y, z]))
 
 
+def _turn(g, sigma):
+    """spatialkin's u_range of g's u trim (None for a full turn), sigma = -1 where the frame runs u the other way."""
+    if full_turn(g.u_range):
+        return None
+    lo, hi = sigma * g.u_range[0], sigma * g.u_range[1]
+    return (min(lo, hi), max(lo, hi))
+
+
 def to_sk(g):
     """The spatialkin surface of a Geo, or NotExpressible naming what spatialkin cannot express."""
     import spatialkin as sk
     o, x, y, z = g.axes
     lh = g.left_handed
     p = g.params
-
-    def check_u(what):
-        if not full_turn(g.u_range) and "u" not in g.inactive:
-            raise NotExpressible(f"{what}: u trimmed to [{g.u_range[0]:.6g}, {g.u_range[1]:.6g}] "
-                                 "(spatialkin trims a surface of revolution only along its axis)")
+    sigma = -1.0 if lh else 1.0
 
     if g.kind == "plane":
         if lh:                      # keep (u, v): turn the normal instead of an in-plane axis
             z = -z
-        return sk.Plane(sk.Frame(o, np.column_stack([x, y, z])), g.u_range, g.v_range)
+        return sk.Plane(sk.Frame(o, np.column_stack([x, y, z])), g.u_range, g.v_range, radius=p.get("radius"),
+                        inner_radius=p.get("inner_radius"))
     if g.kind == "cylinder":
-        check_u("cylinder")
-        return sk.Cylinder(p["r"], _frame(sk, o, x, y, z, lh), g.v_range)
+        return sk.Cylinder(p["r"], _frame(sk, o, x, y, z, lh), g.v_range, u_range=_turn(g, sigma))
     if g.kind == "cone":
-        check_u("cone")
         s = 1.0 if p["angle"] > 0 else -1.0
         frame = _frame(sk, g.apex, x, s * y, s * z, lh)
         vr = None
         if g.v_range is not None:
             a, b = g.cone_axial(g.v_range[0]), g.cone_axial(g.v_range[1])
             vr = (min(a, b), max(a, b))
-        return sk.Cone(abs(p["angle"]), frame, vr)
+        return sk.Cone(abs(p["angle"]), frame, vr, u_range=_turn(g, s * sigma))
     if g.kind == "sphere":
-        if not (full_turn(g.u_range) and (g.v_range is None or g.v_range[1] - g.v_range[0] >= math.pi - 1e-9)):
-            if "uv" not in g.inactive:
-                raise NotExpressible("sphere patch (spatialkin's sphere is untrimmed)")
-        return sk.Sphere(p["r"], _frame(sk, o, x, y, z, lh))
+        vr = g.v_range
+        if vr is not None and vr[1] - vr[0] >= math.pi - 1e-9:
+            vr = None
+        return sk.Sphere(p["r"], _frame(sk, o, x, y, z, lh), u_range=_turn(g, sigma), v_range=vr)
     if g.kind == "torus":
-        check_u("torus")
-        if g.v_range is not None and g.v_range[1] - g.v_range[0] < TWO_PI - FULL_TURN_SLACK:
-            raise NotExpressible("torus patch trimmed in v (spatialkin's torus is untrimmed)")
-        return sk.Torus(p["R"], p["r"], _frame(sk, o, x, y, z, lh))
+        vr = g.v_range
+        if vr is not None and vr[1] - vr[0] >= TWO_PI - FULL_TURN_SLACK:
+            vr = None
+        return sk.Torus(p["R"], p["r"], _frame(sk, o, x, y, z, lh), u_range=_turn(g, sigma), v_range=vr)
     raise NotExpressible(f"no spatialkin surface for {g.kind}")
 
 
 def scale(g):
     """A characteristic length, as spatialkin states its tolerance: a radius, R + r, a trimmed cone's slant length,
-    a trimmed plane's half-diagonal (None when it has none)."""
+    a trimmed plane's half-diagonal (a disc's: that of its bounding square) (None when it has none)."""
     p = g.params
     if g.kind in ("cylinder", "sphere"):
         return p["r"]
@@ -368,7 +385,11 @@ def scale(g):
         a, b = g.cone_axial(g.v_range[0]), g.cone_axial(g.v_range[1])
         return max(abs(a), abs(b)) / math.cos(p["angle"])
     if g.kind == "plane":
-        if g.u_range is None or g.v_range is None or not all(map(math.isfinite, (*g.u_range, *g.v_range))):
+        ur, vr = g.u_range or (-math.inf, math.inf), g.v_range or (-math.inf, math.inf)
+        if "radius" in p:               # spatialkin's bounds of a disc: the rectangle within its bounding square
+            ur = (max(ur[0], -p["radius"]), min(ur[1], p["radius"]))
+            vr = (max(vr[0], -p["radius"]), min(vr[1], p["radius"]))
+        if not all(map(math.isfinite, (*ur, *vr))):
             return None
-        return 0.5 * math.hypot(g.u_range[1] - g.u_range[0], g.v_range[1] - g.v_range[0])
+        return 0.5 * math.hypot(ur[1] - ur[0], vr[1] - vr[0])
     return None

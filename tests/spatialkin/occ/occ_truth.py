@@ -217,17 +217,52 @@ def constraints(B, g, name):
             span(f"{tag['u']}.u", lambda p: dot(sub(p, o), x), g.u_range)
         if g.v_range is not None:
             span(f"{tag['v']}.v", lambda p: dot(sub(p, o), y), g.v_range)
+        if "radius" in g.params or "inner_radius" in g.params:        # a disc or an annulus about o
+            def rho(p):
+                q = sub(p, o)
+                return B.sqrt(dot(q, x) ** 2 + dot(q, y) ** 2)
+            if "radius" in g.params:
+                big = B.num(g.params["radius"])
+                out.append((f"{name}.rim", lambda p: big - rho(p)))
+            if "inner_radius" in g.params:
+                small = B.num(g.params["inner_radius"])
+                out.append((f"{name}.inner_rim", lambda p: rho(p) - small))
         return out
-    if g.u_range is not None and g.kind in ("cylinder", "cone", "torus") and \
+    if g.u_range is not None and g.kind in ("cylinder", "cone", "sphere", "torus") and \
             (g.u_range[1] - g.u_range[0]) < 2 * math.pi - 1e-5:
         inside = _angle_inside(B, B.num(g.u_range[0]), B.num(g.u_range[1]))
-        out.append((f"{name}.u", lambda p: inside(B.atan2(dot(sub(p, o), y), dot(sub(p, o), x)))))
+        if g.kind == "cone":                 # u of a point of the nappe where R + v sin(a) < 0: its angle + pi
+            tan_a = B.sin(B.num(g.params["angle"])) / B.cos(B.num(g.params["angle"]))
+            big = B.num(g.params["radius"])
+
+            def angle(p):
+                q = sub(p, o)
+                a = B.atan2(dot(q, y), dot(q, x))
+                return a + B.pi if big + dot(q, z) * tan_a < 0 else a
+        else:
+            def angle(p):
+                q = sub(p, o)
+                return B.atan2(dot(q, y), dot(q, x))
+        out.append((f"{name}.u", lambda p: inside(angle(p))))
     if g.v_range is not None and g.kind in ("cylinder", "cone"):
         if g.kind == "cylinder":
             span(f"{tag['v']}.v", lambda p: dot(sub(p, o), z), g.v_range)
         else:
             cosa = B.cos(B.num(g.params["angle"]))
             span(f"{tag['v']}.v", lambda p: dot(sub(p, o), z) / cosa, g.v_range)
+    if g.v_range is not None and g.kind == "sphere" and g.v_range[1] - g.v_range[0] < math.pi - 1e-9:
+        def latitude(p):
+            q = sub(p, o)
+            return B.atan2(dot(q, z), B.sqrt(dot(q, x) ** 2 + dot(q, y) ** 2))
+        span(f"{name}.v", latitude, g.v_range)
+    if g.v_range is not None and g.kind == "torus" and (g.v_range[1] - g.v_range[0]) < 2 * math.pi - 1e-5:
+        inside_v = _angle_inside(B, B.num(g.v_range[0]), B.num(g.v_range[1]))
+        big = B.num(g.params["R"])
+
+        def tube(p):                         # the angle of (rho - R, z) in the meridian half-plane
+            q = sub(p, o)
+            return B.atan2(dot(q, z), B.sqrt(dot(q, x) ** 2 + dot(q, y) ** 2) - big)
+        out.append((f"{name}.v", lambda p: inside_v(tube(p))))
     return out
 
 
@@ -1097,6 +1132,74 @@ def clip_segment_to_rectangles(p, d, rects, lo=-np.inf, hi=np.inf):
     if lo > hi:
         return None
     return lo, hi
+
+
+def clip_line_to_discs(p, d, discs, lo=-np.inf, hi=np.inf):
+    """The parameter intervals [s0, s1] of the line p + s d (lying in each disc's plane), s in [lo, hi], inside
+    every disc or annulus (o, x, y, radius, inner_radius or None): |P - o| <= radius and >= inner_radius, the
+    distance measured in the plane's own axes. The crossings of a circle are the roots of a quadratic in s
+    (closed form); each interval is checked at its middle with the distance itself (hypot). A line tangent to a
+    rim gives an interval of length 0 (a point). [] when none."""
+    spans = [(lo, hi)]
+    for o, x, y, radius, inner in discs:
+        q = np.asarray(p, dtype=float) - np.asarray(o, dtype=float)
+        qx, qy = float(q @ x), float(q @ y)
+        dx, dy = float(np.dot(d, x)), float(np.dot(d, y))
+        a, b = dx * dx + dy * dy, qx * dx + qy * dy           # |q + s d|^2 = a s^2 + 2 b s + c
+
+        def roots(r):
+            c = qx * qx + qy * qy - r * r
+            disc = b * b - a * c
+            if disc < -1e-13 * max(b * b, a * r * r):
+                return None
+            w = math.sqrt(max(disc, 0.0))
+            s0, s1 = (-b - w) / a, (-b + w) / a
+            return s0, s1
+        inside = roots(radius)
+        if inside is None:
+            return []
+        spans = [(max(s0, inside[0]), min(s1, inside[1])) for s0, s1 in spans]
+        spans = [sp for sp in spans if sp[0] <= sp[1]]
+        if inner:
+            hole = roots(inner)
+            if hole is not None and hole[1] > hole[0]:
+                cut = []
+                for s0, s1 in spans:
+                    if s0 < hole[0]:
+                        cut.append((s0, min(s1, hole[0])))
+                    if s1 > hole[1]:
+                        cut.append((max(s0, hole[1]), s1))
+                spans = cut
+        for s0, s1 in spans:                                  # the middle, by the distance itself
+            m = q + 0.5 * (s0 + s1) * np.asarray(d, dtype=float)
+            rho = math.hypot(float(m @ x), float(m @ y))
+            slack = 1e-12 * radius
+            if rho > radius + slack or (inner and rho < inner - slack):
+                raise AssertionError("clip_line_to_discs: an interval's middle lies outside the face")
+    return spans
+
+
+def disc_limits(o, x, y, radius, inner=None):
+    """The disc's (or annulus's) constraints on a circle's angle t, as A cos t + B sin t + C >= 0, for a circle
+    in its plane: (radius^2 - |P - o|^2) / (2 radius) >= 0 and (|P - o|^2 - inner^2) / (2 inner) >= 0 (the
+    distance's first order, exact in sign). Returns make(centre, ex, ey, r) -> [(A, B, C)]."""
+    o, x, y = (np.asarray(v, dtype=float) for v in (o, x, y))
+
+    def make(centre, ex, ey, r):
+        dvec = np.asarray(centre, dtype=float) - o
+        dd = float(dvec @ x) ** 2 + float(dvec @ y) ** 2
+        a = 2 * r * (float(dvec @ x) * float(ex @ x) + float(dvec @ y) * float(ex @ y))
+        b = 2 * r * (float(dvec @ x) * float(ey @ x) + float(dvec @ y) * float(ey @ y))
+        out = [(-a / (2 * radius), -b / (2 * radius), (radius * radius - dd - r * r) / (2 * radius))]
+        if inner:
+            out.append((a / (2 * inner), b / (2 * inner), (dd + r * r - inner * inner) / (2 * inner)))
+        return out
+
+    def hypot_inside(point, slack):
+        q = np.asarray(point, dtype=float) - o
+        rho = math.hypot(float(q @ x), float(q @ y))
+        return rho <= radius + slack and (not inner or rho >= inner - slack)
+    return make, hypot_inside
 
 
 def _polyline_length(sweeps, pieces, n=1200):

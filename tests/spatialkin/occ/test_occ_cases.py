@@ -167,7 +167,7 @@ def test_translation_agrees_with_opencascade():
             box = BRepTools.UVBounds_s(face)
         pts = np.array([surf.Value(u, v).Coord() for u in np.linspace(box[0], box[1], 9)
                         for v in np.linspace(box[2], box[3], 7)])
-        sk_surface = occ_draw.to_sk(occ_draw.Geo(**{**g.__dict__, "u_range": None, "inactive": ()})
+        sk_surface = occ_draw.to_sk(occ_draw.Geo(**{**g.__dict__, "u_range": None})
                                     if g.kind != "plane" else g)
         tol = 1e-12 * max(1.0, float(np.abs(pts).max()))
         d = float(sk_surface.distance(pts).max())

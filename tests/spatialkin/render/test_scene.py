@@ -10,6 +10,7 @@ import pyvista
 
 import spatialkin as sk
 from spatialkin.render import Scene, looper_scene
+from ssi_oracle import face_margin, to_local
 from spatialkin.render import geometry as geo
 from spatialkin.render import scene as scene_module
 
@@ -90,6 +91,29 @@ def test_surface_mesh_lies_on_the_surface(kind):
                 "cylinder": (nu - 1) * nv, "cone": (nu - 1) * nv}.get(kind, nu * nv)
     assert mesh.n_points == expected
     assert mesh.n_cells == (nu - 1) * (nv - 1)
+
+
+@pytest.mark.parametrize("kind", ["torus", "sphere", "cylinder", "cone", "annulus"])
+def test_face_mesh_covers_its_trims(kind):
+    """A CAD face is meshed over its trims only: every mesh point on the surface and inside the face by the
+    angles of the point (atan2, ssi_oracle.face_margin), and the mesh reaches its edges (both ends of an
+    angular range, a disc's rims)."""
+    frame = sk.Frame((1.0, -2.0, 3.0), sk.rotation_about((1, 1, 0), 0.7))
+    surface = {"torus": sk.Torus(8.0, 3.0, frame, u_range=(0.5, 4.0), v_range=(-1.0, 2.0)),
+               "sphere": sk.Sphere(4.0, frame, u_range=(-1.0, 1.0), v_range=(0.2, 1.2)),
+               "cylinder": sk.Cylinder(2.0, frame, v_range=(-1, 4), u_range=(2.0, 5.0)),
+               "cone": sk.Cone(0.4, frame, v_range=(1, 5), u_range=(-0.5, 0.5)),
+               "annulus": sk.Plane(frame, radius=3.0, inner_radius=1.0)}[kind]
+    scene = Scene()
+    scene.add_surface(surface, name="s", resolution=(40, 20))
+    points = np.asarray(scene.data("s").points)
+    assert surface.distance(points).max() <= 1e-12 * surface.size
+    margin = face_margin(surface, to_local(surface, points))
+    assert margin.min() >= -1e-9 * surface.size
+    assert np.abs(margin).min() <= 1e-9 * surface.size          # on an edge
+    if kind == "annulus":
+        rho = np.hypot(*to_local(surface, points)[:, :2].T)
+        assert rho.min() == pytest.approx(1.0) and rho.max() == pytest.approx(3.0)
 
 
 def test_arrow_spans_point_to_point_plus_scaled_vector():

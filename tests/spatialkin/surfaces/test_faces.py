@@ -2,18 +2,15 @@
 a sphere's zone, a plane's disc and annulus: the checks of their arguments, their round trips, and their limits
 against an inside test written apart from them (the angles of the point by atan2, ssi_oracle.face_margin)."""
 import math
-import os
 import pickle
-import sys
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from ssi_oracle import face_margin, to_local  # noqa: E402
+from ssi_oracle import face_margin, to_local
 
-import spatialkin as sk  # noqa: E402
-from spatialkin.surfaces.trims import inside_region, limits  # noqa: E402
+import spatialkin as sk
+from spatialkin.surfaces.trims import inside_region, limits
 
 _Q = np.linalg.qr(np.random.default_rng(5).normal(size=(3, 3)))[0]
 ROT = sk.Frame((0.3, -0.2, 0.5), _Q * np.sign(np.linalg.det(_Q)))        # a proper rotation

@@ -2,18 +2,15 @@
 edges touched from inside and outside or run along, the arcs' dense output, and the general path against the
 untrimmed intersection clipped by an inside test written apart (ssi_oracle.face_margin: atan2 angles)."""
 import math
-import os
-import sys
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from ssi_oracle import face_margin, to_local, trim_margin  # noqa: E402
+from ssi_oracle import face_margin, to_local, trim_margin
 
-import spatialkin as sk  # noqa: E402
-from spatialkin.tracing.result import TracingError  # noqa: E402
-from spatialkin.tracing.placement import CoincidentSurfacesError  # noqa: E402
+import spatialkin as sk
+from spatialkin.tracing.result import TracingError
+from spatialkin.tracing.placement import CoincidentSurfacesError
 
 #: Arc ends and lengths of closed forms: within this many ulp of the coordinates (the ends are Brent roots on
 #: the dense output, each point corrected onto both surfaces).

@@ -18,10 +18,11 @@ R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIA
 function's range over an interval).
 """
 import numpy as np
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
-from ..surfaces.trims import inside_region, limits
+from ..surfaces.trims import inside_region, limits, region_values
 from .dense import CurveSolution
+from .exact import contact_point
 from .result import CurveResult
 from .status import BOUNDARY, CONTACT, TANGENT, open_outcome
 from .traits import traits
@@ -38,6 +39,8 @@ PIECE_SAMPLES = 7
 #: which a curve bending at 1 / scale away from a straight edge stays within slack of it; longer, it runs along
 #: the edge (kept).
 TOUCH_LENGTH = 20.0
+#: Touches of an edge closer than this (relative to the scale) in arc length are one point.
+TOUCH_CLUSTER = 1e-6
 #: The slack of the inside test and of the Lipschitz bound, in tolerances (the points' distance to the curve).
 SLACK_TOLERANCES = 4.0
 
@@ -62,37 +65,78 @@ def clip_curve(a, b, curve, scale):
     slack = SLACK_TOLERANCES * curve.tolerance
     if curve.length == 0.0:
         return [curve] if inside_both(a, b, curve.points[:1], slack)[0] else []
-    edges = [(k, limit) for k, surface in enumerate((a, b)) for limit in limits(surface)]
-    cuts = sorted((cut for k, limit in edges for cut in crossings(curve, (a, b)[k], limit, k, slack, scale)),
-                  key=lambda cut: cut[0])
+    cuts, touches = [], []
+    for k, surface in enumerate((a, b)):
+        for limit in limits(surface):
+            more_cuts, more_touches = crossings(curve, surface, limit, k, slack, scale)
+            cuts += more_cuts
+            touches += more_touches
+    cuts.sort(key=lambda cut: cut[0])
     length = curve.length
-    if not cuts:
-        middle = curve.sol(np.array([0.5 * length]))
-        return [curve] if inside_both(a, b, middle, slack)[0] else []
-    if curve.closed:
+    if curve.closed and cuts:
         ends = cuts + [(cuts[0][0] + length, *cuts[0][1:])]
-        pieces = list(zip(ends[:-1], ends[1:]))
     else:
         ends = [(0.0, None, None)] + cuts + [(length, None, None)]
-        pieces = list(zip(ends[:-1], ends[1:]))
-    keep = [kept_piece(a, b, curve, lo[0], hi[0], slack, scale) for lo, hi in pieces]
-    arcs = merged([piece for piece, kept in zip(pieces, keep) if kept], curve.closed, length)
+    pieces = list(zip(ends[:-1], ends[1:]))
+    verdicts = [piece_verdict(a, b, curve, lo[0], hi[0], slack, scale) for lo, hi in pieces]
+    touches += [(lo[0], hi[0]) for (lo, hi), verdict in zip(pieces, verdicts) if verdict == TOUCHED]
+    arcs = merged([piece for piece, verdict in zip(pieces, verdicts) if verdict == INSIDE], curve.closed, length)
+    ends = [end[0] for arc in arcs for end in arc if end[1] is not None]           # the crossings kept
+    points = touch_points(a, b, curve, touches, ends, arcs, slack, scale)
     if len(arcs) == 1 and curve.closed and arcs[0][1][0] - arcs[0][0][0] >= length:
         return [curve]
-    return [window(curve, lo, hi) for lo, hi in arcs if hi[0] - lo[0] > curve.tolerance]
+    return [window(curve, lo, hi) for lo, hi in arcs if hi[0] - lo[0] > curve.tolerance] + points
 
 
-def kept_piece(a, b, curve, s0, s1, slack, scale):
-    """True when the piece [s0, s1] of the curve between two cuts lies inside both regions: a sample of it
-    inside by more than slack; or, within slack of an edge all along, longer than a touch (TOUCH_LENGTH: a curve
-    lying along the edge, not one touching it from outside)."""
+INSIDE, OUTSIDE, TOUCHED = "inside", "outside", "touched"
+
+
+def piece_verdict(a, b, curve, s0, s1, slack, scale):
+    """INSIDE when the piece [s0, s1] of the curve between two cuts lies inside both regions: a sample of it
+    inside by more than slack, or, within slack of an edge all along, longer than a touch (TOUCH_LENGTH: a curve
+    lying along the edge); TOUCHED when shorter (a curve touching an edge from outside); else OUTSIDE."""
     s = np.linspace(s0, s1, PIECE_SAMPLES)[1:-1]
     points = curve.sol(s % curve.length if curve.closed else s)
     if not inside_both(a, b, points, slack).all():
-        return False
-    if inside_both(a, b, points, -slack).any():
-        return True
-    return s1 - s0 > TOUCH_LENGTH * np.sqrt(slack * scale)
+        return OUTSIDE
+    if inside_both(a, b, points, -slack).any() or s1 - s0 > TOUCH_LENGTH * np.sqrt(slack * scale):
+        return INSIDE
+    return TOUCHED
+
+
+def touch_points(a, b, curve, touches, cuts, arcs, slack, scale):
+    """Single points (CurveResults of length 0) where the curve touches an edge of the faces from outside: the
+    intervals of touches ((s0, s1) within slack of an edge) joined where they overlap or lie within TOUCH_CLUSTER x
+    scale, less those as close to a crossing (cuts: the arc lengths of the arcs' ends on an edge), each point where the curve comes deepest
+    into both regions there (bounded Brent on the dense output), kept when inside both within slack and on no arc
+    kept. Status 'boundary' (the faces meet in one point of
+    their edges), or 'contact' on a curve of tangency."""
+    if not touches:
+        return []
+    length = curve.length
+    spans = []
+    for lo, hi in sorted(touches):
+        if spans and lo <= spans[-1][1] + TOUCH_CLUSTER * scale:
+            spans[-1][1] = max(spans[-1][1], hi)
+        else:
+            spans.append([lo, hi])
+    event = "contact" if curve.status in (TANGENT, CONTACT) else "edge_point"
+    reach = TOUCH_CLUSTER * scale
+    turns = (-length, 0.0, length) if curve.closed else (0.0,)
+    out = []
+    for lo, hi in spans:
+        if any(lo - reach <= cut + turn <= hi + reach for cut in cuts for turn in turns):
+            continue                                          # beside a crossing: no touch
+        depth = lambda s: -float(np.min(np.concatenate(                 # noqa: E731 - the two regions' depth at s
+            [region_values(x, curve.sol(np.array([s]))) for x in (a, b)], axis=1), initial=np.inf))
+        s = minimize_scalar(depth, bounds=(lo, hi), method="bounded", options={"xatol": 1e-14 * scale}).x
+        if any(lo_arc[0] - slack <= s + turn <= hi_arc[0] + slack for lo_arc, hi_arc in arcs
+               for turn in ((0.0, length) if curve.closed else (0.0,))):
+            continue
+        point = curve.sol(np.array([s]))
+        if inside_both(a, b, point, slack)[0] and all(np.linalg.norm(point[0] - q.points[0]) > slack for q in out):
+            out.append(contact_point(curve.sol.surfaces, point[0], curve.tolerance, event=event))
+    return out
 
 
 def merged(pieces, closed, length):
@@ -111,7 +155,8 @@ def merged(pieces, closed, length):
 
 
 def crossings(curve, surface, limit, k, slack, scale):
-    """[(s, limit, surface index k)] where the curve crosses the limit's edge (from inside to outside or back)."""
+    """([(s, limit, surface index k)] where the curve crosses the limit's edge (from inside to outside or back),
+    [(s0, s1)] intervals where it lies within slack of the edge without crossing it)."""
     sol, length = curve.sol, curve.length
     frame = surface.frame
 
@@ -143,6 +188,8 @@ def crossings(curve, surface, limit, k, slack, scale):
         lo_f, hi_f = np.concatenate([lo_f, f_mid]), np.concatenate([f_mid, hi_f])
     ss, ff = np.concatenate(done_s), np.concatenate(done_f)
     change = (ff[:, 0] < 0.0) != (ff[:, 1] < 0.0)
+    near = ~change & (np.abs(ff).max(axis=1) <= slack)
+    touches = [tuple(pair) for pair in ss[near].tolist()]
     cuts = []
     for (s0, s1), (f0, f1) in zip(ss[change], ff[change]):
         root = brentq(lambda x: float(value(x)[0]), s0, s1, xtol=1e-15 * max(scale, length), rtol=1e-15)
@@ -151,7 +198,7 @@ def crossings(curve, surface, limit, k, slack, scale):
         if not limit.on_edge_side(frame.to_local(sol(np.array([root])).reshape(1, 3)))[0]:
             continue                 # the line of a half-plane through the axis, beyond it: not this edge
         cuts.append((float(root), limit, k))
-    return cuts
+    return cuts, touches
 
 
 def window(curve, lo, hi):

@@ -126,6 +126,8 @@ def closed_form(a, b, settings):
     gap = roundoff(placed, settings.scale)
     if names == ("plane", "plane"):
         conics = plane_line(*placed, graze, settings.scale)
+        if conics is None:
+            return coplanar_faces((a, b), placed, gap, settings, topo)
     elif "plane" in names and (names[0] in QUADRICS or names[1] in QUADRICS):
         plane, quadric = placed if names[0] == "plane" else placed[::-1]
         if quadric.name == "cone" and abs(dot(plane.z, [quadric.origin[k] - plane.origin[k] for k in range(3)])) <= gap:
@@ -165,12 +167,17 @@ def components(placed, conics, trims, graze, touch, settings, topo, nodes=()):
         if arcs is None:
             return None
         for t_lo, t_hi, ends in arcs:
+            if t_lo == t_hi:
+                point = combine(rows, *basis(shape, t_lo, 0, math))
+                curves.append(contact_point((placed[0].surface, placed[1].surface), point, settings.tolerance,
+                                            event="edge_point"))
+                continue
             on = [x for x in nodes if on_arc(shape, rows, t_lo, t_hi, ends, x, settings.tolerance)]
             curve = component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, on)
             if curve is None or curve.length > MAX_LENGTH_SHARE * settings.max_length:
                 return None                                  # (the tracer would stop at max_length)
             curves.append(curve)
-    return in_sk_order(curves, lambda c: c.sol.first_point())
+    return in_sk_order(curves, lambda c: c.points[0] if c.length == 0 else c.sol.first_point())
 
 
 class Cut:
@@ -358,6 +365,47 @@ def plane_line(a, b, graze, scale):
     foot = cross(along, n1)                                 # a's origin to its foot on the line, over gap / sin^2
     k = gap / (sin * sin)
     return [(LINE, [[oa[i] + k * foot[i] for i in range(3)], [0.0, 0.0, 0.0], [x / sin for x in along]])]
+
+
+def coplanar_faces(surfaces, placed, touch, settings, topo):
+    """The common edge (a segment of tangency) or corner (a contact point) of two coplanar rectangles (Placed) that
+    share no area, [] where they are apart; None (declined) where they overlap in an area (the topology stage then
+    says so), where a rectangle is unbounded or has a circle, or where the planes are only nearly the same (farther
+    apart than touch). B's rectangle is clipped by A's (Sutherland-Hodgman, closed within touch) in A's plane."""
+    a, b = placed
+    if surfaces[0].region or surfaces[1].region or not all(map(math.isfinite, [*a.bounds, *b.bounds])):
+        return None
+    if abs(dot(a.z, [b.origin[i] - a.origin[i] for i in range(3)])) > touch:
+        return None
+    xa, ya = a.rot[0::3], a.rot[1::3]
+    xb, yb = b.rot[0::3], b.rot[1::3]
+    shift = [b.origin[i] - a.origin[i] for i in range(3)]
+    u0, u1, v0, v1 = b.bounds
+    poly = []
+    for u, v in ((u0, v0), (u1, v0), (u1, v1), (u0, v1)):
+        p = [shift[i] + u * xb[i] + v * yb[i] for i in range(3)]
+        poly.append((dot(p, xa), dot(p, ya)))
+    for axis, bound, sign in ((0, a.bounds[0], 1.0), (0, a.bounds[1], -1.0), (1, a.bounds[2], 1.0),
+                              (1, a.bounds[3], -1.0)):
+        out = []
+        for p, q in zip(poly, poly[1:] + poly[:1]):
+            fp, fq = sign * (p[axis] - bound), sign * (q[axis] - bound)
+            if fp >= -touch:
+                out.append(p)
+            if (fp < -touch < fq) or (fq < -touch < fp):
+                w = fp / (fp - fq)
+                out.append((p[0] + w * (q[0] - p[0]), p[1] + w * (q[1] - p[1])))
+        poly = out
+        if not poly:
+            return []
+    far = max(((p, q) for p in poly for q in poly), key=lambda pq: math.dist(*pq))
+    width = max(abs((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])) for p, q in [far] for r in poly)
+    if width > touch * max(math.dist(*far), touch):
+        return None                                          # an area in common
+    ends = [[a.origin[i] + p[0] * xa[i] + p[1] * ya[i] for i in range(3)] for p in far]
+    if math.dist(*far) <= touch:
+        return [contact_point(surfaces, ends[0], settings.tolerance)]
+    return [exact_curve(surfaces, settings.tolerance, segment=(np.array(ends[0]), np.array(ends[1])), topology=topo)]
 
 
 def quadric_form(quadric):
@@ -569,6 +617,10 @@ def clip(shape, rows, trims, graze, touch):
         alpha = w0 * c0 + w1 * c1 + w2 * c2 - bound         # (dot(w, rows[k]) written out)
         beta = w0 * p0 + w1 * p1 + w2 * p2
         gamma = w0 * q0 + w1 * q1 + w2 * q2
+        if shape == LINE and abs(gamma) <= SAME:             # a line along the trim's level: all in or all out
+            if alpha * side > touch:
+                return []
+            continue                                         # inside (on the edge within round-off): not cut
         roots = crossings(shape, beta, gamma, -alpha, graze, touch)
         if roots is TOUCH:        # the ellipse's far extremum tells its side of the level it touches
             far = math.atan2(gamma, beta) + (math.pi if -alpha > 0.0 else 0.0)
@@ -606,7 +658,17 @@ def clip(shape, rows, trims, graze, touch):
         if last is None or math.dist(last, point) > touch:
             kept.append((t, edge))
         last = point                     # (a corner: two trims crossed at one point, kept once)
-    return [(t0, t1, (e0, e1)) for (t0, e0), (t1, e1) in zip(kept, kept[1:]) if inside(0.5 * (t0 + t1))]
+    arcs = [(t0, t1, (e0, e1)) for (t0, e0), (t1, e1) in zip(kept, kept[1:]) if inside(0.5 * (t0 + t1))]
+    if shape == LINE:                    # a line that meets the faces in one point of their edges (a corner)
+        ends = {t for t0, t1, _ in arcs for t in (t0, t1)}
+        arcs += [(t, t, (edge, edge)) for t, edge in kept if t not in ends and within(linear, shape, t, touch)]
+    return arcs
+
+
+def within(linear, shape, t, touch):
+    """True when the point at t of the conic lies inside every trim (linear: clip's rows) within touch."""
+    f, g = basis(shape, t, 0, math)
+    return all((alpha + beta * f + gamma * g) * side <= touch for alpha, beta, gamma, side in linear)
 
 
 # --- the components ----------------------------------------------------------------------------------------------

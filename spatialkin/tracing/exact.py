@@ -294,10 +294,11 @@ def surface_parameters(surfaces, points):
     return np.concatenate([surfaces[0].parameters(points), surfaces[1].parameters(points)], axis=1)
 
 
-def contact_point(surfaces, point, tolerance):
-    """The CurveResult of a single point (3,) where the surfaces touch (status 'contact', length 0)."""
+def contact_point(surfaces, point, tolerance, event="contact"):
+    """The CurveResult of a single point (3,) where the surfaces touch (status 'contact', length 0), or, with
+    event 'edge_point', where two faces meet in one point of their edges (status 'boundary', length 0)."""
     point = np.asarray(point, dtype=float)
     sol = PointSolution(surfaces, point)
-    status, message = outcome("contact", point=point.tolist())
+    status, message = outcome(event, point=point.tolist())
     return CurveResult(points=point.reshape(1, 3), s=np.zeros(1), params=sol.parameters(np.zeros(1)), closed=False,
                        length=0.0, status=status, message=message, tolerance=tolerance, sol=sol)

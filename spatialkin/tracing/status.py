@@ -25,7 +25,7 @@ MEANINGS = {
     CLOSED: "a closed loop: the last point is the first (exactly), ``length`` is the period",
     SINGULAR: "an end at a singular point that was not passed (branches cross, the surfaces touch, or a "
               "parametrisation degenerates: the apex of a cone, the axis point of a horn or spindle torus)",
-    BOUNDARY: "an end exactly on a trim edge of a surface",
+    BOUNDARY: "an end exactly on a trim edge of a surface (length 0: the faces meet in one point of their edges)",
     MAX_LENGTH: "an end at max_length without closing",
     FAILED: "the integration or the Newton correction failed (a TracingError's; the message says where)",
     CONTACT: "a single point where the surfaces touch (length 0)",
@@ -46,6 +46,7 @@ END_PRECEDENCE = (SINGULAR, BOUNDARY, MAX_LENGTH)
 MESSAGES = {
     "open": (None, "start end: {start}; finish end: {finish}"),
     "contact": (CONTACT, "the surfaces touch at {point}"),
+    "edge_point": (BOUNDARY, "the faces meet in this one point {point} of their edges"),
     "tangent": (TANGENT, "the surfaces touch all along this {shape}"),
     "axis_circle": (CLOSED, "a circle about the surfaces' common axis, in closed form"),
     "singular_start": (SINGULAR, "start {point} is a singular point of the intersection (normals parallel, "

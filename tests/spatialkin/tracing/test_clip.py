@@ -46,7 +46,7 @@ def test_lower_nappe_of_a_cone_face_lies_opposite():
 def test_annulus_and_a_circle_touching_its_rim():
     """A circle of radius 0.5 about (0.5, 0) touches the unit disc's rim from inside at (1, 0): one arc between
     its crossings of the inner rim (radius 0.2), of length acos(-0.92), not cut at the touch. About (1.5, 0) it
-    touches the rim from outside: the face holds one point of it, no curve."""
+    touches the rim from outside: the face holds one point of it, (1, 0, 0), returned as a point of length 0."""
     annulus = sk.Plane(radius=1.0, inner_radius=0.2)
     inside = sk.Cylinder(0.5, sk.Frame((0.5, 0.0, 0.0)), v_range=(-1.0, 1.0))
     for curves in both_orders(annulus, inside):
@@ -59,7 +59,10 @@ def test_annulus_and_a_circle_touching_its_rim():
         loop, = curves
         assert loop.closed and loop.status == "closed" and abs(loop.length - math.pi) <= 4 * ENDS
     outside = sk.Cylinder(0.5, sk.Frame((1.5, 0.0, 0.0)), v_range=(-1.0, 1.0))
-    assert all(curves == [] for curves in both_orders(disc, outside))
+    for curves in both_orders(disc, outside):
+        point, = curves
+        assert point.length == 0 and point.status == "boundary" and "one point" in point.message
+        assert np.allclose(point.points, [[1.0, 0.0, 0.0]], atol=1e-6)      # a double root: sqrt(round-off)
 
 
 def test_contact_segment_on_an_angular_edge_is_kept():

@@ -41,6 +41,7 @@ from scipy.optimize import brentq
 from ..kernels import interval as ki
 from ..kernels import surfaces as ks
 from ..kernels import topology as kt
+from .meridians import BAND, meridian_circle, meridian_nodes, tangent_meridians
 from .placement import bounding_ball, check_not_coincident, common_axis, ruled_along
 from .trace import EPS, ROUNDOFF_ULPS
 from .traits import LENGTH, power_of_two, traits
@@ -323,9 +324,26 @@ def topology(a, b, scale, tolerance):
     TopologyError
         A search ran out of its box budget.
     """
+    try:
+        return search(a, b, scale, tolerance)
+    except TopologyError:
+        for torus, other in ((a, b), (b, a)):            # a meridian of a torus along which they touch?
+            if traits(torus).name == "torus":
+                meridians = tangent_meridians(torus, Reader(torus, other))
+                if meridians:
+                    return search(a, b, scale, tolerance, (torus, other, meridians[0]))
+        raise
+
+
+def search(a, b, scale, tolerance, tangent=None):
+    """topology() in one configuration; tangent: (torus P, Q, u0) for a pair that touches along the meridian
+    u = u0 of the torus (spatialkin.tracing.meridians): P is searched less a band round it."""
     t0 = time.perf_counter()
     check_not_coincident(a, b, scale)
     p_user, q, mode, p, balls = search_roles(a, b, scale)
+    if tangent is not None:
+        p_user, q, mode = tangent[0], tangent[1], "general"
+        p = p_user
     topo = Topology(P=p_user, Q=q, mode=mode)
     box, u_periodic, v_periodic = domain(p, balls[id(q)])
     if not box[0] < box[1] or not box[2] < box[3]:
@@ -335,6 +353,11 @@ def topology(a, b, scale, tolerance):
     collapse = traits(p).collapse_lines(p)
     if mode == "general":
         place_seams(pq, box, u_periodic, v_periodic, collapse)
+    if tangent is not None:                          # the band round the meridian of tangency: its edges are the seam
+        u0 = tangent[2]
+        box[0], box[1] = u0 + BAND, u0 + 2 * math.pi - BAND
+        topo.tangent_circles.append(meridian_circle(p, u0))
+        topo.nodes += list(meridian_nodes(p, pq, u0))
     index = {id(a): 0, id(b): 1}
     p_index, q_index = index[id(p_user)], index[id(q)]
     apexes = [v + 2 * math.pi * math.ceil((box[2] - v) / (2 * math.pi) - 1e-12) for v in collapse]
@@ -374,8 +397,11 @@ def topology(a, b, scale, tolerance):
             for bound in trim:
                 if math.isfinite(bound):
                     add_line_roots(pq, j, bound, box[2 - 2 * j], box[3 - 2 * j], "edge of P", p_index, True)
-        # seams of periodic parameters
-        if u_periodic:
+        # seams of periodic parameters (the edges of the band round a meridian of tangency)
+        if tangent is not None:
+            for edge in box[:2]:
+                add_line_roots(pq, 0, edge, box[2], box[3], "tangent band", None, False)
+        elif u_periodic:
             add_line_roots(pq, 0, box[0], box[2], box[3], "u seam", None, False)
         if v_periodic:
             add_line_roots(pq, 1, box[2], box[0], box[1], "v seam", None, False)

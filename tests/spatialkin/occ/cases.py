@@ -152,12 +152,13 @@ class Swept:
     sweeps: list
     extra_t: dict = None
     curves: list = field(default_factory=list)      # closed-form curves joining the swept pieces (Component)
+    zoom: dict = None                               # {sweep: [(t0, t1)]} scanned on a finer grid too
 
     def analyse(self, case):
         a, b = case.geos()
         return T.analyse(self.sweeps, T.trims_of([("a", a), ("b", b)]), case.scale, self.extra_t,
                          curves=[(c.length, c.distance, c.label, [] if c.closed else c.ends) for c in self.curves],
-                         surfaces=(a, b))
+                         surfaces=(a, b), zoom=self.zoom)
 
     def truth(self, case):
         stored = STORED.get(case.id)
@@ -252,6 +253,16 @@ def rects(*geos):
     return out
 
 
+def discs(*geos):
+    """(o, x, y, radius, inner_radius) of the planar faces bounded by a circle, for occ_truth.clip_line_to_discs."""
+    out = []
+    for g in geos:
+        if g.kind == "plane" and "radius" in g.params:
+            o, x, y, _ = g.axes
+            out.append((o, x, y, g.params["radius"], g.params.get("inner_radius")))
+    return out
+
+
 # --- closed forms shared by several cases -----------------------------------------------------------------------------
 def plane_plane(a, b, label=""):
     """Two planar faces (rectangles, strips): the exact segment, point, coincidence or nothing."""
@@ -271,12 +282,22 @@ def plane_plane(a, b, label=""):
     span = T.clip_segment_to_rectangles(p, d, rects(a, b))
     if span is None:
         return Closed()
-    s0, s1 = span
-    if not (math.isfinite(s0) and math.isfinite(s1)):
-        raise ValueError("unbounded line")
-    if s1 - s0 <= eps:
-        return Closed(points=[p + 0.5 * (s0 + s1) * d])
-    return Closed([segment(p + s0 * d, p + s1 * d, label)])
+    return segments_in_discs(p, d, [span], discs(a, b), eps, label)
+
+
+def segments_in_discs(p, d, spans, circles, eps, label=""):
+    """The pieces s in spans of the line p + s d (unit d) inside the discs and annuli (occ_truth.clip_line_to_discs):
+    segments, or points where a piece is shorter than eps."""
+    out = Closed()
+    for lo, hi in spans:
+        for s0, s1 in T.clip_line_to_discs(p, d, circles, lo, hi) if circles else [(lo, hi)]:
+            if not (math.isfinite(s0) and math.isfinite(s1)):
+                raise ValueError("unbounded line")
+            if s1 - s0 <= eps:
+                out.points.append(p + 0.5 * (s0 + s1) * d)
+            else:
+                out.components.append(segment(p + s0 * d, p + s1 * d, label))
+    return out
 
 
 def _coplanar(a, b, eps):
@@ -317,13 +338,23 @@ def _coplanar(a, b, eps):
 
 
 def circle_in_faces(centre, normal, radius, faces):
-    """The parts of a circle inside planar faces (closed trims): arcs, the whole circle, or single touching points."""
+    """The parts of a circle inside planar faces (closed trims: rectangles, and discs or annuli in the circle's
+    plane): arcs, the whole circle, or single touching points."""
     c = np.asarray(centre, dtype=float)
     n = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
     pts = T.circle_points(c, n, radius, 5)
     ex = (pts[0] - c) / radius
     ey = np.cross(n, ex)
     cons = []                            # A cos t + B sin t + C >= 0
+    rims = []
+    for f in faces:                      # discs and annuli, in the circle's plane
+        if f.kind == "plane" and "radius" in f.params:
+            fo, fx, fy, fz = f.axes
+            if np.linalg.norm(np.cross(fz, n)) > 1e-12 or abs((c - fo) @ fz) > 1e-12 * max(1.0, radius):
+                raise ValueError("circle_in_faces: a disc's circle must lie in its plane")
+            make, hypot_inside = T.disc_limits(fo, fx, fy, f.params["radius"], f.params.get("inner_radius"))
+            cons += make(c, ex, ey, radius)
+            rims.append(hypot_inside)
     for o, x, y, ur, vr in rects(*faces):
         for axis, rng in ((x, ur), (y, vr)):
             if rng is None:
@@ -345,7 +376,8 @@ def circle_in_faces(centre, normal, radius, faces):
             w = math.acos(q)
             cuts += [(phase + w) % (2 * math.pi), (phase - w) % (2 * math.pi)]
     cuts = sorted(set(cuts + touches))
-    inside = lambda t: all(a * math.cos(t) + b * math.sin(t) + cc >= -1e-12 * radius for a, b, cc in cons)
+    inside = lambda t: (all(a * math.cos(t) + b * math.sin(t) + cc >= -1e-12 * radius for a, b, cc in cons)
+                        and all(h(c + radius * (math.cos(t) * ex + math.sin(t) * ey), 1e-12 * radius) for h in rims))
     arcs = [(t0, t1) for t0, t1 in zip(cuts[:-1], cuts[1:]) if t1 - t0 > 1e-15 and inside(0.5 * (t0 + t1))]
     angle = lambda t: tuple(c + radius * (math.cos(t) * ex + math.sin(t) * ey))
     if not arcs:
@@ -661,10 +693,31 @@ not_expressible(INTSS + "bug24313", "extrusion of a circle (a cylinder of radius
                 "the plane holds the axis: two whole lines")
 not_expressible(INTSS + "bug33244", "two untrimmed cones with parallel axes and equal semi-angles to 3.5e-11",
                 "the intersection has unbounded branches")
-not_expressible(INTSS + "bug31552", "two cylinders trimmed in u (s2 to u in [6.19592, 6.37045], 10 degrees)",
-                "u trims of a cylinder (spatialkin trims it only along its axis); the trim cuts the curves")
-not_expressible(INTSS + "bug32850", "two cylinders trimmed to u in [0, 0.0225]",
-                "u trims of a cylinder; the trims cut the curves")
+
+
+@case("intss/bug31552", INTSS + "bug31552", METHOD_MERIDIAN,
+      note="s1 (radius 347.85 about the vertical through (0, 557.8), u in [3.2385, 6.28319], z in [-39.957, "
+           "39.957]) and s2 (radius 88.5 about a horizontal axis, a 10-degree strip u in [6.19592, 6.37045], "
+           "v in [0, 10.0002]): two short open curves, where s2's strip crosses s1's face")
+def _():
+    s1 = D.trim(D.cylinder("0 557.800010681152 0 0 0 1 0 1 0  347.850006103516"), 3.2385, 6.28319, -39.957, 39.957)
+    s2 = D.trim(D.cylinder("5.45639675193397 189.209310035068 0 -0.254420004160252 0.96709382248213 0 "
+                           "0.96709382248213 0.254420004160252 0 88.5"), 6.19592, 6.37045, 0, 10.0002)
+    return s2, s1, Swept([T.Meridian(s2, s1)])
+
+
+@case("intss/bug32850", INTSS + "bug32850", METHOD_MERIDIAN,
+      note="two cylinders of equal radius 408.97 whose axes (along y and along x) meet at z = -373.97: the "
+           "untrimmed ones meet in two ellipses crossing at the top point (25.81, 1974.19, 35.00), where the "
+           "cylinders are tangent. The narrow strips u in [0, 0.0225] (1.3 degrees, starting 1.7e-6 rad on the "
+           "far side of the top) hold the four branches from that point: one 13 long, three about 1e-3 (OCC "
+           "expects four curves)")
+def _():
+    s1 = D.trim(D.cylinder("25.8071575178163 0 -373.974517822281 0 1 0 -1.73024882663956e-06 0 0.999999999998503 "
+                           "408.974517822893"), 0, 0.0225015452057227, -146.010003766057, 2146.01000376606)
+    s2 = D.trim(D.cylinder("0 1974.19284248218 -373.974517822281 1 0 0 -0 1.73024882663956e-06 0.999999999998503 "
+                           "408.974517822893"), 0, 0.0225015452057227, -146.010003766057, 946.010003766057)
+    return s1, s2, Swept([T.Meridian(s1, s2, orthonormal=True)], zoom={0: [(0.0, 1e-5)]})
 not_expressible(INTSS + "bug27937_2", "extrusion of an ellipse and a cylinder",
                 "an elliptic cylinder is no spatialkin surface")
 not_expressible(INTSS + "buc60815", "two identical extrusions of a segment along (1, 1, 1)",
@@ -674,8 +727,7 @@ not_expressible(INTSS + "buc60815", "two identical extrusions of a segment along
 # === tests/boolean ===================================================================================================
 @case("bsection/Q3:lateral", "tests/boolean/bsection/Q3", METHOD_CLOSED,
       note="pcylinder 10 20 and pcylinder 5 20 moved by (5, 0, 10): parallel axes 5 apart, 10 - 5 = 5, so the "
-           "lateral faces are tangent along the line (10, 0, z), z in [10, 20] (the discs' pairs are not "
-           "expressible)")
+           "lateral faces are tangent along the line (10, 0, z), z in [10, 20]")
 def _():
     a = D.pcylinder_lateral(10, 20)
     b = D.pcylinder_lateral(5, 20).translated((5, 0, 10))
@@ -722,13 +774,80 @@ for _f in ("x=0", "x=1", "y=1", "y=-1", "z=0", "z=2"):
         return cyl, face, truth
     case(f"bopsection/A1:lateral*{_f}", "tests/boolean/bopsection/A1", METHOD_CLOSED, note=_A1_NOTE[_f])(_mk)
 
-not_expressible("tests/boolean/bsection/Q3", "the disc faces of both pcylinders",
-                "a disc in a plane (spatialkin trims a plane only to a rectangle)")
-not_expressible("tests/boolean/bsection/S1", "the disc faces of both pcylinders", "discs in planes")
-not_expressible("tests/boolean/bopsection/A1", "the disc faces of the pcylinder against the box's faces",
-                "discs in planes")
-not_expressible("tests/boolean/bsection/P9", "a square face and a disc face (mkface of a circle) in a tilted plane",
-                "a disc in a plane")
+_Z = (0.0, 0.0, 1.0)
+
+
+@case("bsection/Q3:c1.top*c2.lateral", "tests/boolean/bsection/Q3", METHOD_CLOSED,
+      note="c1's top disc (z = 20, radius 10 about the axis) against c2's lateral face (radius 5 about (5, 0), z "
+           "in [10, 30]): the whole circle of radius 5 at z = 20, inside the disc, touching its rim at (10, 0, 20) "
+           "(with the line of tangency of the lateral faces it makes OCC's 41.4159; the other pairs of faces are "
+           "parallel planes or apart)")
+def _():
+    disc = D.disc((0, 0, 20), _Z, 10, label="c1.top")
+    b = D.pcylinder_lateral(5, 20).translated((5, 0, 10))
+    return disc, b, circle_in_faces((5, 0, 20), _Z, 5.0, [disc])
+
+
+@case("bsection/Q3:c1.lateral*c2.bottom", "tests/boolean/bsection/Q3", METHOD_CLOSED,
+      note="c1's lateral face (radius 10) against c2's bottom disc (z = 10, radius 5 about (5, 0)): the plane "
+           "cuts the cylinder in the circle of radius 10, which touches the disc's rim at (10, 0, 10) only")
+def _():
+    a = D.pcylinder_lateral(10, 20)
+    disc = D.disc((5, 0, 10), _Z, 5, label="c2.bottom")
+    return a, disc, circle_in_faces((0, 0, 10), _Z, 10.0, [disc])
+
+
+@case("bsection/S1:c1.lateral*c2.bottom", "tests/boolean/bsection/S1", METHOD_CLOSED,
+      note="c2's bottom disc (z = 50, radius 20) against c1's lateral face (radius 20, z in [0, 100]): the "
+           "circle of radius 20 at z = 50, the disc's rim")
+def _():
+    a = D.pcylinder_lateral(20, 100)
+    disc = D.disc((0, 0, 50), _Z, 20, label="c2.bottom")
+    return a, disc, circle_in_faces((0, 0, 50), _Z, 20.0, [disc])
+
+
+@case("bsection/S1:c1.top*c2.lateral", "tests/boolean/bsection/S1", METHOD_CLOSED,
+      note="c1's top disc (z = 100, radius 20) against c2's lateral face (z in [50, 150]): the disc's rim")
+def _():
+    disc = D.disc((0, 0, 100), _Z, 20, label="c1.top")
+    b = D.pcylinder_lateral(20, 100).translated((0, 0, 50))
+    return disc, b, circle_in_faces((0, 0, 100), _Z, 20.0, [disc])
+
+
+_A1_BOTTOM_NOTE = {
+    "x=0": "the cylinder's bottom disc (z = 0, radius 1) against the face x = 0 (y in [-1, 1], z in [0, 2]): the "
+           "disc's diameter along y, which is the face's edge z = 0",
+    "x=1": "the bottom disc against the face x = 1: the line x = 1, z = 0 (the face's edge) touches the disc's rim "
+           "at (1, 0, 0)",
+    "y=1": "the bottom disc against the face y = 1: the face's edge z = 0 touches the rim at its corner (0, 1, 0)",
+    "y=-1": "the bottom disc against the face y = -1: the face's edge z = 0 touches the rim at its corner "
+            "(0, -1, 0)"}
+for _f in ("x=0", "x=1", "y=1", "y=-1"):
+    def _mk(f=_f):
+        disc = D.disc((0, 0, 0), _Z, 1.0, label="bottom")
+        face = _a1_faces()[f]
+        return disc, face, plane_plane(disc, face)
+    case(f"bopsection/A1:bottom*{_f}", "tests/boolean/bopsection/A1", METHOD_CLOSED, note=_A1_BOTTOM_NOTE[_f])(_mk)
+
+
+@case("bopsection/A1:bottom*z=0", "tests/boolean/bopsection/A1",
+      "coincidence: the half disc x >= 0 of the cylinder's bottom lies in the box's face z = 0",
+      note="the bottom disc (z = 0, radius 1) and the box's face z = 0 ([0, 1] x [-1, 1]) overlap in the half "
+           "disc x >= 0 (the top disc, z = 4, is above the box)")
+def _():
+    return D.disc((0, 0, 0), _Z, 1.0, label="bottom"), _a1_faces()["z=0"], Coincident("the half disc x >= 0")
+
+
+@case("bsection/P9", "tests/boolean/bsection/P9", METHOD_CLOSED,
+      note="the square z = 0, [-1, 1]^2 (mkface fa pl -1 1 -1 1) and the disc of radius 0.5 about (0.5, 0.5, 0) "
+           "in the plane of normal (sin 80 sin 20, sin 80 cos 20, cos 80) (degrees; mkface of the circle): the "
+           "disc's diameter along the planes' common line, inside the square; OCC checks a length of 1")
+def _():
+    az, dip = math.radians(20.0), math.radians(80.0)
+    n = (math.sin(dip) * math.sin(az), math.sin(dip) * math.cos(az), math.cos(dip))
+    a = D.trim(D.plane("0 0 0 0 0 1"), -1, 1, -1, 1)
+    b = D.disc((0.5, 0.5, 0.0), n, 0.5, label="fb")
+    return a, b, plane_plane(a, b)
 
 
 # === tests/bugs/modalg_* ============================================================================================
@@ -836,8 +955,78 @@ for _i in ("e3", "e4", "e5"):
                   "(136.06, 143.01, 0): the faces swept by its edges e3, e4, e5 are cone faces (e1 of r1 and e2 of "
                   "r2 sweep discs; e2 of r1 and e1 of r2 lie on the axes)"
                   + ("; both faces hold the edge itself and are tangent along it" if _i == _j else ""))(_mk)
-not_expressible(BUGS + "modalg_1/bug13211_6", "the disc swept by e1 about x and the disc swept by e2 about y",
-                "discs in planes")
+
+
+def cone_in_axial_plane(cone, plane):
+    """A cone face (radius 0 at its origin, v in [v0, v1] along the generatrix from the apex, full turn) and a
+    planar face whose plane holds the cone's axis: the two generators in the plane, clipped by the planar face's
+    rectangle and discs (occ_truth); generators meeting at the apex (v0 = 0) are one component."""
+    apex, w = np.array(cone.o), np.array(cone.z)
+    n = np.array(plane.axes[3])
+    if abs(n @ w) > 1e-12 or abs((apex - np.array(plane.o)) @ n) > 1e-9:
+        raise ValueError("the plane must hold the cone's axis")
+    e = np.cross(n, w)
+    e /= np.linalg.norm(e)
+    ang = cone.params["angle"]
+    v0, v1 = cone.v_range
+    eps = 1e-12 * max(1.0, float(np.abs(apex).max()))
+    pieces, points = [], []
+    for side in (1.0, -1.0):
+        d = math.cos(ang) * w + side * math.sin(ang) * e
+        span = T.clip_segment_to_rectangles(apex, d, rects(plane), v0, v1)
+        got = segments_in_discs(apex, d, [] if span is None else [span], discs(plane), eps)
+        pieces += got.components
+        points += got.points
+    at_apex = [c for c in pieces if min(np.linalg.norm(p - apex) for p in c.ends) <= eps]
+    if len(at_apex) == 2:                     # the two generators from the apex: one open polyline
+        far = [max(c.ends, key=lambda p: np.linalg.norm(p - apex)) for c in at_apex]
+        line = np.array([far[0], apex, far[1]])
+        pieces = [c for c in pieces if c not in at_apex] + [
+            Component(sum(c.length for c in at_apex), False, lambda tol, line=line: [line], far,
+                      label="two generators meeting at the apex")]
+    unique = []
+    for p in points:
+        if all(np.linalg.norm(p - q) > eps for q in unique) and \
+                all(min(np.linalg.norm(p - q) for q in c.ends) > eps for c in pieces):
+            unique.append(p)
+    return Closed(pieces, unique)
+
+
+def _bug13211_discs():
+    """r1.e1, the disc e1 sweeps about x (plane x = 136.06, radius 44.5 about Q), and r2.e2, the disc e2 sweeps
+    about y (plane y = 143.01, radius 7.98 about Q)."""
+    q = np.array(_Q13211)
+    return (D.disc(q, (1, 0, 0), _PENTAGON[0][1] - _Q13211[1], label="r1.e1"),
+            D.disc(q, (0, 1, 0), _Q13211[0] - _PENTAGON[2][0], label="r2.e2"))
+
+
+_BUG13211_DISC_NOTE = {
+    "r1.e1*r2.e2": "the two discs, in the planes x = 136.06 and y = 143.01 through Q: the segment of their common "
+                   "line within the smaller one, z in [-7.98, 7.98]",
+    "r1.e1*r2.e3": "the plane of r1's disc holds r2's axis: it cuts r2's cone face e3 in two generators, both "
+                   "inside the disc",
+    "r1.e1*r2.e4": "two generators of r2's cone face e4, inside r1's disc",
+    "r1.e1*r2.e5": "two generators of r2's cone face e5 meeting at its apex (136.06, 187.51, 0), the vertex where "
+                   "the disc's rim and the cone face meet: one open curve",
+    "r1.e3*r2.e2": "the plane of r2's disc holds r1's axis: r1's cone face e3 meets it in two generators from its "
+                   "apex (128.08, 143.01, 0), which lies on the disc's rim; both leave the disc at once: that point",
+    "r1.e4*r2.e2": "the generators of r1's cone face e4 in the plane y = 143.01 lie outside r2's disc",
+    "r1.e5*r2.e2": "the generators of r1's cone face e5 in the plane y = 143.01 lie outside r2's disc"}
+
+for _pair in _BUG13211_DISC_NOTE:
+    def _mk(pair=_pair):
+        r1, r2 = _bug13211_faces()
+        d1, d2 = _bug13211_discs()
+        i, j = (k.split(".")[1] for k in pair.split("*"))
+        if i == "e1" and j == "e2":
+            return d1, d2, plane_plane(d1, d2)
+        if i == "e1":
+            return d1, r2[j], cone_in_axial_plane(r2[j], d1)
+        return r1[i], d2, cone_in_axial_plane(r1[i], d2)
+    case(f"bugs/bug13211_6:{_pair}", BUGS + "modalg_1/bug13211_6", METHOD_CLOSED,
+         note="the pentagon's edge e1 sweeps a disc about x (r1.e1: plane x = 136.06, radius 44.5 about "
+              "(136.06, 143.01, 0)) and e2 a disc about y (r2.e2: plane y = 143.01, radius 7.98 about the same "
+              "point); " + _BUG13211_DISC_NOTE[_pair])(_mk)
 
 
 def _buc60899_polyline():
@@ -1026,7 +1215,7 @@ case("bugs/bug25354_49:s3*s7", BUGS + "modalg_5/bug25354_49", METHOD_CLOSED,
 @case("bugs/bug31836:lateral*torus", BUGS + "modalg_7/bug31836", METHOD_CLOSED,
       note="pcone 282.84 100 300 moved by (100, 0, 0) and ptorus 80.25 19.75 moved by (100, 0, 300): coaxial; the "
            "torus's outer equator (radius R + r = 100 at z = 300) is the cone face's top rim, where the two cross; "
-           "their other common parallel (z = 317.5) lies above the face (the disc faces are not expressible)")
+           "their other common parallel (z = 317.5) lies above the face (the top disc: bug31836:top*torus)")
 def _():
     c = D.pcone_lateral(282.842712474619, 100, 300).translated((100, 0, 0))
     t = D.ptorus_face(80.2535587508467, 19.7464412491533).translated((100, 0, 300))
@@ -1054,6 +1243,20 @@ case("bugs/bug31858_1", BUGS + "modalg_7/bug31858_1", METHOD_CLOSED,
      note=_bug31858.__doc__.split(":", 1)[1].strip() + " (modalg_7/bug31858_2 builds the same shapes)")(_bug31858)
 
 
+@case("bugs/bug31858_1:top*torus", BUGS + "modalg_7/bug31858_1", METHOD_CLOSED,
+      note="the cylinder's top disc (z = 200, radius 500) holds the torus's central plane: the inner equator "
+           "(radius R - r = 398.734) lies in the disc; the outer one (R + r = 500 + 4e-13 as the floats add) "
+           "lies on the disc's rim to 1e-12 of the radius, the truth's tolerance for a touch, and counts as in it")
+def _():
+    big, small = 449.367136080235, 50.6328639197654
+    place = D.place_of(D.plane("-2.31895142368858e-15 -4.49296838339662e-15 200 0 0 1"))
+    disc = D.disc((0, 0, 200), _Z, 500, label="top")
+    t = D.ptorus_face(big, small, place=place)
+    comps = circle_in_faces(place[0], _Z, big + small, [disc]).components
+    comps += circle_in_faces(place[0], _Z, big - small, [disc]).components
+    return disc, t, Closed(comps)
+
+
 @case("bugs/bug29910_1", BUGS + "modalg_7/bug29910_1", METHOD_PARALLEL,
       note="ptorus 100 10 and its copy moved by (100, 0, 0): equal tori with parallel axes whose tube circles cross "
            "at (50, +-86.6, 0)")
@@ -1073,10 +1276,37 @@ for _name, _r in (("outer", 75.0), ("inner", 65.0)):
         return p1, p2, Swept([T.Meridian(p1, p2)])
     case(f"bugs/bug24905:p1.{_name}*p2", BUGS + "modalg_7/bug24905", METHOD_MERIDIAN,
          note=f"the shapes of bug26509 as whole solids: the annulus's {_name} cylinder (radius {_r:g}) against the "
-              "tilted cylinder (the annuli and discs are not expressible)")(_mk)
-not_expressible(BUGS + "modalg_7/bug24905", "the annuli of p1 and the discs of p2", "annuli and discs in planes")
-not_expressible(BUGS + "modalg_7/bug31836", "the cone's discs against the torus", "discs in planes")
-not_expressible(BUGS + "modalg_7/bug31858_1", "the cylinder's discs against the torus", "discs in planes")
+              "tilted cylinder (the annuli: bug24905:p1.annulus*)")(_mk)
+
+
+def _bug24905_p2():
+    p2 = D.Geo("cylinder", (50.0, 500.0, -2000.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, -1.0),
+               {"r": 50.0}, u_range=(0.0, 2 * math.pi), v_range=(-4000.0, 0.0))
+    return p2.rotated((0, 500, 0), (1, 0, 0), -77).rotated((0, 0, 0), (0, 0, 1), 180)
+
+
+for _name, _y in (("y=0", 0.0), ("y=-1000", -1000.0)):
+    def _mk(y=_y):
+        annulus = D.disc((0.0, y, 0.0), (0, 1, 0), 75.0, inner_radius=65.0, label=f"p1.annulus {y:g}")
+        p2 = _bug24905_p2()
+        return annulus, p2, Swept([T.Meridian(p2, annulus)])
+    case(f"bugs/bug24905:p1.annulus{_name}*p2", BUGS + "modalg_7/bug24905", METHOD_MERIDIAN,
+         note=f"p1's annulus at {_name} (radii 65 and 75 about the y axis) against p2's lateral face: the arc of "
+              "the ellipse the plane cuts from the tilted cylinder between two crossings of the outer rim (it "
+              "stays outside the inner one); p2's discs lie 450 and more from p1")(_mk)
+
+
+@case("bugs/bug31836:top*torus", BUGS + "modalg_7/bug31836", METHOD_CLOSED,
+      note="the cone's top disc (z = 300, radius 100 about (100, 0)) holds the torus's central plane: the torus's "
+           "two equators, radius R + r = 100 (the disc's rim) and R - r = 60.507, both in the disc (with the rim "
+           "circle of the lateral face they make OCC's 1008.5; the bottom disc is 280 below the torus)")
+def _():
+    big, small = 80.2535587508467, 19.7464412491533
+    disc = D.disc((100, 0, 300), _Z, 100, label="top")
+    t = D.ptorus_face(big, small).translated((100, 0, 300))
+    comps = circle_in_faces((100, 0, 300), _Z, big + small, [disc]).components
+    comps += circle_in_faces((100, 0, 300), _Z, big - small, [disc]).components
+    return disc, t, Closed(comps)
 
 
 def _bug25354_50(i):
@@ -1113,11 +1343,27 @@ for _w in ("Xmin", "Ymin", "Zmin", "Zmax"):
         lambda w=_w: _bug25614(w))
 
 
+def _bug23932(r1, r2):
+    """Two half cylinders (trimu 0 pi, mkface: unbounded along their axes) with perpendicular axes 102.51 apart:
+    the thin one passes through the thick one, the untrimmed cylinders meet in two loops, and s1's half z >= 183.375
+    cuts each in an open arc (s2's half z >= 80.865 holds all of s1). s1 is bounded to v in [-400, 150] (the loops
+    span v in [-294, 62])."""
+    pi = 3.1415926535897932
+    s1 = D.cylinder(f"538.57646417050069, 347.77316708315834, 183.37500000000000 0 -1 0 1 0 0 {r1}")
+    s1 = bound_cylinder(s1.with_ranges((0.0, pi), None), -400.0, 150.0)
+    s2 = D.cylinder(f"859.00000000000011 463.75990629028450 80.865093709715211 -1 0 0 0 -1 0 {r2}")
+    s2 = s2.with_ranges((0.0, pi), None)
+    return s1, s2, Swept([T.Meridian(s1, s2)])
+
+
+case("bugs/bug23932_1", BUGS + "modalg_5/bug23932_1", METHOD_MERIDIAN,
+     note=_bug23932.__doc__.split(":", 1)[1].strip() + "; OCC checks 326.401")(
+    lambda: _bug23932("44.194173824159222", "186.78835506149036"))
+case("bugs/bug23932_2", BUGS + "modalg_5/bug23932_2", METHOD_MERIDIAN,
+     note="as bug23932_1 with both radii 0.625 larger; OCC checks 330.903")(
+    lambda: _bug23932("44.819173824159222", "187.41335506149036"))
+
 for _src, _what, _why in (
-        (BUGS + "modalg_5/bug23932_1", "two half cylinders (trimu 0 pi)",
-         "u trims of a cylinder; they cut the curves (the section is two open arcs of 163.2, the untrimmed "
-         "cylinders meet in two loops of 310.7)"),
-        (BUGS + "modalg_5/bug23932_2", "two half cylinders (trimu 0 pi)", "u trims of a cylinder that cut the curves"),
         (BUGS + "modalg_1/buc60901", "a circle swept along a direction oblique to its plane",
          "an elliptic cylinder is no spatialkin surface"),
         (BUGS + "modalg_1/bug17194_1", "a half circle swept along an oblique direction",
@@ -1348,6 +1594,70 @@ STORED = {
      (0, [1, -1, 1], '38.5449369196856758144846450208', '38.5531140117111773818072540317'),
      (0, [1, -1, -1], '38.5449369196856758144846450208', '38.5531140117111773818072540317'),
      ('curve', 0),
+    ]},
+  ],
+  'points': []},
+ 'bugs/bug23932_1': {
+  'components': [
+   {'length': 163.20030970505505, 'closed': False, 'end_trims': ['a.u'],
+    'ends': [
+     (582.7706379946599, 307.61379298952244, 183.375),
+     (494.38229034634145, 307.61379298952244, 183.375),],
+    'nodes': [],
+    'pieces': [
+     (0, 1, '0.0', '3.14159265358979311599796346854'),
+    ]},
+   {'length': 163.20030970505505, 'closed': False, 'end_trims': ['a.u'],
+    'ends': [
+     (582.7706379946599, 619.9060195910465, 183.375),
+     (494.38229034634145, 619.9060195910465, 183.375),],
+    'nodes': [],
+    'pieces': [
+     (0, -1, '0.0', '3.14159265358979311599796346854'),
+    ]},
+  ],
+  'points': []},
+ 'bugs/bug23932_2': {
+  'components': [
+   {'length': 165.45157899685086, 'closed': False, 'end_trims': ['a.u'],
+    'ends': [
+     (583.3956379946599, 306.8666790057351, 183.375),
+     (493.75729034634145, 306.8666790057351, 183.375),],
+    'nodes': [],
+    'pieces': [
+     (0, 1, '0.0', '3.14159265358979311599796346854'),
+    ]},
+   {'length': 165.45157899685086, 'closed': False, 'end_trims': ['a.u'],
+    'ends': [
+     (583.3956379946599, 620.653133574834, 183.375),
+     (493.75729034634145, 620.653133574834, 183.375),],
+    'nodes': [],
+    'pieces': [
+     (0, -1, '0.0', '3.14159265358979311599796346854'),
+    ]},
+  ],
+  'points': []},
+ 'bugs/bug24905:p1.annulusy=-1000*p2': {
+  'components': [
+   {'length': 8.573933645686527, 'closed': False, 'end_trims': ['a.rim'],
+    'ends': [
+     (-34.200939529986414, -1000.0, 66.74800173238307),
+     (-26.369473514970057, -1000.0, 70.21147247098078),],
+    'nodes': [],
+    'pieces': [
+     (0, 0, '1.89228699895156780644464945674', '2.06304699122562007702467968069'),
+    ]},
+  ],
+  'points': []},
+ 'bugs/bug24905:p1.annulusy=0*p2': {
+  'components': [
+   {'length': 8.573933645686877, 'closed': False, 'end_trims': ['a.rim'],
+    'ends': [
+     (-26.369473514969823, 0.0, -70.21147247098088),
+     (-34.2009395299865, 0.0, -66.74800173238302),],
+    'nodes': [],
+    'pieces': [
+     (0, 0, '4.22013831595396390565002680365', '4.39089830822802317004722108973'),
     ]},
   ],
   'points': []},
@@ -1667,6 +1977,38 @@ STORED = {
     ]},
   ],
   'points': []},
+ 'intss/bug31552': {
+  'components': [
+   {'length': 15.445905007861072, 'closed': False, 'end_trims': ['a.u'],
+    'ends': [
+     (88.17428429792234, 221.31089891857906, -7.713127203694547),
+     (88.17427971403886, 221.31089771740903, 7.713181367591022),],
+    'nodes': [],
+    'pieces': [
+     (0, -1, '0.0', '0.0872646928204134583323249683669'),
+     (0, -1, '6.19592000000000010481707341213', '6.28318530717958647692528676656'),
+    ]},
+  ],
+  'points': []},
+ 'intss/bug32850': {
+  'components': [
+   {'length': 13.015835696779138, 'closed': False, 'end_trims': ['a.u', 'b.u'],
+    'ends': [
+     (25.80644989013671, 1974.1935501098594, 34.999999999999844),
+     (25.80644989013671, 1974.1921348545004, 34.999999999999844),
+     (25.80786514549589, 1974.1935501098594, 34.999999999999844),
+     (35.008232117163715, 1964.9917678828324, 34.89648439563747),],
+    'nodes': [
+     (25.8071575178163, 1974.19284248218, 35.00000000061203),],
+    'pieces': [
+     (0, 1, '0.0', '0.00000173024882664042351886064003968'),
+     (0, -1, '0.0', '0.00000173024882664042351886064003968'),
+     (0, 1, '0.00000173024882664042351886064003968', '0.0000034604976532808470377212780672'),
+     (0, -1, '0.00000173024882664042351886064003968', '0.0000034604976532808470377212780672'),
+     (0, -1, '0.0000034604976532808470377212780672', '0.0225015452057227005600026359389'),
+    ]},
+  ],
+  'points': []},
 }
 # END STORED
 
@@ -1686,56 +2028,7 @@ XFAIL = {'bugs/buc60899_1:crg.s8*cyl': {'ab': 'contact-as-curve', 'ba': 'contact
  'bugs/bug13211_6:r1.e5*r2.e4': {'ab': 'count, length, open/closed, split',
                                  'ba': 'count, length, open/closed, split'},
  'bugs/bug13211_6:r1.e5*r2.e5': {'ab': 'raises TopologyError (interior search unresolved)',
-                                 'ba': 'raises TopologyError (interior search unresolved)'},
- 'bugs/bug25354_32:b1.Xmin*b2.Xmax': {'ab': 'raises TopologyError (interior search unresolved)',
-                                      'ba': 'raises TopologyError (interior search unresolved)'},
- 'bugs/bug25354_32:b1.Xmin*b2.Ymax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_32:b1.Xmin*b2.Zmax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_32:b1.Ymin*b2.Xmax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_32:b1.Ymin*b2.Ymax': {'ab': 'raises TopologyError (interior search unresolved)',
-                                      'ba': 'raises TopologyError (interior search unresolved)'},
- 'bugs/bug25354_32:b1.Ymin*b2.Zmax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_32:b1.Zmin*b2.Xmax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_32:b1.Zmin*b2.Ymax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_32:b1.Zmin*b2.Zmax': {'ab': 'raises TopologyError (interior search unresolved)',
-                                      'ba': 'raises TopologyError (interior search unresolved)'},
- 'bugs/bug25354_33:b1.Ymin*b2.Xmin': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_33:b1.Ymin*b2.Ymax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_33:b1.Ymin*b2.Zmax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_33:b1.Zmin*b2.Xmin': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_33:b1.Zmin*b2.Zmax': {'ab': 'raises TopologyError (interior search unresolved)',
-                                      'ba': 'raises TopologyError (interior search unresolved)'},
- 'bugs/bug25354_34:b1.Ymin*b2.Ymax': {'ab': 'count, missing', 'ba': 'count, missing'},
- 'bugs/bug25354_34:b1.Zmin*b2.Xmin': {'ab': 'count, missing', 'ba': 'count, missing'},
- 'bugs/bug25354_34:b1.Zmin*b2.Ymax': {'ab': 'count, missing', 'ba': 'count, missing'},
- 'bugs/bug25354_35:b1.Xmin*b2.Xmax': {'ab': 'raises TopologyError (interior search unresolved)',
-                                      'ba': 'raises TopologyError (interior search unresolved)'},
- 'bugs/bug25354_35:b1.Xmin*b2.Zmax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_35:b1.Ymin*b2.Ymax': {'ab': 'raises TopologyError (interior search unresolved)',
-                                      'ba': 'raises TopologyError (interior search unresolved)'},
- 'bugs/bug25354_35:b1.Ymin*b2.Zmax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_35:b1.Zmin*b2.Xmax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_35:b1.Zmin*b2.Ymax': {'ab': 'raises TopologyError (start lost)',
-                                      'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug25354_36:b1.Ymin*b2.Zmax': {'ab': 'count, missing', 'ba': 'count, missing'},
- 'bugs/bug25354_36:b1.Zmin*b2.Xmin': {'ab': 'count, missing', 'ba': 'count, missing'},
- 'bugs/bug25354_37:b1.Ymax*b2.Zmin': {'ab': 'count, missing', 'ba': 'count, missing'},
- 'bugs/bug25354_37:b1.Zmax*b2.Ymin': {'ab': 'count, missing', 'ba': 'count, missing'},
- 'intss/bug23163_1': {'ab': 'raises TopologyError (interior search unresolved)',
-                      'ba': 'raises TopologyError (interior search unresolved)'}}
+                                 'ba': 'raises TopologyError (interior search unresolved)'}}
 # END XFAIL
 
 for _c in CASES:

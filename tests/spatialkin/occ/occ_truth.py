@@ -66,6 +66,9 @@ JOIN = 1e-12
 #: A point found at a critical t counts (as an isolated point) when it lies this close (x scale) to both surfaces:
 #: the surfaces are built in float, the sweep from the script's exact numbers.
 ON_SURFACE = 1e-12
+#: Two criticals closer than this (in t) around a double root of an existence function, where the derivative
+#: vanishes, bound no piece (the round-off at DPS digits can split the double zero into two).
+SLIVER = mp.mpf("1e-25")
 #: A piece end this far from the origin has escaped to infinity.
 ESCAPE = 1e15
 
@@ -133,8 +136,19 @@ def matvec(m, v):
     return (dot(m[0], v), dot(m[1], v), dot(m[2], v))
 
 
-def axes(B, g):
-    return vec(B, g.o), vec(B, g.x), vec(B, g.y), vec(B, g.z)
+def axes(B, g, orthonormal=False):
+    """(O, X, Y, Z) of g in B's numbers; orthonormal: at DPS digits made orthonormal again (Z and X normalised, X
+    made normal to Z, Y = +-Z x X as g's handedness), so that a sweep is exact to the surface the float axes stand
+    for (the float vectors are unit and orthogonal only to round-off, 1e-16, which splits a tangential crossing of
+    two curves into two turning points)."""
+    o, x, y, z = vec(B, g.o), vec(B, g.x), vec(B, g.y), vec(B, g.z)
+    if orthonormal and B.num is not float:           # at DPS digits (also from a second copy of this module)
+        z = mul(z, 1 / norm(z, B))
+        x = sub(x, mul(z, dot(x, z)))
+        x = mul(x, 1 / norm(x, B))
+        yy = cross(z, x)
+        y = yy if dot(yy, y) > 0 else mul(yy, -1)
+    return o, x, y, z
 
 
 # --- implicit forms and trims of a Geo ------------------------------------------------------------------------------
@@ -272,10 +286,11 @@ class Meridian:
 
     periodic = True
 
-    def __init__(self, a, b):
+    def __init__(self, a, b, orthonormal=False):
         if a.kind not in ("cylinder", "cone") or b.kind not in ("plane", "cylinder", "cone", "sphere"):
             raise ValueError("Meridian sweeps a cylinder or cone against a plane or quadric")
         self.a, self.b = a, b
+        self.orthonormal = orthonormal          # the generators from a's axes made orthonormal at DPS digits
         self.t_range = (0.0, 2 * math.pi)
         self.linear = b.kind == "plane"
         self.branches = (0,) if self.linear else (1, -1)
@@ -287,7 +302,7 @@ class Meridian:
     def _data(self, B):
         key = id(B)
         if key not in self._cache:
-            o, x, y, z = axes(B, self.a)
+            o, x, y, z = axes(B, self.a, self.orthonormal)
             if self.a.kind == "cone":
                 ang = B.num(self.a.params["angle"])
                 t = abs(B.sin(ang) / B.cos(ang))
@@ -787,6 +802,14 @@ def _zeros(f_fl, f_mp, grid, label, found, touches):
         v0, v1, v2 = vals[i - 1], vals[i], vals[i + 1]
         if v0 is None or v1 is None or v2 is None:
             continue
+        if abs(v1) <= abs(v0) and abs(v1) <= abs(v2) and abs(v1) < NEAR_ZERO * fscale \
+                and (not (v0 < 0) == (v1 < 0) == (v2 < 0) or 0.0 in (v0, v1, v2)):
+            # the signs differ, or vanish, in float only (round-off at a double zero): the extremum at DPS digits
+            m = [at(j) for j in (i - 1, i, i + 1)]
+            if any(x is None for x in m) or not (m[0] < 0) == (m[1] < 0) == (m[2] < 0) or \
+                    abs(m[1]) > abs(m[0]) or abs(m[1]) > abs(m[2]):
+                continue
+            v0, v1, v2 = (float(x) for x in m)
         if abs(v1) <= abs(v0) and abs(v1) <= abs(v2) and (v0 < 0) == (v1 < 0) == (v2 < 0) \
                 and abs(v1) < NEAR_ZERO * fscale:
             side = v0 + v2
@@ -812,19 +835,21 @@ class Piece:
         self.length = None
 
 
-def analyse(sweeps, trims, scale, extra_t=None, lengths=True, curves=(), surfaces=None):
+def analyse(sweeps, trims, scale, extra_t=None, lengths=True, curves=(), surfaces=None, zoom=None):
     """Components of the union of the sweeps' curves inside the trims.
 
     sweeps : list of sweeps; trims : list of (label, f(B) -> f(P) >= 0 inside) constructors, as
     ``[(label, lambda B: f)]``; scale : the scene's length scale; extra_t : {sweep index: [t]} extra split
     points (where curves of different sweeps cross); curves : closed-form curves (length, distance(p), label, ends) that
-    belong to the intersection too (a piece ending on one joins it). Returns a dict of components (length, closed,
-    free ends, nodes where three or more pieces meet, pieces) and isolated points.
+    belong to the intersection too (a piece ending on one joins it); zoom : {sweep index: [(t0, t1)]} ranges scanned
+    on a grid of their own as well (criticals closer together than the sweep's grid cell). Returns a dict of
+    components (length, closed, free ends, nodes where three or more pieces meet, pieces) and isolated points.
     """
     with mp.workdps(DPS):
         pieces, points = [], []
         for si, sw in enumerate(sweeps):
-            pcs, pts = _analyse_one(si, sw, trims, (extra_t or {}).get(si, ()), surfaces, scale)
+            pcs, pts = _analyse_one(si, sw, trims, (extra_t or {}).get(si, ()), surfaces, scale,
+                                    (zoom or {}).get(si, ()))
             pieces += pcs
             points += pts
         if lengths:
@@ -846,11 +871,14 @@ def analyse(sweeps, trims, scale, extra_t=None, lengths=True, curves=(), surface
         return _components(pieces, points, scale, curves)
 
 
-def _analyse_one(si, sw, trims, extra, surfaces=None, scale=1.0):
+def _analyse_one(si, sw, trims, extra, surfaces=None, scale=1.0, zoom=()):
     t0, t1 = sw.t_range
     if t0 > t1:                                      # the sweep's range is empty: nothing
         return [], []
     grid = list(np.linspace(t0, t1, GRID + 1))
+    if zoom:
+        fine = {float(t) for z0, z1 in zoom for t in np.linspace(z0, z1, GRID + 1)}
+        grid = sorted(set(grid) | {t for t in fine if t0 <= t <= t1})
     found, touches = [], []
     cons_fl = [(lab, mk(FL)) for lab, mk in trims]
     cons_mp = [(lab, mk(MP)) for lab, mk in trims]
@@ -896,8 +924,11 @@ def _analyse_one(si, sw, trims, extra, surfaces=None, scale=1.0):
             r = sw.root(MP, k, mid)
             if r is None or not inside(r[0]):
                 continue
+            if r[1] is None and b - a < SLIVER:        # between two roots of one double zero, found apart
+                continue
             if r[1] is None:
-                raise Unbounded(f"{sw.name()}: branch {k} has no derivative at t = {float(mid)}")
+                raise Unbounded(f"{sw.name()}: branch {k} has no derivative at t = {float(mid)} "
+                                f"(piece [{mp.nstr(a, 20)}, {mp.nstr(b, 20)}])")
             pa = sw.root(MP, k, a, clamp=True) or sw.root(MP, k, a + delta, clamp=True)
             pb = sw.root(MP, k, b, clamp=True) or sw.root(MP, k, b - delta, clamp=True)
             if pa is None or pb is None or max(norm(pa[0], MP), norm(pb[0], MP)) > ESCAPE:

@@ -607,12 +607,14 @@ def quadratic(a2, a1, a0):
 
 def clip(shape, rows, trims, graze, touch):
     """[(t_lo, t_hi, ends)] of the arcs of the conic inside every trim; ends is None for a whole ellipse, else
-    ((surface, edge) at t_lo, at t_hi); None where declined (a touch from outside, a vertex's touch, a line along an
-    edge, an unbounded arc). An ellipse touching an edge from inside (within touch) is not cut there; crossings
-    within touch of each other (a corner) are one end."""
+    ((surface, edge) at t_lo, at t_hi); t_lo == t_hi for a single point (a line through a corner, an ellipse
+    touching an edge from outside); None where declined (a vertex's touch, an unbounded arc). An ellipse touching
+    an edge from inside (within touch) is not cut there; crossings within touch of each other (a corner) are one
+    end; a line along an edge is inside it or outside whole."""
     (c0, c1, c2), (p0, p1, p2), (q0, q1, q2) = rows
     linear = []                                     # (alpha, beta, gamma, side): the trim's alpha + beta f + gamma g
     events = []
+    only = None                                     # (t, edge): an ellipse outside a trim but for its touch point
     for (w0, w1, w2), bound, side, edge in trims:
         alpha = w0 * c0 + w1 * c1 + w2 * c2 - bound         # (dot(w, rows[k]) written out)
         beta = w0 * p0 + w1 * p1 + w2 * p2
@@ -626,13 +628,15 @@ def clip(shape, rows, trims, graze, touch):
             far = math.atan2(gamma, beta) + (math.pi if -alpha > 0.0 else 0.0)
             f, g = basis(shape, far, 0, math)
             if (alpha + beta * f + gamma * g) * side > touch:
-                return None                                  # outside but for the touch point
+                only = ((far + math.pi) % TWO_PI, edge)     # outside but for the touch point
             continue                                         # inside: not cut, and not tested again
         if roots is None:
             return None
         linear.append((alpha, beta, gamma, side))
         for t in roots:
             events.append((t, edge))
+    if only is not None:                            # that point, where it lies inside the other trims
+        return [(only[0], only[0], (only[1], only[1]))] if within(linear, shape, only[0], touch) else []
     events.sort()
     periodic = shape == ELLIPSE
 

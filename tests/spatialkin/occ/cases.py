@@ -2015,8 +2015,7 @@ STORED = {
 
 # --- the runs spatialkin fails, by failure class (written by ``python occ_compare.py --xfail``) ------------------
 # BEGIN XFAIL
-XFAIL = {'bugs/buc60899_1:crg.s8*cyl': {'ab': 'contact-as-curve', 'ba': 'contact-as-curve'},
- 'bugs/bug13211_6:r1.e3*r2.e3': {'ab': 'raises TopologyError (interior search unresolved)',
+XFAIL = {'bugs/bug13211_6:r1.e3*r2.e3': {'ab': 'raises TopologyError (interior search unresolved)',
                                  'ba': 'raises TopologyError (interior search unresolved)'},
  'bugs/bug13211_6:r1.e3*r2.e4': {'ab': 'raises TopologyError (start lost)',
                                  'ba': 'raises TopologyError (start lost)'},

@@ -185,9 +185,9 @@ def declined(a, b):
 
 
 def test_degenerate_placements_decline(monkeypatch):
-    """Tangency (at a point, along a cone's ruling through its apex), coincidence, a touch of a trim edge from
-    outside, both surfaces unbounded: declined, and sk.intersect answers as its general path does (a contact
-    point, a line of tangency, an error)."""
+    """Tangency (at a point, along a cone's ruling through its apex), coincidence, both surfaces unbounded:
+    declined, and sk.intersect answers as its general path does (a contact point, a line of tangency, an error).
+    A touch of a trim edge from outside is answered: the point."""
     sphere = sk.Sphere(1.0)
     tangent = sk.Plane(sk.Frame((0.0, 0.0, 1.0), np.eye(3)), (-1, 1), (-1, 1))
     assert declined(tangent, sphere)
@@ -202,7 +202,8 @@ def test_degenerate_placements_decline(monkeypatch):
     # a circle touching the rectangle from outside (the sphere's circle in z = 0.6 has radius 0.8: edge u = 0.8):
     # the patches meet in one point
     edge = sk.Plane(sk.Frame((0.0, 0.0, 0.6), np.eye(3)), (0.8, 2.0), (-2.0, 2.0))
-    assert declined(edge, sphere)
+    point, = closed_form(edge, sphere, settings_of(edge, sphere))
+    assert point.length == 0 and np.allclose(point.points, [[0.8, 0.0, 0.6]], atol=1e-15)
     # coincident: the general path raises
     for a, b in ((sphere, sk.Sphere(1.0)), (tangent, sk.Plane(sk.Frame((0.5, 0.0, 1.0), np.eye(3)), (-1, 1), (-1, 1)))):
         assert declined(a, b)
@@ -385,3 +386,48 @@ def test_a_trimmed_plane_normal_to_a_torus_axis(height, rect, monkeypatch):
                 assert abs(sum(c.length for c in ours) - 2 * math.pi * 4.0) <= 1e-12 * 8 * math.pi
             else:
                 compare(ours, general(a, b, monkeypatch), settings_of(a, b).scale)
+
+
+def both(a, b):
+    return sk.intersect(a, b), sk.intersect(b, a)
+
+
+def test_faces_meeting_in_one_point_of_their_edges():
+    """A rectangle whose edge touches a circle of the cylinder from outside meets it in that point; two
+    perpendicular rectangles through a common corner meet in the corner: one point of length 0 (status
+    'boundary'), exactly there, in both orders."""
+    strip = sk.Plane(u_range=(-1.0, 1.0), v_range=(-1.0, 1.0))
+    beside = sk.Cylinder(0.5, sk.Frame((1.5, 0.0, 0.0)), v_range=(-1.0, 1.0))
+    x_wall = sk.Plane(sk.Frame((0.0, 0.0, 0.0), np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]).T),
+                      u_range=(0.0, 10.0), v_range=(0.0, 10.0))
+    y_wall = sk.Plane(sk.Frame((0.0, 0.0, 0.0), np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]]).T),
+                      u_range=(-10.0, 0.0), v_range=(-10.0, 0.0))
+    for (a, b), where in (((strip, beside), (1.0, 0.0, 0.0)), ((x_wall, y_wall), (0.0, 0.0, 0.0))):
+        for curves in both(a, b):
+            point, = curves
+            assert point.length == 0 and point.status == "boundary" and "one point" in point.message
+            assert np.allclose(point.points, [where], atol=1e-15)
+
+
+def test_faces_sharing_an_edge():
+    """Perpendicular rectangles sharing the edge x = y = 0, z in [0, 6]: that segment (its ends on both faces'
+    edges); coplanar rectangles side by side: their common edge, a segment of tangency, or their common corner,
+    a contact point; apart: nothing; overlapping: CoincidentSurfacesError."""
+    x_wall = sk.Plane(sk.Frame((0.0, 0.0, 0.0), np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]).T),
+                      u_range=(0.0, 10.0), v_range=(0.0, 10.0))
+    y_wall = sk.Plane(sk.Frame((0.0, 0.0, 0.0), np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]]).T),
+                      u_range=(-10.0, 0.0), v_range=(-4.0, 6.0))
+    for curves in both(x_wall, y_wall):
+        edge, = curves
+        assert edge.status == "boundary" and edge.length == pytest.approx(6.0, abs=1e-14)
+        assert sorted(edge.points[[0, -1]].tolist()) == [[0.0, 0.0, 0.0], [0.0, 0.0, 6.0]]
+    square = sk.Plane(u_range=(0.0, 10.0), v_range=(0.0, 10.0))
+    for origin, status, length in (((10.0, 3.0, 0.0), "tangent", 7.0), ((10.0, 10.0, 0.0), "contact", 0.0)):
+        other = sk.Plane(sk.Frame(origin), u_range=(0.0, 10.0), v_range=(0.0, 10.0))
+        for curves in both(square, other):
+            common, = curves
+            assert common.status == status and common.length == pytest.approx(length, abs=1e-14)
+    assert all(c == [] for c in both(square, sk.Plane(sk.Frame((11.0, 3.0, 0.0)), u_range=(0.0, 10.0),
+                                                      v_range=(0.0, 10.0))))
+    with pytest.raises(CoincidentSurfacesError):
+        sk.intersect(square, sk.Plane(sk.Frame((5.0, 3.0, 0.0)), u_range=(0.0, 10.0), v_range=(0.0, 10.0)))

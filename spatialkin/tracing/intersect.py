@@ -16,7 +16,7 @@ from .certificate import certificates
 from .clip import clip_curves
 from .closed import closed_form, closed_settings
 from . import stages
-from .status import CONTACT, FAILED
+from .status import CONTACT, FAILED, TANGENT
 from .rescue import LOST_RADIUS, crossing_starts
 from .topology import TopologyError, points_at, topology
 from .traits import check_surface, traits
@@ -355,12 +355,15 @@ def python_verdicts(curve, points, radius):
 
 
 def covered(curve, others, radius):
-    """True for an open curve lying wholly on another curve (a piece of a component traced again). A curve one of
-    whose points lies beyond the reach of every stored point of the other (kernels.near.within_reach) is not on
-    it; the closest points decide the rest (within)."""
-    if curve.closed or curve.status == CONTACT:
+    """True for an open curve lying wholly on another curve (a piece of a component traced again), or a contact
+    point on a circle or segment of tangency (where the surfaces touch all along). A curve one of whose points lies
+    beyond the reach of every stored point of the other (kernels.near.within_reach) is not on it; the closest
+    points decide the rest (within)."""
+    if curve.closed:
         return False
     points = np.ascontiguousarray(curve.points)
+    if curve.status == CONTACT:
+        return any(other.status == TANGENT and within(other, points, radius).all() for other in others)
     return any(other.length >= curve.length and could_cover(other, points, radius)
                and within(other, points, radius).all() for other in others)
 

@@ -41,7 +41,7 @@ from scipy.optimize import brentq
 from ..kernels import interval as ki
 from ..kernels import surfaces as ks
 from ..kernels import topology as kt
-from .meridians import BAND, meridian_circle, meridian_nodes, tangent_meridians
+from .meridians import BAND, BESIDE, REVOLVED, meridian_circle, meridian_nodes, meridian_segment, tangent_meridians
 from .placement import bounding_ball, check_not_coincident, common_axis, ruled_along
 from .trace import EPS, ROUNDOFF_ULPS
 from .traits import LENGTH, power_of_two, traits
@@ -327,11 +327,14 @@ def topology(a, b, scale, tolerance):
     try:
         return search(a, b, scale, tolerance)
     except TopologyError:
-        for torus, other in ((a, b), (b, a)):            # a meridian of a torus along which they touch?
-            if traits(torus).name == "torus":
-                meridians = tangent_meridians(torus, Reader(torus, other))
+        for p, q in ((a, b), (b, a)):                    # a meridian of a surface of revolution along which they touch?
+            if traits(p).name in REVOLVED:
+                box, _, _ = domain(p, bounding_ball(q))
+                if not (math.isfinite(box[2]) and math.isfinite(box[3])):
+                    continue
+                meridians = tangent_meridians(p, Reader(p, q), box[2:])
                 if meridians:
-                    return search(a, b, scale, tolerance, (torus, other, meridians[0]))
+                    return search(a, b, scale, tolerance, (p, q, meridians[0]))
         raise
 
 
@@ -356,8 +359,13 @@ def search(a, b, scale, tolerance, tangent=None):
     if tangent is not None:                          # the band round the meridian of tangency: its edges are the seam
         u0 = tangent[2]
         box[0], box[1] = u0 + BAND, u0 + 2 * math.pi - BAND
-        topo.tangent_circles.append(meridian_circle(p, u0))
-        topo.nodes += list(meridian_nodes(p, pq, u0))
+        if traits(p).name == "torus":
+            topo.tangent_circles.append(meridian_circle(p, u0))
+        else:
+            segment = meridian_segment(p, q, u0, box[2:])
+            topo.tangent_segments += [] if segment is None else [segment]
+        crossings = list(meridian_nodes(p, pq, u0, box[2:]))
+        topo.nodes += crossings
     index = {id(a): 0, id(b): 1}
     p_index, q_index = index[id(p_user)], index[id(q)]
     apexes = [v + 2 * math.pi * math.ceil((box[2] - v) / (2 * math.pi) - 1e-12) for v in collapse]
@@ -436,7 +444,14 @@ def search(a, b, scale, tolerance, tangent=None):
                                             topo)
             topo.seeds += keep.select_on(p, roots)
             loose += [(pq, uv) for uv in unresolved]
+    if tangent is not None:                          # unresolved boxes beside the band: g vanishes to second order
+        loose = [(reader, uv) for reader, uv in loose           # there (no singular point of another branch)
+                 if reader is not pq or abs(math.remainder(uv[0] - tangent[2], 2 * math.pi)) > BESIDE * BAND]
     classify(loose, topo, scale, keep)
+    if tangent is not None:                          # the crossings on the meridian are known exactly: boxes that
+        exact = topo.nodes[:len(crossings)]          # shrank round them are those nodes again
+        topo.nodes = exact + [x for x in topo.nodes[len(crossings):]
+                              if all(np.linalg.norm(x - y) > CLUSTER * scale for y in exact)]
     topo.seconds = time.perf_counter() - t0
     return topo
 

@@ -90,3 +90,29 @@ def test_tilted_tori_and_an_inscribed_ball():
     for curves in (sk.intersect(a, ball), sk.intersect(ball, a)):
         circle, = curves
         assert circle.status == "tangent" and abs(circle.length - 10 * math.pi) <= 1e-12 * 10 * math.pi
+
+
+def test_cones_holding_one_generator():
+    """Two cones whose axes lie in one plane with a common generator touch all along it (both normals lie in
+    that plane, normal to the line): the segment of tangency is the generator over both axial trims (closed form
+    along the line t d: t in [0.5, 3] / cos 0.5 on the first, 4 - t in [0.5, 3] / cos 0.3 on the second), in both
+    orders, the other curves on both surfaces and alike in both orders."""
+    alpha, beta, apex_at = 0.5, 0.3, 4.0
+    d = np.array([math.sin(alpha), 0.0, math.cos(alpha)])
+    turn = np.array([[math.cos(beta), 0.0, math.sin(beta)], [0.0, 1.0, 0.0], [-math.sin(beta), 0.0, math.cos(beta)]])
+    axis = -(turn @ d)
+    x = np.cross([0.0, 1.0, 0.0], axis)
+    x /= np.linalg.norm(x)
+    a = sk.Cone(alpha, v_range=(0.5, 3.0))
+    b = sk.Cone(beta, sk.Frame(apex_at * d, np.column_stack([x, np.cross(axis, x), axis])), v_range=(0.5, 3.0))
+    lo, hi = max(0.5 / math.cos(alpha), apex_at - 3.0 / math.cos(beta)), min(3.0 / math.cos(alpha),
+                                                                           apex_at - 0.5 / math.cos(beta))
+    answers = [sk.intersect(a, b), sk.intersect(b, a)]
+    for curves in answers:
+        segment, = [c for c in curves if c.status == "tangent"]
+        assert abs(segment.length - (hi - lo)) <= 1e-12 * hi
+        assert np.allclose(sorted(segment.points[[0, -1]].tolist()), [(lo * d).tolist(), (hi * d).tolist()],
+                           atol=1e-12)
+        assert all(c.max_distance <= c.tolerance for c in curves)
+    lengths = [sorted(c.length for c in curves) for curves in answers]
+    assert lengths[0] == pytest.approx(lengths[1], rel=1e-9, abs=1e-12)

@@ -34,8 +34,8 @@ TURN, TUBE, HEIGHT, RADIUS = "turn", "tube", "height", "radius"
 class Limit:
     """One trim edge as a 1-Lipschitz function of the point, >= 0 on the inside.
 
-    kind is TURN (an angle about the local z axis), TUBE (a torus's tube angle), HEIGHT (the local z) or RADIUS
-    (the distance from the local z axis); value the angle or the length of the edge; lower True when the inside
+    kind is TURN (an angle about the local z axis), TUBE (a torus's tube angle), HEIGHT (a local coordinate,
+    z unless axis says) or RADIUS (the distance from the local z axis); value the angle or the length of the edge; lower True when the inside
     is above it. name: the edge as a user names it ('u_min', 'u_max', 'v_min', 'v_max', 'rim', 'inner rim').
     """
 
@@ -45,6 +45,7 @@ class Limit:
     lower: bool
     nappes: bool = False            # TURN on a cone: the angle of the lower nappe's points is u + pi
     major: float = 0.0              # TUBE: the torus's major radius
+    axis: int = 2                   # HEIGHT: the local axis it is read on (0 x, 1 y, 2 z)
 
     def __call__(self, local):
         """Values (N,) at local points (N, 3)."""
@@ -57,7 +58,7 @@ class Limit:
             c, s = math.cos(self.value), math.sin(self.value)
             a = np.hypot(x, y) - self.major
             return c * z - s * a if self.lower else s * a - c * z
-        level = z if self.kind == HEIGHT else np.hypot(x, y)
+        level = local[:, self.axis] if self.kind == HEIGHT else np.hypot(x, y)
         return level - self.value if self.lower else self.value - level
 
     def on_edge_side(self, local):
@@ -104,14 +105,15 @@ def angular_groups(names, kind, lo_hi, **extra):
     return ((low,), (high,)) if hi - lo <= math.pi else ((low, high),)
 
 
-def level_groups(names, kind, lo_hi):
-    """The groups of a range of a level (kind HEIGHT or RADIUS), each finite end one group of one limit."""
+def level_groups(names, kind, lo_hi, axis=2):
+    """The groups of a range of a level (kind HEIGHT on a local axis, or RADIUS), each finite end one group of one
+    limit."""
     lo, hi = lo_hi
     groups = []
     if math.isfinite(lo):
-        groups.append((Limit(names[0], kind, lo, True),))
+        groups.append((Limit(names[0], kind, lo, True, axis=axis),))
     if math.isfinite(hi):
-        groups.append((Limit(names[1], kind, hi, False),))
+        groups.append((Limit(names[1], kind, hi, False, axis=axis),))
     return tuple(groups)
 
 

@@ -39,8 +39,6 @@ PIECE_SAMPLES = 7
 #: which a curve bending at 1 / scale away from a straight edge stays within slack of it; longer, it runs along
 #: the edge (kept).
 TOUCH_LENGTH = 20.0
-#: Touches of an edge closer than this (relative to the scale) in arc length are one point.
-TOUCH_CLUSTER = 1e-6
 #: The slack of the inside test and of the Lipschitz bound, in tolerances (the points' distance to the curve).
 SLACK_TOLERANCES = 4.0
 
@@ -79,6 +77,10 @@ def clip_curve(a, b, curve, scale):
         ends = [(0.0, None, None)] + cuts + [(length, None, None)]
     pieces = list(zip(ends[:-1], ends[1:]))
     verdicts = [piece_verdict(a, b, curve, lo[0], hi[0], slack, scale) for lo, hi in pieces]
+    n = len(verdicts)
+    for i, verdict in enumerate(verdicts):         # a touch from inside, cut by round-off on both sides: inside
+        if verdict == TOUCHED and (curve.closed or 0 < i < n - 1) and verdicts[i - 1] == verdicts[(i + 1) % n] == INSIDE:
+            verdicts[i] = INSIDE
     touches += [(lo[0], hi[0]) for (lo, hi), verdict in zip(pieces, verdicts) if verdict == TOUCHED]
     arcs = merged([piece for piece, verdict in zip(pieces, verdicts) if verdict == INSIDE], curve.closed, length)
     ends = [end[0] for arc in arcs for end in arc if end[1] is not None]           # the crossings kept
@@ -106,22 +108,22 @@ def piece_verdict(a, b, curve, s0, s1, slack, scale):
 
 def touch_points(a, b, curve, touches, cuts, arcs, slack, scale):
     """Single points (CurveResults of length 0) where the curve touches an edge of the faces from outside: the
-    intervals of touches ((s0, s1) within slack of an edge) joined where they overlap or lie within TOUCH_CLUSTER x
-    scale, less those as close to a crossing (cuts: the arc lengths of the arcs' ends on an edge), each point where the curve comes deepest
+    intervals of touches ((s0, s1) within slack of an edge) joined where they lie within a touch's length
+    (TOUCH_LENGTH sqrt(slack x scale)) of each other, less those as close to a crossing (cuts: the arc lengths of the arcs' ends on an edge), each point where the curve comes deepest
     into both regions there (bounded Brent on the dense output), kept when inside both within slack and on no arc
     kept. Status 'boundary' (the faces meet in one point of
     their edges), or 'contact' on a curve of tangency."""
     if not touches:
         return []
     length = curve.length
+    reach = TOUCH_LENGTH * np.sqrt(slack * scale)        # the length of a touch: its pieces within it are one
     spans = []
     for lo, hi in sorted(touches):
-        if spans and lo <= spans[-1][1] + TOUCH_CLUSTER * scale:
+        if spans and lo <= spans[-1][1] + reach:
             spans[-1][1] = max(spans[-1][1], hi)
         else:
             spans.append([lo, hi])
     event = "contact" if curve.status in (TANGENT, CONTACT) else "edge_point"
-    reach = TOUCH_CLUSTER * scale
     turns = (-length, 0.0, length) if curve.closed else (0.0,)
     out = []
     for lo, hi in spans:
@@ -134,7 +136,7 @@ def touch_points(a, b, curve, touches, cuts, arcs, slack, scale):
                for turn in ((0.0, length) if curve.closed else (0.0,))):
             continue
         point = curve.sol(np.array([s]))
-        if inside_both(a, b, point, slack)[0] and all(np.linalg.norm(point[0] - q.points[0]) > slack for q in out):
+        if inside_both(a, b, point, slack)[0] and all(np.linalg.norm(point[0] - q.points[0]) > reach for q in out):
             out.append(contact_point(curve.sol.surfaces, point[0], curve.tolerance, event=event))
     return out
 
@@ -260,8 +262,7 @@ def window_outcome(curve, lo, hi):
         if limit is None:
             ends.append((curve.status, curve.message))
         else:
-            ends.append((BOUNDARY, f"reached the trim edge {limit.name} of surface {'ab'[k]} at s = {s:.6g} of "
-                                   "the untrimmed component"))
+            ends.append((BOUNDARY, f"reached the trim edge {limit.name} of surface {'ab'[k]}"))
     return open_outcome(ends[0][0], ends[0][1], ends[1][0], ends[1][1])
 
 

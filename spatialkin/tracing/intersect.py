@@ -14,6 +14,7 @@ from .segments import NEWTON_MAX_ITER
 from .start import locate_on_curve, newton_fixed
 from .certificate import certificates
 from .clip import clip_curves
+from .graze import rejoined
 from .closed import closed_form, closed_settings
 from . import stages
 from .status import CONTACT, FAILED, TANGENT
@@ -197,7 +198,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     for i, c in enumerate(curves):          # of two copies of one piece, the first is kept
         if not covered(c, kept + curves[i + 1:], radius):
             kept.append(c)
-    curves = clip_curves(a, b, kept, settings.scale)
+    curves = clip_curves(a, b, rejoined(a, b, kept, settings, lambda c, whole: bool(within(whole, c.points, radius).all())),
+                         settings.scale)
     if stages.ON:
         stages.switch("result")
     in_sk_order(curves)

@@ -2018,12 +2018,7 @@ STORED = {
 XFAIL = {'bugs/bug13211_6:r1.e3*r2.e4': {'ab': 'raises TopologyError (start lost)',
                                  'ba': 'raises TopologyError (start lost)'},
  'bugs/bug13211_6:r1.e4*r2.e3': {'ab': 'raises TopologyError (start lost)',
-                                 'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug13211_6:r1.e4*r2.e5': {'ab': 'contact-as-curve', 'ba': 'contact-as-curve'},
- 'bugs/bug13211_6:r1.e5*r2.e4': {'ab': 'count, length, open/closed, split',
-                                 'ba': 'count, length, open/closed, split'},
- 'bugs/bug13211_6:r1.e5*r2.e5': {'ab': 'count, length, open/closed, spurious',
-                                 'ba': 'count, length, open/closed, spurious'}}
+                                 'ba': 'raises TopologyError (start lost)'}}
 # END XFAIL
 
 for _c in CASES:

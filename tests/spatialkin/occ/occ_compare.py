@@ -56,11 +56,31 @@ CLASSES = {
 }
 
 
+#: Chords of a truth's polyline are cut to at most this fraction of its length (a straight piece comes as its two
+#: ends: the nearest vertices of a point in its middle would lie on other pieces).
+CHORD_SHARE = 1.0 / 256
+
+
+def densified(line):
+    """The polyline (M, 3) with points inserted so that no chord exceeds CHORD_SHARE of its length."""
+    if len(line) < 2:
+        return line
+    steps = np.linalg.norm(np.diff(line, axis=0), axis=1)
+    longest = CHORD_SHARE * float(steps.sum())
+    if longest == 0.0 or steps.max() <= longest:
+        return line
+    out = [line[:1]]
+    for a, b, step in zip(line[:-1], line[1:], steps):
+        n = max(1, int(np.ceil(step / longest)))
+        out.append(a + np.outer(np.arange(1, n + 1) / n, b - a))
+    return np.concatenate(out)
+
+
 class Polylines:
     """Distances from points to a set of polylines (exact to the polylines' chords)."""
 
     def __init__(self, lines):
-        self.lines = [np.asarray(line, dtype=float).reshape(-1, 3) for line in lines if len(line)]
+        self.lines = [densified(np.asarray(line, dtype=float).reshape(-1, 3)) for line in lines if len(line)]
         pts, owner, index = [], [], []
         for k, line in enumerate(self.lines):
             pts.append(line)

@@ -65,6 +65,23 @@ def widened(surface, margin):
     return out
 
 
+def across_edges(a, b, point, y, settings):
+    """(the component through point (3,) with parameters y (4,) traced on the surfaces with their length trims
+    widened, its pieces inside the true trims), or None where that trace fails. Also the answer for a start on an
+    edge from which the curve leaves the faces both ways (they meet in that point, or the start sits beside a
+    touch)."""
+    margin = WIDEN * settings.scale
+    try:
+        whole = trace_from(widened(a, margin), widened(b, margin), point, y, settings, time.perf_counter())
+    except TracingError:
+        return None
+    whole.sol.surfaces = (a, b)
+    pieces = clip_curve(Face(a), Face(b), whole, settings.scale)
+    for piece in pieces:
+        piece.sol.surfaces = (a, b)
+    return whole, pieces
+
+
 def grazing_groups(curves, scale):
     """Sets of indices of the open curves whose ends on trim edges lie within GAP x scale of each other (a curve
     with itself when its own two ends do)."""
@@ -96,22 +113,14 @@ def rejoined(a, b, curves, settings, on):
     groups = grazing_groups(curves, settings.scale)
     if not groups:
         return curves
-    faces = (Face(a), Face(b))
-    margin = WIDEN * settings.scale
-    wide = (widened(a, margin), widened(b, margin))
     new, dropped = [], set()
     for group in groups:
         first = curves[min(group)]
         mid = len(first.points) // 2
-        try:
-            whole = trace_from(*wide, first.points[mid].copy(), first.params[mid].copy(), settings,
-                               time.perf_counter())
-        except TracingError:
+        found = across_edges(a, b, first.points[mid].copy(), first.params[mid].copy(), settings)
+        if found is None:
             continue
-        whole.sol.surfaces = (a, b)
-        pieces = clip_curve(*faces, whole, settings.scale)
-        for piece in pieces:
-            piece.sol.surfaces = (a, b)
+        whole, pieces = found
         new += pieces
         dropped |= {k for k, c in enumerate(curves) if k in group or c.status == BOUNDARY
                     if k not in dropped and on(c, whole)}

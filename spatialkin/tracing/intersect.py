@@ -14,10 +14,10 @@ from .segments import NEWTON_MAX_ITER
 from .start import locate_on_curve, newton_fixed
 from .certificate import certificates
 from .clip import clip_curves
-from .graze import rejoined
+from .graze import across_edges, rejoined
 from .closed import closed_form, closed_settings
 from . import stages
-from .status import CONTACT, FAILED, TANGENT
+from .status import BOUNDARY, CONTACT, FAILED, TANGENT
 from .rescue import LOST_RADIUS, crossing_starts
 from .topology import TopologyError, points_at, topology
 from .traits import check_surface, traits
@@ -229,16 +229,19 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
         if stages.ON:
             stages.switch("trace_setup")
         try:
-            curve = trace_from(a, b, point, y, settings, time.perf_counter())
+            found = [trace_from(a, b, point, y, settings, time.perf_counter())]
         except TracingError as err:
-            failed.append(np.asarray(point, dtype=float))
-            if err.status == FAILED:
-                reasons.append(str(err))
-            continue            # the seed sits on a singular point (the arms' seeds trace it), or tracing failed
-        curves.append(curve)
+            wide = across_edges(a, b, point, y, settings) if err.status == BOUNDARY else None
+            if wide is None:
+                failed.append(np.asarray(point, dtype=float))
+                if err.status == FAILED:
+                    reasons.append(str(err))
+                continue        # the seed sits on a singular point (the arms' seeds trace it), or tracing failed
+            found = wide[1]     # it leaves the faces both ways at once: the pieces inside them (a touch point)
+        curves += found
         if stages.ON:
             stages.switch("dedupe")
-        pending = drop_traced(pending, [curve], radius)
+        pending = drop_traced(pending, found, radius)
     return failed
 
 

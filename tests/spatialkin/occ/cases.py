@@ -2015,10 +2015,7 @@ STORED = {
 
 # --- the runs spatialkin fails, by failure class (written by ``python occ_compare.py --xfail``) ------------------
 # BEGIN XFAIL
-XFAIL = {'bugs/bug13211_6:r1.e3*r2.e4': {'ab': 'raises TopologyError (start lost)',
-                                 'ba': 'raises TopologyError (start lost)'},
- 'bugs/bug13211_6:r1.e4*r2.e3': {'ab': 'raises TopologyError (start lost)',
-                                 'ba': 'raises TopologyError (start lost)'}}
+XFAIL = {}
 # END XFAIL
 
 for _c in CASES:

@@ -61,7 +61,8 @@ class Cylinder(Surface):
     def __init__(self, radius, frame=None, v_range=None, u_range=None):
         self.radius = check_positive("radius", radius)
         turn = angle_range("u_range", u_range)
-        super().__init__(frame, self.radius, 0.0, v_range=v_range, region=angular_groups(("u_min", "u_max"), TURN, turn),
+        super().__init__(frame, self.radius, 0.0, v_range=v_range,
+                         region=angular_groups(("u_min", "u_max"), TURN, turn),
                          shown=None if turn is None else (turn, tuple(check_range("v_range", v_range))))
 
     def with_frame(self, frame):

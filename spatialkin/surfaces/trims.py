@@ -34,9 +34,10 @@ TURN, TUBE, HEIGHT, RADIUS = "turn", "tube", "height", "radius"
 class Limit:
     """One trim edge as a 1-Lipschitz function of the point, >= 0 on the inside.
 
-    kind is TURN (an angle about the local z axis), TUBE (a torus's tube angle), HEIGHT (a local coordinate,
-    z unless axis says) or RADIUS (the distance from the local z axis); value the angle or the length of the edge; lower True when the inside
-    is above it. name: the edge as a user names it ('u_min', 'u_max', 'v_min', 'v_max', 'rim', 'inner rim').
+    kind is TURN (an angle about the local z axis), TUBE (a torus's tube angle), HEIGHT (a local coordinate, z
+    unless axis says) or RADIUS (the distance from the local z axis); value the angle or the length of the edge;
+    lower True when the inside is above it. name: the edge as a user names it ('u_min', 'u_max', 'v_min', 'v_max',
+    'rim', 'inner rim').
     """
 
     name: str

@@ -1,15 +1,19 @@
-"""Components cut by the trims that are not ranges of a length (spatialkin.surfaces.trims: angular ranges, a
-plane's circle): the tracer follows each component on the surfaces as the other trims leave them, and this module
-keeps the arcs that lie inside both regions.
+"""Components cut by trims after tracing: the trims that are not ranges of a length (spatialkin.surfaces.trims:
+angular ranges, a plane's circle; the tracer follows each component on the surfaces as the other trims leave
+them), and, for a component traced again past a grazed edge (spatialkin.tracing.graze), the length trims too. This
+module keeps the arcs that lie inside both faces, and the points where a curve touches an edge from outside.
 
 Every limit is 1-Lipschitz in the point, so along a curve parametrised by arc length its value f(s) changes by
 at most |s' - s| (plus the points' error, ``slack``). Between two samples s_k < s_k+1 a zero of f is possible
 only where |f_k| + |f_k+1| <= (s_k+1 - s_k) + 2 slack: those intervals are halved until they are cleared or
 shorter than ``FINEST`` x scale, so no crossing, and no pair of crossings between two samples, is missed (a
 curve that only touches an edge to within that length is taken as touching: no crossing). Each crossing is then
-solved on the dense output by Brent's method, exactly on the edge. The pieces between the crossings whose middle
-lies inside both regions (within slack: a curve lying along an edge is kept) are the arcs returned; neighbours
-are merged, and a closed component that never leaves is returned whole.
+solved on the dense output by Brent's method, exactly on the edge. The pieces between the crossings that lie
+inside both regions (within slack: a curve lying along an edge is kept; a short piece within slack of an edge
+between two inside ones is a touch from inside, cut by round-off) are the arcs returned; neighbours are merged,
+and a closed component that never leaves is returned whole. Where the curve comes within slack of an edge from
+outside without crossing it (a short piece, or an interval the halving left), the faces meet in one point: the
+point of the curve deepest in both faces there, found by bounded Brent minimisation, returned with length 0.
 
 References
 ----------
@@ -34,10 +38,9 @@ FINEST = 1e-9
 MOST_INTERVALS = 200_000
 #: A piece between two cuts is tested at this many points (its ends included).
 PIECE_SAMPLES = 7
-#: A piece within slack of an edge all along is a curve touching the edge from outside (dropped: the component
-#: meets the patch in one point of its edge) when shorter than this many sqrt(slack x scale), the length over
-#: which a curve bending at 1 / scale away from a straight edge stays within slack of it; longer, it runs along
-#: the edge (kept).
+#: A piece within slack of an edge all along is a touch of the edge (from outside: the component meets the face in
+#: one point of its edge) when shorter than this many sqrt(slack x scale), the length over which a curve bending
+#: at 1 / scale away from a straight edge stays within slack of it; longer, it runs along the edge (kept).
 TOUCH_LENGTH = 20.0
 #: The slack of the inside test and of the Lipschitz bound, in tolerances (the points' distance to the curve).
 SLACK_TOLERANCES = 4.0
@@ -79,7 +82,8 @@ def clip_curve(a, b, curve, scale):
     verdicts = [piece_verdict(a, b, curve, lo[0], hi[0], slack, scale) for lo, hi in pieces]
     n = len(verdicts)
     for i, verdict in enumerate(verdicts):         # a touch from inside, cut by round-off on both sides: inside
-        if verdict == TOUCHED and (curve.closed or 0 < i < n - 1) and verdicts[i - 1] == verdicts[(i + 1) % n] == INSIDE:
+        inner = curve.closed or 0 < i < n - 1
+        if verdict == TOUCHED and inner and verdicts[i - 1] == verdicts[(i + 1) % n] == INSIDE:
             verdicts[i] = INSIDE
     touches += [(lo[0], hi[0]) for (lo, hi), verdict in zip(pieces, verdicts) if verdict == TOUCHED]
     arcs = merged([piece for piece, verdict in zip(pieces, verdicts) if verdict == INSIDE], curve.closed, length)
@@ -109,10 +113,10 @@ def piece_verdict(a, b, curve, s0, s1, slack, scale):
 def touch_points(a, b, curve, touches, cuts, arcs, slack, scale):
     """Single points (CurveResults of length 0) where the curve touches an edge of the faces from outside: the
     intervals of touches ((s0, s1) within slack of an edge) joined where they lie within a touch's length
-    (TOUCH_LENGTH sqrt(slack x scale)) of each other, less those as close to a crossing (cuts: the arc lengths of the arcs' ends on an edge), each point where the curve comes deepest
-    into both regions there (bounded Brent on the dense output), kept when inside both within slack and on no arc
-    kept. Status 'boundary' (the faces meet in one point of
-    their edges), or 'contact' on a curve of tangency."""
+    (TOUCH_LENGTH sqrt(slack x scale)) of each other, less those as close to a crossing (cuts: the arc lengths of
+    the arcs' ends on an edge), each point where the curve comes deepest into both regions there (bounded Brent on
+    the dense output), kept when inside both within slack and on no arc kept. Status 'boundary' (the faces meet in
+    one point of their edges), or 'contact' on a curve of tangency."""
     if not touches:
         return []
     length = curve.length

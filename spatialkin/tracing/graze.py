@@ -108,8 +108,8 @@ def grazing_groups(curves, scale):
 def rejoined(a, b, curves, settings, on):
     """The CurveResults with every grazing group replaced by its component traced past the edges and cut at the
     true trims: the curves that lie on that trace (on(curve, trace): every point within sk.intersect's radius; the
-    group's and the other open arcs, pieces of the same component) are dropped, the others (another component that came near: two
-    arcs leaving beside a node) kept; the group kept whole where that trace fails."""
+    group's and the other open arcs, pieces of the same component) are dropped, the others (another component that
+    came near: two arcs leaving beside a node) kept; the group kept whole where that trace fails."""
     groups = grazing_groups(curves, settings.scale)
     if not groups:
         return curves

@@ -198,8 +198,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     for i, c in enumerate(curves):          # of two copies of one piece, the first is kept
         if not covered(c, kept + curves[i + 1:], radius):
             kept.append(c)
-    curves = clip_curves(a, b, rejoined(a, b, kept, settings, lambda c, whole: bool(within(whole, c.points, radius).all())),
-                         settings.scale)
+    on = lambda curve, whole: bool(within(whole, curve.points, radius).all())          # noqa: E731
+    curves = clip_curves(a, b, rejoined(a, b, kept, settings, on), settings.scale)
     if stages.ON:
         stages.switch("result")
     in_sk_order(curves)

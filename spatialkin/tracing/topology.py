@@ -420,13 +420,15 @@ def search(a, b, scale, tolerance, tangent=None):
             if float(q.distance(apex)) > 1e3 * tolerance:
                 continue
             bands.append((v - RINGS[-1] * v_unit, v + RINGS[-1] * v_unit))
-            topo.apexes.append(apex)
+            on_q = pq.on_level((0.0, v))
+            if on_q:                                  # a point of the curve (else the branches pass beside it)
+                topo.apexes.append(apex)
             found = 0
             for ring in [v + sign * r * v_unit for r in RINGS for sign in (-1.0, 1.0)]:
                 if box[2] <= ring <= box[3]:
                     roots, unresolved = add_line_roots(pq, 1, ring, box[0], box[1], "apex ring", None, False)
                     found += len(roots) + len(unresolved)
-            if not found and pq.on_level((0.0, v)) and keep.inside_both(apex):
+            if not found and on_q and keep.inside_both(apex):
                 topo.contacts.append(apex)           # on Q to round-off, with no branch round it
         # Q's own apexes on P: singular points of the curve (known, so that the tracer's jumps pass them exactly;
         # a chart's poles are no points of the curve's kind)

@@ -21,14 +21,14 @@ References
 machines of the light industry" (Дослідження траєкторій характерних точок просторових механізмів технологічних
 машин галузей легкої промисловості; in Ukrainian).
 """
-from .frame import Frame, rotation_about, rotation_to_z
-from .surfaces import Cone, Cylinder, Plane, Sphere, Surface, Torus
+from .geometry.frame import Frame, rotation_about, rotation_to_z
+from .geometry.surfaces import Cone, Cylinder, Plane, Sphere, Surface, Torus
 from .tracing.result import Curve, TracingError
 from .tracing.start import auxiliary_starts
 from .tracing.trace import trace
 from .tracing.intersect import intersect
 from .tracing.batch import BatchError, intersect_many
-from .tracing.placement import CoincidentSurfacesError
+from .geometry.placement import CoincidentSurfacesError
 from .tracing.topology import TopologyError
 
 __all__ = ["Frame", "rotation_about", "rotation_to_z", "Surface", "Torus", "Sphere", "Plane", "Cylinder",

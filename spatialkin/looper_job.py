@@ -16,7 +16,7 @@ import numpy as np
 
 from . import looper_figures as figs
 from . import reference as ref
-from .frame import Frame, rotation_about, rotation_to_z
+from .geometry.frame import Frame, rotation_about, rotation_to_z
 from .io import atomic_path
 from .mechanisms import LooperDrive
 from .mechanisms.looper_analysis import CLEARANCE

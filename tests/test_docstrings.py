@@ -19,7 +19,7 @@ import spatialkin as sk
 from planar.linkage import LinkageMotion
 from spatialkin.design import LooperDesign, sweep
 from spatialkin.mechanisms import LooperDrive, LooperMotion
-from spatialkin.surfaces import Surface
+from spatialkin.geometry.surfaces import Surface
 
 #: name -> (object, the exceptions its Raises section must name: what its code raises).
 PUBLIC = {

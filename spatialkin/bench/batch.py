@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..reference import looper_pair
-from ..surfaces import Sphere
+from ..geometry.surfaces import Sphere
 from ..tracing.batch import intersect_many
 from ..tracing.intersect import intersect
 from .cases import torus_sphere_closed_form

@@ -16,9 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..frame import Frame, rotation_about
+from ..geometry.frame import Frame, rotation_about
 from ..reference import looper_pair
-from ..surfaces import Sphere, Torus
+from ..geometry.surfaces import Sphere, Torus
 
 #: Relative distance of the near-tangent case's sphere radius from a critical radius (two loops almost touch).
 NEAR_TANGENT_GAP = 1e-4

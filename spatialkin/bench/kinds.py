@@ -10,8 +10,8 @@ import math
 
 import numpy as np
 
-from ..frame import Frame, rotation_about
-from ..surfaces import Cone, Cylinder, Plane, Sphere, Torus
+from ..geometry.frame import Frame, rotation_about
+from ..geometry.surfaces import Cone, Cylinder, Plane, Sphere, Torus
 
 #: The kinds, in the order of their pair names.
 KINDS = ("plane", "sphere", "cylinder", "cone", "torus")

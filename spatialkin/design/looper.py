@@ -1,7 +1,7 @@
 """LooperDesign: a looper drive as a vector of named design parameters with bounds, some of them free."""
 import numpy as np
 
-from ..frame import Frame
+from ..geometry.frame import Frame
 from ..mechanisms import LooperDrive
 from ..validation import check_choice
 from .params import (PARAMETERS, angles_from_rotation, check_names, check_values, default_bounds,

@@ -134,7 +134,7 @@ def evaluate(design, outputs, samples=SWEEP_SAMPLES):
 def evaluate_chunk(base, names, rows, outputs, samples):
     """Worker task: rows (m, K) of parameter values on top of base (a dict from _portable) ->
     list of (ok, reason, output values)."""
-    from ..frame import Frame
+    from ..geometry.frame import Frame
     results = []
     for row in rows:
         try:

@@ -3,7 +3,7 @@
 A placed surface is packed into one float64 array (its *data*), so that one jitted function serves every
 kind of surface and every pair of them:
 
-    data[KIND]            kind code: the key of the surface's traits (spatialkin.tracing.traits); the
+    data[KIND]            kind code: the key of the surface's traits (spatialkin.geometry.traits); the
                           built-in kinds use their geometry codes
     data[P0], data[P1]    shape parameters (see below)
     data[GEOMETRY]        geometry code (PLANE, SPHERE, CYLINDER, CONE, TORUS): the parametrisation and the

@@ -19,12 +19,12 @@ import time
 import numpy as np
 from scipy.optimize import brentq
 
-from ..frame import Frame
+from ..geometry.frame import Frame
 from ..continuation import solve_at
 from ..kernels import curve as kc
 from ..kinematics import serial_chain
 from .. import reference as ref
-from ..surfaces import Sphere, Torus
+from ..geometry.surfaces import Sphere, Torus
 from ..tracing.start import auxiliary_starts
 from ..tracing.bspline import fit as fit_spline
 from ..tracing.intersect import intersect

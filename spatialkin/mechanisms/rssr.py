@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from ..frame import Frame
+from ..geometry.frame import Frame
 from ..kernels import linkage as kl
 from ..kinematics import serial_chain
 from ..continuation import CurveKernels, solve_at, trace_cycle

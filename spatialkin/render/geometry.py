@@ -4,8 +4,8 @@ import math
 
 import numpy as np
 
-from ..surfaces import Plane, Surface
-from ..tracing.traits import traits
+from ..geometry.surfaces import Plane, Surface
+from ..geometry.traits import traits
 from ..validation import check_range
 
 #: Default grid of a surface: samples along u and along v.

@@ -21,11 +21,11 @@ import sys
 import traceback
 from concurrent.futures.process import BrokenProcessPool
 
-from ..frame import Frame
-from ..surfaces import Sphere, Torus
+from ..geometry.frame import Frame
+from ..geometry.surfaces import Sphere, Torus
 from ..validation import check_choice, check_count
 from .intersect import intersect
-from .traits import check_surface
+from ..geometry.traits import check_surface
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, check_options
 
 #: Pairs sent to a worker per task (amortises the transfer of surfaces and curves).

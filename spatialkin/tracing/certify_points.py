@@ -21,7 +21,7 @@ import flint
 import numpy as np
 from flint import arb, arb_mat
 
-from .traits import UnknownSurfaceKindError, check_surface, traits
+from ..geometry.traits import UnknownSurfaceKindError, check_surface, traits
 from ..validation import check_points, check_positive
 
 __all__ = ["implicit_arb", "certify_points", "PRECISION_BITS"]

@@ -29,14 +29,14 @@ import numpy as np
 from ..kernels import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, basis
 from .exact import SampledResult, contact_point, exact_curve
-from .placement import SAME
+from ..geometry.placement import SAME
 from .result import in_sk_order
 from .segments import EDGE_NAMES
 from .split import may_split, split_planes
 from .status import BOUNDARY, CLOSED, open_outcome, outcome
 from .topology import Topology
 from .trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
-from .traits import traits
+from ..geometry.traits import traits
 
 #: A curve within this many times the tolerance of touching the other surface (tangency, a plane through an apex)
 #: or of a vertex's touch of a trim level is left to the general path.

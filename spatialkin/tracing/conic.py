@@ -18,7 +18,7 @@ import numpy as np
 from scipy.special import cython_special, ellipeinc
 
 from .exact import EXACT_SAMPLES, ExactSolution, counting
-from .traits import traits
+from ..geometry.traits import traits
 
 LINE, ELLIPSE, HYPERBOLA, PARABOLA = "line", "ellipse", "hyperbola", "parabola"
 #: Gauss-Legendre nodes per panel of a hyperbola's arc-length quadrature ...

@@ -16,7 +16,7 @@ from ..vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult
 from .status import MESSAGES, outcome
-from .traits import traits
+from ..geometry.traits import traits
 
 #: Stored points of a circle or a segment in closed form.
 EXACT_SAMPLES = 65

@@ -16,12 +16,12 @@ import time
 import numpy as np
 
 from ..kernels import surfaces as ks
-from ..surfaces.trims import HEIGHT, level_groups
+from ..geometry.surfaces.trims import HEIGHT, level_groups
 from .clip import clip_curve
 from .result import TracingError
 from .status import BOUNDARY
 from .trace import trace_from
-from .traits import traits
+from ..geometry.traits import traits
 
 #: Ends of open curves on trim edges closer than this (relative to the scale) are the two sides of a graze.
 GAP = 1e-3

@@ -20,7 +20,7 @@ from . import stages
 from .status import BOUNDARY, CONTACT, FAILED, TANGENT
 from .rescue import LOST_RADIUS, crossing_starts
 from .topology import TopologyError, points_at, topology
-from .traits import check_surface, traits
+from ..geometry.traits import check_surface, traits
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
@@ -146,7 +146,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     >>> sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0))
     Traceback (most recent call last):
     ...
-    spatialkin.tracing.placement.CoincidentSurfacesError: a and b are the same sphere and their patches overlap: ...
+    spatialkin.geometry.placement.CoincidentSurfacesError: a and b are the same sphere and their patches overlap: ...
     """
     check_surface("a", a)
     check_surface("b", b)

@@ -28,7 +28,7 @@ from .segments import (EDGE_NAMES, EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_
                        area_flag, finite_bounds, newton_fixed, project_state, segment_start)
 from .status import outcome
 from .singular import APEX_GUARD, closes_within_jump, jump_across, jump_past_edge, take_jump
-from .traits import traits
+from ..geometry.traits import traits
 from . import stages
 
 # --- named limits -------------------------------------------------------------------------------------

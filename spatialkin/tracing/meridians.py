@@ -22,7 +22,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from .traits import traits
+from ..geometry.traits import traits
 
 #: The meridian is sought on a grid of this many angles u, g read at MERIDIAN_SAMPLES angles v round the tube.
 U_GRID = 1440

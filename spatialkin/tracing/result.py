@@ -11,7 +11,7 @@ from ..kernels import surfaces as ks
 from ..validation import check_positive
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome
-from .traits import traits
+from ..geometry.traits import traits
 
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.

@@ -12,7 +12,7 @@ import numpy as np
 from ..kernels import curve as kc
 from ..kernels import restart as kr
 from ..kernels import surfaces as ks
-from .traits import traits
+from ..geometry.traits import traits
 
 # --- named limits -------------------------------------------------------------------------------------
 #: A re-charting surface (a sphere) is re-charted when |cos(latitude)| falls below this (latitude beyond 60

@@ -15,7 +15,7 @@ from ..kernels import surfaces as ks
 from .segments import NEWTON_MAX_ITER
 from .segments import newton_fixed as data_newton_fixed
 from .result import TracingError
-from .traits import traits
+from ..geometry.traits import traits
 
 #: Samples of an auxiliary parameter line when looking for its crossings with the other surface.
 AUX_SAMPLES = 720

@@ -18,7 +18,7 @@ and kept as one isolated root when the interval Newton or Krawczyk operator prov
 down to the round-off of the coordinates is found. Boxes that shrink to round-off without either proof are
 singular points of the level (contacts, nodes, tangencies), classified by the Hessian of g.
 
-Special configurations are recognised first (spatialkin.tracing.placement): coincident patches raise
+Special configurations are recognised first (spatialkin.geometry.placement): coincident patches raise
 CoincidentSurfacesError; surfaces of revolution about one axis meet in parallels (found on one meridian; a
 double root there is a circle of tangency); a cylinder and a surface invariant along its axis meet in lines
 along it (found on one cross-section; a double root is a line of tangency).
@@ -42,9 +42,9 @@ from ..kernels import interval as ki
 from ..kernels import surfaces as ks
 from ..kernels import topology as kt
 from .meridians import BAND, BESIDE, REVOLVED, meridian_circle, meridian_nodes, meridian_segment, tangent_meridians
-from .placement import bounding_ball, check_not_coincident, common_axis, ruled_along
+from ..geometry.placement import bounding_ball, check_not_coincident, common_axis, ruled_along
 from .trace import EPS, ROUNDOFF_ULPS
-from .traits import LENGTH, power_of_two, traits
+from ..geometry.traits import LENGTH, power_of_two, traits
 
 #: The fixed direction d (an angle in the plane of scaled parameters) whose extremes seed the closed loops;
 #: any direction works, a generic one keeps straight pieces of the level from lying along d's normal.

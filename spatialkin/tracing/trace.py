@@ -25,7 +25,7 @@ from .dense import Span, TracedSolution
 from .result import Curve, CurveResult, TracingError, in_own_chart, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
 from .status import CLOSED, FAILED, open_outcome
-from .traits import check_surface, traits
+from ..geometry.traits import check_surface, traits
 from . import stages
 from ..validation import check_choice, check_nonnegative, check_positive
 

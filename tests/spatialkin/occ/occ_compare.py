@@ -130,7 +130,7 @@ def run(case, order):
 
 def problems(case, order, curves=None, exc=None, truth=None):
     """[(class, message)]: what differs between spatialkin's run and the truth (empty when they agree)."""
-    from spatialkin.tracing.placement import CoincidentSurfacesError
+    from spatialkin.geometry.placement import CoincidentSurfacesError
     if curves is None and exc is None:
         curves, exc = run(case, order)
     truth = truth if truth is not None else case.truth()

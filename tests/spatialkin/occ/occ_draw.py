@@ -15,7 +15,7 @@ OpenCascade's parametrisations (position O, axes X, Y, Z, which a mirror can mak
 - sphere     P(u, v) = O + r cos v (cos u X + sin u Y) + r sin v Z
 - torus      P(u, v) = O + (R + r cos v)(cos u X + sin u Y) + r sin v Z
 
-spatialkin's (spatialkin/surfaces/*.py): the same for the plane, cylinder, sphere and torus in a right-handed
+spatialkin's (spatialkin/geometry/surfaces/*.py): the same for the plane, cylinder, sphere and torus in a right-handed
 frame; the cone has its apex at the frame origin, M(u, v) = frame(v tan(a) cos u, v tan(a) sin u, v) with
 0 < a < pi/2 and v the axial coordinate. Trims: a plane's rectangle (u_range, v_range) and a disc or annulus
 about its origin (radius, inner_radius); a cylinder's or cone's axial v_range and angular u_range; a sphere's

@@ -17,9 +17,9 @@ from scipy.optimize import brentq
 import spatialkin as sk
 from spatialkin.kernels import surfaces as ks
 from spatialkin.render.geometry import natural_domain
-from spatialkin.surfaces import check_positive, check_range
-from spatialkin.surfaces.sphere import SphereTraits
-from spatialkin.tracing.traits import ANGLE, AXIS, SurfaceTraits, register, traits, unregister
+from spatialkin.geometry.surfaces import check_positive, check_range
+from spatialkin.geometry.surfaces.sphere import SphereTraits
+from spatialkin.geometry.traits import ANGLE, AXIS, SurfaceTraits, register, traits, unregister
 
 #: Kind code of the test kind (any code no registered kind uses).
 ZONE_CODE = 100

@@ -10,7 +10,7 @@ from ssi_oracle import face_margin, to_local, trim_margin
 
 import spatialkin as sk
 from spatialkin.tracing.result import TracingError
-from spatialkin.tracing.placement import CoincidentSurfacesError
+from spatialkin.geometry.placement import CoincidentSurfacesError
 
 #: Arc ends and lengths of closed forms: within this many ulp of the coordinates (the ends are Brent roots on
 #: the dense output, each point corrected onto both surfaces).

@@ -9,10 +9,10 @@ from scipy.integrate import quad
 
 import spatialkin as sk
 import spatialkin.tracing.intersect as intersect_module
-from spatialkin.frame import rotation_about
+from spatialkin.geometry.frame import rotation_about
 from spatialkin.tracing.closed import closed_form
 from spatialkin.tracing.conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA
-from spatialkin.tracing.placement import CoincidentSurfacesError
+from spatialkin.geometry.placement import CoincidentSurfacesError
 from spatialkin.tracing.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL,
                                       make_settings)
 

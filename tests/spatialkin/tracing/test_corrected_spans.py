@@ -16,7 +16,7 @@ from spatialkin.kernels import stored as kst
 from spatialkin.tracing import trace as tr
 from spatialkin.tracing.result import user_params
 from spatialkin.tracing.segments import NEWTON_MAX_ITER
-from spatialkin.tracing.traits import traits
+from spatialkin.geometry.traits import traits
 
 #: Pairs checked: spheres (re-charted) and pairs that keep their charts.
 KINDS = ("sphere-cylinder", "sphere-torus", "sphere-cone", "cylinder-cylinder", "cone-cone", "torus-torus")

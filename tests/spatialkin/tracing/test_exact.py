@@ -103,11 +103,11 @@ def pairs():
     closed = ("plane-plane", "plane-sphere", "plane-cylinder", "plane-cone", "sphere-sphere")
     out = [(a, b) for kind, a, b in pair_kind_cases() if kind in closed]
     cone = sk.Cone(0.5, sk.Frame((0.0, 0.0, 0.0), np.eye(3)), (-2.0, 2.5))
-    steep = sk.Plane(sk.Frame((0.3, 0.0, 0.0), sk.frame.rotation_about((0.0, 1.0, 0.0), math.pi / 2 - 0.2)))
+    steep = sk.Plane(sk.Frame((0.3, 0.0, 0.0), sk.rotation_about((0.0, 1.0, 0.0), math.pi / 2 - 0.2)))
     cyl = sk.Cylinder(0.8, sk.Frame((0.1, 0.0, 0.0)), (-2.0, 2.0))
-    along = sk.Plane(sk.Frame((0.3, 0.0, 0.0), sk.frame.rotation_about((0.0, 1.0, 0.0), math.pi / 2)), (-3, 3),
+    along = sk.Plane(sk.Frame((0.3, 0.0, 0.0), sk.rotation_about((0.0, 1.0, 0.0), math.pi / 2)), (-3, 3),
                      (-3, 3))
-    across = sk.Plane(sk.Frame((0.0, 0.0, 0.2), sk.frame.rotation_about((1.0, 0.0, 0.0), 0.3)), (-0.5, 0.5),
+    across = sk.Plane(sk.Frame((0.0, 0.0, 0.2), sk.rotation_about((1.0, 0.0, 0.0), 0.3)), (-0.5, 0.5),
                       (-3, 3))
     out += [(steep, cone), (along, cyl), (across, cyl)]
     return out + [(b, a) for a, b in out]

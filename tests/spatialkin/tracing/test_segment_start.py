@@ -14,7 +14,7 @@ import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels import curve as kc
 from spatialkin.tracing.segments import charts_at, project_state, segment_start
-from spatialkin.tracing.traits import traits
+from spatialkin.geometry.traits import traits
 from spatialkin.tracing.trace import make_settings
 
 #: The kinds checked: spheres (re-charted) against each other kind, and pairs that keep their charts.

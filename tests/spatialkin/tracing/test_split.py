@@ -150,7 +150,7 @@ def test_may_split_is_necessary_and_cheap_to_refuse():
     from spatialkin.bench.kinds import pair_kind_cases
     from spatialkin.tracing.closed import Placed
     from spatialkin.tracing.split import may_split, split_planes
-    from spatialkin.tracing.traits import traits
+    from spatialkin.geometry.traits import traits
 
     def args(a, b):
         placed = [Placed(s, traits(s)) for s in (a, b)]

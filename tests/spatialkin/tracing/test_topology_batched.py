@@ -9,7 +9,7 @@ import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels import topology as kt
 from spatialkin.tracing import topology as tp
-from spatialkin.tracing.traits import traits
+from spatialkin.geometry.traits import traits
 
 TOL = 1e-10
 

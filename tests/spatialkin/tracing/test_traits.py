@@ -1,4 +1,4 @@
-"""The surface-traits registry (spatialkin.tracing.traits): lookups by class, instance, packed data and kind code;
+"""The surface-traits registry (spatialkin.geometry.traits): lookups by class, instance, packed data and kind code;
 typed errors for unknown kinds and bad registrations; the built-in kinds' declarations against the
 parametrisations they describe."""
 import math
@@ -8,7 +8,7 @@ import pytest
 
 import spatialkin as sk
 from spatialkin.kernels import surfaces as ks
-from spatialkin.tracing.traits import (ANGLE, LENGTH, SurfaceTraits, UnknownSurfaceKindError, check_surface,
+from spatialkin.geometry.traits import (ANGLE, LENGTH, SurfaceTraits, UnknownSurfaceKindError, check_surface,
                                        register, traits)
 
 #: Parametrisations are compared with their declarations to this (round-off of the kernels' trigonometry).

@@ -3,9 +3,9 @@ import math
 
 import numpy as np
 
-from ..kernels import surfaces as ks
-from ..tracing.placement import parallel
-from ..tracing.traits import ANGLE, SurfaceTraits, register
+from ...kernels import surfaces as ks
+from ..placement import parallel
+from ..traits import ANGLE, SurfaceTraits, register
 from .base import Surface, check_positive, own_axis, trims_described, trims_given
 from .trims import TUBE, TURN, angle_range, angular_groups
 

@@ -4,8 +4,8 @@ import math
 import numpy as np
 
 from ..frame import Frame
-from ..kernels import surfaces as ks
-from ..tracing.traits import ANGLE, FULL_TURN, POINT, SurfaceTraits, register
+from ...kernels import surfaces as ks
+from ..traits import ANGLE, FULL_TURN, POINT, SurfaceTraits, register
 from .base import Surface, check_positive, check_range, quadric_jets, trims_described, trims_given
 from .trims import FULL_TURN_SLACK, HEIGHT, TURN, angle_range, angular_groups, level_groups
 

@@ -2,7 +2,7 @@
 ``spatialkin.kernels.surfaces`` read, and the argument checks its kinds share.
 
 Each kind (torus.py, sphere.py, plane.py, cylinder.py, cone.py) defines its class and its traits
-(spatialkin.tracing.traits.SurfaceTraits) in its own module and registers them; ``Surface`` asks the registry for
+(spatialkin.geometry.traits.SurfaceTraits) in its own module and registers them; ``Surface`` asks the registry for
 the kind code and the kernel geometry it packs.
 """
 
@@ -11,9 +11,9 @@ import math
 import numpy as np
 
 from ..frame import Frame
-from ..kernels import surfaces as ks
-from ..tracing.traits import AXIS, check_surface, traits
-from ..validation import check_positive, check_range
+from ...kernels import surfaces as ks
+from ..traits import AXIS, check_surface, traits
+from ...validation import check_positive, check_range
 
 __all__ = ["Surface", "check_positive", "check_range", "check_surface"]
 
@@ -22,7 +22,7 @@ class Surface:
     """Base of the placed surfaces: a frame, shape parameters and optional trims, packed for the kernels.
 
     A kind's class (Torus, Sphere, Plane, Cylinder, Cone) sets the shape parameters and the trims; its registered
-    traits (spatialkin.tracing.traits) give the kind code and the kernel geometry packed into ``data`` (read-only).
+    traits (spatialkin.geometry.traits) give the kind code and the kernel geometry packed into ``data`` (read-only).
     Every kind is a map M(u, v) = frame(local point) of its local parametrisation; ``point`` evaluates it,
     ``distance`` is the exact distance to the untrimmed surface.
 
@@ -35,7 +35,7 @@ class Surface:
     u_range, v_range : (float, float) or None
         Trims (min, max) of u and v that the tracer watches as edges (ranges of a length: a plane's u and v, a
         cylinder's or cone's axial v), either end possibly infinite; None leaves the parameter untrimmed.
-    region : tuple of tuples of spatialkin.surfaces.trims.Limit
+    region : tuple of tuples of spatialkin.geometry.surfaces.trims.Limit
         The other trims (angular ranges, a plane's circle), cut from the traced curves afterwards.
     shown : ((float, float), (float, float)) or None
         The (u_range, v_range) the user gave, where they differ from the watched ones.

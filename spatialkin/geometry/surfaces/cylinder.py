@@ -3,9 +3,9 @@ import math
 
 import numpy as np
 
-from ..kernels import surfaces as ks
-from ..tracing.placement import on_line, parallel
-from ..tracing.traits import ANGLE, LENGTH, TRANSLATION, SurfaceTraits, register
+from ...kernels import surfaces as ks
+from ..placement import on_line, parallel
+from ..traits import ANGLE, LENGTH, TRANSLATION, SurfaceTraits, register
 from .base import Surface, check_positive, check_range, own_axis, quadric_jets
 from .trims import TURN, angle_range, angular_groups
 

@@ -1,6 +1,6 @@
 """Surface traits: what tracing asks of a kind of surface, declared once per kind, and their registry.
 
-Every kind of surface declares, next to its class (spatialkin.surfaces.<kind>), one SurfaceTraits object: its
+Every kind of surface declares, next to its class (spatialkin.geometry.surfaces.<kind>), one SurfaceTraits object: its
 extent and size, the units and periodicity of (u, v), where its parametrisation collapses (chart poles and
 apexes), its natural domain, its re-chart (the sphere's chart turned away from its poles), and the placement
 knowledge of the topology stage (symmetry axes, rulings, coincidence, its polynomial implicit function).

@@ -3,12 +3,12 @@ import math
 
 import numpy as np
 
-from ..kernels import surfaces as ks
-from ..tracing.placement import parallel
-from ..tracing.traits import LENGTH, NORMAL, SurfaceTraits, register
+from ...kernels import surfaces as ks
+from ..placement import parallel
+from ..traits import LENGTH, NORMAL, SurfaceTraits, register
 from .base import Surface, check_positive, check_range
 from .trims import RADIUS, level_groups
-from ..validation import check_nonnegative
+from ...validation import check_nonnegative
 
 #: Coplanar rectangles are compared on a grid of this many samples per side of one of them.
 OVERLAP_SAMPLES = 64

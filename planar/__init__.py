@@ -18,7 +18,8 @@ member using Frenet trihedron", 2017.
 S. O. Koshel, A. V. Koshel, "Double-crank mechanism kinematic study of warp knitting machine", Visnyk KNUTD
 (Bulletin of the Kyiv National University of Technologies and Design), 2014, no. 2 (in Ukrainian).
 """
-from . import frenet, linkage
+from . import frenet
+from . import linkage
 from .frenet import CrankRocker, CrankSlider, DrivenLink, Law, LawFromFunctions, LawFromGamma
 from .linkage import Crank, Link, Linkage, LinkageMotion, LockError, examples
 

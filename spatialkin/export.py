@@ -1,6 +1,6 @@
 """Curves into files engineers open: dense polylines (CSV, VTK polydata), B-splines (DXF, STEP).
 
-Every file is written whole or not at all (spatialkin.io.atomic_path). A curve is an intersection Curve, or a
+Every file is written whole or not at all (spatialkin._lib.files.atomic_path). A curve is an intersection Curve, or a
 B-spline (scipy.interpolate.BSpline, e.g. ``curve.to_bspline(tol)`` or a mechanism trajectory's
 ``to_bspline``); a polyline is spaced by a chord-height tolerance (never the solver's steps), a B-spline is
 written with its own knots and control points (degree 5).
@@ -15,8 +15,8 @@ from xml.sax.saxutils import escape
 import numpy as np
 from scipy.interpolate import BSpline
 
-from .io import atomic_path
-from .validation import check_positive
+from ._lib.files import atomic_path
+from ._lib.validation import check_positive
 
 __all__ = ["atomic_path", "dense_polyline", "export_curves", "polylines", "require", "splines", "write_csv",
            "write_dxf", "write_step", "write_vtp"]

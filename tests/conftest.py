@@ -3,7 +3,7 @@ import os
 import pytest
 
 os.environ.setdefault("PYVISTA_OFF_SCREEN", "true")
-# the suite compiles its kernels in the foreground: no background warm-up process (spatialkin.firstrun)
+# the suite compiles its kernels in the foreground: no background warm-up process (spatialkin.cli.firstrun)
 os.environ.setdefault("SPATIALKIN_FIRST_RUN", "compile")
 
 _REPORT = []

@@ -36,7 +36,7 @@ def test_python_examples_run_as_written(tmp_path, monkeypatch):
 def test_toml_examples_are_valid_configs(tmp_path):
     import numpy as np
 
-    from spatialkin.looper_job import build, load_config
+    from spatialkin.cli.looper_job import build, load_config
     from spatialkin.mechanisms import LooperDrive
     tomls = blocks("toml")
     assert tomls

@@ -12,7 +12,7 @@ using Frenet trihedron", 2017.
 """
 import numpy as np
 
-from spatialkin.validation import check_choice, check_positive
+from spatialkin._lib.validation import check_choice, check_positive
 
 from ..plotting import new_figure
 

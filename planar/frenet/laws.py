@@ -14,7 +14,7 @@ the corrected ones are used (at d = 1/k they give phi' = -k/2, the uniform turn 
 """
 import numpy as np
 
-from spatialkin.validation import check_choice, check_finite, check_nonnegative, check_positive
+from spatialkin._lib.validation import check_choice, check_finite, check_nonnegative, check_positive
 
 from . import kernels as lk
 

@@ -19,8 +19,8 @@ member using Frenet trihedron", 2017 (eqs. (2)-(4), (11)).
 
 import numpy as np
 
-from spatialkin.trajectory import Trajectory, time_map
-from spatialkin.validation import check_finite, check_omega
+from spatialkin.motion.trajectory import Trajectory, time_map
+from spatialkin._lib.validation import check_finite, check_omega
 
 from . import kernels as lk
 from .laws import Law

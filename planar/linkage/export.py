@@ -4,7 +4,7 @@ dependency of spatialkin)."""
 import numpy as np
 
 from spatialkin.export import atomic_path, dense_polyline, require
-from spatialkin.validation import check_positive
+from spatialkin._lib.validation import check_positive
 
 #: Joint circles' radius, as a fraction of the linkage's mean link length.
 JOINT_FRACTION = 0.03

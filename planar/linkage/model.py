@@ -27,7 +27,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from spatialkin.continuation import CurveKernels, solve_at, trace_cycle
-from spatialkin.validation import check_angles, check_omega, check_positive
+from spatialkin._lib.validation import check_angles, check_omega, check_positive
 
 from . import kernels as kn
 from .motion import LinkageMotion, LockError

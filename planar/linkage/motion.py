@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from spatialkin.trajectory import time_map, to_time
+from spatialkin.motion.trajectory import time_map, to_time
 
 
 class LockError(ValueError):

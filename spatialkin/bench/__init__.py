@@ -12,7 +12,11 @@ and sk.intersect_many on a sweep of the looper pair against the compiled kernels
 import os
 from importlib.metadata import entry_points
 
-from . import batch, runner, sidebyside
+from . import batch
+
+from . import runner
+
+from . import sidebyside
 from .kinds_report import plot_kinds, write_kinds_csv
 from .runner import best_time
 from .report import comparison_lines, machine, plot, table, write_csv

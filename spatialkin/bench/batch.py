@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..reference import looper_pair
+from ..mechanisms.reference import looper_pair
 from ..geometry.surfaces import Sphere
 from ..tracing.batch import intersect_many
 from ..tracing.intersect import intersect

@@ -2,8 +2,8 @@
 speed over OpenCascade's per pair kind, against parity; both errors), each written whole or not at all."""
 import numpy as np
 
-from ..io import atomic_path
-from ..tracing import stages
+from .._lib.files import atomic_path
+from .._lib import stages
 from .report import write_table
 from .baselines import OCC_DEFAULT_TOL
 from .sidebyside import OUR_TOL

@@ -5,7 +5,7 @@ import platform
 
 import numpy as np
 
-from ..io import atomic_path
+from .._lib.files import atomic_path
 
 #: Errors are drawn no lower than this on the log axis (an exact zero has no logarithm).
 PLOT_ERROR_FLOOR = 1e-17

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..tracing import stages
+from .._lib import stages
 from ..tracing.intersect import intersect
 from . import baselines
 from .kinds import occ_surface, pair_kind_cases, special_cases
@@ -163,7 +163,7 @@ def profile_table(rows):
     head = (f"{'pair kind':<18} {'ms/call':>8}" + "".join(f" {stages.LABELS[s]:>13}" for s in stages.STAGES)
             + f" {'compiled':>13}")
     lines = ["sk.intersect stage profile (mean of the profiled calls; ms and % of the call per stage; "
-             "spatialkin.tracing.stages; compiled: own time inside spatialkin.kernels, cProfile, across the stages)",
+             "spatialkin._lib.stages; compiled: own time inside spatialkin.kernels, cProfile, across the stages)",
              head, "-" * len(head)]
     total = stages.StageProfile({s: 0.0 for s in stages.STAGES}, 0.0)
     kernel = 0.0

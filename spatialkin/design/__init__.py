@@ -7,7 +7,7 @@ implicit function theorem, synthesis to targets, tolerance analysis and sweeps.
     fitted = design.fit(targets)                     # scipy.optimize.least_squares with those derivatives
     table = sweep(space, outputs, client=None)       # local processes, or a dask.distributed Client
 
-No pyvista and no matplotlib here: pictures are in spatialkin.render.design.
+No pyvista and no matplotlib here: pictures are in spatialkin.plots.design.
 
 References
 ----------

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..validation import check_positive, check_real
+from .._lib.validation import check_positive, check_real
 from .params import check_names
 
 #: Crank angles sampled over a full turn for swing, timing and the transmission angle during a fit.

@@ -3,7 +3,7 @@ import numpy as np
 
 from ..geometry.frame import Frame
 from ..mechanisms import LooperDrive
-from ..validation import check_choice
+from .._lib.validation import check_choice
 from .params import (PARAMETERS, angles_from_rotation, check_names, check_values, default_bounds,
                      rotation_from_angles)
 
@@ -318,7 +318,7 @@ class LooperDesign:
         return tolerance(self, tolerances, **options)
 
     def to_config(self, **job):
-        """The geometry as a config of the main job (spatialkin/looper_job.py: DEFAULTS keys), extra job keys
+        """The geometry as a config of the main job (spatialkin/cli/looper_job.py: DEFAULTS keys), extra job keys
         (omega, step_deg, ...) passed through."""
         v = self.values
         config = {"crank_radius": v["crank_radius"], "coupler_length": v["coupler_length"],

@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from ..validation import check_positive, check_real
+from .._lib.validation import check_positive, check_real
 
 #: Every design parameter, in the order of the design vector.
 PARAMETERS = ("crank_radius", "coupler_length", "rocker_length", "rocker_x", "rocker_y", "rocker_z",

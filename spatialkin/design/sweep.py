@@ -14,7 +14,7 @@ import os
 import numpy as np
 
 from ..tracing.batch import worker_context
-from ..validation import check_count
+from .._lib.validation import check_count
 from .looper import LooperDesign
 from .params import PARAMETERS, check_names
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..validation import check_choice, check_count, check_positive
+from .._lib.validation import check_choice, check_count, check_positive
 from .params import ANGLES, check_names
 
 #: Monte-Carlo samples by default.

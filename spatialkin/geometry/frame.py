@@ -1,8 +1,8 @@
 """Frames: an origin and a proper rotation that place a surface or a link in global coordinates."""
 import numpy as np
 
-from ..validation import check_frame, check_real, check_vector
-from ..vectors import cross
+from .._lib.validation import check_frame, check_real, check_vector
+from .vectors import cross
 
 
 def rotation_about(axis, angle):

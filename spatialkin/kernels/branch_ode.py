@@ -11,7 +11,7 @@ last stage, so the events read them instead of evaluating both surfaces again (t
 """
 import numpy as np
 
-from .._jit import jit
+from .._lib.jit import jit
 from . import rk
 from .curve import area_degeneracy, degeneracy, degeneracy_slope, dragilev_into, dragilev_rhs, frame, plane_value
 

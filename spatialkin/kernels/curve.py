@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .._jit import jit
+from .._lib.jit import jit
 from .linalg import PIVOT_EPS, balance_columns, lu_factor, lu_solve, unbalance
 from .surfaces import frame, second
 

@@ -13,7 +13,7 @@ A system's kernel module binds its rhs in three small jitted functions (numba ca
 functions it calls are globals): ``fun = follow_fun(rhs, ...)``, ``events = follow_events(rhs, ...)`` and
 ``advance = spatialkin.kernels.rk.advance(fun, events, ...)``; see spatialkin.kernels.linkage.
 """
-from .._jit import jit
+from .._lib.jit import jit
 from .rk import copy_into
 
 LEVEL_TARGET = 0

@@ -35,7 +35,7 @@ natural and centred forms).
 import math
 
 
-from .._jit import jit
+from .._lib.jit import jit
 from .surfaces import CONE, CYLINDER, GEOMETRY, ORIGIN, P0, P1, PLANE, ROT, SPHERE, TORUS
 
 #: Unit round-off of float64 (one ulp of 1.0).

@@ -4,7 +4,7 @@ Used by the curve kernels' 3 x 3 and 4 x 4 Newton systems and by planar linkages
 """
 import math
 
-from .._jit import jit
+from .._lib.jit import jit
 
 __all__ = ["PIVOT_EPS", "lu_factor", "lu_solve", "balance_columns", "unbalance"]
 

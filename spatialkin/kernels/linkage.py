@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .._jit import jit
+from .._lib.jit import jit
 from .follow import follow_events, follow_fun
 from .implicit import follow_rhs
 from .rk import advance

@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from .._jit import jit
+from .._lib.jit import jit
 from .curve import curve_frame, project_to_curve
 from .rk import dense_into
 

@@ -15,7 +15,7 @@ N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design an
 """
 import numpy as np
 
-from .._jit import jit
+from .._lib.jit import jit
 from .curve import curve_derivatives, curve_frame, project_to_curve
 from .surfaces import inverse, recharted_sphere
 

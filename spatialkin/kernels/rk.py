@@ -27,7 +27,7 @@ here, DOP853's read from scipy's dop853_coefficients).
 import numpy as np
 from scipy.integrate._ivp import dop853_coefficients as _dop853   # scipy's DOP853 tableau (no public name)
 
-from .._jit import jit
+from .._lib.jit import jit
 
 # --- what advance returns ----------------------------------------------------------------------------------
 #: Took max_steps steps, or reached t_bound, without an event: call again.

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .._jit import jit
+from .._lib.jit import jit
 from .curve import corrected_many
 from .surfaces import inverse
 

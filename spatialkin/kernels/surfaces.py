@@ -35,7 +35,7 @@ import math
 
 import numpy as np
 
-from .._jit import jit
+from .._lib.jit import jit
 
 # --- layout of the data array -------------------------------------------------------------------------
 KIND, P0, P1, GEOMETRY, ORIGIN, ROT, BOUNDS = 0, 1, 2, 3, 4, 7, 16

@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from .._jit import jit
+from .._lib.jit import jit
 from .interval import (box_trig, contains_zero, down, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first,
                        jet_second, level, mag, point, u_trig, up, v_trig)
 from .surfaces import evaluate, inverse_local, to_local

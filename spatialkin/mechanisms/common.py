@@ -4,7 +4,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..validation import check_angles, check_choice, check_omega
+from .._lib.validation import check_angles, check_choice, check_omega
 
 
 @dataclass(repr=False)

@@ -11,7 +11,7 @@ References
 ----------
 "Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
 light industry" (in Ukrainian; [Looper]): the scheme, the two surfaces, the start where the sphere's equator meets
-the torus. The reference geometry (spatialkin.reference) is assumed: the paper gives no dimensions.
+the torus. The reference geometry (spatialkin.mechanisms.reference) is assumed: the paper gives no dimensions.
 """
 import math
 import time
@@ -22,16 +22,16 @@ from scipy.optimize import brentq
 from ..geometry.frame import Frame
 from ..continuation import solve_at
 from ..kernels import curve as kc
-from ..kinematics import serial_chain
-from .. import reference as ref
+from ..motion.kinematics import serial_chain
+from . import reference as ref
 from ..geometry.surfaces import Sphere, Torus
 from ..tracing.start import auxiliary_starts
 from ..tracing.bspline import fit as fit_spline
 from ..tracing.intersect import intersect
 from ..tracing.result import TracingError
 from ..tracing.trace import trace
-from ..trajectory import Trajectory, time_map, to_time
-from ..validation import check_choice, check_positive, check_vector
+from ..motion.trajectory import Trajectory, time_map, to_time
+from .._lib.validation import check_choice, check_positive, check_vector
 from .common import PointMotion, angle_range_text, check_branch, check_drive
 
 #: Crank angles sampled when checking where the mechanism can be assembled.
@@ -169,7 +169,7 @@ class LooperDrive:
 
     @classmethod
     def reference(cls):
-        """The reference looper drive (lengths in mm), defined in spatialkin.reference.
+        """The reference looper drive (lengths in mm), defined in spatialkin.mechanisms.reference.
 
         R1 = 8 (crank radius), r1 = 50 (coupler length), R2 = 30 (rocker length); the crank frame is the global
         axes, the rocker centre P2 = (6, 0, 75) with the rocker shaft along +y; the looper tip 40 mm along the

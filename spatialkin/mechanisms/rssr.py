@@ -14,10 +14,10 @@ import numpy as np
 
 from ..geometry.frame import Frame
 from ..kernels import linkage as kl
-from ..kinematics import serial_chain
+from ..motion.kinematics import serial_chain
 from ..continuation import CurveKernels, solve_at, trace_cycle
-from ..trajectory import time_map, to_time
-from ..validation import check_positive
+from ..motion.trajectory import time_map, to_time
+from .._lib.validation import check_positive
 from .common import PointMotion, angle_range_text, check_branch, check_drive
 
 #: solve_ivp tolerance and method of the configuration-curve trace (a predictor: positions are solved by Newton).

@@ -6,7 +6,7 @@ import numpy as np
 
 from ..geometry.surfaces import Plane, Surface
 from ..geometry.traits import traits
-from ..validation import check_range
+from .._lib.validation import check_range
 
 #: Default grid of a surface: samples along u and along v.
 SURFACE_RESOLUTION = (96, 48)

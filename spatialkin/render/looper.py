@@ -3,7 +3,7 @@ optionally the torus and sphere the ball centre runs on and velocity arrows."""
 import numpy as np
 
 from . import geometry as geo
-from ..units import METRES_PER_UNIT
+from .._lib.units import METRES_PER_UNIT
 from .scene import ARROW_FRACTION, Scene
 
 #: Names drawn beside the joints (shaft centre, crank pin, ball centre, rocker centre) and the looper tip.

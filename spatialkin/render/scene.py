@@ -13,9 +13,9 @@ import tempfile
 import numpy as np
 
 from ..export import polylines
-from ..io import atomic_path
+from .._lib.files import atomic_path
 from ..tracing.result import Curve
-from ..validation import check_choice, check_points, check_positive, check_range, check_vector
+from .._lib.validation import check_choice, check_points, check_positive, check_range, check_vector
 from . import geometry as geo
 from ._backend import pyvista
 

@@ -23,7 +23,7 @@ from concurrent.futures.process import BrokenProcessPool
 
 from ..geometry.frame import Frame
 from ..geometry.surfaces import Sphere, Torus
-from ..validation import check_choice, check_count
+from .._lib.validation import check_choice, check_count
 from .intersect import intersect
 from ..geometry.traits import check_surface
 from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, check_options

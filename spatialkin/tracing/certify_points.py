@@ -22,7 +22,7 @@ import numpy as np
 from flint import arb, arb_mat
 
 from ..geometry.traits import UnknownSurfaceKindError, check_surface, traits
-from ..validation import check_points, check_positive
+from .._lib.validation import check_points, check_positive
 
 __all__ = ["implicit_arb", "certify_points", "PRECISION_BITS"]
 

@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from ..kernels.stored import unwrap_turns
-from ..vectors import cross
+from ..geometry.vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult
 from .status import MESSAGES, outcome

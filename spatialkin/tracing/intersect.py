@@ -16,7 +16,7 @@ from .certificate import certificates
 from .clip import clip_curves
 from .graze import across_edges, rejoined
 from .closed import closed_form, closed_settings
-from . import stages
+from .._lib import stages
 from .status import BOUNDARY, CONTACT, FAILED, TANGENT
 from .rescue import LOST_RADIUS, crossing_starts
 from .topology import TopologyError, points_at, topology

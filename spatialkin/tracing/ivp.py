@@ -29,7 +29,7 @@ from .segments import (EDGE_NAMES, EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_
 from .status import outcome
 from .singular import APEX_GUARD, closes_within_jump, jump_across, jump_past_edge, take_jump
 from ..geometry.traits import traits
-from . import stages
+from .._lib import stages
 
 # --- named limits -------------------------------------------------------------------------------------
 #: The closure plane is put this far (relative to the curve scale) behind the start, so that the start

@@ -25,7 +25,7 @@ import math
 import numpy as np
 import scipy.linalg
 
-from ..vectors import cross
+from ..geometry.vectors import cross
 
 #: A member of the pencil is a pair of planes when its two smallest eigenvalues (in magnitude) are at most this
 #: fraction of its largest: round-off of the matrices, in coordinates scaled by the scene (the splitting pairs of

@@ -26,8 +26,8 @@ from .result import Curve, CurveResult, TracingError, in_own_chart, DUPLICATE_SP
 from .start import locate_on_curve, parameter_units, scene_scale
 from .status import CLOSED, FAILED, open_outcome
 from ..geometry.traits import check_surface, traits
-from . import stages
-from ..validation import check_choice, check_nonnegative, check_positive
+from .._lib import stages
+from .._lib.validation import check_choice, check_nonnegative, check_positive
 
 # --- defaults -----------------------------------------------------------------------------------------
 #: Relative tolerance of solve_ivp on (u1, v1, u2, v2): sets how far a step may stray before the Newton

@@ -1,4 +1,4 @@
-"""The first run after an install (spatialkin.firstrun): when the cache is ready, the line while kernels
+"""The first run after an install (spatialkin.cli.firstrun): when the cache is ready, the line while kernels
 compile, and the interpreted run giving the same table as the compiled one (oracle: the compiled job)."""
 import json
 import sys
@@ -6,7 +6,8 @@ import sys
 import numpy as np
 import pytest
 
-from spatialkin import _jit, firstrun
+from spatialkin._lib import jit as _jit
+from spatialkin.cli import firstrun
 from spatialkin.cli import FIRST_RUN, main
 
 
@@ -81,7 +82,7 @@ def test_import_compiles_nothing():
     code = ("from numba.core import event\nhits = []\n"
             "class L(event.Listener):\n    def on_start(self, e): hits.append(1)\n    def on_end(self, e): pass\n"
             "event.register('numba:compile', L())\n"
-            "import spatialkin, planar, spatialkin.looper_job, spatialkin.mechanisms, spatialkin.cli\n"
+            "import spatialkin, planar, spatialkin.cli.looper_job, spatialkin.mechanisms, spatialkin.cli\n"
             "print(len(hits))\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "0"

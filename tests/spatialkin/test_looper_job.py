@@ -9,10 +9,10 @@ import pytest
 from oracles import looper_closed_form
 
 import spatialkin as sk
-from spatialkin import reference
+from spatialkin.mechanisms import reference
 from spatialkin.cli import main
-from spatialkin.looper_figures import angle_span
-from spatialkin.looper_job import DEFAULT_SPEED_RPM, KEYS, ROTATION_TOL, build, load_config
+from spatialkin.plots.looper import angle_span
+from spatialkin.cli.looper_job import DEFAULT_SPEED_RPM, KEYS, ROTATION_TOL, build, load_config
 from spatialkin.mechanisms import LooperDrive
 
 #: Positions against the closed form (mm), and relative agreement of machine-speed values with rescaled ones.
@@ -81,7 +81,7 @@ def test_record_holds_geometry_speed_versions_errors(reference_run):
 
 def test_summary_states_units(tmp_path):
     lines = []
-    from spatialkin.looper_job import run
+    from spatialkin.cli.looper_job import run
     run(tmp_path, echo=lines.append)
     text = "\n".join(lines)
     for needle in ("rpm", "rocker swing: u2 77.805..114.962 deg", "timing:", "m/s (crank", "m/s^2", " g (crank",

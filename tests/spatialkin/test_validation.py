@@ -1,11 +1,11 @@
-"""spatialkin.validation: every check returns the converted value, and refuses a bad one with a ValueError
+"""spatialkin._lib.validation: every check returns the converted value, and refuses a bad one with a ValueError
 naming the argument. Oracles: the inputs themselves (conversions are exact) and the named argument."""
 import math
 
 import numpy as np
 import pytest
 
-from spatialkin import validation as v
+from spatialkin._lib import validation as v
 
 
 @pytest.mark.parametrize("check, good, want", [

@@ -1,7 +1,7 @@
-"""spatialkin.vectors.cross is np.cross bit for bit (the oracle), on random and special 3-vectors."""
+"""spatialkin.geometry.vectors.cross is np.cross bit for bit (the oracle), on random and special 3-vectors."""
 import numpy as np
 
-from spatialkin.vectors import cross
+from spatialkin.geometry.vectors import cross
 
 
 def test_cross_is_numpys_bit_for_bit():

@@ -13,7 +13,7 @@ import numpy as np
 from ..frame import Frame
 from ...kernels import surfaces as ks
 from ..traits import AXIS, check_surface, traits
-from ...validation import check_positive, check_range
+from ..._lib.validation import check_positive, check_range
 
 __all__ = ["Surface", "check_positive", "check_range", "check_surface"]
 

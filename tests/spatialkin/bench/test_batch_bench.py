@@ -9,11 +9,11 @@ from spatialkin.bench import batch
 from spatialkin.bench.kinds_report import COLUMNS, plot_kinds, write_kinds_csv
 from spatialkin.bench.sidebyside import KindRow
 from spatialkin.kernels import curve as kc
-from spatialkin.tracing import stages
+from spatialkin._lib import stages
 
 
 def test_sweep_is_the_looper_pair_with_radii_spread():
-    from spatialkin.reference import looper_pair
+    from spatialkin.mechanisms.reference import looper_pair
     torus, sphere = looper_pair()
     pairs = batch.looper_configs(5)
     radii = [s.radius for _, s in pairs]

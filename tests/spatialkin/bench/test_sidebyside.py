@@ -10,7 +10,7 @@ import spatialkin as sk
 from spatialkin.bench import baselines, sidebyside
 from spatialkin.bench.kinds import KINDS, STEINMETZ_ANGLE, occ_surface, pair_kind_cases, special_cases
 from spatialkin.geometry.surfaces import Cone
-from spatialkin.tracing import stages
+from spatialkin._lib import stages
 from spatialkin.tracing.intersect import intersect
 from spatialkin.tracing.trace import extent
 

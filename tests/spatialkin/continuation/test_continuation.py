@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.special import ellipe
 
-from spatialkin._jit import jit
+from spatialkin._lib.jit import jit
 from spatialkin.kernels import follow as kf
 from spatialkin.kernels.implicit import follow_rhs
 from spatialkin.kernels.rk import advance

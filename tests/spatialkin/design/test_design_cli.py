@@ -5,7 +5,7 @@ import numpy as np
 
 from spatialkin.cli import main
 from spatialkin.design import LooperDesign
-from spatialkin.looper_job import build, load_config
+from spatialkin.cli.looper_job import build, load_config
 
 TARGETS = """
 [design]

@@ -12,7 +12,7 @@ import pytest
 from oracles import looper_closed_form
 
 import spatialkin as sk
-from spatialkin import reference
+from spatialkin.mechanisms import reference
 from spatialkin.mechanisms import LooperDrive
 
 
@@ -49,7 +49,7 @@ def test_full_turn_matches_closed_form(drive, branch):
 
 
 def test_reference_drive_is_built_on_the_reference_pair(drive):
-    """Identity oracle: LooperDrive.reference() places exactly the surfaces of spatialkin.reference (the one
+    """Identity oracle: LooperDrive.reference() places exactly the surfaces of spatialkin.mechanisms.reference (the one
     definition of the reference geometry), and its rocker frame turns local z onto +y."""
     torus, sphere = reference.looper_pair()
     np.testing.assert_array_equal(drive.torus.data, torus.data)
@@ -144,7 +144,7 @@ def test_looper_job_writes_what_it_promises(tmp_path):
     assert not [p for p in os.listdir(out) if p.startswith(".tmp-")]
     from PIL import Image
 
-    from spatialkin.looper_job import PICTURE_SIZE
+    from spatialkin.cli.looper_job import PICTURE_SIZE
     with Image.open(out / "looper_3d.png") as png:          # the 3-D picture: a PNG of the stated size
         assert png.format == "PNG" and png.size == PICTURE_SIZE
         pixels = np.asarray(png.convert("L"), dtype=float)

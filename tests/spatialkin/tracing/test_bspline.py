@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
-from spatialkin import reference
+from spatialkin.mechanisms import reference
 from spatialkin.tracing.bspline import SplineToleranceError, fit, hermite_bspline
 from spatialkin.tracing.curvature import curvature_vectors, implicit_jets
 

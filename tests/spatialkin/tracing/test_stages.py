@@ -1,12 +1,12 @@
-"""The opt-in stage timer of sk.intersect (spatialkin.tracing.stages): off by default, the same results with it
+"""The opt-in stage timer of sk.intersect (spatialkin._lib.stages): off by default, the same results with it
 on, and its stages sum to the whole call. No timing is asserted beyond that sum."""
 import time
 
 import numpy as np
 import pytest
 
-from spatialkin.reference import looper_pair
-from spatialkin.tracing import stages
+from spatialkin.mechanisms.reference import looper_pair
+from spatialkin._lib import stages
 from spatialkin.tracing.intersect import intersect
 
 #: The stages sum to the call measured around it within this fraction of it (they cover the same interval;

@@ -5,7 +5,7 @@ needs a few dozen kernels, about half a minute of compiling on a 2-core machine,
 whole job's numerics with the same kernels as plain Python (SPATIALKIN_DISABLE_JIT: the same arithmetic in
 the same order, so the same numbers; the job's table is bitwise the same here). So when the kernels the
 looper job needs are not cached yet, ``spatialkin looper`` runs this once as plain Python in a child process
-and, when it is done, starts ``python -m spatialkin.firstrun``: a background process (lowest priority) that
+and, when it is done, starts ``python -m spatialkin.cli.firstrun``: a background process (lowest priority) that
 compiles exactly those kernels (it runs the job's numerics on the reference drive) into numba's cache, then
 writes a stamp naming the cache index of every kernel it compiled. Later runs find the stamp and every index
 in place (for the same kernel sources) and run compiled.
@@ -35,7 +35,7 @@ def _kernel_modules():
     import importlib
     import pkgutil
 
-    from . import kernels
+    from .. import kernels
     names = [f"{kernels.__name__}.{m.name}" for m in pkgutil.iter_modules(kernels.__path__)]
     return [importlib.import_module(n) for n in names]
 
@@ -53,11 +53,11 @@ def _dispatchers():
 
 def cache_folder():
     """The folder of numba's cache for spatialkin.kernels, or None (jit off, or numba's layout unknown)."""
-    from ._jit import JIT_DISABLED
+    from .._lib.jit import JIT_DISABLED
     if JIT_DISABLED:
         return None
     try:
-        from .kernels import curve
+        from ..kernels import curve
         return curve.newton_fixed_many._cache._cache_path
     except AttributeError:
         return None
@@ -95,7 +95,7 @@ def ready():
 def _versions():
     import numba
 
-    from . import __version__
+    from .. import __version__
     return {"spatialkin": __version__, "numba": numba.__version__, "python": sys.version.split()[0]}
 
 
@@ -116,7 +116,7 @@ def start_background():
         return False
     env = {**os.environ, ENV: "compile"}
     env.pop("SPATIALKIN_DISABLE_JIT", None)
-    subprocess.Popen([sys.executable, "-P", "-m", "spatialkin.firstrun", lock], env=env, start_new_session=True,
+    subprocess.Popen([sys.executable, "-P", "-m", "spatialkin.cli.firstrun", lock], env=env, start_new_session=True,
                      stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     return True
 
@@ -132,7 +132,7 @@ def warm_up():
     every component of torus ∩ sphere for drives that do not turn fully), then write the stamp."""
     import numpy as np
 
-    from .mechanisms import LooperDrive
+    from ..mechanisms import LooperDrive
     drive = LooperDrive.reference()
     angles = np.linspace(0.0, 2 * np.pi, 361)
     motion = drive.solve(angles, omega=2.0, branch=0)

@@ -38,7 +38,7 @@ def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS, unit="mm"):
     -------
     matplotlib.figure.Figure
     """
-    from ..io import atomic_path
+    from .._lib.files import atomic_path
     e1, e2 = path_plane(result.tip)
     centre = result.tip.mean(axis=0)
     xy = np.column_stack([(result.tip - centre) @ e1, (result.tip - centre) @ e2])
@@ -107,7 +107,7 @@ def sweep_figure(table, x, y, output, path=None, unit="mm"):
     unit : str
         The design's length unit, for the labels.
     """
-    from ..io import atomic_path
+    from .._lib.files import atomic_path
     for name in (x, y, output):
         if name not in (table.dtype.names if hasattr(table, "dtype") and table.dtype.names else table.columns):
             raise ValueError(f"{name!r} is not a column of the table")

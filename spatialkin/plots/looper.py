@@ -3,7 +3,7 @@ machine speed. Each draws exactly the solved data it is given; gaps in the crank
 turn fully) stay gaps."""
 import numpy as np
 
-from .units import METRES_PER_UNIT, STANDARD_GRAVITY
+from .._lib.units import METRES_PER_UNIT, STANDARD_GRAVITY
 
 #: Colours: rocker/ball centre, looper tip, marks.
 DEAD_COLOR = "#d62728"

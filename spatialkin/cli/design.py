@@ -40,10 +40,10 @@ import tomllib
 
 import numpy as np
 
-from ..io import atomic_path
-from .fit import FIT_SAMPLES, Targets
-from .looper import LooperDesign
-from .report import format_rows, target_rows
+from .._lib.files import atomic_path
+from ..design.fit import FIT_SAMPLES, Targets
+from ..design.looper import LooperDesign
+from ..design.report import format_rows, target_rows
 
 #: Keys of the [design] table.
 DESIGN_KEYS = {"free", "start", "bounds"}
@@ -94,7 +94,7 @@ def read_targets(path):
         raise ValueError(f"{path}: [design] needs free = [parameter names]")
     job = {}
     if "start" in design_table:
-        from ..looper_job import build, load_config
+        from .looper_job import build, load_config
         start = os.path.join(os.path.dirname(os.path.abspath(path)), design_table["start"])
         config = load_config(start)
         drive = build(config)

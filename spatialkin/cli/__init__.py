@@ -18,7 +18,7 @@ COMPILING = ("spatialkin: compiling the numerical kernels this run needs (first 
              "them, later runs start at once) ...")
 
 
-#: The line printed when the looper job's kernels are not compiled yet (see spatialkin.firstrun).
+#: The line printed when the looper job's kernels are not compiled yet (see spatialkin.cli.firstrun).
 FIRST_RUN = ("spatialkin: first run after install: the kernels run as plain Python this time (same numbers); "
              "a background process then compiles them into numba's cache (about a minute) for the next runs")
 
@@ -32,7 +32,7 @@ class OneLineParser(argparse.ArgumentParser):
 
 def positive_float(text):
     """argparse type of a positive finite number (a tolerance)."""
-    from .validation import check_positive
+    from .._lib.validation import check_positive
     try:
         return check_positive("the value", text)
     except ValueError as err:
@@ -42,7 +42,7 @@ def positive_float(text):
 def demo(args):
     t0 = time.perf_counter()
     import spatialkin as sk
-    from . import reference as ref
+    from ..mechanisms import reference as ref
     curves = sk.intersect(*ref.looper_pair(), tol=args.tol)
     total = time.perf_counter() - t0
     centre = ", ".join(f"{x:g}" for x in ref.ROCKER_CENTRE)
@@ -76,13 +76,13 @@ def looper(args):
 
 
 def bench(args):
-    from .bench import run
+    from ..bench import run
     run(args.out, quick=args.quick)
     return 0
 
 
 def parser():
-    from . import __version__
+    from .. import __version__
     from .looper_job import keys_help
     top = OneLineParser(prog="spatialkin", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     top.add_argument("--version", action="version", version=f"spatialkin {__version__}")
@@ -106,21 +106,21 @@ def parser():
     p_bench.add_argument("--out", default=None, help="folder for bench.csv, bench.png, bench_kinds.csv and bench_kinds.png (created if missing)")
     p_bench.add_argument("--quick", action="store_true", help="a short run: two cases, two tolerances, one repeat")
     p_bench.set_defaults(func=bench)
-    # listed here for --help; ``main`` hands `spatialkin design ...` to spatialkin/design/cli.py before parsing
+    # listed here for --help; ``main`` hands `spatialkin design ...` to spatialkin/cli/design.py before parsing
     sub.add_parser("design", help="fit a looper drive to targets and write its config (spatialkin design --help)")
     return top
 
 
 def main(argv=None):
     argv = list(sys.argv[1:] if argv is None else argv)
-    if argv[:1] == ["design"]:      # spatialkin design --targets FILE.toml (spatialkin/design/cli.py)
-        from .design.cli import main_design
+    if argv[:1] == ["design"]:      # spatialkin design --targets FILE.toml (spatialkin/cli/design.py)
+        from .design import main_design
         return main_design(argv[1:])
     args = parser().parse_args(argv)
     args.argv = argv
     from numba.core import event
 
-    from ._jit import announce_compilation
+    from .._lib.jit import announce_compilation
     listener = announce_compilation(lambda: print(COMPILING, file=sys.stderr, flush=True))
     try:
         return args.func(args)
@@ -134,6 +134,3 @@ def main(argv=None):
     finally:
         event.unregister("numba:compile", listener)
 
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -14,14 +14,14 @@ import tomllib
 
 import numpy as np
 
-from . import looper_figures as figs
-from . import reference as ref
-from .geometry.frame import Frame, rotation_about, rotation_to_z
-from .io import atomic_path
-from .mechanisms import LooperDrive
-from .mechanisms.looper_analysis import CLEARANCE
-from .units import METRES_PER_UNIT, STANDARD_GRAVITY
-from .validation import check_choice, check_positive, check_real
+from ..plots import looper as figs
+from ..mechanisms import reference as ref
+from ..geometry.frame import Frame, rotation_about, rotation_to_z
+from .._lib.files import atomic_path
+from ..mechanisms import LooperDrive
+from ..mechanisms.looper_analysis import CLEARANCE
+from .._lib.units import METRES_PER_UNIT, STANDARD_GRAVITY
+from .._lib.validation import check_choice, check_positive, check_real
 
 #: Crank speed of the built-in drive: industrial blind-stitch machines sew about 1500-3000 stitches per
 #: minute with one looper-crank turn per stitch; 2000 rpm is a usual working speed.
@@ -261,7 +261,7 @@ def _versions():
     import numba
     import scipy
 
-    from . import __version__
+    from .. import __version__
     return {"spatialkin": __version__, "python": platform.python_version(), "numpy": np.__version__,
             "scipy": scipy.__version__, "numba": numba.__version__}
 
@@ -336,7 +336,7 @@ def path_splines(drive, motion, tol, step):
 def write_cad(out_dir, drive, motion, config, step, echo=print):
     """looper_paths.dxf (always) and looper_paths.step (with the cad extra; a line names it otherwise): the
     ball-centre and tip paths as B-splines within config['cad_tolerance']. Returns the names written."""
-    from .export import write_dxf, write_step
+    from ..export import write_dxf, write_step
     splines = path_splines(drive, motion, config["cad_tolerance"], step)
     curves = [sp for _, _, sp in splines]
     written = []
@@ -488,7 +488,7 @@ def record(config, drive, motion, analysis, found, times):
 def picture_3d(motion, path, crank_angle_deg=60.0, unit="mm", speed_rpm=None):
     """The mechanism in 3-D to a PNG (off-screen): links and joints named at the crank angle nearest to
     crank_angle_deg, the ball centre's and the looper tip's paths coloured by speed, axes marker, title."""
-    from .render import looper_scene
+    from ..render import looper_scene
     wrapped = np.mod(motion.crank_angle - np.radians(crank_angle_deg) + np.pi, 2 * np.pi) - np.pi
     index = int(np.argmin(np.abs(wrapped)))
     looper_scene(motion, index, window_size=PICTURE_SIZE, labels=True, unit=unit,

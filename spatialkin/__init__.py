@@ -23,13 +23,13 @@ machines of the light industry" (Дослідження траєкторій х�
 """
 from .geometry.frame import Frame, rotation_about, rotation_to_z
 from .geometry.surfaces import Cone, Cylinder, Plane, Sphere, Surface, Torus
-from .tracing.result import Curve, TracingError
-from .tracing.start import auxiliary_starts
-from .tracing.trace import trace
-from .tracing.intersect import intersect
+from .tracing.curve.result import Curve, TracingError
+from .tracing.march.start import auxiliary_starts
+from .tracing.march.trace import trace
+from .tracing.components import intersect
 from .tracing.batch import BatchError, intersect_many
 from .geometry.placement import CoincidentSurfacesError
-from .tracing.topology import TopologyError
+from .tracing.search.topology import TopologyError
 
 __all__ = ["Frame", "rotation_about", "rotation_to_z", "Surface", "Torus", "Sphere", "Plane", "Cylinder",
            "Cone", "Curve", "TracingError", "trace", "intersect", "intersect_many", "BatchError", "auxiliary_starts", "CoincidentSurfacesError",

@@ -33,7 +33,7 @@ MAX_POLYLINE = 2_000_000
 
 def _as_pieces(curves):
     """[(evaluate(x) -> (M, 3), x0, x1, closed, source)] for Curves and BSplines (a single one is allowed)."""
-    from .tracing.result import Curve
+    from .tracing.curve.result import Curve
     if isinstance(curves, (Curve, BSpline)):
         curves = [curves]
     pieces = []

@@ -18,7 +18,7 @@ import numpy as np
 from ..mechanisms.reference import looper_pair
 from ..geometry.surfaces import Sphere
 from ..tracing.batch import intersect_many
-from ..tracing.intersect import intersect
+from ..tracing.components import intersect
 from .cases import torus_sphere_closed_form
 from .runner import DENSE_SAMPLES, best_time, kernel_seconds
 

@@ -14,10 +14,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..mechanisms import LooperDrive
-from ..tracing.intersect import intersect
-from ..tracing.start import scene_scale
-from ..tracing.topology import topology
-from ..tracing.trace import DEFAULT_METHOD, METHODS, trace
+from ..tracing.components import intersect
+from ..tracing.march.start import scene_scale
+from ..tracing.search.topology import topology
+from ..tracing.march.trace import DEFAULT_METHOD, METHODS, trace
 from . import baselines
 from .cases import looper_closed_form, torus_sphere_cases
 

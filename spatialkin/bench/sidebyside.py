@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._lib import stages
-from ..tracing.intersect import intersect
+from ..tracing.components import intersect
 from . import baselines
 from .kinds import occ_surface, pair_kind_cases, special_cases
 from .runner import curve_error, kernel_seconds, points_error

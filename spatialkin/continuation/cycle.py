@@ -1,5 +1,5 @@
 """Following a one-parameter family F(y) = 0 along its input coordinate, by arc length (solve_ivp with the
-compiled engine, spatialkin.tracing.ode.CompiledDOP853 or CompiledRK45, or any solve_ivp method, with the same
+compiled engine, spatialkin.tracing.march.ode.CompiledDOP853 or CompiledRK45, or any solve_ivp method, with the same
 jitted events).
 
 A mechanism's configuration curve: y holds the unknowns and the input (a crank angle). The curve is traced
@@ -19,9 +19,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..kernels import follow as kf
-from ..tracing.ode import COMPILED, BudgetExceeded, Event, System, integrate
-from ..tracing.result import TracingError
-from ..tracing.status import MAX_LENGTH, SINGULAR
+from ..tracing.march.ode import COMPILED, BudgetExceeded, Event, System, integrate
+from ..tracing.curve.result import TracingError
+from ..tracing.curve.status import MAX_LENGTH, SINGULAR
 
 #: Integration tolerance of the traced curve (a predictor: exact states come from Newton at fixed input).
 TRACE_RTOL = 1e-10
@@ -41,7 +41,7 @@ MIN_SAMPLES = 2048
 
 class ContinuationError(TracingError, ValueError):
     """A configuration curve that cannot be traced or solved: a TracingError (``where``: the state, ``status``
-    from spatialkin.tracing.status), and a ValueError as the mechanisms raise for input they cannot move."""
+    from spatialkin.tracing.curve.status), and a ValueError as the mechanisms raise for input they cannot move."""
 
 
 @dataclass
@@ -156,7 +156,7 @@ def trace_cycle(kernels, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL
     rtol : float
         Relative and absolute tolerance of the integration.
     method : str
-        'compiled' (spatialkin.tracing.ode.CompiledDOP853: scipy DOP853's steps in compiled code), 'compiled-rk45'
+        'compiled' (spatialkin.tracing.march.ode.CompiledDOP853: scipy DOP853's steps in compiled code), 'compiled-rk45'
         (CompiledRK45: RK45's) or a solve_ivp method.
 
     Returns

@@ -1,6 +1,6 @@
 """How two placed surfaces sit relative to each other: bounding balls, coincidence, common axes, parallel rulings.
 
-These decide the topology stage's special configurations (spatialkin.tracing.topology): coincident patches are
+These decide the topology stage's special configurations (spatialkin.tracing.search.topology): coincident patches are
 an error, coaxial surfaces of revolution meet in parallels (circles about the common axis), a cylinder and a
 surface invariant along its axis meet in lines along it.
 """

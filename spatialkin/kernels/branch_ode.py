@@ -2,7 +2,7 @@
 
 Every event of a branch segment is one entry of the vector ``branch_events`` writes, in this fixed order; a
 segment switches on the ones it watches. The same values serve the compiled engine (spatialkin.kernels.rk)
-and solve_ivp's own methods (spatialkin.tracing.ode.Event reads one entry).
+and solve_ivp's own methods (spatialkin.tracing.march.ode.Event reads one entry).
 
 The event parameters are one float array ``ep`` laid out by the P_* indices below, plus the chart data of the
 two surfaces in ``args = (a, b, sign, pullback, memo)`` (``branch_args``). ``memo`` keeps what the last right-hand

@@ -1,18 +1,18 @@
 """Distances of points from a traced curve in compiled code: which points lie within a radius of it.
 
-The curve's dense output is read from flat tables (built by spatialkin.tracing.packed from a TracedSolution):
+The curve's dense output is read from flat tables (built by spatialkin.tracing.curve.packed from a TracedSolution):
 
 * spans (S): row k of ``spans`` (S, 5) is (lo, flip, shift, sign, compiled): arc length s in [lo, next lo) maps
   to the solver time t = shift + flip s of span k's segment, whose charts are rows k of ``charts_a`` and
   ``charts_b`` and whose direction of travel is sign; compiled is 0 for a span these tables do not hold (a
   jump across a node or an apex, another solve_ivp method): a point whose Newton meets it is left to Python
-  (verdict PYTHON); a re-measured segment (spatialkin.tracing.arclength.RemappedStates) first maps t to the
+  (verdict PYTHON); a re-measured segment (spatialkin.tracing.march.arclength.RemappedStates) first maps t to the
   solver's time by np.interp through ``remap_new[remap_off[k]:remap_off[k + 1]]`` and ``remap_old[...]`` (an
   empty range: no re-mapping);
 * solver steps: span k's scipy OdeSolution times are ``ode_t[ode_off[k]:ode_off[k + 1]]`` and its steps' dense
   outputs are numbers ``ode_first[k]``, ... of the next level;
 * dense outputs (G): dense output g has kind ``kinds[g]``; poly_first[g] indexes its kind's tables:
-  RK45_STEPS (spatialkin.tracing.ode.StepsDense): its times ``pt[pt_off[g]:pt_off[g + 1]]`` (ts), and the
+  RK45_STEPS (spatialkin.tracing.march.ode.StepsDense): its times ``pt[pt_off[g]:pt_off[g + 1]]`` (ts), and the
   polynomial from its time i is number poly_first[g] + i of ``rk_h`` (length), ``rk_y`` (start state) and
   ``rk_q`` (Q (4, c), spatialkin.kernels.rk.dense_state); DOP853 (scipy's Dop853DenseOutput): ``dop_t0`` (t_old),
   ``dop_h``, ``dop_y`` (y_old) and ``dop_f`` (F (7, 4)).
@@ -26,7 +26,7 @@ it (a point of the curve too), so they decide as the Python path does without al
 References
 ----------
 scipy.integrate._ivp.common.OdeSolution (the step lookup), scipy.integrate._ivp.rk.Dop853DenseOutput (its
-polynomial), spatialkin.tracing.dense (the evaluation this mirrors).
+polynomial), spatialkin.tracing.curve.dense (the evaluation this mirrors).
 """
 import math
 
@@ -38,7 +38,7 @@ from .rk import dense_into
 
 #: Columns of the spans table.
 LO, FLIP, SHIFT, SIGN, COMPILED = 0, 1, 2, 3, 4
-#: kinds[g] of a dense output: a compiled method's step (its polynomials, spatialkin.tracing.ode.StepsDense) ...
+#: kinds[g] of a dense output: a compiled method's step (its polynomials, spatialkin.tracing.march.ode.StepsDense) ...
 RK45_STEPS = 0
 #: ... or a step of solve_ivp's DOP853 (scipy's Dop853DenseOutput, a degree-7 polynomial).
 DOP853 = 1

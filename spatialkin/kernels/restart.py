@@ -1,12 +1,12 @@
 """The start of one segment of a branch in one compiled call: the charts, the state in them, and the projection.
 
-A branch is integrated segment by segment (spatialkin.tracing.ivp); at each segment start the tracer re-charts the
+A branch is integrated segment by segment (spatialkin.tracing.march.ivp); at each segment start the tracer re-charts the
 surfaces that re-chart (a sphere: spatialkin.kernels.surfaces.recharted_sphere, at the point, the equator along
 the direction of travel, then along the curve's curvature vector there when it is known), reads the state in the
 new charts, and projects it back onto the curve in the plane normal to its tangent (Newton, minimum-norm steps
 where that plane is ill-posed). ``segment_start`` does these steps, the same kernels in the same order as
-spatialkin.tracing.segments.charts_at, the curve's curvature vector (curve_derivatives) and
-spatialkin.tracing.segments.project_state do one by one from Python, so that the results agree to the bit.
+spatialkin.tracing.march.segments.charts_at, the curve's curvature vector (curve_derivatives) and
+spatialkin.tracing.march.segments.project_state do one by one from Python, so that the results agree to the bit.
 
 References
 ----------
@@ -81,7 +81,7 @@ def locate(a_user, b_user, rechart_a, rechart_b, guess, y_guess, keep_guess, gap
     """A point of the curve near guess (3,) by minimum-norm Gauss-Newton on M1 - M2 = 0, in charts made at guess
     (re-charted where rechart_a, rechart_b; the others' (u, v) from y_guess (4,) with keep_guess, else from the
     foot points): the point into point (3,), its state into y_user (4,) with a re-charted surface's (u, v) read in
-    the user's chart. Returns False when Newton fails or the point is not finite (spatialkin.tracing.start.
+    the user's chart. Returns False when Newton fails or the point is not finite (spatialkin.tracing.march.start.
     locate_on_curve, the same kernels in the same order as it called them one by one)."""
     zero = np.zeros(3)
     a_out, b_out = np.empty(a_user.shape[0]), np.empty(b_user.shape[0])

@@ -25,11 +25,11 @@ from ..kernels import curve as kc
 from ..motion.kinematics import serial_chain
 from . import reference as ref
 from ..geometry.surfaces import Sphere, Torus
-from ..tracing.start import auxiliary_starts
-from ..tracing.bspline import fit as fit_spline
-from ..tracing.intersect import intersect
-from ..tracing.result import TracingError
-from ..tracing.trace import trace
+from ..tracing.march.start import auxiliary_starts
+from ..tracing.curve.bspline import fit as fit_spline
+from ..tracing.components import intersect
+from ..tracing.curve.result import TracingError
+from ..tracing.march.trace import trace
 from ..motion.trajectory import Trajectory, time_map, to_time
 from .._lib.validation import check_choice, check_positive, check_vector
 from .common import PointMotion, angle_range_text, check_branch, check_drive
@@ -562,7 +562,7 @@ class LooperMotion:
 
         Built from exact positions and their first and second derivatives in the crank angle (the velocity and
         acceleration at omega = 1) at its knots, refined until the measured distance to the path is below
-        0.9 tol x scale (spatialkin.tracing.bspline.fit); periodic when the range is a full turn.
+        0.9 tol x scale (spatialkin.tracing.curve.bspline.fit); periodic when the range is a full turn.
 
         Returns
         -------

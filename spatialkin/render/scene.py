@@ -14,7 +14,7 @@ import numpy as np
 
 from ..export import polylines
 from .._lib.files import atomic_path
-from ..tracing.result import Curve
+from ..tracing.curve.result import Curve
 from .._lib.validation import check_choice, check_points, check_positive, check_range, check_vector
 from . import geometry as geo
 from ._backend import pyvista

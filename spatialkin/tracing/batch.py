@@ -24,9 +24,9 @@ from concurrent.futures.process import BrokenProcessPool
 from ..geometry.frame import Frame
 from ..geometry.surfaces import Sphere, Torus
 from .._lib.validation import check_choice, check_count
-from .intersect import intersect
+from .components import intersect
 from ..geometry.traits import check_surface
-from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, check_options
+from .march.trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, check_options
 
 #: Pairs sent to a worker per task (amortises the transfer of surfaces and curves).
 CHUNK = 8

@@ -16,7 +16,7 @@ sign of z there. A torus's tube angle v is the angle of (rho - R, z) in the meri
 from the axis); a sphere's latitude v lies in [lo, hi] where R sin(lo) <= z <= R sin(hi).
 
 The tracer follows the untrimmed curve (trims that are ranges of a length, a plane's rectangle and a
-cylinder's or cone's axial range, are its own events); spatialkin.tracing.clip then cuts each component at the
+cylinder's or cone's axial range, are its own events); spatialkin.tracing.curve.clip then cuts each component at the
 crossings of these limits.
 """
 import dataclasses

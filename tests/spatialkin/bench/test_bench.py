@@ -12,8 +12,8 @@ from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.bench.cases import looper_closed_form, torus_sphere_cases
 from spatialkin.cli import main
 from spatialkin.mechanisms import LooperDrive
-from spatialkin.tracing.intersect import intersect
-from spatialkin.tracing.trace import trace
+from spatialkin.tracing.components import intersect
+from spatialkin.tracing.march.trace import trace
 
 from oracles import sphere_distance, torus_distance, torus_sphere_closed_form, torus_sphere_components
 

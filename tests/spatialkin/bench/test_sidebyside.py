@@ -11,8 +11,8 @@ from spatialkin.bench import baselines, sidebyside
 from spatialkin.bench.kinds import KINDS, STEINMETZ_ANGLE, occ_surface, pair_kind_cases, special_cases
 from spatialkin.geometry.surfaces import Cone
 from spatialkin._lib import stages
-from spatialkin.tracing.intersect import intersect
-from spatialkin.tracing.trace import extent
+from spatialkin.tracing.components import intersect
+from spatialkin.tracing.march.trace import extent
 
 #: Agreement of the same point from spatialkin's and OpenCascade's parametrisations (round-off of unit-sized
 #: coordinates).

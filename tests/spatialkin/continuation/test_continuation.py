@@ -1,4 +1,4 @@
-"""trace_cycle with the compiled engine (solve_ivp with spatialkin.tracing.ode.CompiledDOP853, the default, and
+"""trace_cycle with the compiled engine (solve_ivp with spatialkin.tracing.march.ode.CompiledDOP853, the default, and
 CompiledRK45) against closed forms and against scipy's own DOP853 and RK45 with the same jitted events."""
 import math
 

@@ -5,7 +5,7 @@ import numpy as np
 import spatialkin as sk
 from spatialkin.kernels import curve as kc
 from spatialkin.kernels import surfaces as ks
-from spatialkin.tracing.segments import NEWTON_MAX_ITER
+from spatialkin.tracing.march.segments import NEWTON_MAX_ITER
 
 GAP_TOL = 1e-12
 

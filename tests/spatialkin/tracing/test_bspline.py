@@ -7,8 +7,8 @@ import pytest
 
 import spatialkin as sk
 from spatialkin.mechanisms import reference
-from spatialkin.tracing.bspline import SplineToleranceError, fit, hermite_bspline
-from spatialkin.tracing.curvature import curvature_vectors, implicit_jets
+from spatialkin.tracing.curve.bspline import SplineToleranceError, fit, hermite_bspline
+from spatialkin.tracing.curve.curvature import curvature_vectors, implicit_jets
 
 
 def helix(t):

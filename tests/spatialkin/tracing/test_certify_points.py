@@ -18,7 +18,7 @@ import pytest
 from flint import arb
 
 import spatialkin as sk
-from spatialkin.tracing.certify_points import certify_points, implicit_arb
+from spatialkin.tracing.certify.certify_points import certify_points, implicit_arb
 
 #: mpmath digits of the reference zeros.
 ORACLE_DPS = 50

@@ -1,4 +1,4 @@
-"""Components cut by CAD-face trims (spatialkin.tracing.clip): the arcs against closed forms, the statuses at
+"""Components cut by CAD-face trims (spatialkin.tracing.curve.clip): the arcs against closed forms, the statuses at
 edges touched from inside and outside or run along, the arcs' dense output, and the general path against the
 untrimmed intersection clipped by an inside test written apart (ssi_oracle.face_margin: atan2 angles)."""
 import math
@@ -9,7 +9,7 @@ import pytest
 from ssi_oracle import face_margin, to_local, trim_margin
 
 import spatialkin as sk
-from spatialkin.tracing.result import TracingError
+from spatialkin.tracing.curve.result import TracingError
 from spatialkin.geometry.placement import CoincidentSurfacesError
 
 #: Arc ends and lengths of closed forms: within this many ulp of the coordinates (the ends are Brent roots on

@@ -1,4 +1,4 @@
-"""Closed forms of sk.intersect (spatialkin.tracing.closed) against independent oracles: the general traced path of
+"""Closed forms of sk.intersect (spatialkin.tracing.closed.forms) against independent oracles: the general traced path of
 the library on random placements of each pair kind (both argument orders, trimmed or not), scipy's quad for the
 arc length, the surfaces' exact distance functions for the points; degenerate placements must be declined."""
 import math
@@ -8,12 +8,12 @@ import pytest
 from scipy.integrate import quad
 
 import spatialkin as sk
-import spatialkin.tracing.intersect as intersect_module
+import spatialkin.tracing.components as intersect_module
 from spatialkin.geometry.frame import rotation_about
-from spatialkin.tracing.closed import closed_form
-from spatialkin.tracing.conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA
+from spatialkin.tracing.closed.forms import closed_form
+from spatialkin.tracing.closed.conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA
 from spatialkin.geometry.placement import CoincidentSurfacesError
-from spatialkin.tracing.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL,
+from spatialkin.tracing.march.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL,
                                       make_settings)
 
 #: Random placements per pair kind (each in both argument orders).
@@ -104,7 +104,7 @@ def compare(ours, theirs, scale):
         for k, surf in enumerate(c.surfaces):
             assert np.allclose(surf.point(params[:, 2 * k], params[:, 2 * k + 1]), points, atol=1e-12 * scale)
             assert np.allclose(surf.point(c.params[:, 2 * k], c.params[:, 2 * k + 1]), c.points, atol=1e-12 * scale)
-        if hasattr(c.result.sol, "conic"):     # (an axis circle, spatialkin.tracing.exact: wrapped, as there)
+        if hasattr(c.result.sol, "conic"):     # (an axis circle, spatialkin.tracing.curve.exact: wrapped, as there)
             assert np.max(np.abs(np.diff(c.params, axis=0))) <= math.pi       # periodic ones unwrapped
         if c.closed:
             assert np.array_equal(c.points[0], c.points[-1])
@@ -140,7 +140,7 @@ def test_arc_length_and_points(kind):
             magnitude = max(1.0, np.max(np.abs(c.points)))
             assert np.max([surf.distance(c.points) for surf in (a, b)]) <= ON_SURFACE * magnitude
             if not hasattr(sol, "conic"):
-                continue                            # a circle about a common axis (spatialkin.tracing.exact)
+                continue                            # a circle about a common axis (spatialkin.tracing.curve.exact)
             conic = sol.conic
             t = sol.t_knots
             for i in (len(t) // 3, len(t) - 1):

@@ -1,4 +1,4 @@
-"""The stored points of a traced curve in one compiled call (spatialkin.tracing.trace._corrected on
+"""The stored points of a traced curve in one compiled call (spatialkin.tracing.march.trace._corrected on
 spatialkin.kernels.stored.corrected_spans).
 
 Oracle: the same work span by span from Python (corrected_many per span, result.user_params, a numpy unwrap_turns), on
@@ -13,9 +13,9 @@ import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels import curve as kc
 from spatialkin.kernels import stored as kst
-from spatialkin.tracing import trace as tr
-from spatialkin.tracing.result import user_params
-from spatialkin.tracing.segments import NEWTON_MAX_ITER
+from spatialkin.tracing.march import trace as tr
+from spatialkin.tracing.curve.result import user_params
+from spatialkin.tracing.march.segments import NEWTON_MAX_ITER
 from spatialkin.geometry.traits import traits
 
 #: Pairs checked: spheres (re-charted) and pairs that keep their charts.

@@ -1,6 +1,6 @@
-"""sk.Curve as a result built once (spatialkin.tracing.result): a read-only view of a CurveResult record and its
-dense output, distances to the surfaces measured lazily; the status table (spatialkin.tracing.status); the
-closed-form components (spatialkin.tracing.exact). Oracles: the surfaces' closed-form distances, a circle's and a
+"""sk.Curve as a result built once (spatialkin.tracing.curve.result): a read-only view of a CurveResult record and its
+dense output, distances to the surfaces measured lazily; the status table (spatialkin.tracing.curve.status); the
+closed-form components (spatialkin.tracing.curve.exact). Oracles: the surfaces' closed-form distances, a circle's and a
 point's closed forms."""
 import dataclasses
 
@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
-from spatialkin.tracing import status as st
-from spatialkin.tracing.result import RECORD_FIELDS, CurveResult
+from spatialkin.tracing.curve import status as st
+from spatialkin.tracing.curve.result import RECORD_FIELDS, CurveResult
 
 #: Round-off slack of a closed-form comparison (unit-size scenes).
 ROUND_OFF = 1e-14

@@ -1,4 +1,4 @@
-"""De-duplication of starts: the compiled near_curve (spatialkin.kernels.near on spatialkin.tracing.packed) against
+"""De-duplication of starts: the compiled near_curve (spatialkin.kernels.near on spatialkin.tracing.curve.packed) against
 a plain Python one on the curve's dense output (the oracle), and its dense output against scipy's."""
 from types import SimpleNamespace
 
@@ -8,13 +8,13 @@ from oracles import torus_sphere_critical_radii
 from scipy.spatial import cKDTree
 
 import spatialkin as sk
-import spatialkin.tracing.intersect as intersect_module
+import spatialkin.tracing.components as intersect_module
 from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels import near as kn
-from spatialkin.tracing.dense import CLOSEST_NEWTON_STEPS, TracedSolution
-from spatialkin.tracing.intersect import SAME_COMPONENT, covered, near_curve, within
-from spatialkin.tracing.packed import packed, packed_grid
-from spatialkin.tracing.segments import NEWTON_MAX_ITER
+from spatialkin.tracing.curve.dense import CLOSEST_NEWTON_STEPS, TracedSolution
+from spatialkin.tracing.components import SAME_COMPONENT, covered, near_curve, within
+from spatialkin.tracing.curve.packed import packed, packed_grid
+from spatialkin.tracing.march.segments import NEWTON_MAX_ITER
 
 #: Pair kinds whose curves cover the tables: closed and open, one span and several (a sphere re-charted), the
 #: compiled method's steps and DOP853's (handed over at a trim edge), two curves in one scene.

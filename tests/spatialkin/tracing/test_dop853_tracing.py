@@ -1,5 +1,5 @@
 """The tracer on the compiled DOP853 engine (the default 'compiled'): lengths against closed forms where DOP853's
-optimistic error estimate on long steps would show without the step cap (spatialkin.tracing.trace.MAX_STEP), the
+optimistic error estimate on long steps would show without the step cap (spatialkin.tracing.march.trace.MAX_STEP), the
 hand-over to the same compiled engine, and an apex passed beside without re-firing its event at every restart."""
 import math
 import sys
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
-from spatialkin.tracing import ivp
+from spatialkin.tracing.march import ivp
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from ssi_cases import all_cases  # noqa: E402

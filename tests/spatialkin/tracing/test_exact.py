@@ -1,4 +1,4 @@
-"""The closed-form dense outputs' helpers (spatialkin.tracing.exact and .conic) against the numpy calls they stand
+"""The closed-form dense outputs' helpers (spatialkin.tracing.curve.exact and .conic) against the numpy calls they stand
 for, bit for bit (tolerance 0: they promise numpy's own arithmetic), the closed forms' settings (Scene) against
 make_settings (exactly equal, and the same errors for bad options), and their messages made on first access against
 the status table's."""
@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
-from spatialkin.tracing.closed import closed_settings
-from spatialkin.tracing.conic import quarter_turn
-from spatialkin.tracing.exact import CircleSolution, SegmentSolution, counting, even
-from spatialkin.tracing.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL,
+from spatialkin.tracing.closed.forms import closed_settings
+from spatialkin.tracing.closed.conic import quarter_turn
+from spatialkin.tracing.curve.exact import CircleSolution, SegmentSolution, counting, even
+from spatialkin.tracing.march.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL,
                                       make_settings)
 
 #: Random (start, stop) pairs per count.
@@ -153,8 +153,8 @@ def test_samples_made_on_first_use():
 def test_sampled_result_init_is_curve_result_init():
     """SampledResult writes what CurveResult's generated init writes (every field, the defaults, the checks of
     __post_init__), given all fields or all but the sampled ones; a missing field or a bad status raises."""
-    from spatialkin.tracing.exact import SampledResult
-    from spatialkin.tracing.result import CurveResult
+    from spatialkin.tracing.curve.exact import SampledResult
+    from spatialkin.tracing.curve.result import CurveResult
     import dataclasses
     a = sk.Sphere(1.0)
     sol = CircleSolution((a, a), np.zeros(3), np.array([0.0, 0.0, 1.0]), 1.0)
@@ -181,7 +181,7 @@ def test_conic_arithmetic_is_numpy():
     build whose dot product sums in another order), its centre, P and Q (arrays made on first use) np.array of the
     floats given, and a closed ellipse's quarter turn the last of quarter_turn: bit for bit, over random vectors of
     magnitudes 1e-3 to 1e3."""
-    from spatialkin.tracing.conic import ELLIPSE, QUARTER, Conic
+    from spatialkin.tracing.closed.conic import ELLIPSE, QUARTER, Conic
     rng = np.random.default_rng(11)
     for _ in range(DRAWS):
         rows = [list(rng.normal(size=3) * 10.0 ** rng.uniform(-3, 3, 3)) for _ in range(3)]
@@ -199,7 +199,7 @@ def test_conic_arithmetic_is_numpy():
 def test_conic_arc_one_by_one():
     """A line's and an ellipse's arc length at one float is their arc length at an array of it, bit for bit (the
     ends of an open arc are measured one by one)."""
-    from spatialkin.tracing.conic import ELLIPSE, LINE, Conic
+    from spatialkin.tracing.closed.conic import ELLIPSE, LINE, Conic
     rng = np.random.default_rng(12)
     for shape in (LINE, ELLIPSE):
         for _ in range(DRAWS):
@@ -213,14 +213,14 @@ def test_conic_arc_one_by_one():
 
 
 def test_messages_made_on_first_access():
-    """A closed form's status and message (made on first access, by spatialkin.tracing.closed.arc_message or
+    """A closed form's status and message (made on first access, by spatialkin.tracing.closed.forms.arc_message or
     exact.event_message) are those the status table gives for its ends or its event (outcome and open_outcome, the
     oracle kept here), read first or after pickling; a SampledResult takes a message or its maker, not both."""
     import pickle
-    from spatialkin.tracing.closed import arc_message
-    from spatialkin.tracing.segments import EDGE_NAMES as EDGES
-    from spatialkin.tracing.exact import SampledResult, event_message
-    from spatialkin.tracing.status import BOUNDARY, open_outcome, outcome
+    from spatialkin.tracing.closed.forms import arc_message
+    from spatialkin.tracing.march.segments import EDGE_NAMES as EDGES
+    from spatialkin.tracing.curve.exact import SampledResult, event_message
+    from spatialkin.tracing.curve.status import BOUNDARY, open_outcome, outcome
     seen = set()
     for a, b in pairs():
         for c in sk.intersect(a, b):
@@ -259,7 +259,7 @@ def test_elliptic_e_scalar_is_ufunc():
     """E(t | m) at one float (scipy.special.cython_special) is scipy.special.ellipeinc's, bit for bit, over t in
     [-7, 7] (beyond a turn) and m in [0, 1); an array goes to the ufunc itself."""
     from scipy.special import ellipeinc
-    from spatialkin.tracing.conic import QUARTER, elliptic_e
+    from spatialkin.tracing.closed.conic import QUARTER, elliptic_e
     rng = np.random.default_rng(13)
     t, m = rng.uniform(-7.0, 7.0, DRAWS * 20), rng.uniform(0.0, 1.0, DRAWS * 20)
     ours = [elliptic_e(float(x), float(y)) for x, y in zip(t, m)] + [elliptic_e(QUARTER, float(y)) for y in m]

@@ -1,5 +1,5 @@
 """Curves touching a rectangular trim edge, on the general path (closed forms off: the topology stage and the
-tracer, spatialkin.tracing.graze and clip): a torus cut by a plane normal to its axis in the circles of radii
+tracer, spatialkin.tracing.march.graze and clip): a torus cut by a plane normal to its axis in the circles of radii
 R + r and R - r (closed forms), the plane trimmed so that the outer circle touches an edge from inside, is halved,
 or touches an edge from outside; in a rigid placement, both argument orders."""
 import math
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
-import spatialkin.tracing.intersect as intersect_module
+import spatialkin.tracing.components as intersect_module
 
 BIG, SMALL = 2.0, 0.5
 OUTER, INNER = 2 * math.pi * (BIG + SMALL), 2 * math.pi * (BIG - SMALL)

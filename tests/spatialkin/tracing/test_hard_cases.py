@@ -189,8 +189,8 @@ def test_area_element_is_1_lipschitz_in_its_parameter(kind, size, scale):
     round-off; and a cone's is the same number for the same scene at every scale (the apex guard means the same
     distance from the apex, relative to the scene)."""
     from spatialkin.kernels import curve as kc
-    from spatialkin.tracing.ivp import area_weight
-    from spatialkin.tracing.segments import area_flag
+    from spatialkin.tracing.march.ivp import area_weight
+    from spatialkin.tracing.march.segments import area_flag
     if kind == "cone":
         surface = sk.Cone(size, v_range=(-3.0 * scale, 3.0 * scale))
         v = np.linspace(-3.0, 3.0, 20001) * scale

@@ -6,7 +6,7 @@ decreasing, tied and shuffled arc lengths.
 import numpy as np
 import pytest
 
-from spatialkin.tracing.trace import in_order
+from spatialkin.tracing.march.trace import in_order
 
 
 @pytest.mark.parametrize("case", ["increasing", "decreasing", "ties", "shuffled", "one", "empty"])

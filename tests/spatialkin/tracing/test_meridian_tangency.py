@@ -1,5 +1,5 @@
 """A torus and a second surface touching along a whole meridian circle, with another curve crossing it
-(spatialkin.tracing.meridians): the circle of tangency in closed form and the other curve against its length by
+(spatialkin.tracing.search.meridians): the circle of tangency in closed form and the other curve against its length by
 quadrature of an independent parametrisation, in both argument orders."""
 import math
 
@@ -69,7 +69,7 @@ def test_tori_touching_along_a_meridian(name, swap):
     assert abs(loop.length - truth()) <= LENGTH_RTOL * loop.length
     assert loop.max_distance <= loop.tolerance
     # it crosses the circle at (20, 0, +-5): the dense output passes a node along the chords of its jump
-    # (spatialkin.tracing.dense), within about jump^2 x curvature of it
+    # (spatialkin.tracing.curve.dense), within about jump^2 x curvature of it
     _, gap = loop.closest(np.array([[20.0, 0.0, -5.0], [20.0, 0.0, 5.0]]))
     assert gap.max() <= NODE_GAP * 20.0
 

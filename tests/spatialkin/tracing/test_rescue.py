@@ -1,4 +1,4 @@
-"""Starts for a component whose every start was lost (spatialkin.tracing.rescue): a thin loop beside a near-tangency,
+"""Starts for a component whose every start was lost (spatialkin.tracing.search.rescue): a thin loop beside a near-tangency,
 seeded only at its ill-conditioned ends. Oracles: the loop's closed form (a sphere off a cylinder's axis), the
 lines through the middles by hand."""
 import math
@@ -8,8 +8,8 @@ import pytest
 from scipy.integrate import quad
 
 import spatialkin as sk
-from spatialkin.tracing import intersect as intersect_module
-from spatialkin.tracing import rescue
+from spatialkin.tracing import components as intersect_module
+from spatialkin.tracing.search import rescue
 
 RADIUS, OFFSET = 0.7, 1e-8
 

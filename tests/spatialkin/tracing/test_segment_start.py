@@ -1,4 +1,4 @@
-"""A segment's start, and a located start, in one compiled call (spatialkin.tracing.segments.segment_start,
+"""A segment's start, and a located start, in one compiled call (spatialkin.tracing.march.segments.segment_start,
 start.locate_on_curve; kernels.restart).
 
 Oracle: the same steps taken one by one from Python (segments.charts_at, curvature_vector, charts_at along the
@@ -13,9 +13,9 @@ import pytest
 import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels import curve as kc
-from spatialkin.tracing.segments import charts_at, project_state, segment_start
+from spatialkin.tracing.march.segments import charts_at, project_state, segment_start
 from spatialkin.geometry.traits import traits
-from spatialkin.tracing.trace import make_settings
+from spatialkin.tracing.march.trace import make_settings
 
 #: The kinds checked: spheres (re-charted) against each other kind, and pairs that keep their charts.
 KINDS = ("sphere-cylinder", "sphere-cone", "sphere-torus", "cylinder-torus", "torus-torus", "plane-torus")
@@ -77,7 +77,7 @@ def test_segment_start_matches_python_steps(kind, order):
 def python_locate(a, b, guess, gap_tol, y_guess=None):
     """The oracle: start.locate_on_curve's steps as separate Python calls ((point, y_user) or None)."""
     from spatialkin.kernels import curve as kc
-    from spatialkin.tracing.segments import NEWTON_MAX_ITER
+    from spatialkin.tracing.march.segments import NEWTON_MAX_ITER
     point = np.asarray(guess, dtype=float).copy()
     a_chart, b_chart, y = charts_at(a.data, b.data, point, np.zeros(3), y_guess)
     iters = kc.project_to_curve(y, a_chart, b_chart, point.copy(), np.zeros(3), gap_tol, NEWTON_MAX_ITER)
@@ -97,8 +97,8 @@ def python_locate(a, b, guess, gap_tol, y_guess=None):
 def test_locate_matches_python_steps(kind, order):
     """locate_on_curve (kernels.restart.locate) against its former steps, bit for bit, from points near the curve
     with and without a parameter guess, and from a point far from it (both fail, or both give the same)."""
-    from spatialkin.tracing.start import locate_on_curve
-    from spatialkin.tracing.result import TracingError
+    from spatialkin.tracing.march.start import locate_on_curve
+    from spatialkin.tracing.curve.result import TracingError
     cases = {k: (a, b) for k, a, b in pair_kind_cases()}
     a, b = cases[kind] if order == "ab" else cases[kind][::-1]
     gap_tol = 1e-12

@@ -1,8 +1,8 @@
-"""A jump's arc length (spatialkin.tracing.singular.JumpArc) against closed forms."""
+"""A jump's arc length (spatialkin.tracing.march.singular.JumpArc) against closed forms."""
 import numpy as np
 import pytest
 
-from spatialkin.tracing.singular import _ARC_X, ARC_NODES, JumpArc
+from spatialkin.tracing.march.singular import _ARC_X, ARC_NODES, JumpArc
 
 
 def test_jump_arc_integrates_and_inverts_a_smooth_speed():

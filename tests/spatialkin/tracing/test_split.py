@@ -1,5 +1,5 @@
 """Quadric pairs whose intersection splits into two ellipses through nodes, in closed form
-(spatialkin.tracing.split): against the general path (the topology stage and the tracer, closed forms off) as the
+(spatialkin.tracing.closed.split): against the general path (the topology stage and the tracer, closed forms off) as the
 oracle, and against the Steinmetz curves' own closed form (nodes, ellipse lengths)."""
 import math
 
@@ -9,7 +9,7 @@ from oracles import random_rotation
 from scipy.special import ellipe
 
 import spatialkin as sk
-from spatialkin.tracing import intersect as intersect_module
+from spatialkin.tracing import components as intersect_module
 
 SCALE_TOL = 1e-14        # points on both surfaces, relative to the scale
 LENGTH_RTOL = 1e-9       # lengths against the traced oracle (its arc length is integrated at rtol 1e-10)
@@ -148,8 +148,8 @@ def test_may_split_is_necessary_and_cheap_to_refuse():
     """may_split (the test run before the pencil's eigenvalues) holds for every splitting scene above and fails on
     the bench's general pairs of quadrics (which do not split: the pencil finds no pair of planes in them either)."""
     from spatialkin.bench.kinds import pair_kind_cases
-    from spatialkin.tracing.closed import Placed
-    from spatialkin.tracing.split import may_split, split_planes
+    from spatialkin.tracing.closed.forms import Placed
+    from spatialkin.tracing.closed.split import may_split, split_planes
     from spatialkin.geometry.traits import traits
 
     def args(a, b):

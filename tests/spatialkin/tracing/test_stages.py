@@ -7,7 +7,7 @@ import pytest
 
 from spatialkin.mechanisms.reference import looper_pair
 from spatialkin._lib import stages
-from spatialkin.tracing.intersect import intersect
+from spatialkin.tracing.components import intersect
 
 #: The stages sum to the call measured around it within this fraction of it (they cover the same interval;
 #: the difference is the timer's own calls and entering the block) ...

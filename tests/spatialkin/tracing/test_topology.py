@@ -8,7 +8,7 @@ import pytest
 from oracles import random_rotation
 
 import spatialkin as sk
-from spatialkin.tracing import topology as tp
+from spatialkin.tracing.search import topology as tp
 
 TOL = 1e-10
 

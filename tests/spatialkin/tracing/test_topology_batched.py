@@ -8,7 +8,7 @@ import pytest
 import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels import topology as kt
-from spatialkin.tracing import topology as tp
+from spatialkin.tracing.search import topology as tp
 from spatialkin.geometry.traits import traits
 
 TOL = 1e-10

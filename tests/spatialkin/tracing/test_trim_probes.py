@@ -1,6 +1,6 @@
 """A curve that grazes out of a trim and back within one solver step ends at the edge (the compiled method probes
 the bounds inside each step, spatialkin.kernels.rk.PROBES), checked on the general path against the closed form
-(spatialkin.tracing.closed) and a dense sampling of the true circle; and the step reach that decides where to probe
+(spatialkin.tracing.closed.forms) and a dense sampling of the true circle; and the step reach that decides where to probe
 bounds the dense output."""
 import math
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
-import spatialkin.tracing.intersect as intersect_module
+import spatialkin.tracing.components as intersect_module
 from spatialkin.kernels import rk
 
 #: A pair found by a random sweep of the closed forms against the tracer: the plane's rectangle cuts the circle

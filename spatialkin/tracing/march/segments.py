@@ -1,6 +1,6 @@
 """Pieces of an integrated branch: segments and their dense output, settings, charts, budgets, Newton.
 
-A branch is integrated segment by segment (see spatialkin.tracing.ivp); each segment keeps the charts it
+A branch is integrated segment by segment (see spatialkin.tracing.march.ivp); each segment keeps the charts it
 was integrated in (a sphere is re-charted away from its poles) and its dense output.
 """
 import functools
@@ -9,10 +9,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..kernels import curve as kc
-from ..kernels import restart as kr
-from ..kernels import surfaces as ks
-from ..geometry.traits import traits
+from ...kernels import curve as kc
+from ...kernels import restart as kr
+from ...kernels import surfaces as ks
+from ...geometry.traits import traits
 
 # --- named limits -------------------------------------------------------------------------------------
 #: A re-charting surface (a sphere) is re-charted when |cos(latitude)| falls below this (latitude beyond 60
@@ -53,7 +53,7 @@ class Segment:
 
 class LinearStates:
     """Dense output of a jump across a singular point: states interpolated linearly over [0, length]; arc (a
-    spatialkin.tracing.singular.JumpArc, or None) maps arc length to the chords through the node."""
+    spatialkin.tracing.march.singular.JumpArc, or None) maps arc length to the chords through the node."""
 
     def __init__(self, y0, y1, length, arc=None):
         self.y0, self.y1, self.length = np.asarray(y0, dtype=float), np.asarray(y1, dtype=float), length
@@ -68,7 +68,7 @@ class LinearStates:
 class Branch:
     """Result of integrating one direction from a start point."""
     segments: list = field(default_factory=list)
-    status: str = "max_length"   # 'closed' or an end status (spatialkin.tracing.status.END_PRECEDENCE)
+    status: str = "max_length"   # 'closed' or an end status (spatialkin.tracing.curve.status.END_PRECEDENCE)
     message: str = ""
     length: float = 0.0
     nfev: int = 0

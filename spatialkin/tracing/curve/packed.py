@@ -13,11 +13,11 @@ import numpy as np
 from scipy.integrate import OdeSolution
 from scipy.integrate._ivp.rk import Dop853DenseOutput   # scipy's DOP853 step polynomial (no public name)
 
-from ..kernels import near as kn
-from .arclength import RemappedStates
+from ...kernels import near as kn
+from ..march.arclength import RemappedStates
 from .dense import TracedSolution
-from .ode import StepsDense
-from .segments import NEWTON_MAX_ITER
+from ..march.ode import StepsDense
+from ..march.segments import NEWTON_MAX_ITER
 
 #: The tables made so far, per dense output (dropped with it).
 _TABLES = weakref.WeakKeyDictionary()

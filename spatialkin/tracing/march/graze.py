@@ -6,7 +6,7 @@ vertex it passes through) or from outside (the faces meet in that one point), di
 the branch ends there and a sliver of the curve is lost, or a tiny arc comes back where there is a point. Those
 show as ends on edges closer to each other than GAP x scale (two pieces of one curve, or both ends of a tiny
 arc). Each such component is traced again on the surfaces with their length trims widened by WIDEN x scale (a
-cone's never across its apex), and cut at the true trims by spatialkin.tracing.clip (Lipschitz-bounded crossings,
+cone's never across its apex), and cut at the true trims by spatialkin.tracing.curve.clip (Lipschitz-bounded crossings,
 touches from inside kept whole, from outside a point).
 """
 import copy
@@ -15,13 +15,13 @@ import time
 
 import numpy as np
 
-from ..kernels import surfaces as ks
-from ..geometry.surfaces.trims import HEIGHT, level_groups
-from .clip import clip_curve
-from .result import TracingError
-from .status import BOUNDARY
+from ...kernels import surfaces as ks
+from ...geometry.surfaces.trims import HEIGHT, level_groups
+from ..curve.clip import clip_curve
+from ..curve.result import TracingError
+from ..curve.status import BOUNDARY
 from .trace import trace_from
-from ..geometry.traits import traits
+from ...geometry.traits import traits
 
 #: Ends of open curves on trim edges closer than this (relative to the scale) are the two sides of a graze.
 GAP = 1e-3

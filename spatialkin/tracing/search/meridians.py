@@ -5,7 +5,7 @@ a polygon's edge revolved about two axes).
 
 On P, with g(u, v) = F_Q(P(u, v)), the meridian is the line u = u0 where g and g_u vanish for every v:
 g = (u - u0)^2 (g_uu / 2 + ...) near it. The interval search cannot exclude the boxes along it (g vanishes to
-second order), so spatialkin.tracing.topology searches P's domain less a band |u - u0| < BAND (seeding the other
+second order), so spatialkin.tracing.search.topology searches P's domain less a band |u - u0| < BAND (seeding the other
 components on the band's edges), returns the meridian in closed form as a circle or a segment of tangency (the
 segment clipped by both surfaces' trims), and gives the points
 where another branch crosses it as nodes: there the second-order term changes sign, the roots of g_uu(u0, v)
@@ -22,7 +22,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from ..geometry.traits import traits
+from ...geometry.traits import traits
 
 #: The meridian is sought on a grid of this many angles u, g read at MERIDIAN_SAMPLES angles v round the tube.
 U_GRID = 1440

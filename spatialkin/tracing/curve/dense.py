@@ -2,16 +2,16 @@
 
 ``CurveSolution`` is the interface (and what every dense output shares: arc-length checks, the closest point);
 ``TracedSolution`` evaluates a traced curve from the solver's dense output, each state corrected onto both surfaces
-by Newton. The closed-form ones (a circle, a segment, a point) are in spatialkin.tracing.exact.
+by Newton. The closed-form ones (a circle, a segment, a point) are in spatialkin.tracing.curve.exact.
 """
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..kernels import curve as kc
-from ..kernels import surfaces as ks
+from ...kernels import curve as kc
+from ...kernels import surfaces as ks
 from .curvature import curvature_vectors
 from .result import set_states, user_params
-from .segments import NEWTON_MAX_ITER
+from ..march.segments import NEWTON_MAX_ITER
 
 #: Inside a jump across a node or an apex, a Newton-corrected point farther than this fraction of the jump from
 #: the interpolated one has strayed (to another branch, or off through a degenerate chart): the interpolated

@@ -21,8 +21,8 @@ import flint
 import numpy as np
 from flint import arb, arb_mat
 
-from ..geometry.traits import UnknownSurfaceKindError, check_surface, traits
-from .._lib.validation import check_points, check_positive
+from ...geometry.traits import UnknownSurfaceKindError, check_surface, traits
+from ..._lib.validation import check_points, check_positive
 
 __all__ = ["implicit_arb", "certify_points", "PRECISION_BITS"]
 

@@ -13,21 +13,21 @@ import time
 
 import numpy as np
 
-from ..kernels import curve as kc
-from ..kernels import stored as kst
-from ..kernels import surfaces as ks
+from ...kernels import curve as kc
+from ...kernels import stored as kst
+from ...kernels import surfaces as ks
 from .arclength import remeasure_branch
-from .clip import clip_curve
+from ..curve.clip import clip_curve
 from .ivp import integrate_branch
 from .ode import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
-from .dense import Span, TracedSolution
-from .result import Curve, CurveResult, TracingError, in_own_chart, DUPLICATE_SPACING
+from ..curve.dense import Span, TracedSolution
+from ..curve.result import Curve, CurveResult, TracingError, in_own_chart, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
-from .status import CLOSED, FAILED, open_outcome
-from ..geometry.traits import check_surface, traits
-from .._lib import stages
-from .._lib.validation import check_choice, check_nonnegative, check_positive
+from ..curve.status import CLOSED, FAILED, open_outcome
+from ...geometry.traits import check_surface, traits
+from ..._lib import stages
+from ..._lib.validation import check_choice, check_nonnegative, check_positive
 
 # --- defaults -----------------------------------------------------------------------------------------
 #: Relative tolerance of solve_ivp on (u1, v1, u2, v2): sets how far a step may stray before the Newton
@@ -37,7 +37,7 @@ DEFAULT_RTOL = 1e-10
 DEFAULT_SINGULAR_TOL = 1e-7
 #: Pull-back rate times the curve scale: the gap decays like exp(-PULLBACK * s / scale).
 DEFAULT_PULLBACK = 1.0
-#: The integrator: solve_ivp with the compiled Dormand–Prince 8(5,3) (spatialkin.tracing.ode.COMPILED), or a
+#: The integrator: solve_ivp with the compiled Dormand–Prince 8(5,3) (spatialkin.tracing.march.ode.COMPILED), or a
 #: solve_ivp method.
 DEFAULT_METHOD = COMPILED
 #: Longest solver step, in scene scales. DOP853's error estimate (its 5th- and 3rd-order estimates combined) can
@@ -54,9 +54,9 @@ GAP_FRACTION = 1e-2
 ROUNDOFF_ULPS = 64
 #: The ulp of 1.0 (np.float64).
 EPS = np.finfo(float).eps
-#: solve_ivp's methods, "compiled": solve_ivp with spatialkin.tracing.ode.CompiledDOP853 (scipy's DOP853 steps,
+#: solve_ivp's methods, "compiled": solve_ivp with spatialkin.tracing.march.ode.CompiledDOP853 (scipy's DOP853 steps,
 #: many per solver step in compiled code), and "compiled-rk45" (CompiledRK45: scipy's RK45 steps), both handing hard
-#: cases to the compiled DOP853 with the fine events (spatialkin.tracing.ivp.FALLBACK_METHOD).
+#: cases to the compiled DOP853 with the fine events (spatialkin.tracing.march.ivp.FALLBACK_METHOD).
 METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", *COMPILED_SOLVERS)
 
 
@@ -142,9 +142,9 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
         smaller characteristic length of the two surfaces: a sphere's or cylinder's radius, a torus's R + r):
         distance to both surfaces <= tol * scale (``curve.tolerance``, an absolute length).
     method : str
-        'compiled' (default): solve_ivp with spatialkin.tracing.ode.CompiledDOP853 (scipy's DOP853 steps, many
+        'compiled' (default): solve_ivp with spatialkin.tracing.march.ode.CompiledDOP853 (scipy's DOP853 steps, many
         per solver step in compiled code), handing singular points and apexes to the same engine with the fine
-        events (spatialkin.tracing.ivp.FALLBACK_METHOD); 'compiled-rk45' the same with scipy's RK45 steps
+        events (spatialkin.tracing.march.ivp.FALLBACK_METHOD); 'compiled-rk45' the same with scipy's RK45 steps
         (CompiledRK45); or a solve_ivp method ('DOP853', 'RK45', 'RK23', 'Radau', 'BDF', 'LSODA') for the whole
         curve.
     rtol, atol : float
@@ -187,7 +187,7 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     dM/ds = N_a x N_b / |N_a x N_b| (N_a, N_b the surfaces' normals), written for the parameters
     (u1, v1, u2, v2) and integrated by scipy.integrate.solve_ivp from the located start in both directions
     until the curve closes, leaves a trim or meets a singular point [1]_; the trims that are not ranges of a
-    length (angular ranges, a plane's circle: spatialkin.tracing.clip) then cut it, and the arc nearest the
+    length (angular ranges, a plane's circle: spatialkin.tracing.curve.clip) then cut it, and the arc nearest the
     start is returned. Every stored point is then corrected
     onto both surfaces by Newton, and the arc length is re-measured on the corrected curve. The integrator is
     a Dormand-Prince pair with dense output [2]_.
@@ -219,7 +219,7 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     >>> sk.trace(a, sk.Sphere(1.0, sk.Frame((5.0, 0.0, 0.0))), (2.5, 0.0, 0.0))
     Traceback (most recent call last):
     ...
-    spatialkin.tracing.result.TracingError: no intersection point found near start [2.5, 0.0, 0.0]: ...
+    spatialkin.tracing.curve.result.TracingError: no intersection point found near start [2.5, 0.0, 0.0]: ...
     """
     check_surface("a", a)
     check_surface("b", b)

@@ -1,7 +1,7 @@
 """Components known in closed form: a circle or a segment along which the two surfaces touch (status 'tangent'; the
 tracer cannot follow them, the normals being parallel all along), a circle about the common axis of two surfaces of
 revolution (status 'closed'), a single point where they touch (status 'contact'). Each is a CurveResult whose dense
-output evaluates the closed form exactly; a circle's or a segment's (and a conic's, spatialkin.tracing.conic) is a
+output evaluates the closed form exactly; a circle's or a segment's (and a conic's, spatialkin.tracing.closed.conic) is a
 SampledResult, whose stored points and parameters are made on first access (from the dense output, the same
 arrays whenever they are made).
 """
@@ -11,12 +11,12 @@ import math
 
 import numpy as np
 
-from ..kernels.stored import unwrap_turns
-from ..geometry.vectors import cross
+from ...kernels.stored import unwrap_turns
+from ...geometry.vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult
 from .status import MESSAGES, outcome
-from ..geometry.traits import traits
+from ...geometry.traits import traits
 
 #: Stored points of a circle or a segment in closed form.
 EXACT_SAMPLES = 65
@@ -277,7 +277,7 @@ class PointSolution(ExactSolution):
 def exact_curve(surfaces, tolerance, circle=None, segment=None, event="tangent", topology=None):
     """The CurveResult of a circle (centre (3,), unit axis (3,), radius) or a segment (p0 (3,), p1 (3,)) in closed
     form; `event` is 'tangent' (the surfaces touch all along it) or 'axis_circle' (a circle about their common
-    axis), its status and message from spatialkin.tracing.status.MESSAGES; tolerance as in Curve; topology the
+    axis), its status and message from spatialkin.tracing.curve.status.MESSAGES; tolerance as in Curve; topology the
     search that found it (CurveResult.topology)."""
     sol = CircleSolution(surfaces, *circle) if circle is not None else SegmentSolution(surfaces, *segment)
     return SampledResult(closed=sol.closed, length=sol.length, status=MESSAGES[event][0], tolerance=tolerance,

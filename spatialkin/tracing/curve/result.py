@@ -1,17 +1,17 @@
 """What tracing found: ``CurveResult``, the plain record of one component (scipy's OdeResult is the model), and
 ``sk.Curve``, the public curve built once from it, which evaluates through the record's dense output ``sol``
-(spatialkin.tracing.dense and .exact; scipy's OdeSolution) and measures its distances to the surfaces lazily."""
+(spatialkin.tracing.curve.dense and .exact; scipy's OdeSolution) and measures its distances to the surfaces lazily."""
 import dataclasses
 import functools
 import operator
 
 import numpy as np
 
-from ..kernels import surfaces as ks
-from .._lib.validation import check_positive
+from ...kernels import surfaces as ks
+from ..._lib.validation import check_positive
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome
-from ..geometry.traits import traits
+from ...geometry.traits import traits
 
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.
@@ -31,7 +31,7 @@ class TracingError(RuntimeError):
     where : ndarray, shape (3,), optional
         The point where tracing stopped or could not start (global coordinates), or None.
     status : str
-        A short code of spatialkin.tracing.status (default 'failed'), e.g. 'no_start' or 'singular'.
+        A short code of spatialkin.tracing.curve.status (default 'failed'), e.g. 'no_start' or 'singular'.
 
     Attributes
     ----------
@@ -61,13 +61,13 @@ class TracingError(RuntimeError):
 
     @classmethod
     def of(cls, event, where=None, status=None, **fields):
-        """The error of an event of spatialkin.tracing.status.MESSAGES at where: its message, the template filled
+        """The error of an event of spatialkin.tracing.curve.status.MESSAGES at where: its message, the template filled
         with fields, and its status (or the one given, for an event whose status depends on the case).
 
         Parameters
         ----------
         event : str
-            A key of spatialkin.tracing.status.MESSAGES.
+            A key of spatialkin.tracing.curve.status.MESSAGES.
         where : ndarray, shape (3,), optional
         status : str, optional
         **fields
@@ -84,7 +84,7 @@ class TracingError(RuntimeError):
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
 class CurveResult:
     """What tracing found about one component: a plain record; ``sol`` evaluates it. (A closed form's,
-    spatialkin.tracing.exact.SampledResult, makes its points, s and params on first read, the same arrays
+    spatialkin.tracing.curve.exact.SampledResult, makes its points, s and params on first read, the same arrays
     whenever that is.)
 
     The fields are the attributes of the same names of Curve (see there); ``topology`` is the search that found
@@ -142,7 +142,7 @@ class Curve:
     length : float
         Arc length of the curve.
     status : str
-        One of these (spatialkin.tracing.status); an open curve's is that of its ends, the first of
+        One of these (spatialkin.tracing.curve.status); an open curve's is that of its ends, the first of
         {precedence}:
 
 {statuses}
@@ -166,9 +166,9 @@ class Curve:
         |M1 - M2| of the solver's own states at its steps, before the Newton correction: how far plain
         integration (with the pull-back) strays; a diagnostic of drift.
     certificate : Certificate or None
-        What sk.intersect(..., certify=True) verified (spatialkin.tracing.certificate).
+        What sk.intersect(..., certify=True) verified (spatialkin.tracing.certify.certificate).
     topology : object or None
-        The search of sk.intersect that found the component (spatialkin.tracing.topology).
+        The search of sk.intersect that found the component (spatialkin.tracing.search.topology).
     surfaces : (Surface, Surface)
         The two surfaces.
     result : CurveResult
@@ -319,7 +319,7 @@ class Curve:
         ValueError
             For a non-positive tol, or a curve of length zero (a contact point).
         SplineToleranceError
-            If tol lies below the round-off of the curve's points (spatialkin.tracing.bspline).
+            If tol lies below the round-off of the curve's points (spatialkin.tracing.curve.bspline).
 
         References
         ----------
@@ -341,7 +341,7 @@ class Curve:
         tol = check_positive("tol", tol)
         if self.length == 0:
             raise ValueError("a curve of length zero (a contact point) has no B-spline")
-        from .start import scene_scale       # start imports this module
+        from ..march.start import scene_scale       # start imports this module
         return fit_spline(self.derivatives, 0.0, self.length, tol * scene_scale(*self.surfaces),
                           periodic=self.closed)
 
@@ -418,10 +418,10 @@ FIELD_DOCS = {
     diagnostic of drift.""",
     "nfev": """Right-hand-side evaluations spent by solve_ivp on this curve (int; 0 for a closed form).""",
     "wall_time": """Seconds spent tracing this curve (float).""",
-    "topology": """The search of sk.intersect that found the component (spatialkin.tracing.topology), or None.""",
+    "topology": """The search of sk.intersect that found the component (spatialkin.tracing.search.topology), or None.""",
     "certificate": """What sk.intersect(..., certify=True) proved about this curve, or None without certify.
 
-    A spatialkin.tracing.certificate.Certificate: what the interval search proved (no box it discarded holds a
+    A spatialkin.tracing.certify.certificate.Certificate: what the interval search proved (no box it discarded holds a
     component) and, for each stored point k, a radius ``radii[k]`` of a box round it holding a true intersection
     point; and what it did not prove (see Certificate).
 """ + _EXAMPLE + """    >>> curve.certificate is None
@@ -437,7 +437,7 @@ for _name in RECORD_FIELDS:
                                    doc=FIELD_DOCS.get(_name, f"CurveResult.{_name}")))
 
 
-# --- states and parameters: helpers of the dense output (spatialkin.tracing.dense) and of sk.trace ----------------
+# --- states and parameters: helpers of the dense output (spatialkin.tracing.curve.dense) and of sk.trace ----------------
 def set_states(y, points, a, b):
     """Rows of the states y (M, 4) moved to the foot parameters of points (M, 3) on the charts a, b (angles kept
     within pi of the old ones); returns y."""

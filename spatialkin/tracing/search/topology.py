@@ -38,13 +38,13 @@ import numpy as np
 import scipy.linalg
 from scipy.optimize import brentq
 
-from ..kernels import interval as ki
-from ..kernels import surfaces as ks
-from ..kernels import topology as kt
+from ...kernels import interval as ki
+from ...kernels import surfaces as ks
+from ...kernels import topology as kt
 from .meridians import BAND, BESIDE, REVOLVED, meridian_circle, meridian_nodes, meridian_segment, tangent_meridians
-from ..geometry.placement import bounding_ball, check_not_coincident, common_axis, ruled_along
-from .trace import EPS, ROUNDOFF_ULPS
-from ..geometry.traits import LENGTH, power_of_two, traits
+from ...geometry.placement import bounding_ball, check_not_coincident, common_axis, ruled_along
+from ..march.trace import EPS, ROUNDOFF_ULPS
+from ...geometry.traits import LENGTH, power_of_two, traits
 
 #: The fixed direction d (an angle in the plane of scaled parameters) whose extremes seed the closed loops;
 #: any direction works, a generic one keeps straight pieces of the level from lying along d's normal.
@@ -340,7 +340,7 @@ def topology(a, b, scale, tolerance):
 
 def search(a, b, scale, tolerance, tangent=None):
     """topology() in one configuration; tangent: (torus P, Q, u0) for a pair that touches along the meridian
-    u = u0 of the torus (spatialkin.tracing.meridians): P is searched less a band round it."""
+    u = u0 of the torus (spatialkin.tracing.search.meridians): P is searched less a band round it."""
     t0 = time.perf_counter()
     check_not_coincident(a, b, scale)
     p_user, q, mode, p, balls = search_roles(a, b, scale)

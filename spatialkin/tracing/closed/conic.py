@@ -1,5 +1,5 @@
 """A conic arc in closed form (a line, an ellipse, a branch of a hyperbola, a parabola), parametrised by arc length:
-the dense output of the plane-quadric and plane-plane intersections of spatialkin.tracing.closed.
+the dense output of the plane-quadric and plane-plane intersections of spatialkin.tracing.closed.forms.
 
 The conic is C(t) = centre + P f(t) + Q g(t), P and Q orthogonal, with (f, g) = (0, t) for a line, (cos t, sin t)
 for an ellipse, (cosh t, sinh t) for a hyperbola's branch and (t^2, t) for a parabola (Q a unit vector for the line
@@ -17,8 +17,8 @@ import math
 import numpy as np
 from scipy.special import cython_special, ellipeinc
 
-from .exact import EXACT_SAMPLES, ExactSolution, counting
-from ..geometry.traits import traits
+from ..curve.exact import EXACT_SAMPLES, ExactSolution, counting
+from ...geometry.traits import traits
 
 LINE, ELLIPSE, HYPERBOLA, PARABOLA = "line", "ellipse", "hyperbola", "parabola"
 #: Gauss-Legendre nodes per panel of a hyperbola's arc-length quadrature ...

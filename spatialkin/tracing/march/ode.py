@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import DenseOutput, OdeSolution, OdeSolver, solve_ivp
 
-from ..kernels import rk
+from ...kernels import rk
 
 #: Most engine steps one CompiledRK45 or CompiledDOP853 step takes (solve_ivp's per-step Python work is paid once
 #: per this many).
@@ -224,7 +224,7 @@ class CompiledRK45(OdeSolver):
         if extraneous:
             raise TypeError(f"CompiledRK45 got unexpected options {sorted(extraneous)}")
         if not isinstance(system, System):
-            raise TypeError("CompiledRK45 needs system=spatialkin.tracing.ode.System(...)")
+            raise TypeError("CompiledRK45 needs system=spatialkin.tracing.march.ode.System(...)")
         self._base_state(fun, t0, y0, t_bound, vectorized)
         if self.direction < 0:
             raise ValueError("CompiledRK45 integrates forward in t only (t_bound < t0)")

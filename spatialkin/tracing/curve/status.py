@@ -1,7 +1,7 @@
 """Every status a Curve or a TracingError carries, what it means, and the messages that go with them: one table.
 
 A status is a short code (a plain string, scipy's ``OdeResult.status`` style); the message is a sentence on where
-and why. The integration loop (spatialkin.tracing.ivp) ends each branch with one of the end statuses below and a
+and why. The integration loop (spatialkin.tracing.march.ivp) ends each branch with one of the end statuses below and a
 message naming the arc length and the point; everything else that writes a status or a message takes it from
 here.
 """
@@ -55,7 +55,7 @@ MESSAGES = {
     "no_start": (NO_START, "no intersection point found near start {point}: Newton on M1 = M2 did not converge"),
     "branch_failed": (FAILED, "the curve could not be traced past {point}: {message}"),
     "outside_trims": (NO_START, "the component through start {point} lies outside the trims of the surfaces"),
-    # the ends of a branch (spatialkin.tracing.ivp)
+    # the ends of a branch (spatialkin.tracing.march.ivp)
     "closed": (CLOSED, "closed on its start after s = {s:.12g}"),
     "closed_in_jump": (CLOSED, "closed on its start, within a jump, after s = {s:.12g}"),
     "edge": (BOUNDARY, "reached the edge {edge} of surface {surface} at s = {s:.6g}"),

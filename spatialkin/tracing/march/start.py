@@ -10,12 +10,12 @@ import math
 
 import numpy as np
 
-from ..kernels import restart as kr
-from ..kernels import surfaces as ks
+from ...kernels import restart as kr
+from ...kernels import surfaces as ks
 from .segments import NEWTON_MAX_ITER
 from .segments import newton_fixed as data_newton_fixed
-from .result import TracingError
-from ..geometry.traits import traits
+from ..curve.result import TracingError
+from ...geometry.traits import traits
 
 #: Samples of an auxiliary parameter line when looking for its crossings with the other surface.
 AUX_SAMPLES = 720
@@ -95,5 +95,5 @@ def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
 
 
 def newton_fixed(a, b, y, fixed, gap_tol):
-    """newton_fixed of spatialkin.tracing.segments for two Surface objects."""
+    """newton_fixed of spatialkin.tracing.march.segments for two Surface objects."""
     return data_newton_fixed(a.data, b.data, y, fixed, gap_tol)

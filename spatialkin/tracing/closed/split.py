@@ -5,7 +5,7 @@ at the nodes where the planes' common line meets it.
 Two cylinders of equal radii whose axes cross (the Steinmetz curves: two ellipses through two nodes, a pipe tee),
 and cylinders and cones that share an inscribed sphere (Monge), are such pairs. Their nodes are where the tracer
 must jump between branches (near-parallel normals, a hand-over to the fine DOP853 events), which makes tracing them
-slow; in closed form it is the plane–cylinder case twice. spatialkin.tracing.closed clips the conics
+slow; in closed form it is the plane–cylinder case twice. spatialkin.tracing.closed.forms clips the conics
 and makes the components; this module finds the planes and the nodes, and declines (None) everything else.
 
 Only a member whose two smallest eigenvalues are round-off (RANK_TOL) counts, and closed.split_conics then checks
@@ -25,7 +25,7 @@ import math
 import numpy as np
 import scipy.linalg
 
-from ..geometry.vectors import cross
+from ...geometry.vectors import cross
 
 #: A member of the pencil is a pair of planes when its two smallest eigenvalues (in magnitude) are at most this
 #: fraction of its largest: round-off of the matrices, in coordinates scaled by the scene (the splitting pairs of

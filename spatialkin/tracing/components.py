@@ -6,26 +6,26 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ..kernels import near as kn
-from .dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS
-from .exact import contact_point, exact_curve
-from .packed import packed, packed_grid
-from .result import Curve, TracingError, in_sk_order
-from .segments import NEWTON_MAX_ITER
-from .start import locate_on_curve, newton_fixed
-from .certificate import certificates
-from .clip import clip_curves
-from .graze import across_edges, rejoined
-from .closed import closed_form, closed_settings
+from .curve.dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS
+from .curve.exact import contact_point, exact_curve
+from .curve.packed import packed, packed_grid
+from .curve.result import Curve, TracingError, in_sk_order
+from .march.segments import NEWTON_MAX_ITER
+from .march.start import locate_on_curve, newton_fixed
+from .certify.certificate import certificates
+from .curve.clip import clip_curves
+from .march.graze import across_edges, rejoined
+from .closed.forms import closed_form, closed_settings
 from .._lib import stages
-from .status import BOUNDARY, CONTACT, FAILED, TANGENT
-from .rescue import LOST_RADIUS, crossing_starts
-from .topology import TopologyError, points_at, topology
+from .curve.status import BOUNDARY, CONTACT, FAILED, TANGENT
+from .search.rescue import LOST_RADIUS, crossing_starts
+from .search.topology import TopologyError, points_at, topology
 from ..geometry.traits import check_surface, traits
-from .trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
+from .march.trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
 SAME_COMPONENT = 1e-6
-#: Pairs that meet in conics are solved in closed form (spatialkin.tracing.closed); False forces the general
+#: Pairs that meet in conics are solved in closed form (spatialkin.tracing.closed.forms); False forces the general
 #: path (the tests compare the two).
 CLOSED_FORMS = True
 
@@ -43,7 +43,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     method, rtol, atol, max_length, singular_tol, pullback
         As in ``trace``.
     certify : bool
-        Attach ``curve.certificate`` (spatialkin.tracing.certificate.Certificate) to every curve: what the
+        Attach ``curve.certificate`` (spatialkin.tracing.certify.certificate.Certificate) to every curve: what the
         search proved, and a proven radius round every stored point (needs the ``certify`` extra,
         python-flint). Takes the general path for every pair.
 
@@ -52,7 +52,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     list of Curve
         Closed loops, open curves (ending exactly on a trim edge, status 'boundary', or at a singular point),
         single contact points (status 'contact', length 0) and circles or segments along which the surfaces
-        touch (status 'tangent', in closed form: spatialkin.tracing.exact); empty when the surfaces do not meet.
+        touch (status 'tangent', in closed form: spatialkin.tracing.curve.exact); empty when the surfaces do not meet.
         Curves come longest first; the result does not depend on the argument order, on translation or on
         scale.
 
@@ -86,8 +86,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     64 ulps of the coordinates' magnitude.
 
     **How components are found.** Pairs that meet in conics (plane-plane, plane-sphere, plane-cylinder,
-    plane-cone, sphere-sphere) are solved in closed form (spatialkin.tracing.closed; its degenerate cases, and
-    certify=True, take the general path). Otherwise the topology stage (spatialkin.tracing.topology) recognises
+    plane-cone, sphere-sphere) are solved in closed form (spatialkin.tracing.closed.forms; its degenerate cases, and
+    certify=True, take the general path). Otherwise the topology stage (spatialkin.tracing.search.topology) recognises
     special placements first: surfaces of revolution about one axis meet in parallels, a cylinder and a surface
     invariant along its axis in lines along it, and circles or segments of tangency come in closed form. In
     general it reads the intersection as the level g = F_Q(P(u, v)) = 0 on one surface's parameter domain and

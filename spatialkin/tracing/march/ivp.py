@@ -20,16 +20,16 @@ import math
 
 import numpy as np
 
-from ..kernels import branch_ode as kb
-from ..kernels import curve as kc
-from ..kernels import surfaces as ks
+from ...kernels import branch_ode as kb
+from ...kernels import curve as kc
+from ...kernels import surfaces as ks
 from .ode import COMPILED_SOLVERS, BudgetExceeded, Event, System, Watch, integrate, step_points
 from .segments import (EDGE_NAMES, EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment,
                        area_flag, finite_bounds, newton_fixed, project_state, segment_start)
-from .status import outcome
+from ..curve.status import outcome
 from .singular import APEX_GUARD, closes_within_jump, jump_across, jump_past_edge, take_jump
-from ..geometry.traits import traits
-from .._lib import stages
+from ...geometry.traits import traits
+from ..._lib import stages
 
 # --- named limits -------------------------------------------------------------------------------------
 #: The closure plane is put this far (relative to the curve scale) behind the start, so that the start
@@ -59,7 +59,7 @@ WATCH_BELOW = 1e-2
 SLOPE_FLOOR = 1e-6
 #: The minimum event is armed only this far (relative to the scale) into a segment.
 MINIMUM_ARM = 1e-9
-#: The method the compiled ones (spatialkin.tracing.ode.CompiledDOP853, CompiledRK45) hand hard cases to, with the
+#: The method the compiled ones (spatialkin.tracing.march.ode.CompiledDOP853, CompiledRK45) hand hard cases to, with the
 #: fine events (singular, apex, minimum, edges as crossings): the compiled DOP853, solve_ivp's DOP853 steps and event
 #: location in compiled code (the same steps as solve_ivp's own DOP853, without Python per step).
 FALLBACK_METHOD = "compiled"

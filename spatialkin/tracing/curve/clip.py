@@ -1,6 +1,6 @@
 """Components cut by trims after tracing: the trims that are not ranges of a length (spatialkin.geometry.surfaces.trims:
 angular ranges, a plane's circle; the tracer follows each component on the surfaces as the other trims leave
-them), and, for a component traced again past a grazed edge (spatialkin.tracing.graze), the length trims too. This
+them), and, for a component traced again past a grazed edge (spatialkin.tracing.march.graze), the length trims too. This
 module keeps the arcs that lie inside both faces, and the points where a curve touches an edge from outside.
 
 Every limit is 1-Lipschitz in the point, so along a curve parametrised by arc length its value f(s) changes by
@@ -24,12 +24,12 @@ function's range over an interval).
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from ..geometry.surfaces.trims import inside_region, limits, region_values
+from ...geometry.surfaces.trims import inside_region, limits, region_values
 from .dense import CurveSolution
 from .exact import contact_point
 from .result import CurveResult
 from .status import BOUNDARY, CONTACT, TANGENT, open_outcome
-from ..geometry.traits import traits
+from ...geometry.traits import traits
 
 #: Intervals that may hide a crossing are halved down to this length (relative to the scale).
 FINEST = 1e-9

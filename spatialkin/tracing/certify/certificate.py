@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from .status import TANGENT
+from ..curve.status import TANGENT
 
 #: Python extra that provides the ball arithmetic of the certified path.
 EXTRA = "spatialkin[certify]"
@@ -14,7 +14,7 @@ class Certificate:
 
     Proven (with outward-rounded interval arithmetic, so round-off cannot break it):
 
-    - **The search discarded no component.** The topology stage (spatialkin.tracing.topology) searched the whole
+    - **The search discarded no component.** The topology stage (spatialkin.tracing.search.topology) searched the whole
       parameter domain of one surface: every box it discarded provably holds no root of the conditions that
       every component must meet somewhere (a zero of g on an edge or a seam, on a ring round an apex, or a point
       of the level whose tangent is normal to a fixed direction); the roots it kept are isolated and unique in
@@ -43,7 +43,7 @@ class Certificate:
     radii : array_like, shape (N,)
         Proven half-width of the box round each stored point of the curve (length unit; inf where not proven).
     topology : Topology
-        The search of sk.intersect (spatialkin.tracing.topology).
+        The search of sk.intersect (spatialkin.tracing.search.topology).
     components : int
         How many curves sk.intersect returned.
 

@@ -5,7 +5,7 @@ surface, and C'' is normal to C': three linear equations for the curvature vecto
 """
 import numpy as np
 
-from ..geometry.traits import traits
+from ...geometry.traits import traits
 
 
 def implicit_jets(surface, points):

@@ -2,7 +2,7 @@
 sphere-sphere (a circle), plane-cylinder (an ellipse, or two lines along the axis), plane-cone (an ellipse, a
 parabola or a hyperbola; through the apex, two rulings or the apex alone) and a trimmed plane normal to a torus's
 axis (two parallels), each clipped by the trims; and the pairs of quadrics whose intersection splits into two
-ellipses crossing at nodes (spatialkin.tracing.split: two equal cylinders with crossing axes, the Steinmetz curves).
+ellipses crossing at nodes (spatialkin.tracing.closed.split: two equal cylinders with crossing axes, the Steinmetz curves).
 
 A plane cuts a quadric q^T diag(1, 1, mu) q = rho (local coordinates: a sphere, a cylinder, a double cone) in
 the conic x^2 + A y^2 + 2 B y + C = 0 of the plane's coordinates along e1 = n x z (normal to the axis) and
@@ -10,7 +10,7 @@ e2 = n x e1; its sign of A tells the shape. Every trim (a plane's u or v, a cyli
 function of the point, so its crossings with the conic are roots in closed form (R cos(t - phi) = c, a quadratic in
 e^t, in t, or a linear equation). The arcs between crossings that lie inside every trim are the components,
 oriented as the tracer runs them (along N_a x N_b), sampled as exact points with exact arc lengths
-(spatialkin.tracing.conic).
+(spatialkin.tracing.closed.conic).
 
 An ellipse that touches a trim edge from inside to round-off (a circle inscribed in a plane's rectangle, a half
 circle ending in the corners of the edges it touches) keeps the trim's side: the touch is no crossing, and
@@ -26,17 +26,17 @@ import math
 
 import numpy as np
 
-from ..kernels import surfaces as ks
+from ...kernels import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, basis
-from .exact import SampledResult, contact_point, exact_curve
-from ..geometry.placement import SAME
-from .result import in_sk_order
-from .segments import EDGE_NAMES
+from ..curve.exact import SampledResult, contact_point, exact_curve
+from ...geometry.placement import SAME
+from ..curve.result import in_sk_order
+from ..march.segments import EDGE_NAMES
 from .split import may_split, split_planes
-from .status import BOUNDARY, CLOSED, open_outcome, outcome
-from .topology import Topology
-from .trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
-from ..geometry.traits import traits
+from ..curve.status import BOUNDARY, CLOSED, open_outcome, outcome
+from ..search.topology import Topology
+from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
+from ...geometry.traits import traits
 
 #: A curve within this many times the tolerance of touching the other surface (tangency, a plane through an apex)
 #: or of a vertex's touch of a trim level is left to the general path.
@@ -78,7 +78,7 @@ Scene = collections.namedtuple("Scene", "scale tolerance singular_tol max_length
 
 def closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback):
     """The Scene of sk.intersect's options (named as there), checked as make_settings checks them (ValueError
-    naming a bad one), its lengths those make_settings gives (spatialkin.tracing.trace.scene_lengths)."""
+    naming a bad one), its lengths those make_settings gives (spatialkin.tracing.march.trace.scene_lengths)."""
     tol, _, _, max_length, singular_tol, _ = check_options(tol, method, rtol, atol, max_length, singular_tol,
                                                            pullback)
     origins = a.frame.origin.tolist() + b.frame.origin.tolist()
@@ -313,7 +313,7 @@ def combine(rows, f, g):
     return [c[0] + f * p[0] + g * q[0], c[1] + f * p[1] + g * q[1], c[2] + f * p[2] + g * q[2]]
 
 
-# (f, g) of spatialkin.tracing.conic at one float t, or their derivatives, are basis(shape, t, order, math): its
+# (f, g) of spatialkin.tracing.closed.conic at one float t, or their derivatives, are basis(shape, t, order, math): its
 # arguments passed by position (a functools.partial with lib=math as a keyword costs three times the call).
 
 
@@ -570,7 +570,7 @@ def linear_trims(surfaces):
 
 
 def crossings(shape, beta, gamma, level, graze, touch):
-    """The t where beta f(t) + gamma g(t) = level (see spatialkin.tracing.conic for f, g); TOUCH where an ellipse's
+    """The t where beta f(t) + gamma g(t) = level (see spatialkin.tracing.closed.conic for f, g); TOUCH where an ellipse's
     extremum meets the level within touch (the round-off of the coordinates: a double root, no crossing); None
     where a hyperbola's or parabola's vertex touches the level within graze, or a line runs along it."""
     if shape == ELLIPSE:

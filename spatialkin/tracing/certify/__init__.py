@@ -1,0 +1,1 @@
+"""What sk.intersect(..., certify=True) proves: the certificate and the arb-ball proofs of the stored points."""

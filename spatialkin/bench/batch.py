@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..mechanisms.reference import looper_pair
+from ..mechanisms.looper.reference import looper_pair
 from ..geometry.surfaces import Sphere
 from ..tracing.batch import intersect_many
 from ..tracing.components import intersect

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..geometry.frame import Frame, rotation_about
-from ..mechanisms.reference import looper_pair
+from ..mechanisms.looper.reference import looper_pair
 from ..geometry.surfaces import Sphere, Torus
 
 #: Relative distance of the near-tangent case's sphere radius from a critical radius (two loops almost touch).

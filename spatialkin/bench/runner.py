@@ -45,7 +45,7 @@ STARTUP_RUNS = 3
 #: surfaces (length units) and that finds every component of every case.
 COMPARE_ERROR = 1e-10
 #: The first result a user sees: import and intersect the looper's pair, in a fresh interpreter.
-STARTUP_SCRIPT = ("import spatialkin as sk; from spatialkin.mechanisms.reference import looper_pair; "
+STARTUP_SCRIPT = ("import spatialkin as sk; from spatialkin.mechanisms.looper.reference import looper_pair; "
                   "c = sk.intersect(*looper_pair()); assert len(c) == 2")
 
 

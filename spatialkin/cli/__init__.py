@@ -42,7 +42,7 @@ def positive_float(text):
 def demo(args):
     t0 = time.perf_counter()
     import spatialkin as sk
-    from ..mechanisms import reference as ref
+    from ..mechanisms.looper import reference as ref
     curves = sk.intersect(*ref.looper_pair(), tol=args.tol)
     total = time.perf_counter() - t0
     centre = ", ".join(f"{x:g}" for x in ref.ROCKER_CENTRE)

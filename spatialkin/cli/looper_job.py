@@ -15,11 +15,11 @@ import tomllib
 import numpy as np
 
 from ..plots import looper as figs
-from ..mechanisms import reference as ref
+from ..mechanisms.looper import reference as ref
 from ..geometry.frame import Frame, rotation_about, rotation_to_z
 from .._lib.files import atomic_path
 from ..mechanisms import LooperDrive
-from ..mechanisms.looper_analysis import CLEARANCE
+from ..mechanisms.looper.analysis import CLEARANCE
 from .._lib.units import METRES_PER_UNIT, STANDARD_GRAVITY
 from .._lib.validation import check_choice, check_positive, check_real
 

@@ -141,7 +141,7 @@ class Closure:
     def transmission_angle(self, u1, ball):
         """Transmission angle (N,) as a jet (valid to one order fewer in u1 than ball): the angle between C's
         velocity and the normal of the plane of the coupler line and the pin axis (see
-        spatialkin.mechanisms.looper_analysis)."""
+        spatialkin.mechanisms.looper.analysis)."""
         p = self.p
         pin = matvec(self.crank_rotation,
                      Jet.stack([u1.cos() * p["crank_radius"], u1.sin() * p["crank_radius"], 0.0 * u1], axis=-1))

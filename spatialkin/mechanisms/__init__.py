@@ -8,7 +8,7 @@ References
 light industry" (in Ukrainian; [Looper]).
 """
 from .common import PointMotion
-from .looper import LooperDrive, LooperMotion
+from .looper.drive import LooperDrive, LooperMotion
 from .rssr import RSSR, RSSRMotion
 
 __all__ = ["LooperDrive", "LooperMotion", "PointMotion", "RSSR", "RSSRMotion"]

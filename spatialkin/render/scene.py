@@ -261,7 +261,7 @@ class Scene:
 
         Parameters
         ----------
-        motion : spatialkin.mechanisms.looper.LooperMotion
+        motion : spatialkin.mechanisms.looper.drive.LooperMotion
         index : int
             Which of ``motion.crank_angle`` to draw.
 

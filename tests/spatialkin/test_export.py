@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
-from spatialkin.mechanisms import reference
+from spatialkin.mechanisms.looper import reference
 from spatialkin.export import dense_polyline, export_curves, write_csv, write_dxf, write_step, write_vtp
 from spatialkin.mechanisms import LooperDrive
 

@@ -9,7 +9,7 @@ import pytest
 from oracles import looper_closed_form
 
 import spatialkin as sk
-from spatialkin.mechanisms import reference
+from spatialkin.mechanisms.looper import reference
 from spatialkin.cli import main
 from spatialkin.plots.looper import angle_span
 from spatialkin.cli.looper_job import DEFAULT_SPEED_RPM, KEYS, ROTATION_TOL, build, load_config

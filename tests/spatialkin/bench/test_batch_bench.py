@@ -13,7 +13,7 @@ from spatialkin._lib import stages
 
 
 def test_sweep_is_the_looper_pair_with_radii_spread():
-    from spatialkin.mechanisms.reference import looper_pair
+    from spatialkin.mechanisms.looper.reference import looper_pair
     torus, sphere = looper_pair()
     pairs = batch.looper_configs(5)
     radii = [s.radius for _, s in pairs]

@@ -12,7 +12,7 @@ import pytest
 from oracles import looper_closed_form
 
 import spatialkin as sk
-from spatialkin.mechanisms import reference
+from spatialkin.mechanisms.looper import reference
 from spatialkin.mechanisms import LooperDrive
 
 
@@ -49,7 +49,7 @@ def test_full_turn_matches_closed_form(drive, branch):
 
 
 def test_reference_drive_is_built_on_the_reference_pair(drive):
-    """Identity oracle: LooperDrive.reference() places exactly the surfaces of spatialkin.mechanisms.reference (the one
+    """Identity oracle: LooperDrive.reference() places exactly the surfaces of spatialkin.mechanisms.looper.reference (the one
     definition of the reference geometry), and its rocker frame turns local z onto +y."""
     torus, sphere = reference.looper_pair()
     np.testing.assert_array_equal(drive.torus.data, torus.data)
@@ -219,7 +219,7 @@ def test_branch_over_two_components_uses_every_component(blocked_drive):
 
 def test_coverage_of_crank_angles():
     """covers(): every angle within the gap of a key, circularly (the first key follows the last)."""
-    from spatialkin.mechanisms.looper import covers
+    from spatialkin.mechanisms.looper.drive import covers
     keys = np.array([0.01, 1.0, 1.02, 2 * np.pi - 0.01])
     assert covers(keys, np.array([0.0, 2 * np.pi - 0.005, 1.01]), 0.02)
     assert not covers(keys, np.array([0.5]), 0.02)

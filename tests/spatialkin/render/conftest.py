@@ -4,7 +4,7 @@ import pytest
 import pyvista
 
 import spatialkin as sk
-from spatialkin.mechanisms import reference
+from spatialkin.mechanisms.looper import reference
 from spatialkin.mechanisms import LooperDrive
 
 pyvista.OFF_SCREEN = True

@@ -32,7 +32,7 @@ def test_intersect_many_equals_intersect_pair_by_pair():
 
 
 def test_workers_give_the_same_curves_in_order():
-    from spatialkin.mechanisms.reference import looper_pair
+    from spatialkin.mechanisms.looper.reference import looper_pair
     torus, sphere = looper_pair()
     radii = sphere.radius * np.linspace(0.98, 1.02, 2 * batch.MIN_CHUNKS_PER_WORKER * batch.CHUNK)
     pairs = [(torus, sk.Sphere(r, sphere.frame)) for r in radii]
@@ -91,7 +91,7 @@ def test_a_failing_pair_is_named_or_returned_in_place():
 
 def looper_sweep(count):
     """count looper pairs (sphere radius within 2%)."""
-    from spatialkin.mechanisms.reference import looper_pair
+    from spatialkin.mechanisms.looper.reference import looper_pair
     torus, sphere = looper_pair()
     return [(torus, sk.Sphere(r, sphere.frame)) for r in sphere.radius * np.linspace(0.98, 1.02, count)]
 
@@ -149,7 +149,7 @@ def test_batch_error_survives_pickling():
 
 SCRIPT = """
 import spatialkin as sk
-from spatialkin.mechanisms.reference import looper_pair
+from spatialkin.mechanisms.looper.reference import looper_pair
 torus, sphere = looper_pair()
 pairs = [(torus, sk.Sphere(sphere.radius * (1 + 0.01 * k / 32), sphere.frame)) for k in range(32)]
 {guard}    print(len(sk.intersect_many(pairs, workers=2)), "results")

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
-from spatialkin.mechanisms import reference
+from spatialkin.mechanisms.looper import reference
 from spatialkin.tracing.curve.bspline import SplineToleranceError, fit, hermite_bspline
 from spatialkin.tracing.curve.curvature import curvature_vectors, implicit_jets
 

@@ -8,7 +8,7 @@ from oracles import (random_rotation, sphere_distance, torus_distance, torus_sph
                      torus_sphere_components, torus_sphere_critical_radii)
 
 import spatialkin as sk
-from spatialkin.mechanisms import reference
+from spatialkin.mechanisms.looper import reference
 
 TOL = 1e-10
 

@@ -5,7 +5,7 @@ import time
 import numpy as np
 import pytest
 
-from spatialkin.mechanisms.reference import looper_pair
+from spatialkin.mechanisms.looper.reference import looper_pair
 from spatialkin._lib import stages
 from spatialkin.tracing.components import intersect
 

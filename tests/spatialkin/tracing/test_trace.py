@@ -8,7 +8,7 @@ import pytest
 from scipy.integrate import quad
 
 import spatialkin as sk
-from spatialkin.mechanisms import reference
+from spatialkin.mechanisms.looper import reference
 
 TOL = 1e-10
 

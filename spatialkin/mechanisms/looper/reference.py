@@ -13,8 +13,8 @@ paper gives no dimensions.
 """
 import math
 
-from ..geometry.frame import Frame, rotation_about
-from ..geometry.surfaces import Sphere, Torus
+from ...geometry.frame import Frame, rotation_about
+from ...geometry.surfaces import Sphere, Torus
 
 __all__ = ["CRANK_RADIUS", "COUPLER_LENGTH", "ROCKER_LENGTH", "ROCKER_CENTRE", "ROCKER_TURN", "LOOPER_TIP",
            "rocker_rotation", "rocker_frame", "looper_pair"]

@@ -11,7 +11,7 @@ References
 ----------
 "Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
 light industry" (in Ukrainian; [Looper]): the scheme, the two surfaces, the start where the sphere's equator meets
-the torus. The reference geometry (spatialkin.mechanisms.reference) is assumed: the paper gives no dimensions.
+the torus. The reference geometry (spatialkin.mechanisms.looper.reference) is assumed: the paper gives no dimensions.
 """
 import math
 import time
@@ -19,20 +19,20 @@ import time
 import numpy as np
 from scipy.optimize import brentq
 
-from ..geometry.frame import Frame
-from ..continuation import solve_at
-from ..kernels import curve as kc
-from ..motion.kinematics import serial_chain
+from ...geometry.frame import Frame
+from ...continuation import solve_at
+from ...kernels import curve as kc
+from ...motion.kinematics import serial_chain
 from . import reference as ref
-from ..geometry.surfaces import Sphere, Torus
-from ..tracing.march.start import auxiliary_starts
-from ..tracing.curve.bspline import fit as fit_spline
-from ..tracing.components import intersect
-from ..tracing.curve.result import TracingError
-from ..tracing.march.trace import trace
-from ..motion.trajectory import Trajectory, time_map, to_time
-from .._lib.validation import check_choice, check_positive, check_vector
-from .common import PointMotion, angle_range_text, check_branch, check_drive
+from ...geometry.surfaces import Sphere, Torus
+from ...tracing.march.start import auxiliary_starts
+from ...tracing.curve.bspline import fit as fit_spline
+from ...tracing.components import intersect
+from ...tracing.curve.result import TracingError
+from ...tracing.march.trace import trace
+from ...motion.trajectory import Trajectory, time_map, to_time
+from ..._lib.validation import check_choice, check_positive, check_vector
+from ..common import PointMotion, angle_range_text, check_branch, check_drive
 
 #: Crank angles sampled when checking where the mechanism can be assembled.
 ASSEMBLY_SAMPLES = 3600
@@ -169,7 +169,7 @@ class LooperDrive:
 
     @classmethod
     def reference(cls):
-        """The reference looper drive (lengths in mm), defined in spatialkin.mechanisms.reference.
+        """The reference looper drive (lengths in mm), defined in spatialkin.mechanisms.looper.reference.
 
         R1 = 8 (crank radius), r1 = 50 (coupler length), R2 = 30 (rocker length); the crank frame is the global
         axes, the rocker centre P2 = (6, 0, 75) with the rocker shaft along +y; the looper tip 40 mm along the
@@ -317,10 +317,10 @@ class LooperDrive:
         return y[np.argsort(np.mod(y[:, 0], 2 * np.pi))]
 
     def analyse(self, branch=0, samples=3601, motion=None):
-        """What a designer needs to know: see spatialkin.mechanisms.looper_analysis.LooperAnalysis. The
+        """What a designer needs to know: see spatialkin.mechanisms.looper.analysis.LooperAnalysis. The
         transmission angle is given over `samples` crank angles, or over those of `motion` (a LooperMotion of
         this drive and branch, reused)."""
-        from .looper_analysis import analyse
+        from .analysis import analyse
         return analyse(self, branch, samples, motion)
 
     def solve(self, crank_angles, omega=1.0, branch=0):

@@ -5,8 +5,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..kernels import curve as kc
-from ..tracing.curve.status import SINGULAR
+from ...kernels import curve as kc
+from ...tracing.curve.status import SINGULAR
 
 #: Samples per traced loop when looking for dead positions.
 LOOP_SAMPLES = 4096

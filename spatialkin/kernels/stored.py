@@ -2,9 +2,10 @@
 
 ``corrected_spans`` does in one compiled call, span by span: each span's states corrected by Newton in that span's
 charts (spatialkin.kernels.curve.corrected_many), the user's parameters of a re-charted surface read back from the
-corrected points (spatialkin.kernels.surfaces.inverse, as spatialkin.tracing.curve.result.user_params), and the whole turns
-removed from a re-charted surface's u (unwrap_turns, which the closed forms call too): the same kernels and the same
-operations in the same order as a span-by-span loop over them in Python, so that the results agree with it to the bit.
+corrected points (spatialkin.kernels.surfaces.inverse, as spatialkin.tracing.curve.result.user_params), and the whole
+turns removed from a re-charted surface's u (unwrap_turns, which the closed forms call too): the same kernels and the
+same operations in the same order as a span-by-span loop over them in Python, so that the results agree with it to the
+bit.
 
 References
 ----------

@@ -15,8 +15,8 @@ BLOCKED_ROCKER_CENTRE = (40.0, 0.0, 60.0)
 
 @pytest.fixture
 def blocked_drive():
-    """The reference links (spatialkin.mechanisms.looper.reference) with the rocker centre at BLOCKED_ROCKER_CENTRE and the
-    rocker frame unturned: a looper drive whose crank cannot turn fully; a fresh one per test."""
+    """The reference links (spatialkin.mechanisms.looper.reference) with the rocker centre at BLOCKED_ROCKER_CENTRE and
+    the rocker frame unturned: a looper drive whose crank cannot turn fully; a fresh one per test."""
     import spatialkin as sk
     from spatialkin.mechanisms.looper import reference
     from spatialkin.mechanisms import LooperDrive

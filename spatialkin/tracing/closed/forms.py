@@ -2,7 +2,8 @@
 sphere-sphere (a circle), plane-cylinder (an ellipse, or two lines along the axis), plane-cone (an ellipse, a
 parabola or a hyperbola; through the apex, two rulings or the apex alone) and a trimmed plane normal to a torus's
 axis (two parallels), each clipped by the trims; and the pairs of quadrics whose intersection splits into two
-ellipses crossing at nodes (spatialkin.tracing.closed.split: two equal cylinders with crossing axes, the Steinmetz curves).
+ellipses crossing at nodes (spatialkin.tracing.closed.split: two equal cylinders with crossing axes, the Steinmetz
+curves).
 
 A plane cuts a quadric q^T diag(1, 1, mu) q = rho (local coordinates: a sphere, a cylinder, a double cone) in
 the conic x^2 + A y^2 + 2 B y + C = 0 of the plane's coordinates along e1 = n x z (normal to the axis) and
@@ -570,8 +571,8 @@ def linear_trims(surfaces):
 
 
 def crossings(shape, beta, gamma, level, graze, touch):
-    """The t where beta f(t) + gamma g(t) = level (see spatialkin.tracing.closed.conic for f, g); TOUCH where an ellipse's
-    extremum meets the level within touch (the round-off of the coordinates: a double root, no crossing); None
+    """The t where beta f(t) + gamma g(t) = level (see spatialkin.tracing.closed.conic for f, g); TOUCH where an
+    ellipse's extremum meets the level within touch (the round-off of the coordinates: a double root, no crossing); None
     where a hyperbola's or parabola's vertex touches the level within graze, or a line runs along it."""
     if shape == ELLIPSE:
         amp = math.hypot(beta, gamma)

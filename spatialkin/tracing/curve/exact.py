@@ -1,8 +1,8 @@
 """Components known in closed form: a circle or a segment along which the two surfaces touch (status 'tangent'; the
 tracer cannot follow them, the normals being parallel all along), a circle about the common axis of two surfaces of
 revolution (status 'closed'), a single point where they touch (status 'contact'). Each is a CurveResult whose dense
-output evaluates the closed form exactly; a circle's or a segment's (and a conic's, spatialkin.tracing.closed.conic) is a
-SampledResult, whose stored points and parameters are made on first access (from the dense output, the same
+output evaluates the closed form exactly; a circle's or a segment's (and a conic's, spatialkin.tracing.closed.conic) is
+a SampledResult, whose stored points and parameters are made on first access (from the dense output, the same
 arrays whenever they are made).
 """
 import dataclasses

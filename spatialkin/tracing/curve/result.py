@@ -418,7 +418,8 @@ FIELD_DOCS = {
     diagnostic of drift.""",
     "nfev": """Right-hand-side evaluations spent by solve_ivp on this curve (int; 0 for a closed form).""",
     "wall_time": """Seconds spent tracing this curve (float).""",
-    "topology": """The search of sk.intersect that found the component (spatialkin.tracing.search.topology), or None.""",
+    "topology": """The search of sk.intersect that found the component (spatialkin.tracing.search.topology), or
+    None.""",
     "certificate": """What sk.intersect(..., certify=True) proved about this curve, or None without certify.
 
     A spatialkin.tracing.certify.certificate.Certificate: what the interval search proved (no box it discarded holds a
@@ -437,7 +438,7 @@ for _name in RECORD_FIELDS:
                                    doc=FIELD_DOCS.get(_name, f"CurveResult.{_name}")))
 
 
-# --- states and parameters: helpers of the dense output (spatialkin.tracing.curve.dense) and of sk.trace ----------------
+# --- states and parameters: helpers of the dense output (spatialkin.tracing.curve.dense) and of sk.trace ---------
 def set_states(y, points, a, b):
     """Rows of the states y (M, 4) moved to the foot parameters of points (M, 3) on the charts a, b (angles kept
     within pi of the old ones); returns y."""

@@ -1,13 +1,13 @@
 """Starts for a component whose every start from the topology stage was lost: the parameter lines of P through the
 middles of its lost starts.
 
-The interior search seeds a closed loop at its extremes in a fixed direction d (spatialkin.tracing.search.topology). On a thin
-loop along a near-tangency (a sphere 1e-8 of its radius off a cylinder's axis: the loop runs half round the cylinder,
-2e-4 high) those extremes are the loop's two ends, where the surfaces' normals are within about 1e-8 of parallel: Newton
-cannot locate the curve there, and every start of the loop is lost. Its middle is well conditioned. Both arcs of a loop
-run from one end to the other, so each crosses the parameter line u = (u_A + u_B) / 2 of P, and v = (v_A + v_B) / 2,
-between two ends A and B (the intermediate value theorem; round a periodic u the arcs may run the other way, so that
-line + pi too): the topology stage's rigorous line search finds those crossings, and they start the loop.
+The interior search seeds a closed loop at its extremes in a fixed direction d (spatialkin.tracing.search.topology). On
+a thin loop along a near-tangency (a sphere 1e-8 of its radius off a cylinder's axis: the loop runs half round the
+cylinder, 2e-4 high) those extremes are the loop's two ends, where the surfaces' normals are within about 1e-8 of
+parallel: Newton cannot locate the curve there, and every start of the loop is lost. Its middle is well conditioned.
+Both arcs of a loop run from one end to the other, so each crosses the parameter line u = (u_A + u_B) / 2 of P, and v =
+(v_A + v_B) / 2, between two ends A and B (the intermediate value theorem; round a periodic u the arcs may run the other
+way, so that line + pi too): the topology stage's rigorous line search finds those crossings, and they start the loop.
 
 References
 ----------

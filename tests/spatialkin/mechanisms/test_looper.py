@@ -49,8 +49,8 @@ def test_full_turn_matches_closed_form(drive, branch):
 
 
 def test_reference_drive_is_built_on_the_reference_pair(drive):
-    """Identity oracle: LooperDrive.reference() places exactly the surfaces of spatialkin.mechanisms.looper.reference (the one
-    definition of the reference geometry), and its rocker frame turns local z onto +y."""
+    """Identity oracle: LooperDrive.reference() places exactly the surfaces of spatialkin.mechanisms.looper.reference
+    (the one definition of the reference geometry), and its rocker frame turns local z onto +y."""
     torus, sphere = reference.looper_pair()
     np.testing.assert_array_equal(drive.torus.data, torus.data)
     np.testing.assert_array_equal(drive.sphere.data, sphere.data)

@@ -1,5 +1,5 @@
-"""Closed forms of sk.intersect (spatialkin.tracing.closed.forms) against independent oracles: the general traced path of
-the library on random placements of each pair kind (both argument orders, trimmed or not), scipy's quad for the
+"""Closed forms of sk.intersect (spatialkin.tracing.closed.forms) against independent oracles: the general traced path
+of the library on random placements of each pair kind (both argument orders, trimmed or not), scipy's quad for the
 arc length, the surfaces' exact distance functions for the points; degenerate placements must be declined."""
 import math
 

@@ -1,5 +1,5 @@
-"""De-duplication of starts: the compiled near_curve (spatialkin.kernels.near on spatialkin.tracing.curve.packed) against
-a plain Python one on the curve's dense output (the oracle), and its dense output against scipy's."""
+"""De-duplication of starts: the compiled near_curve (spatialkin.kernels.near on spatialkin.tracing.curve.packed)
+against a plain Python one on the curve's dense output (the oracle), and its dense output against scipy's."""
 from types import SimpleNamespace
 
 import numpy as np

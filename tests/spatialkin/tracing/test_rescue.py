@@ -1,6 +1,6 @@
-"""Starts for a component whose every start was lost (spatialkin.tracing.search.rescue): a thin loop beside a near-tangency,
-seeded only at its ill-conditioned ends. Oracles: the loop's closed form (a sphere off a cylinder's axis), the
-lines through the middles by hand."""
+"""Starts for a component whose every start was lost (spatialkin.tracing.search.rescue): a thin loop beside a
+near-tangency, seeded only at its ill-conditioned ends. Oracles: the loop's closed form (a sphere off a cylinder's
+axis), the lines through the middles by hand."""
 import math
 
 import numpy as np

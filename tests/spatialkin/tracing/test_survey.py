@@ -1,8 +1,8 @@
 """The consistency survey of near-degenerate pairs (tests/spatialkin/survey_degenerate.py; all 37 families: run it as a
 script) on the families of trims grazed, corners, near-tangent circles, split pairs and a cone's apex beside a sphere
 where a silent miss is most likely: in 3 placements and both argument orders, at offsets 1e-9 to 1e-3 of either sign,
-every answer (statuses and lengths to 4 digits) the same. Oracles: the intersection's invariance under rigid motion and argument order, and for the
-trim families the statuses their geometry fixes on each side of the edge."""
+every answer (statuses and lengths to 4 digits) the same. Oracles: the intersection's invariance under rigid motion and
+argument order, and for the trim families the statuses their geometry fixes on each side of the edge."""
 import numpy as np
 import survey_degenerate as sd
 

@@ -1,7 +1,7 @@
 """A curve that grazes out of a trim and back within one solver step ends at the edge (the compiled method probes
 the bounds inside each step, spatialkin.kernels.rk.PROBES), checked on the general path against the closed form
-(spatialkin.tracing.closed.forms) and a dense sampling of the true circle; and the step reach that decides where to probe
-bounds the dense output."""
+(spatialkin.tracing.closed.forms) and a dense sampling of the true circle; and the step reach that decides where to
+probe bounds the dense output."""
 import math
 
 import numpy as np

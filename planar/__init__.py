@@ -18,10 +18,15 @@ member using Frenet trihedron", 2017.
 S. O. Koshel, A. V. Koshel, "Double-crank mechanism kinematic study of warp knitting machine", Visnyk KNUTD
 (Bulletin of the Kyiv National University of Technologies and Design), 2014, no. 2 (in Ukrainian).
 """
+import sys
+
 from . import frenet
 from . import linkage
 from .frenet import CrankRocker, CrankSlider, DrivenLink, Law, LawFromFunctions, LawFromGamma
 from .linkage import Crank, Link, Linkage, LinkageMotion, LockError, examples
+
+# ``import planar.examples`` (as the tutorials spell it) is the module planar.linkage.examples itself
+sys.modules[__name__ + ".examples"] = examples
 
 __all__ = ["Law", "CrankSlider", "CrankRocker", "LawFromFunctions", "LawFromGamma", "DrivenLink", "Crank", "Link", "Linkage",
            "LinkageMotion", "LockError", "examples", "frenet", "linkage"]

@@ -277,3 +277,13 @@ def test_each_angle_is_solved_alone(mech, sol):
         assert np.max(np.abs(alone.acceleration(j) - sol.acceleration(j)[pick])) < 1e-13 * scale["a"]
     shuffled = mech.solve(PHI[::-1])
     assert np.max(np.abs(shuffled.states[::-1] - sol.states)) < 1e-13
+
+
+def test_examples_import_as_the_tutorials_spell_it():
+    """``import planar.examples`` and ``from planar.examples import fnf_sixbar`` reach the one examples module."""
+    import importlib
+    import planar
+    examples = importlib.import_module("planar.examples")
+    assert examples is planar.examples is planar.linkage.examples
+    from planar.examples import fnf_sixbar
+    assert fnf_sixbar is planar.linkage.examples.fnf_sixbar

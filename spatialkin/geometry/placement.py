@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from .traits import AXIS, NORMAL, POINT, SCALING, TRANSLATION, traits
+from .trims import region_values
 
 #: Two positions closer than this (relative to the scene scale), or two directions closer than this (radians),
 #: are the same: the special configurations are recognised to round-off, not near it.
@@ -131,20 +132,11 @@ def regions_overlap(a, b):
     (u0, u1), (v0, v1) = (np.clip(r, -reach, reach) for r in traits(a).natural_domain(a))
     u, v = np.meshgrid(np.linspace(u0, u1, REGION_SAMPLES)[1:-1], np.linspace(v0, v1, REGION_SAMPLES)[1:-1])
     points = a.point(u.ravel(), v.ravel())
-    inside = strictly_inside(a, points) & strictly_inside(b, points)
+    inside = np.all(region_values(a, points) > 0.0, axis=1) & np.all(region_values(b, points) > 0.0, axis=1)
     (bu0, bu1), (bv0, bv1) = b.bounds
     uv = b.parameters(points)
     inside &= (uv[:, 0] > bu0) & (uv[:, 0] < bu1) & (uv[:, 1] > bv0) & (uv[:, 1] < bv1)
     return bool(inside.any())
-
-
-def strictly_inside(surface, points):
-    """(N,) bool: points strictly inside the surface's region (every group has a limit > 0)."""
-    local = surface.frame.to_local(points)
-    inside = np.ones(len(points), dtype=bool)
-    for group in surface.region:
-        inside &= np.max([limit(local) for limit in group], axis=0) > 0.0
-    return inside
 
 
 def check_not_coincident(a, b, scale):

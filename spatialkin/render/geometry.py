@@ -55,7 +55,7 @@ def surface_grid(surface, u_range=None, v_range=None, resolution=SURFACE_RESOLUT
     if min(nu, nv) < MIN_RESOLUTION:
         raise ValueError(f"resolution must be at least ({MIN_RESOLUTION}, {MIN_RESOLUTION}), got {resolution!r}")
     (u_lo, u_hi), (v_lo, v_hi) = parameter_domain(surface, u_range, v_range)
-    if getattr(surface, "radius", None) is not None and isinstance(surface, Plane) and u_range is v_range is None:
+    if isinstance(surface, Plane) and surface.radius is not None and u_range is v_range is None:
         return disc_grid(surface, nu, nv, (u_lo, u_hi), (v_lo, v_hi))
     u, v = np.meshgrid(np.linspace(u_lo, u_hi, nu), np.linspace(v_lo, v_hi, nv), indexing="ij")
     return surface.point(u, v)

@@ -35,7 +35,7 @@ class Surface:
     u_range, v_range : (float, float) or None
         Trims (min, max) of u and v that the tracer watches as edges (ranges of a length: a plane's u and v, a
         cylinder's or cone's axial v), either end possibly infinite; None leaves the parameter untrimmed.
-    region : tuple of tuples of spatialkin.geometry.surfaces.trims.Limit
+    region : tuple of tuples of spatialkin.geometry.trims.Limit
         The other trims (angular ranges, a plane's circle), cut from the traced curves afterwards.
     shown : ((float, float), (float, float)) or None
         The (u_range, v_range) the user gave, where they differ from the watched ones.

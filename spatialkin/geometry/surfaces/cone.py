@@ -7,7 +7,7 @@ from ...kernels import surfaces as ks
 from ..placement import parallel
 from ..traits import ANGLE, LENGTH, SCALING, SurfaceTraits, register
 from .base import Surface, check_positive, check_range, own_axis, quadric_jets
-from .trims import TURN, angle_range, angular_groups
+from ..trims import TURN, angle_range, angular_groups
 from .cylinder import axial_trims_overlap
 
 

@@ -7,7 +7,7 @@ from ...kernels import surfaces as ks
 from ..placement import parallel
 from ..traits import LENGTH, NORMAL, SurfaceTraits, register
 from .base import Surface, check_positive, check_range
-from .trims import RADIUS, level_groups
+from ..trims import RADIUS, level_groups
 from ..._lib.validation import check_nonnegative
 
 #: Coplanar rectangles are compared on a grid of this many samples per side of one of them.

@@ -7,7 +7,7 @@ from ..frame import Frame
 from ...kernels import surfaces as ks
 from ..traits import ANGLE, FULL_TURN, POINT, SurfaceTraits, register
 from .base import Surface, check_positive, check_range, quadric_jets, trims_described, trims_given
-from .trims import FULL_TURN_SLACK, HEIGHT, TURN, angle_range, angular_groups, level_groups
+from ..trims import FULL_TURN_SLACK, HEIGHT, TURN, angle_range, angular_groups, level_groups
 
 #: The latitudes of the poles, where the chart (u longitude, v latitude) collapses.
 POLES = (-0.5 * math.pi, 0.5 * math.pi)

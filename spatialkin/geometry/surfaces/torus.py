@@ -7,7 +7,7 @@ from ...kernels import surfaces as ks
 from ..placement import parallel
 from ..traits import ANGLE, SurfaceTraits, register
 from .base import Surface, check_positive, own_axis, trims_described, trims_given
-from .trims import TUBE, TURN, angle_range, angular_groups
+from ..trims import TUBE, TURN, angle_range, angular_groups
 
 
 class Torus(Surface):

@@ -178,7 +178,7 @@ def components(placed, conics, trims, graze, touch, settings, topo, nodes=()):
             if curve is None or curve.length > MAX_LENGTH_SHARE * settings.max_length:
                 return None                                  # (the tracer would stop at max_length)
             curves.append(curve)
-    return in_sk_order(curves, lambda c: c.points[0] if c.length == 0 else c.sol.first_point())
+    return in_sk_order(curves, lambda c: c.sol.first_point())
 
 
 class Cut:

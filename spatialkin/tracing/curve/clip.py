@@ -1,4 +1,4 @@
-"""Components cut by trims after tracing: the trims that are not ranges of a length (spatialkin.geometry.surfaces.trims:
+"""Components cut by trims after tracing: the trims that are not ranges of a length (spatialkin.geometry.trims:
 angular ranges, a plane's circle; the tracer follows each component on the surfaces as the other trims leave
 them), and, for a component traced again past a grazed edge (spatialkin.tracing.march.graze), the length trims too. This
 module keeps the arcs that lie inside both faces, and the points where a curve touches an edge from outside.
@@ -24,7 +24,7 @@ function's range over an interval).
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from ...geometry.surfaces.trims import inside_region, limits, region_values
+from ...geometry.trims import inside_region, limits, region_values
 from .dense import CurveSolution
 from .exact import contact_point
 from .result import CurveResult
@@ -79,7 +79,8 @@ def clip_curve(a, b, curve, scale):
     else:
         ends = [(0.0, None, None)] + cuts + [(length, None, None)]
     pieces = list(zip(ends[:-1], ends[1:]))
-    verdicts = [piece_verdict(a, b, curve, lo[0], hi[0], slack, scale) for lo, hi in pieces]
+    touch = TOUCH_LENGTH * np.sqrt(slack * scale)    # the longest a touch stays within slack of an edge
+    verdicts = [piece_verdict(a, b, curve, lo[0], hi[0], slack, touch) for lo, hi in pieces]
     n = len(verdicts)
     for i, verdict in enumerate(verdicts):         # a touch from inside, cut by round-off on both sides: inside
         inner = curve.closed or 0 < i < n - 1
@@ -87,40 +88,39 @@ def clip_curve(a, b, curve, scale):
             verdicts[i] = INSIDE
     touches += [(lo[0], hi[0]) for (lo, hi), verdict in zip(pieces, verdicts) if verdict == TOUCHED]
     arcs = merged([piece for piece, verdict in zip(pieces, verdicts) if verdict == INSIDE], curve.closed, length)
-    ends = [end[0] for arc in arcs for end in arc if end[1] is not None]           # the crossings kept
-    points = touch_points(a, b, curve, touches, ends, arcs, slack, scale)
     if len(arcs) == 1 and curve.closed and arcs[0][1][0] - arcs[0][0][0] >= length:
-        return [curve]
+        return [curve]                               # whole: every touch lies on it
+    ends = [end[0] for arc in arcs for end in arc if end[1] is not None]           # the crossings kept
+    points = touch_points(a, b, curve, touches, ends, arcs, slack, scale, touch)
     return [window(curve, lo, hi) for lo, hi in arcs if hi[0] - lo[0] > curve.tolerance] + points
 
 
 INSIDE, OUTSIDE, TOUCHED = "inside", "outside", "touched"
 
 
-def piece_verdict(a, b, curve, s0, s1, slack, scale):
+def piece_verdict(a, b, curve, s0, s1, slack, touch):
     """INSIDE when the piece [s0, s1] of the curve between two cuts lies inside both regions: a sample of it
-    inside by more than slack, or, within slack of an edge all along, longer than a touch (TOUCH_LENGTH: a curve
+    inside by more than slack, or, within slack of an edge all along, longer than a touch (touch, a length: a curve
     lying along the edge); TOUCHED when shorter (a curve touching an edge from outside); else OUTSIDE."""
     s = np.linspace(s0, s1, PIECE_SAMPLES)[1:-1]
     points = curve.sol(s % curve.length if curve.closed else s)
     if not inside_both(a, b, points, slack).all():
         return OUTSIDE
-    if inside_both(a, b, points, -slack).any() or s1 - s0 > TOUCH_LENGTH * np.sqrt(slack * scale):
+    if inside_both(a, b, points, -slack).any() or s1 - s0 > touch:
         return INSIDE
     return TOUCHED
 
 
-def touch_points(a, b, curve, touches, cuts, arcs, slack, scale):
+def touch_points(a, b, curve, touches, cuts, arcs, slack, scale, reach):
     """Single points (CurveResults of length 0) where the curve touches an edge of the faces from outside: the
-    intervals of touches ((s0, s1) within slack of an edge) joined where they lie within a touch's length
-    (TOUCH_LENGTH sqrt(slack x scale)) of each other, less those as close to a crossing (cuts: the arc lengths of
-    the arcs' ends on an edge), each point where the curve comes deepest into both regions there (bounded Brent on
-    the dense output), kept when inside both within slack and on no arc kept. Status 'boundary' (the faces meet in
+    intervals of touches ((s0, s1) within slack of an edge) joined where they lie within a touch's length (reach)
+    of each other, less those as close to a crossing (cuts: the arc lengths of the arcs' ends on an edge), each
+    point where the curve comes deepest into both regions there (bounded Brent on the dense output), kept when
+    inside both within slack and on no arc kept. Status 'boundary' (the faces meet in
     one point of their edges), or 'contact' on a curve of tangency."""
     if not touches:
         return []
     length = curve.length
-    reach = TOUCH_LENGTH * np.sqrt(slack * scale)        # the length of a touch: its pieces within it are one
     spans = []
     for lo, hi in sorted(touches):
         if spans and lo <= spans[-1][1] + reach:

@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from ...kernels import surfaces as ks
-from ...geometry.surfaces.trims import HEIGHT, level_groups
+from ...geometry.trims import HEIGHT, level_groups
 from ..curve.clip import clip_curve
 from ..curve.result import TracingError
 from ..curve.status import BOUNDARY

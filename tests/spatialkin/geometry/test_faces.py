@@ -10,7 +10,7 @@ import pytest
 from ssi_oracle import face_margin, to_local
 
 import spatialkin as sk
-from spatialkin.geometry.surfaces.trims import inside_region, limits
+from spatialkin.geometry.trims import inside_region, limits
 
 _Q = np.linalg.qr(np.random.default_rng(5).normal(size=(3, 3)))[0]
 ROT = sk.Frame((0.3, -0.2, 0.5), _Q * np.sign(np.linalg.det(_Q)))        # a proper rotation

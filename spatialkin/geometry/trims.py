@@ -127,13 +127,6 @@ def region_values(surface, points):
     return np.stack([np.max([limit(local) for limit in group], axis=0) for group in region], axis=1)
 
 
-def limit_values(surface, points):
-    """(N, L): every limit's value at global points (N, 3), in the order of ``limits(surface)``."""
-    local = surface.frame.to_local(np.asarray(points, dtype=float).reshape(-1, 3))
-    return np.stack([limit(local) for limit in limits(surface)], axis=1) if surface.region else \
-        np.zeros((len(local), 0))
-
-
 def limits(surface):
     """Every limit of the surface's region, once each."""
     return tuple(limit for group in surface.region for limit in group)

@@ -22,10 +22,10 @@ import math
 import numpy as np
 
 from spatialkin.kernels import jit
-from spatialkin.kernels.follow import follow_events, follow_fun
+from spatialkin.kernels.continuation.follow import follow_events, follow_fun
 from spatialkin.kernels.linalg import lu_factor, lu_solve
-from spatialkin.kernels.rk import advance
-from spatialkin.kernels.implicit import follow_rhs
+from spatialkin.kernels.ode.rk import advance
+from spatialkin.kernels.continuation.implicit import follow_rhs
 
 DIST, RIGID, CRANK = 0, 1, 2
 #: Columns of ci.
@@ -140,20 +140,20 @@ def linkage_rhs(s, y, ci, cf, fixed, cranks, sign, pullback):
 
 @jit
 def linkage_fun(t, y, args, out):
-    """linkage_rhs for the Runge-Kutta engine (spatialkin.kernels.follow)."""
+    """linkage_rhs for the Runge-Kutta engine (spatialkin.kernels.continuation.follow)."""
     follow_fun(linkage_rhs, t, y, args, out)
 
 
 @jit
 def linkage_events(t, y, args, eargs, active, out):
-    """The continuation events of linkage_rhs (spatialkin.kernels.follow)."""
+    """The continuation events of linkage_rhs (spatialkin.kernels.continuation.follow)."""
     follow_events(linkage_rhs, t, y, args, eargs, active, out)
 
 
 @jit
 def linkage_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
                    modes, args, eargs, method):
-    """spatialkin.kernels.rk.advance bound to linkage_fun and linkage_events."""
+    """spatialkin.kernels.ode.rk.advance bound to linkage_fun and linkage_events."""
     return advance(linkage_fun, linkage_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
                    max_steps, max_nfev, g, active, directions, modes, method)
 

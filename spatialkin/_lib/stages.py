@@ -20,7 +20,7 @@ The library marks its places with ::
 Stages (STAGES, in the order of the path): Python set-up (validation, settings, the closed forms of
 spatialkin.tracing.closed.forms, exact curves, the starts' bookkeeping), the topology stage (the interval search that
 finds the seeds), per-trace set-up (Python between two integrations: charts, event parameters, the branch's
-decisions), integration (solve_ivp and the compiled engine, spatialkin.tracing.march.ode.integrate), correction (Newton
+decisions), integration (solve_ivp and the compiled engine, spatialkin.ode.solvers.integrate), correction (Newton
 onto the surfaces: locating a seed on the curve, projecting a segment's start, correcting the stored points,
 re-measuring arc length), de-duplication (which starts and pieces lie on a curve already traced) and result
 building (assembling the spans, the dense output, the CurveResult and the Curve).

@@ -36,12 +36,12 @@ def _kernel_modules():
     import pkgutil
 
     from .. import kernels
-    names = [f"{kernels.__name__}.{m.name}" for m in pkgutil.iter_modules(kernels.__path__)]
+    names = [m.name for m in pkgutil.walk_packages(kernels.__path__, kernels.__name__ + ".") if not m.ispkg]
     return [importlib.import_module(n) for n in names]
 
 
 def _dispatchers():
-    """Every numba dispatcher defined in spatialkin.kernels, once each."""
+    """Every numba dispatcher defined in spatialkin.kernels and its subpackages, once each."""
     from numba.core.registry import CPUDispatcher
     seen = {}
     for module in _kernel_modules():
@@ -57,7 +57,7 @@ def cache_folder():
     if JIT_DISABLED:
         return None
     try:
-        from ..kernels import curve
+        from ..kernels.march import curve
         return curve.newton_fixed_many._cache._cache_path
     except AttributeError:
         return None

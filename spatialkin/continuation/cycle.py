@@ -1,5 +1,5 @@
 """Following a one-parameter family F(y) = 0 along its input coordinate, by arc length (solve_ivp with the
-compiled engine, spatialkin.tracing.march.ode.CompiledDOP853 or CompiledRK45, or any solve_ivp method, with the same
+compiled engine, spatialkin.ode.solvers.CompiledDOP853 or CompiledRK45, or any solve_ivp method, with the same
 jitted events).
 
 A mechanism's configuration curve: y holds the unknowns and the input (a crank angle). The curve is traced
@@ -10,16 +10,16 @@ through them until the closed curve returns to the start. The lock positions are
 the input's rate along the curve.
 
 The right-hand side is any jitted ``rhs(s, y, *args, sign, pullback)`` whose tangent orientation is
-intrinsic (``spatialkin.kernels.implicit``), so the tangent carries through turning points; its events and
-the engine bound to it are the system's kernels (``CurveKernels``, spatialkin.kernels.follow).
+intrinsic (``spatialkin.kernels.continuation.implicit``), so the tangent carries through turning points; its events and
+the engine bound to it are the system's kernels (``CurveKernels``, spatialkin.kernels.continuation.follow).
 """
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..kernels import follow as kf
-from ..tracing.march.ode import COMPILED, BudgetExceeded, Event, System, integrate
+from ..kernels.continuation import follow as kf
+from ..ode.solvers import COMPILED, BudgetExceeded, Event, System, integrate
 from ..tracing.curve.result import TracingError
 from ..tracing.curve.status import MAX_LENGTH, SINGULAR
 
@@ -106,14 +106,14 @@ class Cycle:
 
 @dataclass(frozen=True)
 class CurveKernels:
-    """The jitted kernels of a configuration curve (spatialkin.kernels.follow): ``rhs(s, y, *args, sign,
+    """The jitted kernels of a configuration curve (spatialkin.kernels.continuation.follow): ``rhs(s, y, *args, sign,
     pullback)``, and the events and the compiled engine bound to it (``events``, ``advance``)."""
     rhs: object
     events: object
     advance: object
 
 
-#: Event of spatialkin.kernels.follow that ends an arc, checked in this order (a lock first).
+#: Event of spatialkin.kernels.continuation.follow that ends an arc, checked in this order (a lock first).
 OUTCOME_ORDER = (kf.RATE, kf.LEVEL_TARGET, kf.LEVEL_START)
 #: No event: the arc reached max_length.
 REACHED_END = -1
@@ -156,7 +156,7 @@ def trace_cycle(kernels, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL
     rtol : float
         Relative and absolute tolerance of the integration.
     method : str
-        'compiled' (spatialkin.tracing.march.ode.CompiledDOP853: scipy DOP853's steps in compiled code), 'compiled-rk45'
+        'compiled' (spatialkin.ode.solvers.CompiledDOP853: scipy DOP853's steps in compiled code), 'compiled-rk45'
         (CompiledRK45: RK45's) or a solve_ivp method.
 
     Returns

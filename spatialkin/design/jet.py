@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from ..kernels.jet import jet_product
+from ..kernels.design.jet import jet_product
 
 
 class Jet:

@@ -11,7 +11,7 @@ on a kind code or on a surface class. A kind that is not registered raises Unkno
 This module belongs to the tracing layer and imports only the kernels: tracing reads the traits without importing
 the domain layer, whose kind modules register themselves here.
 
-Limits: the kernels (spatialkin.kernels.surfaces and spatialkin.kernels.interval) are compiled and evaluate a
+Limits: the kernels (spatialkin.kernels.geometry.surfaces and spatialkin.kernels.geometry.interval) are compiled and evaluate a
 closed set of geometries, chosen by ``data[GEOMETRY]`` (plane, sphere, cylinder, cone, torus). A new kind over
 one of these geometries (another trim, chart or set of traits) is its own module plus a registration; a kind
 whose geometry is new also needs its branches in those two kernel modules.
@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from ..kernels import surfaces as ks
+from ..kernels.geometry import surfaces as ks
 
 __all__ = ["SurfaceTraits", "UnknownSurfaceKindError", "register", "unregister", "traits", "check_surface",
            "power_of_two", "ANGLE", "LENGTH", "POINT", "AXIS", "NORMAL", "TRANSLATION", "SCALING", "GEOMETRIES",
@@ -35,7 +35,7 @@ POINT, AXIS, NORMAL = "point", "axis", "normal"
 #: Rulings (SurfaceTraits.ruling): straight lines along a direction (invariant under translation along it, a
 #: cylinder) or through an apex (invariant under scaling about it, a cone).
 TRANSLATION, SCALING = "translation", "scaling"
-#: Geometry codes the compiled kernels evaluate (spatialkin.kernels.surfaces).
+#: Geometry codes the compiled kernels evaluate (spatialkin.kernels.geometry.surfaces).
 GEOMETRIES = (ks.PLANE, ks.SPHERE, ks.CYLINDER, ks.CONE, ks.TORUS)
 #: The full turn of an angle parameter.
 FULL_TURN = (-math.pi, math.pi)

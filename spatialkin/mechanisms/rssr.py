@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from ..geometry.frame import Frame
-from ..kernels import linkage as kl
+from ..kernels.mechanisms import rssr as kl
 from ..motion.kinematics import serial_chain
 from ..continuation import CurveKernels, solve_at, trace_cycle
 from ..motion.trajectory import time_map, to_time

@@ -5,7 +5,7 @@ import time
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..kernels import near as kn
+from ..kernels.curve import near as kn
 from .curve.dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS
 from .curve.exact import contact_point, exact_curve
 from .curve.packed import packed, packed_grid
@@ -276,7 +276,7 @@ def near_curve(curve, points, radius):
     within any distance of each other). A point farther than radius plus half the longest step from every stored
     point is farther than radius from the curve (each arc between two stored points lies within half its length
     of one of them); a point within radius of a foot point found by Newton in s from the nearest stored point is
-    near; the closest point decides the rest. A traced curve is tested in compiled code (spatialkin.kernels.near:
+    near; the closest point decides the rest. A traced curve is tested in compiled code (spatialkin.kernels.curve.near:
     there a point within radius of one of Newton's iterates, each a point of the curve, is near too), except where
     Newton meets a span the compiled tables do not hold (a jump across a node or an apex): there, and on the other
     curves, the dense output's methods decide."""

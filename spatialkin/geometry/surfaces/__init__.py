@@ -1,7 +1,7 @@
 """Placed surfaces: torus (ring, horn, spindle), sphere, plane, cylinder and cone, one module per kind.
 
 Each surface is a thin object over a packed float array (``surface.data``) that the jitted kernels of
-``spatialkin.kernels.surfaces`` read; see that module for the local parametrisations. Each kind's module also
+``spatialkin.kernels.geometry.surfaces`` read; see that module for the local parametrisations. Each kind's module also
 declares the kind's traits (spatialkin.geometry.traits) and registers them: a new kind is its own module plus that
 registration (over one of the kernels' geometries; see spatialkin.geometry.traits for the limit).
 """

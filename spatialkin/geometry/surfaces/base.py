@@ -1,5 +1,5 @@
 """The placed surface: a thin object over a packed float array (``surface.data``) that the jitted kernels of
-``spatialkin.kernels.surfaces`` read, and the argument checks its kinds share.
+``spatialkin.kernels.geometry.surfaces`` read, and the argument checks its kinds share.
 
 Each kind (torus.py, sphere.py, plane.py, cylinder.py, cone.py) defines its class and its traits
 (spatialkin.geometry.traits.SurfaceTraits) in its own module and registers them; ``Surface`` asks the registry for
@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from ..frame import Frame
-from ...kernels import surfaces as ks
+from ...kernels.geometry import surfaces as ks
 from ..traits import AXIS, check_surface, traits
 from ..._lib.validation import check_positive, check_range
 

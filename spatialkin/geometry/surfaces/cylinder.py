@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from ...kernels import surfaces as ks
+from ...kernels.geometry import surfaces as ks
 from ..placement import on_line, parallel
 from ..traits import ANGLE, LENGTH, TRANSLATION, SurfaceTraits, register
 from .base import Surface, check_positive, check_range, own_axis, quadric_jets

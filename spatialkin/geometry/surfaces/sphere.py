@@ -4,7 +4,7 @@ import math
 import numpy as np
 
 from ..frame import Frame
-from ...kernels import surfaces as ks
+from ...kernels.geometry import surfaces as ks
 from ..traits import ANGLE, FULL_TURN, POINT, SurfaceTraits, register
 from .base import Surface, check_positive, check_range, quadric_jets, trims_described, trims_given
 from ..trims import FULL_TURN_SLACK, HEIGHT, TURN, angle_range, angular_groups, level_groups
@@ -128,7 +128,7 @@ class SphereTraits(SurfaceTraits):
     def rechart(self, data, point, tangent, bend=None):
         """Sphere data with its chart turned so that point is at (u, v) = (0, 0), the equator along the tangent or,
         given the curvature vector bend (C'') of a curve bending round a small circle, through its centre (see
-        spatialkin.kernels.surfaces.recharted_sphere)."""
+        spatialkin.kernels.geometry.surfaces.recharted_sphere)."""
         new = np.empty_like(data)
         ks.recharted_sphere(data, np.ascontiguousarray(point, dtype=float),
                             np.ascontiguousarray(tangent, dtype=float),

@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from ...kernels import surfaces as ks
+from ...kernels.geometry import surfaces as ks
 from ..placement import parallel
 from ..traits import ANGLE, SurfaceTraits, register
 from .base import Surface, check_positive, own_axis, trims_described, trims_given

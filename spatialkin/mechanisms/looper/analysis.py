@@ -5,7 +5,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...kernels import curve as kc
+from ...kernels.march import curve as kc
 from ...tracing.curve.status import SINGULAR
 
 #: Samples per traced loop when looking for dead positions.

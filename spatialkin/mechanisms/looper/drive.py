@@ -21,7 +21,7 @@ from scipy.optimize import brentq
 
 from ...geometry.frame import Frame
 from ...continuation import solve_at
-from ...kernels import curve as kc
+from ...kernels.march import curve as kc
 from ...motion.kinematics import serial_chain
 from . import reference as ref
 from ...geometry.surfaces import Sphere, Torus

@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from ...kernels import surfaces as ks
+from ...kernels.geometry import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, basis
 from ..curve.exact import SampledResult, contact_point, exact_curve
 from ...geometry.placement import SAME

@@ -7,8 +7,8 @@ by Newton. The closed-form ones (a circle, a segment, a point) are in spatialkin
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ...kernels import curve as kc
-from ...kernels import surfaces as ks
+from ...kernels.march import curve as kc
+from ...kernels.geometry import surfaces as ks
 from .curvature import curvature_vectors
 from .result import set_states, user_params
 from ..march.segments import NEWTON_MAX_ITER

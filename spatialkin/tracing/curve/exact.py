@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from ...kernels.stored import unwrap_turns
+from ...kernels.curve.stored import unwrap_turns
 from ...geometry.vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult

@@ -1,4 +1,4 @@
-"""A traced curve's dense output packed into flat arrays, for the compiled distance kernels (spatialkin.kernels.near).
+"""A traced curve's dense output packed into flat arrays, for the compiled distance kernels (spatialkin.kernels.curve.near).
 
 ``packed(sol)`` reads a TracedSolution's spans, their segments' charts and scipy OdeSolutions, and each step's
 dense output (the compiled methods' StepsDense, or solve_ivp's DOP853 where a solve_ivp method integrated) into the
@@ -13,10 +13,10 @@ import numpy as np
 from scipy.integrate import OdeSolution
 from scipy.integrate._ivp.rk import Dop853DenseOutput   # scipy's DOP853 step polynomial (no public name)
 
-from ...kernels import near as kn
+from ...kernels.curve import near as kn
 from ..march.arclength import RemappedStates
 from .dense import TracedSolution
-from ..march.ode import StepsDense
+from ...ode.solvers import StepsDense
 from ..march.segments import NEWTON_MAX_ITER
 
 #: The tables made so far, per dense output (dropped with it).
@@ -119,7 +119,7 @@ def _kinds(ode):
 def _widened(qs):
     """Dense-output coefficient arrays (m, n, c) of the compiled methods, padded with zero columns to the widest c
     (RK45's 4 beside DOP853's 7 where a compiled-rk45 branch handed over to the compiled DOP853): a zero coefficient
-    adds nothing to spatialkin.kernels.rk.dense_state's sum, so the states are the same to the bit."""
+    adds nothing to spatialkin.kernels.ode.rk.dense_state's sum, so the states are the same to the bit."""
     width = max((q.shape[2] for q in qs), default=0)
     return [q if q.shape[2] == width else np.concatenate([q, np.zeros(q.shape[:2] + (width - q.shape[2],))], axis=2)
             for q in qs]

@@ -7,7 +7,7 @@ import operator
 
 import numpy as np
 
-from ...kernels import surfaces as ks
+from ...kernels.geometry import surfaces as ks
 from ..._lib.validation import check_positive
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome

@@ -15,7 +15,7 @@ quadrature of the closed form), from 2.1e-8 and 1.7e-9.
 """
 import numpy as np
 
-from ...kernels import curve as kc
+from ...kernels.march import curve as kc
 from .segments import NEWTON_MAX_ITER
 
 #: Only segments where the normals' sine falls below this are measured: elsewhere M1 stays within

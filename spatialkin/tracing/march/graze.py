@@ -1,7 +1,7 @@
 """Components that graze a trim edge: traced again past the edge and cut by the clipper.
 
 The tracer ends a branch where the curve meets a trim edge of a surface (the edge events of
-spatialkin.kernels.branch_ode). A curve that only touches the edge, from inside (a face whose rim it touches at a
+spatialkin.kernels.march.branch_ode). A curve that only touches the edge, from inside (a face whose rim it touches at a
 vertex it passes through) or from outside (the faces meet in that one point), dips across the edge by round-off:
 the branch ends there and a sliver of the curve is lost, or a tiny arc comes back where there is a point. Those
 show as ends on edges closer to each other than GAP x scale (two pieces of one curve, or both ends of a tiny
@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from ...kernels import surfaces as ks
+from ...kernels.geometry import surfaces as ks
 from ...geometry.trims import HEIGHT, level_groups
 from ..curve.clip import clip_curve
 from ..curve.result import TracingError

@@ -20,10 +20,10 @@ import math
 
 import numpy as np
 
-from ...kernels import branch_ode as kb
-from ...kernels import curve as kc
-from ...kernels import surfaces as ks
-from .ode import COMPILED_SOLVERS, BudgetExceeded, Event, System, Watch, integrate, step_points
+from ...kernels.march import branch_ode as kb
+from ...kernels.march import curve as kc
+from ...kernels.geometry import surfaces as ks
+from ...ode.solvers import COMPILED_SOLVERS, BudgetExceeded, Event, System, Watch, integrate, step_points
 from .segments import (EDGE_NAMES, EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment,
                        area_flag, finite_bounds, newton_fixed, project_state, segment_start)
 from ..curve.status import outcome
@@ -59,7 +59,7 @@ WATCH_BELOW = 1e-2
 SLOPE_FLOOR = 1e-6
 #: The minimum event is armed only this far (relative to the scale) into a segment.
 MINIMUM_ARM = 1e-9
-#: The method the compiled ones (spatialkin.tracing.march.ode.CompiledDOP853, CompiledRK45) hand hard cases to, with the
+#: The method the compiled ones (spatialkin.ode.solvers.CompiledDOP853, CompiledRK45) hand hard cases to, with the
 #: fine events (singular, apex, minimum, edges as crossings): the compiled DOP853, solve_ivp's DOP853 steps and event
 #: location in compiled code (the same steps as solve_ivp's own DOP853, without Python per step).
 FALLBACK_METHOD = "compiled"
@@ -142,7 +142,7 @@ def segment_events(system, settings, compiled, near_edge, bounds, recharts, watc
     fine events; a sphere's chart ends the segment at the end of the step that passes its pole guard. A bound is a level
     too, until the branch is near_edge: then the next segment, started on the curve (projected) at most a step from the
     bound, ends exactly at the crossing, so that the curve's end on the edge has one step's accuracy, not the whole
-    branch's drift. The compiled method probes the bounds inside each step too (spatialkin.kernels.rk.PROBES), so that a
+    branch's drift. The compiled method probes the bounds inside each step too (spatialkin.kernels.ode.rk.PROBES), so that a
     curve grazing out of a trim and back within one step ends there, and the area hand-over likewise, so that no step
     passes over an apex (a horn torus's cusp, whose guarded zone a step can span). bounds: the charts' finite_bounds
     rows, recharts: whether each surface re-charts."""

@@ -9,9 +9,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...kernels import curve as kc
-from ...kernels import restart as kr
-from ...kernels import surfaces as ks
+from ...kernels.march import curve as kc
+from ...kernels.march import restart as kr
+from ...kernels.geometry import surfaces as ks
 from ...geometry.traits import traits
 
 # --- named limits -------------------------------------------------------------------------------------

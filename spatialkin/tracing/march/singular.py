@@ -10,8 +10,8 @@ normal to the direction of travel keeps to the same branch.
 import numpy as np
 from numpy.polynomial import legendre
 
-from ...kernels import curve as kc
-from ...kernels import surfaces as ks
+from ...kernels.march import curve as kc
+from ...kernels.geometry import surfaces as ks
 from ..curve.result import set_states
 from .segments import NEWTON_MAX_ITER, LinearStates, Segment, newton_fixed
 

@@ -10,8 +10,8 @@ import math
 
 import numpy as np
 
-from ...kernels import restart as kr
-from ...kernels import surfaces as ks
+from ...kernels.march import restart as kr
+from ...kernels.geometry import surfaces as ks
 from .segments import NEWTON_MAX_ITER
 from .segments import newton_fixed as data_newton_fixed
 from ..curve.result import TracingError

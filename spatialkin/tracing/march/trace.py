@@ -13,13 +13,13 @@ import time
 
 import numpy as np
 
-from ...kernels import curve as kc
-from ...kernels import stored as kst
-from ...kernels import surfaces as ks
+from ...kernels.march import curve as kc
+from ...kernels.curve import stored as kst
+from ...kernels.geometry import surfaces as ks
 from .arclength import remeasure_branch
 from ..curve.clip import clip_curve
 from .ivp import integrate_branch
-from .ode import COMPILED, COMPILED_SOLVERS
+from ...ode.solvers import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from ..curve.dense import Span, TracedSolution
 from ..curve.result import Curve, CurveResult, TracingError, in_own_chart, DUPLICATE_SPACING
@@ -37,7 +37,7 @@ DEFAULT_RTOL = 1e-10
 DEFAULT_SINGULAR_TOL = 1e-7
 #: Pull-back rate times the curve scale: the gap decays like exp(-PULLBACK * s / scale).
 DEFAULT_PULLBACK = 1.0
-#: The integrator: solve_ivp with the compiled Dormand–Prince 8(5,3) (spatialkin.tracing.march.ode.COMPILED), or a
+#: The integrator: solve_ivp with the compiled Dormand–Prince 8(5,3) (spatialkin.ode.solvers.COMPILED), or a
 #: solve_ivp method.
 DEFAULT_METHOD = COMPILED
 #: Longest solver step, in scene scales. DOP853's error estimate (its 5th- and 3rd-order estimates combined) can
@@ -54,7 +54,7 @@ GAP_FRACTION = 1e-2
 ROUNDOFF_ULPS = 64
 #: The ulp of 1.0 (np.float64).
 EPS = np.finfo(float).eps
-#: solve_ivp's methods, "compiled": solve_ivp with spatialkin.tracing.march.ode.CompiledDOP853 (scipy's DOP853 steps,
+#: solve_ivp's methods, "compiled": solve_ivp with spatialkin.ode.solvers.CompiledDOP853 (scipy's DOP853 steps,
 #: many per solver step in compiled code), and "compiled-rk45" (CompiledRK45: scipy's RK45 steps), both handing hard
 #: cases to the compiled DOP853 with the fine events (spatialkin.tracing.march.ivp.FALLBACK_METHOD).
 METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", *COMPILED_SOLVERS)
@@ -142,7 +142,7 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
         smaller characteristic length of the two surfaces: a sphere's or cylinder's radius, a torus's R + r):
         distance to both surfaces <= tol * scale (``curve.tolerance``, an absolute length).
     method : str
-        'compiled' (default): solve_ivp with spatialkin.tracing.march.ode.CompiledDOP853 (scipy's DOP853 steps, many
+        'compiled' (default): solve_ivp with spatialkin.ode.solvers.CompiledDOP853 (scipy's DOP853 steps, many
         per solver step in compiled code), handing singular points and apexes to the same engine with the fine
         events (spatialkin.tracing.march.ivp.FALLBACK_METHOD); 'compiled-rk45' the same with scipy's RK45 steps
         (CompiledRK45); or a solve_ivp method ('DOP853', 'RK45', 'RK23', 'Radau', 'BDF', 'LSODA') for the whole

@@ -13,7 +13,7 @@ extent where P is not). Every component of that level
   d_v g_u - d_u g_v = 0.
 
 The roots on edges and seams and the roots of that 2 x 2 system come from interval subdivision with outward
-rounding (spatialkin.kernels.topology): a box is dropped only when an enclosure proves that it holds no root,
+rounding (spatialkin.kernels.search.topology): a box is dropped only when an enclosure proves that it holds no root,
 and kept as one isolated root when the interval Newton or Krawczyk operator proves it; so a loop of any size
 down to the round-off of the coordinates is found. Boxes that shrink to round-off without either proof are
 singular points of the level (contacts, nodes, tangencies), classified by the Hessian of g.
@@ -38,9 +38,9 @@ import numpy as np
 import scipy.linalg
 from scipy.optimize import brentq
 
-from ...kernels import interval as ki
-from ...kernels import surfaces as ks
-from ...kernels import topology as kt
+from ...kernels.geometry import interval as ki
+from ...kernels.geometry import surfaces as ks
+from ...kernels.search import topology as kt
 from .meridians import BAND, BESIDE, REVOLVED, meridian_circle, meridian_nodes, meridian_segment, tangent_meridians
 from ...geometry.placement import bounding_ball, check_not_coincident, common_axis, ruled_along
 from ..march.trace import EPS, ROUNDOFF_ULPS
@@ -666,7 +666,7 @@ def trim_bounds(surface, tolerance):
 class Keeper:
     """Which starts are kept: inside both trims (their foot points' parameters, with trim_bounds' slack of 10
     tolerances) and off the apexes of P (the rings round them seed their branches); set up once per call, each test
-    of many points one compiled call (spatialkin.kernels.topology.keep_points)."""
+    of many points one compiled call (spatialkin.kernels.search.topology.keep_points)."""
 
     def __init__(self, a, b, apex_points, scale, tolerance):
         self.data = (a.data, b.data)
@@ -697,7 +697,7 @@ class Keeper:
 
     def on(self, surface, uv):
         """(points (N, 3) of the surface at parameter points uv (N, 2), (N,) bool: which are kept): points_at and
-        many in one compiled call (spatialkin.kernels.topology.keep_surface_points)."""
+        many in one compiled call (spatialkin.kernels.search.topology.keep_surface_points)."""
         uv = np.ascontiguousarray(uv, dtype=float).reshape(-1, 2)
         points = np.empty((len(uv), 3))
         out = np.empty(len(uv), dtype=bool)

@@ -8,7 +8,7 @@ import pytest
 from spatialkin.bench import batch
 from spatialkin.bench.kinds_report import COLUMNS, plot_kinds, write_kinds_csv
 from spatialkin.bench.sidebyside import KindRow
-from spatialkin.kernels import curve as kc
+from spatialkin.kernels.march import curve as kc
 from spatialkin._lib import stages
 
 

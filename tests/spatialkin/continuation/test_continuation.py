@@ -1,4 +1,4 @@
-"""trace_cycle with the compiled engine (solve_ivp with spatialkin.tracing.march.ode.CompiledDOP853, the default, and
+"""trace_cycle with the compiled engine (solve_ivp with spatialkin.ode.solvers.CompiledDOP853, the default, and
 CompiledRK45) against closed forms and against scipy's own DOP853 and RK45 with the same jitted events."""
 import math
 
@@ -7,9 +7,9 @@ import pytest
 from scipy.special import ellipe
 
 from spatialkin._lib.jit import jit
-from spatialkin.kernels import follow as kf
-from spatialkin.kernels.implicit import follow_rhs
-from spatialkin.kernels.rk import advance
+from spatialkin.kernels.continuation import follow as kf
+from spatialkin.kernels.continuation.implicit import follow_rhs
+from spatialkin.kernels.ode.rk import advance
 from spatialkin.continuation import CurveKernels, trace_cycle
 
 #: Tolerances: lock positions and closure against the closed forms (the trace's rtol is 1e-10); the two

@@ -6,7 +6,7 @@ It exercises the registration path: its kind code is new, so tracing and the top
 from its traits (its own chart is never re-charted, it has no poles, its latitude trims are edges to search and
 to stop at, it turns only about its own axis). Its geometry is the sphere's: the compiled kernels evaluate it
 through data[GEOMETRY] = SPHERE. A kind with a new geometry would need its kernel branches as well
-(spatialkin.kernels.surfaces and spatialkin.kernels.interval), which a test cannot add.
+(spatialkin.kernels.geometry.surfaces and spatialkin.kernels.geometry.interval), which a test cannot add.
 """
 import math
 
@@ -15,7 +15,7 @@ import pytest
 from scipy.optimize import brentq
 
 import spatialkin as sk
-from spatialkin.kernels import surfaces as ks
+from spatialkin.kernels.geometry import surfaces as ks
 from spatialkin.render.geometry import natural_domain
 from spatialkin.geometry.surfaces import check_positive, check_range
 from spatialkin.geometry.surfaces.sphere import SphereTraits

@@ -3,8 +3,8 @@ project_many and the surfaces' own evaluation, on a torus ∩ sphere loop with s
 import numpy as np
 
 import spatialkin as sk
-from spatialkin.kernels import curve as kc
-from spatialkin.kernels import surfaces as ks
+from spatialkin.kernels.march import curve as kc
+from spatialkin.kernels.geometry import surfaces as ks
 from spatialkin.tracing.march.segments import NEWTON_MAX_ITER
 
 GAP_TOL = 1e-12

@@ -1,8 +1,10 @@
-"""Continuation kernels (spatialkin.kernels.implicit) and the LU kernels against numpy's linear algebra."""
+"""Continuation kernels (spatialkin.kernels.continuation.implicit) and the LU kernels against numpy's linear algebra."""
 import numpy as np
 import pytest
 
-from spatialkin.kernels import curve as kc, implicit as ki
+from spatialkin.kernels.march import curve as kc
+
+from spatialkin.kernels.continuation import implicit as ki
 
 TOL = 1e-13
 

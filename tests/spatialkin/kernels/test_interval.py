@@ -8,8 +8,8 @@ import pytest
 from oracles import random_rotation
 
 import spatialkin as sk
-from spatialkin.kernels import interval as ki
-from spatialkin.kernels import topology as kt
+from spatialkin.kernels.geometry import interval as ki
+from spatialkin.kernels.search import topology as kt
 
 SAMPLES = 400
 

@@ -1,5 +1,5 @@
 """The stored points of a traced curve in one compiled call (spatialkin.tracing.march.trace._corrected on
-spatialkin.kernels.stored.corrected_spans).
+spatialkin.kernels.curve.stored.corrected_spans).
 
 Oracle: the same work span by span from Python (corrected_many per span, result.user_params, a numpy unwrap_turns), on
 the very arguments sk.intersect hands _corrected for re-charting (sphere) and non-re-charting pairs, both argument
@@ -11,8 +11,8 @@ import pytest
 
 import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
-from spatialkin.kernels import curve as kc
-from spatialkin.kernels import stored as kst
+from spatialkin.kernels.march import curve as kc
+from spatialkin.kernels.curve import stored as kst
 from spatialkin.tracing.march import trace as tr
 from spatialkin.tracing.curve.result import user_params
 from spatialkin.tracing.march.segments import NEWTON_MAX_ITER

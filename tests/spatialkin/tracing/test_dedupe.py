@@ -1,4 +1,4 @@
-"""De-duplication of starts: the compiled near_curve (spatialkin.kernels.near on spatialkin.tracing.curve.packed)
+"""De-duplication of starts: the compiled near_curve (spatialkin.kernels.curve.near on spatialkin.tracing.curve.packed)
 against a plain Python one on the curve's dense output (the oracle), and its dense output against scipy's."""
 from types import SimpleNamespace
 
@@ -10,7 +10,7 @@ from scipy.spatial import cKDTree
 import spatialkin as sk
 import spatialkin.tracing.components as intersect_module
 from spatialkin.bench.kinds import pair_kind_cases
-from spatialkin.kernels import near as kn
+from spatialkin.kernels.curve import near as kn
 from spatialkin.tracing.curve.dense import CLOSEST_NEWTON_STEPS, TracedSolution
 from spatialkin.tracing.components import SAME_COMPONENT, covered, near_curve, within
 from spatialkin.tracing.curve.packed import packed, packed_grid

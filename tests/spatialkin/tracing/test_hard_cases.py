@@ -188,7 +188,7 @@ def test_area_element_is_1_lipschitz_in_its_parameter(kind, size, scale):
     and weighted as the events weigh it (tracing.ivp.area_weight), against the oracle of sampled differences, to
     round-off; and a cone's is the same number for the same scene at every scale (the apex guard means the same
     distance from the apex, relative to the scene)."""
-    from spatialkin.kernels import curve as kc
+    from spatialkin.kernels.march import curve as kc
     from spatialkin.tracing.march.ivp import area_weight
     from spatialkin.tracing.march.segments import area_flag
     if kind == "cone":

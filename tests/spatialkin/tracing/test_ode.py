@@ -1,5 +1,5 @@
-"""The one Runge–Kutta engine (spatialkin.kernels.rk) as solve_ivp's methods CompiledRK45 and CompiledDOP853
-(spatialkin.tracing.march.ode).
+"""The one Runge–Kutta engine (spatialkin.kernels.ode.rk) as solve_ivp's methods CompiledRK45 and CompiledDOP853
+(spatialkin.ode.solvers).
 
 Oracle: scipy's own RK45 and DOP853 on the same jitted right-hand side (the looper pair's Dragilev system): the same
 steps to round-off, the same dense output, the same located events; the budget and bad options raise typed errors.
@@ -10,10 +10,10 @@ from scipy.integrate import DOP853, RK45
 
 import spatialkin as sk
 from spatialkin.bench.cases import looper_pair
-from spatialkin.kernels import branch_ode as kb
-from spatialkin.kernels import curve as kc
-from spatialkin.tracing.march.ode import COMPILED, COMPILED_RK45
-from spatialkin.tracing.march.ode import BudgetExceeded, CompiledRK45, Event, System, integrate, step_points
+from spatialkin.kernels.march import branch_ode as kb
+from spatialkin.kernels.march import curve as kc
+from spatialkin.ode.solvers import COMPILED, COMPILED_RK45
+from spatialkin.ode.solvers import BudgetExceeded, CompiledRK45, Event, System, integrate, step_points
 
 #: States, dense output and event times: the same polynomials on (nearly) the same steps.
 SAME_DENSE_TOL = 1e-9
@@ -244,7 +244,7 @@ def test_integrate_builds_solve_ivps_dense_output_and_reads_its_watch():
     solve_ivp's own OdeSolution of the same run (dense_output=True), the same times, interpolants, attributes and
     values to the bit, res.t and res.y alike; a Watch made once gives the same run as the list of its Events."""
     from scipy.integrate import OdeSolution, solve_ivp
-    from spatialkin.tracing.march.ode import STEPS_PER_CALL, EventLog, StepsSolution, Watch, steps_solution
+    from spatialkin.ode.solvers import STEPS_PER_CALL, EventLog, StepsSolution, Watch, steps_solution
     system, y0, length = looper_system()
     atol = np.full(4, RTOL)
     for steps_per_call in (5, None):         # several solver steps (the log read by steps_solution), and integrate's
@@ -287,7 +287,7 @@ def test_steps_solution_drops_a_step_that_ends_where_the_last_one_did():
     """solve_ivp keeps no interpolant (and no time) for a solver step ending where the last one kept ended (after
     the first): steps_solution does the same, oracle the rule written out on a made-up log."""
     from scipy.optimize import OptimizeResult
-    from spatialkin.tracing.march.ode import steps_solution
+    from spatialkin.ode.solvers import steps_solution
     dense = [(1.0, "a"), (1.0, "b"), (2.0, "c"), (2.0, "d"), (2.0, "e"), (3.0, "f")]
     res = OptimizeResult(t=np.array([0.0] + [t for t, _ in dense]), y=np.arange(7.0)[None] * np.ones((4, 1)))
     sol = steps_solution(res, dense)

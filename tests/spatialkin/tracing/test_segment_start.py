@@ -12,7 +12,7 @@ import pytest
 
 import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
-from spatialkin.kernels import curve as kc
+from spatialkin.kernels.march import curve as kc
 from spatialkin.tracing.march.segments import charts_at, project_state, segment_start
 from spatialkin.geometry.traits import traits
 from spatialkin.tracing.march.trace import make_settings
@@ -76,7 +76,7 @@ def test_segment_start_matches_python_steps(kind, order):
 
 def python_locate(a, b, guess, gap_tol, y_guess=None):
     """The oracle: start.locate_on_curve's steps as separate Python calls ((point, y_user) or None)."""
-    from spatialkin.kernels import curve as kc
+    from spatialkin.kernels.march import curve as kc
     from spatialkin.tracing.march.segments import NEWTON_MAX_ITER
     point = np.asarray(guess, dtype=float).copy()
     a_chart, b_chart, y = charts_at(a.data, b.data, point, np.zeros(3), y_guess)

@@ -7,7 +7,7 @@ import pytest
 
 import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
-from spatialkin.kernels import topology as kt
+from spatialkin.kernels.search import topology as kt
 from spatialkin.tracing.search import topology as tp
 from spatialkin.geometry.traits import traits
 

@@ -223,8 +223,8 @@ def test_curve_speed_of_a_point_beside_the_curve():
     plane at radius 1 + d beside the circle and M2 on the equator: the integrated velocity is the unit tangent
     (no pull-back), and the foot point on the circle moves at 1 / (1 + d) (similar arcs). Oracle: that closed
     form, to 1e-13."""
-    from spatialkin.kernels import curve as kc
-    from spatialkin.kernels import surfaces as ks
+    from spatialkin.kernels.march import curve as kc
+    from spatialkin.kernels.geometry import surfaces as ks
     plane, sphere = sk.Plane(), sk.Sphere(1.0)
     for d in (0.0, 1e-7, 1e-3, -2e-2):
         for angle in (0.3, 2.0):

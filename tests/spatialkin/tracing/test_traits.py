@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import spatialkin as sk
-from spatialkin.kernels import surfaces as ks
+from spatialkin.kernels.geometry import surfaces as ks
 from spatialkin.geometry.traits import (ANGLE, LENGTH, SurfaceTraits, UnknownSurfaceKindError, check_surface,
                                        register, traits)
 

@@ -1,5 +1,5 @@
 """A curve that grazes out of a trim and back within one solver step ends at the edge (the compiled method probes
-the bounds inside each step, spatialkin.kernels.rk.PROBES), checked on the general path against the closed form
+the bounds inside each step, spatialkin.kernels.ode.rk.PROBES), checked on the general path against the closed form
 (spatialkin.tracing.closed.forms) and a dense sampling of the true circle; and the step reach that decides where to
 probe bounds the dense output."""
 import math
@@ -9,7 +9,7 @@ import pytest
 
 import spatialkin as sk
 import spatialkin.tracing.components as intersect_module
-from spatialkin.kernels import rk
+from spatialkin.kernels.ode import rk
 
 #: A pair found by a random sweep of the closed forms against the tracer: the plane's rectangle cuts the circle
 #: four times, and between two of those cuts the circle leaves across v_min for an arc 0.15 long and 2.7e-3 deep

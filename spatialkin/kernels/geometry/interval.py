@@ -5,7 +5,7 @@ on any reals in its arguments lies in the returned interval. numba exposes no ro
 moved one ulp outward after the round-to-nearest operation (its error is at most half an ulp); sin and cos
 (within one ulp in glibc) are widened by two.
 
-S is a surface given by its packed data (spatialkin.kernels.surfaces; the branches below are by its geometry
+S is a surface given by its packed data (spatialkin.kernels.geometry.surfaces; the branches below are by its geometry
 code), T another one read through a
 polynomial implicit function F_T in T's local coordinates (smooth everywhere, unlike a signed distance):
 
@@ -24,7 +24,7 @@ boxes whose first-order tests leave them in doubt).
 
 The jets' helpers are compiled with ``forceinline`` (LLVM's alwaysinline) into the kernels that call them: their
 tuples of intervals then stay in registers rather than pass through memory at every call, and the parts a caller
-does not read are dropped, which speeds up spatialkin.kernels.topology's searches (floating-point operations are
+does not read are dropped, which speeds up spatialkin.kernels.search.topology's searches (floating-point operations are
 not reordered or fused, so their results are the same bits).
 
 References
@@ -35,7 +35,7 @@ natural and centred forms).
 import math
 
 
-from .._lib.jit import jit
+from ..._lib.jit import jit
 from .surfaces import CONE, CYLINDER, GEOMETRY, ORIGIN, P0, P1, PLANE, ROT, SPHERE, TORUS
 
 #: Unit round-off of float64 (one ulp of 1.0).

@@ -1,8 +1,8 @@
 """The intersection branch as a system of the Runge–Kutta engine: Dragilev's right-hand side and its events.
 
 Every event of a branch segment is one entry of the vector ``branch_events`` writes, in this fixed order; a
-segment switches on the ones it watches. The same values serve the compiled engine (spatialkin.kernels.rk)
-and solve_ivp's own methods (spatialkin.tracing.march.ode.Event reads one entry).
+segment switches on the ones it watches. The same values serve the compiled engine (spatialkin.kernels.ode.rk)
+and solve_ivp's own methods (spatialkin.ode.solvers.Event reads one entry).
 
 The event parameters are one float array ``ep`` laid out by the P_* indices below, plus the chart data of the
 two surfaces in ``args = (a, b, sign, pullback, memo)`` (``branch_args``). ``memo`` keeps what the last right-hand
@@ -11,8 +11,8 @@ last stage, so the events read them instead of evaluating both surfaces again (t
 """
 import numpy as np
 
-from .._lib.jit import jit
-from . import rk
+from ..._lib.jit import jit
+from ..ode import rk
 from .curve import area_degeneracy, degeneracy, degeneracy_slope, dragilev_into, dragilev_rhs, frame, plane_value
 
 # --- events, in order (each value falls or rises through zero) -----------------------------------------------
@@ -150,6 +150,6 @@ def branch_events(t, y, args, ep, active, out):
 @jit
 def branch_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
                    modes, args, ep, method):
-    """spatialkin.kernels.rk.advance bound to branch_fun and branch_events."""
+    """spatialkin.kernels.ode.rk.advance bound to branch_fun and branch_events."""
     return rk.advance(branch_fun, branch_events, args, ep, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
                       max_steps, max_nfev, g, active, directions, modes, method)

@@ -1,7 +1,7 @@
 """The one compiled Runge–Kutta engine: Dormand–Prince 5(4) or 8(5,3) with scipy's steps, stopping at events.
 
 Every curve of the library (intersection branches, continuation of mechanisms) is integrated by
-``solve_ivp(..., method=spatialkin.tracing.march.ode.CompiledRK45)`` (or ``CompiledDOP853``); that OdeSolver calls
+``solve_ivp(..., method=spatialkin.ode.solvers.CompiledRK45)`` (or ``CompiledDOP853``); that OdeSolver calls
 ``advance`` here, which takes many steps of its method (RK45 or DOP853) inside compiled code and returns after a
 step over which one of the system's events crosses zero in its direction (located on the step's dense output as
 solve_ivp locates events for its own methods) or reaches a level. The tableaus, error norms, step-size control,
@@ -15,7 +15,7 @@ module (numba caches a kernel only when the functions it calls are globals, not 
 
 * ``fun(t, y, args, out)``: writes dy/dt (n,) into out;
 * ``events(t, y, args, eargs, active, out)``: writes the value of every active event into out (the same
-  functions serve solve_ivp's own methods through spatialkin.tracing.march.ode.Event).
+  functions serve solve_ivp's own methods through spatialkin.ode.solvers.Event).
 
 References
 ----------
@@ -27,7 +27,7 @@ here, DOP853's read from scipy's dop853_coefficients).
 import numpy as np
 from scipy.integrate._ivp import dop853_coefficients as _dop853   # scipy's DOP853 tableau (no public name)
 
-from .._lib.jit import jit
+from ..._lib.jit import jit
 
 # --- what advance returns ----------------------------------------------------------------------------------
 #: Took max_steps steps, or reached t_bound, without an event: call again.

@@ -1,8 +1,8 @@
 """The stored points of a traced curve: the solver's states at its steps, span by span, corrected onto the curve.
 
 ``corrected_spans`` does in one compiled call, span by span: each span's states corrected by Newton in that span's
-charts (spatialkin.kernels.curve.corrected_many), the user's parameters of a re-charted surface read back from the
-corrected points (spatialkin.kernels.surfaces.inverse, as spatialkin.tracing.curve.result.user_params), and the whole
+charts (spatialkin.kernels.march.curve.corrected_many), the user's parameters of a re-charted surface read back from the
+corrected points (spatialkin.kernels.geometry.surfaces.inverse, as spatialkin.tracing.curve.result.user_params), and the whole
 turns removed from a re-charted surface's u (unwrap_turns, which the closed forms call too): the same kernels and the
 same operations in the same order as a span-by-span loop over them in Python, so that the results agree with it to the
 bit.
@@ -16,9 +16,9 @@ import math
 
 import numpy as np
 
-from .._lib.jit import jit
-from .curve import corrected_many
-from .surfaces import inverse
+from ..._lib.jit import jit
+from ..march.curve import corrected_many
+from ..geometry.surfaces import inverse
 
 #: One turn of an angle.
 TWO_PI = 2.0 * math.pi

@@ -12,10 +12,10 @@ import math
 
 import numpy as np
 
-from .._lib.jit import jit
-from .follow import follow_events, follow_fun
-from .implicit import follow_rhs
-from .rk import advance
+from ..._lib.jit import jit
+from ..continuation.follow import follow_events, follow_fun
+from ..continuation.implicit import follow_rhs
+from ..ode.rk import advance
 
 O1, T1, A, O2, T2, C, L = 0, 3, 12, 13, 16, 25, 26
 PARAMS_SIZE = 27
@@ -60,7 +60,7 @@ def rssr_residual(params, x, grad, hess):
 
 @jit
 def implicit_curve_rhs(s, x, params, sign, pullback):
-    """Arc-length Cauchy problem of the planar implicit curve F(x) = 0 (spatialkin.kernels.implicit.follow_rhs
+    """Arc-length Cauchy problem of the planar implicit curve F(x) = 0 (spatialkin.kernels.continuation.implicit.follow_rhs
     with J = grad F): x' = sign (-F_2, F_1)/|grad F|, minus the pull-back pullback F grad F/|grad F|^2."""
     grad = np.empty(2)
     hess = np.empty((2, 2))
@@ -74,20 +74,20 @@ def implicit_curve_rhs(s, x, params, sign, pullback):
 
 @jit
 def rssr_fun(t, y, args, out):
-    """implicit_curve_rhs for the Runge-Kutta engine (spatialkin.kernels.follow)."""
+    """implicit_curve_rhs for the Runge-Kutta engine (spatialkin.kernels.continuation.follow)."""
     follow_fun(implicit_curve_rhs, t, y, args, out)
 
 
 @jit
 def rssr_events(t, y, args, eargs, active, out):
-    """The continuation events of implicit_curve_rhs (spatialkin.kernels.follow)."""
+    """The continuation events of implicit_curve_rhs (spatialkin.kernels.continuation.follow)."""
     follow_events(implicit_curve_rhs, t, y, args, eargs, active, out)
 
 
 @jit
 def rssr_advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
                    modes, args, eargs, method):
-    """spatialkin.kernels.rk.advance bound to rssr_fun and rssr_events."""
+    """spatialkin.kernels.ode.rk.advance bound to rssr_fun and rssr_events."""
     return advance(rssr_fun, rssr_events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, max_step,
                    max_steps, max_nfev, g, active, directions, modes, method)
 

@@ -1,5 +1,5 @@
 """Product of truncated Taylor polynomials in R[t, eps]/(t**T, eps_i eps_j) (see spatialkin.design.jet)."""
-from .._lib.jit import jit
+from ..._lib.jit import jit
 
 
 @jit

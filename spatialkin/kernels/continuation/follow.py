@@ -1,7 +1,7 @@
 """A continuation curve as a system of the Runge–Kutta engine: the events of trace_cycle.
 
 A continuation right-hand side is any jitted ``rhs(s, y, *system_args, sign, pullback)``
-(spatialkin.kernels.implicit.follow_rhs underneath); the engine's ``args`` are
+(spatialkin.kernels.continuation.implicit.follow_rhs underneath); the engine's ``args`` are
 ``(*system_args, sign, pullback)``. The events, in order, with ``eargs = (index, target level, start level)``
 (a float array):
 
@@ -11,10 +11,10 @@ A continuation right-hand side is any jitted ``rhs(s, y, *system_args, sign, pul
 
 A system's kernel module binds its rhs in three small jitted functions (numba caches a kernel only when the
 functions it calls are globals): ``fun = follow_fun(rhs, ...)``, ``events = follow_events(rhs, ...)`` and
-``advance = spatialkin.kernels.rk.advance(fun, events, ...)``; see spatialkin.kernels.linkage.
+``advance = spatialkin.kernels.ode.rk.advance(fun, events, ...)``; see spatialkin.kernels.mechanisms.rssr.
 """
-from .._lib.jit import jit
-from .rk import copy_into
+from ..._lib.jit import jit
+from ..ode.rk import copy_into
 
 LEVEL_TARGET = 0
 LEVEL_START = 1

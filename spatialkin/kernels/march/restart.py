@@ -1,7 +1,7 @@
 """The start of one segment of a branch in one compiled call: the charts, the state in them, and the projection.
 
 A branch is integrated segment by segment (spatialkin.tracing.march.ivp); at each segment start the tracer re-charts the
-surfaces that re-chart (a sphere: spatialkin.kernels.surfaces.recharted_sphere, at the point, the equator along
+surfaces that re-chart (a sphere: spatialkin.kernels.geometry.surfaces.recharted_sphere, at the point, the equator along
 the direction of travel, then along the curve's curvature vector there when it is known), reads the state in the
 new charts, and projects it back onto the curve in the plane normal to its tangent (Newton, minimum-norm steps
 where that plane is ill-posed). ``segment_start`` does these steps, the same kernels in the same order as
@@ -15,14 +15,14 @@ N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design an
 """
 import numpy as np
 
-from .._lib.jit import jit
+from ..._lib.jit import jit
 from .curve import curve_derivatives, curve_frame, project_to_curve
-from .surfaces import inverse, recharted_sphere
+from ..geometry.surfaces import inverse, recharted_sphere
 
 
 @jit
 def foot_parameters(data, point, y, k):
-    """y[2k:2k + 2] = the (u, v) of point's foot point on the surface data (spatialkin.kernels.surfaces.inverse)."""
+    """y[2k:2k + 2] = the (u, v) of point's foot point on the surface data (spatialkin.kernels.geometry.surfaces.inverse)."""
     uv = np.empty((1, 2))
     inverse(data, point.reshape((1, 3)), uv)
     y[2 * k] = uv[0, 0]

@@ -12,7 +12,7 @@ tangent t(J)), ch. 3 (the Moore-Penrose corrector) and ch. 4 (both from one QR f
 """
 import numpy as np
 
-from .._lib.jit import jit
+from ..._lib.jit import jit
 
 #: Diagonal entries of R below this fraction of the largest count as zero (rank loss: a branch point).
 RANK_EPS = 1e-13

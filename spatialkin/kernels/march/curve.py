@@ -15,9 +15,9 @@ import math
 
 import numpy as np
 
-from .._lib.jit import jit
-from .linalg import PIVOT_EPS, balance_columns, lu_factor, lu_solve, unbalance
-from .surfaces import frame, second
+from ..._lib.jit import jit
+from ..linalg import PIVOT_EPS, balance_columns, lu_factor, lu_solve, unbalance
+from ..geometry.surfaces import frame, second
 
 #: A Newton step longer than this fraction of the previous one has stopped contracting (round-off floor).
 STAGNATION = 0.25

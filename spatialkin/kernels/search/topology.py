@@ -3,7 +3,7 @@ and the points of the level g = 0 where its tangent is normal to a fixed directi
 function d . (u, v) along the level: every closed loop of the level has one).
 
 Both are branch-and-bound subdivisions over boxes of S's parameters. A box is discarded only when an interval
-enclosure (spatialkin.kernels.interval: the natural form, the centred form and, for g in the 2-D search, the
+enclosure (spatialkin.kernels.geometry.interval: the natural form, the centred form and, for g in the 2-D search, the
 second-order Taylor form) excludes zero, so no root is ever lost; a box is kept as holding exactly one root when
 the interval Newton operator (lines) or the Krawczyk operator (the 2 x 2 system) maps it strictly into itself.
 Boxes that can be neither discarded nor verified when they reach the minimum width are returned as unresolved
@@ -11,7 +11,7 @@ Boxes that can be neither discarded nor verified when they reach the minimum wid
 
 Records are boxes (lo, hi per parameter) with a kind: VERIFIED (exactly one simple root inside) or UNRESOLVED.
 
-The searches read g in stages (spatialkin.kernels.interval: level, jet_first, jet_second, inlined into them): a
+The searches read g in stages (spatialkin.kernels.geometry.interval: level, jet_first, jet_second, inlined into them): a
 box's second derivatives only when its first-order tests leave it in doubt, those at its midpoint only for the
 Krawczyk test; a bisected box's children reuse its sines and cosines on the side not cut; the refining Newton
 stops once its iterates cycle bit for bit (its last one is then known). None of this changes a bit of what
@@ -32,10 +32,10 @@ import math
 
 import numpy as np
 
-from .._lib.jit import jit
-from .interval import (box_trig, contains_zero, down, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first,
+from ..._lib.jit import jit
+from ..geometry.interval import (box_trig, contains_zero, down, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first,
                        jet_second, level, mag, point, u_trig, up, v_trig)
-from .surfaces import evaluate, inverse_local, to_local
+from ..geometry.surfaces import evaluate, inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
 #: Status of a search: completed, or stopped short (the result is then not a proof): at its box budget, with its

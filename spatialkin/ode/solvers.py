@@ -2,7 +2,7 @@
 
 ``CompiledRK45`` is a ``scipy.integrate.OdeSolver``: ``solve_ivp(fun, span, y0, method=CompiledRK45,
 system=system, watch=events, ...)``. One of its steps runs many RK45 steps inside compiled code
-(spatialkin.kernels.rk) and stops at the events it watches: each crossing is located on the step's dense output
+(spatialkin.kernels.ode.rk) and stops at the events it watches: each crossing is located on the step's dense output
 in compiled code, as solve_ivp locates events for its own methods (to 4 ulp), and the integration ends at a
 terminal one; ``integrate`` hands them back as solve_ivp's t_events and y_events. The steps are scipy RK45's.
 ``CompiledDOP853`` (the library's default, method name COMPILED) is the same with scipy DOP853's steps.
@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import DenseOutput, OdeSolution, OdeSolver, solve_ivp
 
-from ...kernels import rk
+from ..kernels.ode import rk
 
 #: Most engine steps one CompiledRK45 or CompiledDOP853 step takes (solve_ivp's per-step Python work is paid once
 #: per this many).
@@ -53,7 +53,7 @@ class System:
     events : callable
         ``events(t, y, args, eargs, active, out)``: the event values (n_events,) into out.
     advance : callable
-        spatialkin.kernels.rk.advance bound to the system's kernels:
+        spatialkin.kernels.ode.rk.advance bound to the system's kernels:
         ``advance(t, y, f, h, fresh, t_bound, rtol, atol, max_step, max_steps, max_nfev, g, active, directions,
         modes, args, eargs, method)``.
     args, eargs : tuple or ndarray
@@ -79,7 +79,7 @@ class Event:
 
     ``level`` ('before' or 'after', the compiled method only) makes it a level instead of a crossing: the
     integration ends at the last step before the one whose end reaches zero in the event's direction (that
-    step dropped), or at the end of the first such step (spatialkin.kernels.rk.LEVEL_BEFORE, LEVEL_AFTER).
+    step dropped), or at the end of the first such step (spatialkin.kernels.ode.rk.LEVEL_BEFORE, LEVEL_AFTER).
     ``probed`` (the compiled method; solve_ivp's methods check step ends only) also evaluates a terminal crossing
     or a level 'before' at interior points of each step (rk.TERMINAL_PROBED, LEVEL_BEFORE_PROBED). ``system`` may be
     pointed at another System of the same events between two integrations (a branch's segments reuse their
@@ -108,7 +108,7 @@ class Event:
 
 
 def event_mode(level, probed, terminal):
-    """An Event's entry in spatialkin.kernels.rk.advance's modes (Event.mode)."""
+    """An Event's entry in spatialkin.kernels.ode.rk.advance's modes (Event.mode)."""
     if level is not None:
         if level == "after":
             return rk.LEVEL_AFTER
@@ -158,7 +158,7 @@ class Watch(tuple):
 
 class StepsDense(DenseOutput):
     """Dense output of one CompiledRK45 or CompiledDOP853 step: the polynomial of each of its internal steps
-    (spatialkin.kernels.rk.dense_state; step lengths
+    (spatialkin.kernels.ode.rk.dense_state; step lengths
     hs: the last polynomial may reach past a terminal event's time ts[-1])."""
 
     def __init__(self, ts, ys, hs, qs):
@@ -215,7 +215,7 @@ class CompiledRK45(OdeSolver):
     log.budget_exceeded set), ``steps_per_call``. Forward in t only. ``integrate`` turns the log into solve_ivp's
     t_events and y_events and its dense output (steps_solution).
     """
-    #: The engine's method (spatialkin.kernels.rk.RK45 or DOP853).
+    #: The engine's method (spatialkin.kernels.ode.rk.RK45 or DOP853).
     METHOD = rk.RK45
 
     def __init__(self, fun, t0, y0, t_bound, vectorized=False, system=None, watch=(), log=None, rtol=1e-3,
@@ -224,7 +224,7 @@ class CompiledRK45(OdeSolver):
         if extraneous:
             raise TypeError(f"CompiledRK45 got unexpected options {sorted(extraneous)}")
         if not isinstance(system, System):
-            raise TypeError("CompiledRK45 needs system=spatialkin.tracing.march.ode.System(...)")
+            raise TypeError("CompiledRK45 needs system=spatialkin.ode.solvers.System(...)")
         self._base_state(fun, t0, y0, t_bound, vectorized)
         if self.direction < 0:
             raise ValueError("CompiledRK45 integrates forward in t only (t_bound < t0)")

@@ -7,7 +7,7 @@ kind of surface and every pair of them:
                           built-in kinds use their geometry codes
     data[P0], data[P1]    shape parameters (see below)
     data[GEOMETRY]        geometry code (PLANE, SPHERE, CYLINDER, CONE, TORUS): the parametrisation and the
-                          implicit function these kernels (and spatialkin.kernels.interval) evaluate
+                          implicit function these kernels (and spatialkin.kernels.geometry.interval) evaluate
     data[ORIGIN:+3]       frame origin in global coordinates
     data[ROT:+9]          frame rotation, row-major; its columns are the local x, y, z axes
     data[BOUNDS:+4]       u_min, u_max, v_min, v_max (infinite where unbounded)
@@ -23,7 +23,7 @@ Local parametrisations (x, y, z in the surface frame):
 The sphere is the torus with R = 0, and the cylinder and cone are both the revolution of the line
 rho(v) = P0 + P1 v, so three parametrisations cover the five geometries. The geometries are a closed set
 compiled here: a surface kind with a new geometry needs its branch in these kernels and in
-spatialkin.kernels.interval; a kind over an existing geometry (another chart, trim or set of traits) needs none.
+spatialkin.kernels.geometry.interval; a kind over an existing geometry (another chart, trim or set of traits) needs none.
 
 References
 ----------
@@ -35,7 +35,7 @@ import math
 
 import numpy as np
 
-from .._lib.jit import jit
+from ..._lib.jit import jit
 
 # --- layout of the data array -------------------------------------------------------------------------
 KIND, P0, P1, GEOMETRY, ORIGIN, ROT, BOUNDS = 0, 1, 2, 3, 4, 7, 16

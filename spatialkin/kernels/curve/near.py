@@ -12,9 +12,9 @@ The curve's dense output is read from flat tables (built by spatialkin.tracing.c
 * solver steps: span k's scipy OdeSolution times are ``ode_t[ode_off[k]:ode_off[k + 1]]`` and its steps' dense
   outputs are numbers ``ode_first[k]``, ... of the next level;
 * dense outputs (G): dense output g has kind ``kinds[g]``; poly_first[g] indexes its kind's tables:
-  RK45_STEPS (spatialkin.tracing.march.ode.StepsDense): its times ``pt[pt_off[g]:pt_off[g + 1]]`` (ts), and the
+  RK45_STEPS (spatialkin.ode.solvers.StepsDense): its times ``pt[pt_off[g]:pt_off[g + 1]]`` (ts), and the
   polynomial from its time i is number poly_first[g] + i of ``rk_h`` (length), ``rk_y`` (start state) and
-  ``rk_q`` (Q (4, c), spatialkin.kernels.rk.dense_state); DOP853 (scipy's Dop853DenseOutput): ``dop_t0`` (t_old),
+  ``rk_q`` (Q (4, c), spatialkin.kernels.ode.rk.dense_state); DOP853 (scipy's Dop853DenseOutput): ``dop_t0`` (t_old),
   ``dop_h``, ``dop_y`` (y_old) and ``dop_f`` (F (7, 4)).
 
 Every state is then corrected onto both surfaces by the same Newton (project_to_curve in the plane normal to the
@@ -32,13 +32,13 @@ import math
 
 import numpy as np
 
-from .._lib.jit import jit
-from .curve import curve_frame, project_to_curve
-from .rk import dense_into
+from ..._lib.jit import jit
+from ..march.curve import curve_frame, project_to_curve
+from ..ode.rk import dense_into
 
 #: Columns of the spans table.
 LO, FLIP, SHIFT, SIGN, COMPILED = 0, 1, 2, 3, 4
-#: kinds[g] of a dense output: a compiled method's step (its polynomials, spatialkin.tracing.march.ode.StepsDense) ...
+#: kinds[g] of a dense output: a compiled method's step (its polynomials, spatialkin.ode.solvers.StepsDense) ...
 RK45_STEPS = 0
 #: ... or a step of solve_ivp's DOP853 (scipy's Dop853DenseOutput, a degree-7 polynomial).
 DOP853 = 1

@@ -1,0 +1,1 @@
+"""Kernels of spatialkin.design: products of truncated Taylor jets (jet)."""

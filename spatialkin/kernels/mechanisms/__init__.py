@@ -1,0 +1,1 @@
+"""Kernels of spatialkin.mechanisms: the spatial four-link RSSR (rssr)."""

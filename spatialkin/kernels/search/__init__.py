@@ -1,0 +1,1 @@
+"""Kernels of spatialkin.tracing.search: certified root isolation of the topology stage (topology)."""

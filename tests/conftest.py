@@ -12,7 +12,7 @@ _REPORT = []
 #: the notebooks, worker pools and whole-command runs. A path selects a module or folder, a ``::`` id one test.
 SLOW = (
     "tests/spatialkin/tracing/test_stress.py",
-    "tests/spatialkin/tracing/test_topology_stress.py",
+    "tests/spatialkin/tracing/search/test_topology_stress.py",
     "tests/spatialkin/tracing/test_survey.py",
     "tests/notebooks/test_notebooks.py::test_notebook_runs",
     "tests/spatialkin/continuation/test_continuation.py::test_locks_of_an_ellipse_match_the_closed_form_and_solve_ivp",
@@ -24,7 +24,7 @@ SLOW = (
     "tests/spatialkin/design/test_design_sweep.py::test_local_processes_give_the_same_table",
     "tests/spatialkin/design/test_design_sweep.py::test_dask_local_cluster_gives_the_same_table",
     "tests/spatialkin/design/test_design_sweep.py::test_workers_fork_when_the_main_script_is_no_file",
-    "tests/spatialkin/test_firstrun.py::test_interpreted_run_gives_the_compiled_table",
+    "tests/spatialkin/cli/test_firstrun.py::test_interpreted_run_gives_the_compiled_table",
     "tests/spatialkin/bench/test_bench.py::test_bench_quick_command",
 )
 #: Tests that compare rendered pictures with stored baselines, marked ``images``.

@@ -1,13 +1,5 @@
-"""tests/spatialkin: its oracle modules (oracles.py, ssi_oracle.py, ...) importable from the subfolders too, and
-the looper drives several test modules share."""
-import os
-import sys
-
+"""tests/spatialkin: the looper drives several test modules share."""
 import pytest
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-if HERE not in sys.path:
-    sys.path.insert(0, HERE)
 
 #: A rocker centre at which the reference links block two ranges of crank angles (the crank cannot turn fully).
 BLOCKED_ROCKER_CENTRE = (40.0, 0.0, 60.0)

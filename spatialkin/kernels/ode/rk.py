@@ -54,7 +54,7 @@ LEVEL_AFTER = 3
 #: out and back within one step (a curve grazing out of a trim edge for a fraction of a step) is found down to
 #: DIP_FLOOR of the step (the bend bound is rigorous for events linear in the state: the trim edges). Only for events
 #: 1-Lipschitz in the state's largest component (a parameter against a bound; a relative area element,
-#: tests/spatialkin/tracing/test_hard_cases.py):
+#: tests/spatialkin/tracing/march/test_hard_cases.py):
 #: a step is probed only where such an event's value at an end is within the step's reach (step_reach: a bound on
 #: how far any component of the dense output moves within the step).
 TERMINAL_PROBED = 4

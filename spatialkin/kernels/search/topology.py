@@ -341,7 +341,7 @@ def _second_order(gm, gum, gvm, guu, guv, gvv, dU, dV):
     """The second-order Taylor form of g over the box m + dU x dV: g(m) + grad g(m) . d + d^T H(X) d / 2, with g
     and its gradient enclosed at the midpoint m and the Hessian over the box X (Lagrange's remainder lies in it).
     Its overestimate falls with the square of the width, as the centred form's does, but with a smaller constant
-    (0.1-0.4 of it, tests/spatialkin/kernels/test_interval.py): the 2-D searches of the bench's pairs visit 8-37%
+    (0.1-0.4 of it, tests/spatialkin/kernels/geometry/test_interval.py): the 2-D searches of the bench's pairs visit 8-37%
     fewer boxes with it (a torus-torus pair 2877 for 4597)."""
     linear = iadd(imul(gum, dU), imul(gvm, dV))
     half = iadd(iadd(iscale(imul(guu, isqr(dU)), 0.5), imul(guv, imul(dU, dV))), iscale(imul(gvv, isqr(dV)), 0.5))

@@ -1,4 +1,4 @@
-"""The bench's measurements against independent oracles (tests/spatialkin/oracles.py, numpy only): the errors
+"""The bench's measurements against independent oracles (tests/oracles/closed_forms.py, numpy only): the errors
 it reports are recomputed from the returned points, its closed forms agree with the oracle's, and the command
 writes its table, CSV and PNG. No timing is asserted."""
 import csv
@@ -15,7 +15,7 @@ from spatialkin.mechanisms import LooperDrive
 from spatialkin.tracing.components import intersect
 from spatialkin.tracing.march.trace import trace
 
-from oracles import sphere_distance, torus_distance, torus_sphere_closed_form, torus_sphere_components
+from tests.oracles.closed_forms import sphere_distance, torus_distance, torus_sphere_closed_form, torus_sphere_components
 
 #: Agreement of two computations of the same distance (round-off of 100 mm coordinates).
 DISTANCE_AGREEMENT = 1e-13

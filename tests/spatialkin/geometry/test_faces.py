@@ -1,13 +1,13 @@
 """CAD-face trims of the surfaces: angular ranges (u of a cylinder, cone, sphere or torus; a torus's tube angle),
 a sphere's zone, a plane's disc and annulus: the checks of their arguments, their round trips, and their limits
-against an inside test written apart from them (the angles of the point by atan2, ssi_oracle.face_margin)."""
+against an inside test written apart from them (the angles of the point by atan2, tests.oracles.ssi.face_margin)."""
 import math
 import pickle
 
 import numpy as np
 import pytest
 
-from ssi_oracle import face_margin, to_local
+from tests.oracles.ssi import face_margin, to_local
 
 import spatialkin as sk
 from spatialkin.geometry.trims import inside_region, limits

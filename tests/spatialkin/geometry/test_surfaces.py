@@ -5,7 +5,7 @@ of the light industry" (in Ukrainian): the torus and sphere parametrisations.
 """
 import numpy as np
 import pytest
-from oracles import random_rotation, sphere_distance, torus_distance
+from tests.oracles.closed_forms import random_rotation, sphere_distance, torus_distance
 
 import spatialkin as sk
 

@@ -10,7 +10,7 @@ import pyvista
 
 import spatialkin as sk
 from spatialkin.render import Scene, looper_scene
-from ssi_oracle import face_margin, to_local
+from tests.oracles.ssi import face_margin, to_local
 from spatialkin.render import geometry as geo
 from spatialkin.render import scene as scene_module
 
@@ -96,7 +96,7 @@ def test_surface_mesh_lies_on_the_surface(kind):
 @pytest.mark.parametrize("kind", ["torus", "sphere", "cylinder", "cone", "annulus"])
 def test_face_mesh_covers_its_trims(kind):
     """A CAD face is meshed over its trims only: every mesh point on the surface and inside the face by the
-    angles of the point (atan2, ssi_oracle.face_margin), and the mesh reaches its edges (both ends of an
+    angles of the point (atan2, tests.oracles.ssi.face_margin), and the mesh reaches its edges (both ends of an
     angular range, a disc's rims)."""
     frame = sk.Frame((1.0, -2.0, 3.0), sk.rotation_about((1, 1, 0), 0.7))
     surface = {"torus": sk.Torus(8.0, 3.0, frame, u_range=(0.5, 4.0), v_range=(-1.0, 2.0)),

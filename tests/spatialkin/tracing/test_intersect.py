@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from oracles import (random_rotation, sphere_distance, torus_distance, torus_sphere_closed_form,
+from tests.oracles.closed_forms import (random_rotation, sphere_distance, torus_distance, torus_sphere_closed_form,
                      torus_sphere_components, torus_sphere_critical_radii)
 
 import spatialkin as sk

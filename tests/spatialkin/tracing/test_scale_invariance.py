@@ -21,7 +21,7 @@ compiled integrator's first step in absolute units).
 """
 import numpy as np
 import pytest
-from ssi_cases import all_cases, transformed
+from tests.oracles.ssi_cases import all_cases, transformed
 
 import spatialkin as sk
 

@@ -9,7 +9,7 @@ import time
 import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from oracles import random_rotation, sphere_distance, torus_distance, torus_sphere_critical_radii
+from tests.oracles.closed_forms import random_rotation, sphere_distance, torus_distance, torus_sphere_critical_radii
 
 import spatialkin as sk
 

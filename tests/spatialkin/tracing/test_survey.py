@@ -1,10 +1,10 @@
-"""The consistency survey of near-degenerate pairs (tests/spatialkin/survey_degenerate.py; all 37 families: run it as a
+"""The consistency survey of near-degenerate pairs (tests/spatialkin/tracing/survey_degenerate.py; all 37 families: run it as a
 script) on the families of trims grazed, corners, near-tangent circles, split pairs and a cone's apex beside a sphere
 where a silent miss is most likely: in 3 placements and both argument orders, at offsets 1e-9 to 1e-3 of either sign,
 every answer (statuses and lengths to 4 digits) the same. Oracles: the intersection's invariance under rigid motion and
 argument order, and for the trim families the statuses their geometry fixes on each side of the edge."""
 import numpy as np
-import survey_degenerate as sd
+from tests.spatialkin.tracing import survey_degenerate as sd
 
 FAMILIES = (sd.fam_torus_plane_edge, sd.fam_plane_cyl_rim, sd.fam_plane_torus_two_edges, sd.fam_corner,
             sd.fam_steinmetz_radius, sd.fam_torus_sphere_inner, sd.fam_cyl_torus_inner, sd.fam_sphere_cyl_rim,

@@ -1,0 +1,234 @@
+"""Hard cases (ssi-notes): near tangency, crossing branches, parametrisation singularities, scale."""
+import math
+
+import numpy as np
+import pytest
+from tests.oracles.closed_forms import (random_rotation, sphere_distance, torus_distance, torus_sphere_closed_form,
+                     torus_sphere_critical_radii)
+
+import spatialkin as sk
+
+BIG, SMALL, CENTRE = 3.0, 1.0, np.array([1.0, 0.5, 0.7])
+RADII = torus_sphere_critical_radii(BIG, SMALL, CENTRE)
+
+
+def on_both(curve, centre, rho, big=BIG, small=SMALL, origin=np.zeros(3), rot=np.eye(3)):
+    """Largest exact distance of the points and of 2000 dense evaluations to torus and sphere."""
+    pts = curve.points if curve.length == 0 else np.vstack([curve.points, curve(np.linspace(0, curve.length, 2000))])
+    return max(torus_distance((pts - origin) @ rot, big, small).max(), sphere_distance(pts, centre, rho).max())
+
+
+def test_tiny_loop_just_above_the_first_critical_radius():
+    """rho = r1 + 1e-6: a loop of size about 2 sqrt(eps) ~ 2e-3 around the nearest foot point, found and
+    traced to 1e-10; its extent matches the closed form per torus angle."""
+    rho = RADII[0] + 1e-6
+    curves = sk.intersect(sk.Torus(BIG, SMALL), sk.Sphere(rho, sk.Frame(CENTRE)))
+    assert len(curves) == 1 and curves[0].closed
+    c = curves[0]
+    assert 1e-3 < np.ptp(c.points, axis=0).max() < 1e-2
+    assert on_both(c, CENTRE, rho) <= 1e-10 * rho
+    phi = np.linspace(-np.pi, np.pi, 200001)
+    exact, ok = torus_sphere_closed_form(BIG, SMALL, CENTRE, rho, phi)
+    assert len(exact) > 0
+    assert np.max(c.closest(exact.reshape(-1, 3))[1]) < 1e-9
+
+
+@pytest.mark.parametrize("which", [0, 3])
+def test_contact_point_at_a_critical_radius(which):
+    """rho exactly the smallest or largest critical radius: a single point of contact, status 'contact'."""
+    rho = RADII[which]
+    curves = sk.intersect(sk.Torus(BIG, SMALL), sk.Sphere(rho, sk.Frame(CENTRE)))
+    assert len(curves) == 1
+    c = curves[0]
+    assert c.status == "contact" and c.length == 0 and len(c.points) == 1
+    assert on_both(c, CENTRE, rho) < 1e-12
+
+
+@pytest.mark.parametrize("k", [1, 2])
+@pytest.mark.parametrize("delta", [-1e-7, 0.0, 1e-7])
+def test_around_a_saddle_radius(k, delta):
+    """At a saddle radius the curve is a figure-eight, traced as one closed curve straight through its node
+    (passed twice); 1e-7 to one side two loops, to the other one loop; no branch jump (every point and
+    dense evaluation on both surfaces, the closed form covered)."""
+    rho = RADII[k] + delta
+    curves = sk.intersect(sk.Torus(BIG, SMALL), sk.Sphere(rho, sk.Frame(CENTRE)))
+    two_loops = (k == 1 and delta > 0) or (k == 2 and delta < 0)
+    assert len(curves) == (2 if two_loops else 1)
+    for c in curves:
+        assert c.closed
+        assert on_both(c, CENTRE, rho) <= 1e-10 * BIG
+    if delta == 0.0:
+        assert len(curves[0].nodes) == 2
+        node = curves[0].nodes[0]
+        np.testing.assert_allclose(curves[0].nodes[1], node, atol=1e-5)
+    exact, _ = torus_sphere_closed_form(BIG, SMALL, CENTRE, rho, np.linspace(-np.pi, np.pi, 721))
+    gaps = np.min(np.stack([c.closest(exact.reshape(-1, 3))[1] for c in curves]), axis=0)
+    assert gaps.max() < 1e-6       # beside the node the closed form itself is ill-conditioned
+
+
+def test_sphere_poles_on_the_curve():
+    """A plane through the sphere's pole axis: a great circle through both poles, to 1e-12; and a torus-sphere
+    loop through the sphere's pole (the sphere's frame turned so)."""
+    curves = sk.intersect(sk.Sphere(2.0), sk.Plane(sk.Frame.from_z_axis((0, 0, 0), (1, 0, 0))))
+    assert len(curves) == 1 and curves[0].closed
+    c = curves[0]
+    assert np.abs(c.points[:, 2]).max() > 1.98
+    assert abs(c.length - 4 * np.pi) < 1e-9
+    pts = c(np.linspace(0, c.length, 4001))
+    assert np.abs(np.linalg.norm(pts, axis=1) - 2.0).max() < 1e-12 and np.abs(pts[:, 0]).max() < 1e-12
+    loop = sk.intersect(sk.Torus(BIG, SMALL), sk.Sphere(2.5, sk.Frame(CENTRE)))[0]
+    pole = loop.points[5]
+    turned = sk.Sphere(2.5, sk.Frame.from_z_axis(CENTRE, pole - CENTRE))
+    again = sk.intersect(sk.Torus(BIG, SMALL), turned)
+    assert len(again) == 1 and abs(again[0].length - loop.length) < 1e-9
+    assert on_both(again[0], CENTRE, 2.5) < 1e-12
+    assert np.min(np.abs(np.cos(again[0].params[:, 3]))) < 1e-3     # the pole is on the curve
+
+
+def test_spindle_torus_apex_on_the_curve():
+    """A sphere through the upper axis point of a spindle torus (R = 1, r = 2): the curve passes the apex
+    (a cone point of the surface), straight through, and stays on both surfaces to 1e-12."""
+    apex = np.array([0.0, 0.0, np.sqrt(3.0)])
+    centre = np.array([0.4, 1.0, 2.5])
+    rho = np.linalg.norm(centre - apex)
+    curves = sk.intersect(sk.Torus(1.0, 2.0), sk.Sphere(rho, sk.Frame(centre)))
+    through = [c for c in curves if len(c.nodes)]
+    assert len(through) == 1 and through[0].closed
+    c = through[0]
+    assert np.min(np.linalg.norm(c.nodes - apex, axis=1)) < 1e-4
+    assert c.closest(apex)[1] < 1e-9
+    assert on_both(c, centre, rho, 1.0, 2.0) < 1e-12
+
+
+def test_horn_torus_cusp():
+    """A horn torus (R = r = 1) with a sphere through its cusp (the origin): when the sphere's tangent
+    plane there holds the axis and its radius exceeds R the curve runs through the cusp; otherwise the cusp
+    is an isolated point of contact. Positions stay on both surfaces to 1e-12.
+
+    The first sphere (centre (1.5, 0, 0), radius 1.5) meets the torus in two tube circles of radius 1 touching at
+    the cusp (x^2 + y^2 + z^2 = 3x and = 2 rho give x = 2 rho / 3: two meridian half-planes), 4 pi in all. The
+    cusp is an apex proven by the topology stage: the tracer must jump across it (snapped onto it) rather than
+    integrate through it. Integrated through, the path turned onto whichever circle the machine's last bits chose: a
+    figure-eight passing 4.2e-8 from the cusp on one machine, on another (AMD EPYC with AVX-512) one circle run
+    twice, 6 pi in all. The length over each jump is the curve's (Gauss-Legendre), not the chord's (short by 3e-4
+    over a jump of 0.19): the total is 4 pi to 1e-9 (4e-11 measured on each circle)."""
+    torus = sk.Torus(1.0, 1.0)
+    centre = np.array([1.5, 0.0, 0.0])
+    curves = sk.intersect(torus, sk.Sphere(1.5, sk.Frame(centre)))
+    assert curves and all(c.closed for c in curves)
+    assert min(c.closest(np.zeros(3))[1] for c in curves) < 1e-12
+    assert abs(sum(c.length for c in curves) - 4 * np.pi) < 1e-9
+    for c in curves:        # dense points by arc length across the jump too: chords of 3e-5 match their s to 1e-7
+        s = np.linspace(0.0, c.length, 200001)
+        assert np.max(np.abs(np.linalg.norm(np.diff(c(s), axis=0), axis=1) / np.diff(s) - 1.0)) < 1e-7
+    for c in curves:
+        assert on_both(c, centre, 1.5, 1.0, 1.0) < 1e-12
+    centre = np.array([0.5, 0.2, 0.3])
+    curves = sk.intersect(torus, sk.Sphere(np.linalg.norm(centre), sk.Frame(centre)))
+    contacts = [c for c in curves if c.status == "contact"]
+    assert len(contacts) == 1 and np.linalg.norm(contacts[0].points[0]) < 1e-12
+
+
+def test_horn_torus_centre_on_a_coaxial_surface_is_one_contact():
+    """A horn torus (R = r = 1) and surfaces about its axis through its centre: the plane z = 0 meets it in the
+    circle of radius 2 (4 pi) and the centre alone, the sphere of radius 1 centred at (0, 0, 1) in a circle and the
+    centre. The centre is met at both ends of the periodic meridian (v = +-pi): one contact, not two."""
+    torus = sk.Torus(1.0, 1.0)
+    for other in (sk.Plane(sk.Frame(), (-3.0, 3.0), (-3.0, 3.0)), sk.Sphere(1.0, sk.Frame((0.0, 0.0, 1.0)))):
+        for pair in ((torus, other), (other, torus)):
+            curves = sk.intersect(*pair)
+            contacts = [c for c in curves if c.status == "contact"]
+            assert len(contacts) == 1 and np.linalg.norm(contacts[0].points[0]) < 1e-12
+            assert [c.closed for c in curves if c.status != "contact"] == [True]
+    plane_circle = [c for c in sk.intersect(torus, sk.Plane(sk.Frame(), (-3.0, 3.0), (-3.0, 3.0))) if c.closed]
+    assert abs(plane_circle[0].length - 4 * np.pi) < 1e-10 * 4 * np.pi      # (tol 1e-10 of the scale)
+
+
+def test_scales_from_1e_minus_3_to_1e3_in_one_scene():
+    """A torus of major radius 1e3 and tube 1 with a sphere of radius 1e-3 on its tube, and a torus of size
+    1e-3 cut by a sphere of radius 1e3: accuracy relative to the small scale (tol 1e-10), or the round-off
+    floor of coordinates of size 1e3 (Curve.tolerance)."""
+    rng = np.random.default_rng(3)
+    rot = random_rotation(rng)
+    origin = np.array([5.0, -2.0, 1.0])
+    torus = sk.Torus(1e3, 1.0, sk.Frame(origin, rot))
+    p, n = torus.point(0.3, 1.1), torus.normal(0.3, 1.1)
+    for offset in (2e-4, 0.0):
+        sphere = sk.Sphere(1e-3, sk.Frame(p + offset * n))
+        curves = sk.intersect(torus, sphere)
+        assert len(curves) == 1 and curves[0].closed
+        c = curves[0]
+        assert 1e-10 * 1e-3 <= c.tolerance <= 64 * np.finfo(float).eps * 1.1e3
+        assert on_both(c, sphere.center, 1e-3, 1e3, 1.0, origin, rot) <= c.tolerance
+        assert abs(c.length - 2 * np.pi * np.sqrt(1e-6 - offset ** 2)) < 1e-3 * c.length   # nearly a circle
+    small = sk.Torus(2e-3, 1e-3, sk.Frame((0, 0, 0), rot))
+    centre = rot @ np.array([0.0, 0.001, 1e3 + 0.0005])
+    curves = sk.intersect(small, sk.Sphere(1e3, sk.Frame(centre)))
+    assert len(curves) == 2
+    for c in curves:
+        assert c.closed and on_both(c, centre, 1e3, 2e-3, 1e-3, np.zeros(3), rot) <= c.tolerance
+
+
+def test_no_intersection_and_bad_tolerance():
+    torus = sk.Torus(BIG, SMALL)
+    assert sk.intersect(torus, sk.Sphere(0.5 * RADII[0], sk.Frame(CENTRE))) == []
+    assert sk.intersect(torus, sk.Sphere(1.0, sk.Frame((50.0, 0, 0)))) == []
+    for tol in (0.0, -1e-10, np.inf, np.nan):
+        with pytest.raises(ValueError, match="tol"):
+            sk.intersect(torus, sk.Sphere(2.5, sk.Frame(CENTRE)), tol=tol)
+
+
+@pytest.mark.parametrize("kind, size", [("horn", (1.0, 1.0)), ("spindle", (0.6, 1.0)), ("ring", (1.0, 0.97)),
+                                        ("cone", 0.3), ("cone", 1.2)])
+@pytest.mark.parametrize("scale", [1e-3, 1.0, 1e3])
+def test_area_element_is_1_lipschitz_in_its_parameter(kind, size, scale):
+    """The compiled engine probes the area hand-over inside a step only where a step end is within the step's reach
+    of it (kernels.rk.within_reach), which is sound for an event 1-Lipschitz in the state's components: the relative
+    area element of a torus (in v, an angle) and of a cone (in v, a length), in its unit for a scene of this scale
+    and weighted as the events weigh it (tracing.ivp.area_weight), against the oracle of sampled differences, to
+    round-off; and a cone's is the same number for the same scene at every scale (the apex guard means the same
+    distance from the apex, relative to the scene)."""
+    from spatialkin.kernels.march import curve as kc
+    from spatialkin.tracing.march.ivp import area_weight
+    from spatialkin.tracing.march.segments import area_flag
+    if kind == "cone":
+        surface = sk.Cone(size, v_range=(-3.0 * scale, 3.0 * scale))
+        v = np.linspace(-3.0, 3.0, 20001) * scale
+    else:
+        surface = sk.Torus(size[0] * scale, size[1] * scale)
+        v = np.linspace(-np.pi, np.pi, 20001)
+    unit = area_flag(surface.data, scale)
+    assert unit == (scale if kind == "cone" else 1.0)
+    weight = area_weight(unit, 0.0)
+    values = np.empty(len(v))
+    for i, vi in enumerate(v):
+        d = surface.derivatives(0.3, vi)
+        values[i] = kc.relative_area(d[1].copy(), d[2].copy(), unit)
+    assert np.max(np.abs(np.diff(values * weight)) / np.diff(v)) <= 1.0 + 1e-9
+    if kind == "cone":                      # against the scene at scale 1 (written apart: the numpy formula)
+        rho = np.abs(v / scale) * math.tan(size)
+        cos = math.cos(size)
+        expected = np.minimum(rho * cos, 1.0 / np.maximum(rho * cos, 1e-300))
+        np.testing.assert_allclose(values, expected, rtol=1e-12, atol=1e-15)
+
+
+def test_viviani_trimmed_at_its_node():
+    """Viviani's curve (a sphere of radius 2r through the axis of a cylinder of radius r) with the cylinder trimmed
+    at the height of its node: the upper lobe, from the node to the node. A jump across the node that ignored the
+    trim would land beyond it (7.1e-4 r outside); the curve ends at the edge: in either order it lies inside the
+    trim to round-off, and its length is the lobe's, 2 r int_0^pi sqrt(1 + cos^2 u) du (scipy.quad), to 1e-9."""
+    from scipy.integrate import quad
+    r = 0.7
+    rot = sk.rotation_about((0.3, 0.5, 1.0), 0.6)
+    o = np.array([0.2, -0.1, 0.4])
+    sphere = sk.Sphere(2 * r, sk.Frame(o, rot))
+    cylinder = sk.Cylinder(r, sk.Frame(o + r * rot[:, 0], rot), v_range=(0.0, 3 * r))
+    lobe = 2 * r * quad(lambda u: math.sqrt(1 + math.cos(u) ** 2), 0, math.pi, epsabs=1e-13, epsrel=1e-13)[0]
+    for a, b in ((sphere, cylinder), (cylinder, sphere)):
+        curves = sk.intersect(a, b)
+        assert len(curves) == 1 and curves[0].status == "boundary"
+        c = curves[0]
+        height = (c(np.linspace(0.0, c.length, 4001)) - cylinder.frame.origin) @ rot[:, 2]
+        assert height.min() >= -1e-15 * r
+        assert abs(c.length - lobe) <= 1e-9 * lobe
+        assert c.max_distance <= 1e-14 * r

@@ -20,9 +20,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import DenseOutput, OdeSolution, OdeSolver, solve_ivp
+from scipy.integrate import DenseOutput, OdeSolver, solve_ivp
 
 from ..kernels.ode import rk
+from .record import Steps
 
 #: Most engine steps one CompiledRK45 or CompiledDOP853 step takes (solve_ivp's per-step Python work is paid once
 #: per this many).
@@ -157,9 +158,9 @@ class Watch(tuple):
 
 
 class StepsDense(DenseOutput):
-    """Dense output of one CompiledRK45 or CompiledDOP853 step: the polynomial of each of its internal steps
-    (spatialkin.kernels.ode.rk.dense_state; step lengths
-    hs: the last polynomial may reach past a terminal event's time ts[-1])."""
+    """Dense output of one CompiledRK45 or CompiledDOP853 step (OdeSolver.dense_output's, for solve_ivp called with
+    dense_output=True): the polynomials of each of its engine steps (spatialkin.kernels.ode.rk.dense_state; step
+    lengths hs: the last polynomial may reach past a terminal event's time ts[-1])."""
 
     def __init__(self, ts, ys, hs, qs):
         super().__init__(ts[0], ts[-1])
@@ -174,51 +175,21 @@ class StepsDense(DenseOutput):
         return out.T
 
 
-class StepsSolution(OdeSolution):
-    """scipy's OdeSolution over the solver steps of a CompiledRK45 run (what solve_ivp builds with dense_output):
-    ``ts`` (k + 1,) the solver steps' ends, increasing, from the start, ``interpolants`` their k StepsDense. Its
-    attributes are OdeSolution's, set here without OdeSolution's checks of ts (integrate makes ts from the
-    engine's steps, each past the last, as solve_ivp keeps them); it evaluates as OdeSolution."""
-
-    def __init__(self, ts, interpolants):
-        self.ts = ts
-        self.interpolants = interpolants
-        self.n_segments = len(interpolants)
-        self.t_min = ts[0]
-        self.t_max = ts[-1]
-        self.ascending = True
-        self.side = "left"
-        self.ts_sorted = ts
-
-
-class EventLog:
-    """What CompiledRK45 records for integrate: the events it located, (event position in its list, t, y) in
-    time order, its internal steps (t, y arrays per solver step) and each solver step's end and dense output
-    (dense: (t, StepsDense) per solver step; OdeSolver's ConstantDenseOutput for a step of zero length, as
-    solve_ivp's solver.dense_output() gives)."""
-
-    def __init__(self):
-        self.hits = []
-        self.steps = []
-        self.dense = []
-        self.budget_exceeded = False
-
-
 class CompiledRK45(OdeSolver):
     """scipy's RK45 run in compiled code, many steps per solver step, stopping at the events it is given.
 
-    Options (through solve_ivp): ``system`` (System, required); ``watch`` and ``log``: the Events to watch (a
-    sequence, or a Watch made once for them; given to this solver, not as solve_ivp's events: each crossing is
-    located in compiled code on the step's dense output, as solve_ivp locates events, and recorded in the EventLog
-    ``log``; at a terminal one the integration ends there); ``rtol``, ``atol``, ``max_step``, ``first_step``,
-    ``max_nfev`` (past it the steps taken are kept and the next solver step fails with BUDGET_MESSAGE,
-    log.budget_exceeded set), ``steps_per_call``. Forward in t only. ``integrate`` turns the log into solve_ivp's
-    t_events and y_events and its dense output (steps_solution).
+    Options (through solve_ivp): ``system`` (System, required); ``watch``: the Events to watch (a sequence, or a
+    Watch made once for them; given to this solver, not as solve_ivp's events: each crossing is located in compiled
+    code on the step's dense output, as solve_ivp locates events, and recorded in the record; at a terminal one the
+    integration ends there); ``record``: the Steps (spatialkin.ode.record) the engine's steps and located events are
+    written to; ``rtol``, ``atol``, ``max_step``, ``first_step``, ``max_nfev`` (past it the steps taken are kept and
+    the next solver step fails with BUDGET_MESSAGE, record.budget_exceeded set), ``steps_per_call``. Forward in t
+    only. ``integrate`` reads solve_ivp's t_events and y_events and its dense output from the record.
     """
     #: The engine's method (spatialkin.kernels.ode.rk.RK45 or DOP853).
     METHOD = rk.RK45
 
-    def __init__(self, fun, t0, y0, t_bound, vectorized=False, system=None, watch=(), log=None, rtol=1e-3,
+    def __init__(self, fun, t0, y0, t_bound, vectorized=False, system=None, watch=(), record=None, rtol=1e-3,
                  atol=1e-6, max_step=np.inf, first_step=None, max_nfev=None, steps_per_call=STEPS_PER_CALL,
                  **extraneous):
         if extraneous:
@@ -237,7 +208,7 @@ class CompiledRK45(OdeSolver):
         self.max_step = float(max_step)
         self.max_nfev = NO_BUDGET if max_nfev is None else int(max_nfev)
         self.steps_per_call = int(steps_per_call)
-        self.log = EventLog() if log is None else log
+        self.record = Steps() if record is None else record
         plan = watch if isinstance(watch, Watch) else Watch(watch, system.n_events)
         self.active, self.directions, self.modes, self.position = plan.active, plan.directions, plan.modes, \
             plan.position
@@ -292,25 +263,23 @@ class CompiledRK45(OdeSolver):
             self.system.args, self.system.eargs, self.METHOD)
         self.fresh = False
         self.nfev += nfev
+        record = self.record
         if status in (rk.STEP_FAILED, rk.BUDGET):
             self.failed = STEP_FAILED_MESSAGE if status == rk.STEP_FAILED else BUDGET_MESSAGE
-            self.log.budget_exceeded = status == rk.BUDGET
+            record.budget_exceeded = status == rk.BUDGET
             if len(ts) < 2:
                 return False, self.failed
         for index, t_e, y_e in zip(hits.tolist(), hit_ts.tolist(), hit_ys):
-            self.log.hits.append((self.position[index], t_e, y_e))
+            record.events.append((self.position[index], t_e, y_e))
             if self.modes[index] != rk.CROSSING:
                 self.t_bound = t_e           # the integration ends at a terminal event (solve_ivp: 'finished')
         self.t_old, self.t, self.y, self.h = self.t, t, y, h
-        self._dense = StepsDense(ts, ys, hs, qs)
-        self.log.steps.append((ts, ys))
-        # (solve_ivp's solver.dense_output(): this step's StepsDense, or OdeSolver's ConstantDenseOutput for a zero
-        # step)
-        self.log.dense.append((t, self.dense_output()))
+        record.add(ts, ys, hs, qs)
+        self._dense = (ts, ys, hs, qs)
         return True, None
 
     def _dense_output_impl(self):
-        return self._dense
+        return StepsDense(*self._dense)
 
 
 class CompiledDOP853(CompiledRK45):
@@ -324,60 +293,39 @@ COMPILED_SOLVERS = {COMPILED: CompiledDOP853, COMPILED_RK45: CompiledRK45}
 
 
 def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, max_nfev=None, first_step=None):
-    """solve_ivp on a System with dense output and the given Events: by CompiledDOP853 (method COMPILED) or
-    CompiledRK45 (COMPILED_RK45), its
+    """solve_ivp on a System with the given Events, its dense output ``res.sol`` the record of its steps (Steps):
+    by CompiledDOP853 (method COMPILED) or CompiledRK45 (COMPILED_RK45), which write the record as they step, their
     located events returned as solve_ivp returns its own (t_events, y_events, status 1 at a terminal one; past
-    max_nfev evaluations status -1 with the steps taken and res.budget_exceeded), or by a solve_ivp method whose
-    right-hand side raises BudgetExceeded past max_nfev evaluations (level events are the compiled method's)."""
+    max_nfev evaluations status -1 with the steps taken and res.sol.budget_exceeded), or by a solve_ivp method
+    (dense_output=True, its result converted once: Steps.of_solution) whose right-hand side raises BudgetExceeded
+    past max_nfev evaluations (level events are the compiled methods')."""
     solver = COMPILED_SOLVERS.get(method)
     if solver is None:
         if any(event.level for event in events):
             raise ValueError(f"level events need the compiled method, not {method!r}")
-        return solve_ivp(budgeted(system.rhs, max_nfev), t_span, y0, method=method, rtol=rtol, atol=atol,
-                         dense_output=True, events=events, args=system.args, max_step=max_step, first_step=first_step)
-    log = EventLog()
-    # the dense output is made here from the log (solve_ivp's OdeSolution of the same steps, without its checks)
-    # (an empty span: solve_ivp's own, one ConstantDenseOutput over [t0, t0], as no step is logged)
-    empty = t_span[0] == t_span[1]
+        res = solve_ivp(budgeted(system.rhs, max_nfev), t_span, y0, method=method, rtol=rtol, atol=atol,
+                        dense_output=True, events=events, args=system.args, max_step=max_step, first_step=first_step)
+        res.sol = Steps.of_solution(res, method)
+        return res
+    record = Steps()
     res = solve_ivp(system.rhs, t_span, y0, method=solver, rtol=rtol, atol=atol, args=system.args,
-                    max_step=max_step, first_step=first_step, system=system, watch=events, log=log, max_nfev=max_nfev,
-                    dense_output=empty)
-    if not empty:
-        res.sol = steps_solution(res, log.dense)
+                    max_step=max_step, first_step=first_step, system=system, watch=events, record=record,
+                    max_nfev=max_nfev)
+    res.sol = record.close(t_span[0], y0)
     n = len(y0)
     no_t, no_y = np.empty(0), np.empty((0, n))        # the events not met share these (empty: nothing to change)
     res.t_events = [no_t] * len(events)
     res.y_events = [no_y] * len(events)
-    if log.hits:
+    if record.events:
         met = {}
-        for k, t_e, y_e in log.hits:
+        for k, t_e, y_e in record.events:
             met.setdefault(k, []).append((t_e, y_e))
         for k, hits in met.items():
             res.t_events[k] = np.array([t_e for t_e, _ in hits])
             res.y_events[k] = np.array([y_e for _, y_e in hits]).reshape(len(hits), n)
-        if res.status == 0 and events[log.hits[-1][0]].terminal:
+        if res.status == 0 and events[record.events[-1][0]].terminal:
             res.status, res.message = 1, "A termination event occurred."
-    res.steps = log.steps
-    res.budget_exceeded = log.budget_exceeded
     return res
-
-
-def steps_solution(res, dense):
-    """The dense output solve_ivp(..., dense_output=True) gives a CompiledRK45 run, as a StepsSolution, from its
-    solver steps' (t, StepsDense) (EventLog.dense): a step ending where the last one kept ended is dropped, as
-    solve_ivp drops it (and res.t, res.y, which solve_ivp keeps whole without a dense output, lose it too). Not for
-    an empty span (t0 = t_bound: OdeSolver.step finishes it without a step of the method, nothing is logged;
-    integrate lets solve_ivp make that one)."""
-    times, interpolants = [res.t[0]], []
-    for t, step in dense:
-        if len(times) > 1 and times[-1] == t:
-            continue
-        times.append(t)
-        interpolants.append(step)
-    if len(times) < len(res.t):
-        kept = [0] + [k + 1 for k, (t, _) in enumerate(dense) if k == 0 or dense[k - 1][0] != t]
-        res.t, res.y = res.t[kept], res.y[:, kept]
-    return StepsSolution(np.array(times), interpolants)
 
 
 def budgeted(rhs, limit=None):
@@ -392,17 +340,3 @@ def budgeted(rhs, limit=None):
             raise BudgetExceeded(f"{limit} right-hand-side evaluations")
         return rhs(t, y, *args)
     return wrapped
-
-
-def step_points(res):
-    """(t (m,), y (n, m)) of every RK step of a solve_ivp result up to its end: a CompiledRK45 result's internal
-    steps (integrate keeps them as res.steps), otherwise res.t and res.y."""
-    steps = getattr(res, "steps", None)
-    if not steps:
-        return res.t, res.y
-    if len(steps) == 1:
-        ts, ys = steps[0]
-    else:
-        ts = np.concatenate([steps[0][0][:1]] + [t[1:] for t, _ in steps])
-        ys = np.concatenate([steps[0][1][:1]] + [y[1:] for _, y in steps])
-    return ts, np.ascontiguousarray(ys.T)

@@ -9,13 +9,9 @@ The curve's dense output is read from flat tables (built by spatialkin.tracing.c
   (verdict PYTHON); a re-measured segment (spatialkin.tracing.march.arclength.RemappedStates) first maps t to the
   solver's time by np.interp through ``remap_new[remap_off[k]:remap_off[k + 1]]`` and ``remap_old[...]`` (an
   empty range: no re-mapping);
-* solver steps: span k's scipy OdeSolution times are ``ode_t[ode_off[k]:ode_off[k + 1]]`` and its steps' dense
-  outputs are numbers ``ode_first[k]``, ... of the next level;
-* dense outputs (G): dense output g has kind ``kinds[g]``; poly_first[g] indexes its kind's tables:
-  RK45_STEPS (spatialkin.ode.solvers.StepsDense): its times ``pt[pt_off[g]:pt_off[g + 1]]`` (ts), and the
-  polynomial from its time i is number poly_first[g] + i of ``rk_h`` (length), ``rk_y`` (start state) and
-  ``rk_q`` (Q (4, c), spatialkin.kernels.ode.rk.dense_state); DOP853 (scipy's Dop853DenseOutput): ``dop_t0`` (t_old),
-  ``dop_h``, ``dop_y`` (y_old) and ``dop_f`` (F (7, 4)).
+* steps: span k's segment record (spatialkin.ode.record.Steps) has its step ends and states in rows
+  ``t_off[k]:t_off[k + 1]`` of ``step_t`` and ``step_y`` and its step lengths and polynomials from row ``p_off[k]``
+  of ``step_h`` and ``step_q`` (spatialkin.kernels.ode.rk.dense_into reads them, as the record does).
 
 Every state is then corrected onto both surfaces by the same Newton (project_to_curve in the plane normal to the
 tangent) as TracedSolution.evaluate, and the foot point is found by the same Newton in s as
@@ -25,8 +21,7 @@ it (a point of the curve too), so they decide as the Python path does without al
 
 References
 ----------
-scipy.integrate._ivp.common.OdeSolution (the step lookup), scipy.integrate._ivp.rk.Dop853DenseOutput (its
-polynomial), spatialkin.tracing.curve.dense (the evaluation this mirrors).
+spatialkin.tracing.curve.dense (the evaluation this mirrors).
 """
 import math
 
@@ -38,12 +33,6 @@ from ..ode.rk import dense_into
 
 #: Columns of the spans table.
 LO, FLIP, SHIFT, SIGN, COMPILED = 0, 1, 2, 3, 4
-#: kinds[g] of a dense output: a compiled method's step (its polynomials, spatialkin.ode.solvers.StepsDense) ...
-RK45_STEPS = 0
-#: ... or a step of solve_ivp's DOP853 (scipy's Dop853DenseOutput, a degree-7 polynomial).
-DOP853 = 1
-#: Coefficient columns of a DOP853 dense output (scipy's DOP853 INTERPOLATOR_POWER).
-DOP853_POWER = 7
 #: near_mask's verdicts: farther than the reach from every stored point (far from the curve) ...
 FAR = 0
 #: ... within the radius of the foot point found from the nearest stored point (near) ...
@@ -55,36 +44,12 @@ PYTHON = 3
 
 
 @jit
-def dop853_state(t_old, h, y_old, f, t, out):
-    """scipy's Dop853DenseOutput at t into out (n,): Horner in x and 1 - x over the coefficient rows f (7, n)
-    from the last, as scipy evaluates it (the same operations in the same order)."""
-    x = (t - t_old) / h
-    for i in range(out.shape[0]):
-        acc = 0.0
-        for r in range(DOP853_POWER):
-            acc += f[DOP853_POWER - 1 - r, i]
-            if r % 2 == 0:
-                acc *= x
-            else:
-                acc *= 1 - x
-        out[i] = acc + y_old[i]
-
-
-@jit
 def solver_state(table, k, t, out):
-    """The solver's state at its time t on span k into out (4,), as scipy's OdeSolution of the span's segment
-    gives it (the step found by searchsorted 'left', then the step's dense output)."""
-    (_, _, _, ode_t, ode_off, ode_first, kinds, pt_off, poly_first, pt, rk_h, rk_y, rk_q,
-     dop_t0, dop_h, dop_y, dop_f, _, _, _) = table
-    lo, hi = ode_off[k], ode_off[k + 1]
-    ind = np.searchsorted(ode_t[lo:hi], t, side="left")
-    g = ode_first[k] + min(max(ind - 1, 0), hi - lo - 2)
-    j = poly_first[g]
-    if kinds[g] == DOP853:
-        dop853_state(dop_t0[j], dop_h[j], dop_y[j], dop_f[j], t, out)
-        return
-    first, last = pt_off[g], pt_off[g + 1]      # StepsDense's own lookup
-    dense_into(pt[first:last], rk_y[j:], rk_h[j:], rk_q[j:], t, out)
+    """The solver's state at its time t on span k into out (4,), as the segment's record gives it
+    (spatialkin.ode.record.Steps: rk.dense_into on its steps)."""
+    t_off, p_off, step_t, step_y, step_h, step_q = table[3], table[4], table[5], table[6], table[7], table[8]
+    lo, hi, p = t_off[k], t_off[k + 1], p_off[k]
+    dense_into(step_t[lo:hi], step_y[lo:hi], step_h[p:], step_q[p:], t, out)
 
 
 @jit
@@ -128,7 +93,7 @@ def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangen
         return np.nan
     flip = spans[k, FLIP]
     t = spans[k, SHIFT] + flip * s
-    remap_off, remap_new, remap_old = table[17], table[18], table[19]
+    remap_off, remap_new, remap_old = table[9], table[10], table[11]
     if remap_off[k + 1] > remap_off[k]:
         t = interp(t, remap_new[remap_off[k]:remap_off[k + 1]], remap_old[remap_off[k]:remap_off[k + 1]])
     solver_state(table, k, t, y)

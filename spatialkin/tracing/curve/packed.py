@@ -1,23 +1,21 @@
-"""A traced curve's dense output packed into flat arrays, for the compiled distance kernels (spatialkin.kernels.curve.near).
+"""A traced curve's dense output as flat tables, for the compiled distance kernels (spatialkin.kernels.curve.near).
 
-``packed(sol)`` reads a TracedSolution's spans, their segments' charts and scipy OdeSolutions, and each step's
-dense output (the compiled methods' StepsDense, or solve_ivp's DOP853 where a solve_ivp method integrated) into the
-tables kernels.near documents, once per curve (a curve does not change). A closed form has no table (None), nor a traced
-curve none of whose spans the tables can hold; a span they cannot hold (a jump across a node or an apex,
-another solve_ivp method) is marked so, and a point whose Newton meets it is left to the
-dense output's Python methods.
+``packed(sol)`` reads a TracedSolution's spans, their segments' charts and the records of their steps
+(spatialkin.ode.record.Steps: step ends, states, lengths and polynomials, as the engine wrote them) into the tables
+kernels.curve.near documents, once per curve (a curve does not change). A closed form has no table (None), nor a
+traced curve none of whose spans the tables can hold; a span they cannot hold (a jump across a node or an apex, a
+solve_ivp method without polynomial steps) is marked so, and a point whose Newton meets it is left to the dense
+output's Python methods.
 """
 import weakref
 
 import numpy as np
-from scipy.integrate import OdeSolution
-from scipy.integrate._ivp.rk import Dop853DenseOutput   # scipy's DOP853 step polynomial (no public name)
 
 from ...kernels.curve import near as kn
+from ...ode.record import Steps
 from ..march.arclength import RemappedStates
-from .dense import TracedSolution
-from ...ode.solvers import StepsDense
 from ..march.segments import NEWTON_MAX_ITER
+from .dense import TracedSolution
 
 #: The tables made so far, per dense output (dropped with it).
 _TABLES = weakref.WeakKeyDictionary()
@@ -28,7 +26,7 @@ _NO_TABLE = ()
 
 
 def packed(sol):
-    """The tables of kernels.near for the dense output sol (a tuple of 20 arrays), made once per curve, or None
+    """The tables of kernels.curve.near for the dense output sol (a tuple of 12 arrays), made once per curve, or None
     when sol is not a plain traced curve (see the module docstring)."""
     if not isinstance(sol, TracedSolution):
         return None
@@ -53,8 +51,7 @@ def packed_grid(sol, table):
 def _pack(sol):
     """The tables for a TracedSolution, or None (see packed)."""
     spans = sol.spans
-    ode_t, ode_off, ode_first, kinds, dense_outputs, compiled = [], [0], [], [], [], []
-    remap_off, remap_new, remap_old = [0], [], []
+    records, held, remap_off, remap_new, remap_old = [], [], [0], [], []
     for span in spans:
         ode = span.seg.sol
         if isinstance(ode, RemappedStates):     # a re-measured segment: arc length -> solver time first
@@ -62,58 +59,34 @@ def _pack(sol):
             remap_old.append(ode.t_old)
             ode = ode.sol
         remap_off.append(remap_off[-1] + (len(remap_new[-1]) if ode is not span.seg.sol else 0))
-        own = _kinds(ode) if not any(span.seg.normal.tolist()) else None
-        compiled.append(own is not None)       # a jump across a node or an apex, another solve_ivp method: not
-        ode_first.append(len(kinds))           # held (its points left to Python)
-        if own is not None:
-            kinds += own
-            dense_outputs += ode.interpolants
-            ode_t.append(ode.ts)
-        ode_off.append(ode_off[-1] + (len(ode.ts) if own is not None else 0))
-    if not any(compiled):
+        # (a jump across a node or an apex, a solve_ivp method without polynomial steps: not held, left to Python)
+        own = isinstance(ode, Steps) and ode.compiled and len(ode.t) >= 2 and not any(span.seg.normal.tolist())
+        held.append(own)
+        if own:
+            records.append(ode)
+    if not records:
         return None
     charts_a = np.array([span.seg.a for span in spans], dtype=float)
     charts_b = np.array([span.seg.b for span in spans], dtype=float)
     if charts_a.ndim != 2 or charts_b.ndim != 2:
         return None          # charts of different layouts (never met: one surface keeps its kind)
-    steps = [dense for dense in dense_outputs if isinstance(dense, StepsDense)]
-    dop = [dense for dense in dense_outputs if not isinstance(dense, StepsDense)]
-    pt_off, poly_first, n_times, n_polys, n_dop = [0], [], 0, 0, 0
-    for dense in dense_outputs:
-        if isinstance(dense, StepsDense):
-            poly_first.append(n_polys)
-            n_times += len(dense.ts)
-            n_polys += len(dense.ts) - 1
-        else:
-            poly_first.append(n_dop)
-            n_dop += 1
-        pt_off.append(n_times)
-    numbers = np.array([x for span, held in zip(spans, compiled)
-                        for x in (span.lo, span.flip, span.shift, span.seg.sign, held)], dtype=float)
-    ints = (np.array(x, dtype=np.int64) for x in (ode_off, ode_first, kinds, pt_off, poly_first))
-    return (numbers.reshape(len(spans), 5), charts_a, charts_b, _joined(ode_t, (0,)), *ints,
-            _joined([d.ts for d in steps], (0,)), _joined([d.hs[:len(d.ts) - 1] for d in steps], (0,)),
-            _joined([d.ys[:len(d.ts) - 1] for d in steps], (0, 4)), _joined(_widened([d.qs[:len(d.ts) - 1]
-                                                                                      for d in steps]), (0, 4, 4)),
-            np.array([d.t_old for d in dop], dtype=float), np.array([d.h for d in dop], dtype=float),  # (D,) each
-            _joined([d.y_old[None] for d in dop], (0, 4)), _joined([d.F[None] for d in dop], (0, kn.DOP853_POWER, 4)),
+    t_off, p_off = [0], [0]
+    for own, span in zip(held, spans):
+        m = len(_record(span.seg.sol).t) if own else 0
+        t_off.append(t_off[-1] + m)
+        p_off.append(p_off[-1] + max(m - 1, 0))
+    numbers = np.array([x for span, own in zip(spans, held)
+                        for x in (span.lo, span.flip, span.shift, span.seg.sign, own)], dtype=float)
+    return (numbers.reshape(len(spans), 5), charts_a, charts_b, np.array(t_off, dtype=np.int64),
+            np.array(p_off, dtype=np.int64), _joined([r.t for r in records], (0,)),
+            _joined([r.y for r in records], (0, 4)), _joined([r.h[:len(r.t) - 1] for r in records], (0,)),
+            _joined(_widened([r.q[:len(r.t) - 1] for r in records]), (0, 4, 4)),
             np.array(remap_off, dtype=np.int64), _joined(remap_new, (0,)), _joined(remap_old, (0,)))
 
 
-def _kinds(ode):
-    """The kinds (kernels.near) of the dense outputs of a segment's solution, or None when the tables cannot hold
-    it (not scipy's OdeSolution ascending in time, or a dense output neither the compiled methods' nor DOP853's)."""
-    if not isinstance(ode, OdeSolution) or not ode.ascending or ode.side != "left":
-        return None
-    kinds = []
-    for dense in ode.interpolants:
-        if isinstance(dense, StepsDense) and len(dense.ts) >= 2:
-            kinds.append(kn.RK45_STEPS)
-        elif isinstance(dense, Dop853DenseOutput) and dense.F.shape == (kn.DOP853_POWER, 4):
-            kinds.append(kn.DOP853)
-        else:
-            return None
-    return kinds
+def _record(ode):
+    """The Steps under a segment's dense output (a re-measured segment's RemappedStates reads one)."""
+    return ode.sol if isinstance(ode, RemappedStates) else ode
 
 
 def _widened(qs):

@@ -23,7 +23,7 @@ import numpy as np
 from ...kernels.march import branch_ode as kb
 from ...kernels.march import curve as kc
 from ...kernels.geometry import surfaces as ks
-from ...ode.solvers import COMPILED_SOLVERS, BudgetExceeded, Event, System, Watch, integrate, step_points
+from ...ode.solvers import COMPILED_SOLVERS, BudgetExceeded, Event, System, Watch, integrate
 from .segments import (EDGE_NAMES, EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment,
                        area_flag, finite_bounds, newton_fixed, project_state, segment_start)
 from ..curve.status import outcome
@@ -269,14 +269,15 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             if mark is not None:
                 stages.leave(mark)
         branch.nfev += res.nfev
-        ts, ys = step_points(res)
-        seg = Segment(s0=s, s1=s + ts[-1], sign=sign, sol=res.sol, a=a, b=b, t=ts, y=ys, compiled=compiled,
+        steps = res.sol                      # the record of the segment's steps (spatialkin.ode.record.Steps)
+        ts, ys = steps.t, steps.y.T
+        seg = Segment(s0=s, s1=s + ts[-1], sign=sign, sol=steps, a=a, b=b, t=ts, y=ys, compiled=compiled,
                       area=area)
         if ts[-1] > 0:
             branch.segments.append(seg)
         s = seg.s1
         y = ys[:, -1].copy()
-        if res.status == -1 and getattr(res, "budget_exceeded", False):
+        if res.status == -1 and steps.budget_exceeded:
             branch.status, branch.message = outcome("stalled", s=s, budget=SEGMENT_MAX_EVALUATIONS,
                                                     point=point.tolist())
             break

@@ -6,14 +6,15 @@ steps to round-off, the same dense output, the same located events; the budget a
 """
 import numpy as np
 import pytest
-from scipy.integrate import DOP853, RK45
+from scipy.integrate import DOP853, RK45, solve_ivp
 
 import spatialkin as sk
 from spatialkin.bench.cases import looper_pair
 from spatialkin.kernels.march import branch_ode as kb
 from spatialkin.kernels.march import curve as kc
 from spatialkin.ode.solvers import COMPILED, COMPILED_RK45
-from spatialkin.ode.solvers import BudgetExceeded, CompiledRK45, Event, System, integrate, step_points
+from spatialkin.ode.record import Steps
+from spatialkin.ode.solvers import BudgetExceeded, CompiledRK45, Event, System, integrate
 
 #: States, dense output and event times: the same polynomials on (nearly) the same steps.
 SAME_DENSE_TOL = 1e-9
@@ -136,8 +137,9 @@ def test_compiled_methods_take_scipys_steps(compiled, method):
     first = FIRST_STEP_SHARE * float(np.median(np.diff(integrate(system, (0.0, length), y0, method, [], RTOL,
                                                                  atol).t)))
     ours = integrate(system, (0.0, length), y0, compiled, [], RTOL, atol, first_step=first)
-    scipy = integrate(system, (0.0, length), y0, method, [], RTOL, atol, first_step=first)
-    t, y = step_points(ours)
+    scipy = solve_ivp(system.rhs, (0.0, length), y0, method=method, rtol=RTOL, atol=atol, args=system.args,
+                      first_step=first, dense_output=True)
+    t, y = ours.sol.t, ours.sol.y.T
     assert ours.status == scipy.status == 0
     assert len(ours.t) < len(t) == len(scipy.t) > 10          # many RK steps per solver step, the same steps
     scipy_t, bound = step_time_bounds(method, system, y0, length, RTOL, atol, first)
@@ -167,7 +169,7 @@ def test_compiled_methods_choose_scipys_first_step(compiled, method):
     h0 = 0.01 * rms(y0 / scale) / rms(f0 / scale)
     f1 = system.rhs(0.0, y0 + h0 * f0, *system.args)
     cancel = rms(4 * UNIT_ROUNDOFF * (np.abs(f0) + np.abs(f1)) / scale) / rms((f1 - f0) / scale)
-    h = step_points(ours)[0][1]
+    h = ours.sol.t[1]
     assert abs(h - scipy.t[1]) <= (cancel / (cls.error_estimator_order + 1) + 4 * UNIT_ROUNDOFF) * scipy.t[1]
 
 
@@ -200,10 +202,9 @@ def test_events_are_located_as_solve_ivp_locates_them(compiled, method):
 def test_budget_and_bad_options_are_reported():
     system, y0, length = looper_system()
     res = integrate(system, (0.0, length), y0, COMPILED_RK45, [], RTOL, np.full(4, RTOL), max_nfev=50)
-    assert res.status == -1 and res.budget_exceeded and 0 < res.t[-1] < length     # the steps taken are kept
+    assert res.status == -1 and res.sol.budget_exceeded and 0 < res.t[-1] < length     # the steps taken are kept
     with pytest.raises(BudgetExceeded):
         integrate(system, (0.0, length), y0, "DOP853", [], RTOL, np.full(4, RTOL), max_nfev=50)
-    from scipy.integrate import solve_ivp
     with pytest.raises(TypeError, match="system"):
         solve_ivp(system.rhs, (0.0, 1.0), y0, method=CompiledRK45, args=system.args)
     with pytest.raises(ValueError, match="forward"):
@@ -239,38 +240,32 @@ def test_compiled_rk45_base_state_is_odesolvers():
         assert str(got.value) == str(want.value)
 
 
-def test_integrate_builds_solve_ivps_dense_output_and_reads_its_watch():
-    """integrate calls solve_ivp without a dense output and makes it from CompiledRK45's log (StepsSolution): oracle
-    solve_ivp's own OdeSolution of the same run (dense_output=True), the same times, interpolants, attributes and
-    values to the bit, res.t and res.y alike; a Watch made once gives the same run as the list of its Events."""
-    from scipy.integrate import OdeSolution, solve_ivp
-    from spatialkin.ode.solvers import STEPS_PER_CALL, EventLog, StepsSolution, Watch, steps_solution
+def test_integrate_records_the_steps_solve_ivp_gives_and_reads_its_watch():
+    """integrate's dense output is the record of the engine's steps (spatialkin.ode.record.Steps): oracle solve_ivp's
+    own OdeSolution of the same run (dense_output=True: the solver's StepsDense per solver step), the same steps (the
+    record's ends are every engine step's, the solver's ends among them) and values to SAME_DENSE_TOL (at a solver
+    step's end the OdeSolution takes the earlier polynomial at its end, the record the next one at its start);
+    a Watch made once gives the same run as the list of its Events."""
+    from spatialkin.ode.solvers import STEPS_PER_CALL, Watch
     system, y0, length = looper_system()
     atol = np.full(4, RTOL)
-    for steps_per_call in (5, None):         # several solver steps (the log read by steps_solution), and integrate's
-        options = dict(rtol=RTOL, atol=atol, args=system.args, system=system)
+    options = dict(rtol=RTOL, atol=atol, args=system.args, system=system)
+    for steps_per_call in (5, STEPS_PER_CALL):     # several engine calls per record, and integrate's own
         theirs = solve_ivp(system.rhs, (0.0, length), y0, method=CompiledRK45, dense_output=True,
-                           steps_per_call=steps_per_call or STEPS_PER_CALL, **options)
-        if steps_per_call:
-            log = EventLog()
-            ours = solve_ivp(system.rhs, (0.0, length), y0, method=CompiledRK45, log=log, steps_per_call=steps_per_call,
-                             **options)
-            ours.sol = steps_solution(ours, log.dense)
-        else:
-            ours = integrate(system, (0.0, length), y0, COMPILED_RK45, [], RTOL, atol)
-        assert isinstance(ours.sol, StepsSolution) and isinstance(ours.sol, OdeSolution)
-        assert len(ours.sol.interpolants) == len(theirs.sol.interpolants) == len(theirs.t) - 1
-        assert len(theirs.t) > (10 if steps_per_call else 1)
-        for name in ("n_segments", "t_min", "t_max", "ascending", "side"):
-            assert getattr(ours.sol, name) == getattr(theirs.sol, name), name
-        np.testing.assert_array_equal(ours.sol.ts, theirs.sol.ts)
-        np.testing.assert_array_equal(ours.sol.ts_sorted, theirs.sol.ts_sorted)
+                           steps_per_call=steps_per_call, **options)
+        record = Steps()
+        ours = solve_ivp(system.rhs, (0.0, length), y0, method=CompiledRK45, record=record,
+                         steps_per_call=steps_per_call, **options)
+        record.close(0.0, y0)
+        assert len(theirs.t) > (10 if steps_per_call == 5 else 1)
+        assert len(record.t) == len(record.y) == len(record.h) + 1 == len(record.q) + 1 > len(theirs.t)
+        assert np.all(np.diff(record.t) > 0) and np.isin(theirs.t, record.t).all()
         np.testing.assert_array_equal(ours.t, theirs.t)
-        np.testing.assert_array_equal(ours.y, theirs.y)
+        np.testing.assert_array_equal(record.y[np.isin(record.t, theirs.t)], theirs.y.T)
         s = np.concatenate([np.linspace(0.0, length, 301), theirs.t])
-        np.testing.assert_array_equal(ours.sol(s), theirs.sol(s))
+        np.testing.assert_allclose(record(s), theirs.sol(s), rtol=0, atol=SAME_DENSE_TOL)
         for t in theirs.t:
-            np.testing.assert_array_equal(ours.sol(t), theirs.sol(t))
+            np.testing.assert_allclose(record(t), theirs.sol(t), rtol=0, atol=SAME_DENSE_TOL)
     events = [Event(system, kb.POLE_B, -1), Event(system, kb.CLOSURE, 1, terminal=False)]
     watch = Watch(events, system.n_events)
     assert list(watch) == events and watch.modes[kb.POLE_B] == events[0].mode and watch.active.sum() == 2
@@ -283,24 +278,41 @@ def test_integrate_builds_solve_ivps_dense_output_and_reads_its_watch():
         Watch([events[0], events[0]], system.n_events)
 
 
-def test_steps_solution_drops_a_step_that_ends_where_the_last_one_did():
-    """solve_ivp keeps no interpolant (and no time) for a solver step ending where the last one kept ended (after
-    the first): steps_solution does the same, oracle the rule written out on a made-up log."""
-    from scipy.optimize import OptimizeResult
-    from spatialkin.ode.solvers import steps_solution
-    dense = [(1.0, "a"), (1.0, "b"), (2.0, "c"), (2.0, "d"), (2.0, "e"), (3.0, "f")]
-    res = OptimizeResult(t=np.array([0.0] + [t for t, _ in dense]), y=np.arange(7.0)[None] * np.ones((4, 1)))
-    sol = steps_solution(res, dense)
-    assert sol.interpolants == ["a", "c", "f"]
-    np.testing.assert_array_equal(sol.ts, [0.0, 1.0, 2.0, 3.0])
-    np.testing.assert_array_equal(res.t, [0.0, 1.0, 2.0, 3.0])
-    np.testing.assert_array_equal(res.y[0], [0.0, 1.0, 3.0, 6.0])
+def test_a_record_keeps_no_call_that_ends_where_the_last_one_did():
+    """An engine call without a step, or ending where the last kept one ended, adds nothing (solve_ivp keeps no
+    interpolant for such a solver step); the rest join end to start. Oracle: the rule written out on made-up
+    steps of y = t (polynomial q = 1 in x, h the step)."""
+    def call(ts):
+        ts = np.array(ts, dtype=float)
+        return ts, ts[:, None] * np.ones((1, 4)), np.diff(ts), np.ones((len(ts) - 1, 4, 1))
+    record = Steps()
+    for ts in ([0.0, 0.5, 1.0], [1.0], [0.5, 1.0], [1.0, 2.0], [2.0, 3.0, 4.0]):
+        record.add(*call(ts))
+    record.close(0.0, np.zeros(4))
+    np.testing.assert_array_equal(record.t, [0.0, 0.5, 1.0, 2.0, 3.0, 4.0])
+    np.testing.assert_array_equal(record.h, [0.5, 0.5, 1.0, 1.0, 1.0])
+    np.testing.assert_allclose(record(np.array([0.25, 1.5, 3.75])), np.array([[0.25, 1.5, 3.75]] * 4), rtol=1e-15)
+    empty = Steps().close(2.0, np.arange(4.0))
+    np.testing.assert_array_equal(empty(7.0), np.arange(4.0))
+
+
+@pytest.mark.parametrize("method", ["RK23", "RK45", "DOP853", "Radau"])
+def test_a_solve_ivp_result_converted_once_evaluates_as_its_dense_output(method):
+    """Steps.of_solution: the record of a solve_ivp method's run evaluates as its OdeSolution (RK23's and RK45's Q as
+    they are, DOP853's F rewritten in powers of x: to SAME_DENSE_TOL; Radau's kept as it is: the same values)."""
+    system, y0, length = looper_system()
+    res = solve_ivp(system.rhs, (0.0, length), y0, method=method, rtol=RTOL, atol=RTOL, args=system.args,
+                    dense_output=True)
+    record = Steps.of_solution(res, method)
+    assert record.compiled == (method != "Radau")
+    np.testing.assert_array_equal(record.t, res.t)
+    s = np.linspace(0.0, length, 503)
+    np.testing.assert_allclose(record(s), res.sol(s), rtol=0, atol=SAME_DENSE_TOL)
 
 
 def test_integrate_over_an_empty_span_is_solve_ivps():
-    """An empty span (t0 = t_bound: no step of the method, nothing logged): integrate's res.t, res.y and dense output
-    are solve_ivp's own with dense_output=True (its ConstantDenseOutput over [t0, t0]), to the bit."""
-    from scipy.integrate import solve_ivp
+    """An empty span (t0 = t_bound: no step of the method): integrate's res.t and res.y are solve_ivp's, and its
+    record holds the start alone (its dense output is y0 at every time, as solve_ivp's ConstantDenseOutput)."""
     system, y0, _ = looper_system()
     atol = np.full(4, RTOL)
     ours = integrate(system, (0.0, 0.0), y0, COMPILED_RK45, [], RTOL, atol)

@@ -21,11 +21,11 @@ References
 ----------
 Dormand, J. R., Prince, P. J., "A family of embedded Runge-Kutta formulae", J. Comput. Appl. Math. 6 (1980);
 Hairer, E., Norsett, S. P., Wanner, G., "Solving Ordinary Differential Equations I", Sec. II.10 (DOP853);
-scipy.integrate._ivp.rk.RK45, DOP853 and common.select_initial_step (RK45's coefficients and the control copied
-here, DOP853's read from scipy's dop853_coefficients).
+scipy.integrate.RK45, DOP853 and select_initial_step (RK45's coefficients and the control copied here, DOP853's
+tableau read from the public class scipy.integrate.DOP853: A, B, C, A_EXTRA, C_EXTRA, E3, E5, D).
 """
 import numpy as np
-from scipy.integrate._ivp import dop853_coefficients as _dop853   # scipy's DOP853 tableau (no public name)
+from scipy.integrate import DOP853 as _DOP853      # its tableau, as class attributes
 
 from ..._lib.jit import jit
 
@@ -113,17 +113,22 @@ SAFETY = 0.9
 MIN_FACTOR = 0.2
 MAX_FACTOR = 10.0
 
-# --- DOP853 coefficients, scipy's (dop853_coefficients) -------------------------------------------------------
+# --- DOP853 coefficients, scipy's (scipy.integrate.DOP853) -------------------------------------------------------
 #: Stages of a step (the 13th, f at the step's end, is the next step's first), and the extended tableau's rows
 #: (three more stages for the dense output).
 DOP853_STAGES = END_ROWS[1]
 DOP853_EXTENDED = STAGE_ROWS[1]
-A8 = np.ascontiguousarray(_dop853.A, dtype=float)            # (16, 16): rows 13-15 the dense output's stages
-C8 = np.ascontiguousarray(_dop853.C, dtype=float)            # (16,)
-B8 = np.ascontiguousarray(_dop853.B, dtype=float)            # (12,)
-E3 = np.ascontiguousarray(_dop853.E3, dtype=float)           # (13,)
-E5 = np.ascontiguousarray(_dop853.E5, dtype=float)           # (13,)
-D8 = np.ascontiguousarray(_dop853.D, dtype=float)            # (4, 16)
+#: The extended tableau (16, 16): the 12 stages, f at the step's end (row 12: the weights B), and the dense output's
+#: three stages (rows 13-15).
+A8 = np.zeros((DOP853_EXTENDED, DOP853_EXTENDED))
+A8[:DOP853_STAGES, :DOP853_STAGES] = _DOP853.A
+A8[DOP853_STAGES, :DOP853_STAGES] = _DOP853.B
+A8[DOP853_STAGES + 1:] = _DOP853.A_EXTRA
+C8 = np.concatenate([_DOP853.C, [1.0], _DOP853.C_EXTRA]).astype(float)        # (16,)
+B8 = np.ascontiguousarray(_DOP853.B, dtype=float)           # (12,)
+E3 = np.ascontiguousarray(_DOP853.E3, dtype=float)          # (13,)
+E5 = np.ascontiguousarray(_DOP853.E5, dtype=float)          # (13,)
+D8 = np.ascontiguousarray(_DOP853.D, dtype=float)           # (4, 16)
 #: scipy's Dop853DenseOutput is y_old + x (F0 + (1-x)(F1 + x (F2 + (1-x)(F3 + x (F4 + (1-x)(F5 + x F6)))))); row
 #: m of this matrix gives the coefficient of x^(m+1) of that polynomial from F0..F6 (integers, exact).
 DOP853_POWERS = np.array([

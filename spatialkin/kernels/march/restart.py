@@ -1,12 +1,12 @@
 """The start of one segment of a branch in one compiled call: the charts, the state in them, and the projection.
 
-A branch is integrated segment by segment (spatialkin.tracing.march.ivp); at each segment start the tracer re-charts the
-surfaces that re-chart (a sphere: spatialkin.kernels.geometry.surfaces.recharted_sphere, at the point, the equator along
-the direction of travel, then along the curve's curvature vector there when it is known), reads the state in the
-new charts, and projects it back onto the curve in the plane normal to its tangent (Newton, minimum-norm steps
-where that plane is ill-posed). ``segment_start`` does these steps, the same kernels in the same order as
-spatialkin.tracing.march.segments.charts_at, the curve's curvature vector (curve_derivatives) and
-spatialkin.tracing.march.segments.project_state do one by one from Python, so that the results agree to the bit.
+A branch is integrated segment by segment (spatialkin.tracing.march.ivp); at each segment start the tracer
+re-charts the surfaces that re-chart (a sphere: spatialkin.kernels.geometry.surfaces.recharted_sphere, at the
+point, the equator along the direction of travel, then along the curve's curvature vector there when it is
+known), reads the state in the new charts, and projects it back onto the curve in the plane normal to its
+tangent (Newton, minimum-norm steps where that plane is ill-posed). ``segment_start`` does these steps in one
+call; ``chart_states`` and ``project_state`` are its parts, which the tracer also calls alone
+(spatialkin.tracing.march.segments).
 
 References
 ----------
@@ -65,14 +65,23 @@ def segment_start(a_user, b_user, rechart_a, rechart_b, point, direction, y_prev
             first = y.copy()
             chart_states(a_user, rechart_a, point, direction, bend, first, 0, a_out, y)
             chart_states(b_user, rechart_b, point, direction, bend, first, 1, b_out, y)
-    curve_frame(y, a_out, b_out, point_out, tangent_out)
+    return project_state(y, a_out, b_out, gap_tol, max_iter, point_out, tangent_out)
+
+
+@jit
+def project_state(y, a, b, gap_tol, max_iter, point_out, tangent_out):
+    """The state y (4,) projected onto the curve in place, by Newton in the plane through its point normal to the
+    curve's tangent there (minimum-norm steps where that plane condition is ill-posed: a tiny loop, near
+    tangency), and the curve's point and unit tangent at the result (point_out, tangent_out). Returns True when
+    the projection converged."""
+    curve_frame(y, a, b, point_out, tangent_out)
     start = y.copy()
-    iters = project_to_curve(y, a_out, b_out, point_out.copy(), tangent_out.copy(), gap_tol, max_iter)
-    if iters < 0:        # the plane condition is ill-posed (a tiny loop, near tangency): minimum-norm steps
+    iters = project_to_curve(y, a, b, point_out.copy(), tangent_out.copy(), gap_tol, max_iter)
+    if iters < 0:
         for i in range(4):
             y[i] = start[i]
-        iters = project_to_curve(y, a_out, b_out, point_out.copy(), zero, gap_tol, max_iter)
-    curve_frame(y, a_out, b_out, point_out, tangent_out)
+        iters = project_to_curve(y, a, b, point_out.copy(), np.zeros(3), gap_tol, max_iter)
+    curve_frame(y, a, b, point_out, tangent_out)
     return iters >= 0
 
 

@@ -103,31 +103,33 @@ def area_flag(data, scale):
 
 
 def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):
-    """Charts for a new segment at point and the state there in them.
+    """Charts for a new segment at point and the state there in them (kernels.march.restart.chart_states).
 
     Surfaces whose traits re-chart (spheres) are re-charted at point (so it lies on their equator, tangent along
     +u, or the equator through the centre of the small circle the curve bends round, given its curvature vector
-    bend); the other surfaces keep their own chart and take (u, v) from y_prev (continuous u) or, without it,
-    from the foot point.
+    bend); the other surfaces keep their own chart (returned as the user's data itself) and take (u, v) from
+    y_prev (continuous u) or, without it, from the foot point.
     """
+    point = np.ascontiguousarray(point, dtype=float)
+    tangent = np.ascontiguousarray(tangent, dtype=float)
+    bend = np.zeros(3) if bend is None else np.ascontiguousarray(bend, dtype=float)
+    keep = y_prev is not None
+    y_prev = np.ascontiguousarray(y_prev, dtype=float) if keep else np.zeros(4)
     y = np.empty(4)
     charts = []
     for k, user in enumerate((a_user, b_user)):
-        kind = traits(user)
-        data = kind.rechart(user, point, tangent, bend) if kind.recharts else user
-        if data is user and y_prev is not None:
-            y[2 * k:2 * k + 2] = y_prev[2 * k:2 * k + 2]
-        else:
-            ks.inverse(data, point.reshape(1, 3), y[2 * k:2 * k + 2].reshape(1, 2))
-        charts.append(data)
+        rechart = traits(user).recharts
+        out = np.empty_like(user)
+        kr.chart_states(user, rechart, point, tangent, bend, y_prev, k, out, y, keep)
+        charts.append(out if rechart else user)
     return charts[0], charts[1], y
 
 
 def segment_start(a_user, b_user, recharts, point, direction, y_prev, settings):
     """(a, b, y, point, tangent, ok) at the start of a segment in one compiled call (kernels.restart.segment_start):
-    charts_at (re-charting the surfaces whose recharts flag is set, along direction, then along the curve's
-    curvature vector where it is defined) followed by project_state, to the bit. A surface that keeps its chart
-    is returned as the user's data itself, a new chart read-only (as every Surface's data)."""
+    the charts (re-charting the surfaces whose recharts flag is set, along direction, then along the curve's
+    curvature vector where it is defined), then project_state. A surface that keeps its chart is returned as the
+    user's data itself, a new chart read-only (as every Surface's data)."""
     a_out, b_out = np.empty_like(a_user), np.empty_like(b_user)
     y, p, t = np.empty(4), np.empty(3), np.empty(3)
     ok = kr.segment_start(a_user, b_user, recharts[0], recharts[1], np.ascontiguousarray(point, dtype=float),
@@ -174,18 +176,10 @@ def newton_fixed(a, b, y, fixed, gap_tol, max_iter=30):
     return ys[0] if ok[0] else None
 
 
-def project_state(y, a, b, settings, tangent_hint=None):
-    """Project y onto the curve in the plane normal to the local tangent; returns (y, point, tangent, ok)."""
+def project_state(y, a, b, settings):
+    """Project y onto the curve in the plane normal to the local tangent (kernels.march.restart.project_state);
+    returns (y, point, tangent, ok)."""
     y = np.array(y, dtype=float)
-    point = np.empty(3)
-    tangent = np.empty(3)
-    kc.curve_frame(y, a, b, point, tangent)
-    if tangent_hint is None:
-        tangent_hint = tangent.copy()
-    start = y.copy()
-    iters = kc.project_to_curve(y, a, b, point.copy(), tangent_hint, settings.gap_tol, NEWTON_MAX_ITER)
-    if iters < 0:          # the plane condition is ill-posed (a tiny loop, near tangency): minimum-norm steps
-        y[:] = start
-        iters = kc.project_to_curve(y, a, b, point.copy(), np.zeros(3), settings.gap_tol, NEWTON_MAX_ITER)
-    kc.curve_frame(y, a, b, point, tangent)
-    return y, point, tangent, iters >= 0
+    point, tangent = np.empty(3), np.empty(3)
+    ok = kr.project_state(y, a, b, settings.gap_tol, NEWTON_MAX_ITER, point, tangent)
+    return y, point, tangent, bool(ok)

@@ -1,19 +1,19 @@
 """A segment's start, and a located start, in one compiled call (spatialkin.tracing.march.segments.segment_start,
-start.locate_on_curve; kernels.restart).
+start.locate_on_curve; kernels.march.restart).
 
-Oracle: the same steps taken one by one from Python (segments.charts_at, curvature_vector, charts_at along the
-curvature vector, segments.project_state): the same charts, state, point and tangent, bit for bit (tolerance 0:
-the same kernels in the same order), at points along traced curves of re-charting (sphere) and non-re-charting
-pairs, in both directions of travel, from states nudged off the curve. The same for a start located on the curve
-(start.locate_on_curve on kernels.restart.locate) against its steps taken one by one.
+Oracles, at points along traced curves of re-charting (sphere) and non-re-charting pairs, in both directions of
+travel, from states nudged off the curve: the surfaces' exact distance functions (the point lies on both within
+the Newton target), the surfaces' own evaluation (the state gives the point on both charts; a re-charted sphere's
+chart has the start's radial foot point at (0, 0); the user's parameters give it on the user's surfaces), and the
+tangent: a small step along it stays on both surfaces to second order.
 """
 import numpy as np
 import pytest
 
 import spatialkin as sk
 from spatialkin.bench.kinds import pair_kind_cases
-from spatialkin.kernels.march import curve as kc
-from spatialkin.tracing.march.segments import charts_at, project_state, segment_start
+from spatialkin.kernels.geometry import surfaces as ks
+from spatialkin.tracing.march.segments import segment_start
 from spatialkin.geometry.traits import traits
 from spatialkin.tracing.march.trace import make_settings
 
@@ -23,33 +23,30 @@ KINDS = ("sphere-cylinder", "sphere-cone", "sphere-torus", "cylinder-torus", "to
 NUDGE = 1e-6
 #: Points checked along each curve.
 SAMPLES = 7
+#: The located point within this many Newton targets (gap_tol) of both surfaces.
+ON_SURFACES = 2.0
+#: The state's points on both charts, and the user's parameters' points, within this (relative to the scale).
+SAME_POINT = 1e-9
+#: A step along the tangent (relative to the scale) stays on both surfaces to second order: within
+#: TANGENT_CURVATURE x step^2 / scale (a tangent off by an angle alpha leaves them by about step x alpha).
+TANGENT_STEP = 1e-5
+TANGENT_CURVATURE = 100.0
 
 
-def curvature_vector(y, a, b):
-    """C'' (3,) of the curve at the state y (charts a, b), or None at a singular point (read from Python, one call
-    of kernels.curve.curve_derivatives)."""
-    dy, ddy, d1, d2 = np.empty(4), np.empty(4), np.empty(3), np.empty(3)
-    return d2 if kc.curve_derivatives(np.ascontiguousarray(y, dtype=float), a, b, 1.0, dy, ddy, d1, d2) else None
-
-
-def python_start(a_user, b_user, point, direction, y_prev, settings):
-    """The oracle: a segment's start as separate Python steps (charts_at, the curvature vector, project_state)."""
-    a, b, y = charts_at(a_user, b_user, point, direction, y_prev)
-    if traits(a_user).recharts or traits(b_user).recharts:
-        bend = curvature_vector(y, a, b)
-        if bend is not None:
-            a, b, y = charts_at(a_user, b_user, point, direction, y, bend)
-    y, p, t, ok = project_state(y, a, b, settings)
-    return a, b, y, p, t, ok
+def on_chart(data, uv):
+    out = np.empty((1, 3))
+    ks.evaluate(data, np.ascontiguousarray(np.reshape(uv, (1, 2)), dtype=float), out)
+    return out[0]
 
 
 @pytest.mark.parametrize("kind", KINDS)
 @pytest.mark.parametrize("order", ["ab", "ba"])
-def test_segment_start_matches_python_steps(kind, order):
+def test_segment_start_lands_on_the_curve(kind, order):
     cases = {k: (a, b) for k, a, b in pair_kind_cases()}
     a, b = cases[kind] if order == "ab" else cases[kind][::-1]
     settings = make_settings(a, b, 1e-10, "compiled", 1e-10, None, None, 1e-7, 1.0, True,
                              np.concatenate([a.frame.origin, b.frame.origin]))
+    scale = settings.scale
     recharts = (traits(a).recharts, traits(b).recharts)
     curves = [c for c in sk.intersect(a, b) if len(c.points) > 1]
     assert curves
@@ -58,45 +55,37 @@ def test_segment_start_matches_python_steps(kind, order):
     for curve in curves:
         for k in np.linspace(0, len(curve.points) - 1, SAMPLES).astype(int):
             y_prev = curve.params[k] + NUDGE * rng.standard_normal(4)
-            point = curve.points[k] + NUDGE * settings.scale * rng.standard_normal(3)
+            point = curve.points[k] + NUDGE * scale * rng.standard_normal(3)
             tangent = curve.tangent(curve.s[k])
             for sign in (1.0, -1.0):
-                want = python_start(a.data, b.data, point, sign * tangent, y_prev, settings)
-                got = segment_start(a.data, b.data, recharts, point, sign * tangent, y_prev, settings)
-                for w, g in zip(want[:2], got[:2]):
-                    assert np.array_equal(w, g)
-                    assert (w is a.data or w is b.data) == (g is a.data or g is b.data)
-                    assert not g.flags.writeable
-                for w, g in zip(want[2:5], got[2:5]):
-                    np.testing.assert_array_equal(g, w)
-                assert want[5] == got[5]
+                a_chart, b_chart, y, p, t, ok = segment_start(a.data, b.data, recharts, point, sign * tangent, y_prev,
+                                                              settings)
+                assert ok
+                for surface, chart, rechart in ((a, a_chart, recharts[0]), (b, b_chart, recharts[1])):
+                    assert (chart is surface.data) == (not rechart) and not chart.flags.writeable
+                    assert surface.distance(p) <= ON_SURFACES * settings.gap_tol
+                    if rechart:      # the start, projected radially onto the sphere, is the new chart's (0, 0)
+                        centre, radius = surface.frame.origin, surface.radius
+                        foot = centre + radius * (point - centre) / np.linalg.norm(point - centre)
+                        np.testing.assert_allclose(on_chart(chart, (0.0, 0.0)), foot, rtol=0,
+                                                   atol=SAME_POINT * scale)
+                np.testing.assert_allclose(on_chart(a_chart, y[:2]), p, rtol=0, atol=SAME_POINT * scale)
+                np.testing.assert_allclose(on_chart(b_chart, y[2:]), p, rtol=0, atol=SAME_POINT * scale)
+                assert abs(np.linalg.norm(t) - 1.0) < 1e-14
+                for step in (TANGENT_STEP * scale, -TANGENT_STEP * scale):
+                    assert max(a.distance(p + step * t), b.distance(p + step * t)) <= \
+                        TANGENT_CURVATURE * step ** 2 / scale
+                assert abs(np.dot(t, tangent)) > 1.0 - 1e-9     # the curve's tangent (N_a x N_b: up to sign)
                 checked += 1
     assert checked >= 2 * SAMPLES
 
 
-def python_locate(a, b, guess, gap_tol, y_guess=None):
-    """The oracle: start.locate_on_curve's steps as separate Python calls ((point, y_user) or None)."""
-    from spatialkin.kernels.march import curve as kc
-    from spatialkin.tracing.march.segments import NEWTON_MAX_ITER
-    point = np.asarray(guess, dtype=float).copy()
-    a_chart, b_chart, y = charts_at(a.data, b.data, point, np.zeros(3), y_guess)
-    iters = kc.project_to_curve(y, a_chart, b_chart, point.copy(), np.zeros(3), gap_tol, NEWTON_MAX_ITER)
-    p1, t = np.empty(3), np.empty(3)
-    kc.curve_frame(y, a_chart, b_chart, p1, t)
-    if iters < 0 or not np.all(np.isfinite(p1)):
-        return None
-    y_user = y.copy()
-    for k, surf in enumerate((a, b)):
-        if traits(surf).recharts:
-            y_user[2 * k:2 * k + 2] = surf.parameters(p1)
-    return p1, y_user
-
-
 @pytest.mark.parametrize("kind", KINDS)
 @pytest.mark.parametrize("order", ["ab", "ba"])
-def test_locate_matches_python_steps(kind, order):
-    """locate_on_curve (kernels.restart.locate) against its former steps, bit for bit, from points near the curve
-    with and without a parameter guess, and from a point far from it (both fail, or both give the same)."""
+def test_locate_lands_on_the_curve(kind, order):
+    """locate_on_curve (kernels.march.restart.locate) from points near the curve, with and without a parameter
+    guess: a point on both surfaces whose user parameters give it on both; from a point far from it, TracingError or
+    such a point."""
     from spatialkin.tracing.march.start import locate_on_curve
     from spatialkin.tracing.curve.result import TracingError
     cases = {k: (a, b) for k, a, b in pair_kind_cases()}
@@ -104,19 +93,17 @@ def test_locate_matches_python_steps(kind, order):
     gap_tol = 1e-12
     rng = np.random.default_rng(5)
     curve = sk.intersect(a, b)[0]
+    scale = float(np.ptp(curve.points, axis=0).max())
     for k in np.linspace(0, len(curve.points) - 1, SAMPLES).astype(int):
         guess = curve.points[k] + 1e-3 * rng.standard_normal(3)
         for y_guess in (None, curve.params[k] + 1e-3 * rng.standard_normal(4)):
-            want = python_locate(a, b, guess, gap_tol, y_guess)
-            got = locate_on_curve(a, b, guess, gap_tol, y_guess)
-            np.testing.assert_array_equal(got[0], want[0])
-            np.testing.assert_array_equal(got[1], want[1])
+            point, y = locate_on_curve(a, b, guess, gap_tol, y_guess)
+            assert max(a.distance(point), b.distance(point)) <= ON_SURFACES * gap_tol * max(1.0, scale)
+            np.testing.assert_allclose(a.point(y[0], y[1]), point, rtol=0, atol=SAME_POINT * scale)
+            np.testing.assert_allclose(b.point(y[2], y[3]), point, rtol=0, atol=SAME_POINT * scale)
     far = 1e3 * (np.abs(curve.points).max() + 1.0) * np.ones(3)
-    want = python_locate(a, b, far, gap_tol)
     try:
-        got = locate_on_curve(a, b, far, gap_tol)
+        point, _ = locate_on_curve(a, b, far, gap_tol)
     except TracingError:
-        assert want is None
-    else:
-        np.testing.assert_array_equal(got[0], want[0])
-        np.testing.assert_array_equal(got[1], want[1])
+        return
+    assert max(a.distance(point), b.distance(point)) <= ON_SURFACES * gap_tol * max(1.0, scale)

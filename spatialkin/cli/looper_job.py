@@ -21,7 +21,7 @@ from .._lib.files import atomic_path
 from ..mechanisms import LooperDrive
 from ..mechanisms.looper.analysis import CLEARANCE
 from .._lib.units import METRES_PER_UNIT, STANDARD_GRAVITY
-from .._lib.validation import check_choice, check_positive, check_real
+from .._lib.validation import check_choice, check_positive, check_real, orthonormalised
 
 #: Crank speed of the built-in drive: industrial blind-stitch machines sew about 1500-3000 stitches per
 #: minute with one looper-crank turn per stitch; 2000 rpm is a usual working speed.
@@ -101,19 +101,13 @@ def _unit(name, vector):
 
 def nearest_rotation(name, value):
     """A rotation typed to a few decimals, made exactly orthonormal (polar factor by SVD) when it is within
-    ROTATION_TOL of one; ValueError naming it otherwise."""
+    ROTATION_TOL of one; ValueError naming it otherwise (see orthonormalised)."""
     rows = value if isinstance(value, (list, tuple)) else None
     if rows is None or len(rows) != 3:
         raise ValueError(f"{name}.rotation must be 3 rows of 3 numbers (columns = local x, y, z)")
     rot = np.array([_vector(f"{name}.rotation[{i}]", r) for i, r in enumerate(rows)])
-    deviation = float(np.max(np.abs(rot.T @ rot - np.eye(3))))
-    if deviation > ROTATION_TOL:
-        raise ValueError(f"{name}.rotation is not a rotation: max |R^T R - I| = {deviation:.3g} > {ROTATION_TOL:g} "
-                         "(type more decimals, or use axis_angle or z_axis + x_hint)")
-    if np.linalg.det(rot) < 0:
-        raise ValueError(f"{name}.rotation is a reflection (det = -1); its columns must be a right-handed x, y, z")
-    u, _, vt = np.linalg.svd(rot)
-    return u @ vt
+    return orthonormalised(f"{name}.rotation", rot, ROTATION_TOL,
+                           advice=" (type more decimals, or use axis_angle or z_axis + x_hint)")
 
 
 def _normal_part(vector, z):

@@ -11,7 +11,7 @@ from .curve.exact import contact_point, exact_curve
 from .curve.packed import packed, packed_grid
 from .curve.result import Curve, TracingError, in_sk_order
 from .march.segments import NEWTON_MAX_ITER
-from .march.start import locate_on_curve, newton_fixed
+from .march.start import locate_on_curve, newton_fixed_surfaces
 from .certify.certificate import certificates
 from .curve.clip import clip_curves
 from .march.graze import across_edges, rejoined
@@ -388,7 +388,7 @@ def edge_start(a, b, point, p_index, fixed, value, settings):
     y = np.concatenate([a.parameters(point), b.parameters(point)])
     index = 2 * p_index + fixed
     y[index] = value
-    y = newton_fixed(a, b, y, index, settings.gap_tol)
+    y = newton_fixed_surfaces(a, b, y, index, settings.gap_tol)
     if y is None:
         return None
     return points_at(a, y[:2])[0], y                 # (Surface.point's evaluation, without its broadcasting)

@@ -18,6 +18,7 @@ import numpy as np
 from scipy.special import cython_special, ellipeinc
 
 from ..curve.exact import EXACT_SAMPLES, ExactSolution, counting
+from ...geometry.quadrature import gauss_legendre
 from ...geometry.traits import traits
 
 LINE, ELLIPSE, HYPERBOLA, PARABOLA = "line", "ellipse", "hyperbola", "parabola"
@@ -30,7 +31,6 @@ GL_PANEL = 0.5
 #: guess is within about (sample spacing)^2 x curvature, so three steps reach round-off; one more for margin).
 NEWTON_STEPS = 4
 
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(GL_NODES)
 #: The shapes whose arc length S(t) is computed value by value (the same at a t whatever else is evaluated with
 #: it): their length comes from the two ends, their knots are made on first use.
 ENDWISE = (LINE, ELLIPSE)
@@ -118,10 +118,8 @@ class Conic:
         return t
 
     def _panel(self, lo, hi):
-        """Gauss-Legendre integral of |C'| over [lo, hi] (each (M,))."""
-        half = 0.5 * (hi - lo)
-        nodes = (0.5 * (hi + lo))[..., None] + half[..., None] * _GL_X
-        return half * (self.speed(nodes.ravel()).reshape(nodes.shape) @ _GL_W)
+        """Gauss-Legendre integral of |C'| over [lo, hi] (each (M,)), GL_NODES nodes."""
+        return gauss_legendre(self.speed, lo, hi, GL_NODES)
 
 
 class ConicSolution(ExactSolution):

@@ -31,6 +31,7 @@ from ...kernels.geometry import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, basis
 from ..curve.exact import SampledResult, contact_point, exact_curve
 from ...geometry.placement import SAME
+from ...geometry.vectors import cross_list
 from ..curve.result import in_sk_order
 from ..march.segments import EDGE_NAMES
 from .split import may_split, split_planes
@@ -300,12 +301,9 @@ def on_arc(shape, rows, t_lo, t_hi, ends, x, near=0.0):
 
 
 # --- small vectors as lists of floats (numpy costs more than the arithmetic on them) ---------------------------
+# (their cross product is spatialkin.geometry.vectors.cross_list)
 def dot(x, y):
     return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
-
-
-def cross(x, y):
-    return [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]]
 
 
 def combine(rows, f, g):
@@ -356,14 +354,14 @@ def plane_line(a, b, graze, scale):
     line farther than LARGE x scale."""
     oa, ob = a.origin, b.origin
     n1, n2 = a.z, b.z
-    along = cross(n1, n2)
+    along = cross_list(n1, n2)
     sin = math.sqrt(dot(along, along))
     gap = dot(n2, [ob[i] - oa[i] for i in range(3)])
     if sin <= SAME:
         return None if abs(gap) <= graze else []
     if abs(gap) > LARGE * scale * sin:
         return None
-    foot = cross(along, n1)                                 # a's origin to its foot on the line, over gap / sin^2
+    foot = cross_list(along, n1)                            # a's origin to its foot on the line, over gap / sin^2
     k = gap / (sin * sin)
     return [(LINE, [[oa[i] + k * foot[i] for i in range(3)], [0.0, 0.0, 0.0], [x / sin for x in along]])]
 
@@ -441,7 +439,7 @@ def plane_conics(plane, quadric, graze, scale, apex_gap=None):
     n0, n1, n2 = n
     sin = math.hypot(n0, n1)
     e1 = [n1 / sin, -n0 / sin, 0.0] if sin > SAME else [1.0, 0.0, 0.0]    # n x z, normal to the axis
-    e2 = cross(n, e1)
+    e2 = cross_list(n, e1)
     q0 = [d * n0, d * n1, d * n2]
     (a0, a1, a2), (b0, b1, b2) = e2, q0
     A = a0 * a0 + a1 * a1 + mu * a2 * a2
@@ -527,7 +525,7 @@ def torus_parallels(plane, torus, graze):
     if not any(map(math.isfinite, plane.bounds)):
         return None
     axis = torus.z
-    if dot(cross(plane.z, axis), cross(plane.z, axis)) > PARALLEL_A:
+    if dot(cross_list(plane.z, axis), cross_list(plane.z, axis)) > PARALLEL_A:
         return None
     (o0, o1, o2), (p0, p1, p2) = torus.origin, plane.origin
     d = dot(axis, (p0 - o0, p1 - o1, p2 - o2))
@@ -695,7 +693,7 @@ def normal(surf, point):
 def normals_sine(placed, point):
     """sin of the angle between the surfaces' (Placed) normals at a point on both, squared."""
     na, nb = normal(placed[0], point), normal(placed[1], point)
-    along = cross(na, nb)
+    along = cross_list(na, nb)
     return dot(along, along) / (dot(na, na) * dot(nb, nb))
 
 
@@ -710,7 +708,7 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, nodes=()):
                     key=lambda t: normals_sine(placed, combine(rows, *basis(shape, t, 0, math))))
     point = combine(rows, *basis(shape, t_mid, 0, math))
     na, nb = normal(placed[0], point), normal(placed[1], point)
-    along = cross(na, nb)
+    along = cross_list(na, nb)
     if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
         return None
     centre, P, Q = rows

@@ -15,6 +15,7 @@ quadrature of the closed form), from 2.1e-8 and 1.7e-9.
 """
 import numpy as np
 
+from ...geometry.quadrature import gauss_legendre
 from ...kernels.march import curve as kc
 from .segments import NEWTON_MAX_ITER
 
@@ -28,8 +29,6 @@ NODES = 8
 #: (the measure's own noise, round-off / sine over a step, stays below it).
 KEEP_RTOL = 1e-10
 
-_X, _W = np.polynomial.legendre.leggauss(NODES)
-
 
 class RemappedStates:
     """A segment's dense output read at curve arc length t: t_new -> solver time (piecewise linear)."""
@@ -42,16 +41,18 @@ class RemappedStates:
 
 
 def step_lengths(seg, pullback, gap_tol):
-    """Arc length of the curve over each solver step of a segment (None where the measure fails)."""
+    """Arc length of the curve over each solver step of a segment (NaN where the measure fails), NODES
+    Gauss-Legendre nodes a step."""
     t = np.asarray(seg.t, dtype=float)
-    h = np.diff(t)
-    nodes = (0.5 * (t[:-1] + t[1:]))[:, None] + 0.5 * h[:, None] * _X[None, :]
-    ys = np.ascontiguousarray(np.asarray(seg.sol(nodes.ravel()), dtype=float).T)
-    speed = np.empty(len(ys))
-    kc.curve_speed_many(ys, seg.a, seg.b, float(seg.sign), float(pullback), gap_tol, NEWTON_MAX_ITER, speed)
-    speed = speed.reshape(nodes.shape)
-    lengths = 0.5 * h * (speed @ _W)
-    return np.where(np.all(speed >= 0.0, axis=1), lengths, np.nan)
+
+    def speed(s):
+        """The curve's speed at solver times s (K,); NaN where the kernel fails (its negative speed)."""
+        ys = np.ascontiguousarray(np.asarray(seg.sol(s), dtype=float).T)
+        out = np.empty(len(ys))
+        kc.curve_speed_many(ys, seg.a, seg.b, float(seg.sign), float(pullback), gap_tol, NEWTON_MAX_ITER, out)
+        return np.where(out >= 0.0, out, np.nan)
+
+    return gauss_legendre(speed, t[:-1], t[1:], NODES)
 
 
 def remeasure_segment(seg, pullback, gap_tol):

@@ -12,6 +12,7 @@ from numpy.polynomial import legendre
 
 from ...kernels.march import curve as kc
 from ...kernels.geometry import surfaces as ks
+from ...geometry.quadrature import legendre_rule
 from ..curve.result import set_states
 from .segments import NEWTON_MAX_ITER, LinearStates, Segment, newton_fixed
 
@@ -41,7 +42,7 @@ ARC_NEWTON = 5
 #: the other branch) and of the side's length (else off through a degenerate chart): the chord stands otherwise.
 ARC_STRAY = 0.2
 
-_ARC_X, _ARC_W = np.polynomial.legendre.leggauss(ARC_NODES)
+_ARC_X = legendre_rule(ARC_NODES)[0]
 
 
 def restate(y, from_a, from_b, to_a, to_b):

@@ -13,7 +13,7 @@ import numpy as np
 from ...kernels.march import restart as kr
 from ...kernels.geometry import surfaces as ks
 from .segments import NEWTON_MAX_ITER
-from .segments import newton_fixed as data_newton_fixed
+from .segments import newton_fixed
 from ..curve.result import TracingError
 from ...geometry.traits import traits
 
@@ -81,7 +81,7 @@ def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
         if f[i] == 0 and i > 0 and f[i - 1] == 0:
             continue
         y = np.array([*a.parameters(pts[i]), u2[i], v])
-        y = newton_fixed(a, b, y, 3, tol * scale)
+        y = newton_fixed_surfaces(a, b, y, 3, tol * scale)
         if y is not None and lo <= y[2] <= hi + 1e-12:
             out.append(y)
     out = np.array(out).reshape(-1, 4)
@@ -94,6 +94,7 @@ def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
     return out
 
 
-def newton_fixed(a, b, y, fixed, gap_tol):
-    """newton_fixed of spatialkin.tracing.march.segments for two Surface objects."""
-    return data_newton_fixed(a.data, b.data, y, fixed, gap_tol)
+def newton_fixed_surfaces(a, b, y, fixed, gap_tol):
+    """spatialkin.tracing.march.segments.newton_fixed for two Surface objects (it takes their data arrays): the
+    state (4,) on both surfaces with y[fixed] held, or None where Newton fails."""
+    return newton_fixed(a.data, b.data, y, fixed, gap_tol)

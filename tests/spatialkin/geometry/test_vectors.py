@@ -1,7 +1,8 @@
-"""spatialkin.geometry.vectors.cross is np.cross bit for bit (the oracle), on random and special 3-vectors."""
+"""spatialkin.geometry.vectors.cross and cross_list are np.cross bit for bit (the oracle), on random and special
+3-vectors."""
 import numpy as np
 
-from spatialkin.geometry.vectors import cross
+from spatialkin.geometry.vectors import cross, cross_list
 
 
 def test_cross_is_numpys_bit_for_bit():
@@ -11,3 +12,5 @@ def test_cross_is_numpys_bit_for_bit():
     for x, y in pairs:
         assert np.array_equal(cross(x, y), np.cross(x, y))
         assert np.array_equal(cross(list(x), tuple(y)), np.cross(x, y))
+        floats = cross_list(x.tolist(), y.tolist())
+        assert all(type(c) is float for c in floats) and np.array_equal(floats, np.cross(x, y))

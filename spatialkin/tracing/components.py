@@ -6,9 +6,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ..kernels.curve import near as kn
-from .curve.dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS
+from .curve.dense import CLOSEST_NEWTON_STEPS
 from .curve.exact import contact_point, exact_curve
-from .curve.packed import packed, packed_grid
 from .curve.result import Curve, TracingError, in_sk_order
 from .march.segments import NEWTON_MAX_ITER
 from .march.start import locate_on_curve, newton_fixed_surfaces
@@ -307,7 +306,7 @@ def within_radius(curve, points, radius):
     """near_curve without the sheets' test (points (M, 3) contiguous)."""
     if not (curve.length > 0 and len(curve.points) > 1 and len(points)):
         return curve.sol.closest(points)[1] <= radius if len(points) else np.zeros(0, dtype=bool)
-    table = packed(curve.sol)
+    table = curve.sol.table
     if table is None:
         verdict = np.full(len(points), kn.PYTHON)
     else:
@@ -327,22 +326,9 @@ def within_radius(curve, points, radius):
 
 
 def within(curve, points, radius):
-    """Mask (M,) of the points (M, 3) whose closest point on the curve (a CurveResult; CurveSolution.closest) lies
-    within radius: in compiled code (kernels.near.closest_within) where the tables hold the curve, else, and for
-    the points whose Newton meets a span they do not hold, by closest() itself."""
-    sol = curve.sol
-    table = packed(sol) if curve.length > 0 else None
-    if table is None:
-        return sol.closest(points)[1] <= radius
-    grid_s, grid = packed_grid(sol, table)
-    verdict = np.empty(len(points), dtype=np.int64)
-    kn.closest_within(points, grid_s, grid, float(radius), table, sol.closed, sol.length, float(sol.gap_tol),
-                      NEWTON_MAX_ITER, CLOSEST_NEWTON_STEPS, CLOSEST_CANDIDATES, verdict)
-    out = verdict == kn.NEAR
-    python = verdict == kn.PYTHON
-    if python.any():
-        out[python] = sol.closest(points[python])[1] <= radius
-    return out
+    """Mask (M,) of the points (M, 3) whose closest point on the curve (a CurveResult; its dense output's closest,
+    in compiled code for a traced curve) lies within radius."""
+    return curve.sol.closest(points)[1] <= radius
 
 
 def python_verdicts(curve, points, radius):

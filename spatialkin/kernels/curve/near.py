@@ -13,15 +13,11 @@ The curve's dense output is read from flat tables (built by spatialkin.tracing.c
   ``t_off[k]:t_off[k + 1]`` of ``step_t`` and ``step_y`` and its step lengths and polynomials from row ``p_off[k]``
   of ``step_h`` and ``step_q`` (spatialkin.kernels.ode.rk.dense_into reads them, as the record does).
 
-Every state is then corrected onto both surfaces by the same Newton (project_to_curve in the plane normal to the
-tangent) as TracedSolution.evaluate, and the foot point is found by the same Newton in s as
-CurveSolution.foot_points, operation for operation: points, foot points and distances are those of the Python
-path to the bit. The tests against a radius (near_mask, closest_within) stop at the first Newton iterate within
-it (a point of the curve too), so they decide as the Python path does without always taking its last steps.
-
-References
-----------
-spatialkin.tracing.curve.dense (the evaluation this mirrors).
+Every state is then corrected onto both surfaces by Newton (project_to_curve in the plane normal to the tangent):
+``curve_states`` is the dense output of a traced curve (spatialkin.tracing.curve.dense.TracedSolution evaluates
+through it), and the foot point is found by Newton in s (foot_distance; foot_many and closest_many are
+TracedSolution's foot and closest points). near_mask, the test against a radius, stops at the first Newton iterate
+within it (a point of the curve too).
 """
 import math
 
@@ -78,17 +74,25 @@ def interp(x, xp, fp):
 
 
 @jit
-def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangent):
-    """Point (3,) and unit tangent (3,) (towards increasing s) of the curve at arc length s, the state corrected
-    onto both surfaces (y (4,), q (3,): work space); returns s wrapped into [0, length) for a closed curve, or
-    NaN (nothing written) on a span the tables do not hold. As TracedSolution.evaluate does for one s."""
-    spans, charts_a, charts_b = table[0], table[1], table[2]
-    if closed and length > 0.0:
-        s = s % length
-    k = 0                         # searchsorted(lo, s, 'right') - 1, clipped to the spans (lo ascending)
+def span_at(spans, s):
+    """The span k holding arc length s (already wrapped): searchsorted(lo, s, 'right') - 1, clipped to the spans
+    (lo ascending)."""
+    k = 0
     for j in range(1, spans.shape[0]):
         if spans[j, LO] <= s:
             k = j
+    return k
+
+
+@jit
+def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangent):
+    """Point (3,) and unit tangent (3,) (towards increasing s) of the curve at arc length s, the state corrected
+    onto both surfaces into y (4,) (q (3,): work space); returns s wrapped into [0, length) for a closed curve, or
+    NaN (nothing written) on a span the tables do not hold."""
+    spans, charts_a, charts_b = table[0], table[1], table[2]
+    if closed and length > 0.0:
+        s = s % length
+    k = span_at(spans, s)
     if spans[k, COMPILED] == 0.0:
         return np.nan
     flip = spans[k, FLIP]
@@ -104,6 +108,22 @@ def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangen
     for i in range(3):
         tangent[i] = tangent[i] * flip * spans[k, SIGN]
     return s
+
+
+@jit
+def curve_states(table, closed, length, gap_tol, max_iter, s, ys, points, tangents, index):
+    """The curve at arc lengths s (M,) (wrapped already): corrected states ys (M, 4), points (M, 3) and unit tangents
+    (M, 3) (curve_point for each), and the span of each into index (M,), -1 where the tables do not hold it (its
+    rows then unwritten)."""
+    q = np.empty(3)
+    spans = table[0]
+    for m in range(s.shape[0]):
+        k = span_at(spans, s[m])
+        if spans[k, COMPILED] == 0.0:
+            index[m] = -1
+            continue
+        curve_point(table, closed, length, gap_tol, max_iter, s[m], ys[m], q, points[m], tangents[m])
+        index[m] = k
 
 
 @jit
@@ -196,23 +216,19 @@ def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, 
 
 
 @jit
-def curve_points(table, closed, length, gap_tol, max_iter, s, points):
-    """Points (M, 3) of the curve at arc lengths s (M,) (curve_point for each); False when one of them lies on a
-    span the tables do not hold (the rest then unwritten)."""
-    y, q, tangent = np.empty(4), np.empty(3), np.empty(3)
-    for m in range(s.shape[0]):
-        if math.isnan(curve_point(table, closed, length, gap_tol, max_iter, s[m], y, q, points[m], tangent)):
-            return False
-    return True
+def foot_many(table, closed, length, gap_tol, max_iter, points, s, steps, s_out, d_out):
+    """foot_distance (every step taken) of each point (M, 3) from its start s (M,): arc lengths s_out (M,) and
+    distances d_out (M,), NaN where Newton met a span the tables do not hold."""
+    for m in range(points.shape[0]):
+        s_out[m], d_out[m] = foot_distance(table, closed, length, gap_tol, max_iter, points[m], s[m], steps, -1.0)
 
 
 @jit
-def closest_within(points, grid_s, grid, radius, table, closed, length, gap_tol, max_iter, steps, candidates,
-                   verdict):
-    """Verdict (M,) of each point (M, 3) as CurveSolution.closest decides it against radius: NEAR when a foot
-    point (or a Newton iterate before it, see foot_distance) from one of the `candidates` grid points (arc
-    lengths grid_s (G,), points grid (G, 3)) nearest to it lies within radius, FAR when none does, PYTHON when a
-    Newton met a span the tables do not hold or gave NaN (where closest's minimum would be NaN)."""
+def closest_many(points, grid_s, grid, table, closed, length, gap_tol, max_iter, steps, candidates, s_out, d_out):
+    """The closest curve point to each point (M, 3): foot points (foot_distance, every step taken) from the
+    `candidates` grid points (arc lengths grid_s (G,), points grid (G, 3)) nearest to it, the nearest of them (the
+    first of equals): its arc length s_out (M,) and distance d_out (M,), NaN where a Newton met a span the tables
+    do not hold."""
     k = min(candidates, grid.shape[0])
     best_d, best_i = np.empty(k), np.empty(k, dtype=np.int64)
     for m in range(points.shape[0]):
@@ -227,12 +243,12 @@ def closest_within(points, grid_s, grid, radius, table, closed, length, gap_tol,
                     best_d[c], best_i[c] = best_d[c - 1], best_i[c - 1]
                     c -= 1
                 best_d[c], best_i[c] = d, j
-        verdict[m] = FAR
+        s_out[m], d_out[m] = np.inf, np.inf
         for c in range(k):
-            _, dist = foot_distance(table, closed, length, gap_tol, max_iter, points[m], grid_s[best_i[c]], steps,
-                                    radius)
-            if math.isnan(dist):
-                verdict[m] = PYTHON
+            s_c, d_c = foot_distance(table, closed, length, gap_tol, max_iter, points[m], grid_s[best_i[c]], steps,
+                                     -1.0)
+            if math.isnan(d_c):
+                s_out[m], d_out[m] = np.nan, np.nan
                 break
-            if dist <= radius:
-                verdict[m] = NEAR
+            if d_c < d_out[m]:
+                s_out[m], d_out[m] = s_c, d_c

@@ -7,9 +7,11 @@ by Newton. The closed-form ones (a circle, a segment, a point) are in spatialkin
 import numpy as np
 from scipy.spatial import cKDTree
 
+from ...kernels.curve import near as kn
 from ...kernels.march import curve as kc
 from ...kernels.geometry import surfaces as ks
 from .curvature import curvature_vectors
+from .packed import pack
 from .result import set_states, user_params
 from ..march.segments import NEWTON_MAX_ITER
 
@@ -46,6 +48,9 @@ class CurveSolution:
     knots : ndarray (N,)
         Arc lengths of the curve's stored points (they size the grid closest() starts from).
     """
+
+    #: The compiled tables of the dense output (spatialkin.tracing.curve.packed), or None: a closed form has none.
+    table = None
 
     def __init__(self, surfaces, length, closed, knots):
         self.surfaces = tuple(surfaces)
@@ -167,6 +172,15 @@ class TracedSolution(CurveSolution):
         self.nodes = nodes
         self.gap_tol = gap_tol
         self._lo = np.array([sp.lo for sp in spans])
+        self._table = False
+
+    @property
+    def table(self):
+        """The compiled tables of the spans (spatialkin.tracing.curve.packed.pack; None when they hold none), made
+        on first use (a curve does not change)."""
+        if self._table is False:
+            self._table = pack(self.spans)
+        return self._table
 
     def _span_states(self, s):
         """(s wrapped, [(mask, span, solver states (m, 4)) per span hit]) for the flat arc lengths s."""
@@ -181,22 +195,72 @@ class TracedSolution(CurveSolution):
         return s, pieces
 
     def evaluate(self, s, with_params=True):
-        """Corrected states, points and tangents at s (flattened); params is None unless with_params."""
-        s, pieces = self._span_states(s)
+        """Corrected states, points and tangents at s (flattened); params is None unless with_params. The spans the
+        compiled tables hold are evaluated there (kernels.curve.near.curve_states: the segment's record, then Newton
+        onto both surfaces); the others (a jump across a node or an apex, a solve_ivp method without polynomial
+        steps) here."""
+        s = self.wrap(np.ravel(s))
         points = np.empty((s.size, 3))
         tangents = np.empty((s.size, 3))
-        status = np.empty(s.size, dtype=np.int64)
+        ys = np.empty((s.size, 4))
+        index = np.full(s.size, -1, dtype=np.int64)
+        table = self.table
+        if table is not None:
+            kn.curve_states(table, self.closed, self.length, float(self.gap_tol), NEWTON_MAX_ITER,
+                            np.ascontiguousarray(s), ys, points, tangents, index)
+        rest = index < 0
+        if rest.any():
+            index[rest] = np.clip(np.searchsorted(self._lo, s[rest], side="right") - 1, 0, len(self.spans) - 1)
         params = np.empty((s.size, 4)) if with_params else None
-        for mask, span, y in pieces:
-            p, t, st = points[mask], tangents[mask], status[mask]
-            if np.any(span.seg.normal):   # across a node or an apex
-                self._jump_points(span, s[mask], y, p, t, st)
-            else:
-                kc.project_many(y, span.seg.a, span.seg.b, span.seg.normal, self.gap_tol, NEWTON_MAX_ITER, p, t, st)
-            points[mask], tangents[mask], status[mask] = p, t * span.flip * span.seg.sign, st
+        for k in np.unique(index).tolist():
+            span = self.spans[k]
+            mask = index == k
+            if rest.any() and rest[mask].any():        # a span the tables do not hold
+                y = np.ascontiguousarray(span.states(s[mask]).T)
+                p, t, st = np.empty((len(y), 3)), np.empty((len(y), 3)), np.empty(len(y), dtype=np.int64)
+                if np.any(span.seg.normal):   # across a node or an apex
+                    self._jump_points(span, s[mask], y, p, t, st)
+                else:
+                    kc.project_many(y, span.seg.a, span.seg.b, span.seg.normal, self.gap_tol, NEWTON_MAX_ITER, p,
+                                    t, st)
+                ys[mask], points[mask], tangents[mask] = y, p, t * span.flip * span.seg.sign
             if with_params:
-                params[mask] = user_params(self.surfaces, y, p, span.seg.a, span.seg.b)
+                params[mask] = user_params(self.surfaces, ys[mask], points[mask], span.seg.a, span.seg.b)
         return s, points, tangents, params
+
+    def foot_points(self, pts, s, steps):
+        """(s, distance) of foot points of pts (M, 3) by `steps` Newton steps in s from s (M,): in compiled code
+        (kernels.curve.near.foot_many), the points whose Newton meets a span the tables do not hold by
+        CurveSolution.foot_points."""
+        table = self.table
+        if table is None:
+            return super().foot_points(pts, s, steps)
+        pts = np.ascontiguousarray(pts, dtype=float)
+        s_out, d_out = np.empty(len(pts)), np.empty(len(pts))
+        kn.foot_many(table, self.closed, self.length, float(self.gap_tol), NEWTON_MAX_ITER, pts,
+                     np.ascontiguousarray(s, dtype=float), int(steps), s_out, d_out)
+        rest = np.isnan(d_out)
+        if rest.any():
+            s_out[rest], d_out[rest] = super().foot_points(pts[rest], np.asarray(s, dtype=float)[rest], steps)
+        return s_out, d_out
+
+    def closest(self, points):
+        """Arc length (...,) of the curve point nearest to each point (..., 3), and the distance (...,): in compiled
+        code (kernels.curve.near.closest_many, from the CLOSEST_CANDIDATES grid points nearest to each), the
+        points whose Newton meets a span the tables do not hold by CurveSolution.closest."""
+        table = self.table
+        if table is None:
+            return super().closest(points)
+        pts = np.asarray(points, dtype=float)
+        flat = np.ascontiguousarray(pts.reshape(-1, 3))
+        grid_s, grid = self.grid()
+        s_out, d_out = np.empty(len(flat)), np.empty(len(flat))
+        kn.closest_many(flat, grid_s, np.ascontiguousarray(grid), table, self.closed, self.length,
+                        float(self.gap_tol), NEWTON_MAX_ITER, CLOSEST_NEWTON_STEPS, CLOSEST_CANDIDATES, s_out, d_out)
+        rest = np.isnan(d_out)
+        if rest.any():
+            s_out[rest], d_out[rest] = super().closest(flat[rest])
+        return s_out.reshape(pts.shape[:-1]), d_out.reshape(pts.shape[:-1])
 
     def predicted_parameters(self, s):
         """(u1, v1, u2, v2) (..., 4) at s from the solver's dense output alone, without the Newton correction:

@@ -1,56 +1,20 @@
 """A traced curve's dense output as flat tables, for the compiled distance kernels (spatialkin.kernels.curve.near).
 
-``packed(sol)`` reads a TracedSolution's spans, their segments' charts and the records of their steps
+``pack(spans)`` reads a TracedSolution's spans, their segments' charts and the records of their steps
 (spatialkin.ode.record.Steps: step ends, states, lengths and polynomials, as the engine wrote them) into the tables
-kernels.curve.near documents, once per curve (a curve does not change). A closed form has no table (None), nor a
-traced curve none of whose spans the tables can hold; a span they cannot hold (a jump across a node or an apex, a
-solve_ivp method without polynomial steps) is marked so, and a point whose Newton meets it is left to the dense
-output's Python methods.
+kernels.curve.near documents (TracedSolution.table makes them once per curve). A traced curve none of whose spans
+the tables can hold has none (None); a span they cannot hold (a jump across a node or an apex, a solve_ivp method
+without polynomial steps) is marked so, and a point on it is evaluated by the dense output's Python path.
 """
-import weakref
-
 import numpy as np
 
-from ...kernels.curve import near as kn
 from ...ode.record import Steps
 from ..march.arclength import RemappedStates
-from ..march.segments import NEWTON_MAX_ITER
-from .dense import TracedSolution
-
-#: The tables made so far, per dense output (dropped with it).
-_TABLES = weakref.WeakKeyDictionary()
-#: The grids of closest() (CurveSolution.grid) made so far, per dense output.
-_GRIDS = weakref.WeakKeyDictionary()
-#: What _TABLES holds for a curve without a table (None would read as "not packed yet").
-_NO_TABLE = ()
 
 
-def packed(sol):
-    """The tables of kernels.curve.near for the dense output sol (a tuple of 12 arrays), made once per curve, or None
-    when sol is not a plain traced curve (see the module docstring)."""
-    if not isinstance(sol, TracedSolution):
-        return None
-    table = _TABLES.get(sol)
-    if table is None:
-        table = _TABLES[sol] = _pack(sol) or _NO_TABLE
-    return table or None
-
-
-def packed_grid(sol, table):
-    """(arc lengths (G,), points (G, 3)) of the grid CurveSolution.closest starts from, the same to the bit: by
-    kernels.near.curve_points on the tables of sol when they hold every span, else sol.grid(). Made once."""
-    grid = _GRIDS.get(sol)
-    if grid is None:
-        s = sol.grid_s()
-        points = np.empty((len(s), 3))
-        grid = _GRIDS[sol] = ((s, points) if kn.curve_points(table, sol.closed, sol.length, float(sol.gap_tol),
-                                                               NEWTON_MAX_ITER, s, points) else sol.grid())
-    return grid
-
-
-def _pack(sol):
-    """The tables for a TracedSolution, or None (see packed)."""
-    spans = sol.spans
+def pack(spans):
+    """The tables of kernels.curve.near for a traced curve's spans (a tuple of 12 arrays), or None when they hold
+    none of them (see the module docstring)."""
     records, held, remap_off, remap_new, remap_old = [], [], [0], [], []
     for span in spans:
         ode = span.seg.sol

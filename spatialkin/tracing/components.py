@@ -1,5 +1,4 @@
 """sk.intersect: every component of the intersection of two surfaces, each once."""
-import dataclasses
 import time
 
 import numpy as np
@@ -149,19 +148,21 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     """
     check_surface("a", a)
     check_surface("b", b)
+    scene = None
     if CLOSED_FORMS and not certify:      # (its settings are checked as make_settings checks them)
         settings = closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback)
         found = closed_form(a, b, settings)
         if found is not None:
             return [Curve(c) for c in in_sk_order(clip_curves(a, b, found, settings.scale))]
+        scene = settings.checked
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
-    settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor)
+    settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor, scene)
     if stages.ON:
         stages.switch("topology")
     topo = topology(a, b, settings.scale, settings.tolerance)
     if stages.ON:
         stages.switch("setup")
-    settings = dataclasses.replace(settings, nodes=np.array(topo.nodes + topo.apexes).reshape(-1, 3))
+    settings.nodes = np.array(topo.nodes + topo.apexes).reshape(-1, 3)
     # the components as CurveResults (each made a Curve once, complete, at the end)
     curves = [contact_point((a, b), p, settings.tolerance) for p in topo.contacts]
     curves += [exact_curve((a, b), settings.tolerance, circle=c) for c in topo.tangent_circles]
@@ -203,7 +204,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         stages.switch("result")
     in_sk_order(curves)
     proofs = certificates(a, b, curves, topo) if certify else [None] * len(curves)
-    return [Curve(dataclasses.replace(c, topology=topo, certificate=proof)) for c, proof in zip(curves, proofs)]
+    return [Curve(c, topology=topo, certificate=proof) for c, proof in zip(curves, proofs)]
 
 
 def trace_pending(a, b, pending, curves, settings, radius, reasons):

@@ -75,17 +75,19 @@ NODE_PROBES = 8
 TWO_PI = 2.0 * math.pi
 
 #: What the closed forms read of the settings (a trace Settings has these fields too; closed_form takes either).
-Scene = collections.namedtuple("Scene", "scale tolerance singular_tol max_length")
+#: What the closed forms read of sk.intersect's options; ``checked`` is the options and lengths make_settings
+#: reuses when the general path goes on (spatialkin.tracing.march.trace.make_settings's scene).
+Scene = collections.namedtuple("Scene", "scale tolerance singular_tol max_length checked")
 
 
 def closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback):
     """The Scene of sk.intersect's options (named as there), checked as make_settings checks them (ValueError
     naming a bad one), its lengths those make_settings gives (spatialkin.tracing.march.trace.scene_lengths)."""
-    tol, _, _, max_length, singular_tol, _ = check_options(tol, method, rtol, atol, max_length, singular_tol,
-                                                           pullback)
+    options = check_options(tol, method, rtol, atol, max_length, singular_tol, pullback)
     origins = a.frame.origin.tolist() + b.frame.origin.tolist()
-    scale, tolerance, _, max_length = scene_lengths(a, b, tol, max_length, max(map(abs, origins)))
-    return Scene(scale, tolerance, singular_tol, max_length)
+    lengths = scene_lengths(a, b, options[0], options[3], max(map(abs, origins)))
+    scale, tolerance, _, max_length = lengths
+    return Scene(scale, tolerance, options[4], max_length, (options, lengths))
 
 
 class Placed:

@@ -128,6 +128,9 @@ class Curve:
     ----------
     result : CurveResult
         The record of one component (from the tracer or a closed form).
+    topology, certificate : optional
+        The search that found the component and what was proven about it, where sk.intersect gives them (else the
+        record's own).
 
     Attributes
     ----------
@@ -197,10 +200,12 @@ class Curve:
     True
     """
 
-    def __init__(self, result):
+    def __init__(self, result, topology=None, certificate=None):
         if not isinstance(result, CurveResult):
             raise TypeError(f"a Curve is built from a CurveResult, got {type(result).__name__}")
         self._result = result
+        self._topology = result.topology if topology is None else topology
+        self._certificate = result.certificate if certificate is None else certificate
 
     @property
     def result(self):
@@ -356,8 +361,10 @@ class Curve:
 
 Curve.__doc__ = (Curve.__doc__.replace("{statuses}", describe(CURVE_STATUSES, 8))
                  .replace("{precedence}", ", ".join(f"'{s}'" for s in END_PRECEDENCE)))
-#: The record's fields a Curve shows as read-only attributes of the same names (all but the dense output).
+#: The record's fields a Curve shows as read-only attributes of the same names (all but the dense output; the
+#: topology and the certificate are the Curve's own, sk.intersect's where it gives them).
 RECORD_FIELDS = tuple(f.name for f in dataclasses.fields(CurveResult) if f.name != "sol")
+_OWN_FIELDS = ("topology", "certificate")
 #: The example curve of the fields' docstrings: a circle of radius 0.8 on the unit sphere.
 _EXAMPLE = """
     Examples
@@ -434,7 +441,7 @@ FIELD_DOCS = {
 """,
 }
 for _name in RECORD_FIELDS:
-    setattr(Curve, _name, property(operator.attrgetter(f"_result.{_name}"),
+    setattr(Curve, _name, property(operator.attrgetter(f"_{_name}" if _name in _OWN_FIELDS else f"_result.{_name}"),
                                    doc=FIELD_DOCS.get(_name, f"CurveResult.{_name}")))
 
 

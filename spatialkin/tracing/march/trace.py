@@ -78,12 +78,15 @@ def check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
     return tol, rtol, atol, max_length, singular_tol, pullback
 
 
-def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor):
-    """Validated numerical settings, absolute lengths scaled by the scene."""
-    tol, rtol, atol, max_length, singular_tol, pullback = check_options(tol, method, rtol, atol, max_length,
-                                                                        singular_tol, pullback)
-    magnitude = max(abs(x) for x in anchor.tolist())
-    scale, tolerance, gap_tol, max_length = scene_lengths(a, b, tol, max_length, magnitude)
+def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor, scene=None):
+    """Validated numerical settings, absolute lengths scaled by the scene; scene: the checked options and the
+    lengths already made for these arguments (spatialkin.tracing.closed.forms.closed_settings' Scene.checked), else
+    made here."""
+    if scene is None:
+        options = check_options(tol, method, rtol, atol, max_length, singular_tol, pullback)
+        magnitude = max(abs(x) for x in anchor.tolist())
+        scene = options, scene_lengths(a, b, options[0], options[3], magnitude)
+    (tol, rtol, atol, _, singular_tol, pullback), (scale, tolerance, gap_tol, max_length) = scene
     if atol is None:
         # angles get rtol, lengths (plane u, v; cylinder and cone v) rtol * scale
         atol = rtol * np.concatenate([parameter_units(a.data, scale), parameter_units(b.data, scale)])

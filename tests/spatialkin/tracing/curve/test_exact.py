@@ -68,7 +68,7 @@ def options(**changes):
                                      {"atol": 1e-9, "rtol": 1e-8}])
 def test_closed_settings_match_make_settings(changes):
     """The Scene's fields equal make_settings' (exactly), for placements far from the origin (the round-off floor
-    of the tolerance) and near it."""
+    of the tolerance) and near it, and make_settings from the Scene's checked options gives the same settings."""
     rng = np.random.default_rng(5)
     for offset in (0.0, 1e9):
         a = sk.Sphere(0.8, sk.Frame(rng.normal(size=3) + offset))
@@ -77,9 +77,13 @@ def test_closed_settings_match_make_settings(changes):
             scene = closed_settings(x, y, **options(**changes))
             anchor = np.concatenate([x.frame.origin, y.frame.origin])
             full = make_settings(x, y, *options(**changes).values(), True, anchor)
-            for name in scene._fields:
+            for name in scene._fields[:-1]:
                 assert getattr(scene, name) == getattr(full, name) and type(getattr(scene, name)) is type(
                     getattr(full, name)), name
+            again = make_settings(x, y, *options(**changes).values(), True, anchor, scene.checked)
+            for name in ("scale", "tolerance", "gap_tol", "max_length", "singular_tol", "pullback", "rtol"):
+                assert getattr(again, name) == getattr(full, name), name
+            np.testing.assert_array_equal(again.atol, full.atol)
 
 
 @pytest.mark.parametrize("changes", [{"tol": -1.0}, {"tol": "x"}, {"method": "Euler"}, {"rtol": 0.0},

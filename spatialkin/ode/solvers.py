@@ -311,20 +311,20 @@ def integrate(system, t_span, y0, method, events, rtol, atol, max_step=np.inf, m
     res = solve_ivp(system.rhs, t_span, y0, method=solver, rtol=rtol, atol=atol, args=system.args,
                     max_step=max_step, first_step=first_step, system=system, watch=events, record=record,
                     max_nfev=max_nfev)
-    res.sol = record.close(t_span[0], y0)
+    res["sol"] = record.close(t_span[0], y0)
     n = len(y0)
     no_t, no_y = np.empty(0), np.empty((0, n))        # the events not met share these (empty: nothing to change)
-    res.t_events = [no_t] * len(events)
-    res.y_events = [no_y] * len(events)
+    t_events, y_events = [no_t] * len(events), [no_y] * len(events)
     if record.events:
         met = {}
         for k, t_e, y_e in record.events:
             met.setdefault(k, []).append((t_e, y_e))
         for k, hits in met.items():
-            res.t_events[k] = np.array([t_e for t_e, _ in hits])
-            res.y_events[k] = np.array([y_e for _, y_e in hits]).reshape(len(hits), n)
-        if res.status == 0 and events[record.events[-1][0]].terminal:
-            res.status, res.message = 1, "A termination event occurred."
+            t_events[k] = np.array([t_e for t_e, _ in hits])
+            y_events[k] = np.array([y_e for _, y_e in hits]).reshape(len(hits), n)
+        if res["status"] == 0 and events[record.events[-1][0]].terminal:
+            res["status"], res["message"] = 1, "A termination event occurred."
+    res["t_events"], res["y_events"] = t_events, y_events
     return res
 
 

@@ -268,8 +268,9 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         finally:
             if mark is not None:
                 stages.leave(mark)
-        branch.nfev += res.nfev
-        steps = res.sol                      # the record of the segment's steps (spatialkin.ode.record.Steps)
+        # (solve_ivp's OdeResult read once, as the dict it is)
+        status, t_events, y_events, steps = res["status"], res["t_events"], res["y_events"], res["sol"]
+        branch.nfev += res["nfev"]           # steps: the record of the segment's steps (spatialkin.ode.record.Steps)
         ts, ys = steps.t, steps.y.T
         seg = Segment(s0=s, s1=s + ts[-1], sign=sign, sol=steps, a=a, b=b, t=ts, y=ys, compiled=compiled,
                       area=area)
@@ -277,11 +278,11 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             branch.segments.append(seg)
         s = seg.s1
         y = ys[:, -1].copy()
-        if res.status == -1 and steps.budget_exceeded:
+        if status == -1 and steps.budget_exceeded:
             branch.status, branch.message = outcome("stalled", s=s, budget=SEGMENT_MAX_EVALUATIONS,
                                                     point=point.tolist())
             break
-        if res.status == -1:
+        if status == -1:
             if compiled:
                 compiled = False         # the step size collapsed: solve_ivp's method from here on
                 kc.curve_frame(y, a, b, point, tangent)
@@ -289,14 +290,14 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
             if kc.degeneracy(y, a, b, 0.0, 0.0) < NODE_SUSPECT:
                 branch.status, branch.message = outcome("solver_singular", s=s)
             else:
-                branch.status, branch.message = outcome("solver_failed", s=s, message=res.message)
+                branch.status, branch.message = outcome("solver_failed", s=s, message=res["message"])
             break
-        if res.status == 0:
+        if status == 0:
             branch.status, branch.message = outcome("max_length", max_length=settings.max_length)
             break
-        hit = next(i for i, te in enumerate(res.t_events) if te.size)
+        hit = next(i for i, te in enumerate(t_events) if te.size)
         kind, info = kinds[hit]
-        y = res.y_events[hit][0].copy()
+        y = y_events[hit][0].copy()
         kc.curve_frame(y, a, b, point, tangent)
         if kind == "handoff":
             compiled = False
@@ -309,7 +310,7 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         singular = kind == "singular" or (kind == "apex" and known_apex(point, settings)) or (
             kind in ("minimum", "chart", "boundary") and kc.degeneracy(y, a, b, 0.0, 0.0) < NODE_SUSPECT
             and known_node(point, settings))
-        jump = jump_across(branch, seg, res.t_events[hit][0], y, settings) if singular else None
+        jump = jump_across(branch, seg, t_events[hit][0], y, settings) if singular else None
         if jump is None and kind == "boundary":
             singular = False                 # (no way through the node: the edge ends the branch, as any edge)
         if singular:

@@ -12,7 +12,7 @@ import numpy as np
 from ...kernels.march import curve as kc
 from ...kernels.march import restart as kr
 from ...kernels.geometry import surfaces as ks
-from ...geometry.traits import traits
+from ...geometry.traits import LENGTH, traits
 
 # --- named limits -------------------------------------------------------------------------------------
 #: A re-charting surface (a sphere) is re-charted when |cos(latitude)| falls below this (latitude beyond 60
@@ -99,7 +99,7 @@ def area_flag(data, scale):
     area watch: a degenerate parametrisation ends a branch): the length of a unit step of v in a scene of this
     scale (kernels.curve.relative_area); 0.0 when it is not watched."""
     kind = traits(data)
-    return float(kind.parameter_units(scale)[1]) if kind.area_watch else 0.0
+    return (float(scale) if kind.units[1] == LENGTH else 1.0) if kind.area_watch else 0.0
 
 
 def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):

@@ -22,7 +22,7 @@ from .ivp import integrate_branch
 from ...ode.solvers import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from ..curve.dense import Span, TracedSolution
-from ..curve.result import Curve, CurveResult, TracingError, in_own_chart, DUPLICATE_SPACING
+from ..curve.result import Curve, CurveResult, TracingError, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
 from ..curve.status import CLOSED, FAILED, open_outcome
 from ...geometry.traits import check_surface, traits
@@ -99,8 +99,14 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
 
 def apex_points(a, b):
     """(K, 3) the apexes of both surfaces (a cone's, a horn or spindle torus's points on its axis)."""
-    return np.array([a_or_b.point(0.0, v) for a_or_b in (a, b) for v in traits(a_or_b).apexes(a_or_b)],
-                    dtype=float).reshape(-1, 3)
+    rows = []
+    for surface in (a, b):
+        vs = traits(surface).apexes(surface)
+        if vs:
+            out = np.empty((len(vs), 3))
+            ks.evaluate(surface.data, np.array([(0.0, v) for v in vs], dtype=float), out)
+            rows.append(out)
+    return np.concatenate(rows) if len(rows) > 1 else rows[0] if rows else np.empty((0, 3))
 
 
 def scene_lengths(a, b, tol, max_length, magnitude):
@@ -362,12 +368,13 @@ def _corrected(a, b, y_all, span_of, spans, settings):
     cuts = np.empty(len(breaks) + 2, dtype=np.int64)
     cuts[0], cuts[1:-1], cuts[-1] = 0, breaks + 1, n
     segs = [spans[k].seg for k in span_of[cuts[:-1]].tolist()]
-    own = [np.array([in_own_chart(chart, surf) for chart in charts])
-           for surf, charts in ((a, [seg.a for seg in segs]), (b, [seg.b for seg in segs]))]
+    recharts = bool(traits(a).recharts), bool(traits(b).recharts)
+    # (a surface that re-charts has a chart of its own in every segment: segment_start makes one at each start)
+    own = [np.full(len(segs), flag) for flag in recharts]
     kst.corrected_spans(np.ascontiguousarray(y_all, dtype=float), cuts, np.array([seg.a for seg in segs]),
                         np.array([seg.b for seg in segs]), np.array([seg.normal for seg in segs], dtype=float),
-                        a.data, b.data, own[0], own[1], bool(traits(a).recharts), bool(traits(b).recharts),
-                        settings.gap_tol, NEWTON_MAX_ITER, points, params, raw_gap)
+                        a.data, b.data, own[0], own[1], recharts[0], recharts[1], settings.gap_tol, NEWTON_MAX_ITER,
+                        points, params, raw_gap)
     return points, params, raw_gap
 
 

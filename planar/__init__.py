@@ -20,10 +20,15 @@ S. O. Koshel, A. V. Koshel, "Double-crank mechanism kinematic study of warp knit
 """
 import sys
 
-from . import frenet
-from . import linkage
-from .frenet import CrankRocker, CrankSlider, DrivenLink, Law, LawFromFunctions, LawFromGamma
-from .linkage import Crank, Link, Linkage, LinkageMotion, LockError, examples
+from spatialkin._lib import warm as _warm
+
+# (before planar's kernels are imported: a cold cache runs them as plain Python while they compile in the background)
+_warm.register("planar.warmup")
+
+from . import frenet  # noqa: E402
+from . import linkage  # noqa: E402
+from .frenet import CrankRocker, CrankSlider, DrivenLink, Law, LawFromFunctions, LawFromGamma  # noqa: E402
+from .linkage import Crank, Link, Linkage, LinkageMotion, LockError, examples  # noqa: E402
 
 # ``import planar.examples`` (as the tutorials spell it) is the module planar.linkage.examples itself
 sys.modules[__name__ + ".examples"] = examples

@@ -21,17 +21,23 @@ References
 machines of the light industry" (Дослідження траєкторій характерних точок просторових механізмів технологічних
 машин галузей легкої промисловості; in Ukrainian).
 """
-from .geometry.frame import Frame, rotation_about, rotation_to_z
-from .geometry.surfaces import Cone, Cylinder, Plane, Sphere, Surface, Torus
-from .tracing.curve.result import Curve, TracingError
-from .tracing.march.start import auxiliary_starts
-from .tracing.march.trace import trace
-from .tracing.components import intersect
-from .tracing.batch import BatchError, intersect_many
-from .geometry.placement import CoincidentSurfacesError
-from .tracing.search.topology import TopologyError
+from ._lib.version import __version__  # noqa: F401  (the package version)
+
+# (before the kernels are imported: a cold cache runs them as plain Python while they compile in the background)
+from ._lib import warm as _warm
+
+_warm.decide()
+
+from .geometry.frame import Frame, rotation_about, rotation_to_z  # noqa: E402
+from .geometry.surfaces import Cone, Cylinder, Plane, Sphere, Surface, Torus  # noqa: E402
+from .tracing.curve.result import Curve, TracingError  # noqa: E402
+from .tracing.march.start import auxiliary_starts  # noqa: E402
+from .tracing.march.trace import trace  # noqa: E402
+from .tracing.components import intersect  # noqa: E402
+from .tracing.batch import BatchError, intersect_many  # noqa: E402
+from .geometry.placement import CoincidentSurfacesError  # noqa: E402
+from .tracing.search.topology import TopologyError  # noqa: E402
 
 __all__ = ["Frame", "rotation_about", "rotation_to_z", "Surface", "Torus", "Sphere", "Plane", "Cylinder",
            "Cone", "Curve", "TracingError", "trace", "intersect", "intersect_many", "BatchError", "auxiliary_starts", "CoincidentSurfacesError",
            "TopologyError"]
-__version__ = "0.2.0"

@@ -3,7 +3,7 @@ import os
 import pytest
 
 os.environ.setdefault("PYVISTA_OFF_SCREEN", "true")
-# the suite compiles its kernels in the foreground: no background warm-up process (spatialkin.cli.firstrun)
+# the suite compiles its kernels in the foreground: no background warm-up process (spatialkin._lib.warm)
 os.environ.setdefault("SPATIALKIN_FIRST_RUN", "compile")
 
 _REPORT = []
@@ -24,7 +24,8 @@ SLOW = (
     "tests/spatialkin/design/test_design_sweep.py::test_local_processes_give_the_same_table",
     "tests/spatialkin/design/test_design_sweep.py::test_dask_local_cluster_gives_the_same_table",
     "tests/spatialkin/design/test_design_sweep.py::test_workers_fork_when_the_main_script_is_no_file",
-    "tests/spatialkin/cli/test_firstrun.py::test_interpreted_run_gives_the_compiled_table",
+    "tests/spatialkin/_lib/test_warm.py::test_a_cold_cache_runs_plain_python_at_once_and_warms_in_the_background",
+    "tests/spatialkin/_lib/test_warm.py::test_the_looper_job_on_a_cold_cache_says_so_once_and_gives_the_compiled_table",
     "tests/spatialkin/bench/test_bench.py::test_bench_quick_command",
 )
 #: Tests that compare rendered pictures with stored baselines, marked ``images``.

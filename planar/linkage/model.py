@@ -59,8 +59,11 @@ SCAN_ANGLES = 36
 TRACE_RTOL = 1e-8
 #: Arc-length budget of one configuration curve, per unit of input period and unknown.
 LENGTH_BUDGET = 200.0
-#: The configuration curve's kernels for the continuation.
-LINKAGE_KERNELS = CurveKernels(kn.linkage_rhs, kn.linkage_events, kn.linkage_advance)
+
+
+def linkage_kernels():
+    """A linkage's configuration-curve kernels (read when used: spatialkin._lib.jit may switch their form)."""
+    return CurveKernels(kn.linkage_rhs, kn.linkage_events, kn.linkage_advance)
 
 
 @dataclass(frozen=True)
@@ -432,7 +435,7 @@ class Linkage:
             y0 = self.assemble(self.hint_angle, assembly)
             args = (self.ci, self.cf, self.fixed_xy, len(self.cranks))
             budget = LENGTH_BUDGET * self.period * len(y0)
-            cycle = trace_cycle(LINKAGE_KERNELS, y0, args, self.period, budget, rtol=TRACE_RTOL)
+            cycle = trace_cycle(linkage_kernels(), y0, args, self.period, budget, rtol=TRACE_RTOL)
             cycle.locks = [self._onto_curve(y) for y in cycle.locks]
             self._cycles[assembly] = cycle
         return self._cycles[assembly]

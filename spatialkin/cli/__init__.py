@@ -1,26 +1,17 @@
 """Command line: ``spatialkin looper --out DIR [--config FILE.toml]`` (the main job), ``spatialkin demo``
 (torus ∩ sphere of the looper, every component), ``spatialkin bench [--out DIR] [--quick]`` (speed against
 error: work–precision table, ratios against the peers, CSV and PNG), ``spatialkin design --targets FILE.toml``
-(fit a looper drive to targets) and ``spatialkin --version``.
+(fit a looper drive to targets), ``spatialkin warmup`` (compile the kernels ahead) and ``spatialkin --version``.
 
 Every bad input ends in one line on stderr and exit status 2.
 """
 import argparse
-import os
 import sys
 import time
 
 
 #: Exceptions that mean bad input or a situation the user must change (one line, exit 2), never a traceback.
 USER_ERRORS = (ValueError, TypeError, OSError, KeyError, RuntimeError)
-#: The line printed when the numerical kernels compile (first run after an install, or a cleared cache).
-COMPILING = ("spatialkin: compiling the numerical kernels this run needs (first run after install; numba caches "
-             "them, later runs start at once) ...")
-
-
-#: The line printed when the looper job's kernels are not compiled yet (see spatialkin.cli.firstrun).
-FIRST_RUN = ("spatialkin: first run after install: the kernels run as plain Python this time (same numbers); "
-             "a background process then compiles them into numba's cache (about a minute) for the next runs")
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -58,21 +49,14 @@ def demo(args):
 
 
 def looper(args):
-    from . import firstrun
-    if os.environ.get(firstrun.ENV, "interpret") != "compile" and not firstrun.ready():
-        from .looper_job import build, load_config
-        build(load_config(args.config))     # bad input: its one line here, before any other
-        os.makedirs(args.out, exist_ok=True)
-        print(FIRST_RUN, file=sys.stderr, flush=True)
-        status = firstrun.run_interpreted(args.argv)
-        if status == 0:
-            firstrun.start_background()     # after the run, so that it does not compete with it
-        return status
     from .looper_job import run
     run(args.out, args.config)
-    if not firstrun.ready():                # compiled here (SPATIALKIN_FIRST_RUN=compile): stamp the cache
-        firstrun.write_stamp()
     return 0
+
+
+def warmup(args):
+    from .warmup import main as warm_up
+    return warm_up()
 
 
 def bench(args):
@@ -106,6 +90,9 @@ def parser():
     p_bench.add_argument("--out", default=None, help="folder for bench.csv, bench.png, bench_kinds.csv and bench_kinds.png (created if missing)")
     p_bench.add_argument("--quick", action="store_true", help="a short run: two cases, two tolerances, one repeat")
     p_bench.set_defaults(func=bench)
+    p_warm = sub.add_parser("warmup", help="compile the numerical kernels ahead (an image, a cluster's workers) and "
+                            "report the time")
+    p_warm.set_defaults(func=warmup)
     # listed here for --help; ``main`` hands `spatialkin design ...` to spatialkin/cli/design.py before parsing
     sub.add_parser("design", help="fit a looper drive to targets and write its config (spatialkin design --help)")
     return top
@@ -117,11 +104,8 @@ def main(argv=None):
         from .design import main_design
         return main_design(argv[1:])
     args = parser().parse_args(argv)
-    args.argv = argv
-    from numba.core import event
-
-    from .._lib.jit import announce_compilation
-    listener = announce_compilation(lambda: print(COMPILING, file=sys.stderr, flush=True))
+    from .._lib import warm
+    warm.say_with(lambda line: print(line, file=sys.stderr, flush=True))
     try:
         return args.func(args)
     except USER_ERRORS as err:
@@ -131,6 +115,4 @@ def main(argv=None):
     except KeyboardInterrupt:
         print(f"spatialkin {args.command}: interrupted", file=sys.stderr)
         return 130
-    finally:
-        event.unregister("numba:compile", listener)
 

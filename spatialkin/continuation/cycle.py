@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._lib import warm
 from ..kernels.continuation import follow as kf
 from ..ode.solvers import COMPILED, BudgetExceeded, Event, System, integrate
 from ..tracing.curve.result import TracingError
@@ -168,6 +169,7 @@ def trace_cycle(kernels, y0, args, period, max_length, index=-1, rtol=TRACE_RTOL
     ContinuationError
         When y0 is itself a lock position, or the curve does not close within max_length.
     """
+    warm.refresh()
     y0 = np.asarray(y0, dtype=float)
     index = index % y0.size
     rate = kernels.rhs(0.0, y0, *args, 1.0, 0.0)[index]

@@ -30,8 +30,11 @@ ASSEMBLY_SAMPLES = 720
 #: Newton tolerance on F (length^2) relative to the mechanism size squared.
 RESIDUAL_TOL = 1e-15
 _Z = (0.0, 0.0, 1.0)
-#: The configuration curve's kernels for the continuation.
-RSSR_KERNELS = CurveKernels(kl.implicit_curve_rhs, kl.rssr_events, kl.rssr_advance)
+
+
+def rssr_kernels():
+    """The RSSR's configuration-curve kernels (read when used: spatialkin._lib.jit may switch their form)."""
+    return CurveKernels(kl.implicit_curve_rhs, kl.rssr_events, kl.rssr_advance)
 
 
 class RSSR:
@@ -101,7 +104,7 @@ class RSSR:
         """The configuration curve over one crank turn, traced by arc length (a continuation Cycle)."""
         if branch not in self._cycles:
             x0 = self.assemble(0.0, branch)
-            cycle = trace_cycle(RSSR_KERNELS, x0, (self.params,), 2 * np.pi,
+            cycle = trace_cycle(rssr_kernels(), x0, (self.params,), 2 * np.pi,
                                 LENGTH_BUDGET * 2 * np.pi, index=0, rtol=TRACE_RTOL, method=TRACE_METHOD)
             if cycle.locks:
                 raise ValueError("the crank of this RSSR cannot turn fully: dead position at crank angle "

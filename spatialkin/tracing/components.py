@@ -14,7 +14,7 @@ from .certify.certificate import certificates
 from .curve.clip import clip_curves
 from .march.graze import across_edges, rejoined
 from .closed.forms import closed_form, closed_settings
-from .._lib import stages
+from .._lib import stages, warm
 from .curve.status import BOUNDARY, CONTACT, FAILED, TANGENT
 from .search.rescue import LOST_RADIUS, crossing_starts
 from .search.topology import TopologyError, points_at, topology
@@ -148,6 +148,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     """
     check_surface("a", a)
     check_surface("b", b)
+    warm.refresh()
     scene = None
     if CLOSED_FORMS and not certify:      # (its settings are checked as make_settings checks them)
         settings = closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback)

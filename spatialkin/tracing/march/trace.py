@@ -26,7 +26,7 @@ from ..curve.result import Curve, CurveResult, TracingError, DUPLICATE_SPACING
 from .start import locate_on_curve, parameter_units, scene_scale
 from ..curve.status import CLOSED, FAILED, open_outcome
 from ...geometry.traits import check_surface, traits
-from ..._lib import stages
+from ..._lib import stages, warm
 from ..._lib.validation import check_choice, check_nonnegative, check_positive
 
 # --- defaults -----------------------------------------------------------------------------------------
@@ -232,6 +232,7 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     """
     check_surface("a", a)
     check_surface("b", b)
+    warm.refresh()
     t_start = time.perf_counter()
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor)

@@ -1,0 +1,238 @@
+"""The kernels' first use on a machine: run them as plain Python at once, compile them in the background.
+
+numba compiles a kernel the first time it is called and caches it on disk (``cache=True``): a few hundred
+specialisations, about a minute of compiling on a 2-core machine, against well under a second to run a first
+``sk.intersect`` or looper drive with the same kernels as plain Python. So when the package is imported and the
+cache is not warm (no stamp of a finished warm-up for these versions and kernel sources), the kernels run as plain
+Python (spatialkin._lib.jit.use), one warning says so, and a background process at the lowest priority compiles
+them (``python -m`` each registered workload: spatialkin.cli.warmup, and planar.warmup once planar is imported),
+then writes a stamp naming the cache index of every kernel it compiled. The next call of an entry point after it
+finishes (``refresh``) turns the kernels to their compiled, cached form, in this process too; later processes find
+the stamps and start compiled.
+
+``SPATIALKIN_FIRST_RUN=compile`` turns this off: kernels compile in the foreground, as numba does by default
+(announced by the entry that compiles). ``spatialkin warmup`` compiles everything in the foreground ahead (for an
+image, or a cluster's workers).
+"""
+import hashlib
+import json
+import os
+import subprocess
+import sys
+import time
+import warnings
+
+from . import jit
+
+#: The environment switch: 'interpret' (default: plain Python while the cache is cold) or 'compile'.
+ENV = "SPATIALKIN_FIRST_RUN"
+#: The workload spatialkin itself compiles (a module run as ``python -m``).
+WORKLOAD = "spatialkin.cli.warmup"
+#: The names beside numba's cache: a workload's stamp, and the lock its background warm-up holds.
+STAMP = "spatialkin-warm-{}.json"
+LOCK = "spatialkin-warm-{}.lock"
+#: Scheduling priority of the background warm-up (added niceness).
+BACKGROUND_NICENESS = 19
+#: A lock older than this (s) is from a warm-up that died: it is taken over.
+STALE_LOCK_S = 900.0
+#: refresh() looks at the background warm-ups at most this often (s).
+POLL_S = 1.0
+#: The line of a cold cache, and of a compile in the foreground (each once per process).
+COLD = ("spatialkin: first use of its compiled kernels on this machine: they are being compiled in the background "
+        "(about a minute); until then they run as plain Python (the same results, slower), and this process turns "
+        "to the compiled ones when they are ready. `spatialkin warmup` compiles them ahead.")
+COMPILING = ("spatialkin: compiling the numerical kernels this call needs (up to a minute on first use; numba "
+             "caches them, later calls and processes start at once). `spatialkin warmup` compiles them ahead.")
+
+#: The workloads registered (spatialkin's, then each package's that imports this), the background processes
+#: started by this process, and when refresh() last looked.
+_WORKLOADS = [WORKLOAD]
+_STARTED = {}
+_LAST_POLL = [0.0]
+#: What has been said (COLD, COMPILING), and how a line is said: a warning (Python, Jupyter) unless the command
+#: line sets its own (one line on stderr).
+_SAID = set()
+_SAY = [None]
+
+
+def _probe():
+    return 0
+
+
+def cache_folder():
+    """The folder of numba's cache for this package's modules (where the stamps are), or None (jit off, or numba's
+    layout unknown)."""
+    if jit.JIT_DISABLED:
+        return None
+    try:
+        import numba
+        return numba.njit(cache=True)(_probe)._cache._cache_path
+    except AttributeError:
+        return None
+
+
+def source_hash(path):
+    """sha256 of a kernel module's source, numba's own freshness stamp of its cache index."""
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def versions():
+    """The versions a stamp is valid for."""
+    import numba
+
+    from .version import __version__
+    return {"spatialkin": __version__, "numba": numba.__version__, "python": sys.version.split()[0]}
+
+
+def ready(workload=WORKLOAD):
+    """True when a warm-up of the workload finished for these versions and every cache index it named is still
+    there, for the same kernel source (its hash); also True where this cannot be known (jit off, numba's layout
+    unknown)."""
+    folder = cache_folder()
+    if folder is None:
+        return True
+    try:
+        with open(os.path.join(folder, STAMP.format(workload))) as f:
+            stamp = json.load(f)
+    except (OSError, ValueError):
+        return False
+    if not isinstance(stamp, dict) or stamp.get("versions") != versions():
+        return False
+    hashes = {}
+    try:
+        for index, source, digest in stamp.get("indexes", []):
+            if not os.path.exists(index) or hashes.setdefault(source, source_hash(source)) != digest:
+                return False
+    except (OSError, ValueError, TypeError, AttributeError):     # gone, or a stamp of another layout
+        return False
+    return True
+
+
+def write_stamp(workload=WORKLOAD):
+    """Stamp the cache as warm for the workload: the index of every kernel compiled (or loaded) in this process."""
+    folder = cache_folder()
+    if folder is None:
+        return
+    try:
+        sources, indexes = {}, []
+        for d in jit.dispatchers():
+            if d.signatures:
+                source = d.py_func.__code__.co_filename
+                indexes.append([d._cache._cache_file._index_path, source,
+                                sources.setdefault(source, source_hash(source))])
+    except AttributeError:              # numba's cache layout changed: no stamp, the next run compiles
+        return
+    path = os.path.join(folder, STAMP.format(workload))
+    tmp = f"{path}.{os.getpid()}.tmp"
+    try:
+        os.makedirs(folder, exist_ok=True)
+        with open(tmp, "w") as f:
+            json.dump({"versions": versions(), "indexes": indexes}, f)
+        os.replace(tmp, path)
+    except OSError:                     # a read-only cache: numba itself then uses another folder
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
+def start_background(workload=WORKLOAD):
+    """Start the workload's warm-up in its own session at the lowest priority (it outlives this process), unless one
+    is running. Returns True when one was started."""
+    folder = cache_folder()
+    if folder is None:
+        return False
+    lock = os.path.join(folder, LOCK.format(workload))
+    try:
+        os.makedirs(folder, exist_ok=True)
+        if os.path.exists(lock) and time.time() - os.path.getmtime(lock) < STALE_LOCK_S:
+            return False
+        with open(lock, "w") as f:
+            f.write(str(os.getpid()))
+    except OSError:
+        return False
+    env = {**os.environ, ENV: "compile"}
+    env.pop("SPATIALKIN_DISABLE_JIT", None)
+    _STARTED[workload] = subprocess.Popen(
+        [sys.executable, "-c", f"from spatialkin._lib import warm; warm.background({workload!r}, {lock!r})"],
+        env=env, start_new_session=True, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL)
+    return True
+
+
+def background(workload, lock):
+    """The background warm-up (run in its own process): the workload's ``run()`` compiled at the lowest priority,
+    then its stamp; the lock removed in any case."""
+    try:
+        os.nice(BACKGROUND_NICENESS)         # the foreground goes first
+    except (AttributeError, OSError):
+        pass
+    try:
+        import importlib
+        importlib.import_module(workload).run()
+        write_stamp(workload)
+    finally:
+        try:
+            os.remove(lock)
+        except OSError:
+            pass
+
+
+def wanted():
+    """True unless the first-run switch asks for compiling in the foreground (or jit is off)."""
+    return not jit.JIT_DISABLED and os.environ.get(ENV, "interpret") != "compile"
+
+
+def register(workload):
+    """Add a package's warm-up workload (a module with ``run()``, importable as ``python -m``); when its kernels are
+    not in the cache, they run as plain Python and it is compiled in the background (see the module docstring)."""
+    if workload not in _WORKLOADS:
+        _WORKLOADS.append(workload)
+    if wanted() and not ready(workload):
+        _go_cold(workload)
+
+
+def decide():
+    """At import, before the kernels: plain Python and a background warm-up when the cache is cold; a line when a
+    kernel compiles in the foreground (numba fires no event for one loaded from its cache)."""
+    if jit.JIT_DISABLED:
+        return
+    jit.announce_compilation(lambda: _say(COMPILING))
+    if wanted() and not ready(WORKLOAD):
+        _go_cold(WORKLOAD)
+
+
+def _go_cold(workload):
+    jit.use(jit.INTERPRETED)
+    start_background(workload)
+
+
+def say_with(say):
+    """Say the first-use lines with say(line) (the command line's stderr) instead of a warning."""
+    _SAY[0] = say
+
+
+def _say(line):
+    if line in _SAID:
+        return
+    _SAID.add(line)
+    if _SAY[0] is not None:
+        _SAY[0](line)
+    else:
+        warnings.warn(line, RuntimeWarning, stacklevel=4)
+
+
+def refresh():
+    """At an entry point: while the kernels run as plain Python, say so once; once every registered workload is warm
+    (its background warm-up finished, here or in another process), turn them to their compiled form. Cheap when they
+    are compiled already."""
+    if jit.mode() == jit.COMPILED:
+        return
+    _say(COLD)
+    now = time.monotonic()
+    if now - _LAST_POLL[0] < POLL_S:
+        return
+    _LAST_POLL[0] = now
+    if any(p.poll() is None for p in _STARTED.values()):
+        return
+    if all(ready(w) for w in _WORKLOADS):
+        jit.use(jit.COMPILED)

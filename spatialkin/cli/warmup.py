@@ -1,0 +1,61 @@
+"""Compile spatialkin's kernels ahead: the workload of the background warm-up (spatialkin._lib.warm) and of
+``spatialkin warmup``.
+
+The workload calls what a first session calls: ``sk.intersect`` on a general pair of every kind of surface (15
+kinds) and on trimmed faces, ``sk.trace``, the looper drive over a turn with its analysis (and a drive whose crank
+does not turn fully), its design sensitivities, and ``sk.intersect_many``; numba compiles every kernel and
+specialisation they reach into its cache.
+"""
+import time
+
+#: Crank angles of the looper drive's turn in the workload.
+ANGLES = 361
+
+
+def run():
+    """Call the workload (each kernel it reaches compiled, or loaded from the cache)."""
+    import numpy as np
+
+    import spatialkin as sk
+    from ..bench.kinds import pair_kind_cases
+    from ..design import LooperDesign
+    from ..mechanisms import LooperDrive
+    for _, a, b in pair_kind_cases():
+        for curve in sk.intersect(a, b):
+            if curve.length > 0:
+                curve(np.linspace(0.0, curve.length, 5))
+                curve.closest(curve.points[:3])
+    face = sk.Cylinder(1.0, u_range=(0.0, 2.0), v_range=(-1.0, 1.0))
+    sk.intersect(face, sk.Sphere(1.2, sk.Frame((0.5, 0.0, 0.3)), u_range=(-1.0, 2.5)))
+    sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))))
+    sk.trace(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))), (0.5, 0.9, 0.0))
+    sk.intersect_many([(sk.Torus(2.0, 1.0), sk.Sphere(1.2, sk.Frame((2.5, 0.0, 0.3))))])
+    drive = LooperDrive.reference()
+    angles = np.linspace(0.0, 2 * np.pi, ANGLES)
+    motion = drive.solve(angles, omega=2.0, branch=0)
+    drive.analyse(branch=0, samples=ANGLES)
+    drive.torus.distance(motion.ball_center), drive.sphere.distance(motion.ball_center)
+    motion.looper_tip
+    partial = LooperDrive(drive.crank_radius, drive.coupler_length, drive.rocker_length,
+                          rocker_frame=sk.Frame((40.0, 0.0, 60.0)))
+    partial.analyse(branch=0, samples=ANGLES)
+    LooperDesign.from_drive(drive).sensitivities(angles[::10])
+
+
+def main(echo=print):
+    """``spatialkin warmup``: compile the workload in the foreground, stamp the cache, report the time. Returns 0."""
+    from .._lib import jit, warm
+    jit.use(jit.COMPILED)
+    before = sum(len(d.signatures) for d in jit.dispatchers())
+    t0 = time.perf_counter()
+    run()
+    warm.write_stamp(warm.WORKLOAD)
+    after = sum(len(d.signatures) for d in jit.dispatchers())
+    echo(f"spatialkin warmup: {after} kernel specialisations ready ({after - before} compiled or loaded here) in "
+         f"{time.perf_counter() - t0:.1f} s; numba's cache: {warm.cache_folder()}")
+    echo("(planar's kernels: python -m planar.warmup)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,181 @@
+"""The kernels' first use on a machine (spatialkin._lib.warm, spatialkin._lib.jit): when the cache is warm, the
+kernels switched between their compiled and plain Python forms in place, a cold start in a fresh process (plain
+Python at once, one line, a background warm-up), the line while kernels compile, and no compiling at import.
+
+Oracles: closed forms (two spheres meet in a circle of radius sqrt(3)/2; the looper drive's ball centre on both
+surfaces) and the compiled results."""
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+import spatialkin as sk
+from spatialkin._lib import jit as _jit
+from spatialkin._lib import warm
+from spatialkin.mechanisms import LooperDrive
+
+#: Interpreted and compiled kernels: the same arithmetic; allow round-off should the compiler contract a product.
+SAME = 1e-12
+
+
+def test_ready_needs_a_stamp_of_these_versions_naming_every_index_of_the_same_source(tmp_path, monkeypatch):
+    monkeypatch.setattr(warm, "cache_folder", lambda: str(tmp_path))
+    assert not warm.ready()
+    source, index = tmp_path / "k.py", tmp_path / "k.nbi"
+    source.write_text("x = 1\n")
+    index.write_text("i")
+    stamp = {"versions": warm.versions(), "indexes": [[str(index), str(source), warm.source_hash(source)]]}
+    (tmp_path / warm.STAMP.format(warm.WORKLOAD)).write_text(json.dumps(stamp))
+    assert warm.ready()
+    assert not warm.ready("planar.warmup")        # each workload its own stamp
+    source.write_text("x = 2\n")                  # the kernel edited after the warm-up: its index is stale
+    assert not warm.ready()
+    source.write_text("x = 1\n")                  # back to the same source (numba compares content, not time)
+    assert warm.ready()
+    index.unlink()                                # the cache cleared
+    assert not warm.ready()
+    index.write_text("i")
+    stamp["versions"] = {**stamp["versions"], "numba": "0.0"}
+    (tmp_path / warm.STAMP.format(warm.WORKLOAD)).write_text(json.dumps(stamp))
+    assert not warm.ready()
+
+
+def spheres_circle():
+    """sk.trace of two unit spheres one radius apart: the circle of radius sqrt(3)/2 in x = 1/2."""
+    return sk.trace(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))), (0.5, 0.9, 0.0))
+
+
+@pytest.mark.skipif(_jit.JIT_DISABLED, reason="one form only with jit off")
+def test_the_kernels_switch_form_in_place_with_the_same_answers():
+    from numba.core.registry import CPUDispatcher
+
+    from spatialkin.kernels.march import curve as kc
+    from spatialkin.tracing.march import ivp
+    compiled = spheres_circle()
+    motion = LooperDrive.reference().solve(np.linspace(0.0, 2 * np.pi, 37))
+    try:
+        _jit.use(_jit.INTERPRETED)
+        assert _jit.mode() == _jit.INTERPRETED
+        assert not isinstance(kc.curve_frame, CPUDispatcher) and not isinstance(ivp.kb.branch_advance, CPUDispatcher)
+        plain = spheres_circle()
+        plain_motion = LooperDrive.reference().solve(np.linspace(0.0, 2 * np.pi, 37))
+    finally:
+        _jit.use(_jit.COMPILED)
+    assert isinstance(kc.curve_frame, CPUDispatcher) and isinstance(ivp.kb.branch_advance, CPUDispatcher)
+    assert abs(plain.length - np.pi * np.sqrt(3.0)) < 1e-9 and abs(compiled.length - np.pi * np.sqrt(3.0)) < 1e-9
+    assert abs(plain.length - compiled.length) <= SAME * compiled.length
+    np.testing.assert_allclose(plain(np.linspace(0, plain.length, 9)), compiled(np.linspace(0, plain.length, 9)),
+                               rtol=0, atol=SAME)
+    np.testing.assert_allclose(plain_motion.ball_center, motion.ball_center, rtol=0,
+                               atol=SAME * np.max(np.abs(motion.ball_center)))
+
+
+def test_refresh_turns_to_compiled_once_every_workload_is_warm(monkeypatch):
+    monkeypatch.setattr(warm, "ready", lambda workload=warm.WORKLOAD: True)
+    monkeypatch.setattr(warm, "_STARTED", {})
+    said = []
+    monkeypatch.setattr(warm, "_SAY", [said.append])
+    monkeypatch.setattr(warm, "_SAID", set())
+    try:
+        _jit.use(_jit.INTERPRETED)
+        warm._LAST_POLL[0] = 0.0
+        warm.refresh()
+        assert _jit.mode() == _jit.COMPILED
+        assert said == [warm.COLD]              # said once, at the first entry that ran plain Python
+    finally:
+        _jit.use(_jit.COMPILED)
+
+
+COLD_START = textwrap.dedent("""
+    import warnings
+    warnings.simplefilter("always")
+    with warnings.catch_warnings(record=True) as caught:
+        import spatialkin as sk
+        from spatialkin._lib import jit, warm
+        curve, = sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))), tol=1e-10)
+        loops = sk.intersect(sk.Torus(2.0, 1.0), sk.Sphere(1.2, sk.Frame((2.5, 0.0, 0.3))))
+    started = warm._STARTED.get(warm.WORKLOAD)
+    print(jit.mode(), started.pid if started else -1, sorted(round(c.length, 9) for c in loops))
+    print(sum(str(w.message) == warm.COLD for w in caught))
+""")
+
+
+@pytest.mark.skipif(_jit.JIT_DISABLED, reason="no cache with jit off")
+def test_a_cold_cache_runs_plain_python_at_once_and_warms_in_the_background(tmp_path):
+    """A fresh process on an empty cache: the kernels run as plain Python (nothing compiles in the foreground), the
+    answers are the compiled process's, one warning says so, and a background warm-up is running (stopped here)."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    env.pop(warm.ENV, None)
+    run = subprocess.run([sys.executable, "-c", COLD_START], capture_output=True, text=True, env=env, timeout=300)
+    assert run.returncode == 0, run.stderr[-2000:]
+    first, second = run.stdout.strip().splitlines()
+    mode, pid, lengths = first.split(" ", 2)
+    try:
+        assert mode == _jit.INTERPRETED and int(pid) > 0
+        want = sorted(round(c.length, 9) for c in sk.intersect(sk.Torus(2.0, 1.0), sk.Sphere(1.2, sk.Frame(
+            (2.5, 0.0, 0.3)))))
+        assert lengths == str(want)
+        assert second == "1"
+    finally:
+        if int(pid) > 0:
+            try:
+                os.killpg(int(pid), signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+
+
+@pytest.mark.skipif(_jit.JIT_DISABLED, reason="no compiling with jit off")
+def test_a_line_when_the_first_kernel_compiles():
+    said = []
+    listener = _jit.announce_compilation(lambda: said.append(1))
+    try:
+        space = {"__name__": "spatialkin._first_compile_probe"}
+        exec("def probe(x):\n    return x + 1.0\n\ndef probe2(x):\n    return x * 2.0\n", space)
+        assert _jit.jit(cache=False)(space["probe"])(1.0) == 2.0
+        assert _jit.jit(cache=False)(space["probe2"])(1.0) == 2.0
+    finally:
+        from numba.core import event
+        event.unregister("numba:compile", listener)
+    assert said == [1]                      # once, however many kernels compile
+
+
+def test_import_compiles_nothing():
+    """A fresh interpreter imports spatialkin, planar and the job without a single compile event."""
+    code = ("from numba.core import event\nhits = []\n"
+            "class L(event.Listener):\n    def on_start(self, e): hits.append(1)\n    def on_end(self, e): pass\n"
+            "event.register('numba:compile', L())\n"
+            "import spatialkin, planar, spatialkin.cli.looper_job, spatialkin.mechanisms, spatialkin.cli\n"
+            "print(len(hits))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "0"
+
+
+@pytest.mark.skipif(_jit.JIT_DISABLED, reason="no cache with jit off")
+def test_the_looper_job_on_a_cold_cache_says_so_once_and_gives_the_compiled_table(tmp_path):
+    """`spatialkin looper` on an empty cache: one line on stderr, exit 0, and the table of the compiled job (run here,
+    on the warm cache) to round-off."""
+    from spatialkin.cli import main
+    cfg = tmp_path / "coarse.toml"
+    cfg.write_text("step_deg = 1.0\n")
+    assert main(["looper", "--out", str(tmp_path / "compiled"), "--config", str(cfg)]) == 0
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    env.pop(warm.ENV, None)
+    code = ("import sys\nfrom spatialkin.cli import main\nfrom spatialkin._lib import warm\n"
+            f"status = main(['looper', '--out', {str(tmp_path / 'plain')!r}, '--config', {str(cfg)!r}])\n"
+            "print('background:', *[p.pid for p in warm._STARTED.values()])\nsys.exit(status)\n")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=600)
+    for pid in run.stdout.strip().splitlines()[-1].split()[1:]:
+        try:
+            os.killpg(int(pid), signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stderr.count(warm.COLD) == 1 and warm.COMPILING not in run.stderr
+    a = np.loadtxt(tmp_path / "compiled" / "looper_motion.csv", delimiter=",", skiprows=1)
+    b = np.loadtxt(tmp_path / "plain" / "looper_motion.csv", delimiter=",", skiprows=1)
+    np.testing.assert_allclose(b, a, rtol=1e-13, atol=1e-13 * np.max(np.abs(a)))

@@ -6,7 +6,7 @@ cache, import included, twice: with the kernels compiled in the foreground (``SP
 numba's own compile events recorded) and as the library starts by default (plain Python at once, compiled in the
 background: spatialkin._lib.warm; the background process is stopped after the call). It prints the first-call
 times of both, and the kernels' compile times: each kernel's own time (its callees' compiles excluded) summed over
-its specialisations, the costliest first.
+its specialisations, the costliest first (``--all``: every kernel).
 """
 import json
 import os
@@ -81,8 +81,9 @@ def run_entry(entry, mode):
         return result
 
 
-def table(echo=print):
-    """Run every entry both ways and print the first-call times and the costliest kernels' compile times."""
+def table(echo=print, every=False):
+    """Run every entry both ways and print the first-call times and the costliest kernels' compile times (every
+    kernel's with every=True)."""
     costs = {}
     echo("first call on a fresh install (fresh interpreter, empty numba cache, import included; s)")
     echo(f"{'entry':44s} {'compiling':>10s} {'then':>6s} {'default':>8s} {'then':>6s}  kernels compiled")
@@ -101,9 +102,11 @@ def table(echo=print):
     echo("('compiling': SPATIALKIN_FIRST_RUN=compile; 'default': plain Python at once, compiled in the background; "
          "'then': an sk.intersect of a cylinder and a sphere next)")
     echo("")
-    echo(f"the {TOP} costliest kernels to compile (own time, callees excluded, over the entries above)")
+    shown = "every kernel" if every else f"the {TOP} costliest kernels"
+    echo(f"{shown} to compile (own time, callees excluded, over the entries above)")
     echo(f"{'kernel':64s} {'s':>6s} {'specialisations':>16s} {'lines':>6s}")
-    for kernel, (took, count, lines) in sorted(costs.items(), key=lambda kv: -kv[1][0])[:TOP]:
+    ranked = sorted(costs.items(), key=lambda kv: -kv[1][0])
+    for kernel, (took, count, lines) in ranked if every else ranked[:TOP]:
         echo(f"{kernel:64s} {took:6.2f} {count:16d} {lines:6d}")
     total = sum(c[0] for c in costs.values())
     echo(f"all {len(costs)} kernels: {total:.1f} s over {sum(c[1] for c in costs.values())} specialisations")
@@ -111,4 +114,4 @@ def table(echo=print):
 
 
 if __name__ == "__main__":
-    table()
+    table(every="--all" in sys.argv[1:])

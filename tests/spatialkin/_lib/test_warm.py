@@ -179,3 +179,14 @@ def test_the_looper_job_on_a_cold_cache_says_so_once_and_gives_the_compiled_tabl
     a = np.loadtxt(tmp_path / "compiled" / "looper_motion.csv", delimiter=",", skiprows=1)
     b = np.loadtxt(tmp_path / "plain" / "looper_motion.csv", delimiter=",", skiprows=1)
     np.testing.assert_allclose(b, a, rtol=1e-13, atol=1e-13 * np.max(np.abs(a)))
+
+
+@pytest.mark.skipif(_jit.JIT_DISABLED, reason="no cache with jit off")
+def test_warmup_compiles_the_workload_and_stamps_the_cache(capsys):
+    """`spatialkin warmup` (the suite's cache: it loads or compiles every kernel of the workload) reports and leaves
+    the cache stamped warm for the workload."""
+    from spatialkin.cli import main
+    assert main(["warmup"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("spatialkin warmup: ") and "kernel specialisations ready" in out
+    assert warm.ready(warm.WORKLOAD)

@@ -159,6 +159,26 @@ def start_background(workload=WORKLOAD):
     return True
 
 
+def stop_background():
+    """Stop the background warm-ups this process started (a foreground warm-up does their work) and free their
+    locks."""
+    import signal
+    folder = cache_folder()
+    for workload, process in list(_STARTED.items()):
+        if process.poll() is None:
+            try:
+                os.killpg(process.pid, signal.SIGTERM)
+            except (ProcessLookupError, PermissionError):
+                pass
+            process.wait()
+        if folder is not None:
+            try:
+                os.remove(os.path.join(folder, LOCK.format(workload)))
+            except OSError:
+                pass
+        del _STARTED[workload]
+
+
 def background(workload, lock):
     """The background warm-up (run in its own process): the workload's ``run()`` compiled at the lowest priority,
     then its stamp; the lock removed in any case."""

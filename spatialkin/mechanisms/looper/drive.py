@@ -323,6 +323,11 @@ class LooperDrive:
         from .analysis import analyse
         return analyse(self, branch, samples, motion)
 
+    def loads(self, crank_angles, omega=1.0, bodies=None, gravity=None, external=None, branch=0):
+        """The forces over the crank angles at the crank rate omega (rad/s): ``self.solve(crank_angles, omega,
+        branch).loads(bodies, gravity, external)`` (see LooperMotion.loads)."""
+        return self.solve(crank_angles, omega, branch).loads(bodies, gravity, external)
+
     def solve(self, crank_angles, omega=1.0, branch=0):
         """Motion at exactly the given crank angles, the crank turning at the constant rate omega.
 
@@ -540,6 +545,52 @@ class LooperMotion:
         check_choice("link", link, LINKS)
         local = check_vector("local", local)
         return PointMotion(*self.links()[link].point(local))
+
+    def loads(self, bodies=None, gravity=None, external=None):
+        """The forces over the motion: the crank torque, every joint's load, the shaking force and moment.
+
+        Newton-Euler on the four moving links with the joints' constraint forces solved as one linear system per
+        crank angle (spatialkin.mechanisms.looper.loads names the joints: crank_bearing, crank_pin, ball,
+        rocker_hinge, rocker_bearing).
+
+        Parameters
+        ----------
+        bodies : dict of link name -> spatialkin.dynamics.Body, optional
+            Mass properties of 'crank', 'coupler', 'rocker_shaft', 'rocker_arm' in their own frames (kg, the
+            drive's length unit); a link not named is massless.
+        gravity : array_like (3,), optional
+            The acceleration of gravity in fixed axes (length unit / s^2: (0, 0, -9810) for mm, z up).
+        external : callable, optional
+            external(crank_angles (N,)) -> (force (N, 3), moment (N, 3)) on the looper link, the force at the
+            looper tip (a thread load), in fixed axes.
+
+        Returns
+        -------
+        spatialkin.dynamics.Loads
+            With ``crank_torque`` (N,) about the crank shaft (kg L^2 / s^2: uN m for mm), ``joint_force[joint]``,
+            ``joint_moment[joint]`` and ``joint_force_local[joint]`` (N, 3) (kg L / s^2: mN for mm), and
+            ``shaking_force``, ``shaking_moment`` (N, 3) on the frame; at the motion's crank rate omega (rad/s).
+
+        Raises
+        ------
+        ValueError
+            Naming the argument: an unknown link or a value that is not a Body, a gravity that is not 3 finite
+            numbers, an external load that is not a function or not finite.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from spatialkin.mechanisms import LooperDrive
+        >>> from spatialkin.dynamics import Body
+        >>> drive = LooperDrive.reference()
+        >>> motion = drive.solve(np.linspace(0.0, 2 * np.pi, 361), omega=2000 * np.pi / 30)
+        >>> loads = motion.loads({"coupler": Body.rod(0.05, drive.coupler_length),
+        ...                       "rocker_arm": Body.rod(0.04, drive.rocker_length)})
+        >>> loads.crank_torque.shape, loads.joint_force["ball"].shape
+        ((361,), (361, 3))
+        """
+        from .loads import motion_loads
+        return motion_loads(self, bodies, gravity, external)
 
     def __len__(self):
         return len(self.crank_angle)

@@ -1,0 +1,110 @@
+"""Mass properties of a link: its mass, centre of mass and inertia tensor in the link's own frame.
+
+Units: mass in kg, lengths in the mechanism's length unit (the looper drive's: mm), so an inertia tensor is in
+kg x (length unit)^2.
+
+References
+----------
+J. L. Meriam, L. G. Kraige, Engineering Mechanics: Dynamics, Wiley (moments of inertia of slender rods and discs).
+"""
+import numpy as np
+
+from .._lib.validation import check_vector
+
+#: An inertia tensor's asymmetry and negative eigenvalues allowed, relative to its largest entry (round-off of
+#: values typed or computed elsewhere).
+INERTIA_RTOL = 1e-9
+
+
+class Body:
+    """The mass properties of one link, in the link's own frame (its origin and axes).
+
+    Parameters
+    ----------
+    mass : float
+        kg, >= 0 (0: a massless link).
+    com : array_like (3,)
+        The centre of mass in the link's frame (length unit).
+    inertia : array_like (3, 3)
+        The inertia tensor about the centre of mass, in the link's axes (kg x length unit^2): symmetric, positive
+        semi-definite.
+
+    Raises
+    ------
+    ValueError
+        Naming the key: a negative or non-finite mass, a centre of mass that is not 3 finite numbers, an inertia
+        tensor that is not 3 x 3, finite, symmetric and positive semi-definite.
+
+    Examples
+    --------
+    >>> from spatialkin.dynamics import Body
+    >>> rod = Body.rod(0.2, 30.0)                     # 200 g, 30 mm along the link's x axis from its origin
+    >>> rod.com.tolist(), round(float(rod.inertia[1, 1]), 6)     # m L^2 / 12 about the centre
+    ([15.0, 0.0, 0.0], 15.0)
+    >>> Body(-1.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: mass must be a finite number >= 0 (kg), got -1.0
+    """
+
+    __slots__ = ("mass", "com", "inertia")
+
+    def __init__(self, mass, com=(0.0, 0.0, 0.0), inertia=None):
+        try:
+            mass = float(mass)
+        except (TypeError, ValueError):
+            raise ValueError(f"mass must be a finite number >= 0 (kg), got {mass!r}") from None
+        if not (np.isfinite(mass) and mass >= 0):
+            raise ValueError(f"mass must be a finite number >= 0 (kg), got {mass!r}")
+        self.mass = mass
+        self.com = check_vector("com", com)
+        inertia = np.zeros((3, 3)) if inertia is None else np.array(inertia, dtype=float)
+        if inertia.shape != (3, 3) or not np.all(np.isfinite(inertia)):
+            raise ValueError(f"inertia must be a finite 3 x 3 tensor (kg x length^2), got shape {inertia.shape}")
+        scale = max(float(np.max(np.abs(inertia))), np.finfo(float).tiny)
+        if np.max(np.abs(inertia - inertia.T)) > INERTIA_RTOL * scale:
+            raise ValueError("inertia must be symmetric: max |I - I^T| = "
+                             f"{float(np.max(np.abs(inertia - inertia.T))):.3g}")
+        smallest = float(np.min(np.linalg.eigvalsh(0.5 * (inertia + inertia.T))))
+        if smallest < -INERTIA_RTOL * scale:
+            raise ValueError(f"inertia must be positive semi-definite: its smallest eigenvalue is {smallest:.6g}")
+        self.inertia = 0.5 * (inertia + inertia.T)
+
+    @classmethod
+    def point(cls, mass, at=(0.0, 0.0, 0.0)):
+        """A point mass (kg) at `at` in the link's frame."""
+        return cls(mass, at)
+
+    @classmethod
+    def rod(cls, mass, length, axis=(1.0, 0.0, 0.0), start=(0.0, 0.0, 0.0)):
+        """A slender rod of the given mass (kg) and length from `start` along the unit `axis` (link frame):
+        centre at its middle, m L^2 / 12 about any axis through it normal to the rod, nothing about the rod."""
+        a = check_vector("axis", axis)
+        norm = float(np.linalg.norm(a))
+        if norm == 0:
+            raise ValueError("axis must not be zero")
+        a = a / norm
+        length = float(length)
+        if not (np.isfinite(length) and length >= 0):
+            raise ValueError(f"length must be a finite number >= 0, got {length!r}")
+        inertia = float(mass) * length ** 2 / 12.0 * (np.eye(3) - np.outer(a, a)) if np.isfinite(mass) else None
+        return cls(mass, check_vector("start", start) + 0.5 * length * a, inertia)
+
+    @classmethod
+    def disc(cls, mass, radius, axis=(0.0, 0.0, 1.0), centre=(0.0, 0.0, 0.0)):
+        """A thin disc of the given mass (kg) and radius about the unit `axis` through `centre` (link frame):
+        m r^2 / 2 about its axis, m r^2 / 4 about a diameter."""
+        a = check_vector("axis", axis)
+        norm = float(np.linalg.norm(a))
+        if norm == 0:
+            raise ValueError("axis must not be zero")
+        a = a / norm
+        radius = float(radius)
+        if not (np.isfinite(radius) and radius >= 0):
+            raise ValueError(f"radius must be a finite number >= 0, got {radius!r}")
+        quarter = float(mass) * radius ** 2 / 4.0 if np.isfinite(mass) else np.nan
+        return cls(mass, centre, quarter * (np.eye(3) - np.outer(a, a)) + 2.0 * quarter * np.outer(a, a))
+
+    def __repr__(self):
+        return (f"Body(mass={self.mass:g}, com=({', '.join(f'{x:g}' for x in self.com)}), "
+                f"inertia diag=({', '.join(f'{x:g}' for x in np.diag(self.inertia))}))")

@@ -1,0 +1,70 @@
+"""Forces in the looper drive over its cycle: the crank torque, every joint's load and the shaking force and
+moment, by Newton-Euler on its four moving links (spatialkin.dynamics).
+
+The joints of the R-R-S-R-R chain, each named by what it is:
+
+- ``crank_bearing``: frame - crank, revolute about the crank shaft, driven (the crank torque);
+- ``crank_pin``: crank - coupler, revolute about the crank pin;
+- ``ball``: coupler - rocker arm, spherical at the ball centre C (no moment);
+- ``rocker_hinge``: rocker shaft - rocker arm, revolute about the arm's hinge;
+- ``rocker_bearing``: frame - rocker shaft, revolute about the rocker shaft.
+
+Units: kg, the drive's length unit L (mm for the reference drive) and s, with the crank rate omega in rad/s:
+forces in kg L / s^2 (mN for mm), moments and torques in kg L^2 / s^2 (uN m for mm).
+"""
+import numpy as np
+
+from ...dynamics import DRIVEN, REVOLUTE, SPHERICAL, Body, Joint, inverse_dynamics
+
+#: The drive's moving links (the keys of `bodies`).
+LINKS = ("crank", "coupler", "rocker_shaft", "rocker_arm")
+#: The joints' names, in the order of the chain.
+JOINTS = ("crank_bearing", "crank_pin", "ball", "rocker_hinge", "rocker_bearing")
+
+
+def check_bodies(bodies):
+    """The bodies as {link: Body} (links not named are massless); ValueError naming a link that the drive does not
+    have, or a value that is not a Body."""
+    if bodies is None:
+        return {}
+    if not isinstance(bodies, dict):
+        raise ValueError(f"bodies must be a dict of link name -> Body (links {LINKS}), got {type(bodies).__name__}")
+    for name, body in bodies.items():
+        if name not in LINKS:
+            raise ValueError(f"bodies: unknown link {name!r}; the links are {LINKS}")
+        if not isinstance(body, Body):
+            raise ValueError(f"bodies[{name!r}] must be a spatialkin.dynamics.Body, got {type(body).__name__}")
+    return dict(bodies)
+
+
+def drive_joints(motion):
+    """The drive's joints (spatialkin.dynamics.Joint) at the motion's crank angles."""
+    links = motion.links()
+    crank, coupler, shaft, arm = (links[name] for name in LINKS)
+    return [Joint("crank_bearing", None, "crank", DRIVEN, crank.origin, crank.rotation[:, :, 2]),
+            Joint("crank_pin", "crank", "coupler", REVOLUTE, coupler.origin, -coupler.rotation[:, :, 1]),
+            Joint("ball", "coupler", "rocker_arm", SPHERICAL, motion.ball_center),
+            Joint("rocker_hinge", "rocker_shaft", "rocker_arm", REVOLUTE, arm.origin, -arm.rotation[:, :, 1]),
+            Joint("rocker_bearing", None, "rocker_shaft", REVOLUTE, shaft.origin, shaft.rotation[:, :, 2])]
+
+
+def motion_loads(motion, bodies=None, gravity=None, external=None):
+    """The loads of a LooperMotion (see LooperMotion.loads): spatialkin.dynamics.Loads with ``crank_torque``."""
+    bodies = check_bodies(bodies)
+    if gravity is not None:
+        gravity = np.asarray(gravity, dtype=float)
+        if gravity.shape != (3,) or not np.all(np.isfinite(gravity)):
+            raise ValueError(f"gravity must be 3 finite numbers (L / s^2, fixed axes), got {gravity.tolist()}")
+    loads_on = None
+    if external is not None:
+        if not callable(external):
+            raise ValueError("external must be a function of the crank angles (N,) returning (force (N, 3), "
+                             "moment (N, 3)) on the looper link")
+        force, moment = (np.broadcast_to(np.asarray(x, dtype=float), (len(motion), 3))
+                         for x in external(motion.crank_angle))
+        if not (np.all(np.isfinite(force)) and np.all(np.isfinite(moment))):
+            raise ValueError("external returned values that are not finite")
+        loads_on = {motion.drive.looper_link: (force, motion.looper_tip.position, moment)}
+    loads = inverse_dynamics(motion.links(), drive_joints(motion), bodies, gravity, loads_on)
+    loads.crank_torque = loads.torque["crank_bearing"]
+    return loads

@@ -245,6 +245,49 @@ class LinkageMotion:
             return np.zeros((len(self), 2))
         return self._a[:, i].copy()
 
+    def loads(self, omega=None, bodies=None, gravity=None):
+        """The forces over the motion: each crank's driving torque, every pin's load and the shaking force and
+        moment on the frame (Newton-Euler in the plane; planar.linkage.loads).
+
+        Parameters
+        ----------
+        omega : float, optional
+            The input rate (rad/s) the loads are for (velocities scale with it, accelerations with its square);
+            default the motion's own.
+        bodies : dict of link name -> spatialkin.dynamics.Body, optional
+            Mass properties of the cranks and links in their own frames (kg, the linkage's length unit; the centre
+            of mass's x, y and inertia[2, 2] are read); a link not named is massless.
+        gravity : array_like (2,), optional
+            The acceleration of gravity (length unit / s^2, fixed axes).
+
+        Returns
+        -------
+        spatialkin.dynamics.Loads
+            ``torque[crank name]`` (N,) (kg L^2 / s^2); ``joint_force[joint]`` (N, 3) the pin's force on the last
+            member it holds (a fixed pin: on its moving link) and ``member_force['joint:link']`` on each;
+            ``joint_force_local`` and ``member_force_local`` in the link's own axes; ``shaking_force``,
+            ``shaking_moment`` (N, 3) on the frame (z: the moment about the origin).
+
+        Raises
+        ------
+        ValueError
+            Naming the argument: an unknown link, a value that is not a Body, a gravity that is not 2 finite
+            numbers; or a crank whose pivot is not fixed.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import planar
+        >>> from spatialkin.dynamics import Body
+        >>> mech = planar.examples.fnf_sixbar()
+        >>> sol = mech.solve(np.linspace(0.0, 2 * np.pi, 73), omega=2.0)
+        >>> loads = sol.loads(bodies={"4": Body(0.3, (40.0, 10.0, 0.0), np.diag([0.0, 0.0, 400.0]))})
+        >>> sorted(loads.torque), loads.joint_force["K"].shape
+        (['1', '2'], (73, 3))
+        """
+        from .loads import linkage_loads
+        return linkage_loads(self, bodies, gravity, omega)
+
     def _link(self, link):
         for c in self.linkage.cranks:
             if c.name == link:

@@ -145,3 +145,29 @@ def linkage_loads(motion, bodies=None, gravity=None, omega=None):
                   torque, np.column_stack([frame_force, np.zeros(n)]), np.column_stack([np.zeros((n, 2)), shaking_moment]))
     loads.member_force, loads.member_force_local = flat, local
     return loads
+
+
+def linkage_counterweight(motion, radius, bodies=None, crank=1, omega=None):
+    """The counterweight on a crank of least RMS shaking force (see LinkageMotion.counterweight)."""
+    from spatialkin.dynamics.balance import Counterweight, figures, mass_moment
+    from spatialkin.dynamics.body import combined
+    linkage = motion.linkage
+    if not (isinstance(crank, (int, np.integer)) and 1 <= crank <= len(linkage.cranks)):
+        raise ValueError(f"crank must be 1..{len(linkage.cranks)}, got {crank!r}")
+    radius = float(radius)
+    if not (np.isfinite(radius) and radius > 0):
+        raise ValueError(f"radius must be a finite length > 0, got {radius!r}")
+    bodies = {} if bodies is None else dict(bodies)
+    chosen = linkage.cranks[crank - 1]
+    before = linkage_loads(motion, bodies, None, omega)
+    d = motion.position(chosen.pin) - motion.position(chosen.pivot)
+    x = d / np.linalg.norm(d, axis=1)[:, None]
+    axes = np.stack([x, np.stack([-x[:, 1], x[:, 0]], axis=1)], axis=2)
+    rate = chosen.ratio * (motion.omega if omega is None else float(omega))
+    moment = mass_moment(before.shaking_force[:, :2], axes, rate)
+    mass, angle = float(np.hypot(*moment)) / radius, float(np.arctan2(moment[1], moment[0]))
+    weight = Body.point(mass, (radius * np.cos(angle), radius * np.sin(angle), 0.0))
+    bodies[chosen.name] = combined(bodies[chosen.name], weight) if chosen.name in bodies else weight
+    after = linkage_loads(motion, bodies, None, omega)
+    return Counterweight(mass, radius, angle, weight, figures(before, before.torque[chosen.name]),
+                         figures(after, after.torque[chosen.name]))

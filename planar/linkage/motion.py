@@ -288,6 +288,25 @@ class LinkageMotion:
         from .loads import linkage_loads
         return linkage_loads(self, bodies, gravity, omega)
 
+    def counterweight(self, radius, bodies=None, crank=1, omega=None):
+        """The point mass on crank `crank` (1, 2, ...), at the given radius from its pivot, that minimises the RMS
+        shaking force over the motion (spatialkin.dynamics.balance): a spatialkin.dynamics.Counterweight with its
+        mass (kg), angle (rad from the crank's pivot-to-pin line) and the shaking force's peak and RMS and that
+        crank's peak torque before and after (``before``, ``after``). bodies and omega as in ``loads``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import planar
+        >>> from spatialkin.dynamics import Body
+        >>> sol = planar.examples.fnf_sixbar().solve(np.linspace(0.0, 2 * np.pi, 181), omega=2.0)
+        >>> weight = sol.counterweight(10.0, {"3": Body.rod(0.4, 137.0)})
+        >>> bool(weight.after["rms_force"] < weight.before["rms_force"])
+        True
+        """
+        from .loads import linkage_counterweight
+        return linkage_counterweight(self, radius, bodies, crank, omega)
+
     def _link(self, link):
         for c in self.linkage.cranks:
             if c.name == link:

@@ -108,3 +108,17 @@ class Body:
     def __repr__(self):
         return (f"Body(mass={self.mass:g}, com=({', '.join(f'{x:g}' for x in self.com)}), "
                 f"inertia diag=({', '.join(f'{x:g}' for x in np.diag(self.inertia))}))")
+
+
+def combined(*bodies):
+    """One Body for several rigidly joined ones (the same link frame): their total mass, the centre of their masses
+    and the inertia about it (each one's own plus m |d|^2 I - m d d^T, d its centre from the common one)."""
+    mass = sum(b.mass for b in bodies)
+    if mass == 0:
+        return Body(0.0)
+    com = sum(b.mass * b.com for b in bodies) / mass
+    inertia = np.zeros((3, 3))
+    for b in bodies:
+        d = b.com - com
+        inertia += b.inertia + b.mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
+    return Body(mass, com, inertia)

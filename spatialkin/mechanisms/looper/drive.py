@@ -592,6 +592,38 @@ class LooperMotion:
         from .loads import motion_loads
         return motion_loads(self, bodies, gravity, external)
 
+    def counterweight(self, radius, bodies=None):
+        """The point mass on the crank, at the given radius, that minimises the RMS shaking force over the motion
+        (gravity aside), with the shaking force's peak and RMS and the peak crank torque before and after it.
+
+        Parameters
+        ----------
+        radius : float
+            Its distance from the crank shaft (length unit), > 0.
+        bodies : dict of link name -> spatialkin.dynamics.Body, optional
+            As in ``loads``.
+
+        Returns
+        -------
+        spatialkin.dynamics.Counterweight
+            ``mass`` (kg), ``angle`` (rad, in the crank's frame from the crank arm), ``body`` (a Body to combine with
+            the crank's: spatialkin.dynamics.combined), ``before`` and ``after``: {'peak_force', 'rms_force',
+            'peak_torque'}.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from spatialkin.mechanisms import LooperDrive
+        >>> from spatialkin.dynamics import Body
+        >>> drive = LooperDrive.reference()
+        >>> motion = drive.solve(np.linspace(0.0, 2 * np.pi, 361), omega=2000 * np.pi / 30)
+        >>> weight = motion.counterweight(10.0, {"coupler": Body.rod(0.05, drive.coupler_length)})
+        >>> bool(weight.after["rms_force"] < weight.before["rms_force"])
+        True
+        """
+        from .loads import motion_counterweight
+        return motion_counterweight(self, radius, bodies)
+
     def __len__(self):
         return len(self.crank_angle)
 

@@ -68,3 +68,22 @@ def motion_loads(motion, bodies=None, gravity=None, external=None):
     loads = inverse_dynamics(motion.links(), drive_joints(motion), bodies, gravity, loads_on)
     loads.crank_torque = loads.torque["crank_bearing"]
     return loads
+
+
+def motion_counterweight(motion, radius, bodies=None):
+    """The crank counterweight of least RMS shaking force (see LooperMotion.counterweight)."""
+    from ...dynamics.balance import Counterweight, figures, mass_moment
+    from ...dynamics.body import combined
+    radius = float(radius)
+    if not (np.isfinite(radius) and radius > 0):
+        raise ValueError(f"radius must be a finite length > 0, got {radius!r}")
+    bodies = check_bodies(bodies)
+    before = motion_loads(motion, bodies)
+    crank = motion.links()["crank"]
+    moment = mass_moment(before.shaking_force, crank.rotation[:, :, :2], motion.omega)
+    mass, angle = float(np.hypot(*moment)) / radius, float(np.arctan2(moment[1], moment[0]))
+    weight = Body.point(mass, (radius * np.cos(angle), radius * np.sin(angle), 0.0))
+    balanced = {**bodies, "crank": combined(bodies["crank"], weight) if "crank" in bodies else weight}
+    after = motion_loads(motion, balanced)
+    return Counterweight(mass, radius, angle, weight, figures(before, before.crank_torque),
+                         figures(after, after.crank_torque))

@@ -117,3 +117,23 @@ def test_bad_input_is_named(kwargs, key):
     sol = MECH.solve(np.linspace(0.0, 1.0, 3))
     with pytest.raises(ValueError, match=key):
         sol.loads(**kwargs)
+
+
+def test_the_counterweight_is_the_least_rms_shaking_force():
+    """The counterweight's RMS shaking force (the full solve with it on crank 1) is below that of the same mass
+    2 % heavier or lighter, or turned 0.05 rad either way (a least-squares optimum), and below the unbalanced one."""
+    from spatialkin.dynamics import combined
+    sol = MECH.solve(np.linspace(0.0, 2 * np.pi, 181), omega=OMEGA)
+    weight = sol.counterweight(10.0, BODIES)
+
+    def rms(mass, angle):
+        point = Body.point(mass, (10.0 * np.cos(angle), 10.0 * np.sin(angle), 0.0))
+        force = sol.loads(bodies={**BODIES, "1": combined(BODIES["1"], point)}).shaking_force
+        return np.sqrt(np.mean(np.sum(force ** 2, axis=1)))
+
+    best = rms(weight.mass, weight.angle)
+    assert abs(best - weight.after["rms_force"]) < 1e-9 * best
+    assert best < weight.before["rms_force"]
+    for mass, angle in ((1.02 * weight.mass, weight.angle), (0.98 * weight.mass, weight.angle),
+                        (weight.mass, weight.angle + 0.05), (weight.mass, weight.angle - 0.05)):
+        assert rms(mass, angle) > best

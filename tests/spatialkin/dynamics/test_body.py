@@ -31,3 +31,17 @@ def test_rod_disc_and_point_against_the_textbook():
 def test_bad_mass_properties_are_named(args, key):
     with pytest.raises(ValueError, match=key):
         Body(*args)
+
+
+def test_combined_bodies_obey_the_parallel_axis_theorem():
+    """Two point masses 4 apart on x: total 3 kg at their mass centre, m1 m2 / (m1 + m2) d^2 about y and z; a rod
+    plus a point mass at its end: the rod's m L^2 / 12 shifted to the common centre, written out."""
+    from spatialkin.dynamics import combined
+    pair = combined(Body.point(1.0, (0.0, 0.0, 0.0)), Body.point(2.0, (4.0, 0.0, 0.0)))
+    assert pair.mass == 3.0
+    np.testing.assert_allclose(pair.com, [8.0 / 3.0, 0.0, 0.0], rtol=1e-15)
+    np.testing.assert_allclose(pair.inertia, np.diag([0.0, 32.0 / 3.0, 32.0 / 3.0]), rtol=1e-14, atol=1e-14)
+    both = combined(Body.rod(1.0, 2.0), Body.point(1.0, (2.0, 0.0, 0.0)))
+    # centre at x = 1.5: the rod's 1/3 + 1 x 0.5^2, the point's 1 x 0.5^2, about y and z
+    np.testing.assert_allclose(both.inertia, np.diag([0.0, 1 / 3 + 0.25 + 0.25, 1 / 3 + 0.25 + 0.25]), rtol=1e-14,
+                               atol=1e-15)

@@ -14,6 +14,7 @@ import tomllib
 
 import numpy as np
 
+from . import looper_forces as forces
 from ..plots import looper as figs
 from ..mechanisms.looper import reference as ref
 from ..geometry.frame import Frame, rotation_about, rotation_to_z
@@ -51,6 +52,12 @@ KEYS = {
                     "table: origin (crank shaft point O1) and one rotation form (local z = shaft); u1 from local x"),
     "rocker_frame": ({"origin": list(ref.ROCKER_CENTRE), "rotation": REFERENCE_ROTATION}, "length",
                      "table: origin (rocker centre P2) and one rotation form (local z = rocker shaft)"),
+    "links": (ref.STEEL_LINKS, "kg, length, kg*length^2",
+              "table per link (crank, coupler, rocker_shaft, rocker_arm): mass, com [x, y, z] and inertia (3x3, or "
+              "its diagonal) about the com, in the link's frame; the default is an example of steel links; {} "
+              "turns the forces off"),
+    "gravity_m_per_s2": ([0.0, 0.0, 0.0], "m/s^2", "gravity in fixed axes for the forces ([0, 0, -9.80665]: z up; "
+                         "zeros: none)"),
 }
 DEFAULTS = {key: value[0] for key, value in KEYS.items()}
 #: Rotation forms of a frame table (besides origin); give at most one (none: the identity).
@@ -188,6 +195,8 @@ def load_config(path=None):
     check_choice("length_unit", config["length_unit"], sorted(METRES_PER_UNIT))
     check_choice("looper_link", config["looper_link"], ("rocker_arm", "rocker_shaft"))
     config["looper_tip"] = _vector("looper_tip", config["looper_tip"]).tolist()
+    forces.bodies_of(config["links"], config["length_unit"])        # (checked here: bad input before any work)
+    forces.gravity_of(config)
     return config
 
 
@@ -299,15 +308,27 @@ def run(out_dir, config_path=None, echo=print):
     t_cad = time.perf_counter()
     written = list(FIGURES) + write_cad(out_dir, drive, motion, config, math.radians(config["step_deg"]), echo)
     t_cad = time.perf_counter() - t_cad
-    times = {"solve": t_solve, "figures": t_fig, "picture_3d": t_picture, "cad": t_cad,
+    t_forces = time.perf_counter()
+    loads = forces.compute(config, motion)
+    peaks = None
+    if loads is not None:
+        forces.write({name: os.path.join(out_dir, name) for name in forces.FILES}, config, motion, loads)
+        peaks = forces.peaks(config, motion, loads)
+        for line in forces.summary(peaks):
+            echo(line)
+        written += list(forces.FILES)
+    t_forces = time.perf_counter() - t_forces
+    times = {"solve": t_solve, "figures": t_fig, "picture_3d": t_picture, "cad": t_cad, "forces": t_forces,
              "job": time.perf_counter() - t0}
     with atomic_path(paths["looper_run.json"]) as tmp:
         with open(tmp, "w") as f:
             rec = record(config, drive, motion, analysis, found, times)
+            if peaks is not None:
+                rec["forces"] = peaks
             rec["files"] = ["looper_motion.csv", *written]         # what this run wrote (STEP needs the extra)
             json.dump(rec, f, indent=1)
     echo(f"time: solve {1e3 * t_solve:.1f} ms, figures {t_fig:.2f} s, 3-D picture {t_picture:.2f} s, CAD paths "
-         f"{t_cad:.2f} s, whole job {time.perf_counter() - t0:.2f} s")
+         f"{t_cad:.2f} s, forces {t_forces:.2f} s, whole job {time.perf_counter() - t0:.2f} s")
     echo(f"wrote {', '.join(os.path.join(out_dir, n) for n in ['looper_motion.csv', 'looper_run.json'] + written)}")
     return motion
 

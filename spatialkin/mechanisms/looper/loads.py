@@ -87,3 +87,8 @@ def motion_counterweight(motion, radius, bodies=None):
     after = motion_loads(motion, balanced)
     return Counterweight(mass, radius, angle, weight, figures(before, before.crank_torque),
                          figures(after, after.crank_torque))
+
+#: Each joint's load as a designer draws it: the two components (in its child link's axes) normal to the joint's
+#: axis (the ball joint: in the rocker arm's plane of motion, normal to its hinge).
+BEARING_PLANES = {"crank_bearing": (0, 1), "crank_pin": (0, 2), "ball": (0, 2), "rocker_hinge": (0, 2),
+                  "rocker_bearing": (0, 1)}

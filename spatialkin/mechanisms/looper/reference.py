@@ -17,7 +17,7 @@ from ...geometry.frame import Frame, rotation_about
 from ...geometry.surfaces import Sphere, Torus
 
 __all__ = ["CRANK_RADIUS", "COUPLER_LENGTH", "ROCKER_LENGTH", "ROCKER_CENTRE", "ROCKER_TURN", "LOOPER_TIP",
-           "rocker_rotation", "rocker_frame", "looper_pair"]
+           "STEEL_LINKS", "rocker_rotation", "rocker_frame", "looper_pair"]
 
 #: R1, crank pin axis to crank shaft: the torus's major radius.
 CRANK_RADIUS = 8.0
@@ -31,6 +31,25 @@ ROCKER_CENTRE = (6.0, 0.0, 75.0)
 ROCKER_TURN = -math.pi / 2
 #: The looper tip in the rocker arm's frame: 40 mm along the arm (x from P2 to C), 12 mm off it.
 LOOPER_TIP = (40.0, 0.0, 12.0)
+
+
+#: An example of mass properties for the reference drive: plausible steel links (density 7850 kg/m^3), sized as a
+#: designer might sketch them; not data from the papers. Per link, in its own frame: mass (kg), centre of mass (mm),
+#: inertia about it (kg mm^2), slender rods and point masses combined (spatialkin.dynamics.combined):
+#: - crank: a 15 g arm over the 8 mm crank radius;
+#: - coupler: a 20 g rod (8 mm, 50 mm from the pin axis to C) and the 6 g ball at C;
+#: - rocker shaft: a 37 g shaft (10 mm, 60 mm long) about its axis, centred on P2;
+#: - rocker arm: a 12 g rod (8 mm, 30 mm from P2 to C) and the 15 g looper at its tip (40, 0, 12).
+STEEL_LINKS = {
+    "crank": {"mass": 0.015, "com": [4.0, 0.0, 0.0], "inertia": [[0.0, 0.0, 0.0], [0.0, 0.08, 0.0],
+                                                                 [0.0, 0.0, 0.08]]},
+    "coupler": {"mass": 0.026, "com": [30.769, 0.0, 0.0], "inertia": [[0.0, 0.0, 0.0], [0.0, 7.051, 0.0],
+                                                                      [0.0, 0.0, 7.051]]},
+    "rocker_shaft": {"mass": 0.037, "com": [0.0, 0.0, 0.0], "inertia": [[11.3, 0.0, 0.0], [0.0, 11.3, 0.0],
+                                                                       [0.0, 0.0, 0.46]]},
+    "rocker_arm": {"mass": 0.027, "com": [28.889, 0.0, 6.667], "inertia": [[0.96, 0.0, -2.0], [0.0, 6.027, 0.0],
+                                                                          [-2.0, 0.0, 5.067]]},
+}
 
 
 def rocker_rotation():

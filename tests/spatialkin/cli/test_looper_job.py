@@ -163,6 +163,11 @@ def test_crank_z_axis_alone_points_u1_zero_at_the_rocker():
     ("rocker_frame = { origin = [6, 0, 75], axis_angle = { axis = [0, 0, 0], angle_deg = 5 } }\n", "non-zero"),
     ("rocker_frame = { origin = [6, 0, 75], z_axis = [0, 1, 0], rotation = [[1, 0, 0], [0, 1, 0], [0, 0, 1]] }\n",
      "give one of"),
+    ("links = { crank = { mass = -1.0 } }\n", "links.crank: mass"),
+    ("links = { looper = { mass = 1.0 } }\n", "unknown link 'looper'"),
+    ("links = { coupler = { mass = 1.0, inertia = [1.0, -2.0, 1.0] } }\n", "links.coupler: inertia"),
+    ("links = { coupler = { mass = 1.0, density = 7.85 } }\n", "links.coupler: unknown keys"),
+    ("gravity_m_per_s2 = [0, -9.8]\n", "gravity_m_per_s2"),
 ])
 def test_bad_config_is_one_line_and_exit_2(tmp_path, capsys, text, needle):
     cfg = tmp_path / "bad.toml"
@@ -243,3 +248,31 @@ def test_cad_paths_read_back(reference_run):
         assert np.max(np.linalg.norm(near - exact, axis=1)) < 1e-5
     if "looper_paths.step" not in record["files"] or not (out / "looper_paths.step").exists():
         pytest.skip("OpenCascade (the cad extra) not installed")
+
+
+def test_forces_at_machine_speed_with_si_units(reference_run, tmp_path):
+    """The default job (the example steel links) writes the forces: the CSV with an SI unit in every header, its
+    torque the library's (the drive's loads at machine speed, mm -> m), its mean power zero over the turn (no
+    gravity, no external load), the record's peaks the table's; `links = {}` turns them off."""
+    from spatialkin.dynamics import Body
+    out, _, motion_table, rec = reference_run
+    header = (out / "looper_forces.csv").read_text().splitlines()[0].split(",")
+    forces = np.loadtxt(out / "looper_forces.csv", delimiter=",", skiprows=1)
+    assert all(name.endswith(("_deg", "_N", "_N_m", "_W")) for name in header)
+    assert {"looper_forces.csv", "looper_torque.png", "looper_bearing_loads.png"} <= set(rec["files"])
+    col = {name: k for k, name in enumerate(header)}
+    omega = DEFAULT_SPEED_RPM * 2 * np.pi / 60
+    bodies = {k: Body(v["mass"], v["com"], v["inertia"]) for k, v in reference.STEEL_LINKS.items()}
+    want = LooperDrive.reference().loads(np.radians(forces[:, 0]), omega, bodies).crank_torque * 1e-6
+    torque = forces[:, col["crank_torque_N_m"]]
+    np.testing.assert_allclose(torque, want, rtol=0, atol=1e-12 * np.max(np.abs(want)))
+    np.testing.assert_allclose(forces[:, col["power_W"]], torque * omega, rtol=1e-14)
+    assert abs(np.mean(forces[:-1, col["power_W"]])) < 1e-9 * np.max(np.abs(forces[:, col["power_W"]]))
+    assert rec["forces"]["crank_torque_N_m"][0] == pytest.approx(np.max(np.abs(torque)), rel=1e-12)
+    ball = np.linalg.norm(forces[:, [col["ball_Fx_N"], col["ball_Fy_N"], col["ball_Fz_N"]]], axis=1)
+    np.testing.assert_allclose(forces[:, col["ball_F_N"]], ball, rtol=1e-12)
+    off = tmp_path / "off.toml"
+    off.write_text("links = {}\nstep_deg = 1.0\n")
+    assert main(["looper", "--out", str(tmp_path / "o"), "--config", str(off)]) == 0
+    assert not (tmp_path / "o" / "looper_forces.csv").exists()
+    assert "forces" not in json.loads((tmp_path / "o" / "looper_run.json").read_text())

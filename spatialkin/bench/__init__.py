@@ -16,7 +16,7 @@ from . import batch
 
 from . import runner
 
-from . import sidebyside
+from . import loads, sidebyside
 from .kinds_report import plot_kinds, write_kinds_csv
 from .runner import best_time
 from .report import comparison_lines, machine, plot, table, write_csv
@@ -44,6 +44,7 @@ def run(out_dir=None, quick=False, echo=print):
     kind_rows = sidebyside.run(quick=quick, echo=echo)
     echo("")
     batch.run(quick=quick, echo=echo)
+    loads.run(quick=quick, echo=echo)
     for plugin in entry_points(group=PLUGIN_GROUP):      # e.g. planar's cases (spatialkin never imports planar)
         plugin.load()(quick=quick, echo=echo)
     if out_dir is not None:

@@ -9,7 +9,9 @@ Each moving link k with mass m, centre of mass G and inertia I_G (fixed axes) ob
 A joint acts on its child link with a force F (3 unknowns) and a moment M, and on its parent with -F, -M (the
 frame when the parent is None): a revolute joint's M is normal to its axis (2 unknowns), a driven revolute's M
 also has the driving torque along the axis (3 unknowns), a spherical joint carries no moment. The system is square
-for a mechanism of one degree of freedom per driving joint (6 equations per link).
+for a mechanism of one degree of freedom per driving joint (6 equations per link). A driven joint from the frame
+holds all six unknowns its link's equations lack once the others are known: the other links' equations are solved
+first, without it, and that link's then give it explicitly.
 
 Units follow the inputs: masses in kg and lengths in the mechanism's unit L, time in s: forces in kg L / s^2 (mN
 for L = mm), moments and torques in kg L^2 / s^2 (uN m for L = mm).
@@ -111,15 +113,11 @@ def inverse_dynamics(links, joints, bodies, gravity=None, external=None):
         (named: the mechanism is at a dead or branch position there).
     """
     names = list(links)
-    row = {name: 6 * k for k, name in enumerate(names)}
     n = len(next(iter(links.values())).origin)
-    columns, count = [], 0
-    for joint in joints:
-        columns.append(count)
-        count += 3 + MOMENT_UNKNOWNS[joint.kind]
+    order = {joint.name: k for k, joint in enumerate(joints)}
+    count = sum(3 + MOMENT_UNKNOWNS[joint.kind] for joint in joints)
     if count != 6 * len(names):
         raise ValueError(f"the joints carry {count} unknowns for {6 * len(names)} equations of {len(names)} links")
-    a = np.zeros((n, count, count))
     b = np.zeros((n, count))
     centres = {}
     g = np.zeros(3) if gravity is None else np.asarray(gravity, dtype=float)
@@ -132,7 +130,7 @@ def inverse_dynamics(links, joints, bodies, gravity=None, external=None):
         centres[name] = centre
         inertia_fixed = state.rotation @ inertia @ np.swapaxes(state.rotation, 1, 2)
         w, al = state.omega, state.alpha
-        r = row[name]
+        r = 6 * names.index(name)
         b[:, r:r + 3] = mass * (acc - g)
         b[:, r + 3:r + 6] = (np.einsum("nij,nj->ni", inertia_fixed, al)
                              + np.cross(w, np.einsum("nij,nj->ni", inertia_fixed, w)))
@@ -141,36 +139,68 @@ def inverse_dynamics(links, joints, bodies, gravity=None, external=None):
             b[:, r:r + 3] -= force
             b[:, r + 3:r + 6] -= moment + np.cross(at - centre, force)
     bases = {}
-    for joint, col in zip(joints, columns):
+    for joint in joints:
         basis = None
         if joint.kind == REVOLUTE:
             basis = normal_basis(joint.axis)
         elif joint.kind == DRIVEN:
             basis = np.concatenate([normal_basis(joint.axis), joint.axis[:, :, None]], axis=2)
         bases[joint.name] = basis
+    # a driven joint from the frame to a link carries all six of that link's unknowns beside the others' forces on
+    # it: the other links' equations are solved without them, then that link's six give them explicitly
+    explicit = [j for j in joints if j.kind == DRIVEN and j.parent is None
+                and sum(j.child in (k.child, k.parent) for k in joints if k.kind == DRIVEN) == 1]
+    kept_links = [name for name in names if name not in {j.child for j in explicit}]
+    kept_joints = [j for j in joints if j not in explicit]
+    row = {name: 6 * k for k, name in enumerate(kept_links)}
+    size = 6 * len(kept_links)
+    a = np.zeros((n, size, size))
+    b_kept = np.concatenate([b[:, 6 * names.index(name):6 * names.index(name) + 6] for name in kept_links], axis=1) \
+        if kept_links else np.zeros((n, 0))
+    col, columns = 0, []
+    for joint in kept_joints:
+        columns.append(col)
+        basis = bases[joint.name]
         for link, sign in ((joint.child, 1.0), (joint.parent, -1.0)):
-            if link is None:
+            if link is None or link not in row:
                 continue
             r = row[link]
             a[:, r:r + 3, col:col + 3] += sign * np.eye(3)
             a[:, r + 3:r + 6, col:col + 3] += sign * skew(joint.point - centres[link])
             if basis is not None:
                 a[:, r + 3:r + 6, col + 3:col + 3 + basis.shape[2]] += sign * basis
+        col += 3 + MOMENT_UNKNOWNS[joint.kind]
     try:
-        x = np.linalg.solve(a, b[..., None])[..., 0]
+        x = np.linalg.solve(a, b_kept[..., None])[..., 0] if size else np.zeros((n, 0))
     except np.linalg.LinAlgError:
-        bad = [k for k in range(n) if np.linalg.matrix_rank(a[k]) < count]
+        bad = [k for k in range(n) if np.linalg.matrix_rank(a[k]) < size]
         raise ValueError(f"the loads are not determined at instants {bad[:10]} (a dead or branch position)") from None
+    joints = kept_joints + explicit
+    solved = {}
+    for joint, c in zip(kept_joints, columns):
+        basis = bases[joint.name]
+        f = x[:, c:c + 3]
+        m = np.zeros((n, 3)) if basis is None else np.einsum("nij,nj->ni", basis, x[:, c + 3:c + 3 + basis.shape[2]])
+        solved[joint.name] = (f, m)
+    for driven in explicit:
+        link = driven.child
+        k = names.index(link)
+        f_need, m_need = b[:, 6 * k:6 * k + 3].copy(), b[:, 6 * k + 3:6 * k + 6].copy()
+        for joint in kept_joints:
+            for end, sign in ((joint.child, 1.0), (joint.parent, -1.0)):
+                if end == link:
+                    f, m = solved[joint.name]
+                    f_need -= sign * f
+                    m_need -= sign * (m + np.cross(joint.point - centres[link], f))
+        solved[driven.name] = (f_need, m_need - np.cross(driven.point - centres[link], f_need))
     force, moment, local, torque = {}, {}, {}, {}
     shaking_force, shaking_moment = np.zeros((n, 3)), np.zeros((n, 3))
-    for joint, col in zip(joints, columns):
-        f = x[:, col:col + 3]
-        basis = bases[joint.name]
-        m = np.zeros((n, 3)) if basis is None else np.einsum("nij,nj->ni", basis, x[:, col + 3:col + 3 + basis.shape[2]])
+    for joint in sorted(joints, key=lambda j: order[j.name]):
+        f, m = solved[joint.name]
         force[joint.name], moment[joint.name] = f, m
         local[joint.name] = np.einsum("nji,nj->ni", links[joint.child].rotation, f)
         if joint.kind == DRIVEN:
-            torque[joint.name] = x[:, col + 5]
+            torque[joint.name] = np.einsum("ni,ni->n", m, joint.axis)
         if joint.parent is None:
             shaking_force -= f
             shaking_moment -= m + np.cross(joint.point, f)

@@ -144,6 +144,7 @@ def linkage_loads(motion, bodies=None, gravity=None, omega=None):
     loads = Loads({j: flat[k] for j, k in last.items()}, {j: zeros for j in last}, {j: local[k] for j, k in last.items()},
                   torque, np.column_stack([frame_force, np.zeros(n)]), np.column_stack([np.zeros((n, 2)), shaking_moment]))
     loads.member_force, loads.member_force_local = flat, local
+    loads.joint_moment_local = {j: zeros for j in last}      # (a pin carries no moment in the plane)
     return loads
 
 

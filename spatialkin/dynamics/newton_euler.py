@@ -50,8 +50,8 @@ class Loads:
     joint_force, joint_moment : dict of ndarray (N, 3)
         Per joint: the force and moment it applies to its child link (its parent, or the frame, takes the
         opposite), in fixed axes. A driven joint's moment includes its driving torque.
-    joint_force_local : dict of ndarray (N, 3)
-        The same forces in the child link's own axes.
+    joint_force_local, joint_moment_local : dict of ndarray (N, 3)
+        The same forces and moments in the child link's own axes.
     torque : dict of ndarray (N,)
         Per driven joint: the driving torque about its axis.
     shaking_force, shaking_moment : ndarray (N, 3)
@@ -193,15 +193,18 @@ def inverse_dynamics(links, joints, bodies, gravity=None, external=None):
                     f_need -= sign * f
                     m_need -= sign * (m + np.cross(joint.point - centres[link], f))
         solved[driven.name] = (f_need, m_need - np.cross(driven.point - centres[link], f_need))
-    force, moment, local, torque = {}, {}, {}, {}
+    force, moment, local, local_moment, torque = {}, {}, {}, {}, {}
     shaking_force, shaking_moment = np.zeros((n, 3)), np.zeros((n, 3))
     for joint in sorted(joints, key=lambda j: order[j.name]):
         f, m = solved[joint.name]
         force[joint.name], moment[joint.name] = f, m
         local[joint.name] = np.einsum("nji,nj->ni", links[joint.child].rotation, f)
+        local_moment[joint.name] = np.einsum("nji,nj->ni", links[joint.child].rotation, m)
         if joint.kind == DRIVEN:
             torque[joint.name] = np.einsum("ni,ni->n", m, joint.axis)
         if joint.parent is None:
             shaking_force -= f
             shaking_moment -= m + np.cross(joint.point, f)
-    return Loads(force, moment, local, torque, shaking_force, shaking_moment)
+    loads = Loads(force, moment, local, torque, shaking_force, shaking_moment)
+    loads.joint_moment_local = local_moment
+    return loads

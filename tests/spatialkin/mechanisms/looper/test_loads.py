@@ -143,3 +143,15 @@ def test_the_crank_counterweight_is_the_least_rms_shaking_force():
     for mass, angle in ((1.02 * weight.mass, weight.angle), (0.98 * weight.mass, weight.angle),
                         (weight.mass, weight.angle + 0.05), (weight.mass, weight.angle - 0.05)):
         assert rms(mass, angle) > best
+
+
+def test_joint_moments_in_the_links_axes():
+    """A revolute joint's moment in its child link's axes has no component along the joint's own axis there (the
+    crank pin's local -y, the rocker bearing's local z), except the driven crank bearing's: the crank torque."""
+    motion = DRIVE.solve(np.linspace(0.0, 2 * np.pi, 61), omega=OMEGA)
+    loads = motion.loads(BODIES, gravity=GRAVITY)
+    pin, bearing = loads.joint_moment_local["crank_pin"], loads.joint_moment_local["rocker_bearing"]
+    assert np.max(np.abs(pin[:, 1])) < 1e-9 * np.max(np.abs(pin))
+    assert np.max(np.abs(bearing[:, 2])) < 1e-9 * np.max(np.abs(bearing))
+    np.testing.assert_allclose(loads.joint_moment_local["crank_bearing"][:, 2], loads.crank_torque, rtol=0,
+                               atol=1e-12 * np.max(np.abs(loads.crank_torque)))

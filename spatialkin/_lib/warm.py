@@ -114,14 +114,16 @@ def write_stamp(workload=WORKLOAD):
     folder = cache_folder()
     if folder is None:
         return
-    try:
-        sources, indexes = {}, []
-        for d in jit.dispatchers():
-            if d.signatures:
-                source = d.py_func.__code__.co_filename
-                indexes.append([d._cache._cache_file._index_path, source,
-                                sources.setdefault(source, source_hash(source))])
-    except AttributeError:              # numba's cache layout changed: no stamp, the next run compiles
+    sources, indexes = {}, []
+    for d in jit.dispatchers():
+        if not d.signatures or d.py_func.__module__.partition(".")[0] not in jit.PACKAGES:
+            continue
+        index = getattr(getattr(getattr(d, "_cache", None), "_cache_file", None), "_index_path", None)
+        if index is None or not os.path.exists(index):     # (a kernel not cached on disk: nothing to stamp)
+            continue
+        source = d.py_func.__code__.co_filename
+        indexes.append([index, source, sources.setdefault(source, source_hash(source))])
+    if not indexes:                     # numba's cache layout unknown: no stamp, the next run compiles
         return
     path = os.path.join(folder, STAMP.format(workload))
     tmp = f"{path}.{os.getpid()}.tmp"

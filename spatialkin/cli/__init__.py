@@ -54,9 +54,9 @@ def looper(args):
     return 0
 
 
-def warmup(args):
-    from .warmup import main as warm_up
-    return warm_up()
+def warm_up(args):
+    from .warmup import main as compile_ahead
+    return compile_ahead()
 
 
 def bench(args):
@@ -92,7 +92,7 @@ def parser():
     p_bench.set_defaults(func=bench)
     p_warm = sub.add_parser("warmup", help="compile the numerical kernels ahead (an image, a cluster's workers) and "
                             "report the time")
-    p_warm.set_defaults(func=warmup)
+    p_warm.set_defaults(func=warm_up)
     # listed here for --help; ``main`` hands `spatialkin design ...` to spatialkin/cli/design.py before parsing
     sub.add_parser("design", help="fit a looper drive to targets and write its config (spatialkin design --help)")
     return top

@@ -116,6 +116,85 @@ class CurveResult:
             raise ValueError(f"a curve's status is one of {CURVE_STATUSES}, got {self.status!r}")
 
 
+#: The record's fields a Curve shows as read-only attributes of the same names (all but the dense output; the
+#: topology and the certificate are the Curve's own, sk.intersect's where it gives them).
+RECORD_FIELDS = tuple(f.name for f in dataclasses.fields(CurveResult) if f.name != "sol")
+#: The example curve of the fields' docstrings: a circle of radius 0.8 on the unit sphere.
+_EXAMPLE = """
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import spatialkin as sk
+    >>> curve, = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))))
+"""
+#: The docstrings of the fields as Curve's attributes.
+FIELD_DOCS = {
+    "points": """Points on the curve, ndarray (N, 3), global coordinates in the user's length unit.
+
+    Solver steps (or exact samples of a closed form), each corrected onto both surfaces by Newton; a closed
+    curve's last point is its first, exactly.
+""" + _EXAMPLE + """    >>> curve.points.shape[1], bool((curve.points[-1] == curve.points[0]).all())
+    (3, True)
+    >>> np.allclose(curve.points[:, 2], 0.6)
+    True
+""",
+    "s": """Arc length at each point, ndarray (N,), increasing from 0 to ``length`` (the user's length unit).
+""" + _EXAMPLE + """    >>> bool(curve.s[0] == 0.0), bool(curve.s[-1] == curve.length)
+    (True, True)
+    >>> bool((np.diff(curve.s) > 0).all())
+    True
+    >>> np.allclose(curve(curve.s), curve.points)
+    True
+""",
+    "params": """Surface parameters (u1, v1, u2, v2) of each point, ndarray (N, 4).
+
+    (u1, v1) in the chart of surface a, (u2, v2) in that of surface b (angles in radians; a plane's u and v and
+    a cylinder's or cone's axial v in length units); periodic angles are continuous along the curve (not
+    wrapped).
+""" + _EXAMPLE + """    >>> sphere, plane = curve.surfaces
+    >>> np.allclose(sphere.point(curve.params[:, 0], curve.params[:, 1]), curve.points)
+    True
+    >>> np.allclose(plane.point(curve.params[:, 2], curve.params[:, 3]), curve.points)
+    True
+""",
+    "closed": """True for a closed loop (bool): the last point is the first, exactly; ``length`` is the period of s.
+""" + _EXAMPLE + """    >>> curve.closed
+    True
+""",
+    "length": """Arc length of the curve (float, the user's length unit); 0 for a contact point.
+""" + _EXAMPLE + """    >>> round(curve.length, 6)        # 2 pi 0.8
+    5.026548
+""",
+    "status": """How the curve ended (str): 'closed', or an open curve's ends' status ('boundary', 'singular', ...).
+
+    'contact' or 'tangent' for a point or a line where the surfaces touch. See the Curve class.
+""" + _EXAMPLE + """    >>> curve.status
+    'closed'
+""",
+    "message": """A sentence (str) on how the curve ended (both ends for an open curve).""",
+    "tolerance": """The accuracy asked for, an absolute length (float): tol times the scene scale, or 64 ulps of the
+    coordinates' magnitude where that is larger.""",
+    "nodes": """Singular points the curve passed straight through, ndarray (K, 3): nodes and apexes.""",
+    "solver_gap": """|M1 - M2| of the solver's own states at its steps before the Newton correction, ndarray (M,): a
+    diagnostic of drift.""",
+    "nfev": """Right-hand-side evaluations spent by solve_ivp on this curve (int; 0 for a closed form).""",
+    "wall_time": """Seconds spent tracing this curve (float).""",
+    "topology": """The search of sk.intersect that found the component (spatialkin.tracing.search.topology), or
+    None.""",
+    "certificate": """What sk.intersect(..., certify=True) proved about this curve, or None without certify.
+
+    A spatialkin.tracing.certify.certificate.Certificate: what the interval search proved (no box it discarded holds a
+    component) and, for each stored point k, a radius ``radii[k]`` of a box round it holding a true intersection
+    point; and what it did not prove (see Certificate).
+""" + _EXAMPLE + """    >>> curve.certificate is None
+    True
+    >>> torus, sphere = sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3)))
+    >>> loop = sk.intersect(torus, sphere, certify=True)[0]
+    >>> loop.certificate.radii.shape == (len(loop.points),), loop.certificate.all_points_proven
+    (True, True)
+""",
+}
+
 class Curve:
     """One connected component of the intersection of two surfaces, parametrised by arc length.
 
@@ -199,6 +278,22 @@ class Curve:
     >>> bool(curve.max_distance <= curve.tolerance)
     True
     """
+
+    # --- the record's fields, read-only -----------------------------------------------------------------------
+    points = property(operator.attrgetter("_result.points"), doc=FIELD_DOCS["points"])
+    s = property(operator.attrgetter("_result.s"), doc=FIELD_DOCS["s"])
+    params = property(operator.attrgetter("_result.params"), doc=FIELD_DOCS["params"])
+    closed = property(operator.attrgetter("_result.closed"), doc=FIELD_DOCS["closed"])
+    length = property(operator.attrgetter("_result.length"), doc=FIELD_DOCS["length"])
+    status = property(operator.attrgetter("_result.status"), doc=FIELD_DOCS["status"])
+    message = property(operator.attrgetter("_result.message"), doc=FIELD_DOCS["message"])
+    tolerance = property(operator.attrgetter("_result.tolerance"), doc=FIELD_DOCS["tolerance"])
+    nodes = property(operator.attrgetter("_result.nodes"), doc=FIELD_DOCS["nodes"])
+    solver_gap = property(operator.attrgetter("_result.solver_gap"), doc=FIELD_DOCS["solver_gap"])
+    nfev = property(operator.attrgetter("_result.nfev"), doc=FIELD_DOCS["nfev"])
+    wall_time = property(operator.attrgetter("_result.wall_time"), doc=FIELD_DOCS["wall_time"])
+    topology = property(operator.attrgetter("_topology"), doc=FIELD_DOCS["topology"])
+    certificate = property(operator.attrgetter("_certificate"), doc=FIELD_DOCS["certificate"])
 
     def __init__(self, result, topology=None, certificate=None):
         if not isinstance(result, CurveResult):
@@ -361,90 +456,6 @@ class Curve:
 
 Curve.__doc__ = (Curve.__doc__.replace("{statuses}", describe(CURVE_STATUSES, 8))
                  .replace("{precedence}", ", ".join(f"'{s}'" for s in END_PRECEDENCE)))
-#: The record's fields a Curve shows as read-only attributes of the same names (all but the dense output; the
-#: topology and the certificate are the Curve's own, sk.intersect's where it gives them).
-RECORD_FIELDS = tuple(f.name for f in dataclasses.fields(CurveResult) if f.name != "sol")
-_OWN_FIELDS = ("topology", "certificate")
-#: The example curve of the fields' docstrings: a circle of radius 0.8 on the unit sphere.
-_EXAMPLE = """
-    Examples
-    --------
-    >>> import numpy as np
-    >>> import spatialkin as sk
-    >>> curve, = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))))
-"""
-#: The docstrings of the fields as Curve's attributes.
-FIELD_DOCS = {
-    "points": """Points on the curve, ndarray (N, 3), global coordinates in the user's length unit.
-
-    Solver steps (or exact samples of a closed form), each corrected onto both surfaces by Newton; a closed
-    curve's last point is its first, exactly.
-""" + _EXAMPLE + """    >>> curve.points.shape[1], bool((curve.points[-1] == curve.points[0]).all())
-    (3, True)
-    >>> np.allclose(curve.points[:, 2], 0.6)
-    True
-""",
-    "s": """Arc length at each point, ndarray (N,), increasing from 0 to ``length`` (the user's length unit).
-""" + _EXAMPLE + """    >>> bool(curve.s[0] == 0.0), bool(curve.s[-1] == curve.length)
-    (True, True)
-    >>> bool((np.diff(curve.s) > 0).all())
-    True
-    >>> np.allclose(curve(curve.s), curve.points)
-    True
-""",
-    "params": """Surface parameters (u1, v1, u2, v2) of each point, ndarray (N, 4).
-
-    (u1, v1) in the chart of surface a, (u2, v2) in that of surface b (angles in radians; a plane's u and v and
-    a cylinder's or cone's axial v in length units); periodic angles are continuous along the curve (not
-    wrapped).
-""" + _EXAMPLE + """    >>> sphere, plane = curve.surfaces
-    >>> np.allclose(sphere.point(curve.params[:, 0], curve.params[:, 1]), curve.points)
-    True
-    >>> np.allclose(plane.point(curve.params[:, 2], curve.params[:, 3]), curve.points)
-    True
-""",
-    "closed": """True for a closed loop (bool): the last point is the first, exactly; ``length`` is the period of s.
-""" + _EXAMPLE + """    >>> curve.closed
-    True
-""",
-    "length": """Arc length of the curve (float, the user's length unit); 0 for a contact point.
-""" + _EXAMPLE + """    >>> round(curve.length, 6)        # 2 pi 0.8
-    5.026548
-""",
-    "status": """How the curve ended (str): 'closed', or an open curve's ends' status ('boundary', 'singular', ...).
-
-    'contact' or 'tangent' for a point or a line where the surfaces touch. See the Curve class.
-""" + _EXAMPLE + """    >>> curve.status
-    'closed'
-""",
-    "message": """A sentence (str) on how the curve ended (both ends for an open curve).""",
-    "tolerance": """The accuracy asked for, an absolute length (float): tol times the scene scale, or 64 ulps of the
-    coordinates' magnitude where that is larger.""",
-    "nodes": """Singular points the curve passed straight through, ndarray (K, 3): nodes and apexes.""",
-    "solver_gap": """|M1 - M2| of the solver's own states at its steps before the Newton correction, ndarray (M,): a
-    diagnostic of drift.""",
-    "nfev": """Right-hand-side evaluations spent by solve_ivp on this curve (int; 0 for a closed form).""",
-    "wall_time": """Seconds spent tracing this curve (float).""",
-    "topology": """The search of sk.intersect that found the component (spatialkin.tracing.search.topology), or
-    None.""",
-    "certificate": """What sk.intersect(..., certify=True) proved about this curve, or None without certify.
-
-    A spatialkin.tracing.certify.certificate.Certificate: what the interval search proved (no box it discarded holds a
-    component) and, for each stored point k, a radius ``radii[k]`` of a box round it holding a true intersection
-    point; and what it did not prove (see Certificate).
-""" + _EXAMPLE + """    >>> curve.certificate is None
-    True
-    >>> torus, sphere = sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3)))
-    >>> loop = sk.intersect(torus, sphere, certify=True)[0]
-    >>> loop.certificate.radii.shape == (len(loop.points),), loop.certificate.all_points_proven
-    (True, True)
-""",
-}
-for _name in RECORD_FIELDS:
-    setattr(Curve, _name, property(operator.attrgetter(f"_{_name}" if _name in _OWN_FIELDS else f"_result.{_name}"),
-                                   doc=FIELD_DOCS.get(_name, f"CurveResult.{_name}")))
-
-
 # --- states and parameters: helpers of the dense output (spatialkin.tracing.curve.dense) and of sk.trace ---------
 def set_states(y, points, a, b):
     """Rows of the states y (M, 4) moved to the foot parameters of points (M, 3) on the charts a, b (angles kept

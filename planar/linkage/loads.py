@@ -19,7 +19,9 @@ Newton-Euler equations, shaking force and moment).
 """
 import numpy as np
 
-from spatialkin.dynamics import Body, Loads
+from spatialkin.dynamics import Loads
+from spatialkin.dynamics.balance import counterweight
+from spatialkin.dynamics.body import check_bodies
 
 
 def _members(linkage):
@@ -30,15 +32,7 @@ def _members(linkage):
 
 
 def _check(linkage, bodies, gravity):
-    names = [m[0] for m in _members(linkage)]
-    bodies = {} if bodies is None else bodies
-    if not isinstance(bodies, dict):
-        raise ValueError(f"bodies must be a dict of link name -> Body (links {names}), got {type(bodies).__name__}")
-    for name, body in bodies.items():
-        if name not in names:
-            raise ValueError(f"bodies: unknown link {name!r}; the links are {names}")
-        if not isinstance(body, Body):
-            raise ValueError(f"bodies[{name!r}] must be a spatialkin.dynamics.Body, got {type(body).__name__}")
+    bodies = check_bodies(bodies, [m[0] for m in _members(linkage)])
     g = np.zeros(2)
     if gravity is not None:
         g = np.asarray(gravity, dtype=float)
@@ -63,13 +57,13 @@ def linkage_loads(motion, bodies=None, gravity=None, omega=None):
     members = _members(linkage)
     n = len(motion)
     index = {m[0]: k for k, m in enumerate(members)}
-    centres, rows_b = {}, np.zeros((n, 3 * len(members)))
+    centres, turns, rows_b = {}, {}, np.zeros((n, 3 * len(members)))
     for k, (name, joints, local, _) in enumerate(members):
         body = bodies.get(name)
         p0, p1 = motion.position(joints[0]), motion.position(joints[1])
         d = p1 - p0
         turn = np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(*(local[1] - local[0])[::-1])
-        c, s = np.cos(turn), np.sin(turn)
+        c, s = turns[name] = np.cos(turn), np.sin(turn)        # the link frame's axes: (c, s) and (-s, c)
         com = np.zeros(2) if body is None else body.com[:2] - local[0]
         r = np.stack([c * com[0] - s * com[1], s * com[0] + c * com[1]], axis=1)
         centres[name] = p0 + r
@@ -133,11 +127,7 @@ def linkage_loads(motion, bodies=None, gravity=None, omega=None):
     flat = {f"{joint}:{name}": np.column_stack([f, np.zeros(n)]) for (joint, name), f in member_force.items()}
     local = {}
     for key, f in flat.items():
-        name = key.split(":", 1)[1]
-        _, joints, loc, _ = members[index[name]]
-        d = motion.position(joints[1]) - motion.position(joints[0])
-        turn = np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(*(loc[1] - loc[0])[::-1])
-        c, s = np.cos(turn), np.sin(turn)
+        c, s = turns[key.split(":", 1)[1]]
         local[key] = np.column_stack([c * f[:, 0] + s * f[:, 1], -s * f[:, 0] + c * f[:, 1], np.zeros(n)])
     last = {joint: f"{joint}:{others[-1]}" for joint, _, others in pins if others}
     zeros = np.zeros((n, 3))
@@ -150,25 +140,13 @@ def linkage_loads(motion, bodies=None, gravity=None, omega=None):
 
 def linkage_counterweight(motion, radius, bodies=None, crank=1, omega=None):
     """The counterweight on a crank of least RMS shaking force (see LinkageMotion.counterweight)."""
-    from spatialkin.dynamics.balance import Counterweight, figures, mass_moment
-    from spatialkin.dynamics.body import combined
     linkage = motion.linkage
     if not (isinstance(crank, (int, np.integer)) and 1 <= crank <= len(linkage.cranks)):
         raise ValueError(f"crank must be 1..{len(linkage.cranks)}, got {crank!r}")
-    radius = float(radius)
-    if not (np.isfinite(radius) and radius > 0):
-        raise ValueError(f"radius must be a finite length > 0, got {radius!r}")
-    bodies = {} if bodies is None else dict(bodies)
     chosen = linkage.cranks[crank - 1]
-    before = linkage_loads(motion, bodies, None, omega)
     d = motion.position(chosen.pin) - motion.position(chosen.pivot)
     x = d / np.linalg.norm(d, axis=1)[:, None]
     axes = np.stack([x, np.stack([-x[:, 1], x[:, 0]], axis=1)], axis=2)
     rate = chosen.ratio * (motion.omega if omega is None else float(omega))
-    moment = mass_moment(before.shaking_force[:, :2], axes, rate)
-    mass, angle = float(np.hypot(*moment)) / radius, float(np.arctan2(moment[1], moment[0]))
-    weight = Body.point(mass, (radius * np.cos(angle), radius * np.sin(angle), 0.0))
-    bodies[chosen.name] = combined(bodies[chosen.name], weight) if chosen.name in bodies else weight
-    after = linkage_loads(motion, bodies, None, omega)
-    return Counterweight(mass, radius, angle, weight, figures(before, before.torque[chosen.name]),
-                         figures(after, after.torque[chosen.name]))
+    return counterweight(lambda given: linkage_loads(motion, given, None, omega), bodies, chosen.name, axes, rate,
+                         radius, lambda loads: loads.torque[chosen.name])

@@ -70,9 +70,9 @@ def use(mode):
                 space[key] = _COUNTERPART[id(value)]
 
 
-def dispatchers(prefix=""):
-    """Every kernel's numba dispatcher (those of modules whose name starts with prefix)."""
-    return [d for f, d in _KERNELS if f.__module__.startswith(prefix)]
+def dispatchers():
+    """Every kernel's numba dispatcher."""
+    return [d for _, d in _KERNELS]
 
 
 class _FirstCompile(_event.Listener):

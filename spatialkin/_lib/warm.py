@@ -14,6 +14,7 @@ the stamps and start compiled.
 (announced by the entry that compiles). ``spatialkin warmup`` compiles everything in the foreground ahead (for an
 image, or a cluster's workers).
 """
+import functools
 import hashlib
 import json
 import os
@@ -59,9 +60,10 @@ def _probe():
     return 0
 
 
+@functools.lru_cache(maxsize=1)
 def cache_folder():
     """The folder of numba's cache for this package's modules (where the stamps are), or None (jit off, or numba's
-    layout unknown)."""
+    layout unknown); found once per process."""
     if jit.JIT_DISABLED:
         return None
     try:

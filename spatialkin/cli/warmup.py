@@ -1,7 +1,7 @@
 """Compile spatialkin's kernels ahead: the workload of the background warm-up (spatialkin._lib.warm) and of
 ``spatialkin warmup``.
 
-The workload calls what a first session calls: ``sk.intersect`` on a general pair of every kind of surface (15
+The workload calls what a user's first calls reach: ``sk.intersect`` on a general pair of every kind of surface (15
 kinds) and on trimmed faces, ``sk.trace``, the looper drive over a turn with its analysis (and a drive whose crank
 does not turn fully), its design sensitivities, and ``sk.intersect_many``; numba compiles every kernel and
 specialisation they reach into its cache.

@@ -14,7 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .body import Body
+from .._lib.validation import check_positive
+from .body import Body, combined
 
 
 @dataclass(frozen=True)
@@ -49,3 +50,20 @@ def figures(loads, torque):
     magnitude = np.linalg.norm(loads.shaking_force, axis=1)
     return {"peak_force": float(np.max(magnitude)), "rms_force": float(np.sqrt(np.mean(magnitude ** 2))),
             "peak_torque": float(np.max(np.abs(torque)))}
+
+
+def counterweight(loads_of, bodies, crank, axes, rate, radius, torque_of):
+    """The counterweight on the link `crank` at `radius` (length unit, > 0) of least RMS shaking force.
+
+    loads_of(bodies) gives the mechanism's Loads with the given bodies; axes (N, d, 2) are the crank frame's x and
+    y axes at each instant (d = 3, or 2 for a planar mechanism: the shaking force's first d components), rate the
+    crank's angular rate, torque_of(loads) the crank's driving torque (N,). Returns a Counterweight."""
+    radius = check_positive("radius", radius)
+    before = loads_of(bodies)
+    moment = mass_moment(before.shaking_force[:, :axes.shape[1]], axes, rate)
+    mass, angle = float(np.hypot(*moment)) / radius, float(np.arctan2(moment[1], moment[0]))
+    weight = Body.point(mass, (radius * np.cos(angle), radius * np.sin(angle), 0.0))
+    bodies = dict(bodies or {})
+    after = loads_of({**bodies, crank: combined(bodies[crank], weight) if crank in bodies else weight})
+    return Counterweight(mass, radius, angle, weight, figures(before, torque_of(before)),
+                         figures(after, torque_of(after)))

@@ -9,7 +9,7 @@ J. L. Meriam, L. G. Kraige, Engineering Mechanics: Dynamics, Wiley (moments of i
 """
 import numpy as np
 
-from .._lib.validation import check_vector
+from .._lib.validation import check_nonnegative, check_vector
 
 #: An inertia tensor's asymmetry and negative eigenvalues allowed, relative to its largest entry (round-off of
 #: values typed or computed elsewhere).
@@ -79,14 +79,8 @@ class Body:
     def rod(cls, mass, length, axis=(1.0, 0.0, 0.0), start=(0.0, 0.0, 0.0)):
         """A slender rod of the given mass (kg) and length from `start` along the unit `axis` (link frame):
         centre at its middle, m L^2 / 12 about any axis through it normal to the rod, nothing about the rod."""
-        a = check_vector("axis", axis)
-        norm = float(np.linalg.norm(a))
-        if norm == 0:
-            raise ValueError("axis must not be zero")
-        a = a / norm
-        length = float(length)
-        if not (np.isfinite(length) and length >= 0):
-            raise ValueError(f"length must be a finite number >= 0, got {length!r}")
+        a = _unit_axis(axis)
+        length = check_nonnegative("length", length)
         inertia = float(mass) * length ** 2 / 12.0 * (np.eye(3) - np.outer(a, a)) if np.isfinite(mass) else None
         return cls(mass, check_vector("start", start) + 0.5 * length * a, inertia)
 
@@ -94,20 +88,39 @@ class Body:
     def disc(cls, mass, radius, axis=(0.0, 0.0, 1.0), centre=(0.0, 0.0, 0.0)):
         """A thin disc of the given mass (kg) and radius about the unit `axis` through `centre` (link frame):
         m r^2 / 2 about its axis, m r^2 / 4 about a diameter."""
-        a = check_vector("axis", axis)
-        norm = float(np.linalg.norm(a))
-        if norm == 0:
-            raise ValueError("axis must not be zero")
-        a = a / norm
-        radius = float(radius)
-        if not (np.isfinite(radius) and radius >= 0):
-            raise ValueError(f"radius must be a finite number >= 0, got {radius!r}")
+        a = _unit_axis(axis)
+        radius = check_nonnegative("radius", radius)
         quarter = float(mass) * radius ** 2 / 4.0 if np.isfinite(mass) else np.nan
         return cls(mass, centre, quarter * (np.eye(3) - np.outer(a, a)) + 2.0 * quarter * np.outer(a, a))
 
     def __repr__(self):
         return (f"Body(mass={self.mass:g}, com=({', '.join(f'{x:g}' for x in self.com)}), "
                 f"inertia diag=({', '.join(f'{x:g}' for x in np.diag(self.inertia))}))")
+
+
+def _unit_axis(axis):
+    """The unit vector along `axis` (3 finite numbers, not zero; ValueError naming it otherwise)."""
+    a = check_vector("axis", axis)
+    norm = float(np.linalg.norm(a))
+    if norm == 0:
+        raise ValueError("axis must not be zero")
+    return a / norm
+
+
+def check_bodies(bodies, links):
+    """The bodies as {link: Body} (None: none; links not named are massless); ValueError naming a link not among
+    `links`, or a value that is not a Body."""
+    if bodies is None:
+        return {}
+    if not isinstance(bodies, dict):
+        raise ValueError(f"bodies must be a dict of link name -> Body (links {list(links)}), got "
+                         f"{type(bodies).__name__}")
+    for name, body in bodies.items():
+        if name not in links:
+            raise ValueError(f"bodies: unknown link {name!r}; the links are {list(links)}")
+        if not isinstance(body, Body):
+            raise ValueError(f"bodies[{name!r}] must be a spatialkin.dynamics.Body, got {type(body).__name__}")
+    return dict(bodies)
 
 
 def combined(*bodies):

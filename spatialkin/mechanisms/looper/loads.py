@@ -14,27 +14,14 @@ forces in kg L / s^2 (mN for mm), moments and torques in kg L^2 / s^2 (uN m for 
 """
 import numpy as np
 
-from ...dynamics import DRIVEN, REVOLUTE, SPHERICAL, Body, Joint, inverse_dynamics
+from ...dynamics import DRIVEN, REVOLUTE, SPHERICAL, Joint, inverse_dynamics
+from ...dynamics.balance import counterweight
+from ...dynamics.body import check_bodies
 
 #: The drive's moving links (the keys of `bodies`).
 LINKS = ("crank", "coupler", "rocker_shaft", "rocker_arm")
 #: The joints' names, in the order of the chain.
 JOINTS = ("crank_bearing", "crank_pin", "ball", "rocker_hinge", "rocker_bearing")
-
-
-def check_bodies(bodies):
-    """The bodies as {link: Body} (links not named are massless); ValueError naming a link that the drive does not
-    have, or a value that is not a Body."""
-    if bodies is None:
-        return {}
-    if not isinstance(bodies, dict):
-        raise ValueError(f"bodies must be a dict of link name -> Body (links {LINKS}), got {type(bodies).__name__}")
-    for name, body in bodies.items():
-        if name not in LINKS:
-            raise ValueError(f"bodies: unknown link {name!r}; the links are {LINKS}")
-        if not isinstance(body, Body):
-            raise ValueError(f"bodies[{name!r}] must be a spatialkin.dynamics.Body, got {type(body).__name__}")
-    return dict(bodies)
 
 
 def drive_joints(motion):
@@ -50,7 +37,7 @@ def drive_joints(motion):
 
 def motion_loads(motion, bodies=None, gravity=None, external=None):
     """The loads of a LooperMotion (see LooperMotion.loads): spatialkin.dynamics.Loads with ``crank_torque``."""
-    bodies = check_bodies(bodies)
+    bodies = check_bodies(bodies, LINKS)
     if gravity is not None:
         gravity = np.asarray(gravity, dtype=float)
         if gravity.shape != (3,) or not np.all(np.isfinite(gravity)):
@@ -72,21 +59,10 @@ def motion_loads(motion, bodies=None, gravity=None, external=None):
 
 def motion_counterweight(motion, radius, bodies=None):
     """The crank counterweight of least RMS shaking force (see LooperMotion.counterweight)."""
-    from ...dynamics.balance import Counterweight, figures, mass_moment
-    from ...dynamics.body import combined
-    radius = float(radius)
-    if not (np.isfinite(radius) and radius > 0):
-        raise ValueError(f"radius must be a finite length > 0, got {radius!r}")
-    bodies = check_bodies(bodies)
-    before = motion_loads(motion, bodies)
-    crank = motion.links()["crank"]
-    moment = mass_moment(before.shaking_force, crank.rotation[:, :, :2], motion.omega)
-    mass, angle = float(np.hypot(*moment)) / radius, float(np.arctan2(moment[1], moment[0]))
-    weight = Body.point(mass, (radius * np.cos(angle), radius * np.sin(angle), 0.0))
-    balanced = {**bodies, "crank": combined(bodies["crank"], weight) if "crank" in bodies else weight}
-    after = motion_loads(motion, balanced)
-    return Counterweight(mass, radius, angle, weight, figures(before, before.crank_torque),
-                         figures(after, after.crank_torque))
+    return counterweight(lambda given: motion_loads(motion, given), bodies, "crank",
+                         motion.links()["crank"].rotation[:, :, :2], motion.omega, radius,
+                         lambda loads: loads.crank_torque)
+
 
 #: Each joint's load as a designer draws it: the two components (in its child link's axes) normal to the joint's
 #: axis (the ball joint: in the rocker arm's plane of motion, normal to its hinge).

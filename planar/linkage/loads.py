@@ -23,6 +23,8 @@ from spatialkin.dynamics import Loads
 from spatialkin.dynamics.balance import counterweight
 from spatialkin.dynamics.body import check_bodies
 
+from .motion import _cross
+
 
 def _members(linkage):
     """[(name, joints, local (k, 2), is a crank)] of the moving links: the cranks, then the links."""
@@ -43,10 +45,6 @@ def _check(linkage, bodies, gravity):
             raise ValueError(f"crank {crank.name!r}: its pivot {crank.pivot!r} is not a fixed joint (its torque's "
                              "reaction has no frame to act on)")
     return bodies, g
-
-
-def _cross(r, f):
-    return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
 
 
 def linkage_loads(motion, bodies=None, gravity=None, omega=None):
@@ -131,10 +129,11 @@ def linkage_loads(motion, bodies=None, gravity=None, omega=None):
         local[key] = np.column_stack([c * f[:, 0] + s * f[:, 1], -s * f[:, 0] + c * f[:, 1], np.zeros(n)])
     last = {joint: f"{joint}:{others[-1]}" for joint, _, others in pins if others}
     zeros = np.zeros((n, 3))
-    loads = Loads({j: flat[k] for j, k in last.items()}, {j: zeros for j in last}, {j: local[k] for j, k in last.items()},
-                  torque, np.column_stack([frame_force, np.zeros(n)]), np.column_stack([np.zeros((n, 2)), shaking_moment]))
+    zeros_by_joint = {j: zeros for j in last}               # (a pin carries no moment in the plane)
+    loads = Loads({j: flat[k] for j, k in last.items()}, zeros_by_joint, {j: local[k] for j, k in last.items()},
+                  zeros_by_joint, torque, np.column_stack([frame_force, np.zeros(n)]),
+                  np.column_stack([np.zeros((n, 2)), shaking_moment]))
     loads.member_force, loads.member_force_local = flat, local
-    loads.joint_moment_local = {j: zeros for j in last}      # (a pin carries no moment in the plane)
     return loads
 
 

@@ -59,8 +59,10 @@ class Loads:
         through its bearings (the driving motors' reactions included).
     """
 
-    def __init__(self, joint_force, joint_moment, joint_force_local, torque, shaking_force, shaking_moment):
-        self.joint_force, self.joint_moment, self.joint_force_local = joint_force, joint_moment, joint_force_local
+    def __init__(self, joint_force, joint_moment, joint_force_local, joint_moment_local, torque, shaking_force,
+                 shaking_moment):
+        self.joint_force, self.joint_moment = joint_force, joint_moment
+        self.joint_force_local, self.joint_moment_local = joint_force_local, joint_moment_local
         self.torque = torque
         self.shaking_force, self.shaking_moment = shaking_force, shaking_moment
 
@@ -205,6 +207,4 @@ def inverse_dynamics(links, joints, bodies, gravity=None, external=None):
         if joint.parent is None:
             shaking_force -= f
             shaking_moment -= m + np.cross(joint.point, f)
-    loads = Loads(force, moment, local, torque, shaking_force, shaking_moment)
-    loads.joint_moment_local = local_moment
-    return loads
+    return Loads(force, moment, local, local_moment, torque, shaking_force, shaking_moment)

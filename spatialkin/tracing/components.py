@@ -10,7 +10,7 @@ from .curve.exact import contact_point, exact_curve
 from .curve.result import Curve, TracingError, in_sk_order
 from .march.segments import NEWTON_MAX_ITER
 from .march.start import locate_on_curve, newton_fixed_surfaces
-from .certify.certificate import certificates
+from .certify.certificate import CertificationError, CurveCertificate, certify as certify_answer
 from .curve.clip import clip_curves
 from .march.graze import across_edges, rejoined
 from .closed.forms import closed_form, closed_settings
@@ -40,10 +40,12 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         Accuracy of every returned point and every dense evaluation, relative to the scene scale (see Notes).
     method, rtol, atol, max_length, singular_tol, pullback
         As in ``trace``.
-    certify : bool
-        Attach ``curve.certificate`` (spatialkin.tracing.certify.certificate.Certificate) to every curve: what the
-        search proved, and a proven radius round every stored point (needs the ``certify`` extra,
-        python-flint). Takes the general path for every pair.
+    certify : bool or 'strict'
+        Prove the answer (needs the ``certify`` extra, python-flint; takes the general path for every pair): the
+        returned list then has a ``certificate`` (spatialkin.tracing.certify.certificate.Certificate) stating each
+        claim (no component missed, each curve one component, the curves distinct, the stored points, the arcs
+        between them, the singular points) as proven or not, and where; every curve has its view of it
+        (``curve.certificate``). 'strict' raises CertificationError unless every claim is proven.
 
     Returns
     -------
@@ -67,6 +69,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         The search could not resolve the intersection within its budget (it never returns a guess instead).
     ImportError
         certify=True without python-flint.
+    CertificationError
+        certify='strict' and a claim could not be proven (its ``certificate`` says which, and where).
 
     See Also
     --------
@@ -148,6 +152,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     """
     check_surface("a", a)
     check_surface("b", b)
+    if certify not in (False, True, "strict"):
+        raise ValueError(f"certify must be False, True or 'strict', got {certify!r}")
     warm.refresh()
     scene = None
     if CLOSED_FORMS and not certify:      # (its settings are checked as make_settings checks them)
@@ -204,8 +210,27 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     if stages.ON:
         stages.switch("result")
     in_sk_order(curves)
-    proofs = certificates(a, b, curves, topo) if certify else [None] * len(curves)
-    return [Curve(c, topology=topo, certificate=proof) for c, proof in zip(curves, proofs)]
+    if certify:
+        return certified(a, b, curves, topo, settings.scale, certify)
+    return [Curve(c, topology=topo) for c in curves]
+
+
+class Curves(list):
+    """The list of curves sk.intersect(..., certify=True) returns, with the answer's ``certificate``
+    (spatialkin.tracing.certify.certificate.Certificate; empty answers have one too)."""
+
+    certificate = None
+
+
+def certified(a, b, results, topo, scale, mode):
+    """The Curves of the results (CurveResults), each with its view of the answer's certificate; with mode
+    'strict', CertificationError when a claim is not proven."""
+    answer = certify_answer(a, b, results, topo, scale)
+    if mode == "strict" and not answer.proven:
+        raise CertificationError(answer)
+    out = Curves(Curve(c, topology=topo, certificate=CurveCertificate(answer, i)) for i, c in enumerate(results))
+    out.certificate = answer
+    return out
 
 
 def trace_pending(a, b, pending, curves, settings, radius, reasons):

@@ -577,9 +577,10 @@ def keep_surface_points(s_data, uv, a_data, a_bounds, b_data, b_bounds, apexes, 
 
 @jit
 def line_search(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse, max_boxes, out, kinds,
-                probes, widen):
+                probes, widen, boxes):
     """line_roots, its records then reduced to points of the line: the verified roots, refined (refine_line),
-    in out[:K, 0], then the unresolved boxes' midpoints in out[K:N, 0] (each in the search's order). First,
+    in out[:K, 0], then the unresolved boxes' midpoints in out[K:N, 0] (each in the search's order), and the boxes
+    themselves (lo, hi) in the same order in boxes (K, 2) (a verified box holds exactly one root). First,
     when probes > 0, the line is probed (line_on_level with probes, widen): where it lies on the level, it is
     not searched and the status is WHOLE_LINE.
 
@@ -587,36 +588,44 @@ def line_search(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width
     """
     if probes > 0 and line_on_level(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, probes, widen):
         return 0, WHOLE_LINE, 0, 0
-    n, status, boxes = line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse,
-                                  max_boxes, out, kinds)
+    n, status, searched = line_roots(s_data, t_data, m, c, pad, cpad, fixed, value, t0, t1, min_width, coarse,
+                                     max_boxes, out, kinds)
     roots = np.empty(n)
     loose = np.empty(n)
+    loose_boxes = np.empty((n, 2))
     k = 0
     j = 0
     for i in range(n):
         if kinds[i] == VERIFIED:
             roots[k] = refine_line(s_data, t_data, m, c, fixed, value, out[i, 0], out[i, 1])
+            boxes[k, 0] = out[i, 0]
+            boxes[k, 1] = out[i, 1]
             k += 1
         else:
             loose[j] = 0.5 * (out[i, 0] + out[i, 1])
+            loose_boxes[j, 0] = out[i, 0]
+            loose_boxes[j, 1] = out[i, 1]
             j += 1
     for i in range(k):
         out[i, 0] = roots[i]
     for i in range(j):
         out[k + i, 0] = loose[i]
-    return n, status, boxes, k
+        boxes[k + i, 0] = loose_boxes[i, 0]
+        boxes[k + i, 1] = loose_boxes[i, 1]
+    return n, status, searched, k
 
 
 @jit
-def extremal_search(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coarse, max_boxes, out, kinds):
+def extremal_search(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coarse, max_boxes, out, kinds, boxes):
     """extremal_points, its records then reduced to parameter points: the verified roots, refined
     (refine_extremal), in out[:K, :2], then the unresolved boxes' centres in out[K:N, :2] (each in the search's
-    order).
+    order), and the boxes themselves (u lo, u hi, v lo, v hi) in the same order in boxes (K, 4) (a verified box
+    holds exactly one solution).
 
     Returns (N, status, boxes visited, K).
     """
-    n, status, boxes = extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coarse, max_boxes,
-                                       out, kinds)
+    n, status, searched = extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coarse, max_boxes,
+                                          out, kinds)
     points = np.empty((n, 2))
     uv = np.empty(2)
     k = 0
@@ -625,14 +634,16 @@ def extremal_search(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             refine_extremal(s_data, t_data, m, c, du, dv, out[i], uv)
             points[k, 0] = uv[0]
             points[k, 1] = uv[1]
+            boxes[k, :] = out[i, :]
             k += 1
     j = k
     for i in range(n):
         if kinds[i] != VERIFIED:
             points[j, 0] = 0.5 * (out[i, 0] + out[i, 1])
             points[j, 1] = 0.5 * (out[i, 2] + out[i, 3])
+            boxes[j, :] = out[i, :]
             j += 1
     for i in range(n):
         out[i, 0] = points[i, 0]
         out[i, 1] = points[i, 1]
-    return n, status, boxes, k
+    return n, status, searched, k

@@ -1,91 +1,207 @@
-"""The certificate of ``sk.intersect(a, b, certify=True)``: what was verified about each returned curve."""
+"""The certificate of ``sk.intersect(a, b, certify=True)``: each claim about the answer, proven or not, and where.
+
+A claim counts as proven only when a proof in outward-rounded arithmetic covers it: interval arithmetic in the
+compiled search and tubes (spatialkin.kernels.geometry.interval), arb ball arithmetic for the stored points
+(python-flint). Whatever could not be proven is said, claim by claim, with the points where the proof stopped.
+"""
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
-from ..curve.status import TANGENT
+from ..curve.status import CONTACT, TANGENT
+from ...kernels.certify import tubes as kt
+from ...kernels.search import topology as ks
 
 #: Python extra that provides the ball arithmetic of the certified path.
 EXTRA = "spatialkin[certify]"
+PROVEN, NOT_PROVEN = "proven", "not proven"
+#: Half-widths (relative to the root's magnitude, at least 1) of the smaller boxes round a search's refined root
+#: that are proven to hold it when its verified box is too large to lie inside a tube.
+SHRINK = (1e-12, 1e-9, 1e-6)
+#: Box budget of those proofs.
+SHRINK_BOXES = 200
+#: The claims, in the order they are reported.
+CLAIMS = ("complete", "one_component", "distinct", "points", "arcs", "singular")
+CLAIM_TEXT = {
+    "complete": "no component missed",
+    "one_component": "each curve is one whole component (within the trims)",
+    "distinct": "the curves are pairwise distinct components",
+    "points": "every stored point lies within its radius of a true point",
+    "arcs": "the arcs between stored points are proven (tubes)",
+    "singular": "the singular points (contacts, nodes, apexes, tangencies)",
+}
+
+
+@dataclass(frozen=True)
+class Claim:
+    """One claim of a certificate: its name (one of CLAIMS), 'proven' or 'not proven', what was found (detail),
+    and the points (K, 3) where its proof failed (empty when proven)."""
+    name: str
+    status: str
+    detail: str
+    where: np.ndarray
+
+    @property
+    def proven(self):
+        return self.status == PROVEN
+
+    def __repr__(self):
+        at = f" at {np.round(self.where[0], 12).tolist()}" if len(self.where) else ""
+        return f"Claim({self.name!r}, {self.status!r}: {self.detail}{at})"
+
+
+def claim(name, failures, proven_text):
+    """A Claim from a list of (text, point or None) failures: proven when there is none."""
+    if not failures:
+        return Claim(name, PROVEN, proven_text, np.empty((0, 3)))
+    where = np.array([p for _, p in failures if p is not None], dtype=float).reshape(-1, 3)
+    more = f" (and {len(failures) - 1} more)" if len(failures) > 1 else ""
+    return Claim(name, NOT_PROVEN, failures[0][0] + more, where)
+
+
+class CertificationError(RuntimeError):
+    """``sk.intersect(..., certify="strict")`` could not prove the whole answer; ``certificate`` says which claims
+    failed and where (``certificate.failed``)."""
+
+    def __init__(self, certificate):
+        self.certificate = certificate
+        lines = "; ".join(f"{c.name}: {c.detail}" for c in certificate.failed)
+        super().__init__(f"the intersection could not be proven: {lines}")
 
 
 class Certificate:
-    """What ``sk.intersect(..., certify=True)`` proved about one returned curve, and what it did not.
+    """What ``sk.intersect(a, b, certify=True)`` proved about its whole answer, claim by claim.
 
-    Proven (with outward-rounded interval arithmetic, so round-off cannot break it):
+    The claims (``claims``, a dict of Claim by name; ``proven`` is True only when every one is):
 
-    - **The search discarded no component.** The topology stage (spatialkin.tracing.search.topology) searched the whole
-      parameter domain of one surface: every box it discarded provably holds no root of the conditions that
-      every component must meet somewhere (a zero of g on an edge or a seam, on a ring round an apex, or a point
-      of the level whose tangent is normal to a fixed direction); the roots it kept are isolated and unique in
-      their boxes (interval Newton, Krawczyk) or are singular points classified by the Hessian. ``boxes``,
-      ``verified_roots`` and ``singular_points`` count that search; ``mode`` says which configuration was
-      recognised ('general', 'coaxial': parallels of a common axis, found on one meridian; 'ruled': lines along a
-      cylinder's axis); ``components`` is the number of curves returned.
-    - **Each stored point is near a true point.** For stored point k a box of half-width ``radii[k]`` round it
-      holds exactly one point of both (untrimmed) surfaces in the plane through it normal to the curve (the
-      Krawczyk operator on F_a = 0, F_b = 0, t . (x - p) = 0, in arb ball arithmetic), so a true intersection
-      point lies within ``radii[k] * sqrt(3)`` of it.
+    - **complete**: no component missed. The topology search (spatialkin.tracing.search.topology) encloses every
+      root of the conditions each component must meet somewhere (a zero of g on an edge, a seam or a ring, a point
+      where the level's tangent is normal to a fixed direction) in boxes, each verified to hold exactly one root or
+      left unresolved. Proven when there is no unresolved box and every verified box lies inside a proven tube of a
+      returned curve (so its root is a point of that curve), with no distance tolerance involved.
+    - **one_component**: a closed curve's tube closes on itself, so the curve is a whole closed component. An open
+      curve's ends on trim edges are not proven yet.
+    - **distinct**: the tubes of different curves are proven disjoint (no two returned curves are one component).
+    - **points**: every stored point has a finite proven radius (``radii``): a box of that half-width round it
+      holds a true intersection point (the Krawczyk test on F_a = 0, F_b = 0 and the plane normal to the curve,
+      in arb ball arithmetic).
+    - **arcs**: each curve is covered by a chain of linked parallelograms of the search's parameter plane, each
+      proven by a parametric Krawczyk test to hold exactly one arc of the intersection, entering and leaving
+      through opposite ends (spatialkin.kernels.certify.tubes): the arcs between the points are proven, and
+      ``distance_bound`` bounds the distance from each stored point and dense sample to the true curve.
+    - **singular**: points where the surfaces touch or branches cross (contacts, nodes, apexes, circles or segments
+      of tangency) are reported, not proven, with their places.
 
-    Not proven:
-
-    - that every root the search kept lies on one of the returned curves: that is decided by distance (the
-      de-duplication's radius), so two components closer than it may come back as one curve, certified;
-    - the arcs between stored points (dense evaluations are Newton-corrected and measured, not proven);
-    - that two returned curves are different components, or that a curve's pieces joined at a node belong
-      together (the tracer passes nodes straight through);
-    - points where the surfaces touch (contacts, circles or lines of tangency) or branches cross: there the
-      system is singular and ``radii`` is inf (those points come from the singular-point classification, or
-      in closed form for the coaxial and ruled configurations).
-
-    Parameters
-    ----------
-    radii : array_like, shape (N,)
-        Proven half-width of the box round each stored point of the curve (length unit; inf where not proven).
-    topology : Topology
-        The search of sk.intersect (spatialkin.tracing.search.topology).
-    components : int
-        How many curves sk.intersect returned.
+    An empty answer has a certificate too (``sk.intersect`` returns a list with a ``certificate`` attribute): it is
+    proven when the search found no root and no unresolved box, so no point is common to the two trimmed surfaces.
 
     Attributes
     ----------
-    radii : ndarray, shape (N,)
+    claims : dict of Claim
+    proven : bool
+    failed : list of Claim
+        The claims not proven.
     components : int
+        How many curves were returned.
     mode : str
+        The configuration the search recognised ('general', 'coaxial', 'ruled').
     boxes, verified_roots, singular_points : int
+        The search's boxes, verified roots and unresolved boxes.
     search_seconds : float
-    all_points_proven : bool
-    max_distance_bound : float
-        The largest proven distance from a stored point to a true intersection point, radii.max() * sqrt(3).
+    radii : list of ndarray
+        Per curve, the proven half-width of the box round each stored point (inf where not proven).
+    distance_bounds : list of float
+        Per curve, the proven bound of the distance from its stored points and dense samples to the true curve
+        (inf where its tube is not proven).
+    tubes : list of Tube or None
+        Per curve, its chain of pieces (spatialkin.tracing.certify.tubes.Tube).
 
     References
     ----------
-    .. [1] R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM, 2009 (the
-       Krawczyk operator, interval Newton).
-    .. [2] R. B. Kearfott, M. Novoa, "Algorithm 681: INTBIS, a portable interval Newton/bisection package", ACM
-       Trans. Math. Softw. 16(2), 1990, 152-157.
+    .. [1] R. Krawczyk, "Newton-Algorithmen zur Bestimmung von Nullstellen mit Fehlerschranken", Computing 4 (1969).
+    .. [2] R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM, 2009.
+    .. [3] B. Martin, A. Goldsztejn, L. Granvilliers, C. Jermann, "Certified parallelotope continuation for
+       one-manifolds", SIAM J. Numer. Anal. 51(6), 2013.
 
     Examples
     --------
-    >>> import numpy as np
     >>> import spatialkin as sk
     >>> torus, sphere = sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3)))
-    >>> curve = sk.intersect(torus, sphere, certify=True)[0]
-    >>> cert = curve.certificate
-    >>> cert.mode, cert.components, cert.all_points_proven
-    ('general', 2, True)
-    >>> bool(np.all(np.isfinite(cert.radii))), bool(cert.max_distance_bound < 1e-12)
-    (True, True)
+    >>> curves = sk.intersect(torus, sphere, certify=True)
+    >>> cert = curves.certificate
+    >>> cert.proven, cert.components, [c.status for c in cert.claims.values()]
+    (True, 2, ['proven', 'proven', 'proven', 'proven', 'proven', 'proven'])
+    >>> bool(max(cert.distance_bounds) < 1e-12)
+    True
+    >>> sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((3.0, 0.0, 0.0))), certify=True).certificate.proven
+    True
     """
 
-    def __init__(self, radii, topology, components):
-        self.radii = np.asarray(radii, dtype=float)
+    def __init__(self, claims, topology, radii, tubes, components):
+        self.claims = {c.name: c for c in claims}
         self.components = int(components)
-        self.mode = topology.mode
-        self.boxes = topology.boxes
-        self.verified_roots = topology.verified
-        self.singular_points = topology.unresolved
-        self.search_seconds = topology.seconds
+        self.mode = topology.mode if topology is not None else "closed form"
+        self.boxes = topology.boxes if topology is not None else 0
+        self.verified_roots = topology.verified if topology is not None else 0
+        self.singular_points = topology.unresolved if topology is not None else 0
+        self.search_seconds = topology.seconds if topology is not None else 0.0
+        self.radii = radii
+        self.tubes = tubes
+        self.distance_bounds = [t.distance_bound if t is not None and t.proven else math.inf for t in tubes]
+
+    @property
+    def proven(self):
+        return all(c.proven for c in self.claims.values())
+
+    @property
+    def failed(self):
+        return [c for c in self.claims.values() if not c.proven]
+
+    def __repr__(self):
+        state = "proven" if self.proven else "NOT proven: " + ", ".join(c.name for c in self.failed)
+        bound = max(self.distance_bounds, default=0.0)
+        return (f"Certificate({state}; components={self.components}, mode={self.mode!r}, boxes={self.boxes}, "
+                f"distance <= {bound:.2e})")
+
+
+class CurveCertificate:
+    """A returned curve's view of the answer's Certificate (``curve.certificate``): the answer's claims, and this
+    curve's radii, tube and distance bound.
+
+    Attributes
+    ----------
+    answer : Certificate
+    proven : bool
+        The whole answer proven (every claim of ``answer``).
+    claims : dict of Claim
+    radii : ndarray (N,)
+        Proven half-width of the box round each stored point (length unit; inf where not proven).
+    all_points_proven : bool
+    max_distance_bound : float
+        The largest proven distance from a stored point to a true intersection point, radii.max() * sqrt(3).
+    distance_bound : float
+        Proven bound of the distance from every stored point and dense sample to the true curve (tube; inf when
+        not proven).
+    components, mode, boxes, verified_roots, singular_points, search_seconds
+        As in the answer's certificate.
+    """
+
+    def __init__(self, answer, index):
+        self.answer = answer
+        self.index = index
+
+    radii = property(lambda self: self.answer.radii[self.index])
+    tube = property(lambda self: self.answer.tubes[self.index])
+    distance_bound = property(lambda self: self.answer.distance_bounds[self.index])
+    claims = property(lambda self: self.answer.claims)
+    proven = property(lambda self: self.answer.proven)
+    components = property(lambda self: self.answer.components)
+    mode = property(lambda self: self.answer.mode)
+    boxes = property(lambda self: self.answer.boxes)
+    verified_roots = property(lambda self: self.answer.verified_roots)
+    singular_points = property(lambda self: self.answer.singular_points)
+    search_seconds = property(lambda self: self.answer.search_seconds)
 
     @property
     def all_points_proven(self):
@@ -99,22 +215,174 @@ class Certificate:
 
     def __repr__(self):
         proven = int(np.sum(np.isfinite(self.radii)))
-        return (f"Certificate(components={self.components}, mode={self.mode!r}, boxes={self.boxes}, "
-                f"points proven {proven}/{self.radii.size}, max distance <= {self.max_distance_bound:.2e})")
+        state = "proven" if self.proven else "NOT proven: " + ", ".join(c.name for c in self.answer.failed)
+        return (f"Certificate({state}; curve {self.index} of {self.components}, mode={self.mode!r}, "
+                f"points proven {proven}/{self.radii.size}, distance <= {self.distance_bound:.2e})")
 
 
-def certificates(a, b, curves, topology):
-    """The Certificate of each curve (CurveResults of every component found: radii from arb Krawczyk tests on the
-    stored points)."""
+def certify(a, b, curves, topology, scale):
+    """The Certificate of an answer (CurveResults, the curves sk.intersect returns, in order) and the search that
+    found it."""
     try:
         from .certify_points import certify_points
     except ImportError as err:          # python-flint missing
         raise ImportError(f"certify=True needs python-flint: pip install '{EXTRA}' ({err})") from None
-    out = []
-    for curve in curves:
-        if curve.length == 0 or curve.status == TANGENT:
-            radii = np.full(len(curve.points), math.inf)
+    from .tubes import Chart, tube
+    chart = Chart(topology, scale) if topology is not None and topology.chart is not None else None
+    radii, tubes = [], []
+    points_failed, arcs_failed, whole_failed, singular = [], [], [], []
+    for i, curve in enumerate(curves):
+        regular = curve.length > 0 and curve.status not in (TANGENT, CONTACT)
+        if regular:
+            radii.append(certify_points(a, b, curve.points, curve.sol.tangent(curve.s)))
         else:
-            radii = certify_points(a, b, curve.points, curve.sol.tangent(curve.s))
-        out.append(Certificate(radii, topology, len(curves)))
+            radii.append(np.full(len(curve.points), math.inf))
+        bad = ~np.isfinite(radii[-1])
+        if bad.any():
+            points_failed.append((f"curve {i}: {int(bad.sum())} of {bad.size} stored points have no proven radius",
+                                  curve.points[int(np.argmax(bad))]))
+        if not regular:
+            tubes.append(None)
+            singular.append((f"curve {i} is a {curve.status} (the surfaces touch there): not proven",
+                             curve.points[0]))
+            continue
+        t = tube(chart, curve) if chart is not None else None
+        tubes.append(t)
+        if t is None or not t.proven:
+            arcs_failed.append((f"curve {i}: {t.reason if t is not None else 'no search chart'}",
+                                None if t is None else t.where))
+            whole_failed.append((f"curve {i}: its tube is not proven", None if t is None else t.where))
+        elif not curve.closed:
+            whole_failed.append((f"curve {i} is open: its ends on the trims are not proven to be where the "
+                                 "component leaves them", curve.points[0]))
+    claims = [complete_claim(topology, chart, tubes, curves),
+              claim("one_component", whole_failed, "every curve's tube closes on itself"),
+              distinct_claim(chart, tubes),
+              claim("points", points_failed, "every stored point has a proven radius"),
+              claim("arcs", arcs_failed, "every curve lies in a chain of proven pieces"),
+              claim("singular", singular + singular_places(topology),
+                    "no singular point (contact, node, apex, tangency) was found")]
+    return Certificate(claims, topology, radii, tubes, len(curves))
+
+
+def singular_places(topology):
+    """(text, point) of each singular place the search recorded."""
+    if topology is None:
+        return []
+    out = [("a contact point (not proven)", p) for p in topology.contacts]
+    out += [("a node where branches cross (not proven)", p) for p in topology.nodes]
+    out += [("an apex or pole on the curve (not proven)", p) for p in topology.apexes]
+    out += [("a circle of tangency (not proven)", np.asarray(c[0], dtype=float)) for c in topology.tangent_circles]
+    out += [("a segment of tangency (not proven)", np.asarray(s[0], dtype=float)) for s in topology.tangent_segments]
     return out
+
+
+def complete_claim(topology, chart, tubes, curves):
+    """No component missed: every verified root box of the searches inside a proven piece, no unresolved box."""
+    if topology is None:
+        return claim("complete", [("no search was run (closed form)", None)], "")
+    failures = []
+    proven = [t for t in tubes if t is not None and t.proven]
+    pieces = np.concatenate([t.pieces for t in proven]) if proven else np.empty((0, kt.WIDTH))
+    for found in topology.root_boxes:
+        reader = found.reader
+        for box in found.unresolved:
+            failures.append(("the search left a box it could neither exclude nor verify (a singular point)",
+                             reader.s.point(0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]))))
+        if not len(found.verified):
+            continue
+        if reader.s is not chart.p:
+            for box in found.verified:
+                failures.append(("a root on a trim edge of the other surface is not placed in a tube",
+                                 reader.s.point(0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]))))
+            continue
+        for i, raw in enumerate(found.verified):
+            if not any(kt.point_in_pieces(pieces, len(pieces), chart.scaled_boxes(box), chart.periods[0],
+                                          chart.periods[1]) >= 0 for box in candidate_boxes(found, i)):
+                failures.append(("a root of the search lies in no proven tube",
+                                 chart.p.point(0.5 * (raw[0] + raw[1]), 0.5 * (raw[2] + raw[3]))))
+    for reader, fixed, value, t0, t1 in topology.whole_lines:
+        failures.append(("a parameter line lies on the other surface (not proven)", None))
+    text = ("the search found no root: the trimmed surfaces have no common point" if not curves else
+            "every root of the search lies on a returned curve")
+    return claim("complete", failures, text)
+
+
+def candidate_boxes(found, i):
+    """Boxes that hold root i of a search (RootBoxes): its verified box, then smaller ones round its refined root,
+    each inside the verified box and proven by the search's own kernel to hold exactly one root and nothing
+    unresolved (so the verified box's only root is in it)."""
+    box = found.verified[i]
+    yield box
+    r = found.reader
+    root = found.roots[i]
+    out = np.empty((16, 4))
+    kinds = np.empty(16, dtype=np.int64)
+    for rel in SHRINK:
+        if found.kind == "line":
+            fixed, value = found.args
+            j = 1 - fixed
+            eps = rel * max(1.0, abs(root[j]))
+            lo, hi = max(box[2 * j], root[j] - eps), min(box[2 * j + 1], root[j] + eps)
+            if not lo < hi:
+                return
+            n, status, _ = ks.line_roots(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, fixed, value, lo, hi,
+                                         1e-6 * (hi - lo), 0.0, SHRINK_BOXES, out, kinds)
+            small = box.copy()
+            small[2 * j], small[2 * j + 1] = lo, hi
+        else:
+            du, dv = found.args
+            small = box.copy()
+            for j in range(2):
+                eps = rel * max(1.0, abs(root[j]))
+                small[2 * j], small[2 * j + 1] = max(box[2 * j], root[j] - eps), min(box[2 * j + 1], root[j] + eps)
+            if not (small[0] < small[1] and small[2] < small[3]):
+                return
+            width = 1e-6 * np.array([small[1] - small[0], small[3] - small[2]])
+            n, status, _ = ks.extremal_points(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, du, dv, small, width,
+                                              0.0, SHRINK_BOXES, out, kinds)
+        if status == ks.DONE and n == 1 and kinds[0] == ks.VERIFIED:
+            yield small
+
+
+def distinct_claim(chart, tubes):
+    """The curves' tubes pairwise disjoint (pieces_overlap, with whole periods of the chart)."""
+    failures = []
+    for i in range(len(tubes)):
+        for j in range(i + 1, len(tubes)):
+            ti, tj = tubes[i], tubes[j]
+            if ti is None or tj is None or not (ti.proven and tj.proven):
+                failures.append((f"curves {i} and {j}: a tube is not proven", None))
+                continue
+            hit = overlapping(chart, ti.pieces, tj.pieces)
+            if hit is not None:
+                failures.append((f"the tubes of curves {i} and {j} overlap", hit))
+    return claim("distinct", failures, "the curves' tubes are pairwise disjoint")
+
+
+def overlapping(chart, first, second):
+    """A point (3,) where a piece of first may overlap one of second (shifted by whole periods), or None."""
+    shifts = [(ku * chart.periods[0], kv * chart.periods[1])
+              for ku in ((-1, 0, 1) if chart.periods[0] else (0,)) for kv in ((-1, 0, 1) if chart.periods[1] else (0,))]
+    lo1, hi1 = hull(first)
+    lo2, hi2 = hull(second)
+    for su, sv in shifts:
+        shift = np.array([su, sv])
+        near = np.all(lo1[:, None, :] <= hi2[None, :, :] + shift + 1e-9, axis=2) & \
+            np.all(lo2[None, :, :] + shift - 1e-9 <= hi1[:, None, :], axis=2)
+        for i, j in zip(*np.nonzero(near)):
+            if kt.pieces_overlap(first[i], second[j], su, sv):
+                raw = first[i, [kt.CU, kt.CV]] * chart.units
+                return chart.p.point(raw[0], raw[1])
+    return None
+
+
+def hull(pieces):
+    """(lo (K, 2), hi (K, 2)): the axis-aligned hulls of the pieces (scaled parameters)."""
+    c = pieces[:, [kt.CU, kt.CV]]
+    a = pieces[:, [kt.P, kt.Q]]
+    n = np.stack([-pieces[:, kt.Q], pieces[:, kt.P]], axis=1)
+    corners = [c + t[:, None] * a + w[:, None] * n
+               for t in (pieces[:, kt.T0], pieces[:, kt.T1]) for w in (-pieces[:, kt.H], pieces[:, kt.H])]
+    stack = np.stack(corners)
+    return stack.min(axis=0), stack.max(axis=0)

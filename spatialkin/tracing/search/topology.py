@@ -148,6 +148,10 @@ class Topology:
     tangent_circles : list of (centre, axis, radius)     circles along which the surfaces touch
     circles : list of (centre, axis, radius)             circles crossed transversally (coaxial placements)
     tangent_segments : list of (p0, p1)                  segments along which the surfaces touch
+    root_boxes : list of RootBoxes      every search's boxes: each verified box holds exactly one root of its
+                                        search, and every root lies in one of them (the certificate's input)
+    whole_lines : list of (reader, fixed, value, t0, t1)   parameter lines found lying on the other surface
+    chart : Surface                     P in the chart its searches read
     """
     P: object
     Q: object
@@ -161,10 +165,27 @@ class Topology:
     tangent_segments: list = field(default_factory=list)
     apexes: list = field(default_factory=list)
     searches: list = field(default_factory=list)
+    root_boxes: list = field(default_factory=list)
+    whole_lines: list = field(default_factory=list)
+    chart: object = None
     boxes: int = 0
     verified: int = 0
     unresolved: int = 0
     seconds: float = 0.0
+
+
+@dataclass
+class RootBoxes:
+    """The boxes one search kept: reader (its Reader), kind ('line': g on a parameter line, args (fixed, value);
+    'extremal': g = 0 and the level's tangent normal to (du, dv), args (du, dv)), verified (K, 4) boxes (u lo,
+    u hi, v lo, v hi of reader.s's parameters) each holding exactly one root, the refined roots (K, 2) inside them,
+    and the unresolved boxes (L, 4)."""
+    reader: object
+    kind: str
+    args: tuple
+    verified: np.ndarray
+    roots: np.ndarray
+    unresolved: np.ndarray
 
 
 # --- roles and domains -------------------------------------------------------------------------------------
@@ -234,14 +255,22 @@ class Reader:
         searched. budget: the most boxes (MAX_BOXES when None; past it TopologyError)."""
         out = np.empty((MAX_RECORDS, 2))
         kinds = np.empty(MAX_RECORDS, dtype=np.int64)
+        found = np.empty((MAX_RECORDS, 2))
         width = max(self.min_width(t0, t1), 1e-15 * (t1 - t0))
         n, status, boxes, verified = kt.line_search(self.s.data, self.t.data, self.m, self.c, self.pad, self.cpad,
                                                     int(fixed), float(value), float(t0), float(t1), width,
                                                     COARSE * (t1 - t0), MAX_BOXES if budget is None else budget,
-                                                    out, kinds, LINE_PROBES if probe else 0, ON_LEVEL)
+                                                    out, kinds, LINE_PROBES if probe else 0, ON_LEVEL, found)
         if status == kt.WHOLE_LINE:
+            topo.whole_lines.append((self, int(fixed), float(value), float(t0), float(t1)))
             return None
         self._account(topo, name, status, boxes, verified, n - verified, budget)
+        uv = np.empty((n, 4))
+        uv[:, 2 * fixed:2 * fixed + 2] = value
+        uv[:, 2 - 2 * fixed:4 - 2 * fixed] = found[:n]
+        roots = line_params(fixed, value, out[:verified, 0])
+        topo.root_boxes.append(RootBoxes(self, "line", (int(fixed), float(value)), uv[:verified], roots,
+                                         uv[verified:n]))
         return out[:verified, 0].copy(), out[verified:n, 0].copy()
 
     def extremal(self, box, unit, topo):
@@ -249,14 +278,17 @@ class Reader:
         du, dv = math.cos(DIRECTION) / unit[0], math.sin(DIRECTION) / unit[1]
         out = np.empty((MAX_RECORDS, 4))
         kinds = np.empty(MAX_RECORDS, dtype=np.int64)
+        found = np.empty((MAX_RECORDS, 4))
         width = np.array([max(self.min_width(box[0], box[1]), 1e-15 * (box[1] - box[0])),
                           max(self.min_width(box[2], box[3]), 1e-15 * (box[3] - box[2]))])
         n, status, boxes, verified = kt.extremal_search(self.s.data, self.t.data, self.m, self.c, self.pad,
                                                         self.cpad, du, dv, np.ascontiguousarray(box, dtype=float),
                                                         width, COARSE * max((box[1] - box[0]) / width[0],
                                                                             (box[3] - box[2]) / width[1]),
-                                                        MAX_BOXES, out, kinds)
+                                                        MAX_BOXES, out, kinds, found)
         self._account(topo, "interior", status, boxes, verified, n - verified)
+        topo.root_boxes.append(RootBoxes(self, "extremal", (du, dv), found[:verified].copy(), out[:verified, :2].copy(),
+                                         found[verified:n].copy()))
         return out[:verified, :2].copy(), out[verified:n, :2].copy()
 
     def enclosure(self, uv):
@@ -347,7 +379,7 @@ def search(a, b, scale, tolerance, tangent=None):
     if tangent is not None:
         p_user, q, mode = tangent[0], tangent[1], "general"
         p = p_user
-    topo = Topology(P=p_user, Q=q, mode=mode)
+    topo = Topology(P=p_user, Q=q, mode=mode, chart=p)
     box, u_periodic, v_periodic = domain(p, balls[id(q)])
     if not box[0] < box[1] or not box[2] < box[3]:
         topo.seconds = time.perf_counter() - t0

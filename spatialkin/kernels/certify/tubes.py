@@ -1,0 +1,290 @@
+"""Proven tubes along a curve of the level g = F_T(S(u, v)) = 0 on S's parameter plane.
+
+A tube piece is a parallelogram of S's (scaled) parameters,
+
+    X = { c + t a + w n : t in [t0, t1], w in [-h, h] },   a = (p, q), n = (-q, p),
+
+in the coordinates x = (u / su, v / sv), su and sv powers of two (so that scaling is exact). With
+phi(t, w) = g(c + t a + w n), the piece is proven when the parametric Krawczyk operator
+
+    K = -y (phi(tm, 0) + phi_t(X) (T - tm)) + (1 - y phi_w(X)) W,    y = 1 / phi_w(tm, 0),
+
+lies strictly inside W = [-h, h]: then for every t in T the equation phi(t, w) = 0 has exactly one solution w(t)
+in W, and it lies in K. phi(tm, 0) + phi_t(X) (T - tm) encloses phi(t, 0) for every t in T (the mean value theorem
+along the centre line), and 1 - y phi_w(X) the derivative of w - y phi(t, w), so K is the Krawczyk operator of the
+one-variable equation at every t at once. The level inside X is then the graph of a smooth function w(t) (phi_w
+keeps its sign on X): one arc, entering through the face t = t0 and leaving through t = t1.
+
+Two pieces are linked when the exit face of the first (t = t1, w in its K) lies strictly inside the second: the
+first piece's arc passes into the second's, so the union of a linked chain is one connected arc; a chain whose
+last piece links to its first (shifted by the loop's period) is a whole closed component.
+
+All enclosures round outward (spatialkin.kernels.geometry.interval), so round-off cannot make a piece pass.
+
+References
+----------
+R. Krawczyk, "Newton-Algorithmen zur Bestimmung von Nullstellen mit Fehlerschranken", Computing 4 (1969) 187-201.
+B. Martin, A. Goldsztejn, L. Granvilliers, C. Jermann, "Certified parallelotope continuation for one-manifolds",
+SIAM J. Numer. Anal. 51(6) (2013) 3373-3401: pieces on which the manifold is a graph over the tangent coordinate,
+proven by a Krawczyk test with that coordinate as a parameter, and chained by inclusion of their exit faces.
+R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, ch. 8.
+"""
+import math
+
+import numpy as np
+
+from ..._lib.jit import jit
+from ..geometry.interval import (EPS, box_trig, iadd, imul, iscale, ishift, isub, jet_first, local_first, mag, point,
+                                 up, widen)
+
+#: Columns of a piece: centre (cu, cv), direction (p, q), T = [t0, t1], h, the enclosure K of w = [k0, k1], and
+#: bound: an upper bound of |dS/dw| over the piece (length per unit of w, S's local point).
+CU, CV, P, Q, T0, T1, H, K0, K1, DSDW, CHORD = range(11)
+WIDTH = 11
+#: Overlap of consecutive pieces along a chord, as a fraction of the piece's length.
+OVERLAP = 0.125
+#: Tries of the half-width h (each from the last K) before the piece is split.
+H_TRIES = 4
+#: Deepest halving of a chord's pieces.
+MAX_DEPTH = 24
+#: Outcome of a chain: proven, or where it failed.
+PROVEN, PIECE_FAILED, LINK_FAILED, BUDGET = 0, 1, 2, 3
+
+
+@jit
+def _idiv_pos(a, d):
+    """a / d for an interval d > 0."""
+    lo = a[0] / d[1] if a[0] >= 0.0 else a[0] / d[0]
+    hi = a[1] / d[0] if a[1] >= 0.0 else a[1] / d[1]
+    return (lo - (abs(lo) * EPS + 1e-300), hi + (abs(hi) * EPS + 1e-300))
+
+
+@jit
+def _hull(cu, cv, p, q, T, W, su, sv):
+    """(U, V): the raw parameter intervals of the parallelogram c + T a + W n (scaled by su, sv)."""
+    xu = iadd(iadd(point(cu), iscale(T, p)), iscale(W, -q))
+    xv = iadd(iadd(point(cv), iscale(T, q)), iscale(W, p))
+    return iscale(xu, su), iscale(xv, sv)
+
+
+@jit
+def prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, t0, t1, h, out):
+    """Krawczyk test of one piece (see the module docstring), trying up to H_TRIES half-widths from h; True with
+    the piece written to out (WIDTH,) when one passes."""
+    T = (t0, t1)
+    tm = 0.5 * (t0 + t1)
+    # phi at the centre of the piece, and the preconditioner y from its w-derivative there
+    Uc, Vc = _hull(cu, cv, p, q, point(tm), (0.0, 0.0), su, sv)
+    gc, gcu, gcv = jet_first(s_data, t_data, m, c, pad, cpad, Uc, Vc, box_trig(s_data, Uc, Vc))[0]
+    dw_mid = 0.5 * (gcu[0] + gcu[1]) * (-q * su) + 0.5 * (gcv[0] + gcv[1]) * (p * sv)
+    if not (dw_mid != 0.0 and math.isfinite(dw_mid)):
+        return False
+    y = 1.0 / dw_mid
+    for _ in range(H_TRIES):
+        W = (-h, h)
+        U, V = _hull(cu, cv, p, q, T, W, su, sv)
+        g, gu, gv = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))[0]
+        d_t = iadd(iscale(gu, p * su), iscale(gv, q * sv))
+        d_w = iadd(iscale(gu, -q * su), iscale(gv, p * sv))
+        value = iadd(gc, imul(d_t, isub(T, point(tm))))
+        contraction = isub((1.0, 1.0), iscale(d_w, y))
+        K = iadd(iscale(value, -y), imul(contraction, W))
+        if K[0] > -h and K[1] < h and math.isfinite(K[0]) and math.isfinite(K[1]):
+            # |dS/dw| over the piece: S's local derivatives over the hull, along n (scaled)
+            s, s_u, s_v, _ = local_first(s_data, U, V, box_trig(s_data, U, V))
+            bound = 0.0
+            for i in range(3):
+                comp = iadd(iscale(s_u[i], -q * su), iscale(s_v[i], p * sv))
+                bound += mag(comp) * mag(comp)
+            out[CU], out[CV], out[P], out[Q] = cu, cv, p, q
+            out[T0], out[T1], out[H], out[K0], out[K1] = t0, t1, h, K[0], K[1]
+            out[DSDW] = up(math.sqrt(up(bound)))
+            return True
+        spread = max(abs(K[0]), abs(K[1]))
+        if not (math.isfinite(spread) and mag(contraction) < 1.0):
+            return False
+        h = 2.0 * spread if spread > 0.5 * h else h
+    return False
+
+
+@jit
+def _shifted(x, shift):
+    """x + shift for a float period shift (a multiple of the float 2 pi / unit), widened for the float period's
+    own error (2 pi rounds to within 2.5e-16 of the true one)."""
+    if shift == 0.0:
+        return x
+    return widen(ishift(x, shift), 4.0 * EPS * abs(shift))
+
+
+@jit
+def linked(first, second, shift_u, shift_v):
+    """True when the exit face of piece `first` (t = t1, w in its K), shifted by (shift_u, shift_v) (scaled
+    coordinates: a period of the loop, or zero), lies strictly inside piece `second`."""
+    p, q = first[P], first[Q]
+    eu = iadd(iadd(point(first[CU] + 0.0), iscale(point(first[T1]), p)), iscale((first[K0], first[K1]), -q))
+    ev = iadd(iadd(point(first[CV] + 0.0), iscale(point(first[T1]), q)), iscale((first[K0], first[K1]), p))
+    ru = ishift(_shifted(eu, shift_u), -second[CU])
+    rv = ishift(_shifted(ev, shift_v), -second[CV])
+    p2, q2 = second[P], second[Q]
+    norm = iadd(imul(point(p2), point(p2)), imul(point(q2), point(q2)))
+    t = _idiv_pos(iadd(iscale(ru, p2), iscale(rv, q2)), norm)
+    w = _idiv_pos(iadd(iscale(ru, -q2), iscale(rv, p2)), norm)
+    return second[T0] < t[0] and t[1] < second[T1] and -second[H] < w[0] and w[1] < second[H]
+
+
+@jit
+def tube_chain(s_data, t_data, m, c, pad, cpad, su, sv, x, closed, shift_u, shift_v, h_floor, max_pieces, pieces):
+    """Prove a chain of linked pieces along the polyline x (N, 2) of scaled parameters (consecutive points of one
+    curve; for a closed curve the last point is the first shifted by (shift_u, shift_v)), each chord covered by
+    one piece or by halves of it (down to MAX_DEPTH), consecutive pieces overlapping by OVERLAP of their length.
+
+    Returns (pieces written to pieces (max_pieces, WIDTH), status (PROVEN, PIECE_FAILED, LINK_FAILED, BUDGET), the
+    index of the chord where it failed (-1 when proven)).
+    """
+    n = x.shape[0]
+    count = 0
+    stack = np.empty((MAX_DEPTH + 2, 2))
+    for k in range(n - 1):
+        du = x[k + 1, 0] - x[k, 0]
+        dv = x[k + 1, 1] - x[k, 1]
+        length = math.sqrt(du * du + dv * dv)
+        if length == 0.0:
+            continue
+        p, q = du / length, dv / length
+        stack[0, 0], stack[0, 1] = length, 0.0
+        top = 1
+        start = 0.0
+        while top > 0:
+            top -= 1
+            end = stack[top, 0]
+            depth = stack[top, 1]
+            span = end - start
+            pad_t = OVERLAP * span
+            if count >= max_pieces:
+                return count, BUDGET, k
+            h = max(h_floor, 0.25 * span)
+            ok = prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, x[k, 0], x[k, 1], p, q, start - pad_t,
+                             end + pad_t, h, pieces[count])
+            if not ok:
+                if depth >= MAX_DEPTH:
+                    return count, PIECE_FAILED, k
+                mid = 0.5 * (start + end)
+                stack[top, 0], stack[top, 1] = end, depth + 1
+                stack[top + 1, 0], stack[top + 1, 1] = mid, depth + 1
+                top += 2
+                continue
+            if count > 0 and not linked(pieces[count - 1], pieces[count], 0.0, 0.0):
+                return count, LINK_FAILED, k
+            pieces[count, CHORD] = k
+            count += 1
+            start = end
+    if count == 0:
+        return 0, PIECE_FAILED, 0
+    if closed and not linked(pieces[count - 1], pieces[0], -shift_u, -shift_v):
+        return count, LINK_FAILED, n - 2
+    return count, PROVEN, -1
+
+
+@jit
+def pieces_overlap(first, second, shift_u, shift_v):
+    """False when the two pieces (the second shifted by (shift_u, shift_v)) are proven disjoint: a corner-free
+    separating axis (one of the four edge normals) parts their parallelograms, in interval arithmetic."""
+    for which in range(2):
+        ref = first if which == 0 else second
+        for axis in range(2):
+            # the separating axis: ref's a (axis 0) or n (axis 1)
+            if axis == 0:
+                ax_u, ax_v = ref[P], ref[Q]
+            else:
+                ax_u, ax_v = -ref[Q], ref[P]
+            ours = (0.0, 0.0)
+            theirs = (0.0, 0.0)
+            for side in range(2):
+                piece = first if side == 0 else second
+                su_ = 0.0 if side == 0 else shift_u
+                sv_ = 0.0 if side == 0 else shift_v
+                pu, pv = piece[P], piece[Q]
+                xu = iadd(iadd(point(piece[CU] + 0.0), iscale((piece[T0], piece[T1]), pu)),
+                          iscale((-piece[H], piece[H]), -pv))
+                xv = iadd(iadd(point(piece[CV] + 0.0), iscale((piece[T0], piece[T1]), pv)),
+                          iscale((-piece[H], piece[H]), pu))
+                proj = iadd(iscale(_shifted(xu, su_), ax_u), iscale(_shifted(xv, sv_), ax_v))
+                if side == 0:
+                    ours = proj
+                else:
+                    theirs = proj
+            if ours[1] < theirs[0] or theirs[1] < ours[0]:
+                return False
+    return True
+
+
+@jit
+def point_in_pieces(pieces, count, box, shift_u, shift_v):
+    """Index of a piece that holds the scaled parameter box (u_lo, u_hi, v_lo, v_hi), shifted by whole periods
+    (shift_u, shift_v: the period of u and v, 0 when not periodic, tried -2..2 times), strictly inside (t in T, w
+    in W: a zero of g in the box is then a point of the piece's arc), or -1."""
+    for i in range(count):
+        piece = pieces[i]
+        p2, q2 = piece[P], piece[Q]
+        norm = iadd(imul(point(p2), point(p2)), imul(point(q2), point(q2)))
+        for ku in range(-2, 3):
+            if shift_u == 0.0 and ku != 0:
+                continue
+            for kv in range(-2, 3):
+                if shift_v == 0.0 and kv != 0:
+                    continue
+                ru = ishift(_shifted((box[0], box[1]), ku * shift_u), -piece[CU])
+                rv = ishift(_shifted((box[2], box[3]), kv * shift_v), -piece[CV])
+                t = _idiv_pos(iadd(iscale(ru, p2), iscale(rv, q2)), norm)
+                w = _idiv_pos(iadd(iscale(ru, -q2), iscale(rv, p2)), norm)
+                if piece[T0] < t[0] and t[1] < piece[T1] and -piece[H] < w[0] and w[1] < piece[H]:
+                    return i
+    return -1
+
+
+@jit
+def _segment_inside(piece, cu, cv, p, q, h):
+    """True when the segment c + w (-q, p), w in [-h, h], lies strictly inside the piece (t in T, w in W)."""
+    p2, q2 = piece[P], piece[Q]
+    norm = iadd(imul(point(p2), point(p2)), imul(point(q2), point(q2)))
+    ru = ishift(iadd(point(cu), iscale((-h, h), -q)), -piece[CU])
+    rv = ishift(iadd(point(cv), iscale((-h, h), p)), -piece[CV])
+    t = _idiv_pos(iadd(iscale(ru, p2), iscale(rv, q2)), norm)
+    w = _idiv_pos(iadd(iscale(ru, -q2), iscale(rv, p2)), norm)
+    return piece[T0] < t[0] and t[1] < piece[T1] and -piece[H] < w[0] and w[1] < piece[H]
+
+
+@jit
+def sample_bounds(s_data, t_data, m, c, pad, cpad, su, sv, x, pieces, count, h_floor, out):
+    """For each sample x[i] (scaled parameters; the chain's pieces along x proven), a proven bound of |w| of the
+    true arc on the line through x[i] across its chord: the Krawczyk test with T the single point t = 0 and the
+    smallest W (from h_floor, growing) that passes, its cross-section lying inside the chord's piece (so the zero it
+    proves is the piece's arc). out[i] = (|w| bound, |dS/dw| bound over that segment); inf where none passed."""
+    n = x.shape[0]
+    scratch = np.empty(WIDTH)
+    j = 0
+    for i in range(n):
+        out[i, 0] = math.inf
+        out[i, 1] = math.inf
+        k = min(i, n - 2)
+        while j < count - 1 and pieces[j, CHORD] < k:
+            j += 1
+        du = x[k + 1, 0] - x[k, 0]
+        dv = x[k + 1, 1] - x[k, 1]
+        length = math.sqrt(du * du + dv * dv)
+        if length == 0.0:
+            continue
+        p, q = du / length, dv / length
+        h = h_floor
+        while h < 1e-2 * length:
+            if prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, x[i, 0], x[i, 1], p, q, 0.0, 0.0, h, scratch):
+                inside = False
+                for jj in range(max(j - 2, 0), min(j + 3, count)):
+                    if _segment_inside(pieces[jj], x[i, 0], x[i, 1], p, q, scratch[H]):
+                        inside = True
+                        break
+                if inside:
+                    out[i, 0] = max(abs(scratch[K0]), abs(scratch[K1]))
+                    out[i, 1] = scratch[DSDW]
+                break
+            h *= 8.0

@@ -1,0 +1,148 @@
+"""certify=True: each claim proven or said not to be, never a wrong answer marked proven.
+
+Oracles: the number of components known in closed form (a sphere and a cylinder inside it meet in two loops, in
+one when the cylinder reaches beyond it, in a figure-eight when internally tangent), the distances to both surfaces
+(a lower bound of the distance to their intersection, which a proven distance bound must not undercut), and
+answers tampered with on purpose (merged, dropped or moved curves), which no proof may pass.
+"""
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+import spatialkin as sk
+from spatialkin.tracing.certify.certificate import CLAIMS, CertificationError, certify
+
+pytest.importorskip("flint")
+
+
+def looper_pair():
+    return sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3)))
+
+
+def sphere_cylinder(eps, shift=0.0, scale=1.0, swap=False):
+    """A unit sphere (times scale) and a cylinder of radius 1/2 at distance (1/2)(1 + eps) from its centre, along
+    z: two loops for eps < 0, one for eps > 0 (internally tangent at eps = 0); moved by shift."""
+    o = np.array([shift, 0.3 * shift, -0.7 * shift])
+    sphere = sk.Sphere(scale, sk.Frame(o))
+    cylinder = sk.Cylinder(0.5 * scale, sk.Frame(o + np.array([0.5 * (1 + eps) * scale, 0.0, 0.0])),
+                           v_range=(-3.0 * scale, 3.0 * scale))
+    return (cylinder, sphere) if swap else (sphere, cylinder)
+
+
+def test_looper_pair_is_proven_claim_by_claim():
+    """Every claim of the looper pair's answer proven; the proven distance bound is at least each stored point's
+    distance to the farther surface (a lower bound of its distance to the curve) and below 1e-12."""
+    a, b = looper_pair()
+    curves = sk.intersect(a, b, certify=True)
+    cert = curves.certificate
+    assert len(curves) == 2 and cert.proven and set(cert.claims) == set(CLAIMS)
+    assert all(c.certificate.answer is cert for c in curves)
+    for curve in curves:
+        gap = np.maximum(a.distance(curve.points), b.distance(curve.points))
+        assert np.all(gap <= curve.certificate.distance_bound)
+        assert curve.certificate.distance_bound < 1e-12
+        assert curve.certificate.tube.proven and len(curve.certificate.tube.pieces) >= len(curve.points) - 1
+
+
+def test_empty_answer_carries_a_proven_certificate():
+    """Disjoint surfaces: an empty list whose certificate proves that nothing was missed."""
+    curves = sk.intersect(sk.Torus(1.0, 0.4), sk.Sphere(0.3, sk.Frame((0.0, 0.0, 2.0))), certify=True)
+    assert curves == [] and curves.certificate.proven
+    assert curves.certificate.claims["complete"].proven
+
+
+def test_merged_curves_fail():
+    """The two loops joined into one closed curve: the chain cannot cross from one loop to the other, so the arcs,
+    and with them the rest, are not proven."""
+    a, b = looper_pair()
+    curves = sk.intersect(a, b)
+    first, second = curves[0].result, curves[1].result
+    joined_points = np.concatenate([first.points[:-1], second.points])
+    s = np.concatenate([first.s[:-1], first.s[-2] + 0.1 + second.s])
+    merged = dataclasses.replace(first, points=joined_points, s=s, closed=False, length=float(s[-1]))
+    cert = certify(a, b, [merged], curves[0].topology, 1.4)
+    assert not cert.proven
+    assert not cert.claims["arcs"].proven or not cert.claims["points"].proven
+
+
+def test_dropped_curve_fails_completeness():
+    """One of the two loops dropped: the roots of the search on it lie in no tube."""
+    a, b = looper_pair()
+    curves = sk.intersect(a, b)
+    cert = certify(a, b, [curves[0].result], curves[0].topology, 1.4)
+    assert not cert.proven and not cert.claims["complete"].proven
+    assert cert.claims["arcs"].proven                  # what is there is proven; what is missing is said
+    assert len(cert.claims["complete"].where) >= 1
+    far = np.min(np.linalg.norm(cert.claims["complete"].where[:, None] - curves[0].points[None], axis=2), axis=1)
+    assert np.all(far > 0.1)                           # the failure is located on the dropped loop
+
+
+def test_a_curve_given_twice_is_not_distinct():
+    """The same loop returned twice: the tubes overlap, so distinctness is not proven."""
+    a, b = looper_pair()
+    curves = sk.intersect(a, b)
+    cert = certify(a, b, [curves[0].result, curves[0].result, curves[1].result], curves[0].topology, 1.4)
+    assert not cert.proven and not cert.claims["distinct"].proven
+
+
+@pytest.mark.parametrize("factor", [10.0, 1e6])
+def test_moved_point_is_not_vouched_for(factor):
+    """A stored point moved off the curve by factor times its proven radius: its new radius (or the distance
+    bound) must cover the move, or the claim is not proven; never the old radius."""
+    a, b = looper_pair()
+    curves = sk.intersect(a, b, certify=True)
+    result = curves[0].result
+    k = len(result.points) // 3
+    radius = curves[0].certificate.radii[k]
+    normal = np.cross(result.sol.tangent(result.s[k:k + 1])[0], [0.0, 0.0, 1.0])
+    normal /= np.linalg.norm(normal)
+    move = factor * max(radius, 1e-15)
+    points = result.points.copy()
+    points[k] += move * normal
+    cert = certify(a, b, [dataclasses.replace(result, points=points), curves[1].result], curves[0].topology, 1.4)
+    true_gap = max(float(a.distance(points[k])), float(b.distance(points[k])))
+    assert not cert.claims["points"].proven or cert.radii[0][k] * math.sqrt(3) >= true_gap
+    assert not cert.claims["arcs"].proven or cert.distance_bounds[0] >= true_gap
+
+
+def test_strict_raises_with_the_failed_claims():
+    """certify='strict' raises CertificationError naming the claims it could not prove; True returns them."""
+    pair = sphere_cylinder(1e-7)
+    loose = sk.intersect(*pair, certify=True)
+    assert not loose.certificate.proven
+    with pytest.raises(CertificationError) as err:
+        sk.intersect(*pair, certify="strict")
+    assert not err.value.certificate.proven
+    assert all(c.name in str(err.value) for c in err.value.certificate.failed)
+    with pytest.raises(ValueError, match="certify"):
+        sk.intersect(*pair, certify="yes")
+
+
+@pytest.mark.slow
+def test_near_tangent_loops_are_never_certified_wrong():
+    """A sphere and a cylinder 1e-7 to 1e-10 (relative) from internal tangency, on both sides, in both argument
+    orders, moved up to 1e9 from the origin and scaled 1e-6 to 1e6: every answer certified proven has the right
+    number of components (2 inside, 1 beyond); the rest say they are not proven (or the search refuses)."""
+    proven = 0
+    for eps in (1e-7, 1e-8, 1e-9, 1e-10):
+        for sign, truth in ((-1.0, 2), (1.0, 1)):
+            for shift in (0.0, 1e5, 1e9):
+                for scale in (1e-6, 1.0, 1e6):
+                    for swap in (False, True):
+                        try:
+                            curves = sk.intersect(*sphere_cylinder(sign * eps, shift, scale, swap), certify=True)
+                        except sk.TopologyError:
+                            continue
+                        if curves.certificate.proven:
+                            proven += 1
+                            assert len(curves) == truth, (eps, sign, shift, scale, swap)
+    assert proven >= 1
+
+
+def test_clearly_separated_loops_are_proven():
+    """Away from tangency (eps = -1e-2: two loops; +1e-2: one) the whole answer is proven."""
+    for eps, truth in ((-1e-2, 2), (1e-2, 1)):
+        curves = sk.intersect(*sphere_cylinder(eps), certify=True)
+        assert len(curves) == truth and curves.certificate.proven, curves.certificate

@@ -288,3 +288,27 @@ def sample_bounds(s_data, t_data, m, c, pad, cpad, su, sv, x, pieces, count, h_f
                     out[i, 1] = scratch[DSDW]
                 break
             h *= 8.0
+
+
+@jit
+def spaced(x, floor, keep):
+    """Indices (into keep (M,), returning how many) of the rows of x (M, 2) kept as a chain's samples: a row
+    closer than floor to the last kept one is dropped, the last row always kept (in place of the one before it
+    when that one is too close)."""
+    n = x.shape[0]
+    keep[0] = 0
+    count = 1
+    for i in range(1, n):
+        j = keep[count - 1]
+        du = x[i, 0] - x[j, 0]
+        dv = x[i, 1] - x[j, 1]
+        if math.sqrt(du * du + dv * dv) >= floor:
+            keep[count] = i
+            count += 1
+    if keep[count - 1] != n - 1:
+        if count > 1:
+            keep[count - 1] = n - 1
+        else:
+            keep[count] = n - 1
+            count += 1
+    return count

@@ -18,6 +18,8 @@ from ..search.topology import Reader
 SAMPLES_PER_STEP = 4
 #: Refinements of the samples round a failing chord before a tube is given up.
 REFINEMENTS = 96
+#: Chords refined on each side of a failing one.
+WINDOW = 4
 #: Shortest chord kept, relative to the median chord.
 MIN_CHORD = 0.2
 #: Pieces allowed per chord, on average, before the chain gives up (BUDGET).
@@ -101,7 +103,7 @@ def tube(chart, curve):
         if status == kt.PROVEN:
             return Tube(pieces, status, None, distance_bound(chart, points[kept], x, pieces))
         at = kept[min(max(chord, 0), len(kept) - 2)]
-        lo, hi = max(at - 2, 0), min(at + 3, len(s) - 1)
+        lo, hi = max(at - WINDOW, 0), min(at + WINDOW + 1, len(s) - 1)
         mids = 0.5 * (s[lo:hi] + s[lo + 1:hi + 1])
         s = np.sort(np.concatenate([s, mids]))
         points = merged(points, s, mids, np.asarray(curve.sol(mids), dtype=float).reshape(-1, 3))
@@ -146,21 +148,13 @@ def chain(chart, x, closed, shift):
 
 
 def spaced(x):
-    """Indices of the rows of x (M, 2) kept as the chain's samples: a sample closer than MIN_CHORD times the
-    median chord to the last kept one is dropped (a piece along a very short chord cannot hold the longer one
-    before it), the last row always kept in place of the one before it."""
-    chords = np.linalg.norm(np.diff(x, axis=0), axis=1)
-    floor = MIN_CHORD * float(np.median(chords)) if len(chords) else 0.0
-    keep = [0]
-    for i in range(1, len(x)):
-        if np.linalg.norm(x[i] - x[keep[-1]]) >= floor:
-            keep.append(i)
-    if keep[-1] != len(x) - 1:
-        if len(keep) > 1:
-            keep[-1] = len(x) - 1
-        else:
-            keep.append(len(x) - 1)
-    return np.array(keep)
+    """Indices of the rows of x (M, 2) kept as the chain's samples (kernels.certify.tubes.spaced): a sample closer
+    than MIN_CHORD times the median chord to the last kept one is dropped (a piece along a very short chord cannot
+    hold the longer one before it), the last row always kept."""
+    chords = np.hypot(*np.diff(x, axis=0).T)
+    keep = np.empty(len(x), dtype=np.int64)
+    count = kt.spaced(x, MIN_CHORD * float(np.median(chords)) if len(chords) else 0.0, keep)
+    return keep[:count]
 
 
 def distance_bound(chart, points, x, pieces):

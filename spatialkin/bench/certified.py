@@ -1,0 +1,49 @@
+"""certify=True per pair kind: its time beside the plain call's (interleaved, medians, as ratios), what it proves,
+and the proven distance bound (``python -m spatialkin.bench.certified``; needs the ``certify`` extra)."""
+import statistics
+import time
+
+from ..tracing.components import intersect
+from .kinds import pair_kind_cases
+
+#: Calls of each kind, alternating plain and certified.
+REPEATS = 5
+
+
+def median_pair(a, b, repeats):
+    """(plain seconds, certified seconds, the certified answer): medians of interleaved calls."""
+    plain, certified = [], []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        intersect(a, b)
+        t1 = time.perf_counter()
+        answer = intersect(a, b, certify=True)
+        t2 = time.perf_counter()
+        plain.append(t1 - t0)
+        certified.append(t2 - t1)
+    return statistics.median(plain), statistics.median(certified), answer
+
+
+def run(repeats=REPEATS, echo=print):
+    """Print the table; returns its rows (name, plain ms, certified ms, ratio, proven, not proven claims, bound)."""
+    rows = []
+    echo("certify=True per pair kind (median of interleaved calls); not proven: the claims that failed; distance: "
+         "the proven bound from the curves' points and dense samples to the true curve")
+    echo(f"{'pair kind':18s} {'plain ms':>9s} {'cert. ms':>9s} {'ratio':>6s} {'proven':>7s} {'distance':>9s}  "
+         "not proven")
+    for name, a, b in pair_kind_cases():
+        plain, certified, answer = median_pair(a, b, repeats)
+        cert = answer.certificate
+        bound = max(cert.distance_bounds, default=0.0)
+        failed = ", ".join(c.name for c in cert.failed) or "-"
+        rows.append((name, 1e3 * plain, 1e3 * certified, certified / plain, cert.proven, failed, bound))
+        echo(f"{name:18s} {1e3 * plain:9.3f} {1e3 * certified:9.3f} {certified / plain:6.1f} "
+             f"{'yes' if cert.proven else 'no':>7s} {bound:9.1e}  {failed}")
+    ratios = sorted(r[3] for r in rows)
+    echo(f"certified/plain: median {statistics.median(ratios):.1f}, max {ratios[-1]:.1f}; fully proven "
+         f"{sum(r[4] for r in rows)}/{len(rows)} kinds")
+    return rows
+
+
+if __name__ == "__main__":
+    run()

@@ -79,7 +79,9 @@ class Certificate:
       root of the conditions each component must meet somewhere (a zero of g on an edge, a seam or a ring, a point
       where the level's tangent is normal to a fixed direction) in boxes, each verified to hold exactly one root or
       left unresolved. Proven when there is no unresolved box and every verified box lies inside a proven tube of a
-      returned curve (so its root is a point of that curve), with no distance tolerance involved.
+      returned curve (so its root is a point of that curve), with no distance tolerance involved. A pair the search
+      read as coaxial or ruled (a symmetry decided within a tolerance) is proven complete only where the symmetry is
+      exact whatever the placement (two spheres, a sphere and a plane).
     - **one_component**: a closed curve's tube closes on itself, so the curve is a whole closed component. An open
       curve's ends on trim edges are not proven yet.
     - **distinct**: the tubes of different curves are proven disjoint (no two returned curves are one component).
@@ -282,6 +284,9 @@ def complete_claim(topology, chart, tubes, curves):
     if topology is None:
         return claim("complete", [("no search was run (closed form)", None)], "")
     failures = []
+    if topology.mode != "general" and not exactly_symmetric(topology.P, topology.Q):
+        failures.append((f"the search read the pair as {topology.mode} (a common axis or direction decided within a "
+                         "tolerance): its completeness holds for an exact symmetry only", None))
     proven = [t for t in tubes if t is not None and t.proven]
     pieces = np.concatenate([t.pieces for t in proven]) if proven else np.empty((0, kt.WIDTH))
     for found in topology.root_boxes:
@@ -343,6 +348,13 @@ def candidate_boxes(found, i):
                                               0.0, SHRINK_BOXES, out, kinds)
         if status == ks.DONE and n == 1 and kinds[0] == ks.VERIFIED:
             yield small
+
+
+def exactly_symmetric(p, q):
+    """True for a pair whose symmetry holds exactly whatever the placement: two spheres (about the line through
+    their centres) or a sphere and a plane (about the normal through the centre)."""
+    kinds = sorted(type(s).__name__ for s in (p, q))
+    return kinds in (["Sphere", "Sphere"], ["Plane", "Sphere"])
 
 
 def distinct_claim(chart, tubes):

@@ -35,7 +35,7 @@ PUBLIC = {
     "Surface.distance": (Surface.distance, ("ValueError",)),
     "sk.trace": (sk.trace, ("ValueError", "TypeError", "TracingError")),
     "sk.intersect": (sk.intersect, ("CoincidentSurfacesError", "ValueError", "TypeError", "TopologyError",
-                                    "ImportError")),
+                                    "CertificationError")),
     "sk.Curve": (sk.Curve, ("TypeError",)),
     "sk.Curve.points": (sk.Curve.points, ()),
     "sk.Curve.s": (sk.Curve.s, ()),

@@ -31,7 +31,7 @@ def run():
     sk.trace(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))), (0.5, 0.9, 0.0))
     sk.intersect_many([(sk.Torus(2.0, 1.0), sk.Sphere(1.2, sk.Frame((2.5, 0.0, 0.3))))])
     drive = LooperDrive.reference()
-    certified(sk, drive)
+    sk.intersect(drive.torus, drive.sphere, certify=True)
     angles = np.linspace(0.0, 2 * np.pi, ANGLES)
     motion = drive.solve(angles, omega=2.0, branch=0)
     drive.analyse(branch=0, samples=ANGLES)
@@ -41,17 +41,6 @@ def run():
                           rocker_frame=sk.Frame((40.0, 0.0, 60.0)))
     partial.analyse(branch=0, samples=ANGLES)
     LooperDesign.from_drive(drive).sensitivities(angles[::10])
-
-
-def certified(sk, drive):
-    """certify=True on the looper pair (its tubes, and the search's kernels on small boxes); without python-flint,
-    the tubes alone (the arb part compiles nothing)."""
-    try:
-        sk.intersect(drive.torus, drive.sphere, certify=True)
-    except ImportError:
-        from ..tracing.certify.tubes import Chart, tube
-        curves = sk.intersect(drive.torus, drive.sphere)
-        tube(Chart(curves[0].topology, 1.0), curves[0].result)
 
 
 def main(echo=print):

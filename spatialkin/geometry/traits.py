@@ -191,15 +191,6 @@ class SurfaceTraits:
         """(F (N,), grad F (N, 3), hess F (N, 3, 3)) of the polynomial implicit function at local points q (N, 3)."""
         raise NotImplementedError(f"{self.name}: implicit_jets is not declared")
 
-    def arb_coefficients(self, surface, arb):
-        """The constants of the implicit function as arb balls (arb: python-flint's arb type)."""
-        raise NotImplementedError(f"{self.name}: arb_coefficients is not declared")
-
-    def arb_local(self, coefficients, q, with_value):
-        """(F or None, (dF/dq_x, dF/dq_y, dF/dq_z)) at the arb local point q, a None entry where the derivative
-        vanishes identically."""
-        raise NotImplementedError(f"{self.name}: arb_local is not declared")
-
     def __repr__(self):
         return f"<{type(self).__name__} {self.name!r} code={self.code} geometry={self.geometry}>"
 

@@ -41,7 +41,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     method, rtol, atol, max_length, singular_tol, pullback
         As in ``trace``.
     certify : bool or 'strict'
-        Prove the answer (needs the ``certify`` extra, python-flint; takes the general path for every pair): the
+        Prove the answer (in outward-rounded interval arithmetic; takes the general path for every pair): the
         returned list then has a ``certificate`` (spatialkin.tracing.certify.certificate.Certificate) stating each
         claim (no component missed, each curve one component, the curves distinct, the stored points, the arcs
         between them, the singular points) as proven or not, and where; every curve has its view of it
@@ -67,8 +67,6 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         Naming `a` or `b` when it is not a spatialkin surface.
     TopologyError
         The search could not resolve the intersection within its budget (it never returns a guess instead).
-    ImportError
-        certify=True without python-flint.
     CertificationError
         certify='strict' and a claim could not be proven (its ``certificate`` says which, and where).
 
@@ -134,11 +132,13 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     >>> all(c.max_distance <= c.tolerance for c in curves)
     True
 
-    With certify=True every curve carries what was proven:
+    With certify=True the answer carries what was proven, claim by claim:
 
     >>> curves = sk.intersect(torus, sphere, certify=True)
+    >>> curves.certificate.proven, list(curves.certificate.claims)
+    (True, ['complete', 'one_component', 'distinct', 'points', 'arcs', 'singular'])
     >>> cert = curves[0].certificate
-    >>> cert.components, cert.all_points_proven, bool(cert.max_distance_bound < 1e-12)
+    >>> cert.components, cert.all_points_proven, bool(cert.distance_bound < 1e-12)
     (2, True, True)
 
     Disjoint surfaces give no curves; coincident ones raise:

@@ -147,14 +147,5 @@ class ConeTraits(SurfaceTraits):
         value = q[:, 0] ** 2 + q[:, 1] ** 2 - t2 * q[:, 2] ** 2
         return quadric_jets(q, np.array([2.0, 2.0, -2.0 * t2]), value)
 
-    def arb_coefficients(self, surface, arb):
-        return (arb(surface.half_angle).tan() ** 2,)          # t^2, t = tan(half_angle), a ball
-
-    def arb_local(self, coefficients, q, with_value):
-        qx, qy, qz = q
-        c0 = coefficients[0]
-        value = qx * qx + qy * qy - c0 * (qz * qz) if with_value else None
-        return value, (2 * qx, 2 * qy, -2 * c0 * qz)
-
 
 register(Cone, ConeTraits())

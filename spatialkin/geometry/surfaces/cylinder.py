@@ -123,14 +123,6 @@ class CylinderTraits(SurfaceTraits):
         value = q[:, 0] ** 2 + q[:, 1] ** 2 - surface.radius ** 2
         return quadric_jets(q, np.array([2.0, 2.0, 0.0]), value)
 
-    def arb_coefficients(self, surface, arb):
-        return (arb(surface.radius) ** 2,)
-
-    def arb_local(self, coefficients, q, with_value):
-        qx, qy, _ = q
-        value = qx * qx + qy * qy - coefficients[0] if with_value else None
-        return value, (2 * qx, 2 * qy, None)
-
 
 def axial_trims_overlap(a, b):
     """For one cylinder or cone given twice: the axial trims overlap (b's rim mapped to a's axial coordinate)."""

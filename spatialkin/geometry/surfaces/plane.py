@@ -163,12 +163,6 @@ class PlaneTraits(SurfaceTraits):
         grad[:, 2] = 1.0
         return q[:, 2], grad, np.zeros((len(q), 3, 3))
 
-    def arb_coefficients(self, surface, arb):
-        return ()
-
-    def arb_local(self, coefficients, q, with_value):
-        return (q[2] if with_value else None), (None, None, 1)
-
 
 def rectangles_overlap(a, b, samples=OVERLAP_SAMPLES):
     """Two coplanar trimmed rectangles share an area: a grid of b's rectangle has a point strictly inside a's."""

@@ -165,13 +165,5 @@ class SphereTraits(SurfaceTraits):
         value = q[:, 0] ** 2 + q[:, 1] ** 2 + q[:, 2] ** 2 - surface.radius ** 2
         return quadric_jets(q, np.array([2.0, 2.0, 2.0]), value)
 
-    def arb_coefficients(self, surface, arb):
-        return (arb(surface.radius) ** 2,)
-
-    def arb_local(self, coefficients, q, with_value):
-        qx, qy, qz = q
-        value = qx * qx + qy * qy + qz * qz - coefficients[0] if with_value else None
-        return value, (2 * qx, 2 * qy, 2 * qz)
-
 
 register(Sphere, SphereTraits())

@@ -145,17 +145,5 @@ class TorusTraits(SurfaceTraits):
         hess[:, 1, 1] -= 8 * big2
         return value, grad, hess
 
-    def arb_coefficients(self, surface, arb):
-        big, small = arb(surface.major_radius), arb(surface.minor_radius)
-        return big * big - small * small, 4 * big * big, 8 * big * big          # R^2 - r^2, 4 R^2, 8 R^2
-
-    def arb_local(self, coefficients, q, with_value):
-        c0, c1, c2 = coefficients
-        qx, qy, qz = q
-        w = qx * qx + qy * qy + qz * qz + c0
-        value = w * w - c1 * (qx * qx + qy * qy) if with_value else None
-        radial = 4 * w - c2
-        return value, (radial * qx, radial * qy, 4 * w * qz)
-
 
 register(Torus, TorusTraits())

@@ -243,54 +243,6 @@ def point_in_pieces(pieces, count, box, shift_u, shift_v):
 
 
 @jit
-def _segment_inside(piece, cu, cv, p, q, h):
-    """True when the segment c + w (-q, p), w in [-h, h], lies strictly inside the piece (t in T, w in W)."""
-    p2, q2 = piece[P], piece[Q]
-    norm = iadd(imul(point(p2), point(p2)), imul(point(q2), point(q2)))
-    ru = ishift(iadd(point(cu), iscale((-h, h), -q)), -piece[CU])
-    rv = ishift(iadd(point(cv), iscale((-h, h), p)), -piece[CV])
-    t = _idiv_pos(iadd(iscale(ru, p2), iscale(rv, q2)), norm)
-    w = _idiv_pos(iadd(iscale(ru, -q2), iscale(rv, p2)), norm)
-    return piece[T0] < t[0] and t[1] < piece[T1] and -piece[H] < w[0] and w[1] < piece[H]
-
-
-@jit
-def sample_bounds(s_data, t_data, m, c, pad, cpad, su, sv, x, pieces, count, h_floor, out):
-    """For each sample x[i] (scaled parameters; the chain's pieces along x proven), a proven bound of |w| of the
-    true arc on the line through x[i] across its chord: the Krawczyk test with T the single point t = 0 and the
-    smallest W (from h_floor, growing) that passes, its cross-section lying inside the chord's piece (so the zero it
-    proves is the piece's arc). out[i] = (|w| bound, |dS/dw| bound over that segment); inf where none passed."""
-    n = x.shape[0]
-    scratch = np.empty(WIDTH)
-    j = 0
-    for i in range(n):
-        out[i, 0] = math.inf
-        out[i, 1] = math.inf
-        k = min(i, n - 2)
-        while j < count - 1 and pieces[j, CHORD] < k:
-            j += 1
-        du = x[k + 1, 0] - x[k, 0]
-        dv = x[k + 1, 1] - x[k, 1]
-        length = math.sqrt(du * du + dv * dv)
-        if length == 0.0:
-            continue
-        p, q = du / length, dv / length
-        h = h_floor
-        while h < 1e-2 * length:
-            if prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, x[i, 0], x[i, 1], p, q, 0.0, 0.0, h, scratch):
-                inside = False
-                for jj in range(max(j - 2, 0), min(j + 3, count)):
-                    if _segment_inside(pieces[jj], x[i, 0], x[i, 1], p, q, scratch[H]):
-                        inside = True
-                        break
-                if inside:
-                    out[i, 0] = max(abs(scratch[K0]), abs(scratch[K1]))
-                    out[i, 1] = scratch[DSDW]
-                break
-            h *= 8.0
-
-
-@jit
 def spaced(x, floor, keep):
     """Indices (into keep (M,), returning how many) of the rows of x (M, 2) kept as a chain's samples: a row
     closer than floor to the last kept one is dropped, the last row always kept (in place of the one before it
@@ -312,3 +264,45 @@ def spaced(x, floor, keep):
             keep[count] = n - 1
             count += 1
     return count
+
+
+@jit
+def _piece_hull(piece):
+    """(u lo, u hi, v lo, v hi): an enclosure of the piece's parallelogram (scaled parameters)."""
+    p, q = piece[P], piece[Q]
+    T = (piece[T0], piece[T1])
+    W = (-piece[H], piece[H])
+    xu = iadd(iadd(point(piece[CU] + 0.0), iscale(T, p)), iscale(W, -q))
+    xv = iadd(iadd(point(piece[CV] + 0.0), iscale(T, q)), iscale(W, p))
+    return xu[0], xu[1], xv[0], xv[1]
+
+
+@jit
+def tubes_disjoint(first, second, periods):
+    """(-1, -1) when every piece of first (K, WIDTH) is proven disjoint from every piece of second (L, WIDTH),
+    the second shifted by -1, 0 or 1 periods (periods (2,): of u and v, 0 when not periodic); else the indices of
+    a pair that may overlap. Pairs whose hulls are apart are disjoint; the rest are decided by pieces_overlap."""
+    hulls = np.empty((second.shape[0], 4))
+    for j in range(second.shape[0]):
+        hulls[j, 0], hulls[j, 1], hulls[j, 2], hulls[j, 3] = _piece_hull(second[j])
+    for i in range(first.shape[0]):
+        a0, a1, a2, a3 = _piece_hull(first[i])
+        for ku in range(-1, 2):
+            if periods[0] == 0.0 and ku != 0:
+                continue
+            su = ku * periods[0]
+            for kv in range(-1, 2):
+                if periods[1] == 0.0 and kv != 0:
+                    continue
+                sv = kv * periods[1]
+                # (the shifted bounds' rounding, far below any gap that matters)
+                slack_u = 8.0 * EPS * (abs(su) + abs(a0) + abs(a1)) + 1e-300
+                slack_v = 8.0 * EPS * (abs(sv) + abs(a2) + abs(a3)) + 1e-300
+                for j in range(second.shape[0]):
+                    if hulls[j, 1] + su + slack_u < a0 or a1 < hulls[j, 0] + su - slack_u:
+                        continue
+                    if hulls[j, 3] + sv + slack_v < a2 or a3 < hulls[j, 2] + sv - slack_v:
+                        continue
+                    if pieces_overlap(first[i], second[j], su, sv):
+                        return i, j
+    return -1, -1

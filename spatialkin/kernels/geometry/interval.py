@@ -295,9 +295,15 @@ def idot(a, b):
 
 
 @jit(forceinline=True)
+def _square(x):
+    """x^2 of a float constant, as an interval (its rounding enclosed)."""
+    return isqr((x, x))
+
+
+@jit(forceinline=True)
 def implicit_jet(t_data, q):
     """(F, grad F (3 intervals), s) of T's polynomial implicit function at the interval local point q; s is the
-    torus's |q|^2 + R^2 - r^2 (unused otherwise)."""
+    torus's |q|^2 + R^2 - r^2 (unused otherwise). The constants (R^2, r^2, tan^2) are enclosed too."""
     geometry = int(t_data[GEOMETRY])
     z = (0.0, 0.0)
     if geometry == PLANE:
@@ -307,19 +313,20 @@ def implicit_jet(t_data, q):
     z2 = isqr(q[2])
     rho2 = iadd(x2, y2)
     if geometry == SPHERE:
-        f = ishift(iadd(rho2, z2), -t_data[P0] * t_data[P0])
+        f = isub(iadd(rho2, z2), _square(t_data[P0]))
         return f, (iscale(q[0], 2.0), iscale(q[1], 2.0), iscale(q[2], 2.0)), z
     if geometry == CYLINDER:
-        return ishift(rho2, -t_data[P0] * t_data[P0]), (iscale(q[0], 2.0), iscale(q[1], 2.0), z), z
+        return isub(rho2, _square(t_data[P0])), (iscale(q[0], 2.0), iscale(q[1], 2.0), z), z
     if geometry == CONE:
-        t2 = t_data[P1] * t_data[P1]
-        return (isub(rho2, iscale(z2, t2)), (iscale(q[0], 2.0), iscale(q[1], 2.0), iscale(q[2], -2.0 * t2)), z)
-    big2 = t_data[P0] * t_data[P0]
-    s = ishift(iadd(rho2, z2), big2 - t_data[P1] * t_data[P1])
-    f = isub(isqr(s), iscale(rho2, 4.0 * big2))
+        t2 = _square(t_data[P1])
+        return (isub(rho2, imul(z2, t2)), (iscale(q[0], 2.0), iscale(q[1], 2.0), imul(q[2], iscale(t2, -2.0))), z)
+    big2 = _square(t_data[P0])
+    s = iadd(iadd(rho2, z2), isub(big2, _square(t_data[P1])))
+    f = isub(isqr(s), imul(rho2, iscale(big2, 4.0)))
     s4 = iscale(s, 4.0)
-    g0 = isub(imul(s4, q[0]), iscale(q[0], 8.0 * big2))
-    g1 = isub(imul(s4, q[1]), iscale(q[1], 8.0 * big2))
+    b8 = iscale(big2, 8.0)
+    g0 = isub(imul(s4, q[0]), imul(q[0], b8))
+    g1 = isub(imul(s4, q[1]), imul(q[1], b8))
     return f, (g0, g1, imul(s4, q[2])), s
 
 
@@ -335,10 +342,10 @@ def hessian_form(t_data, q, s, a, b):
     if geometry == CYLINDER:
         return iscale(xy, 2.0)
     if geometry == CONE:
-        return isub(iscale(xy, 2.0), iscale(imul(a[2], b[2]), 2.0 * t_data[P1] * t_data[P1]))
+        return isub(iscale(xy, 2.0), imul(imul(a[2], b[2]), iscale(_square(t_data[P1]), 2.0)))
     full = iadd(xy, imul(a[2], b[2]))
     term = iadd(imul(iscale(s, 4.0), full), iscale(imul(idot(q, a), idot(q, b)), 8.0))
-    return isub(term, iscale(xy, 8.0 * t_data[P0] * t_data[P0]))
+    return isub(term, imul(xy, iscale(_square(t_data[P0]), 8.0)))
 
 
 @jit(forceinline=True)

@@ -1,1 +1,1 @@
-"""What sk.intersect(..., certify=True) proves: the certificate and the arb-ball proofs of the stored points."""
+"""What sk.intersect(..., certify=True) proves: the certificate, the proven boxes round the stored points, the tubes along the curves."""

@@ -1,8 +1,8 @@
 """The certificate of ``sk.intersect(a, b, certify=True)``: each claim about the answer, proven or not, and where.
 
 A claim counts as proven only when a proof in outward-rounded arithmetic covers it: interval arithmetic in the
-compiled search and tubes (spatialkin.kernels.geometry.interval), arb ball arithmetic for the stored points
-(python-flint). Whatever could not be proven is said, claim by claim, with the points where the proof stopped.
+compiled search, the stored points' boxes and the tubes (spatialkin.kernels.geometry.interval,
+spatialkin.kernels.certify). Whatever could not be proven is said, claim by claim, with the points where the proof stopped.
 """
 import math
 from dataclasses import dataclass
@@ -12,9 +12,9 @@ import numpy as np
 from ..curve.status import CONTACT, TANGENT
 from ...kernels.certify import tubes as kt
 from ...kernels.search import topology as ks
+from .certify_points import certify_points
+from .tubes import Chart, tube
 
-#: Python extra that provides the ball arithmetic of the certified path.
-EXTRA = "spatialkin[certify]"
 PROVEN, NOT_PROVEN = "proven", "not proven"
 #: Half-widths (relative to the root's magnitude, at least 1) of the smaller boxes round a search's refined root
 #: that are proven to hold it when its verified box is too large to lie inside a tube.
@@ -87,11 +87,12 @@ class Certificate:
     - **distinct**: the tubes of different curves are proven disjoint (no two returned curves are one component).
     - **points**: every stored point has a finite proven radius (``radii``): a box of that half-width round it
       holds a true intersection point (the Krawczyk test on F_a = 0, F_b = 0 and the plane normal to the curve,
-      in arb ball arithmetic).
+      spatialkin.tracing.certify.certify_points).
     - **arcs**: each curve is covered by a chain of linked parallelograms of the search's parameter plane, each
       proven by a parametric Krawczyk test to hold exactly one arc of the intersection, entering and leaving
       through opposite ends (spatialkin.kernels.certify.tubes): the arcs between the points are proven, and
-      ``distance_bound`` bounds the distance from each stored point and dense sample to the true curve.
+      ``distance_bounds`` bound the distance from each stored point and dense sample (the points the tube was
+      built on, each given a proven box) to the intersection.
     - **singular**: points where the surfaces touch or branches cross (contacts, nodes, apexes, circles or segments
       of tangency) are reported, not proven, with their places.
 
@@ -114,8 +115,8 @@ class Certificate:
     radii : list of ndarray
         Per curve, the proven half-width of the box round each stored point (inf where not proven).
     distance_bounds : list of float
-        Per curve, the proven bound of the distance from its stored points and dense samples to the true curve
-        (inf where its tube is not proven).
+        Per curve, the proven bound of the distance from its stored points and dense samples to the intersection
+        (inf where its tube or a sample's box is not proven).
     tubes : list of Tube or None
         Per curve, its chain of pieces (spatialkin.tracing.certify.tubes.Tube).
 
@@ -140,7 +141,7 @@ class Certificate:
     True
     """
 
-    def __init__(self, claims, topology, radii, tubes, components):
+    def __init__(self, claims, topology, radii, tubes, bounds, components):
         self.claims = {c.name: c for c in claims}
         self.components = int(components)
         self.mode = topology.mode if topology is not None else "closed form"
@@ -150,7 +151,7 @@ class Certificate:
         self.search_seconds = topology.seconds if topology is not None else 0.0
         self.radii = radii
         self.tubes = tubes
-        self.distance_bounds = [t.distance_bound if t is not None and t.proven else math.inf for t in tubes]
+        self.distance_bounds = list(bounds)
 
     @property
     def proven(self):
@@ -225,31 +226,26 @@ class CurveCertificate:
 def certify(a, b, curves, topology, scale):
     """The Certificate of an answer (CurveResults, the curves sk.intersect returns, in order) and the search that
     found it."""
-    try:
-        from .certify_points import certify_points
-    except ImportError as err:          # python-flint missing
-        raise ImportError(f"certify=True needs python-flint: pip install '{EXTRA}' ({err})") from None
-    from .tubes import Chart, tube
     chart = Chart(topology, scale) if topology is not None and topology.chart is not None else None
-    radii, tubes = [], []
+    radii, tubes, bounds = [], [], []
     points_failed, arcs_failed, whole_failed, singular = [], [], [], []
     for i, curve in enumerate(curves):
         regular = curve.length > 0 and curve.status not in (TANGENT, CONTACT)
-        if regular:
-            radii.append(certify_points(a, b, curve.points, curve.sol.tangent(curve.s)))
-        else:
-            radii.append(np.full(len(curve.points), math.inf))
+        radii.append(certify_points(a, b, curve.points, curve.sol.tangent(curve.s)) if regular
+                     else np.full(len(curve.points), math.inf))
         bad = ~np.isfinite(radii[-1])
         if bad.any():
             points_failed.append((f"curve {i}: {int(bad.sum())} of {bad.size} stored points have no proven radius",
                                   curve.points[int(np.argmax(bad))]))
         if not regular:
             tubes.append(None)
+            bounds.append(math.inf)
             singular.append((f"curve {i} is a {curve.status} (the surfaces touch there): not proven",
                              curve.points[0]))
             continue
         t = tube(chart, curve) if chart is not None else None
         tubes.append(t)
+        bounds.append(sample_bound(a, b, curve, t, radii[-1]))
         if t is None or not t.proven:
             arcs_failed.append((f"curve {i}: {t.reason if t is not None else 'no search chart'}",
                                 None if t is None else t.where))
@@ -264,7 +260,18 @@ def certify(a, b, curves, topology, scale):
               claim("arcs", arcs_failed, "every curve lies in a chain of proven pieces"),
               claim("singular", singular + singular_places(topology),
                     "no singular point (contact, node, apex, tangency) was found")]
-    return Certificate(claims, topology, radii, tubes, len(curves))
+    return Certificate(claims, topology, radii, tubes, bounds, len(curves))
+
+
+def sample_bound(a, b, curve, t, radii):
+    """Proven bound of the distance from the curve's stored points and the dense samples of its tube (t) to the
+    intersection: the largest proven box half-width (certify_points) times sqrt(3); inf unless the tube is proven
+    and every sample's box passed."""
+    if t is None or not t.proven:
+        return math.inf
+    dense = np.setdiff1d(t.s, curve.s)
+    dense_radii = certify_points(a, b, curve.sol(dense), curve.sol.tangent(dense)) if len(dense) else radii[:0]
+    return float(max(np.max(radii), np.max(dense_radii, initial=0.0)) * math.sqrt(3.0))
 
 
 def singular_places(topology):
@@ -374,27 +381,8 @@ def distinct_claim(chart, tubes):
 
 def overlapping(chart, first, second):
     """A point (3,) where a piece of first may overlap one of second (shifted by whole periods), or None."""
-    shifts = [(ku * chart.periods[0], kv * chart.periods[1])
-              for ku in ((-1, 0, 1) if chart.periods[0] else (0,)) for kv in ((-1, 0, 1) if chart.periods[1] else (0,))]
-    lo1, hi1 = hull(first)
-    lo2, hi2 = hull(second)
-    for su, sv in shifts:
-        shift = np.array([su, sv])
-        near = np.all(lo1[:, None, :] <= hi2[None, :, :] + shift + 1e-9, axis=2) & \
-            np.all(lo2[None, :, :] + shift - 1e-9 <= hi1[:, None, :], axis=2)
-        for i, j in zip(*np.nonzero(near)):
-            if kt.pieces_overlap(first[i], second[j], su, sv):
-                raw = first[i, [kt.CU, kt.CV]] * chart.units
-                return chart.p.point(raw[0], raw[1])
-    return None
-
-
-def hull(pieces):
-    """(lo (K, 2), hi (K, 2)): the axis-aligned hulls of the pieces (scaled parameters)."""
-    c = pieces[:, [kt.CU, kt.CV]]
-    a = pieces[:, [kt.P, kt.Q]]
-    n = np.stack([-pieces[:, kt.Q], pieces[:, kt.P]], axis=1)
-    corners = [c + t[:, None] * a + w[:, None] * n
-               for t in (pieces[:, kt.T0], pieces[:, kt.T1]) for w in (-pieces[:, kt.H], pieces[:, kt.H])]
-    stack = np.stack(corners)
-    return stack.min(axis=0), stack.max(axis=0)
+    i, _ = kt.tubes_disjoint(first, second, chart.periods)
+    if i < 0:
+        return None
+    raw = first[i, [kt.CU, kt.CV]] * chart.units
+    return chart.p.point(raw[0], raw[1])

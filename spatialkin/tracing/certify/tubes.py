@@ -34,12 +34,12 @@ class Tube:
     pieces : ndarray (K, kernels.certify.tubes.WIDTH)   the pieces, in scaled parameters of the chart
     status : int             kernels.certify.tubes.PROVEN, PIECE_FAILED, LINK_FAILED or BUDGET
     where : ndarray (3,) or None      the curve's point where the chain failed
-    distance_bound : float   proven bound of the distance from every sample of the curve (its stored points and
-                             dense samples) to the true curve (inf unless proven)
+    s : ndarray (M,)         arc lengths of the samples the chain was built on (stored points, dense samples
+                             and refinements)
     """
 
-    def __init__(self, pieces, status, where, distance_bound):
-        self.pieces, self.status, self.where, self.distance_bound = pieces, status, where, distance_bound
+    def __init__(self, pieces, status, where, s):
+        self.pieces, self.status, self.where, self.s = pieces, status, where, s
 
     @property
     def proven(self):
@@ -101,13 +101,13 @@ def tube(chart, curve):
         x, kept = chain_samples(chart, curve, points)
         pieces, status, chord = chain(chart, x, curve.closed, x[-1] - x[0] if curve.closed else np.zeros(2))
         if status == kt.PROVEN:
-            return Tube(pieces, status, None, distance_bound(chart, points[kept], x, pieces))
+            return Tube(pieces, status, None, s)
         at = kept[min(max(chord, 0), len(kept) - 2)]
         lo, hi = max(at - WINDOW, 0), min(at + WINDOW + 1, len(s) - 1)
         mids = 0.5 * (s[lo:hi] + s[lo + 1:hi + 1])
         s = np.sort(np.concatenate([s, mids]))
         points = merged(points, s, mids, np.asarray(curve.sol(mids), dtype=float).reshape(-1, 3))
-    return Tube(pieces, status, points[kept][min(max(chord, 0), len(kept) - 1)], math.inf)
+    return Tube(pieces, status, points[kept][min(max(chord, 0), len(kept) - 1)], s)
 
 
 def merged(points, s_new, mids, fresh):
@@ -155,21 +155,3 @@ def spaced(x):
     keep = np.empty(len(x), dtype=np.int64)
     count = kt.spaced(x, MIN_CHORD * float(np.median(chords)) if len(chords) else 0.0, keep)
     return keep[:count]
-
-
-def distance_bound(chart, points, x, pieces):
-    """Proven bound of the distance from each sample (points (M, 3), its scaled parameters x (M, 2)) to the true
-    curve (inf if one sample has none): the true arc crosses the line through the sample across its chord at some
-    w within the bound of kernels.certify.tubes.sample_bounds, and |P(c + w n) - P(c)| <= |dP/dw| |w|; plus the
-    distance between the sample and P at its float parameters (the inverse's round-off, measured), and a
-    round-off pad."""
-    r = chart.reader
-    out = np.empty((len(x), 2))
-    floor = FLOOR_ULPS * np.finfo(float).eps * max(float(np.max(np.abs(x))), 1.0)
-    kt.sample_bounds(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]), float(chart.units[1]), x,
-                     pieces, len(pieces), floor, out)
-    raw = x * chart.units
-    again = chart.p.point(raw[:, 0], raw[:, 1])
-    inverse_gap = np.linalg.norm(again - points, axis=1)
-    pad = 16.0 * np.finfo(float).eps * float(np.max(np.abs(points)))
-    return float(np.max(out[:, 0] * out[:, 1] + inverse_gap)) + pad

@@ -14,8 +14,6 @@ import pytest
 import spatialkin as sk
 from spatialkin.tracing.certify.certificate import CLAIMS, CertificationError, certify
 
-pytest.importorskip("flint")
-
 
 def looper_pair():
     return sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3)))

@@ -295,7 +295,6 @@ def test_loops_winding_round_a_cylinder_and_a_torus():
 def test_certificate_radii_hold_the_true_points():
     """certify=True: every stored point of sphere ∩ plane has a finite radius, and the true circle (closed form)
     passes within radius * sqrt(3) of it; the certificate counts the components."""
-    pytest.importorskip("flint")
     sphere = sk.Sphere(2.0, sk.Frame((1.0, -1.0, 0.5)))
     plane = sk.Plane(sk.Frame((0, 0, 1.2), sk.rotation_about((0, 1, 0), 0.3)))
     curves = sk.intersect(sphere, plane, certify=True)

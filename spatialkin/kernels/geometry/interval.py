@@ -349,7 +349,7 @@ def hessian_form(t_data, q, s, a, b):
 
 
 @jit(forceinline=True)
-def _placed(m, c, x, pad, cpad):
+def placed(m, c, x, pad, cpad):
     """The interval point q = M x + c in T's frame, padded for the rounding of M (pad) and of c (cpad)."""
     q0 = transform(m, x, pad)
     r = cpad + pad * (abs(c[0]) + abs(c[1]) + abs(c[2]))
@@ -360,7 +360,7 @@ def _placed(m, c, x, pad, cpad):
 def level(s_data, t_data, m, c, pad, cpad, U, V):
     """Enclosure of g alone over the box U x V (the first entry of jet, to the bit)."""
     x = local_first(s_data, U, V, box_trig(s_data, U, V))[0]
-    return implicit_jet(t_data, _placed(m, c, x, pad, cpad))[0]
+    return implicit_jet(t_data, placed(m, c, x, pad, cpad))[0]
 
 
 @jit(forceinline=True)
@@ -368,7 +368,7 @@ def jet_first(s_data, t_data, m, c, pad, cpad, U, V, trig):
     """((g, g_u, g_v), state): enclosures of g and its gradient over the box U x V (the first three entries of
     jet, to the bit; trig is box_trig of the box), and what jet_second reads to finish the jet."""
     x, xu, xv, parts = local_first(s_data, U, V, trig)
-    q = _placed(m, c, x, pad, cpad)
+    q = placed(m, c, x, pad, cpad)
     qu = transform(m, xu, pad)
     qv = transform(m, xv, pad)
     f, grad, s = implicit_jet(t_data, q)

@@ -13,6 +13,7 @@ from ..curve.status import CONTACT, TANGENT
 from ...kernels.certify import tubes as kt
 from ...kernels.search import topology as ks
 from .certify_points import certify_points
+from .trims import Ends, edges, open_curve, outside, q_edge_roots
 from .tubes import Chart, tube
 
 PROVEN, NOT_PROVEN = "proven", "not proven"
@@ -79,11 +80,16 @@ class Certificate:
       root of the conditions each component must meet somewhere (a zero of g on an edge, a seam or a ring, a point
       where the level's tangent is normal to a fixed direction) in boxes, each verified to hold exactly one root or
       left unresolved. Proven when there is no unresolved box and every verified box lies inside a proven tube of a
-      returned curve (so its root is a point of that curve), with no distance tolerance involved. A pair the search
+      returned curve (so its root is a point of that curve) or strictly outside the other surface's trims, with no
+      distance tolerance involved; the roots found on the other surface's trim edges are counted against the proven
+      crossings there and the roots outside the first surface's trims. A pair the search
       read as coaxial or ruled (a symmetry decided within a tolerance) is proven complete only where the symmetry is
       exact whatever the placement (two spheres, a sphere and a plane).
     - **one_component**: a closed curve's tube closes on itself, so the curve is a whole closed component. An open
-      curve's ends on trim edges are not proven yet.
+      curve is one whole piece of its component within the trims when each end is a proven crossing of a trim
+      edge inside the tube (the Krawczyk test on g = 0 and the edge), the arc crosses that edge once in the pieces
+      that touch it, and every other piece lies strictly inside every trim (spatialkin.tracing.certify.trims; trims
+      of length parameters only: angular trims are not proven).
     - **distinct**: the tubes of different curves are proven disjoint (no two returned curves are one component).
     - **points**: every stored point has a finite proven radius (``radii``): a box of that half-width round it
       holds a true intersection point (the Krawczyk test on F_a = 0, F_b = 0 and the plane normal to the curve,
@@ -227,6 +233,8 @@ def certify(a, b, curves, topology, scale):
     """The Certificate of an answer (CurveResults, the curves sk.intersect returns, in order) and the search that
     found it."""
     chart = Chart(topology, scale) if topology is not None and topology.chart is not None else None
+    trims, unsupported = edges(topology, chart) if chart is not None else ([], [])
+    ends = Ends()
     radii, tubes, bounds = [], [], []
     points_failed, arcs_failed, whole_failed, singular = [], [], [], []
     for i, curve in enumerate(curves):
@@ -250,11 +258,11 @@ def certify(a, b, curves, topology, scale):
             arcs_failed.append((f"curve {i}: {t.reason if t is not None else 'no search chart'}",
                                 None if t is None else t.where))
             whole_failed.append((f"curve {i}: its tube is not proven", None if t is None else t.where))
-        elif not curve.closed:
-            whole_failed.append((f"curve {i} is open: its ends on the trims are not proven to be where the "
-                                 "component leaves them", curve.points[0]))
-    claims = [complete_claim(topology, chart, tubes, curves),
-              claim("one_component", whole_failed, "every curve's tube closes on itself"),
+        elif not curve.closed and not open_curve(chart, trims, unsupported, t, curve, ends, i):
+            whole_failed.append(ends.failures[-1])
+    claims = [complete_claim(topology, chart, tubes, curves, trims, unsupported, ends),
+              claim("one_component", whole_failed, "every closed curve's tube closes on itself, every open "
+                    "curve runs between two proven crossings of trim edges"),
               distinct_claim(chart, tubes),
               claim("points", points_failed, "every stored point has a proven radius"),
               claim("arcs", arcs_failed, "every curve lies in a chain of proven pieces"),
@@ -286,8 +294,10 @@ def singular_places(topology):
     return out
 
 
-def complete_claim(topology, chart, tubes, curves):
-    """No component missed: every verified root box of the searches inside a proven piece, no unresolved box."""
+def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends):
+    """No component missed: every verified root box of the searches inside a proven piece or proven outside Q's
+    trims, the roots on Q's trim edges counted against the proven crossings there (trims.q_edge_roots), no
+    unresolved box."""
     if topology is None:
         return claim("complete", [("no search was run (closed form)", None)], "")
     failures = []
@@ -304,11 +314,12 @@ def complete_claim(topology, chart, tubes, curves):
         if not len(found.verified):
             continue
         if reader.s is not chart.p:
-            for box in found.verified:
-                failures.append(("a root on a trim edge of the other surface is not placed in a tube",
-                                 reader.s.point(0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]))))
+            failures += q_edge_roots(chart, topology, found, trims, unsupported, ends)
             continue
+        q_trims = [e for e in trims if e.owner == "Q"]
         for i, raw in enumerate(found.verified):
+            if outside(chart.reader, raw, q_trims):
+                continue
             if not any(kt.point_in_pieces(pieces, len(pieces), chart.scaled_boxes(box), chart.periods[0],
                                           chart.periods[1]) >= 0 for box in candidate_boxes(found, i)):
                 failures.append(("a root of the search lies in no proven tube",
@@ -332,7 +343,7 @@ def candidate_boxes(found, i):
     kinds = np.empty(16, dtype=np.int64)
     for rel in SHRINK:
         if found.kind == "line":
-            fixed, value = found.args
+            fixed, value = found.args[:2]
             j = 1 - fixed
             eps = rel * max(1.0, abs(root[j]))
             lo, hi = max(box[2 * j], root[j] - eps), min(box[2 * j + 1], root[j] + eps)

@@ -36,10 +36,11 @@ class Tube:
     where : ndarray (3,) or None      the curve's point where the chain failed
     s : ndarray (M,)         arc lengths of the samples the chain was built on (stored points, dense samples
                              and refinements)
+    x : ndarray (L, 2)       the scaled parameters of the samples the chain followed (unwrapped)
     """
 
-    def __init__(self, pieces, status, where, s):
-        self.pieces, self.status, self.where, self.s = pieces, status, where, s
+    def __init__(self, pieces, status, where, s, x):
+        self.pieces, self.status, self.where, self.s, self.x = pieces, status, where, s, x
 
     @property
     def proven(self):
@@ -101,13 +102,13 @@ def tube(chart, curve):
         x, kept = chain_samples(chart, curve, points)
         pieces, status, chord = chain(chart, x, curve.closed, x[-1] - x[0] if curve.closed else np.zeros(2))
         if status == kt.PROVEN:
-            return Tube(pieces, status, None, s)
+            return Tube(pieces, status, None, s, x)
         at = kept[min(max(chord, 0), len(kept) - 2)]
         lo, hi = max(at - WINDOW, 0), min(at + WINDOW + 1, len(s) - 1)
         mids = 0.5 * (s[lo:hi] + s[lo + 1:hi + 1])
         s = np.sort(np.concatenate([s, mids]))
         points = merged(points, s, mids, np.asarray(curve.sol(mids), dtype=float).reshape(-1, 3))
-    return Tube(pieces, status, points[kept][min(max(chord, 0), len(kept) - 1)], s)
+    return Tube(pieces, status, points[kept][min(max(chord, 0), len(kept) - 1)], s, x)
 
 
 def merged(points, s_new, mids, fresh):

@@ -176,10 +176,10 @@ class Topology:
 
 @dataclass
 class RootBoxes:
-    """The boxes one search kept: reader (its Reader), kind ('line': g on a parameter line, args (fixed, value);
-    'extremal': g = 0 and the level's tangent normal to (du, dv), args (du, dv)), verified (K, 4) boxes (u lo,
-    u hi, v lo, v hi of reader.s's parameters) each holding exactly one root, the refined roots (K, 2) inside them,
-    and the unresolved boxes (L, 4)."""
+    """The boxes one search kept: reader (its Reader), kind ('line': g on a parameter line, args (fixed, value,
+    t0, t1: the other parameter's range searched); 'extremal': g = 0 and the level's tangent normal to (du, dv),
+    args (du, dv)), verified (K, 4) boxes (u lo, u hi, v lo, v hi of reader.s's parameters) each holding exactly
+    one root, the refined roots (K, 2) inside them, and the unresolved boxes (L, 4)."""
     reader: object
     kind: str
     args: tuple
@@ -269,8 +269,8 @@ class Reader:
         uv[:, 2 * fixed:2 * fixed + 2] = value
         uv[:, 2 - 2 * fixed:4 - 2 * fixed] = found[:n]
         roots = line_params(fixed, value, out[:verified, 0])
-        topo.root_boxes.append(RootBoxes(self, "line", (int(fixed), float(value)), uv[:verified], roots,
-                                         uv[verified:n]))
+        args = (int(fixed), float(value), float(t0), float(t1))
+        topo.root_boxes.append(RootBoxes(self, "line", args, uv[:verified], roots, uv[verified:n]))
         return out[:verified, 0].copy(), out[verified:n, 0].copy()
 
     def extremal(self, box, unit, topo):

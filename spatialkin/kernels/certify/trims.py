@@ -1,0 +1,142 @@
+"""Proven trim crossings of a curve of the level g = F_T(S(u, v)) = 0, in S's (scaled) parameter plane.
+
+A trim edge is the zero set of e: a parameter of S held at a value (e = u - u0 or v - v0), or a local length
+coordinate of T (a plane's x or y, a cylinder's or cone's z) held at a value (e = q_axis - value, q = M s + c the
+point of S in T's frame, spatialkin.kernels.geometry.interval). ``crossing`` proves, by the Krawczyk operator of the
+2 x 2 system (g, e) on a box of S's parameters, that the box holds exactly one point of the curve on the edge;
+``edge_rate`` encloses de/dt along the arc of a tube piece (spatialkin.kernels.certify.tubes), so that a rate of one
+sign proves that the arc crosses the edge at most once there; ``trim_coordinate`` encloses e over a piece, to prove
+the piece wholly on one side of an edge.
+
+References
+----------
+R. Krawczyk, "Newton-Algorithmen zur Bestimmung von Nullstellen mit Fehlerschranken", Computing 4 (1969) 187-201.
+R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, ch. 8.
+"""
+import math
+
+from ..._lib.jit import jit
+from ..geometry.interval import (box_trig, down, iadd, idot, implicit_jet, imul, iscale, ishift, isub,
+                                 local_first, placed, point, transform, up)
+from .tubes import CU, CV, H, P, Q, T0, T1
+
+#: An edge of S's own parameters: EDGE_U (u = value) or EDGE_V (v = value); 0, 1, 2: T's local coordinate.
+EDGE_U, EDGE_V = -1, -2
+
+
+@jit(forceinline=True)
+def _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value):
+    """((g, g_u, g_v), (e, e_u, e_v)) over the raw parameter box U x V."""
+    x, xu, xv, _ = local_first(s_data, U, V, box_trig(s_data, U, V))
+    q = placed(m, c, x, pad, cpad)
+    qu = transform(m, xu, pad)
+    qv = transform(m, xv, pad)
+    f, grad, _ = implicit_jet(t_data, q)
+    g = (f, idot(grad, qu), idot(grad, qv))
+    if edge == EDGE_U:
+        e = (ishift(U, -value), (1.0, 1.0), (0.0, 0.0))
+    elif edge == EDGE_V:
+        e = (ishift(V, -value), (0.0, 0.0), (1.0, 1.0))
+    else:
+        e = (ishift(q[edge], -value), qu[edge], qv[edge])
+    return g, e
+
+
+@jit
+def crossing(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, cu, cv, h):
+    """True when the box (cu, cv) +- h (scaled parameters; su, sv the power-of-two units) holds exactly one solution
+    of g = 0, e = 0 (the Krawczyk test)."""
+    Uc = (cu * su, cu * su)
+    Vc = (cv * sv, cv * sv)
+    gc, ec = _system(s_data, t_data, m, c, pad, cpad, Uc, Vc, edge, value)
+    # the Jacobian at the centre, in scaled parameters, and its float inverse
+    j00 = 0.5 * (gc[1][0] + gc[1][1]) * su
+    j01 = 0.5 * (gc[2][0] + gc[2][1]) * sv
+    j10 = 0.5 * (ec[1][0] + ec[1][1]) * su
+    j11 = 0.5 * (ec[2][0] + ec[2][1]) * sv
+    det = j00 * j11 - j01 * j10
+    if det == 0.0 or not math.isfinite(det):
+        return False
+    y00, y01, y10, y11 = j11 / det, -j01 / det, -j10 / det, j00 / det
+    B = (-h, h)
+    U = iscale(iadd(point(cu), B), su)
+    V = iscale(iadd(point(cv), B), sv)
+    g, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
+    gu, gv = iscale(g[1], su), iscale(g[2], sv)
+    eu, ev = iscale(e[1], su), iscale(e[2], sv)
+    for row in range(2):
+        ya, yb = (y00, y01) if row == 0 else (y10, y11)
+        step = iadd(iscale(gc[0], ya), iscale(ec[0], yb))
+        m0 = isub(point(1.0 if row == 0 else 0.0), iadd(iscale(gu, ya), iscale(eu, yb)))
+        m1 = isub(point(0.0 if row == 0 else 1.0), iadd(iscale(gv, ya), iscale(ev, yb)))
+        k = isub(iadd(imul(m0, B), imul(m1, B)), step)
+        if not (-h < k[0] and k[1] < h):
+            return False
+    return True
+
+
+@jit
+def crossing_radius(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, cu, cv, h0, cap):
+    """The smallest half-width h (from h0, growing eightfold up to cap) whose box round (cu, cv) passes crossing;
+    inf when none does."""
+    h = h0
+    while h <= cap:
+        if crossing(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, cu, cv, h):
+            return h
+        h *= 8.0
+    return math.inf
+
+
+@jit
+def _piece_box(piece, su, sv):
+    """(U, V): the raw parameter intervals of the piece's parallelogram."""
+    p, q = piece[P], piece[Q]
+    T = (piece[T0], piece[T1])
+    W = (-piece[H], piece[H])
+    xu = iadd(iadd(point(piece[CU] + 0.0), iscale(T, p)), iscale(W, -q))
+    xv = iadd(iadd(point(piece[CV] + 0.0), iscale(T, q)), iscale(W, p))
+    return iscale(xu, su), iscale(xv, sv)
+
+
+@jit
+def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, piece):
+    """(lo, hi): an enclosure of de/dt along the arc of the piece (t its parameter along a): the arc's direction
+    (du/dt, dv/dt) = a + n dw/dt, dw/dt = -phi_t / phi_w, over the piece."""
+    U, V = _piece_box(piece, su, sv)
+    g, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
+    p, q = piece[P], piece[Q]
+    gu, gv = iscale(g[1], su), iscale(g[2], sv)            # derivatives in scaled parameters
+    eu, ev = iscale(e[1], su), iscale(e[2], sv)
+    phi_t = iadd(iscale(gu, p), iscale(gv, q))
+    phi_w = iadd(iscale(gu, -q), iscale(gv, p))
+    if phi_w[0] <= 0.0 <= phi_w[1]:
+        return -math.inf, math.inf
+    inv = (down(1.0 / phi_w[1]), up(1.0 / phi_w[0]))       # (phi_w keeps one sign: 1 / hi <= 1 / lo)
+    dw = iscale(imul(phi_t, inv), -1.0)
+    du = iadd(point(p), iscale(dw, -q))
+    dv = iadd(point(q), iscale(dw, p))
+    rate = iadd(imul(eu, du), imul(ev, dv))
+    return rate[0], rate[1]
+
+
+@jit
+def trim_coordinate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, piece):
+    """(lo, hi): an enclosure of e over the piece's parallelogram."""
+    U, V = _piece_box(piece, su, sv)
+    _, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
+    return e[0][0], e[0][1]
+
+
+@jit
+def trim_coordinates(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, pieces, out):
+    """trim_coordinate of every piece (K, WIDTH), into out (K, 2)."""
+    for i in range(pieces.shape[0]):
+        out[i, 0], out[i, 1] = trim_coordinate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, pieces[i])
+
+
+
+@jit
+def box_trim(s_data, t_data, m, c, pad, cpad, box, edge, value):
+    """(lo, hi): an enclosure of e over the raw parameter box (u lo, u hi, v lo, v hi) of S."""
+    _, e = _system(s_data, t_data, m, c, pad, cpad, (box[0], box[1]), (box[2], box[3]), edge, value)
+    return e[0][0], e[0][1]

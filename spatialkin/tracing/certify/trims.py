@@ -1,0 +1,200 @@
+"""Trims in the certificate: proven crossings where open curves end, and roots proven outside a trimmed patch.
+
+The trims proven are those of length parameters (a plane's u and v, a cylinder's or cone's v): in the search's
+chart of P they are lines of P's parameters, and Q's are levels of a local coordinate of Q at P(u, v)
+(spatialkin.kernels.certify.trims). Angular trims, and the trims of a P searched in another chart than its own
+(a sphere turned for the search), are not proven.
+"""
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...geometry.traits import LENGTH, traits
+from ...kernels.certify import trims as kr
+from ...kernels.certify import tubes as kt
+
+#: First and largest half-width of a crossing's box, relative to max(1, |x|) in scaled parameters.
+CROSSING_FIRST, CROSSING_CAP = 1e-12, 1e-4
+#: An end lies on an edge when |e| there is below this many times the curve's tolerance.
+ON_EDGE = 1e3
+
+
+@dataclass(frozen=True)
+class Edge:
+    """A trim edge: of P or Q (owner), its parameter held (fixed: 0 u, 1 v) at value, e's code in the kernels
+    (kernels.certify.trims: EDGE_U, EDGE_V for P's own parameters, Q's local axis otherwise; for Q's roots read
+    on Q, P's local axis: p_axis), and the side of the patch (inside: +1 where e > 0 inside, -1 where e < 0)."""
+    owner: str
+    fixed: int
+    value: float
+    code: int
+    inside: float
+
+
+def edges(topology, chart):
+    """(edges, unsupported): the trim edges of P and Q that can be proven (Edge), and the reasons the others
+    cannot."""
+    out, unsupported = [], []
+    for owner, surface in (("P", topology.P), ("Q", topology.Q)):
+        kind = traits(surface)
+        for j, (lo, hi) in enumerate(surface.bounds):
+            for bound, inside in ((lo, 1.0), (hi, -1.0)):
+                if not math.isfinite(bound):
+                    continue
+                axis = kind.parameter_axes[j]
+                if kind.units[j] != LENGTH or axis is None:
+                    unsupported.append(f"an angular trim of {owner} ({'uv'[j]} = {bound:g}) is not proven")
+                elif owner == "P" and chart.p is not surface:
+                    unsupported.append("P's trims in the chart of its search are not proven")
+                else:
+                    code = (kr.EDGE_U, kr.EDGE_V)[j] if owner == "P" else axis
+                    out.append(Edge(owner, j, float(bound), code, inside))
+    return out, unsupported
+
+
+def trim_value(reader, box, edge):
+    """(lo, hi): e of the edge over the raw parameter box (4,) of reader.s (reader: P read against Q, so that a
+    Q edge's code is Q's local axis)."""
+    return kr.box_trim(reader.s.data, reader.t.data, reader.m, reader.c, reader.pad, reader.cpad,
+                       np.ascontiguousarray(box, dtype=float), edge.code, edge.value)
+
+
+def outside(reader, box, trims):
+    """True when the raw box of reader.s lies strictly outside one of the edges' patches."""
+    for edge in trims:
+        lo, hi = trim_value(reader, box, edge)
+        if (edge.inside > 0 and hi < 0.0) or (edge.inside < 0 and lo > 0.0):
+            return True
+    return False
+
+
+def strictly_inside(reader, box, trims):
+    """True when the raw box of reader.s lies strictly inside every edge's patch."""
+    for edge in trims:
+        lo, hi = trim_value(reader, box, edge)
+        if not ((edge.inside > 0 and lo > 0.0) or (edge.inside < 0 and hi < 0.0)):
+            return False
+    return True
+
+
+class Ends:
+    """The proven crossings of every open curve's ends: crossings[(owner, fixed, value)] lists the scaled boxes
+    (4,) of the crossings on that edge; failures lists (reason, point) for the open curves not proven."""
+
+    def __init__(self):
+        self.crossings = {}
+        self.failures = []
+
+
+def open_curve(chart, trims, unsupported, tube, curve, ends, index):
+    """Prove that an open curve (its tube proven) is one whole piece of its component within the trims: each end a
+    proven crossing of a trim edge lying in the tube, the arc crossing that edge once in every piece that touches it
+    (each such piece holding the crossing), and every other piece strictly inside every trim. Records the crossings
+    in ends; returns True when proven, else appends the reason to ends.failures."""
+    if unsupported:
+        ends.failures.append((f"curve {index}: {unsupported[0]}", curve.points[0]))
+        return False
+    r = chart.reader
+    su, sv = (float(u) for u in chart.units)
+    pieces = tube.pieces
+    found = []
+    for end, x in ((curve.points[0], tube.x[0]), (curve.points[-1], tube.x[-1])):
+        crossing = end_crossing(chart, trims, curve, x)
+        if crossing is None:
+            ends.failures.append((f"curve {index}: an end is not a proven crossing of a trim edge", end))
+            return False
+        found.append(crossing)
+    for edge in trims:
+        boxes = [box for e, box in found if e == edge]
+        values = np.empty((len(pieces), 2))
+        kr.trim_coordinates(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, edge.code, edge.value, pieces,
+                            values)
+        inner = values[:, 0] > 0.0 if edge.inside > 0 else values[:, 1] < 0.0
+        for k in np.flatnonzero(~inner):
+            holds = any(kt.point_in_pieces(pieces[k:k + 1], 1, box, chart.periods[0], chart.periods[1]) == 0
+                        for box in boxes)
+            lo, hi = kr.edge_rate(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, edge.code, edge.value,
+                                  pieces[k])
+            if not holds or lo <= 0.0 <= hi:
+                raw = pieces[k, [kt.CU, kt.CV]] * chart.units
+                ends.failures.append((f"curve {index}: its tube comes near a trim edge ({edge.owner}'s "
+                                      f"{'uv'[edge.fixed]} = {edge.value:g}) away from its ends",
+                                      chart.p.point(raw[0], raw[1])))
+                return False
+    for edge, box in found:
+        ends.crossings.setdefault((edge.owner, edge.fixed, edge.value), []).append(box)
+    return True
+
+
+def end_crossing(chart, trims, curve, x):
+    """(edge, scaled box (4,)) of a proven crossing at the end whose scaled parameters are x, or None."""
+    r = chart.reader
+    raw = x * chart.units
+    point_box = np.array([raw[0], raw[0], raw[1], raw[1]])
+    near = []
+    for edge in trims:
+        lo, hi = trim_value(r, point_box, edge)
+        gap = max(abs(lo), abs(hi))
+        if gap <= ON_EDGE * curve.tolerance:
+            near.append((gap, edge))
+    for _, edge in sorted(near, key=lambda item: item[0]):
+        size = max(1.0, float(np.max(np.abs(x))))
+        h = kr.crossing_radius(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]),
+                               float(chart.units[1]), edge.code, edge.value, float(x[0]), float(x[1]),
+                               CROSSING_FIRST * size, CROSSING_CAP * size)
+        if math.isfinite(h):
+            return edge, np.array([x[0] - h, x[0] + h, x[1] - h, x[1] + h])
+    return None
+
+
+def q_edge_roots(chart, topology, found, trims, unsupported, ends):
+    """(text, point) failures for the roots of one search on a trim edge of Q (found: RootBoxes read on Q): every
+    root must be one of the proven crossings on that edge (within the range searched) or lie strictly outside
+    P's trims; counted, since the crossings are distinct roots of that search and it holds no other."""
+    fixed, value, t0, t1 = found.args
+    where = lambda box: found.reader.s.point(0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]))  # noqa: E731
+    if unsupported:
+        return [(f"roots on Q's trim edge: {unsupported[0]}", where(found.verified[0]))]
+    q_kind = traits(topology.Q)
+    p_trims = [e for e in trims if e.owner == "P"]
+    # P's trims read on Q: P's local axes (the reader of Q against P)
+    p_kind = traits(topology.P)
+    on_q = [Edge("P", e.fixed, e.value, p_kind.parameter_axes[e.fixed], e.inside) for e in p_trims]
+    outside_count = sum(outside(found.reader, box, on_q) for box in found.verified)
+    crossings = ends.crossings.get(("Q", fixed, value), [])
+    other = 1 - fixed
+    r = chart.reader
+    for box in crossings:
+        raw = box * np.repeat(chart.units, 2)
+        if not strictly_inside(r, raw, p_trims):
+            return [("a crossing of Q's trim edge is not proven inside P's trims", where(found.verified[0]))]
+        if q_kind.units[other] == LENGTH:
+            span = Edge("Q", other, 0.0, q_kind.parameter_axes[other], 1.0)
+            lo, hi = trim_value(r, raw, span)
+            if not (t0 < lo and hi < t1):
+                return [("a crossing of Q's trim edge is not proven within the range searched",
+                         where(found.verified[0]))]
+        elif t1 - t0 < 2.0 * math.pi:
+            return [("Q's trim edge was searched over part of a turn", where(found.verified[0]))]
+    if not pairwise_apart(crossings, chart):
+        return [("two crossings of Q's trim edge are not proven distinct", where(found.verified[0]))]
+    if outside_count + len(crossings) != len(found.verified):
+        return [(f"{len(found.verified)} roots on Q's trim edge, {len(crossings)} proven on returned curves and "
+                 f"{outside_count} outside P's trims", where(found.verified[0]))]
+    return []
+
+
+def pairwise_apart(boxes, chart):
+    """True when the scaled boxes (4,) are pairwise disjoint (also shifted by whole periods)."""
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            for ku in ((-1, 0, 1) if chart.periods[0] else (0,)):
+                for kv in ((-1, 0, 1) if chart.periods[1] else (0,)):
+                    su, sv = ku * chart.periods[0], kv * chart.periods[1]
+                    a, b = boxes[i], boxes[j]
+                    slack = 1e-12 * (1.0 + abs(su) + abs(sv) + float(np.max(np.abs(a))))
+                    if not (a[1] + slack < b[0] + su or b[1] + su + slack < a[0] or
+                            a[3] + slack < b[2] + sv or b[3] + sv + slack < a[2]):
+                        return False
+    return True

@@ -2,8 +2,8 @@
 
 The trims proven are those of length parameters (a plane's u and v, a cylinder's or cone's v): in the search's
 chart of P they are lines of P's parameters, and Q's are levels of a local coordinate of Q at P(u, v)
-(spatialkin.kernels.certify.trims). Angular trims, and the trims of a P searched in another chart than its own
-(a sphere turned for the search), are not proven.
+(spatialkin.kernels.certify.trims). The face trims (angular ranges, a plane's disc or annulus), and the trims of a
+P searched in another chart than its own, are not proven.
 """
 import math
 from dataclasses import dataclass
@@ -38,6 +38,8 @@ def edges(topology, chart):
     out, unsupported = [], []
     for owner, surface in (("P", topology.P), ("Q", topology.Q)):
         kind = traits(surface)
+        if surface.region:
+            unsupported.append(f"the face trims of {owner} (angular ranges, a disc) are not proven")
         for j, (lo, hi) in enumerate(surface.bounds):
             for bound, inside in ((lo, 1.0), (hi, -1.0)):
                 if not math.isfinite(bound):
@@ -106,25 +108,54 @@ def open_curve(chart, trims, unsupported, tube, curve, ends, index):
             return False
         found.append(crossing)
     for edge in trims:
-        boxes = [box for e, box in found if e == edge]
         values = np.empty((len(pieces), 2))
         kr.trim_coordinates(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, edge.code, edge.value, pieces,
                             values)
         inner = values[:, 0] > 0.0 if edge.inside > 0 else values[:, 1] < 0.0
-        for k in np.flatnonzero(~inner):
-            holds = any(kt.point_in_pieces(pieces[k:k + 1], 1, box, chart.periods[0], chart.periods[1]) == 0
-                        for box in boxes)
-            lo, hi = kr.edge_rate(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, edge.code, edge.value,
-                                  pieces[k])
-            if not holds or lo <= 0.0 <= hi:
-                raw = pieces[k, [kt.CU, kt.CV]] * chart.units
-                ends.failures.append((f"curve {index}: its tube comes near a trim edge ({edge.owner}'s "
-                                      f"{'uv'[edge.fixed]} = {edge.value:g}) away from its ends",
-                                      chart.p.point(raw[0], raw[1])))
-                return False
+        reason = touching_runs(chart, edge, pieces, inner, found)
+        if reason is not None:
+            k = int(np.flatnonzero(~inner)[0]) if (~inner).any() else 0
+            raw = pieces[k, [kt.CU, kt.CV]] * chart.units
+            ends.failures.append((f"curve {index}: {reason} ({edge.owner}'s {'uv'[edge.fixed]} = {edge.value:g})",
+                                  chart.p.point(raw[0], raw[1])))
+            return False
     for edge, box in found:
         ends.crossings.setdefault((edge.owner, edge.fixed, edge.value), []).append(box)
     return True
+
+
+def touching_runs(chart, edge, pieces, inner, found):
+    """None when the pieces not strictly inside the edge's patch (inner False) form a run at the start and one at
+    the end of the chain, each holding that end's proven crossing of this edge and crossing the edge in one
+    direction (de/dt of one sign over every piece of the run: e is then monotone along the run's arc, which meets
+    the edge once, at the crossing); else why not."""
+    touching = np.flatnonzero(~inner)
+    if not len(touching):
+        return None
+    count = len(pieces)
+    head = 0
+    while head < count and not inner[head]:
+        head += 1
+    tail = count
+    while tail > 0 and not inner[tail - 1]:
+        tail -= 1
+    if head >= tail or np.any((touching >= head) & (touching < tail)):
+        return "its tube comes near a trim edge away from its ends"
+    r = chart.reader
+    su, sv = (float(u) for u in chart.units)
+    for run, (end_edge, box) in ((range(0, head), found[0]), (range(tail, count), found[1])):
+        if not len(run):
+            continue
+        if end_edge != edge:
+            return "an end of its tube comes near a trim edge other than the one it crosses"
+        if not any(kt.point_in_pieces(pieces[k:k + 1], 1, box, chart.periods[0], chart.periods[1]) == 0
+                   for k in run):
+            return "the crossing at an end lies in no piece of the tube that touches the edge"
+        rates = np.array([kr.edge_rate(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, edge.code,
+                                       edge.value, pieces[k]) for k in run])
+        if not (np.all(rates[:, 0] > 0.0) or np.all(rates[:, 1] < 0.0)):
+            return "its arc is not proven to cross the trim edge once"
+    return None
 
 
 def end_crossing(chart, trims, curve, x):

@@ -112,12 +112,13 @@ def test_moved_point_is_not_vouched_for(factor):
 
 
 def test_strict_raises_with_the_failed_claims():
-    """certify='strict' raises CertificationError naming the claims it could not prove (a strip of a plane cuts a
-    sphere's circle into two arcs: their ends on the trims are not proven); True returns them, said not proven."""
-    pair = (sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.3)), u_range=(-0.5, 0.5), v_range=(-2.0, 2.0)))
+    """certify='strict' raises CertificationError naming the claims it could not prove (a sphere's angular range
+    cuts a circle into an arc: its ends on a face trim are not proven); True returns them, said not proven."""
+    pair = (sk.Sphere(1.0, u_range=(-1.0, 1.0)), sk.Plane(sk.Frame((0.0, 0.0, 0.3))))
     loose = sk.intersect(*pair, certify=True)
-    assert len(loose) == 2 and not loose.certificate.proven
+    assert len(loose) == 1 and not loose.certificate.proven
     assert not loose.certificate.claims["one_component"].proven
+    assert "face trims" in loose.certificate.claims["one_component"].detail
     with pytest.raises(CertificationError) as err:
         sk.intersect(*pair, certify="strict")
     assert not err.value.certificate.proven
@@ -152,3 +153,65 @@ def test_clearly_separated_loops_are_proven():
     for eps, truth in ((-1e-2, 2), (1e-2, 1)):
         curves = sk.intersect(*sphere_cylinder(eps), certify=True)
         assert len(curves) == truth and curves.certificate.proven, curves.certificate
+
+
+def strip_pair():
+    """A unit sphere and the plane z = 0.3 trimmed to the strip |x| <= 0.5: two arcs of the circle of radius
+    sqrt(0.91), ending on the strip's edges."""
+    return sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.3)), u_range=(-0.5, 0.5), v_range=(-2.0, 2.0))
+
+
+def test_arcs_cut_by_a_strip_are_proven_whole():
+    """Both arcs proven, each ending on an edge of the strip (x = +-0.5 to 1e-12), their lengths the closed form
+    rho (pi - 2 acos(0.5 / rho)) each (1e-9)."""
+    curves = sk.intersect(*strip_pair(), certify=True)
+    assert len(curves) == 2 and curves.certificate.proven, curves.certificate
+    rho = math.sqrt(0.91)
+    for curve in curves:
+        ends = curve.points[[0, -1]]
+        assert np.allclose(np.abs(ends[:, 0]), 0.5, atol=1e-12, rtol=0)
+        assert abs(curve.length - rho * (math.pi - 2 * math.acos(0.5 / rho))) < 1e-9
+
+
+def test_a_cut_short_arc_is_not_whole():
+    """One arc cut short (its last third dropped): its end is on no trim edge, so it is not one whole component,
+    and the roots of the search on that edge are not all accounted for."""
+    a, b = strip_pair()
+    curves = sk.intersect(a, b, certify=True)
+    result = curves[0].result
+    keep = len(result.points) * 2 // 3
+    short = dataclasses.replace(result, points=result.points[:keep], s=result.s[:keep], params=result.params[:keep],
+                                length=float(result.s[keep - 1]))
+    cert = certify(a, b, [short, curves[1].result], curves[0].topology, 1.0)
+    assert not cert.proven and not cert.claims["one_component"].proven
+
+
+def test_a_closed_form_answer_is_not_complete():
+    """The answer of the closed-form path comes with no search: certifying it proves no completeness."""
+    a, b = strip_pair()
+    curves = sk.intersect(a, b)
+    cert = certify(a, b, [c.result for c in curves], curves[0].topology, 1.0)
+    assert not cert.proven and not cert.claims["complete"].proven
+
+
+def test_a_dropped_arc_leaves_roots_unaccounted():
+    """One of the two arcs dropped: the roots of the search on it are neither in a tube nor outside the trims."""
+    a, b = strip_pair()
+    curves = sk.intersect(a, b, certify=True)
+    cert = certify(a, b, [curves[0].result], curves[0].topology, 1.0)
+    assert not cert.proven and not cert.claims["complete"].proven
+
+
+def test_trimmed_cylinder_rims_against_brute_force():
+    """A sphere and a cylinder off its centre trimmed below the sphere's top, in both argument orders: the curves
+    end on the cylinder's rim; proven, with the brute-force oracle's number of components."""
+    from tests.oracles.ssi import brute_force, curve_components, dense_points
+    sphere = sk.Sphere(1.0, sk.Frame((0.1, -0.2, 0.05)))
+    cylinder = sk.Cylinder(0.45, sk.Frame((0.35, 0.0, 0.0), sk.rotation_about((1.0, 0.0, 0.0), 0.3)),
+                           v_range=(-0.6, 0.7))
+    truth = brute_force(sphere, cylinder)["count"]
+    for pair in ((sphere, cylinder), (cylinder, sphere)):
+        curves = sk.intersect(*pair, certify=True)
+        assert curves.certificate.proven, curves.certificate.failed
+        count, _ = curve_components(curves, 1.0, 2e-6, [dense_points(c, 1.0) for c in curves])
+        assert count == truth

@@ -211,7 +211,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         stages.switch("result")
     in_sk_order(curves)
     if certify:
-        return certified(a, b, curves, topo, settings.scale, certify)
+        return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify)
     return [Curve(c, topology=topo) for c in curves]
 
 
@@ -222,10 +222,10 @@ class Curves(list):
     certificate = None
 
 
-def certified(a, b, results, topo, scale, mode):
+def certified(a, b, results, topo, scale, tolerance, mode):
     """The Curves of the results (CurveResults), each with its view of the answer's certificate; with mode
     'strict', CertificationError when a claim is not proven."""
-    answer = certify_answer(a, b, results, topo, scale)
+    answer = certify_answer(a, b, results, topo, scale, tolerance)
     if mode == "strict" and not answer.proven:
         raise CertificationError(answer)
     out = Curves(Curve(c, topology=topo, certificate=CurveCertificate(answer, i)) for i, c in enumerate(results))

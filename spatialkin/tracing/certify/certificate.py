@@ -13,6 +13,7 @@ from ..curve.status import CONTACT, TANGENT
 from ...kernels.certify import tubes as kt
 from ...kernels.search import topology as ks
 from .certify_points import certify_points
+from ..search.topology import TopologyError, search
 from .trims import Ends, edges, open_curve, outside, q_edge_roots
 from .tubes import Chart, tube
 
@@ -231,11 +232,23 @@ class CurveCertificate:
                 f"points proven {proven}/{self.radii.size}, distance <= {self.distance_bound:.2e})")
 
 
-def certify(a, b, curves, topology, scale):
+def certify(a, b, curves, topology, scale, tolerance=None):
     """The Certificate of an answer (CurveResults, the curves sk.intersect returns, in order) and the search that
-    found it."""
-    chart = Chart(topology, scale) if topology is not None and topology.chart is not None else None
-    trims, unsupported = edges(topology, chart) if chart is not None else ([], [])
+    found it (scale and tolerance: the scene's, spatialkin.tracing.march.trace.scene_lengths). A search that read
+    the pair as coaxial or ruled, a symmetry decided within a tolerance, is run again as a general search, whose
+    roots the completeness claim then places (except for two spheres, or a sphere and a plane, symmetric exactly
+    whatever their placement)."""
+    general, failure = topology, None
+    if topology is not None and topology.mode in ("coaxial", "ruled") and not exactly_symmetric(topology.P,
+                                                                                                 topology.Q):
+        try:
+            general = search(a, b, scale, scale * 1e-10 if tolerance is None else tolerance, general=True)
+        except TopologyError as err:
+            general = None
+            failure = f"the general search (the pair was read as {topology.mode}) stopped: {err}"
+    charted = topology if general is None else general
+    chart = Chart(charted, scale) if charted is not None and charted.chart is not None else None
+    trims, unsupported = edges(charted, chart) if chart is not None else ([], [])
     ends = Ends()
     radii, tubes, bounds = [], [], []
     points_failed, arcs_failed, whole_failed, singular = [], [], [], []
@@ -262,7 +275,9 @@ def certify(a, b, curves, topology, scale):
             whole_failed.append((f"curve {i}: its tube is not proven", None if t is None else t.where))
         elif not curve.closed and not open_curve(chart, trims, unsupported, t, curve, ends, i):
             whole_failed.append(ends.failures[-1])
-    claims = [complete_claim(topology, chart, tubes, curves, trims, unsupported, ends),
+    complete = (claim("complete", [(failure, None)], "") if failure is not None else
+                complete_claim(general, chart, tubes, curves, trims, unsupported, ends))
+    claims = [complete,
               claim("one_component", whole_failed, "every closed curve's tube closes on itself, every open "
                     "curve runs between two proven crossings of trim edges"),
               distinct_claim(chart, tubes),

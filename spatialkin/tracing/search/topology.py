@@ -370,12 +370,14 @@ def topology(a, b, scale, tolerance):
         raise
 
 
-def search(a, b, scale, tolerance, tangent=None):
+def search(a, b, scale, tolerance, tangent=None, general=False):
     """topology() in one configuration; tangent: (torus P, Q, u0) for a pair that touches along the meridian
-    u = u0 of the torus (spatialkin.tracing.search.meridians): P is searched less a band round it."""
+    u = u0 of the torus (spatialkin.tracing.search.meridians): P is searched less a band round it; general: the
+    general search even where the pair has a common axis or direction (the certificate's completeness, which
+    cannot rest on a symmetry decided within a tolerance)."""
     t0 = time.perf_counter()
     check_not_coincident(a, b, scale)
-    p_user, q, mode, p, balls = search_roles(a, b, scale)
+    p_user, q, mode, p, balls = search_roles(a, b, scale, general)
     if tangent is not None:
         p_user, q, mode = tangent[0], tangent[1], "general"
         p = p_user
@@ -491,15 +493,15 @@ def search(a, b, scale, tolerance, tangent=None):
 
 
 
-def search_roles(a, b, scale):
+def search_roles(a, b, scale, general=False):
     """(P as given, Q, mode, P in the chart searched, {id: bounding ball}) of a pair that is not coincident: the roles
-    and chart of topology()'s searches (ValueError for an unbounded pair)."""
+    and chart of topology()'s searches (ValueError for an unbounded pair); general: no symmetric configuration."""
     balls = {id(a): bounding_ball(a), id(b): bounding_ball(b)}
     if balls[id(a)] is None and balls[id(b)] is None:
         raise ValueError(f"intersect needs a bounded pair: {type(a).__name__} and {type(b).__name__} are both "
                          "unbounded (give a Plane u_range and v_range, a Cylinder or Cone a v_range)")
-    axis = common_axis(a, b, scale)
-    ruled = ruled_along(a, b, scale) if axis is None else None
+    axis = None if general else common_axis(a, b, scale)
+    ruled = ruled_along(a, b, scale) if axis is None and not general else None
     p_user, q, mode = choose_roles(a, b, axis, ruled)
     if mode == "ruled" and balls[id(p_user)] is None and balls[id(q)] is None:
         raise ValueError("intersect needs a bounded pair")
@@ -507,6 +509,7 @@ def search_roles(a, b, scale):
     if mode == "general":
         p = traits(p).general_chart(p, q)
     return p_user, q, mode, p, balls
+
 
 def place_seams(reader, box, u_periodic, v_periodic, apexes):
     """Cut the periodic parameters' seams (box is changed in place) where g does not vanish all along them: not

@@ -45,16 +45,16 @@ def test_looper_pair_is_proven_claim_by_claim():
 
 
 def test_empty_answer_carries_a_proven_certificate():
-    """Disjoint surfaces: an empty list whose certificate proves that nothing was missed (a general placement, and
-    two spheres, exactly symmetric about the line through their centres); a sphere on a torus's axis is read as
-    coaxial within a tolerance, so its empty answer is said not proven."""
+    """Disjoint surfaces: an empty list whose certificate proves that nothing was missed: a general placement, two
+    spheres (exactly symmetric about the line through their centres), and a sphere on a torus's axis (read as
+    coaxial within a tolerance, so proven by a general search)."""
     for pair in ((sk.Torus(1.0, 0.4), sk.Sphere(0.3, sk.Frame((0.5, 0.7, 2.0)))),
                  (sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((3.0, 0.0, 0.0))))):
         curves = sk.intersect(*pair, certify=True)
         assert curves == [] and curves.certificate.proven
         assert curves.certificate.claims["complete"].proven
     coaxial = sk.intersect(sk.Torus(1.0, 0.4), sk.Sphere(0.3, sk.Frame((0.0, 0.0, 2.0))), certify=True)
-    assert coaxial == [] and not coaxial.certificate.claims["complete"].proven
+    assert coaxial == [] and coaxial.certificate.mode == "coaxial" and coaxial.certificate.proven
 
 
 def test_merged_curves_fail():
@@ -215,3 +215,16 @@ def test_trimmed_cylinder_rims_against_brute_force():
         assert curves.certificate.proven, curves.certificate.failed
         count, _ = curve_components(curves, 1.0, 2e-6, [dense_points(c, 1.0) for c in curves])
         assert count == truth
+
+
+@pytest.mark.parametrize("radius", [0.7, 1.1, 1.4])
+def test_coaxial_circles_are_proven_by_a_general_search(radius):
+    """A sphere centred on a torus's axis cuts it in two parallels (the meridian circles meet twice): read as
+    coaxial, proven by a general search; each curve a circle about the axis (constant distance from it, length
+    2 pi times it, 1e-9)."""
+    curves = sk.intersect(sk.Torus(1.0, 0.4), sk.Sphere(radius, sk.Frame((0.0, 0.0, 0.1))), certify=True)
+    assert len(curves) == 2 and curves.certificate.mode == "coaxial" and curves.certificate.proven
+    for curve in curves:
+        rho = np.hypot(curve.points[:, 0], curve.points[:, 1])
+        assert np.ptp(rho) < 1e-12 and np.ptp(curve.points[:, 2]) < 1e-12
+        assert abs(curve.length - 2 * math.pi * rho.mean()) < 1e-9

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..curve.status import CONTACT, TANGENT
 from ...kernels.certify import tubes as kt
+from ...kernels.certify import singular as ks_singular
 from ...kernels.search import topology as ks
 from .certify_points import certify_points
 from ..search.topology import TopologyError, search
@@ -40,11 +41,13 @@ CLAIM_TEXT = {
 @dataclass(frozen=True)
 class Claim:
     """One claim of a certificate: its name (one of CLAIMS), 'proven' or 'not proven', what was found (detail),
-    and the points (K, 3) where its proof failed (empty when proven)."""
+    the points (K, 3) where its proof failed (empty when proven), and for each a ball radius (K,): for a singular
+    point, a proven radius round it holding all of the intersection nearby (inf where none was proven)."""
     name: str
     status: str
     detail: str
     where: np.ndarray
+    radius: np.ndarray = None
 
     @property
     def proven(self):
@@ -56,12 +59,14 @@ class Claim:
 
 
 def claim(name, failures, proven_text):
-    """A Claim from a list of (text, point or None) failures: proven when there is none."""
+    """A Claim from a list of (text, point or None[, ball radius]) failures: proven when there is none."""
     if not failures:
-        return Claim(name, PROVEN, proven_text, np.empty((0, 3)))
-    where = np.array([p for _, p in failures if p is not None], dtype=float).reshape(-1, 3)
+        return Claim(name, PROVEN, proven_text, np.empty((0, 3)), np.empty(0))
+    located = [f for f in failures if f[1] is not None]
+    where = np.array([f[1] for f in located], dtype=float).reshape(-1, 3)
+    radius = np.array([f[2] if len(f) > 2 else math.inf for f in located], dtype=float)
     more = f" (and {len(failures) - 1} more)" if len(failures) > 1 else ""
-    return Claim(name, NOT_PROVEN, failures[0][0] + more, where)
+    return Claim(name, NOT_PROVEN, failures[0][0] + more, where, radius)
 
 
 class CertificationError(RuntimeError):
@@ -103,7 +108,11 @@ class Certificate:
       ``distance_bounds`` bound the distance from each stored point and dense sample (the points the tube was
       built on, each given a proven box) to the intersection.
     - **singular**: points where the surfaces touch or branches cross (contacts, nodes, apexes, circles or segments
-      of tangency) are reported, not proven, with their places.
+      of tangency) are reported, not proven (a tangency is an equality that floating point cannot decide), with
+      their places and, for a contact, a proven ball (``radius``): the Krawczyk test proves a unique critical
+      point of g in a box where its Hessian is definite, so the intersection within the box lies within the ball
+      (a point, a small loop or nothing); a node is proven a unique saddle (spatialkin.kernels.certify.singular).
+      The search's boxes inside an isolated contact's box are accounted for by it in the completeness claim.
 
     An empty answer has a certificate too (``sk.intersect`` returns a list with a ``certificate`` attribute): it is
     proven when the search found no root and no unresolved box, so no point is common to the two trimmed surfaces.
@@ -251,7 +260,7 @@ def certify(a, b, curves, topology, scale, tolerance=None):
     trims, unsupported = edges(charted, chart) if chart is not None else ([], [])
     ends = Ends()
     radii, tubes, bounds = [], [], []
-    points_failed, arcs_failed, whole_failed, singular = [], [], [], []
+    points_failed, arcs_failed, whole_failed = [], [], []
     for i, curve in enumerate(curves):
         regular = curve.length > 0 and curve.status not in (TANGENT, CONTACT)
         radii.append(certify_points(a, b, curve.points, curve.sol.tangent(curve.s)) if regular
@@ -263,8 +272,6 @@ def certify(a, b, curves, topology, scale, tolerance=None):
         if not regular:
             tubes.append(None)
             bounds.append(math.inf)
-            singular.append((f"curve {i} is a {curve.status} (the surfaces touch there): not proven",
-                             curve.points[0]))
             continue
         t = tube(chart, curve) if chart is not None else None
         tubes.append(t)
@@ -275,17 +282,25 @@ def certify(a, b, curves, topology, scale, tolerance=None):
             whole_failed.append((f"curve {i}: its tube is not proven", None if t is None else t.where))
         elif not curve.closed and not open_curve(chart, trims, unsupported, t, curve, ends, i):
             whole_failed.append(ends.failures[-1])
+    singular = singular_places(symmetric_or(topology, general), chart, curves)
+    isolated = [place[3] for place in singular if len(place) > 3]
     complete = (claim("complete", [(failure, None)], "") if failure is not None else
-                complete_claim(general, chart, tubes, curves, trims, unsupported, ends))
+                complete_claim(general, chart, tubes, curves, trims, unsupported, ends, isolated))
     claims = [complete,
               claim("one_component", whole_failed, "every closed curve's tube closes on itself, every open "
                     "curve runs between two proven crossings of trim edges"),
               distinct_claim(chart, tubes),
               claim("points", points_failed, "every stored point has a proven radius"),
               claim("arcs", arcs_failed, "every curve lies in a chain of proven pieces"),
-              claim("singular", singular + singular_places(topology),
+              claim("singular", [place[:3] for place in singular],
                     "no singular point (contact, node, apex, tangency) was found")]
     return Certificate(claims, topology, radii, tubes, bounds, len(curves))
+
+
+def symmetric_or(topology, general):
+    """The search whose singular places are reported: the general search when one was run and succeeded (its chart
+    is the one the balls are read in), else the first."""
+    return general if general is not None else topology
 
 
 def sample_bound(a, b, curve, t, radii):
@@ -299,22 +314,53 @@ def sample_bound(a, b, curve, t, radii):
     return float(max(np.max(radii), np.max(dense_radii, initial=0.0)) * math.sqrt(3.0))
 
 
-def singular_places(topology):
-    """(text, point) of each singular place the search recorded."""
-    if topology is None:
-        return []
-    out = [("a contact point (not proven)", p) for p in topology.contacts]
-    out += [("a node where branches cross (not proven)", p) for p in topology.nodes]
-    out += [("an apex or pole on the curve (not proven)", p) for p in topology.apexes]
-    out += [("a circle of tangency (not proven)", np.asarray(c[0], dtype=float)) for c in topology.tangent_circles]
-    out += [("a segment of tangency (not proven)", np.asarray(s[0], dtype=float)) for s in topology.tangent_segments]
+def singular_places(topology, chart, curves):
+    """(text, point, ball radius) of each singular place: the contacts and nodes the search recorded, and the
+    returned contact points, with the ball of kernels.certify.singular where it is proven; apexes and tangencies
+    along curves with none."""
+    out = []
+    if topology is not None:
+        points = [(p, "node") for p in topology.nodes] + [(p, "contact") for p in topology.contacts]
+        points += [(c.points[0], "contact") for c in curves if c.status == CONTACT and
+                   not any(np.array_equal(c.points[0], p) for p in topology.contacts)]
+        out += [singular_ball(chart, p, what) for p, what in points]
+        out += [("an apex or pole on the curve (not proven)", p, math.inf) for p in topology.apexes]
+        out += [("a circle of tangency (not proven)", np.asarray(c[0], dtype=float), math.inf)
+                for c in topology.tangent_circles]
+        out += [("a segment of tangency (not proven)", np.asarray(seg[0], dtype=float), math.inf)
+                for seg in topology.tangent_segments]
+    out += [(f"curve {i} is a {c.status} along which the surfaces touch (not proven)", c.points[0], math.inf)
+            for i, c in enumerate(curves) if c.status == TANGENT]
     return out
 
 
-def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends):
-    """No component missed: every verified root box of the searches inside a proven piece or proven outside Q's
-    trims, the roots on Q's trim edges counted against the proven crossings there (trims.q_edge_roots), no
-    unresolved box."""
+def singular_ball(chart, point, what):
+    """(text, point, ball radius[, its box]) of a contact or a node (kernels.certify.singular.critical_ball in the
+    chart); the scaled box (4,) of an isolated one holds nothing of the intersection but its ball."""
+    if chart is None:
+        return (f"a {what} (not proven)", point, math.inf)
+    x = chart.scaled(np.asarray(point, dtype=float)[None])[0]
+    r = chart.reader
+    size = max(1.0, float(np.max(np.abs(x))))
+    out = np.empty(3)
+    kind = ks_singular.critical_ball(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]),
+                                     float(chart.units[1]), float(x[0]), float(x[1]), 1e-9 * size, 1e-3 * size, out)
+    if kind == ks_singular.ISOLATED:
+        ball = float(out[1] * out[2])
+        return (f"a {what}: within {out[0] * out[2]:.1e} of it the intersection lies within {ball:.1e} of it (a "
+                "point, a small loop or nothing; not decided)", point, ball,
+                np.array([x[0] - out[0], x[0] + out[0], x[1] - out[0], x[1] + out[0]]))
+    if kind == ks_singular.SADDLE:
+        return (f"a {what}: a unique saddle of the level within {out[0] * out[2]:.1e} of it; the branches there "
+                "are not proven", point, math.inf)
+    return (f"a {what} (not proven)", point, math.inf)
+
+
+def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends, isolated=()):
+    """No component missed: every verified root box of the searches inside a proven piece, inside the box of an
+    isolated singular point (isolated: scaled boxes (4,) holding nothing of the intersection but that point's
+    ball, which the singular claim reports) or proven outside Q's trims, the roots on Q's trim edges counted against
+    the proven crossings there (trims.q_edge_roots), and no unresolved box outside those isolated boxes."""
     if topology is None or topology.mode not in SEARCHED:
         return claim("complete", [("no search was run (closed form)", None)], "")
     failures = []
@@ -326,6 +372,8 @@ def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends):
     for found in topology.root_boxes:
         reader = found.reader
         for box in found.unresolved:
+            if reader.s is chart.p and within_isolated(chart, box, isolated):
+                continue
             failures.append(("the search left a box it could neither exclude nor verify (a singular point)",
                              reader.s.point(0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]))))
         if not len(found.verified):
@@ -335,7 +383,7 @@ def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends):
             continue
         q_trims = [e for e in trims if e.owner == "Q"]
         for i, raw in enumerate(found.verified):
-            if outside(chart.reader, raw, q_trims):
+            if outside(chart.reader, raw, q_trims) or within_isolated(chart, raw, isolated):
                 continue
             if not any(kt.point_in_pieces(pieces, len(pieces), chart.scaled_boxes(box), chart.periods[0],
                                           chart.periods[1]) >= 0 for box in candidate_boxes(found, i)):
@@ -345,6 +393,8 @@ def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends):
         failures.append(("a parameter line lies on the other surface (not proven)", None))
     text = ("the search found no root: the trimmed surfaces have no common point" if not curves else
             "every root of the search lies on a returned curve")
+    if isolated:
+        text += " or in the ball of an isolated singular point (see the singular claim)"
     return claim("complete", failures, text)
 
 
@@ -390,6 +440,21 @@ def exactly_symmetric(p, q):
     their centres) or a sphere and a plane (about the normal through the centre)."""
     kinds = sorted(type(s).__name__ for s in (p, q))
     return kinds in (["Sphere", "Sphere"], ["Plane", "Sphere"])
+
+
+def within_isolated(chart, raw, isolated):
+    """True when the raw parameter box (4,) of the chart lies strictly inside one of the isolated boxes (scaled),
+    also shifted by a whole period."""
+    box = chart.scaled_boxes(raw)
+    for iso in isolated:
+        for ku in ((-1, 0, 1) if chart.periods[0] else (0,)):
+            for kv in ((-1, 0, 1) if chart.periods[1] else (0,)):
+                su, sv = ku * chart.periods[0], kv * chart.periods[1]
+                slack = 1e-12 * (1.0 + abs(su) + abs(sv) + float(np.max(np.abs(iso))))
+                if (iso[0] + slack < box[0] + su and box[1] + su < iso[1] - slack and
+                        iso[2] + slack < box[2] + sv and box[3] + sv < iso[3] - slack):
+                    return True
+    return False
 
 
 def distinct_claim(chart, tubes):

@@ -228,3 +228,26 @@ def test_coaxial_circles_are_proven_by_a_general_search(radius):
         rho = np.hypot(curve.points[:, 0], curve.points[:, 1])
         assert np.ptp(rho) < 1e-12 and np.ptp(curve.points[:, 2]) < 1e-12
         assert abs(curve.length - 2 * math.pi * rho.mean()) < 1e-9
+
+
+def test_a_contact_gets_a_proven_ball():
+    """A sphere touching a torus's outer equator at (1.4, 0, 0): the contact is not proven (tangency is an
+    equality), but its ball is: within it the intersection lies within a radius below 1e-5 of the true contact
+    point, and the search's unresolved boxes there are accounted for by it (complete proven)."""
+    curves = sk.intersect(sk.Torus(1.0, 0.4), sk.Sphere(0.5, sk.Frame((1.9, 0.0, 0.0))), certify=True)
+    cert = curves.certificate
+    assert [c.status for c in curves] == ["contact"] and not cert.proven
+    singular = cert.claims["singular"]
+    assert not singular.proven and len(singular.where) == 1 and singular.radius[0] < 1e-5
+    assert np.linalg.norm(singular.where[0] - [1.4, 0.0, 0.0]) <= singular.radius[0]
+    assert cert.claims["complete"].proven and "singular" in cert.claims["complete"].detail
+
+
+def test_a_node_is_a_proven_saddle_and_not_proven():
+    """Viviani's figure-eight (a sphere and a cylinder of half its radius through its centre): the node at (1, 0, 0)
+    is a unique saddle, said so, and the answer is not proven."""
+    curves = sk.intersect(sk.Sphere(1.0), sk.Cylinder(0.5, sk.Frame((0.5, 0.0, 0.0)), v_range=(-2.0, 2.0)),
+                          certify=True)
+    singular = curves.certificate.claims["singular"]
+    assert not curves.certificate.proven and not singular.proven
+    assert "saddle" in singular.detail and np.allclose(singular.where[0], [1.0, 0.0, 0.0], atol=1e-9)

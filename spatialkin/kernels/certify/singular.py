@@ -1,0 +1,90 @@
+"""Singular points of the level g = F_T(S(u, v)) = 0 in S's (scaled) parameter plane: an isolated critical point of
+g proven by the Krawczyk operator of grad g = 0, and the ball round it that holds all of the level nearby.
+
+If the box B = c +- h holds exactly one zero c* of grad g (the Krawczyk test with the Hessian's enclosure over B)
+and the Hessian is definite over B, g is strictly convex (or concave) on B: |g(x) - g(c*)| >= lambda |x - c*|^2 / 2
+with lambda >= det / trace a lower bound of its smallest eigenvalue magnitude, so every zero of g in B lies within
+sqrt(2 |g(c*)| / lambda) of c*. When that radius (plus c*'s offset from c) is below h, the level inside B is a point,
+a loop inside that ball, or nothing: which one cannot be decided in floating point (g(c*) = 0 is an equality), but
+nothing else of the intersection comes near. A Hessian of negative determinant over B makes c* a saddle (a node or
+two branches passing close): only its uniqueness is proven.
+
+References
+----------
+R. Krawczyk, "Newton-Algorithmen zur Bestimmung von Nullstellen mit Fehlerschranken", Computing 4 (1969) 187-201.
+R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, ch. 8.
+"""
+import math
+
+from ..._lib.jit import jit
+from ..geometry.interval import box_trig, iadd, imul, iscale, isub, jet, local_first, mag, point
+
+#: Outcomes: no box passed; a unique critical point, a saddle over its box; a unique extremum isolated in its box
+#: (the level within the ball); an extremum whose ball reaches the box's edge.
+NONE, SADDLE, ISOLATED, EXTREMUM = 0, 1, 2, 3
+
+
+@jit(forceinline=True)
+def _scaled_jet(s_data, t_data, m, c, pad, cpad, su, sv, U, V):
+    """(g, g_u, g_v, g_uu, g_uv, g_vv) over the raw box U x V, derivatives in scaled parameters."""
+    g, gu, gv, guu, guv, gvv = jet(s_data, t_data, m, c, pad, cpad, U, V)
+    return (g, iscale(gu, su), iscale(gv, sv), iscale(guu, su * su), iscale(guv, su * sv), iscale(gvv, sv * sv))
+
+
+@jit
+def critical_ball(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, h0, cap, out):
+    """Try boxes (cu, cv) +- h (scaled; h from h0 growing eightfold up to cap) for a proven critical point of g.
+    out (3,) = (h, the radius of the ball round (cu, cv) holding the level within the box (scaled; inf unless
+    ISOLATED), an upper bound of |dS/dx| over the box (length per scaled unit)). Returns NONE, SADDLE, ISOLATED or
+    EXTREMUM."""
+    out[0], out[1], out[2] = math.inf, math.inf, math.inf
+    Uc, Vc = (cu * su, cu * su), (cv * sv, cv * sv)
+    gc, guc, gvc, guuc, guvc, gvvc = _scaled_jet(s_data, t_data, m, c, pad, cpad, su, sv, Uc, Vc)
+    a, b, d = 0.5 * (guuc[0] + guuc[1]), 0.5 * (guvc[0] + guvc[1]), 0.5 * (gvvc[0] + gvvc[1])
+    det = a * d - b * b
+    if det == 0.0 or not math.isfinite(det):
+        return NONE
+    y00, y01, y10, y11 = d / det, -b / det, -b / det, a / det
+    result = NONE
+    h = h0
+    while h <= cap:
+        B = (-h, h)
+        U = iscale(iadd(point(cu), B), su)
+        V = iscale(iadd(point(cv), B), sv)
+        g, gu, gv, guu, guv, gvv = _scaled_jet(s_data, t_data, m, c, pad, cpad, su, sv, U, V)
+        ok = True
+        offset = 0.0
+        for row in range(2):
+            ya, yb = (y00, y01) if row == 0 else (y10, y11)
+            step = iadd(iscale(guc, ya), iscale(gvc, yb))
+            m0 = isub(point(1.0 if row == 0 else 0.0), iadd(iscale(guu, ya), iscale(guv, yb)))
+            m1 = isub(point(0.0 if row == 0 else 1.0), iadd(iscale(guv, ya), iscale(gvv, yb)))
+            k = isub(iadd(imul(m0, B), imul(m1, B)), step)
+            if not (-h < k[0] and k[1] < h):
+                ok = False
+            offset = max(offset, mag(k))
+        if ok:
+            out[0] = h
+            _, s_u, s_v, _ = local_first(s_data, U, V, box_trig(s_data, U, V))
+            speed = 0.0
+            for i in range(3):
+                speed += mag(s_u[i]) * mag(s_u[i]) * su * su + mag(s_v[i]) * mag(s_v[i]) * sv * sv
+            out[2] = math.sqrt(speed) * (1.0 + 1e-15)
+            det_b = isub(imul(guu, gvv), imul(guv, guv))
+            if det_b[1] < 0.0:
+                return SADDLE
+            if det_b[0] <= 0.0 or guu[0] <= 0.0 <= guu[1]:
+                return result
+            trace = mag(iadd(guu, gvv))
+            lam = det_b[0] / trace * (1.0 - 1e-15)
+            # g(c*) for c* in the Krawczyk box: g over the box c +- offset
+            W = (-offset, offset)
+            gk = _scaled_jet(s_data, t_data, m, c, pad, cpad, su, sv, iscale(iadd(point(cu), W), su),
+                             iscale(iadd(point(cv), W), sv))[0]
+            radius = math.sqrt(2.0 * mag(gk) / lam) * (1.0 + 1e-15) + offset * 1.4143
+            if radius < h:
+                out[1] = radius
+                return ISOLATED
+            result = EXTREMUM               # the ball reaches the box's edge: a larger box may hold it
+        h *= 8.0
+    return result

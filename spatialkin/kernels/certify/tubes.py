@@ -15,7 +15,8 @@ along the centre line), and 1 - y phi_w(X) the derivative of w - y phi(t, w), so
 one-variable equation at every t at once. The level inside X is then the graph of a smooth function w(t) (phi_w
 keeps its sign on X): one arc, entering through the face t = t0 and leaving through t = t1.
 
-Two pieces are linked when the exit face of the first (t = t1, w in its K) lies strictly inside the second: the
+Two pieces are linked when the point where the first one's arc leaves it (t = t1, its w enclosed by the same test
+on that single cross-section, with a W inside the piece's: exit_enclosure) lies strictly inside the second: the
 first piece's arc passes into the second's, so the union of a linked chain is one connected arc; a chain whose
 last piece links to its first (shifted by the loop's period) is a whole closed component.
 
@@ -34,17 +35,18 @@ import math
 import numpy as np
 
 from ..._lib.jit import jit
-from ..geometry.interval import (EPS, box_trig, iadd, imul, iscale, ishift, isub, jet_first, local_first, mag, point,
-                                 up, widen)
+from ..geometry.interval import EPS, box_trig, iadd, imul, iscale, ishift, isub, jet_first, mag, point, widen
 
-#: Columns of a piece: centre (cu, cv), direction (p, q), T = [t0, t1], h, the enclosure K of w = [k0, k1], and
-#: bound: an upper bound of |dS/dw| over the piece (length per unit of w, S's local point).
-CU, CV, P, Q, T0, T1, H, K0, K1, DSDW, CHORD = range(11)
-WIDTH = 11
+#: Columns of a piece: centre (cu, cv), direction (p, q), T = [t0, t1], h, the enclosure [k0, k1] of w where the
+#: arc leaves the piece (at t = t1), and the index of the chord it lies along.
+CU, CV, P, Q, T0, T1, H, K0, K1, CHORD = range(10)
+WIDTH = 10
 #: Overlap of consecutive pieces along a chord, as a fraction of the piece's length.
 OVERLAP = 0.125
 #: Tries of the half-width h (each from the last K) before the piece is split.
 H_TRIES = 4
+#: The exit enclosure's first half-width, as a fraction of the piece's, and its growth.
+EXIT_FIRST, EXIT_GROWTH = 1e-6, 16.0
 #: Deepest halving of a chord's pieces.
 MAX_DEPTH = 24
 #: Outcome of a chain: proven, or where it failed.
@@ -67,6 +69,24 @@ def _hull(cu, cv, p, q, T, W, su, sv):
     return iscale(xu, su), iscale(xv, sv)
 
 
+@jit(forceinline=True)
+def _operator(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, gc, y, h):
+    """(K, |1 - y phi_w(X)|): the Krawczyk operator of the piece with W = [-h, h]."""
+    W = (-h, h)
+    U, V = _hull(cu, cv, p, q, T, W, su, sv)
+    g, gu, gv = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))[0]
+    d_t = iadd(iscale(gu, p * su), iscale(gv, q * sv))
+    d_w = iadd(iscale(gu, -q * su), iscale(gv, p * sv))
+    value = iadd(gc, imul(d_t, isub(T, point(tm))))
+    contraction = isub((1.0, 1.0), iscale(d_w, y))
+    return iadd(iscale(value, -y), imul(contraction, W)), mag(contraction)
+
+
+@jit(forceinline=True)
+def _passes(K, h):
+    return K[0] > -h and K[1] < h and math.isfinite(K[0]) and math.isfinite(K[1])
+
+
 @jit
 def prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, t0, t1, h, out):
     """Krawczyk test of one piece (see the module docstring), trying up to H_TRIES half-widths from h; True with
@@ -81,29 +101,32 @@ def prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, t0, t1, h
         return False
     y = 1.0 / dw_mid
     for _ in range(H_TRIES):
-        W = (-h, h)
-        U, V = _hull(cu, cv, p, q, T, W, su, sv)
-        g, gu, gv = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))[0]
-        d_t = iadd(iscale(gu, p * su), iscale(gv, q * sv))
-        d_w = iadd(iscale(gu, -q * su), iscale(gv, p * sv))
-        value = iadd(gc, imul(d_t, isub(T, point(tm))))
-        contraction = isub((1.0, 1.0), iscale(d_w, y))
-        K = iadd(iscale(value, -y), imul(contraction, W))
-        if K[0] > -h and K[1] < h and math.isfinite(K[0]) and math.isfinite(K[1]):
-            # |dS/dw| over the piece: S's local derivatives over the hull, along n (scaled)
-            s, s_u, s_v, _ = local_first(s_data, U, V, box_trig(s_data, U, V))
-            bound = 0.0
-            for i in range(3):
-                comp = iadd(iscale(s_u[i], -q * su), iscale(s_v[i], p * sv))
-                bound += mag(comp) * mag(comp)
+        K, contraction = _operator(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, gc, y, h)
+        if _passes(K, h):
             out[CU], out[CV], out[P], out[Q] = cu, cv, p, q
             out[T0], out[T1], out[H], out[K0], out[K1] = t0, t1, h, K[0], K[1]
-            out[DSDW] = up(math.sqrt(up(bound)))
             return True
         spread = max(abs(K[0]), abs(K[1]))
-        if not (math.isfinite(spread) and mag(contraction) < 1.0):
+        if not (math.isfinite(spread) and contraction < 1.0):
             return False
         h = 2.0 * spread if spread > 0.5 * h else h
+    return False
+
+
+@jit
+def exit_enclosure(s_data, t_data, m, c, pad, cpad, su, sv, piece):
+    """Narrow the piece's [k0, k1] to an enclosure of w where its arc leaves it (t = t1): the Krawczyk test on the
+    single cross-section t = t1 with W from EXIT_FIRST of the piece's h, growing, inside the piece's W (so the zero
+    it proves is the arc's, unique there); False when none passes."""
+    h_piece = piece[H]
+    h = EXIT_FIRST * h_piece
+    scratch = np.empty(WIDTH)
+    while h < h_piece:
+        if prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, piece[CU], piece[CV], piece[P], piece[Q], piece[T1],
+                       piece[T1], h, scratch) and scratch[H] < h_piece:
+            piece[K0], piece[K1] = scratch[K0], scratch[K1]
+            return True
+        h *= EXIT_GROWTH
     return False
 
 
@@ -118,7 +141,7 @@ def _shifted(x, shift):
 
 @jit
 def linked(first, second, shift_u, shift_v):
-    """True when the exit face of piece `first` (t = t1, w in its K), shifted by (shift_u, shift_v) (scaled
+    """True when the exit of piece `first` (t = t1, w in [k0, k1]), shifted by (shift_u, shift_v) (scaled
     coordinates: a period of the loop, or zero), lies strictly inside piece `second`."""
     p, q = first[P], first[Q]
     eu = iadd(iadd(point(first[CU] + 0.0), iscale(point(first[T1]), p)), iscale((first[K0], first[K1]), -q))
@@ -173,6 +196,8 @@ def tube_chain(s_data, t_data, m, c, pad, cpad, su, sv, x, closed, shift_u, shif
                 stack[top + 1, 0], stack[top + 1, 1] = mid, depth + 1
                 top += 2
                 continue
+            if not exit_enclosure(s_data, t_data, m, c, pad, cpad, su, sv, pieces[count]):
+                return count, PIECE_FAILED, k
             if count > 0 and not linked(pieces[count - 1], pieces[count], 0.0, 0.0):
                 return count, LINK_FAILED, k
             pieces[count, CHORD] = k

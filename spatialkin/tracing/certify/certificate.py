@@ -383,10 +383,9 @@ def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends, iso
             continue
         q_trims = [e for e in trims if e.owner == "Q"]
         for i, raw in enumerate(found.verified):
-            if outside(chart.reader, raw, q_trims) or within_isolated(chart, raw, isolated):
-                continue
             if not any(kt.point_in_pieces(pieces, len(pieces), chart.scaled_boxes(box), chart.periods[0],
-                                          chart.periods[1]) >= 0 for box in candidate_boxes(found, i)):
+                                          chart.periods[1]) >= 0 or outside(chart.reader, box, q_trims)
+                       or within_isolated(chart, box, isolated) for box in candidate_boxes(found, i)):
                 failures.append(("a root of the search lies in no proven tube",
                                  chart.p.point(0.5 * (raw[0] + raw[1]), 0.5 * (raw[2] + raw[3]))))
     for reader, fixed, value, t0, t1 in topology.whole_lines:

@@ -65,8 +65,6 @@ class ZoneTraits(SurfaceTraits):
     has_parallels = True
 
     implicit_jets = SphereTraits.implicit_jets
-    arb_coefficients = SphereTraits.arb_coefficients
-    arb_local = SphereTraits.arb_local
 
     def size(self, surface):
         return surface.radius

@@ -45,7 +45,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         returned list then has a ``certificate`` (spatialkin.tracing.certify.certificate.Certificate) stating each
         claim (no component missed, each curve one component, the curves distinct, the stored points, the arcs
         between them, the singular points) as proven or not, and where; every curve has its view of it
-        (``curve.certificate``). 'strict' raises CertificationError unless every claim is proven.
+        (``curve.certificate``). 'strict' raises CertificationError unless every claim is proven. Where the search
+        refuses a pair that meets in a closed form, the closed form's answer comes back, said not proven.
 
     Returns
     -------
@@ -164,6 +165,23 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         scene = settings.checked
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor, scene)
+    if not certify:
+        curves, topo = searched(a, b, settings)
+        return [Curve(c, topology=topo) for c in curves]
+    try:
+        curves, topo = searched(a, b, settings)
+    except TopologyError as err:          # the answer of the closed forms, if any, said not proven
+        found = closed_form(a, b, closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback))
+        if found is None:
+            raise
+        curves = in_sk_order(clip_curves(a, b, found, settings.scale))
+        return certified(a, b, curves, None, settings.scale, settings.tolerance, certify,
+                         f"the search stopped ({err}); the answer is the closed form's")
+    return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify)
+
+
+def searched(a, b, settings):
+    """(CurveResults of every component, in sk's order; the Topology): the general path of intersect."""
     if stages.ON:
         stages.switch("topology")
     topo = topology(a, b, settings.scale, settings.tolerance)
@@ -209,10 +227,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     curves = clip_curves(a, b, rejoined(a, b, kept, settings, on), settings.scale)
     if stages.ON:
         stages.switch("result")
-    in_sk_order(curves)
-    if certify:
-        return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify)
-    return [Curve(c, topology=topo) for c in curves]
+    return in_sk_order(curves), topo
 
 
 class Curves(list):
@@ -222,10 +237,10 @@ class Curves(list):
     certificate = None
 
 
-def certified(a, b, results, topo, scale, tolerance, mode):
-    """The Curves of the results (CurveResults), each with its view of the answer's certificate; with mode
-    'strict', CertificationError when a claim is not proven."""
-    answer = certify_answer(a, b, results, topo, scale, tolerance)
+def certified(a, b, results, topo, scale, tolerance, mode, failure=None):
+    """The Curves of the results (CurveResults), each with its view of the answer's certificate (failure: why no
+    search stands behind them); with mode 'strict', CertificationError when a claim is not proven."""
+    answer = certify_answer(a, b, results, topo, scale, tolerance, failure)
     if mode == "strict" and not answer.proven:
         raise CertificationError(answer)
     out = Curves(Curve(c, topology=topo, certificate=CurveCertificate(answer, i)) for i, c in enumerate(results))

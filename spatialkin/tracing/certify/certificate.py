@@ -241,13 +241,13 @@ class CurveCertificate:
                 f"points proven {proven}/{self.radii.size}, distance <= {self.distance_bound:.2e})")
 
 
-def certify(a, b, curves, topology, scale, tolerance=None):
+def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
     """The Certificate of an answer (CurveResults, the curves sk.intersect returns, in order) and the search that
     found it (scale and tolerance: the scene's, spatialkin.tracing.march.trace.scene_lengths). A search that read
     the pair as coaxial or ruled, a symmetry decided within a tolerance, is run again as a general search, whose
     roots the completeness claim then places (except for two spheres, or a sphere and a plane, symmetric exactly
-    whatever their placement)."""
-    general, failure = topology, None
+    whatever their placement). failure: why no search stands behind the answer (topology None)."""
+    general = topology
     if topology is not None and topology.mode in ("coaxial", "ruled") and not exactly_symmetric(topology.P,
                                                                                                  topology.Q):
         try:
@@ -283,6 +283,8 @@ def certify(a, b, curves, topology, scale, tolerance=None):
         elif not curve.closed and not open_curve(chart, trims, unsupported, t, curve, ends, i):
             whole_failed.append(ends.failures[-1])
     singular = singular_places(symmetric_or(topology, general), chart, curves)
+    if topology is None:
+        singular.append(("no search stands behind the answer: its singular points were not looked for", None))
     isolated = [place[3] for place in singular if len(place) > 3]
     complete = (claim("complete", [(failure, None)], "") if failure is not None else
                 complete_claim(general, chart, tubes, curves, trims, unsupported, ends, isolated))

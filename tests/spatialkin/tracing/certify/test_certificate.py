@@ -263,3 +263,19 @@ def test_stress_cases_certified_never_lie():
     assert sum(r["lies"] for r in rows.values()) == 0
     cases = sum(r["cases"] for r in rows.values())
     assert sum(r["proven"] for r in rows.values()) >= 0.5 * cases
+
+
+def test_a_pair_the_search_refuses_gets_the_closed_form_said_not_proven():
+    """A plane through a cone's apex along its axis (two rulings crossing at the apex): the search refuses it, so
+    certify=True returns the closed form's answer (what certify=False returns) with every claim that needs the
+    search said not proven, never a TopologyError where the plain call answers."""
+    cone = sk.Cone(math.radians(30), sk.Frame((0.2, -0.1, 0.3)), v_range=(-2.0, 2.0))
+    plane = sk.Plane(sk.Frame((0.2, -0.1, 0.3), sk.rotation_about((1, 0, 0), math.radians(90))),
+                     u_range=(-3, 3), v_range=(-3, 3))
+    for pair in ((cone, plane), (plane, cone)):
+        plain = sk.intersect(*pair)
+        curves = sk.intersect(*pair, certify=True)
+        assert len(curves) == len(plain) and not curves.certificate.proven
+        for name in ("complete", "singular", "arcs"):
+            assert not curves.certificate.claims[name].proven
+        assert "search" in curves.certificate.claims["complete"].detail

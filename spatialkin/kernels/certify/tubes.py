@@ -244,22 +244,30 @@ def pieces_overlap(first, second, shift_u, shift_v):
 
 
 @jit
+def _turns(delta, period):
+    """The whole number of periods nearest to delta (0 when not periodic)."""
+    return 0.0 if period == 0.0 else float(round(delta / period))
+
+
+@jit
 def point_in_pieces(pieces, count, box, shift_u, shift_v):
     """Index of a piece that holds the scaled parameter box (u_lo, u_hi, v_lo, v_hi), shifted by whole periods
-    (shift_u, shift_v: the period of u and v, 0 when not periodic, tried -2..2 times), strictly inside (t in T, w
-    in W: a zero of g in the box is then a point of the piece's arc), or -1."""
+    (shift_u, shift_v: the periods of u and v, 0 when not periodic; the turns nearest to the piece, and one either
+    side), strictly inside (t in T, w in W: a zero of g in the box is then a point of the piece's arc), or -1."""
     for i in range(count):
         piece = pieces[i]
         p2, q2 = piece[P], piece[Q]
         norm = iadd(imul(point(p2), point(p2)), imul(point(q2), point(q2)))
-        for ku in range(-2, 3):
+        nu = _turns(piece[CU] - 0.5 * (box[0] + box[1]), shift_u)
+        nv = _turns(piece[CV] - 0.5 * (box[2] + box[3]), shift_v)
+        for ku in range(-1, 2):
             if shift_u == 0.0 and ku != 0:
                 continue
-            for kv in range(-2, 3):
+            for kv in range(-1, 2):
                 if shift_v == 0.0 and kv != 0:
                     continue
-                ru = ishift(_shifted((box[0], box[1]), ku * shift_u), -piece[CU])
-                rv = ishift(_shifted((box[2], box[3]), kv * shift_v), -piece[CV])
+                ru = ishift(_shifted((box[0], box[1]), (nu + ku) * shift_u), -piece[CU])
+                rv = ishift(_shifted((box[2], box[3]), (nv + kv) * shift_v), -piece[CV])
                 t = _idiv_pos(iadd(iscale(ru, p2), iscale(rv, q2)), norm)
                 w = _idiv_pos(iadd(iscale(ru, -q2), iscale(rv, p2)), norm)
                 if piece[T0] < t[0] and t[1] < piece[T1] and -piece[H] < w[0] and w[1] < piece[H]:
@@ -305,25 +313,29 @@ def _piece_hull(piece):
 @jit
 def tubes_disjoint(first, second, periods):
     """(-1, -1) when every piece of first (K, WIDTH) is proven disjoint from every piece of second (L, WIDTH),
-    the second shifted by -1, 0 or 1 periods (periods (2,): of u and v, 0 when not periodic); else the indices of
-    a pair that may overlap. Pairs whose hulls are apart are disjoint; the rest are decided by pieces_overlap."""
+    the second shifted by any whole number of periods (periods (2,): of u and v, 0 when not periodic; for each
+    pair the turns nearest to it and one either side, the pieces being far shorter than a period); else the
+    indices of a pair that may overlap. Pairs whose hulls are apart are disjoint; the rest are decided by
+    pieces_overlap."""
     hulls = np.empty((second.shape[0], 4))
     for j in range(second.shape[0]):
         hulls[j, 0], hulls[j, 1], hulls[j, 2], hulls[j, 3] = _piece_hull(second[j])
     for i in range(first.shape[0]):
         a0, a1, a2, a3 = _piece_hull(first[i])
-        for ku in range(-1, 2):
-            if periods[0] == 0.0 and ku != 0:
-                continue
-            su = ku * periods[0]
-            for kv in range(-1, 2):
-                if periods[1] == 0.0 and kv != 0:
+        for j in range(second.shape[0]):
+            nu = _turns(0.5 * (a0 + a1 - hulls[j, 0] - hulls[j, 1]), periods[0])
+            nv = _turns(0.5 * (a2 + a3 - hulls[j, 2] - hulls[j, 3]), periods[1])
+            for ku in range(-1, 2):
+                if periods[0] == 0.0 and ku != 0:
                     continue
-                sv = kv * periods[1]
-                # (the shifted bounds' rounding, far below any gap that matters)
-                slack_u = 8.0 * EPS * (abs(su) + abs(a0) + abs(a1)) + 1e-300
-                slack_v = 8.0 * EPS * (abs(sv) + abs(a2) + abs(a3)) + 1e-300
-                for j in range(second.shape[0]):
+                su = (nu + ku) * periods[0]
+                for kv in range(-1, 2):
+                    if periods[1] == 0.0 and kv != 0:
+                        continue
+                    sv = (nv + kv) * periods[1]
+                    # (the shifted bounds' rounding, far below any gap that matters)
+                    slack_u = 8.0 * EPS * (abs(su) + abs(a0) + abs(a1)) + 1e-300
+                    slack_v = 8.0 * EPS * (abs(sv) + abs(a2) + abs(a3)) + 1e-300
                     if hulls[j, 1] + su + slack_u < a0 or a1 < hulls[j, 0] + su - slack_u:
                         continue
                     if hulls[j, 3] + sv + slack_v < a2 or a3 < hulls[j, 2] + sv - slack_v:

@@ -445,16 +445,14 @@ def exactly_symmetric(p, q):
 
 def within_isolated(chart, raw, isolated):
     """True when the raw parameter box (4,) of the chart lies strictly inside one of the isolated boxes (scaled),
-    also shifted by a whole period."""
+    also shifted by whole periods."""
     box = chart.scaled_boxes(raw)
     for iso in isolated:
-        for ku in ((-1, 0, 1) if chart.periods[0] else (0,)):
-            for kv in ((-1, 0, 1) if chart.periods[1] else (0,)):
-                su, sv = ku * chart.periods[0], kv * chart.periods[1]
-                slack = 1e-12 * (1.0 + abs(su) + abs(sv) + float(np.max(np.abs(iso))))
-                if (iso[0] + slack < box[0] + su and box[1] + su < iso[1] - slack and
-                        iso[2] + slack < box[2] + sv and box[3] + sv < iso[3] - slack):
-                    return True
+        for su, sv in chart.shifts(iso, box):
+            slack = 1e-12 * (1.0 + abs(su) + abs(sv) + float(np.max(np.abs(iso))))
+            if (iso[0] + slack < box[0] + su and box[1] + su < iso[1] - slack and
+                    iso[2] + slack < box[2] + sv and box[3] + sv < iso[3] - slack):
+                return True
     return False
 
 

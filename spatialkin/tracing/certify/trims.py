@@ -217,15 +217,18 @@ def q_edge_roots(chart, topology, found, trims, unsupported, ends):
 
 
 def pairwise_apart(boxes, chart):
-    """True when the scaled boxes (4,) are pairwise disjoint (also shifted by whole periods)."""
+    """True when the scaled boxes (4,) are pairwise disjoint, also shifted by any whole number of periods (the
+    turns nearest to each pair, and one either side)."""
     for i in range(len(boxes)):
         for j in range(i + 1, len(boxes)):
-            for ku in ((-1, 0, 1) if chart.periods[0] else (0,)):
-                for kv in ((-1, 0, 1) if chart.periods[1] else (0,)):
-                    su, sv = ku * chart.periods[0], kv * chart.periods[1]
-                    a, b = boxes[i], boxes[j]
-                    slack = 1e-12 * (1.0 + abs(su) + abs(sv) + float(np.max(np.abs(a))))
-                    if not (a[1] + slack < b[0] + su or b[1] + su + slack < a[0] or
-                            a[3] + slack < b[2] + sv or b[3] + sv + slack < a[2]):
-                        return False
+            a, b = boxes[i], boxes[j]
+            if any(boxes_meet(a, b, su, sv) for su, sv in chart.shifts(a, b)):
+                return False
     return True
+
+
+def boxes_meet(a, b, su, sv):
+    """True unless the boxes (4,) a and b shifted by (su, sv) are apart by more than a round-off slack."""
+    slack = 1e-12 * (1.0 + abs(su) + abs(sv) + float(np.max(np.abs(a))))
+    return not (a[1] + slack < b[0] + su or b[1] + su + slack < a[0] or
+                a[3] + slack < b[2] + sv or b[3] + sv + slack < a[2])

@@ -73,6 +73,19 @@ class Chart:
                 uv[:, j] = np.unwrap(uv[:, j])
         return uv / self.units
 
+    def shifts(self, a, b):
+        """The whole-period shifts (su, sv) of scaled box b (4,) that may bring it onto box a: the turns nearest
+        to the difference of their centres, and one either side (a single (0, 0) where nothing is periodic)."""
+        out = []
+        for j in range(2):
+            period = self.periods[j]
+            if not period:
+                out.append((0.0,))
+                continue
+            n = round((a[2 * j] + a[2 * j + 1] - b[2 * j] - b[2 * j + 1]) / (2.0 * period))
+            out.append(tuple((n + k) * period for k in (-1, 0, 1)))
+        return [(su, sv) for su in out[0] for sv in out[1]]
+
     def scaled_boxes(self, boxes):
         """Raw parameter boxes (K, 4) of P as scaled boxes (exact: the units are powers of two)."""
         return np.ascontiguousarray(boxes / np.repeat(self.units, 2))

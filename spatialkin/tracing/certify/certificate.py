@@ -263,19 +263,22 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
     points_failed, arcs_failed, whole_failed = [], [], []
     for i, curve in enumerate(curves):
         regular = curve.length > 0 and curve.status not in (TANGENT, CONTACT)
-        radii.append(certify_points(a, b, curve.points, curve.sol.tangent(curve.s)) if regular
-                     else np.full(len(curve.points), math.inf))
+        t = tube(chart, curve) if regular and chart is not None else None
+        tubes.append(t)
+        if not regular:
+            radii.append(np.full(len(curve.points), math.inf))
+        elif t is None:
+            radii.append(certify_points(a, b, curve.points, curve.sol.tangent(curve.s)))
+        else:
+            radii.append(sample_radii(a, b, curve, t))
+        bounds.append(math.inf if t is None or not t.proven else
+                      float(max(np.max(radii[-1]), np.max(t.radii, initial=0.0)) * math.sqrt(3.0)))
         bad = ~np.isfinite(radii[-1])
         if bad.any():
             points_failed.append((f"curve {i}: {int(bad.sum())} of {bad.size} stored points have no proven radius",
                                   curve.points[int(np.argmax(bad))]))
         if not regular:
-            tubes.append(None)
-            bounds.append(math.inf)
             continue
-        t = tube(chart, curve) if chart is not None else None
-        tubes.append(t)
-        bounds.append(sample_bound(a, b, curve, t, radii[-1]))
         if t is None or not t.proven:
             arcs_failed.append((f"curve {i}: {t.reason if t is not None else 'no search chart'}",
                                 None if t is None else t.where))
@@ -305,15 +308,15 @@ def symmetric_or(topology, general):
     return general if general is not None else topology
 
 
-def sample_bound(a, b, curve, t, radii):
-    """Proven bound of the distance from the curve's stored points and the dense samples of its tube (t) to the
-    intersection: the largest proven box half-width (certify_points) times sqrt(3); inf unless the tube is proven
-    and every sample's box passed."""
-    if t is None or not t.proven:
-        return math.inf
-    dense = np.setdiff1d(t.s, curve.s)
-    dense_radii = certify_points(a, b, curve.sol(dense), curve.sol.tangent(dense)) if len(dense) else radii[:0]
-    return float(max(np.max(radii), np.max(dense_radii, initial=0.0)) * math.sqrt(3.0))
+def sample_radii(a, b, curve, t):
+    """The proven box half-widths (certify_points) of the curve's stored points, returned; those of the tube's
+    other samples (its dense samples and refinements) kept on the tube as t.radii. The normal planes are across the
+    samples' chords (any plane through the point transversal to the curve serves)."""
+    tangents = np.gradient(t.points, axis=0)
+    every = certify_points(a, b, t.points, tangents)
+    stored = np.searchsorted(t.s, curve.s)
+    t.radii = np.delete(every, stored)
+    return every[stored]
 
 
 def singular_places(topology, chart, curves):

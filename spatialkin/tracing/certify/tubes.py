@@ -15,7 +15,7 @@ from ...kernels.certify import tubes as kt
 from ..search.topology import Reader
 
 #: Dense samples per stored step (the chords between them carry the pieces).
-SAMPLES_PER_STEP = 4
+SAMPLES_PER_STEP = 2
 #: Refinements of the samples round a failing chord before a tube is given up.
 REFINEMENTS = 96
 #: Chords refined on each side of a failing one.
@@ -36,11 +36,15 @@ class Tube:
     where : ndarray (3,) or None      the curve's point where the chain failed
     s : ndarray (M,)         arc lengths of the samples the chain was built on (stored points, dense samples
                              and refinements)
+    points : ndarray (M, 3)  those samples
     x : ndarray (L, 2)       the scaled parameters of the samples the chain followed (unwrapped)
+    radii : ndarray or None  the proven box half-widths of the samples other than the stored points (set by the
+                             certificate, spatialkin.tracing.certify.certificate.sample_radii)
     """
 
-    def __init__(self, pieces, status, where, s, x):
-        self.pieces, self.status, self.where, self.s, self.x = pieces, status, where, s, x
+    def __init__(self, pieces, status, where, s, points, x):
+        self.pieces, self.status, self.where, self.s, self.points, self.x = pieces, status, where, s, points, x
+        self.radii = None
 
     @property
     def proven(self):
@@ -115,13 +119,13 @@ def tube(chart, curve):
         x, kept = chain_samples(chart, curve, points)
         pieces, status, chord = chain(chart, x, curve.closed, x[-1] - x[0] if curve.closed else np.zeros(2))
         if status == kt.PROVEN:
-            return Tube(pieces, status, None, s, x)
+            return Tube(pieces, status, None, s, points, x)
         at = kept[min(max(chord, 0), len(kept) - 2)]
         lo, hi = max(at - WINDOW, 0), min(at + WINDOW + 1, len(s) - 1)
         mids = 0.5 * (s[lo:hi] + s[lo + 1:hi + 1])
         s = np.sort(np.concatenate([s, mids]))
         points = merged(points, s, mids, np.asarray(curve.sol(mids), dtype=float).reshape(-1, 3))
-    return Tube(pieces, status, points[kept][min(max(chord, 0), len(kept) - 1)], s, x)
+    return Tube(pieces, status, points[kept][min(max(chord, 0), len(kept) - 1)], s, points, x)
 
 
 def merged(points, s_new, mids, fresh):

@@ -2,7 +2,8 @@
 
 A claim counts as proven only when a proof in outward-rounded arithmetic covers it: interval arithmetic in the
 compiled search, the stored points' boxes and the tubes (spatialkin.kernels.geometry.interval,
-spatialkin.kernels.certify). Whatever could not be proven is said, claim by claim, with the points where the proof stopped.
+spatialkin.kernels.certify). Whatever could not be proven is said, claim by claim, with the points where the proof
+stopped.
 """
 import math
 from dataclasses import dataclass
@@ -28,14 +29,6 @@ SHRINK_BOXES = 200
 SEARCHED = ("general", "coaxial", "ruled")
 #: The claims, in the order they are reported.
 CLAIMS = ("complete", "one_component", "distinct", "points", "arcs", "singular")
-CLAIM_TEXT = {
-    "complete": "no component missed",
-    "one_component": "each curve is one whole component (within the trims)",
-    "distinct": "the curves are pairwise distinct components",
-    "points": "every stored point lies within its radius of a true point",
-    "arcs": "the arcs between stored points are proven (tubes)",
-    "singular": "the singular points (contacts, nodes, apexes, tangencies)",
-}
 
 
 @dataclass(frozen=True)

@@ -41,12 +41,13 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     method, rtol, atol, max_length, singular_tol, pullback
         As in ``trace``.
     certify : bool or 'strict'
-        Prove the answer (in outward-rounded interval arithmetic; takes the general path for every pair): the
+        Prove the answer (in outward-rounded interval arithmetic; a closed form's answer against the topology
+        search, which every certified call runs): the
         returned list then has a ``certificate`` (spatialkin.tracing.certify.certificate.Certificate) stating each
         claim (no component missed, each curve one component, the curves distinct, the stored points, the arcs
         between them, the singular points) as proven or not, and where; every curve has its view of it
         (``curve.certificate``). 'strict' raises CertificationError unless every claim is proven. Where the search
-        refuses a pair that meets in a closed form, the closed form's answer comes back, said not proven.
+        refuses a pair that meets in a closed form, that answer comes back, said not proven.
 
     Returns
     -------
@@ -86,18 +87,18 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     (``curve.max_distance``, ``curve.distances()``). ``curve.tolerance`` is that absolute length, never below
     64 ulps of the coordinates' magnitude.
 
-    **How components are found.** Pairs that meet in conics (plane-plane, plane-sphere, plane-cylinder,
-    plane-cone, sphere-sphere) are solved in closed form (spatialkin.tracing.closed.forms; its degenerate cases, and
-    certify=True, take the general path). Otherwise the topology stage (spatialkin.tracing.search.topology) recognises
-    special placements first: surfaces of revolution about one axis meet in parallels, a cylinder and a surface
-    invariant along its axis in lines along it, and circles or segments of tangency come in closed form. In
-    general it reads the intersection as the level g = F_Q(P(u, v)) = 0 on one surface's parameter domain and
-    seeds every component: each one meets an edge of the domain, crosses a seam, passes a collapsed point of the
-    chart (a pole, an apex), or is a closed loop holding a critical point where its tangent is normal to a fixed
-    direction. Those roots are found by interval subdivision with outward rounding [2]_ [3]_, a box dropped only
-    when an enclosure proves it root-free and a root kept once the interval Newton or Krawczyk operator proves it
-    isolated, so the search seeds every component, however small [4]_ [5]_; boxes that shrink to round-off without
-    either proof are singular points (contacts, nodes), classified by the Hessian. Each component is then traced once by
+    **How components are found.** Pairs that meet in conics (plane-plane, plane-sphere, plane-cylinder, plane-cone,
+    sphere-sphere) are solved in closed form (spatialkin.tracing.closed.forms; its degenerate cases take the general
+    path, and certify=True runs the search too). Otherwise the topology stage (spatialkin.tracing.search.topology)
+    recognises special placements first: surfaces of revolution about one axis meet in parallels, a cylinder and a
+    surface invariant along its axis in lines along it, and circles or segments of tangency come in closed form. In
+    general it reads the intersection as the level g = F_Q(P(u, v)) = 0 on one surface's parameter domain and seeds
+    every component: each one meets an edge of the domain, crosses a seam, passes a collapsed point of the chart (a
+    pole, an apex), or is a closed loop holding a critical point where its tangent is normal to a fixed direction.
+    Those roots are found by interval subdivision with outward rounding [2]_ [3]_, a box dropped only when an
+    enclosure proves it root-free and a root kept once the interval Newton or Krawczyk operator proves it isolated,
+    so the search seeds every component, however small [4]_ [5]_; boxes that shrink to round-off without either
+    proof are singular points (contacts, nodes), classified by the Hessian. Each component is then traced once by
     ``trace`` (Dragilev's method [1]_), and the starts lying on it are skipped.
 
     References
@@ -157,28 +158,29 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         raise ValueError(f"certify must be False, True or 'strict', got {certify!r}")
     warm.refresh()
     scene = None
-    if CLOSED_FORMS and not certify:      # (its settings are checked as make_settings checks them)
-        settings = closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback)
-        found = closed_form(a, b, settings)
-        if found is not None:
-            return [Curve(c) for c in in_sk_order(clip_curves(a, b, found, settings.scale))]
-        scene = settings.checked
+    found = None
+    if CLOSED_FORMS:                      # (its settings are checked as make_settings checks them)
+        closed = closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback)
+        found = closed_form(a, b, closed)
+        if found is not None and not certify:
+            return [Curve(c) for c in in_sk_order(clip_curves(a, b, found, closed.scale))]
+        scene = closed.checked
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor, scene)
     if not certify:
         curves, topo = searched(a, b, settings)
         return [Curve(c, topology=topo) for c in curves]
-    try:
+    if found is None:
         curves, topo = searched(a, b, settings)
-    except TopologyError as err:          # the answer of the closed forms, if any, said not proven
-        found = closed_form(a, b, closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback))
-        if found is None:
-            raise
-        curves = in_sk_order(clip_curves(a, b, found, settings.scale))
+        return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify)
+    # the closed forms' answer (the plain call's), proven against the topology search
+    curves = in_sk_order(clip_curves(a, b, found, settings.scale))
+    try:
+        topo = topology(a, b, settings.scale, settings.tolerance)
+    except TopologyError as err:
         return certified(a, b, curves, None, settings.scale, settings.tolerance, certify,
                          f"the search stopped ({err}); the answer is the closed form's")
     return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify)
-
 
 def searched(a, b, settings):
     """(CurveResults of every component, in sk's order; the Topology): the general path of intersect."""

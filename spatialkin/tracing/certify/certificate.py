@@ -104,7 +104,8 @@ class Certificate:
       of tangency) are reported, not proven (a tangency is an equality that floating point cannot decide), with
       their places and, for a contact, a proven ball (``radius``): the Krawczyk test proves a unique critical
       point of g in a box where its Hessian is definite, so the intersection within the box lies within the ball
-      (a point, a small loop or nothing); a node is proven a unique saddle (spatialkin.kernels.certify.singular).
+      (a point, a small loop or nothing); a node is proven the only critical point in its ball, a saddle
+      (spatialkin.kernels.certify.singular).
       The search's boxes inside an isolated contact's box are accounted for by it in the completeness claim.
 
     An empty answer has a certificate too (``sk.intersect`` returns a list with a ``certificate`` attribute): it is
@@ -349,8 +350,9 @@ def singular_ball(chart, point, what):
                 "point, a small loop or nothing; not decided)", point, ball,
                 np.array([x[0] - out[0], x[0] + out[0], x[1] - out[0], x[1] + out[0]]))
     if kind == ks_singular.SADDLE:
-        return (f"a {what}: a unique saddle of the level within {out[0] * out[2]:.1e} of it; the branches there "
-                "are not proven", point, math.inf)
+        ball = float(out[0] * out[2])
+        return (f"a {what}: the only critical point of the level within {ball:.1e} of it is a saddle (a node, or "
+                "two branches passing close); the branches there are not proven", point, ball)
     return (f"a {what} (not proven)", point, math.inf)
 
 

@@ -245,12 +245,13 @@ def test_a_contact_gets_a_proven_ball():
 
 def test_a_node_is_a_proven_saddle_and_not_proven():
     """Viviani's figure-eight (a sphere and a cylinder of half its radius through its centre): the node at (1, 0, 0)
-    is a unique saddle, said so, and the answer is not proven."""
+    is proven the only critical point in a small ball, a saddle, said so, and the answer is not proven."""
     curves = sk.intersect(sk.Sphere(1.0), sk.Cylinder(0.5, sk.Frame((0.5, 0.0, 0.0)), v_range=(-2.0, 2.0)),
                           certify=True)
     singular = curves.certificate.claims["singular"]
     assert not curves.certificate.proven and not singular.proven
     assert "saddle" in singular.detail and np.allclose(singular.where[0], [1.0, 0.0, 0.0], atol=1e-9)
+    assert singular.radius[0] < 1e-6                   # the ball where the saddle is proven to lie
 
 
 @pytest.mark.slow

@@ -16,7 +16,7 @@ from ...kernels.certify import singular as ks_singular
 from ...kernels.search import topology as ks
 from .certify_points import certify_points
 from ..search.topology import TopologyError, search
-from .trims import Ends, edges, open_curve, outside, q_edge_roots
+from .trims import Ends, closed_inside, edges, open_curve, outside, q_edge_roots
 from .tubes import Chart, tube
 
 PROVEN, NOT_PROVEN = "proven", "not proven"
@@ -86,7 +86,8 @@ class Certificate:
       crossings there and the roots outside the first surface's trims. A pair the search
       read as coaxial or ruled (a symmetry decided within a tolerance) is proven complete only where the symmetry is
       exact whatever the placement (two spheres, a sphere and a plane).
-    - **one_component**: a closed curve's tube closes on itself, so the curve is a whole closed component. An open
+    - **one_component**: a closed curve's tube closes on itself and lies strictly inside every trim, so the curve
+      is a whole closed component of the trimmed patches. An open
       curve is one whole piece of its component within the trims when each end is a proven crossing of a trim
       edge inside the tube (the Krawczyk test on g = 0 and the edge), the arc crosses that edge once in the pieces
       that touch it, and every other piece lies strictly inside every trim (spatialkin.tracing.certify.trims; trims
@@ -278,6 +279,8 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
                                 None if t is None else t.where))
             whole_failed.append((f"curve {i}: its tube is not proven", None if t is None else t.where))
         elif not curve.closed and not open_curve(chart, trims, unsupported, t, curve, ends, i):
+            whole_failed.append(ends.failures[-1])
+        elif curve.closed and not closed_inside(chart, trims, unsupported, t, i, ends):
             whole_failed.append(ends.failures[-1])
     singular = singular_places(symmetric_or(topology, general), chart, curves)
     if topology is None:

@@ -158,6 +158,28 @@ def touching_runs(chart, edge, pieces, inner, found):
     return None
 
 
+def closed_inside(chart, trims, unsupported, tube, index, ends):
+    """True when every piece of a closed curve's tube lies strictly inside every trim (so the loop is inside the
+    trimmed patches, not a loop the trims should have cut); else appends the reason to ends.failures."""
+    if unsupported:
+        ends.failures.append((f"curve {index}: {unsupported[0]}", tube.points[0]))
+        return False
+    r = chart.reader
+    su, sv = (float(u) for u in chart.units)
+    for edge in trims:
+        values = np.empty((len(tube.pieces), 2))
+        kr.trim_coordinates(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, edge.code, edge.value,
+                            tube.pieces, values)
+        inner = values[:, 0] > 0.0 if edge.inside > 0 else values[:, 1] < 0.0
+        if not inner.all():
+            k = int(np.flatnonzero(~inner)[0])
+            raw = tube.pieces[k, [kt.CU, kt.CV]] * chart.units
+            ends.failures.append((f"curve {index}: its closed tube is not proven inside a trim ({edge.owner}'s "
+                                  f"{'uv'[edge.fixed]} = {edge.value:g})", chart.p.point(raw[0], raw[1])))
+            return False
+    return True
+
+
 def end_crossing(chart, trims, curve, x):
     """(edge, scaled box (4,)) of a proven crossing at the end whose scaled parameters are x, or None."""
     r = chart.reader

@@ -280,3 +280,14 @@ def test_a_pair_the_search_refuses_gets_the_closed_form_said_not_proven():
         for name in ("complete", "singular", "arcs"):
             assert not curves.certificate.claims[name].proven
         assert "search" in curves.certificate.claims["complete"].detail
+
+
+def test_a_whole_circle_across_the_trims_is_not_one_component():
+    """The untrimmed circle given as the answer for the strip: its closed tube leaves the strip, so it is not one
+    component of the trimmed patches."""
+    a, b = strip_pair()
+    topology = sk.intersect(a, b, certify=True)[0].topology
+    circle = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.3))), certify=True)[0].result
+    cert = certify(a, b, [circle], topology, 1.0)
+    assert not cert.proven and not cert.claims["one_component"].proven
+    assert "inside a trim" in cert.claims["one_component"].detail

@@ -9,7 +9,8 @@ moves its ball centre along such a line, torus ∩ sphere ([Looper]).
 - ``Torus``, ``Sphere``, ``Plane``, ``Cylinder``, ``Cone``: placed surfaces (``point``, ``distance``);
 - ``trace`` (one component from a start), ``intersect`` (every component; ``certify=True`` for a proof),
   ``intersect_many`` (many pairs): ``Curve`` objects, parametrised by arc length;
-- ``TracingError``, ``TopologyError``, ``CoincidentSurfacesError``, ``BatchError``: what they raise;
+- ``TracingError``, ``TopologyError``, ``CoincidentSurfacesError``, ``BatchError``, ``CertificationError``: what
+  they raise;
 - ``spatialkin.mechanisms.LooperDrive`` (the looper drive's motion) and ``spatialkin.design`` (sensitivities,
   fits and sweeps of its geometry).
 
@@ -37,7 +38,8 @@ from .tracing.components import intersect  # noqa: E402
 from .tracing.batch import BatchError, intersect_many  # noqa: E402
 from .geometry.placement import CoincidentSurfacesError  # noqa: E402
 from .tracing.search.topology import TopologyError  # noqa: E402
+from .tracing.certify.certificate import CertificationError  # noqa: E402
 
 __all__ = ["Frame", "rotation_about", "rotation_to_z", "Surface", "Torus", "Sphere", "Plane", "Cylinder",
            "Cone", "Curve", "TracingError", "trace", "intersect", "intersect_many", "BatchError", "auxiliary_starts", "CoincidentSurfacesError",
-           "TopologyError"]
+           "TopologyError", "CertificationError"]

@@ -7,5 +7,7 @@ from .march.trace import trace
 from .components import intersect
 from .batch import BatchError, intersect_many
 from .search.topology import TopologyError
+from .certify.certificate import CertificationError
 
-__all__ = ["Curve", "TracingError", "trace", "intersect", "intersect_many", "BatchError", "TopologyError"]
+__all__ = ["Curve", "TracingError", "trace", "intersect", "intersect_many", "BatchError", "TopologyError",
+           "CertificationError"]

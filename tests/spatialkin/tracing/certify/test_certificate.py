@@ -119,8 +119,9 @@ def test_strict_raises_with_the_failed_claims():
     assert len(loose) == 1 and not loose.certificate.proven
     assert not loose.certificate.claims["one_component"].proven
     assert "face trims" in loose.certificate.claims["one_component"].detail
-    with pytest.raises(CertificationError) as err:
+    with pytest.raises(sk.CertificationError) as err:
         sk.intersect(*pair, certify="strict")
+    assert isinstance(err.value, CertificationError)
     assert not err.value.certificate.proven
     assert all(c.name in str(err.value) for c in err.value.certificate.failed)
     with pytest.raises(ValueError, match="certify"):

@@ -391,6 +391,8 @@ def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends, iso
                        or within_isolated(chart, box, isolated) for box in candidate_boxes(found, i)):
                 failures.append(("a root of the search lies in no proven tube",
                                  chart.p.point(0.5 * (raw[0] + raw[1]), 0.5 * (raw[2] + raw[3]))))
+    for what, where in topology.skipped:
+        failures.append((f"the search left out {what}", where))
     for reader, fixed, value, t0, t1 in topology.whole_lines:
         failures.append(("a parameter line lies on the other surface (not proven)", None))
     text = ("the search found no root: the trimmed surfaces have no common point" if not curves else

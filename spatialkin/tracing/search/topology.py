@@ -151,6 +151,8 @@ class Topology:
     root_boxes : list of RootBoxes      every search's boxes: each verified box holds exactly one root of its
                                         search, and every root lies in one of them (the certificate's input)
     whole_lines : list of (reader, fixed, value, t0, t1)   parameter lines found lying on the other surface
+    skipped : list of (what, point)     parts of P's domain the interior search left out (their components are
+                                        seeded by the rings or bands' edges, but nothing inside them is proven)
     chart : Surface                     P in the chart its searches read
     """
     P: object
@@ -167,6 +169,7 @@ class Topology:
     searches: list = field(default_factory=list)
     root_boxes: list = field(default_factory=list)
     whole_lines: list = field(default_factory=list)
+    skipped: list = field(default_factory=list)
     chart: object = None
     boxes: int = 0
     verified: int = 0
@@ -393,6 +396,7 @@ def search(a, b, scale, tolerance, tangent=None, general=False):
     if tangent is not None:                          # the band round the meridian of tangency: its edges are the seam
         u0 = tangent[2]
         box[0], box[1] = u0 + BAND, u0 + 2 * math.pi - BAND
+        topo.skipped.append(("a band round the meridian along which the surfaces touch", points_at(p, (u0, 0.0))[0]))
         if traits(p).name == "torus":
             topo.tangent_circles.append(meridian_circle(p, u0))
         else:
@@ -454,6 +458,7 @@ def search(a, b, scale, tolerance, tangent=None, general=False):
             if float(q.distance(apex)) > 1e3 * tolerance:
                 continue
             bands.append((v - RINGS[-1] * v_unit, v + RINGS[-1] * v_unit))
+            topo.skipped.append(("a thin band round an apex or pole", apex))
             on_q = pq.on_level((0.0, v))
             if on_q:                                  # a point of the curve (else the branches pass beside it)
                 topo.apexes.append(apex)

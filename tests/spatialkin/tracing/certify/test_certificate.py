@@ -292,3 +292,14 @@ def test_a_whole_circle_across_the_trims_is_not_one_component():
     cert = certify(a, b, [circle], topology, 1.0)
     assert not cert.proven and not cert.claims["one_component"].proven
     assert "inside a trim" in cert.claims["one_component"].detail
+
+
+def test_a_band_left_out_round_an_apex_is_not_complete():
+    """A cone whose apex lies on a sphere: the search leaves a thin band round the apex out of its interior search
+    (the rings seed what crosses it), so completeness is not proven, and the apex is among the places said."""
+    apex = np.array([0.3, 0.7, 0.8])
+    cone = sk.Cone(0.5, sk.Frame(apex, sk.rotation_about((1, 0, 0), 0.4)), v_range=(-2.0, 2.0))
+    sphere = sk.Sphere(1.0, sk.Frame((0.3, 0.1, 0.0)))
+    curves = sk.intersect(cone, sphere, certify=True)
+    complete = curves.certificate.claims["complete"]
+    assert not complete.proven and any(np.allclose(w, apex, atol=1e-12) for w in complete.where)

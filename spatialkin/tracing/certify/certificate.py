@@ -382,7 +382,7 @@ def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends, iso
         if not len(found.verified):
             continue
         if reader.s is not chart.p:
-            failures += q_edge_roots(chart, topology, found, trims, unsupported, ends)
+            failures += q_edge_roots(chart, topology, found, trims, unsupported, ends, candidate_boxes)
             continue
         q_trims = [e for e in trims if e.owner == "Q"]
         for i, raw in enumerate(found.verified):

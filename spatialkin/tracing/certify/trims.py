@@ -201,10 +201,11 @@ def end_crossing(chart, trims, curve, x):
     return None
 
 
-def q_edge_roots(chart, topology, found, trims, unsupported, ends):
+def q_edge_roots(chart, topology, found, trims, unsupported, ends, candidates):
     """(text, point) failures for the roots of one search on a trim edge of Q (found: RootBoxes read on Q): every
     root must be one of the proven crossings on that edge (within the range searched) or lie strictly outside
-    P's trims; counted, since the crossings are distinct roots of that search and it holds no other."""
+    P's trims (its verified box, or a smaller one proven to hold it: candidates(found, i) yields them); counted,
+    since the crossings are distinct roots of that search and it holds no other."""
     fixed, value, t0, t1 = found.args
     where = lambda box: found.reader.s.point(0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]))  # noqa: E731
     if unsupported:
@@ -214,7 +215,8 @@ def q_edge_roots(chart, topology, found, trims, unsupported, ends):
     # P's trims read on Q: P's local axes (the reader of Q against P)
     p_kind = traits(topology.P)
     on_q = [Edge("P", e.fixed, e.value, p_kind.parameter_axes[e.fixed], e.inside) for e in p_trims]
-    outside_count = sum(outside(found.reader, box, on_q) for box in found.verified)
+    outside_count = sum(any(outside(found.reader, box, on_q) for box in candidates(found, i))
+                        for i in range(len(found.verified)))
     crossings = ends.crossings.get(("Q", fixed, value), [])
     other = 1 - fixed
     r = chart.reader

@@ -291,12 +291,24 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
     claims = [complete,
               claim("one_component", whole_failed, "every closed curve's tube closes on itself, every open "
                     "curve runs between two proven crossings of trim edges"),
-              distinct_claim(chart, tubes),
+              distinct_claim(chart, tubes, contact_boxes(curves, singular)),
               claim("points", points_failed, "every stored point has a proven radius"),
               claim("arcs", arcs_failed, "every curve lies in a chain of proven pieces"),
               claim("singular", [place[:3] for place in singular],
                     "no singular point (contact, node, apex, tangency) was found")]
     return Certificate(claims, topology, radii, tubes, bounds, len(curves))
+
+
+def contact_boxes(curves, singular):
+    """{index of a contact curve: the isolation box of its singular place (scaled)}, where one was proven."""
+    out = {}
+    for i, curve in enumerate(curves):
+        if curve.status != CONTACT:
+            continue
+        for place in singular:
+            if len(place) > 3 and np.array_equal(place[1], curve.points[0]):
+                out[i] = place[3]
+    return out
 
 
 def symmetric_or(topology, general):
@@ -459,19 +471,32 @@ def within_isolated(chart, raw, isolated):
     return False
 
 
-def distinct_claim(chart, tubes):
-    """The curves' tubes pairwise disjoint (pieces_overlap, with whole periods of the chart)."""
+def distinct_claim(chart, tubes, boxes=None):
+    """The curves' tubes pairwise disjoint (pieces_overlap, with whole periods of the chart); a contact point's
+    isolation box (boxes: {curve index: scaled box (4,)}) stands for its tube."""
+    boxes = boxes or {}
+    pieces = [t.pieces if t is not None and t.proven else box_piece(boxes[i]) if i in boxes else None
+              for i, t in enumerate(tubes)]
     failures = []
     for i in range(len(tubes)):
         for j in range(i + 1, len(tubes)):
-            ti, tj = tubes[i], tubes[j]
-            if ti is None or tj is None or not (ti.proven and tj.proven):
+            if pieces[i] is None or pieces[j] is None:
                 failures.append((f"curves {i} and {j}: a tube is not proven", None))
                 continue
-            hit = overlapping(chart, ti.pieces, tj.pieces)
+            hit = overlapping(chart, pieces[i], pieces[j])
             if hit is not None:
                 failures.append((f"the tubes of curves {i} and {j} overlap", hit))
     return claim("distinct", failures, "the curves' tubes are pairwise disjoint")
+
+
+def box_piece(box):
+    """A scaled box (4,) as a piece (1, WIDTH): the parallelogram along u, T its u half-width, W its v half-width."""
+    piece = np.zeros((1, kt.WIDTH))
+    piece[0, kt.CU], piece[0, kt.CV] = 0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3])
+    piece[0, kt.P], piece[0, kt.Q] = 1.0, 0.0
+    half_u, half_v = 0.5 * (box[1] - box[0]), 0.5 * (box[3] - box[2])
+    piece[0, kt.T0], piece[0, kt.T1], piece[0, kt.H] = -half_u * (1 + 1e-15), half_u * (1 + 1e-15), half_v * (1 + 1e-15)
+    return piece
 
 
 def overlapping(chart, first, second):

@@ -303,3 +303,12 @@ def test_a_band_left_out_round_an_apex_is_not_complete():
     curves = sk.intersect(cone, sphere, certify=True)
     complete = curves.certificate.claims["complete"]
     assert not complete.proven and any(np.allclose(w, apex, atol=1e-12) for w in complete.where)
+
+
+def test_a_contact_given_twice_is_not_distinct():
+    """The contact point of a sphere touching a torus given twice: the two isolation boxes are the same, so the
+    curves are not proven distinct (each contact's box stands for its tube)."""
+    a, b = sk.Torus(1.0, 0.4), sk.Sphere(0.5, sk.Frame((1.9, 0.0, 0.0)))
+    curves = sk.intersect(a, b, certify=True)
+    cert = certify(a, b, [curves[0].result, curves[0].result], curves[0].topology, 0.5)
+    assert not cert.claims["distinct"].proven and "overlap" in cert.claims["distinct"].detail

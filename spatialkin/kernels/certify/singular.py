@@ -17,7 +17,7 @@ R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIA
 import math
 
 from ..._lib.jit import jit
-from ..geometry.interval import box_trig, iadd, imul, iscale, isub, jet, local_first, mag, point
+from ..geometry.interval import box_trig, iadd, imul, iscale, isub, jet, krawczyk_row, local_first, mag, point
 
 #: Outcomes: no box passed; a unique critical point, a saddle over its box; a unique extremum isolated in its box
 #: (the level within the ball); an extremum whose ball reaches the box's edge.
@@ -56,10 +56,7 @@ def critical_ball(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, h0, cap, out)
         offset = 0.0
         for row in range(2):
             ya, yb = (y00, y01) if row == 0 else (y10, y11)
-            step = iadd(iscale(guc, ya), iscale(gvc, yb))
-            m0 = isub(point(1.0 if row == 0 else 0.0), iadd(iscale(guu, ya), iscale(guv, yb)))
-            m1 = isub(point(0.0 if row == 0 else 1.0), iadd(iscale(guv, ya), iscale(gvv, yb)))
-            k = isub(iadd(imul(m0, B), imul(m1, B)), step)
+            k = krawczyk_row(ya, yb, 0.0, guc, gvc, guu, guv, guv, gvv, B, B, row)     # (centred: K - c)
             if not (-h < k[0] and k[1] < h):
                 ok = False
             offset = max(offset, mag(k))

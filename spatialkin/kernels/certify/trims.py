@@ -16,9 +16,9 @@ R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIA
 import math
 
 from ..._lib.jit import jit
-from ..geometry.interval import (box_trig, down, iadd, idot, implicit_jet, imul, iscale, ishift, isub,
+from ..geometry.interval import (box_trig, down, iadd, idot, implicit_jet, imul, iscale, ishift, krawczyk_row,
                                  local_first, placed, point, transform, up)
-from .tubes import CU, CV, H, P, Q, T0, T1
+from .tubes import P, Q, piece_box
 
 #: An edge of S's own parameters: EDGE_U (u = value) or EDGE_V (v = value); 0, 1, 2: T's local coordinate.
 EDGE_U, EDGE_V = -1, -2
@@ -66,10 +66,7 @@ def crossing(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, cu, cv, h):
     eu, ev = iscale(e[1], su), iscale(e[2], sv)
     for row in range(2):
         ya, yb = (y00, y01) if row == 0 else (y10, y11)
-        step = iadd(iscale(gc[0], ya), iscale(ec[0], yb))
-        m0 = isub(point(1.0 if row == 0 else 0.0), iadd(iscale(gu, ya), iscale(eu, yb)))
-        m1 = isub(point(0.0 if row == 0 else 1.0), iadd(iscale(gv, ya), iscale(ev, yb)))
-        k = isub(iadd(imul(m0, B), imul(m1, B)), step)
+        k = krawczyk_row(ya, yb, 0.0, gc[0], ec[0], gu, gv, eu, ev, B, B, row)     # (centred: K - c)
         if not (-h < k[0] and k[1] < h):
             return False
     return True
@@ -88,21 +85,10 @@ def crossing_radius(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, cu, cv
 
 
 @jit
-def _piece_box(piece, su, sv):
-    """(U, V): the raw parameter intervals of the piece's parallelogram."""
-    p, q = piece[P], piece[Q]
-    T = (piece[T0], piece[T1])
-    W = (-piece[H], piece[H])
-    xu = iadd(iadd(point(piece[CU] + 0.0), iscale(T, p)), iscale(W, -q))
-    xv = iadd(iadd(point(piece[CV] + 0.0), iscale(T, q)), iscale(W, p))
-    return iscale(xu, su), iscale(xv, sv)
-
-
-@jit
 def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, piece):
     """(lo, hi): an enclosure of de/dt along the arc of the piece (t its parameter along a): the arc's direction
     (du/dt, dv/dt) = a + n dw/dt, dw/dt = -phi_t / phi_w, over the piece."""
-    U, V = _piece_box(piece, su, sv)
+    U, V = piece_box(piece, su, sv)
     g, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
     p, q = piece[P], piece[Q]
     gu, gv = iscale(g[1], su), iscale(g[2], sv)            # derivatives in scaled parameters
@@ -122,7 +108,7 @@ def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, piece):
 @jit
 def trim_coordinate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, piece):
     """(lo, hi): an enclosure of e over the piece's parallelogram."""
-    U, V = _piece_box(piece, su, sv)
+    U, V = piece_box(piece, su, sv)
     _, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
     return e[0][0], e[0][1]
 

@@ -62,11 +62,49 @@ def _idiv_pos(a, d):
 
 
 @jit
-def _hull(cu, cv, p, q, T, W, su, sv):
-    """(U, V): the raw parameter intervals of the parallelogram c + T a + W n (scaled by su, sv)."""
+def _span(cu, cv, p, q, T, W):
+    """(xu, xv): the scaled parameter intervals of the parallelogram c + T a + W n."""
     xu = iadd(iadd(point(cu), iscale(T, p)), iscale(W, -q))
     xv = iadd(iadd(point(cv), iscale(T, q)), iscale(W, p))
+    return xu, xv
+
+
+@jit(forceinline=True)
+def _hull(cu, cv, p, q, T, W, su, sv):
+    """(U, V): the raw parameter intervals of the parallelogram c + T a + W n (scaled by su, sv)."""
+    xu, xv = _span(cu, cv, p, q, T, W)
     return iscale(xu, su), iscale(xv, sv)
+
+
+@jit(forceinline=True)
+def piece_span(piece):
+    """(xu, xv): the scaled parameter intervals of the piece's parallelogram."""
+    return _span(piece[CU], piece[CV], piece[P], piece[Q], (piece[T0], piece[T1]), (-piece[H], piece[H]))
+
+
+@jit
+def piece_box(piece, su, sv):
+    """(U, V): the raw parameter intervals of the piece's parallelogram (scaled by su, sv)."""
+    xu, xv = piece_span(piece)
+    return iscale(xu, su), iscale(xv, sv)
+
+
+@jit(forceinline=True)
+def _in_frame(piece, xu, xv):
+    """(t, w): enclosures of the coordinates in the piece's frame (c + t a + w n) of the scaled point intervals."""
+    ru = ishift(xu, -piece[CU])
+    rv = ishift(xv, -piece[CV])
+    p2, q2 = piece[P], piece[Q]
+    norm = iadd(imul(point(p2), point(p2)), imul(point(q2), point(q2)))
+    t = _idiv_pos(iadd(iscale(ru, p2), iscale(rv, q2)), norm)
+    w = _idiv_pos(iadd(iscale(ru, -q2), iscale(rv, p2)), norm)
+    return t, w
+
+
+@jit(forceinline=True)
+def _strictly_in(piece, t, w):
+    """True when the frame coordinates (t, w) lie strictly inside the piece (t in T, w in W)."""
+    return piece[T0] < t[0] and t[1] < piece[T1] and -piece[H] < w[0] and w[1] < piece[H]
 
 
 @jit(forceinline=True)
@@ -143,16 +181,9 @@ def _shifted(x, shift):
 def linked(first, second, shift_u, shift_v):
     """True when the exit of piece `first` (t = t1, w in [k0, k1]), shifted by (shift_u, shift_v) (scaled
     coordinates: a period of the loop, or zero), lies strictly inside piece `second`."""
-    p, q = first[P], first[Q]
-    eu = iadd(iadd(point(first[CU] + 0.0), iscale(point(first[T1]), p)), iscale((first[K0], first[K1]), -q))
-    ev = iadd(iadd(point(first[CV] + 0.0), iscale(point(first[T1]), q)), iscale((first[K0], first[K1]), p))
-    ru = ishift(_shifted(eu, shift_u), -second[CU])
-    rv = ishift(_shifted(ev, shift_v), -second[CV])
-    p2, q2 = second[P], second[Q]
-    norm = iadd(imul(point(p2), point(p2)), imul(point(q2), point(q2)))
-    t = _idiv_pos(iadd(iscale(ru, p2), iscale(rv, q2)), norm)
-    w = _idiv_pos(iadd(iscale(ru, -q2), iscale(rv, p2)), norm)
-    return second[T0] < t[0] and t[1] < second[T1] and -second[H] < w[0] and w[1] < second[H]
+    eu, ev = _span(first[CU], first[CV], first[P], first[Q], point(first[T1]), (first[K0], first[K1]))
+    t, w = _in_frame(second, _shifted(eu, shift_u), _shifted(ev, shift_v))
+    return _strictly_in(second, t, w)
 
 
 @jit
@@ -228,11 +259,7 @@ def pieces_overlap(first, second, shift_u, shift_v):
                 piece = first if side == 0 else second
                 su_ = 0.0 if side == 0 else shift_u
                 sv_ = 0.0 if side == 0 else shift_v
-                pu, pv = piece[P], piece[Q]
-                xu = iadd(iadd(point(piece[CU] + 0.0), iscale((piece[T0], piece[T1]), pu)),
-                          iscale((-piece[H], piece[H]), -pv))
-                xv = iadd(iadd(point(piece[CV] + 0.0), iscale((piece[T0], piece[T1]), pv)),
-                          iscale((-piece[H], piece[H]), pu))
+                xu, xv = piece_span(piece)
                 proj = iadd(iscale(_shifted(xu, su_), ax_u), iscale(_shifted(xv, sv_), ax_v))
                 if side == 0:
                     ours = proj
@@ -256,8 +283,6 @@ def point_in_pieces(pieces, count, box, shift_u, shift_v):
     side), strictly inside (t in T, w in W: a zero of g in the box is then a point of the piece's arc), or -1."""
     for i in range(count):
         piece = pieces[i]
-        p2, q2 = piece[P], piece[Q]
-        norm = iadd(imul(point(p2), point(p2)), imul(point(q2), point(q2)))
         nu = _turns(piece[CU] - 0.5 * (box[0] + box[1]), shift_u)
         nv = _turns(piece[CV] - 0.5 * (box[2] + box[3]), shift_v)
         for ku in range(-1, 2):
@@ -266,11 +291,9 @@ def point_in_pieces(pieces, count, box, shift_u, shift_v):
             for kv in range(-1, 2):
                 if shift_v == 0.0 and kv != 0:
                     continue
-                ru = ishift(_shifted((box[0], box[1]), (nu + ku) * shift_u), -piece[CU])
-                rv = ishift(_shifted((box[2], box[3]), (nv + kv) * shift_v), -piece[CV])
-                t = _idiv_pos(iadd(iscale(ru, p2), iscale(rv, q2)), norm)
-                w = _idiv_pos(iadd(iscale(ru, -q2), iscale(rv, p2)), norm)
-                if piece[T0] < t[0] and t[1] < piece[T1] and -piece[H] < w[0] and w[1] < piece[H]:
+                t, w = _in_frame(piece, _shifted((box[0], box[1]), (nu + ku) * shift_u),
+                                 _shifted((box[2], box[3]), (nv + kv) * shift_v))
+                if _strictly_in(piece, t, w):
                     return i
     return -1
 
@@ -302,11 +325,7 @@ def spaced(x, floor, keep):
 @jit
 def _piece_hull(piece):
     """(u lo, u hi, v lo, v hi): an enclosure of the piece's parallelogram (scaled parameters)."""
-    p, q = piece[P], piece[Q]
-    T = (piece[T0], piece[T1])
-    W = (-piece[H], piece[H])
-    xu = iadd(iadd(point(piece[CU] + 0.0), iscale(T, p)), iscale(W, -q))
-    xv = iadd(iadd(point(piece[CV] + 0.0), iscale(T, q)), iscale(W, p))
+    xu, xv = piece_span(piece)
     return xu[0], xu[1], xv[0], xv[1]
 
 

@@ -295,6 +295,23 @@ def idot(a, b):
 
 
 @jit(forceinline=True)
+def krawczyk_row(y0, y1, m_i, gm, phim, gu, gv, j10, j11, dU, dV, i):
+    """Row i of the Krawczyk operator of a 2 x 2 system Phi = (g, phi): m_i - (Y Phi(m))_i + sum_j (delta_ij -
+    (Y J)_ij) (X_j - m_j), with (y0, y1) row i of the float preconditioner Y, (gm, phim) Phi's enclosures at the
+    midpoint m, J = ((gu, gv), (j10, j11)) the Jacobian's over the box X, dU, dV = X - m."""
+    yphi = iadd(iscale(gm, y0), iscale(phim, y1))
+    a0 = iadd(iscale(gu, y0), iscale(j10, y1))        # (Y J)_i0
+    a1 = iadd(iscale(gv, y0), iscale(j11, y1))        # (Y J)_i1
+    if i == 0:
+        a0 = isub((1.0, 1.0), a0)
+        a1 = isub((0.0, 0.0), a1)
+    else:
+        a0 = isub((0.0, 0.0), a0)
+        a1 = isub((1.0, 1.0), a1)
+    return iadd(isub(point(m_i), yphi), iadd(imul(a0, dU), imul(a1, dV)))
+
+
+@jit(forceinline=True)
 def _square(x):
     """x^2 of a float constant, as an interval (its rounding enclosed)."""
     return isqr((x, x))

@@ -34,7 +34,7 @@ import numpy as np
 
 from ..._lib.jit import jit
 from ..geometry.interval import (box_trig, contains_zero, down, iadd, imul, intersect, iscale, isqr, isub, jet, jet_first,
-                       jet_second, level, mag, point, u_trig, up, v_trig)
+                       jet_second, krawczyk_row, level, mag, point, u_trig, up, v_trig)
 from ..geometry.surfaces import evaluate, inverse_local, to_local
 
 VERIFIED, UNRESOLVED = 1, 2
@@ -255,8 +255,8 @@ def extremal_points(s_data, t_data, m, c, pad, cpad, du, dv, box, min_width, coa
             y01 = -a01 / det
             y10 = -a10 / det
             y11 = a00 / det
-            k = _krawczyk_row(y00, y01, mu, gm, phim, gu, gv, j10, j11, dU, dV, 0)
-            l = _krawczyk_row(y10, y11, mv, gm, phim, gu, gv, j10, j11, dU, dV, 1)
+            k = krawczyk_row(y00, y01, mu, gm, phim, gu, gv, j10, j11, dU, dV, 0)
+            l = krawczyk_row(y10, y11, mv, gm, phim, gu, gv, j10, j11, dU, dV, 1)
             if k[0] > U[0] and k[1] < U[1] and l[0] > V[0] and l[1] < V[1]:
                 if not _record(out, kinds, count, k, l, VERIFIED):
                     return count, RECORDS_FULL, boxes
@@ -346,21 +346,6 @@ def _second_order(gm, gum, gvm, guu, guv, gvv, dU, dV):
     linear = iadd(imul(gum, dU), imul(gvm, dV))
     half = iadd(iadd(iscale(imul(guu, isqr(dU)), 0.5), imul(guv, imul(dU, dV))), iscale(imul(gvv, isqr(dV)), 0.5))
     return iadd(gm, iadd(linear, half))
-
-
-@jit(forceinline=True)
-def _krawczyk_row(y0, y1, m_i, gm, phim, gu, gv, j10, j11, dU, dV, i):
-    """Row i of the Krawczyk operator: m_i - (Y Phi(m))_i + sum_j (delta_ij - (Y J)_ij) (X_j - m_j)."""
-    yphi = iadd(iscale(gm, y0), iscale(phim, y1))
-    a0 = iadd(iscale(gu, y0), iscale(j10, y1))        # (Y J)_i0
-    a1 = iadd(iscale(gv, y0), iscale(j11, y1))        # (Y J)_i1
-    if i == 0:
-        a0 = isub((1.0, 1.0), a0)
-        a1 = isub((0.0, 0.0), a1)
-    else:
-        a0 = isub((0.0, 0.0), a0)
-        a1 = isub((1.0, 1.0), a1)
-    return iadd(isub(point(m_i), yphi), iadd(imul(a0, dU), imul(a1, dV)))
 
 
 @jit(forceinline=True)

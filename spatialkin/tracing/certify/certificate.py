@@ -282,7 +282,7 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
             whole_failed.append(ends.failures[-1])
         elif curve.closed and not closed_inside(chart, trims, unsupported, t, i, ends):
             whole_failed.append(ends.failures[-1])
-    singular = singular_places(symmetric_or(topology, general), chart, curves)
+    singular = singular_places(charted, chart, curves)
     if topology is None:
         singular.append(("no search stands behind the answer: its singular points were not looked for", None))
     isolated = [place[3] for place in singular if len(place) > 3]
@@ -309,12 +309,6 @@ def contact_boxes(curves, singular):
             if len(place) > 3 and np.array_equal(place[1], curve.points[0]):
                 out[i] = place[3]
     return out
-
-
-def symmetric_or(topology, general):
-    """The search whose singular places are reported: the general search when one was run and succeeded (its chart
-    is the one the balls are read in), else the first."""
-    return general if general is not None else topology
 
 
 def sample_radii(a, b, curve, t):
@@ -384,6 +378,7 @@ def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends, iso
                          "tolerance): its completeness holds for an exact symmetry only", None))
     proven = [t for t in tubes if t is not None and t.proven]
     pieces = np.concatenate([t.pieces for t in proven]) if proven else np.empty((0, kt.WIDTH))
+    q_trims = [e for e in trims if e.owner == "Q"]
     for found in topology.root_boxes:
         reader = found.reader
         for box in found.unresolved:
@@ -396,7 +391,6 @@ def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends, iso
         if reader.s is not chart.p:
             failures += q_edge_roots(chart, topology, found, trims, unsupported, ends, candidate_boxes)
             continue
-        q_trims = [e for e in trims if e.owner == "Q"]
         for i, raw in enumerate(found.verified):
             if not any(kt.point_in_pieces(pieces, len(pieces), chart.scaled_boxes(box), chart.periods[0],
                                           chart.periods[1]) >= 0 or outside(chart.reader, box, q_trims)

@@ -97,8 +97,6 @@ def open_curve(chart, trims, unsupported, tube, curve, ends, index):
     if unsupported:
         ends.failures.append((f"curve {index}: {unsupported[0]}", curve.points[0]))
         return False
-    r = chart.reader
-    su, sv = (float(u) for u in chart.units)
     pieces = tube.pieces
     found = []
     for end, x in ((curve.points[0], tube.x[0]), (curve.points[-1], tube.x[-1])):
@@ -108,10 +106,7 @@ def open_curve(chart, trims, unsupported, tube, curve, ends, index):
             return False
         found.append(crossing)
     for edge in trims:
-        values = np.empty((len(pieces), 2))
-        kr.trim_coordinates(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, edge.code, edge.value, pieces,
-                            values)
-        inner = values[:, 0] > 0.0 if edge.inside > 0 else values[:, 1] < 0.0
+        inner = inner_pieces(chart, edge, pieces)
         reason = touching_runs(chart, edge, pieces, inner, found)
         if reason is not None:
             k = int(np.flatnonzero(~inner)[0]) if (~inner).any() else 0
@@ -122,6 +117,15 @@ def open_curve(chart, trims, unsupported, tube, curve, ends, index):
     for edge, box in found:
         ends.crossings.setdefault((edge.owner, edge.fixed, edge.value), []).append(box)
     return True
+
+
+def inner_pieces(chart, edge, pieces):
+    """(K,) bool: which pieces lie strictly inside the edge's patch (e's enclosure over each of one sign)."""
+    r = chart.reader
+    values = np.empty((len(pieces), 2))
+    kr.trim_coordinates(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]), float(chart.units[1]),
+                        edge.code, edge.value, pieces, values)
+    return values[:, 0] > 0.0 if edge.inside > 0 else values[:, 1] < 0.0
 
 
 def touching_runs(chart, edge, pieces, inner, found):
@@ -164,13 +168,8 @@ def closed_inside(chart, trims, unsupported, tube, index, ends):
     if unsupported:
         ends.failures.append((f"curve {index}: {unsupported[0]}", tube.points[0]))
         return False
-    r = chart.reader
-    su, sv = (float(u) for u in chart.units)
     for edge in trims:
-        values = np.empty((len(tube.pieces), 2))
-        kr.trim_coordinates(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, edge.code, edge.value,
-                            tube.pieces, values)
-        inner = values[:, 0] > 0.0 if edge.inside > 0 else values[:, 1] < 0.0
+        inner = inner_pieces(chart, edge, tube.pieces)
         if not inner.all():
             k = int(np.flatnonzero(~inner)[0])
             raw = tube.pieces[k, [kt.CU, kt.CV]] * chart.units

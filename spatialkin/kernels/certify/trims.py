@@ -5,8 +5,8 @@ coordinate of T (a plane's x or y, a cylinder's or cone's z) held at a value (e 
 point of S in T's frame, spatialkin.kernels.geometry.interval). ``crossing`` proves, by the Krawczyk operator of the
 2 x 2 system (g, e) on a box of S's parameters, that the box holds exactly one point of the curve on the edge;
 ``edge_rate`` encloses de/dt along the arc of a tube piece (spatialkin.kernels.certify.tubes), so that a rate of one
-sign proves that the arc crosses the edge at most once there; ``trim_coordinate`` encloses e over a piece, to prove
-the piece wholly on one side of an edge.
+sign proves that the arc crosses the edge at most once there; ``arc_inside`` encloses e along a piece's arc (on
+stretches of it, with the arc's own enclosure there), to prove the arc wholly on one side of an edge.
 
 References
 ----------
@@ -15,10 +15,12 @@ R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIA
 """
 import math
 
+import numpy as np
+
 from ..._lib.jit import jit
 from ..geometry.interval import (box_trig, down, iadd, idot, implicit_jet, imul, iscale, ishift, krawczyk_row,
                                  local_first, placed, point, transform, up)
-from .tubes import P, Q, piece_box
+from .tubes import CU, CV, H, P, Q, T0, T1, _hull, arc_enclosure, piece_box
 
 #: An edge of S's own parameters: EDGE_U (u = value) or EDGE_V (v = value); 0, 1, 2: T's local coordinate.
 EDGE_U, EDGE_V = -1, -2
@@ -106,18 +108,43 @@ def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, piece):
 
 
 @jit
-def trim_coordinate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, piece):
-    """(lo, hi): an enclosure of e over the piece's parallelogram."""
-    U, V = piece_box(piece, su, sv)
-    _, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
-    return e[0][0], e[0][1]
+def arc_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, inside, piece, depth):
+    """True when the arc of the proven piece lies strictly on the inside of the edge (e > 0 for inside = +1, e < 0
+    for inside = -1): e's enclosure over the parallelogram of each stretch of T and its arc's enclosure there
+    (tubes.arc_enclosure) is of that sign, the stretch halved where it is not, at most depth - 1 times."""
+    stack = np.empty((depth + 2, 3))
+    stack[0, 0], stack[0, 1], stack[0, 2] = piece[T0], piece[T1], 0.0
+    top = 1
+    for _ in range(1 << (depth + 1)):
+        if top == 0:
+            return True
+        top -= 1
+        t0, t1, level = stack[top, 0], stack[top, 1], stack[top, 2]
+        # the whole parallelogram first (most pieces lie well inside), then the arc's enclosure on each stretch
+        W = (-piece[H], piece[H]) if level == 0.0 else arc_enclosure(s_data, t_data, m, c, pad, cpad, su, sv,
+                                                                      piece, t0, t1)
+        U, V = _hull(piece[CU], piece[CV], piece[P], piece[Q], (t0, t1), W, su, sv)
+        _, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
+        if (inside > 0.0 and e[0][0] > 0.0) or (inside < 0.0 and e[0][1] < 0.0):
+            continue
+        if level >= depth or not (inside > 0.0 and e[0][1] > 0.0 or inside < 0.0 and e[0][0] < 0.0):
+            return False                      # too deep, or the whole stretch on the edge's other side
+        if level == 0.0:
+            stack[0, 2] = 1.0                 # the same stretch again, with its arc's enclosure
+            top = 1
+            continue
+        mid = 0.5 * (t0 + t1)
+        stack[top, 0], stack[top, 1], stack[top, 2] = t0, mid, level + 1
+        stack[top + 1, 0], stack[top + 1, 1], stack[top + 1, 2] = mid, t1, level + 1
+        top += 2
+    return top == 0
 
 
 @jit
-def trim_coordinates(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, pieces, out):
-    """trim_coordinate of every piece (K, WIDTH), into out (K, 2)."""
+def arcs_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, inside, pieces, depth, out):
+    """arc_inside of every piece (K, WIDTH), into out (K,) bool."""
     for i in range(pieces.shape[0]):
-        out[i, 0], out[i, 1] = trim_coordinate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, pieces[i])
+        out[i] = arc_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, inside, pieces[i], depth)
 
 
 

@@ -47,6 +47,8 @@ OVERLAP = 0.125
 H_TRIES = 4
 #: The exit enclosure's first half-width, as a fraction of the piece's, and its growth.
 EXIT_FIRST, EXIT_GROWTH = 1e-6, 16.0
+#: Most Krawczyk iterations narrowing an arc's enclosure on a stretch of a piece.
+ARC_ITERATIONS = 6
 #: Deepest halving of a chord's pieces.
 MAX_DEPTH = 24
 #: Outcome of a chain: proven, or where it failed.
@@ -110,14 +112,21 @@ def _strictly_in(piece, t, w):
 @jit(forceinline=True)
 def _operator(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, gc, y, h):
     """(K, |1 - y phi_w(X)|): the Krawczyk operator of the piece with W = [-h, h]."""
-    W = (-h, h)
+    return _operator_on(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, gc, y, (-h, h), 0.0)
+
+
+@jit(forceinline=True)
+def _operator_on(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, gc, y, W, wm):
+    """(K, |1 - y phi_w(X)|): the Krawczyk operator of the parallelogram X = c + T a + W n centred on (tm, wm) in
+    W (gc = phi(tm, wm)): K = wm - y (phi(tm, wm) + phi_t(X) (T - tm)) + (1 - y phi_w(X)) (W - wm)."""
     U, V = _hull(cu, cv, p, q, T, W, su, sv)
     g, gu, gv = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))[0]
     d_t = iadd(iscale(gu, p * su), iscale(gv, q * sv))
     d_w = iadd(iscale(gu, -q * su), iscale(gv, p * sv))
     value = iadd(gc, imul(d_t, isub(T, point(tm))))
     contraction = isub((1.0, 1.0), iscale(d_w, y))
-    return iadd(iscale(value, -y), imul(contraction, W)), mag(contraction)
+    K = iadd(iscale(value, -y), imul(contraction, isub(W, point(wm))))
+    return ishift(K, wm), mag(contraction)
 
 
 @jit(forceinline=True)
@@ -149,6 +158,36 @@ def prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, t0, t1, h
             return False
         h = 2.0 * spread if spread > 0.5 * h else h
     return False
+
+
+@jit
+def arc_enclosure(s_data, t_data, m, c, pad, cpad, su, sv, piece, t0, t1):
+    """(lo, hi): an enclosure of w(t) for t in [t0, t1] (inside the piece's T), w(t) the proven piece's arc: the
+    Krawczyk operator on that stretch, first with the piece's W, then with its last value met with the last W (the
+    operator holds every zero in the interval it is given; each is centred on its interval's midpoint), while that
+    halves the width, up to ARC_ITERATIONS times."""
+    tm = 0.5 * (t0 + t1)
+    h = piece[H]
+    Uc, Vc = _hull(piece[CU], piece[CV], piece[P], piece[Q], point(tm), (0.0, 0.0), su, sv)
+    _, gcu, gcv = jet_first(s_data, t_data, m, c, pad, cpad, Uc, Vc, box_trig(s_data, Uc, Vc))[0]
+    dw_mid = 0.5 * (gcu[0] + gcu[1]) * (-piece[Q] * su) + 0.5 * (gcv[0] + gcv[1]) * (piece[P] * sv)
+    if not (dw_mid != 0.0 and math.isfinite(dw_mid)):
+        return -h, h
+    lo, hi = -h, h
+    for _ in range(ARC_ITERATIONS):
+        wm = 0.5 * (lo + hi)
+        Um, Vm = _hull(piece[CU], piece[CV], piece[P], piece[Q], point(tm), point(wm), su, sv)
+        gm = jet_first(s_data, t_data, m, c, pad, cpad, Um, Vm, box_trig(s_data, Um, Vm))[0][0]
+        K, _ = _operator_on(s_data, t_data, m, c, pad, cpad, su, sv, piece[CU], piece[CV], piece[P], piece[Q],
+                            (t0, t1), tm, gm, 1.0 / dw_mid, (lo, hi), wm)
+        if not (math.isfinite(K[0]) and math.isfinite(K[1])):
+            break
+        narrower = max(K[0], lo), min(K[1], hi)
+        shrunk = (narrower[1] - narrower[0]) < 0.5 * (hi - lo)
+        lo, hi = narrower
+        if not shrunk:
+            break
+    return lo, hi
 
 
 @jit

@@ -18,6 +18,8 @@ from ...kernels.certify import tubes as kt
 CROSSING_FIRST, CROSSING_CAP = 1e-12, 1e-4
 #: An end lies on an edge when |e| there is below this many times the curve's tolerance.
 ON_EDGE = 1e3
+#: Deepest halving of a piece's length when its arc is proven on one side of an edge.
+ARC_DEPTH = 8
 
 
 @dataclass(frozen=True)
@@ -120,12 +122,13 @@ def open_curve(chart, trims, unsupported, tube, curve, ends, index):
 
 
 def inner_pieces(chart, edge, pieces):
-    """(K,) bool: which pieces lie strictly inside the edge's patch (e's enclosure over each of one sign)."""
+    """(K,) bool: which pieces' arcs lie strictly inside the edge's patch (kernels.certify.trims.arc_inside, the
+    piece's length halved up to ARC_DEPTH - 1 times where e's enclosure is not of one sign)."""
     r = chart.reader
-    values = np.empty((len(pieces), 2))
-    kr.trim_coordinates(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]), float(chart.units[1]),
-                        edge.code, edge.value, pieces, values)
-    return values[:, 0] > 0.0 if edge.inside > 0 else values[:, 1] < 0.0
+    out = np.empty(len(pieces), dtype=np.bool_)
+    kr.arcs_inside(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]), float(chart.units[1]),
+                   edge.code, edge.value, edge.inside, pieces, ARC_DEPTH, out)
+    return out
 
 
 def touching_runs(chart, edge, pieces, inner, found):

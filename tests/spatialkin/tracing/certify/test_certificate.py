@@ -218,6 +218,27 @@ def test_trimmed_cylinder_rims_against_brute_force():
         assert count == truth
 
 
+@pytest.mark.parametrize("gap", [2e-3, 2e-5])
+def test_loops_just_inside_a_rim_are_proven_whole(gap):
+    """A sphere of radius 1.5 off a unit cylinder's axis by d = 0.05 meets it in two loops, z = +-sqrt(2.25 - (1 +
+    d^2 - 2 d cos theta)); the rims gap below the lower loop's lowest point and above the upper's highest: two closed
+    curves, proven (their arcs inside the rims, though the tube's pieces reach past them), each point on the closed
+    form's z within 1e-12."""
+    d = 0.05
+    top = math.sqrt(2.25 - (1 - d) ** 2)
+    cylinder = sk.Cylinder(1.0, v_range=(-top - gap, top + gap))
+    sphere = sk.Sphere(1.5, sk.Frame((d, 0.0, 0.0)))
+    for pair in ((cylinder, sphere), (sphere, cylinder)):
+        curves = sk.intersect(*pair, certify=True)
+        assert curves.certificate.proven, curves.certificate.failed
+        assert len(curves) == 2 and all(c.closed for c in curves)
+        for curve in curves:
+            x, y, z = curve.points.T
+            theta = np.arctan2(y, x)
+            exact = np.sign(z) * np.sqrt(2.25 - (1 + d * d - 2 * d * np.cos(theta)))
+            assert np.max(np.abs(z - exact)) < 1e-12
+
+
 @pytest.mark.parametrize("radius", [0.7, 1.1, 1.4])
 def test_coaxial_circles_are_proven_by_a_general_search(radius):
     """A sphere centred on a torus's axis cuts it in two parallels (the meridian circles meet twice): read as

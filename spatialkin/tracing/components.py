@@ -11,6 +11,7 @@ from .curve.result import Curve, TracingError, in_sk_order
 from .march.segments import NEWTON_MAX_ITER
 from .march.start import locate_on_curve, newton_fixed_surfaces
 from .certify.certificate import CertificationError, CurveCertificate, certify as certify_answer
+from .certify.closed import closed_certificate
 from .curve.clip import clip_curves
 from .march.graze import across_edges, rejoined
 from .closed.forms import closed_form, closed_settings
@@ -173,8 +174,11 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     if found is None:
         curves, topo = searched(a, b, settings)
         return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify)
-    # the closed forms' answer (the plain call's), proven against the topology search
+    # the closed forms' answer (the plain call's), proven in closed form or against the topology search
     curves = in_sk_order(clip_curves(a, b, found, settings.scale))
+    proof = closed_certificate(a, b, curves)
+    if proof is not None:
+        return certified(a, b, curves, None, settings.scale, settings.tolerance, certify, proof=proof)
     try:
         topo = topology(a, b, settings.scale, settings.tolerance)
     except TopologyError as err:
@@ -239,10 +243,11 @@ class Curves(list):
     certificate = None
 
 
-def certified(a, b, results, topo, scale, tolerance, mode, failure=None):
+def certified(a, b, results, topo, scale, tolerance, mode, failure=None, proof=None):
     """The Curves of the results (CurveResults), each with its view of the answer's certificate (failure: why no
-    search stands behind them); with mode 'strict', CertificationError when a claim is not proven."""
-    answer = certify_answer(a, b, results, topo, scale, tolerance, failure)
+    search stands behind them; proof: the certificate when made already, in closed form); with mode 'strict',
+    CertificationError when a claim is not proven."""
+    answer = proof if proof is not None else certify_answer(a, b, results, topo, scale, tolerance, failure)
     if mode == "strict" and not answer.proven:
         raise CertificationError(answer)
     out = Curves(Curve(c, topology=topo, certificate=CurveCertificate(answer, i)) for i, c in enumerate(results))

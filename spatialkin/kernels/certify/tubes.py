@@ -338,11 +338,17 @@ def point_in_pieces(pieces, count, box, shift_u, shift_v):
 
 
 @jit
-def spaced(x, floor, keep):
+def spaced(x, share, keep):
     """Indices (into keep (M,), returning how many) of the rows of x (M, 2) kept as a chain's samples: a row
-    closer than floor to the last kept one is dropped, the last row always kept (in place of the one before it
-    when that one is too close)."""
+    closer than share times the median chord to the last kept one is dropped, the last row always kept (in place of
+    the one before it when that one is too close)."""
     n = x.shape[0]
+    floor = 0.0
+    if n > 1:
+        chords = np.empty(n - 1)
+        for i in range(n - 1):
+            chords[i] = math.hypot(x[i + 1, 0] - x[i, 0], x[i + 1, 1] - x[i, 1])
+        floor = share * np.median(chords)
     keep[0] = 0
     count = 1
     for i in range(1, n):

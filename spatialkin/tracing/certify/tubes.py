@@ -12,6 +12,8 @@ import numpy as np
 
 from ...geometry.traits import power_of_two, traits
 from ...kernels.certify import tubes as kt
+from ...kernels.curve.stored import unwrap_turns
+from ..curve.exact import ExactSolution
 from ..search.topology import Reader
 
 #: Dense samples per stored step (the chords between them carry the pieces).
@@ -74,7 +76,9 @@ class Chart:
         uv = self.p.parameters(np.asarray(points, dtype=float).reshape(-1, 3))
         for j in range(2):
             if self.periodic[j]:
-                uv[:, j] = np.unwrap(uv[:, j])
+                column = np.ascontiguousarray(uv[:, j])
+                unwrap_turns(column)
+                uv[:, j] = column
         return uv / self.units
 
     def shifts(self, a, b):
@@ -97,9 +101,10 @@ class Chart:
 
 def curve_samples(curve):
     """(points (M, 3), s (M,)): the curve's stored points with SAMPLES_PER_STEP - 1 dense samples between each
-    two (the dense output's points, Newton-corrected onto both surfaces)."""
+    two (the dense output's points, Newton-corrected onto both surfaces); a closed form's stored points alone (its
+    dense output is exact, its points evenly spread)."""
     s = np.asarray(curve.s, dtype=float)
-    if len(s) < 2 or not curve.length > 0:
+    if len(s) < 2 or not curve.length > 0 or isinstance(curve.sol, ExactSolution):
         return np.asarray(curve.points, dtype=float), s
     fractions = np.arange(SAMPLES_PER_STEP) / SAMPLES_PER_STEP
     dense = (s[:-1, None] + np.diff(s)[:, None] * fractions[None, :]).ravel()
@@ -169,7 +174,5 @@ def spaced(x):
     """Indices of the rows of x (M, 2) kept as the chain's samples (kernels.certify.tubes.spaced): a sample closer
     than MIN_CHORD times the median chord to the last kept one is dropped (a piece along a very short chord cannot
     hold the longer one before it), the last row always kept."""
-    chords = np.hypot(*np.diff(x, axis=0).T)
     keep = np.empty(len(x), dtype=np.int64)
-    count = kt.spaced(x, MIN_CHORD * float(np.median(chords)) if len(chords) else 0.0, keep)
-    return keep[:count]
+    return keep[:kt.spaced(x, MIN_CHORD, keep)]

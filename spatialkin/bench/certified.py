@@ -1,5 +1,6 @@
 """certify=True per pair kind: its time beside the plain call's (interleaved, medians, as ratios), what it proves,
-and the proven distance bound (``python -m spatialkin.bench.certified``; needs the ``certify`` extra)."""
+how (by the topology search, or in closed form), and the proven distance bound (``python -m
+spatialkin.bench.certified``)."""
 import statistics
 import time
 
@@ -25,20 +26,23 @@ def median_pair(a, b, repeats):
 
 
 def run(repeats=REPEATS, echo=print):
-    """Print the table; returns its rows (name, plain ms, certified ms, ratio, proven, not proven claims, bound)."""
+    """Print the table; returns its rows (name, plain ms, certified ms, ratio, proven, not proven claims, bound,
+    how: 'search' or 'closed form')."""
     rows = []
     echo("certify=True per pair kind (median of interleaved calls); not proven: the claims that failed; distance: "
-         "the proven bound from the curves' points and dense samples to the true curve")
-    echo(f"{'pair kind':18s} {'plain ms':>9s} {'cert. ms':>9s} {'ratio':>6s} {'proven':>7s} {'distance':>9s}  "
-         "not proven")
+         "the proven bound from the curves' points and dense samples to the true curve (proven in closed form: "
+         "of the whole dense output, both ways)")
+    echo(f"{'pair kind':18s} {'plain ms':>9s} {'cert. ms':>9s} {'ratio':>6s} {'proven':>7s} {'how':>12s} "
+         f"{'distance':>9s}  not proven")
     for name, a, b in pair_kind_cases():
         plain, certified, answer = median_pair(a, b, repeats)
         cert = answer.certificate
         bound = max(cert.distance_bounds, default=0.0)
         failed = ", ".join(c.name for c in cert.failed) or "-"
-        rows.append((name, 1e3 * plain, 1e3 * certified, certified / plain, cert.proven, failed, bound))
+        how = "closed form" if cert.mode == "closed form" else "search"
+        rows.append((name, 1e3 * plain, 1e3 * certified, certified / plain, cert.proven, failed, bound, how))
         echo(f"{name:18s} {1e3 * plain:9.3f} {1e3 * certified:9.3f} {certified / plain:6.1f} "
-             f"{'yes' if cert.proven else 'no':>7s} {bound:9.1e}  {failed}")
+             f"{'yes' if cert.proven else 'no':>7s} {how:>12s} {bound:9.1e}  {failed}")
     ratios = sorted(r[3] for r in rows)
     echo(f"certified/plain: median {statistics.median(ratios):.1f}, max {ratios[-1]:.1f}; fully proven "
          f"{sum(r[4] for r in rows)}/{len(rows)} kinds")

@@ -115,3 +115,25 @@ def loop_length(a, b, samples, n=64):
         coarse, _ = trapezoid(n)
         fine, sine = trapezoid(2 * n)
         return float(fine), float(abs(fine - coarse)), float(sine)
+
+
+def foot(a, b, x, digits=30):
+    """(distance, foot point (3,)) from the point x (3,) to the nearest point of the intersection of a and b near
+    it: Newton on f_a(y) = f_b(y) = 0, (y - x) . (grad f_a x grad f_b) = 0 (the last row's Jacobian taken as the
+    tangent, exact at the foot), in `digits`-digit arithmetic."""
+    with mp.workdps(digits):
+        fa, fb = _Surface(a), _Surface(b)
+        xm = [mp.mpf(float(v)) for v in x]
+        y = list(xm)
+        settle = mp.mpf(10) ** (-digits + 6) * (1 + max(abs(v) for v in xm))
+        for _ in range(60):
+            (f1, g1), (f2, g2) = fa(y), fb(y)
+            t = [g1[1] * g2[2] - g1[2] * g2[1], g1[2] * g2[0] - g1[0] * g2[2], g1[0] * g2[1] - g1[1] * g2[0]]
+            f3 = _dot([y[i] - xm[i] for i in range(3)], t)
+            step = mp.lu_solve(mp.matrix([g1, g2, t]), mp.matrix([f1, f2, f3]))
+            y = [y[i] - step[i] for i in range(3)]
+            if mp.norm(step) < settle:
+                break
+        else:
+            raise RuntimeError("foot: Newton did not converge")
+        return float(mp.sqrt(sum((y[i] - xm[i]) ** 2 for i in range(3)))), np.array([float(v) for v in y])

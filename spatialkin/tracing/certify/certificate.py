@@ -112,6 +112,11 @@ class Certificate:
     An empty answer has a certificate too (``sk.intersect`` returns a list with a ``certificate`` attribute): it is
     proven when the search found no root and no unresolved box, so no point is common to the two trimmed surfaces.
 
+    Two untrimmed spheres, an untrimmed sphere and a plane, and a plane and a cylinder are proven in closed form
+    instead, with no search (mode 'closed form', spatialkin.tracing.certify.closed): interval arithmetic proves that
+    they meet in exactly one circle or ellipse inside the trims, or in nothing, and bounds the distance between the
+    returned curve's whole dense output and the true curve both ways (``distance_bounds``, a Hausdorff bound).
+
     Attributes
     ----------
     claims : dict of Claim
@@ -121,7 +126,7 @@ class Certificate:
     components : int
         How many curves were returned.
     mode : str
-        The configuration the search recognised ('general', 'coaxial', 'ruled').
+        The configuration the search recognised ('general', 'coaxial', 'ruled'), or 'closed form' (no search).
     boxes, verified_roots, singular_points : int
         The search's boxes, verified roots and unresolved boxes.
     search_seconds : float
@@ -129,7 +134,8 @@ class Certificate:
         Per curve, the proven half-width of the box round each stored point (inf where not proven).
     distance_bounds : list of float
         Per curve, the proven bound of the distance from its stored points and dense samples to the intersection
-        (inf where its tube or a sample's box is not proven).
+        (inf where its tube or a sample's box is not proven); proven in closed form, a bound of the Hausdorff
+        distance between its whole dense output and the true curve.
     tubes : list of Tube or None
         Per curve, its chain of pieces (spatialkin.tracing.certify.tubes.Tube).
 

@@ -1,30 +1,28 @@
-"""Planar curves proven in closed form: two spheres, a plane and a sphere, or a plane and a cylinder, meet in exactly
-one circle or ellipse (or in nothing), enclosed in outward-rounded intervals; a returned curve
-X(t) = c + P cos t + Q sin t (a circle or an ellipse in closed form) is proven within a distance of it.
+"""Ellipses proven in closed form: a plane meets a sphere, a cylinder or a cone, and two spheres meet (their radical
+plane meets either), in exactly one ellipse or circle (or in nothing), enclosed in outward-rounded intervals; a
+returned curve X(t) = c + P cos t + Q sin t (a circle or an ellipse in closed form) is proven within a distance of
+it.
 
-The surfaces are the sets |x - o|^2 = r^2 (a sphere), (x - o) . n = 0 (a plane, n its frame's third column as
-stored) and |x - o|^2 - ((x - o) . a)^2 = r^2 (a cylinder, a its unit axis: the frame's third column normalised).
+The surfaces are the sets the floats define: a plane (x - p) . n = 0 (n its frame's third column as stored), and the
+quadrics (x - o)^T (I - g a a^T) (x - o) = k, a the unit axis (the frame's third column normalised): a sphere
+(g = 0, k = r^2), a cylinder (g = 1, k = r^2), a double cone (g = 1 + tan^2, k = 0, tan its stored tangent of the
+half angle). Two spheres meet where their radical plane, through m = o_a + k d with k = (|d|^2 + r_a^2 - r_b^2) /
+(2 |d|^2) and normal d = o_b - o_a, meets either.
 
-The true curve is held as (m, a, n, r) (``truth``, (10, 2) intervals: m rows 0-2, a rows 3-5, n rows 6-8, r row
-9): the points m + r cos t (b1 - k1 a) + r sin t (b2 - k2 a), k_i = (n . b_i) / (n . a), for any orthonormal b1, b2
-normal to a (b2 = a x b1), m on the axis a and on the plane normal to n:
+On the plane, x = p + u f1 + v f2 (f1, f2 an orthonormal basis normal to n), the quadric is the conic
+z^T A2 z + 2 b . z + c0 = 0, z = (u, v), A2_ij = f_i^T G f_j, b_i = f_i^T G (p - o), c0 = (p - o)^T G (p - o) - k.
+A2 definite and c1 = c0 + b . z0 of the opposite sign at the centre z0 = -A2^-1 b: one ellipse,
+(z - z0)^T A (z - z0) = 1 with A = A2 / (-c1), a nonsingular conic (the plane crosses the quadric transversally all
+along it); c1 of A2's sign: no common point. ``truth`` (12, 2) holds the intervals of the ellipse's centre in space
+(rows 0-2), f1 (3-5), f2 (6-8) and A11, A12, A22 (9-11).
 
-- two spheres: their radical plane, (x - o_a) . d = (|d|^2 + r_a^2 - r_b^2) / 2, d = o_b - o_a, cuts either in the
-  circle of centre m = o_a + k d, k = (|d|^2 + r_a^2 - r_b^2) / (2 |d|^2), a = n = d / |d| and r^2 = r_a^2 -
-  k^2 |d|^2;
-- a plane at signed distance delta = (o - c) . n / |n| from a sphere's centre c: m = c + delta n / |n|, a = n =
-  n / |n|, r^2 = R^2 - delta^2;
-- a plane and a cylinder (n . a not 0): m = o_c + lambda a, lambda = n . (o_p - o_c) / (n . a), and r the
-  cylinder's radius (an ellipse of semi-axes r and r / |cos(n, a)|).
-
-r^2 > 0 proven: one curve, crossed transversally; r^2 < 0 proven: no common point.
-
-The distance bound chooses, of the true curve's parametrisations, the one nearest the returned curve's: b1 along P's
-component normal to a, b2 turned to Q's side. Then |X(t) - true(t)| <= |c - m| + |P - r (b1 - k1 a)| + |Q -
-r (b2 - k2 a)| at every t: every point of the returned curve lies within that of the true curve, and every point of
-the true curve within it of the returned curve (a Hausdorff bound for the whole dense output, not only its stored
-points). The returned curve's own evaluation in floating point (its cosine, sine and sums) adds at most EVAL_ULPS
-ulps of |c| + |P| + |Q|.
+The distance bound takes, of the true ellipse's parametrisations by conjugate semi-diameters, the one nearest the
+returned curve's: P' the point of the true ellipse along P's projection on the plane, Q' its conjugate on Q's side
+(Q' along A P' turned a quarter, so that P'^T A Q' = 0 and X'(t) = z0 + P' cos t + Q' sin t runs on the ellipse).
+Then |X(t) - X'(t)| <= |c - z0| + |P - P'| + |Q - Q'| at every t: every point of the returned curve lies within
+that of the true ellipse and every point of the true ellipse within it of the returned curve (a Hausdorff bound
+for the whole dense output, not only its stored points). The returned curve's own evaluation in floating point (its
+cosine, sine and sums) adds at most EVAL_ULPS ulps of |c| + |P| + |Q|.
 
 References
 ----------
@@ -33,8 +31,6 @@ arithmetic with outward rounding).
 """
 import math
 
-import numpy as np
-
 from ..._lib.jit import jit
 from ..geometry.interval import EPS, down, iadd, imul, isqr, iscale, isub, mag, point, up
 
@@ -42,8 +38,9 @@ from ..geometry.interval import EPS, down, iadd, imul, isqr, iscale, isub, mag, 
 CURVE, EMPTY, UNDECIDED = 0, 1, 2
 #: Ulps of |c| + |P| + |Q| allowed for the floating-point evaluation of a returned point.
 EVAL_ULPS = 8.0
-#: Rows of a truth (10, 2).
-M, A, N, R = 0, 3, 6, 9
+#: Rows of a truth (12, 2).
+Z0, F1, F2, A11, A12, A22 = 0, 3, 6, 9, 10, 11
+ROWS = 12
 
 
 @jit
@@ -60,6 +57,11 @@ def _idiv(a, b):
 
 
 @jit
+def _holds_zero(a):
+    return a[0] <= 0.0 <= a[1]
+
+
+@jit
 def _row(truth, i):
     return (truth[i, 0], truth[i, 1])
 
@@ -67,12 +69,6 @@ def _row(truth, i):
 @jit
 def _set(truth, i, x):
     truth[i, 0], truth[i, 1] = x
-
-
-@jit
-def _dot(x, y):
-    """x . y for interval 3-vectors (tuples of intervals)."""
-    return iadd(iadd(imul(x[0], y[0]), imul(x[1], y[1])), imul(x[2], y[2]))
 
 
 @jit
@@ -86,6 +82,29 @@ def _floats(v):
 
 
 @jit
+def _dot(x, y):
+    """x . y for interval 3-vectors."""
+    return iadd(iadd(imul(x[0], y[0]), imul(x[1], y[1])), imul(x[2], y[2]))
+
+
+@jit
+def _sub(x, y):
+    return (isub(x[0], y[0]), isub(x[1], y[1]), isub(x[2], y[2]))
+
+
+@jit
+def _axpy(s, x, y):
+    """s x + y for an interval s and interval 3-vectors."""
+    return (iadd(imul(s, x[0]), y[0]), iadd(imul(s, x[1]), y[1]), iadd(imul(s, x[2]), y[2]))
+
+
+@jit
+def _cross(x, y):
+    return (isub(imul(x[1], y[2]), imul(x[2], y[1])), isub(imul(x[2], y[0]), imul(x[0], y[2])),
+            isub(imul(x[0], y[1]), imul(x[1], y[0])))
+
+
+@jit
 def _unit(v):
     """(v / |v|, True), or (v, False) when |v| may be 0."""
     vv = _dot(v, v)
@@ -96,134 +115,164 @@ def _unit(v):
 
 
 @jit
-def _cross(x, y):
-    return (isub(imul(x[1], y[2]), imul(x[2], y[1])), isub(imul(x[2], y[0]), imul(x[0], y[2])),
-            isub(imul(x[0], y[1]), imul(x[1], y[0])))
-
-
-@jit
 def _norm_up(v):
     """An upper bound of the length of any vector in the interval vector v."""
     return up(math.sqrt(up(up(mag(v[0]) ** 2 + mag(v[1]) ** 2) + mag(v[2]) ** 2)))
 
 
 @jit
-def _store(truth, m, a, n, r2):
-    """Write the truth; CURVE, EMPTY (r^2 < 0) or UNDECIDED (r^2 holding 0)."""
-    if r2[1] < 0.0:
-        return EMPTY
-    if r2[0] <= 0.0:
+def _form(a, g, x, y):
+    """x^T (I - g a a^T) y for interval 3-vectors (a unit)."""
+    return isub(_dot(x, y), imul(g, imul(_dot(a, x), _dot(a, y))))
+
+
+@jit
+def _plane_quadric(p, n, o, a, g, k, truth):
+    """The conic of the plane through p with normal n and the quadric (o, unit axis a, g, k) (interval vectors and
+    intervals) into truth: CURVE, EMPTY or UNDECIDED (A2 not proven definite, c1 holding 0)."""
+    nu, ok = _unit(n)
+    if not ok:
         return UNDECIDED
+    j = 0                                             # f1 = nu x e_j, e_j the axis least along n
+    if abs(n[1][0] + n[1][1]) < abs(n[j][0] + n[j][1]):
+        j = 1
+    if abs(n[2][0] + n[2][1]) < abs(n[j][0] + n[j][1]):
+        j = 2
+    e = (point(1.0 if j == 0 else 0.0), point(1.0 if j == 1 else 0.0), point(1.0 if j == 2 else 0.0))
+    f1, ok = _unit(_cross(nu, e))
+    if not ok:
+        return UNDECIDED
+    f2 = _cross(nu, f1)
+    d = _sub(p, o)
+    a11, a12, a22 = _form(a, g, f1, f1), _form(a, g, f1, f2), _form(a, g, f2, f2)
+    b1, b2 = _form(a, g, f1, d), _form(a, g, f2, d)
+    c0 = isub(_form(a, g, d, d), k)
+    det = isub(imul(a11, a22), isqr(a12))
+    if det[0] <= 0.0 or _holds_zero(a11):
+        return UNDECIDED                              # not proven an ellipse (a hyperbola, a parabola, lines)
+    z1 = _idiv(isub(imul(a12, b2), imul(a22, b1)), det)
+    z2 = _idiv(isub(imul(a12, b1), imul(a11, b2)), det)
+    c1 = iadd(c0, iadd(imul(b1, z1), imul(b2, z2)))
+    if _holds_zero(c1):
+        return UNDECIDED
+    if (c1[0] > 0.0) == (a11[0] > 0.0):
+        return EMPTY
+    minus = (-c1[1], -c1[0])
+    centre = _axpy(z2, f2, _axpy(z1, f1, p))
     for i in range(3):
-        _set(truth, M + i, m[i])
-        _set(truth, A + i, a[i])
-        _set(truth, N + i, n[i])
-    _set(truth, R, _isqrt(r2))
+        _set(truth, Z0 + i, centre[i])
+        _set(truth, F1 + i, f1[i])
+        _set(truth, F2 + i, f2[i])
+    _set(truth, A11, _idiv(a11, minus))
+    _set(truth, A12, _idiv(a12, minus))
+    _set(truth, A22, _idiv(a22, minus))
     return CURVE
 
 
 @jit
+def plane_quadric(p, n, o, axis, g, radius, truth):
+    """The ellipse of the plane through p with normal n (3,) and the sphere (g = 0) or cylinder (g = 1) through o
+    (3,) about axis (3,) of the given radius (k = radius^2, enclosed)."""
+    a, ok = _unit(_floats(axis))
+    if not ok:
+        return UNDECIDED
+    return _plane_quadric(_floats(p), _floats(n), _floats(o), a, point(g), isqr(point(radius)), truth)
+
+
+@jit
+def cone_quadric(p, n, o, axis, tangent, truth):
+    """plane_quadric for the double cone of apex o, axis and tangent of the half angle: g = 1 + tangent^2
+    enclosed."""
+    a, ok = _unit(_floats(axis))
+    if not ok:
+        return UNDECIDED
+    g = iadd(point(1.0), isqr(point(tangent)))
+    return _plane_quadric(_floats(p), _floats(n), _floats(o), a, g, point(0.0), truth)
+
+
+@jit
 def spheres(oa, ra, ob, rb, truth):
-    """The circle of two spheres (centres oa, ob (3,), radii ra, rb) into truth (10, 2): CURVE, EMPTY or
-    UNDECIDED (also when concentric)."""
-    d = (isub(point(ob[0]), point(oa[0])), isub(point(ob[1]), point(oa[1])), isub(point(ob[2]), point(oa[2])))
+    """The circle of two spheres (centres oa, ob (3,), radii ra, rb): the radical plane's with the first (CURVE,
+    EMPTY or UNDECIDED, also when concentric)."""
+    d = _sub(_floats(ob), _floats(oa))
     dd = _dot(d, d)
     if dd[0] <= 0.0:
         return UNDECIDED
-    ra2, rb2 = isqr(point(ra)), isqr(point(rb))
-    k = _idiv(isub(iadd(dd, ra2), rb2), iscale(dd, 2.0))
-    axis, _ = _unit(d)
-    m = (iadd(point(oa[0]), imul(k, d[0])), iadd(point(oa[1]), imul(k, d[1])), iadd(point(oa[2]), imul(k, d[2])))
-    return _store(truth, m, axis, axis, isub(ra2, imul(isqr(k), dd)))
+    ra2 = isqr(point(ra))
+    k = _idiv(isub(iadd(dd, ra2), isqr(point(rb))), iscale(dd, 2.0))
+    m = _axpy(k, d, _floats(oa))
+    return _plane_quadric(m, d, _floats(oa), (point(0.0), point(0.0), point(1.0)), point(0.0), ra2, truth)
 
 
 @jit
-def plane_sphere(o, n, c, r, truth):
-    """The circle of the plane through o with normal n (3,) and the sphere of centre c (3,) and radius r."""
-    axis, ok = _unit(_floats(n))
-    if not ok:
-        return UNDECIDED
-    delta = _dot((isub(point(o[0]), point(c[0])), isub(point(o[1]), point(c[1])), isub(point(o[2]), point(c[2]))),
-                 axis)
-    m = (iadd(point(c[0]), imul(delta, axis[0])), iadd(point(c[1]), imul(delta, axis[1])),
-         iadd(point(c[2]), imul(delta, axis[2])))
-    return _store(truth, m, axis, axis, isub(isqr(point(r)), isqr(delta)))
-
-
-@jit
-def plane_cylinder(o, n, oc, axis, r, truth):
-    """The ellipse of the plane through o with normal n (3,) and the cylinder through oc (3,) along axis (3,) of
-    radius r: CURVE, or UNDECIDED when n . axis may be 0 (the plane along the axis)."""
-    a, ok = _unit(_floats(axis))
-    nu, ok_n = _unit(_floats(n))
-    if not (ok and ok_n):
-        return UNDECIDED
-    na = _dot(nu, a)
-    if na[0] <= 0.0 <= na[1]:
-        return UNDECIDED
-    lam = _idiv(_dot((isub(point(o[0]), point(oc[0])), isub(point(o[1]), point(oc[1])),
-                      isub(point(o[2]), point(oc[2]))), nu), na)
-    m = (iadd(point(oc[0]), imul(lam, a[0])), iadd(point(oc[1]), imul(lam, a[1])),
-         iadd(point(oc[2]), imul(lam, a[2])))
-    return _store(truth, m, a, nu, isqr(point(r)))
-
-
-@jit
-def _semi_diameters(truth, b1, sign):
-    """(P, Q): the true curve's r (b1 - k1 a) and r (b2 - k2 a), b2 = sign a x b1 (b1 a unit interval vector normal
-    to a)."""
-    a, n, r = _vec(truth, A), _vec(truth, N), _row(truth, R)
-    b2 = _cross(a, b1)
-    if sign < 0.0:
-        b2 = (iscale(b2[0], -1.0), iscale(b2[1], -1.0), iscale(b2[2], -1.0))
-    na = _dot(n, a)
-    k1, k2 = _idiv(_dot(n, b1), na), _idiv(_dot(n, b2), na)
-    P = (imul(r, isub(b1[0], imul(k1, a[0]))), imul(r, isub(b1[1], imul(k1, a[1]))),
-         imul(r, isub(b1[2], imul(k1, a[2]))))
-    Q = (imul(r, isub(b2[0], imul(k2, a[0]))), imul(r, isub(b2[1], imul(k2, a[1]))),
-         imul(r, isub(b2[2], imul(k2, a[2]))))
-    return P, Q
+def _inverse(truth):
+    """(i11, i12, i22): A^-1."""
+    a11, a12, a22 = _row(truth, A11), _row(truth, A12), _row(truth, A22)
+    det = isub(imul(a11, a22), isqr(a12))
+    return _idiv(a22, det), _idiv((-a12[1], -a12[0]), det), _idiv(a11, det)
 
 
 @jit
 def within_band(truth, o, e, lo, hi):
-    """True when lo < (x - o) . e < hi at every point x of the true curve (e (3,) any vector: a plane's frame
-    column, a cylinder's axis): (m - o) . e +- sqrt((e . P)^2 + (e . Q)^2), for any b1 (the root does not depend
-    on it)."""
-    a = _vec(truth, A)
-    k = int(np.argmin(np.abs(np.array([truth[A, 0], truth[A + 1, 0], truth[A + 2, 0]]))))
-    w = (point(1.0 if k == 0 else 0.0), point(1.0 if k == 1 else 0.0), point(1.0 if k == 2 else 0.0))
-    b1, ok = _unit(_cross(a, w))
-    if not ok:
-        return False
-    P, Q = _semi_diameters(truth, b1, 1.0)
+    """True when lo < (x - o) . e < hi at every point x of the true ellipse (e (3,) any vector: a plane's frame
+    column, a cylinder's or cone's axis): (z0 - o) . e +- sqrt(h^T A^-1 h), h = (e . f1, e . f2)."""
     ev = _floats(e)
-    m = _vec(truth, M)
-    at = _dot((isub(m[0], point(o[0])), isub(m[1], point(o[1])), isub(m[2], point(o[2]))), ev)
-    reach = _isqrt(iadd(isqr(_dot(ev, P)), isqr(_dot(ev, Q))))
+    h1, h2 = _dot(ev, _vec(truth, F1)), _dot(ev, _vec(truth, F2))
+    i11, i12, i22 = _inverse(truth)
+    spread = iadd(iadd(imul(i11, isqr(h1)), iscale(imul(i12, imul(h1, h2)), 2.0)), imul(i22, isqr(h2)))
+    reach = _isqrt((max(spread[0], 0.0), spread[1]))
+    at = _dot(_sub(_vec(truth, Z0), _floats(o)), ev)
     return lo < down(at[0] - reach[1]) and up(at[1] + reach[1]) < hi
 
 
 @jit
+def _quad(truth, x1, x2):
+    """x^T A x."""
+    a11, a12, a22 = _row(truth, A11), _row(truth, A12), _row(truth, A22)
+    return iadd(iadd(imul(a11, isqr(x1)), iscale(imul(a12, imul(x1, x2)), 2.0)), imul(a22, isqr(x2)))
+
+
+@jit
 def distance_bound(truth, c, P, Q):
-    """An upper bound of sup_t |X(t) - true(t)| for the returned X(t) = c + P cos t + Q sin t (c, P, Q (3,)) and
-    the true curve parametrised as in the module docstring, with the evaluation's round-off; inf when P lies along
-    the axis or Q's side is not decided (no parametrisation to compare with)."""
-    a = _vec(truth, A)
+    """An upper bound of sup_t |X(t) - X'(t)| for the returned X(t) = c + P cos t + Q sin t (c, P, Q (3,)) and the
+    true ellipse's X'(t) (module docstring), with the evaluation's round-off; inf when P's projection on the plane
+    may vanish or Q's side is not decided."""
+    f1, f2 = _vec(truth, F1), _vec(truth, F2)
     Pv, Qv = _floats(P), _floats(Q)
-    along = _dot(Pv, a)
-    b1, ok = _unit((isub(Pv[0], imul(along, a[0])), isub(Pv[1], imul(along, a[1])), isub(Pv[2], imul(along, a[2]))))
-    if not ok:
+    p1, p2 = _dot(f1, Pv), _dot(f2, Pv)
+    lam2 = _quad(truth, p1, p2)
+    if lam2[0] <= 0.0:
         return math.inf
-    side = _dot(_cross(a, b1), Qv)
-    if side[0] <= 0.0 <= side[1]:
+    lam = _isqrt(lam2)
+    u1, u2 = _idiv(p1, lam), _idiv(p2, lam)              # P' on the true ellipse
+    ap1 = iadd(imul(_row(truth, A11), u1), imul(_row(truth, A12), u2))
+    ap2 = iadd(imul(_row(truth, A12), u1), imul(_row(truth, A22), u2))
+    d1, d2 = (-ap2[1], -ap2[0]), ap1                     # A P' turned a quarter: conjugate to P'
+    mu2 = _quad(truth, d1, d2)
+    if mu2[0] <= 0.0:
         return math.inf
-    tp, tq = _semi_diameters(truth, b1, 1.0 if side[0] > 0.0 else -1.0)
-    m = _vec(truth, M)
-    dc = (isub(point(c[0]), m[0]), isub(point(c[1]), m[1]), isub(point(c[2]), m[2]))
-    dp = (isub(Pv[0], tp[0]), isub(Pv[1], tp[1]), isub(Pv[2], tp[2]))
-    dq = (isub(Qv[0], tq[0]), isub(Qv[1], tq[1]), isub(Qv[2], tq[2]))
-    bound = up(up(_norm_up(dc) + _norm_up(dp)) + _norm_up(dq))
+    side = iadd(imul(d1, _dot(f1, Qv)), imul(d2, _dot(f2, Qv)))
+    if _holds_zero(side):
+        return math.inf
+    mu = _isqrt(mu2)
+    if side[1] < 0.0:
+        mu = (-mu[1], -mu[0])
+    w1, w2 = _idiv(d1, mu), _idiv(d2, mu)                # Q' on Q's side
+    p_true = _axpy(u2, f2, _axpy(u1, f1, (point(0.0), point(0.0), point(0.0))))
+    q_true = _axpy(w2, f2, _axpy(w1, f1, (point(0.0), point(0.0), point(0.0))))
+    bound = up(up(_norm_up(_sub(_floats(c), _vec(truth, Z0))) + _norm_up(_sub(Pv, p_true)))
+               + _norm_up(_sub(Qv, q_true)))
     size = (math.sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) + math.sqrt(P[0] * P[0] + P[1] * P[1] + P[2] * P[2])
             + math.sqrt(Q[0] * Q[0] + Q[1] * Q[1] + Q[2] * Q[2]))
     return up(bound + up(EVAL_ULPS * EPS * size))
+
+
+@jit
+def semi_minor_squared(truth):
+    """A lower bound of the true ellipse's smaller semi-axis squared, 1 / (the largest eigenvalue of A)."""
+    a11, a12, a22 = _row(truth, A11), _row(truth, A12), _row(truth, A22)
+    trace = iadd(a11, a22)
+    det = isub(imul(a11, a22), isqr(a12))
+    disc = isub(isqr(trace), iscale(det, 4.0))
+    top = iscale(iadd(trace, _isqrt((max(disc[0], 0.0), disc[1]))), 0.5)
+    return down(1.0 / top[1])

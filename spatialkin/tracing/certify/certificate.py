@@ -106,13 +106,15 @@ class Certificate:
       their places and, for a contact, a proven ball (``radius``): the Krawczyk test proves a unique critical
       point of g in a box where its Hessian is definite, so the intersection within the box lies within the ball
       (a point, a small loop or nothing); a node is proven the only critical point in its ball, a saddle
-      (spatialkin.kernels.certify.singular).
+      (spatialkin.kernels.certify.singular). An apex of a cone lying on the other surface gets its ball the same
+      way, in the chart of the surface it is not an apex of (where the cone's implicit function has its critical
+      point): isolated, or a saddle where two branches cross. Circles and segments of tangency get no ball.
       The search's boxes inside an isolated contact's box are accounted for by it in the completeness claim.
 
     An empty answer has a certificate too (``sk.intersect`` returns a list with a ``certificate`` attribute): it is
     proven when the search found no root and no unresolved box, so no point is common to the two trimmed surfaces.
 
-    Two untrimmed spheres, an untrimmed sphere and a plane, and a plane and a cylinder are proven in closed form
+    Two untrimmed spheres, and a plane with an untrimmed sphere, a cylinder or a cone, are proven in closed form
     instead, with no search (mode 'closed form', spatialkin.tracing.certify.closed): interval arithmetic proves that
     they meet in exactly one circle or ellipse inside the trims, or in nothing, and bounds the distance between the
     returned curve's whole dense output and the true curve both ways (``distance_bounds``, a Hausdorff bound).
@@ -288,7 +290,7 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
             whole_failed.append(ends.failures[-1])
         elif curve.closed and not closed_inside(chart, trims, unsupported, t, i, ends):
             whole_failed.append(ends.failures[-1])
-    singular = singular_places(charted, chart, curves)
+    singular = singular_places(charted, chart, curves, scale)
     if topology is None:
         singular.append(("no search stands behind the answer: its singular points were not looked for", None))
     isolated = [place[3] for place in singular if len(place) > 3]
@@ -328,17 +330,19 @@ def sample_radii(a, b, curve, t):
     return every[stored]
 
 
-def singular_places(topology, chart, curves):
+def singular_places(topology, chart, curves, scale):
     """(text, point, ball radius) of each singular place: the contacts and nodes the search recorded, and the
-    returned contact points, with the ball of kernels.certify.singular where it is proven; apexes and tangencies
+    returned contact points, with the ball of kernels.certify.singular where it is proven; apexes likewise, in the
+    chart of the surface the apex is not on (where the other's implicit function has a critical point); tangencies
     along curves with none."""
     out = []
     if topology is not None:
         points = [(p, "node") for p in topology.nodes] + [(p, "contact") for p in topology.contacts]
         points += [(c.points[0], "contact") for c in curves if c.status == CONTACT and
                    not any(np.array_equal(c.points[0], p) for p in topology.contacts)]
-        out += [singular_ball(chart, p, what) for p, what in points]
-        out += [("an apex or pole on the curve (not proven)", p, math.inf) for p in topology.apexes]
+        points += [(p, "apex") for p in topology.apexes]
+        other = Chart(topology, scale, other=True) if points and chart is not None else None
+        out += [either_ball(chart, other, p, what) for p, what in points]
         out += [("a circle of tangency (not proven)", np.asarray(c[0], dtype=float), math.inf)
                 for c in topology.tangent_circles]
         out += [("a segment of tangency (not proven)", np.asarray(seg[0], dtype=float), math.inf)
@@ -348,11 +352,22 @@ def singular_places(topology, chart, curves):
     return out
 
 
+def either_ball(chart, other, point, what):
+    """(text, point, ball radius[, its box]) of a singular point: singular_ball in the search's chart, else in Q's
+    (other: where P's chart collapses, at an apex or a pole of P, F_P(Q(u, v)) has the critical point; no box then,
+    the box being in Q's parameters)."""
+    found = singular_ball(chart, point, what)
+    if math.isfinite(found[2]) or other is None:
+        return found
+    return singular_ball(other, point, what)[:3]
+
+
 def singular_ball(chart, point, what):
-    """(text, point, ball radius[, its box]) of a contact or a node (kernels.certify.singular.critical_ball in the
-    chart); the scaled box (4,) of an isolated one holds nothing of the intersection but its ball."""
+    """(text, point, ball radius[, its box]) of a contact, a node or an apex (kernels.certify.singular.critical_ball
+    in the chart); the scaled box (4,) of an isolated one holds nothing of the intersection but its ball."""
+    what = ("an " if what[0] in "aeiou" else "a ") + what
     if chart is None:
-        return (f"a {what} (not proven)", point, math.inf)
+        return (f"{what} (not proven)", point, math.inf)
     x = chart.scaled(np.asarray(point, dtype=float)[None])[0]
     r = chart.reader
     size = max(1.0, float(np.max(np.abs(x))))
@@ -361,14 +376,14 @@ def singular_ball(chart, point, what):
                                      float(chart.units[1]), float(x[0]), float(x[1]), 1e-9 * size, 1e-3 * size, out)
     if kind == ks_singular.ISOLATED:
         ball = float(out[1] * out[2])
-        return (f"a {what}: within {out[0] * out[2]:.1e} of it the intersection lies within {ball:.1e} of it (a "
+        return (f"{what}: within {out[0] * out[2]:.1e} of it the intersection lies within {ball:.1e} of it (a "
                 "point, a small loop or nothing; not decided)", point, ball,
                 np.array([x[0] - out[0], x[0] + out[0], x[1] - out[0], x[1] + out[0]]))
     if kind == ks_singular.SADDLE:
         ball = float(out[0] * out[2])
-        return (f"a {what}: the only critical point of the level within {ball:.1e} of it is a saddle (a node, or "
+        return (f"{what}: the only critical point of the level within {ball:.1e} of it is a saddle (a node, or "
                 "two branches passing close); the branches there are not proven", point, ball)
-    return (f"a {what} (not proven)", point, math.inf)
+    return (f"{what} (not proven)", point, math.inf)
 
 
 def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends, isolated=()):

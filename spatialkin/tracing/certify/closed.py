@@ -1,20 +1,25 @@
-"""Certificates proven in closed form: two untrimmed spheres, an untrimmed sphere and a plane, or a plane and a
-cylinder (each trimmed by lengths, or not) meet in one circle or ellipse or in nothing, which interval arithmetic
+"""Certificates proven in closed form: two untrimmed spheres, or a plane and an untrimmed sphere, a cylinder or a
+cone (each trimmed by lengths, or not) meet in one circle or ellipse or in nothing, which interval arithmetic
 decides without a search (spatialkin.kernels.certify.closed). The returned curve is then proven within a Hausdorff
 distance of the true one along its whole dense output, both ways. Any other answer, or a pair the algebra leaves
-undecided (a tangency, a curve reaching a trim edge), goes to the search's certificate
+undecided (a tangency, a hyperbola, a curve reaching a trim edge), goes to the search's certificate
 (spatialkin.tracing.certify.certificate).
 """
+import math
+
 import numpy as np
 
+from ...geometry.surfaces import Cone, Cylinder, Plane, Sphere
 from ...kernels.certify import closed as kc
+from ...kernels.geometry import surfaces as ks
 from ..closed.conic import ELLIPSE, ConicSolution
 from ..curve.exact import CircleSolution
-from ...geometry.surfaces import Plane
 from .certificate import PROVEN, Certificate, Claim
 
 #: The pairs proven here (their class names, sorted).
-PAIRS = (("Sphere", "Sphere"), ("Plane", "Sphere"), ("Cylinder", "Plane"))
+PAIRS = (("Sphere", "Sphere"), ("Plane", "Sphere"), ("Cylinder", "Plane"), ("Cone", "Plane"))
+#: The distance bound must stay below this share of the true ellipse's smaller semi-axis.
+SMALL = 0.25
 
 
 def closed_certificate(a, b, curves):
@@ -22,37 +27,32 @@ def closed_certificate(a, b, curves):
     this pair or answer is not one the algebra settles."""
     pair = sorted((a, b), key=lambda s: type(s).__name__)
     kinds = tuple(type(s).__name__ for s in pair)
-    if kinds not in PAIRS or any(s.region for s in pair):
+    if kinds not in PAIRS or any(s.region for s in pair) or any(isinstance(s, Sphere) and s.trimmed for s in pair):
         return None
-    truth = np.empty((10, 2))
+    truth = np.empty((kc.ROWS, 2))
     if kinds == ("Sphere", "Sphere"):
-        if pair[0].trimmed or pair[1].trimmed:
-            return None
         outcome = kc.spheres(pair[0].frame.origin, pair[0].radius, pair[1].frame.origin, pair[1].radius, truth)
-    elif kinds == ("Plane", "Sphere"):
-        plane, sphere = pair
-        if sphere.trimmed:
-            return None
-        outcome = kc.plane_sphere(plane.frame.origin, column(plane, 2), sphere.frame.origin, sphere.radius, truth)
     else:
-        cylinder, plane = pair
-        outcome = kc.plane_cylinder(plane.frame.origin, column(plane, 2), cylinder.frame.origin, column(cylinder, 2),
-                                    cylinder.radius, truth)
+        quadric, plane = (pair[1], pair[0]) if kinds == ("Plane", "Sphere") else pair
+        p, n, o, axis = plane.frame.origin, column(plane, 2), quadric.frame.origin, column(quadric, 2)
+        if isinstance(quadric, Cone):
+            outcome = kc.cone_quadric(p, n, o, axis, float(quadric.data[ks.P1]), truth)
+        else:
+            g = 1.0 if isinstance(quadric, Cylinder) else 0.0
+            outcome = kc.plane_quadric(p, n, o, axis, g, quadric.radius, truth)
     if outcome == kc.EMPTY and not curves:
-        return answer([], [], "the surfaces have no common point (the circle's radius squared is proven negative)",
-                      "no curve")
+        return answer([], [], "the surfaces have no common point (proven in closed form)", "no curve")
     if outcome != kc.CURVE or not inside_trims(truth, pair) or len(curves) != 1 or not curves[0].closed:
         return None
     c, P, Q = returned_curve(curves[0].sol)
     if c is None:
         return None
     bound = kc.distance_bound(truth, c, P, Q)
-    if not bound < 0.25 * truth[kc.R, 0]:
+    if not bound < SMALL * math.sqrt(max(kc.semi_minor_squared(truth), 0.0)):
         return None
     radii = np.full(len(curves[0].points), bound)
-    shape = "circle" if kinds != ("Cylinder", "Plane") else "ellipse"
-    return answer([radii], [bound], f"the surfaces meet in exactly one {shape}, crossing, inside the trims (proven "
-                  "in closed form)", f"the true {shape}")
+    return answer([radii], [bound], "the surfaces meet in exactly one ellipse (or circle), crossing, inside the "
+                  "trims (proven in closed form)", "the true curve")
 
 
 def column(surface, k):
@@ -62,7 +62,7 @@ def column(surface, k):
 
 def inside_trims(truth, pair):
     """True when the true curve lies strictly inside every length trim of the pair (a plane's u and v, a
-    cylinder's v: bands along its frame's columns 0, 1 and 2)."""
+    cylinder's or cone's v: bands along its frame's columns 0, 1 and 2)."""
     for surface in pair:
         for k, (lo, hi) in enumerate(surface.bounds):
             if not (np.isfinite(lo) or np.isfinite(hi)):

@@ -60,12 +60,13 @@ class Tube:
 
 
 class Chart:
-    """The search's surface P read against Q: its Reader (the rigorous placement), the power-of-two units of its
-    parameters, and their periods in those units (0 where not periodic)."""
+    """The search's surface P read against Q (or Q against P): its Reader (the rigorous placement), the
+    power-of-two units of its parameters, and their periods in those units (0 where not periodic)."""
 
-    def __init__(self, topology, scale):
-        self.p = topology.chart
-        self.reader = Reader(self.p, topology.Q)
+    def __init__(self, topology, scale, other=False):
+        """other: Q's chart (Q read against the search's P) instead."""
+        self.p, q = (topology.Q, topology.chart) if other else (topology.chart, topology.Q)
+        self.reader = Reader(self.p, q)
         kind = traits(self.p)
         self.units = np.array([power_of_two(x) for x in kind.parameter_units(scale)])
         self.periodic = tuple(bool(x) for x in kind.periodic)

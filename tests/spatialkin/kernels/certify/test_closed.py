@@ -1,6 +1,6 @@
-"""The circle of two spheres, and of a plane and a sphere, and the ellipse of a plane and a cylinder, enclosed in
-intervals (spatialkin.kernels.certify.closed), against the same formulas evaluated in 60-digit decimal arithmetic on
-the floats given (exact rationals)."""
+"""The ellipse of a plane and a quadric (a sphere, a cylinder, a double cone), and the circle of two spheres,
+enclosed in intervals (spatialkin.kernels.certify.closed), against the conic's centre and matrix computed in
+60-digit decimal arithmetic from the floats given (exact rationals), in the enclosed basis of the plane."""
 from decimal import Decimal, getcontext
 
 import numpy as np
@@ -19,94 +19,104 @@ def dot(a, b):
     return sum(x * y for x, y in zip(a, b))
 
 
-def spheres_truth(oa, ra, ob, rb):
-    oa, ob, ra, rb = dec(oa), dec(ob), Decimal(ra), Decimal(rb)
-    d = [y - x for x, y in zip(oa, ob)]
-    dd = dot(d, d)
-    k = (dd + ra * ra - rb * rb) / (2 * dd)
-    centre = [x + k * y for x, y in zip(oa, d)]
-    axis = [y / dd.sqrt() for y in d]
-    return centre, axis, ra * ra - k * k * dd
+def unit(v):
+    length = dot(v, v).sqrt()
+    return [x / length for x in v]
 
 
-def plane_sphere_truth(o, n, c, r):
-    o, n, c, r = dec(o), dec(n), dec(c), Decimal(r)
-    length = dot(n, n).sqrt()
-    delta = dot([x - y for x, y in zip(o, c)], n) / length
-    axis = [x / length for x in n]
-    return [x + delta * y for x, y in zip(c, axis)], axis, r * r - delta * delta
+def conic_truth(p, n, o, axis, g, k, f1, f2):
+    """(centre (3 Decimal), A11, A12, A22) of the plane through p (normal n) and the quadric (o, axis, g, k) in the
+    basis f1, f2 (3 Decimal each, the kernel's enclosures' midpoints: any orthonormal basis normal to n gives the
+    same centre, and A in that basis)."""
+    a = unit(axis)
+
+    def form(x, y):
+        return dot(x, y) - g * dot(a, x) * dot(a, y)
+    d = [x - y for x, y in zip(p, o)]
+    a11, a12, a22 = form(f1, f1), form(f1, f2), form(f2, f2)
+    b1, b2 = form(f1, d), form(f2, d)
+    det = a11 * a22 - a12 * a12
+    z1, z2 = (a12 * b2 - a22 * b1) / det, (a12 * b1 - a11 * b2) / det
+    c1 = form(d, d) - k + b1 * z1 + b2 * z2
+    centre = [pi + z1 * x + z2 * y for pi, x, y in zip(p, f1, f2)]
+    return centre, a11 / -c1, a12 / -c1, a22 / -c1
 
 
-def plane_cylinder_truth(o, n, oc, axis):
-    o, n, oc, axis = dec(o), dec(n), dec(oc), dec(axis)
-    a = [x / dot(axis, axis).sqrt() for x in axis]
-    nu = [x / dot(n, n).sqrt() for x in n]
-    lam = dot([x - y for x, y in zip(o, oc)], nu) / dot(nu, a)
-    return [x + lam * y for x, y in zip(oc, a)], a
+def basis(truth):
+    """The kernel's f1, f2 as Decimal (midpoints), orthonormalised exactly against the Decimal normal n."""
+    return [[Decimal(0.5 * (truth[r + i, 0] + truth[r + i, 1])) for i in range(3)] for r in (kc.F1, kc.F2)]
 
 
-def holds(truth, centre, axis, r2):
+def holds(truth, centre, a11, a12, a22, rel, tight=True):
     for i in range(3):
-        assert Decimal(truth[kc.M + i, 0]) <= centre[i] <= Decimal(truth[kc.M + i, 1])
-        assert Decimal(truth[kc.A + i, 0]) <= axis[i] <= Decimal(truth[kc.A + i, 1])
-    assert Decimal(truth[kc.R, 0]) ** 2 <= r2 <= Decimal(truth[kc.R, 1]) ** 2
-    assert np.all(np.diff(truth, axis=1) < 1e-12 * (1.0 + np.abs(truth[:, :1])))     # and tight
+        assert Decimal(truth[kc.Z0 + i, 0]) - rel <= centre[i] <= Decimal(truth[kc.Z0 + i, 1]) + rel
+    for row, value in ((kc.A11, a11), (kc.A12, a12), (kc.A22, a22)):
+        assert Decimal(truth[row, 0]) - rel <= value <= Decimal(truth[row, 1]) + rel
+    if tight:                                   # (a well-conditioned conic's enclosures are narrow)
+        assert np.all(np.diff(truth, axis=1) < 1e-8 * (1.0 + np.abs(truth[:, :1])))
 
 
-@pytest.mark.parametrize("shift", [0.0, 1e3, 1e7])
-@pytest.mark.parametrize("scale", [1e-4, 1.0, 1e4])
-def test_spheres_enclose_the_true_circle(shift, scale):
+def exact_basis(n, truth):
+    """An exactly orthonormal basis normal to n (Decimal) nearest the kernel's."""
+    nu = unit(n)
+    f1, f2 = basis(truth)
+    f1 = unit([x - dot(f1, nu) * y for x, y in zip(f1, nu)])
+    f2 = [nu[1] * f1[2] - nu[2] * f1[1], nu[2] * f1[0] - nu[0] * f1[2], nu[0] * f1[1] - nu[1] * f1[0]]
+    return f1, f2
+
+
+@pytest.mark.parametrize("kind", ["sphere", "cylinder", "cone"])
+@pytest.mark.parametrize("shift", [0.0, 1e5])
+def test_plane_quadric_encloses_the_true_conic(kind, shift):
+    rng = np.random.default_rng(3)
+    proven = 0
+    for _ in range(40):
+        p, o = shift + rng.normal(size=3), shift + rng.normal(size=3) * 0.3
+        n, axis = rng.normal(size=3), rng.normal(size=3)
+        radius, tangent = rng.uniform(0.5, 2.0), rng.uniform(0.2, 1.5)
+        truth = np.empty((kc.ROWS, 2))
+        if kind == "cone":
+            outcome = kc.cone_quadric(p, n, o, axis, tangent, truth)
+            g, k = 1 + Decimal(tangent) ** 2, Decimal(0)
+        else:
+            outcome = kc.plane_quadric(p, n, o, axis, 0.0 if kind == "sphere" else 1.0, radius, truth)
+            g, k = Decimal(0 if kind == "sphere" else 1), Decimal(radius) ** 2
+        if outcome != kc.CURVE:
+            continue
+        proven += 1
+        f1, f2 = exact_basis(dec(n), truth)
+        centre, a11, a12, a22 = conic_truth(dec(p), dec(n), dec(o), dec(axis), g, k, f1, f2)
+        far = max(abs(float(c) - x) for c, x in zip(centre, p))     # the conic's centre far off: ill-conditioned
+        holds(truth, centre, a11, a12, a22, Decimal(1e-13) * (1 + abs(Decimal(shift))), tight=far < 10)
+    assert proven >= 10
+
+
+def test_two_spheres_meet_in_their_circle():
     rng = np.random.default_rng(7)
     for _ in range(20):
-        oa = shift + scale * rng.normal(size=3)
-        ob = oa + scale * rng.normal(size=3) * 0.5
-        ra, rb = scale * rng.uniform(0.5, 1.5), scale * rng.uniform(0.5, 1.5)
-        out = np.empty((10, 2))
-        centre, axis, rho2 = spheres_truth(oa, ra, ob, rb)
-        outcome = kc.spheres(oa, ra, ob, rb, out)
-        if rho2 > 0:
-            assert outcome in (kc.CURVE, kc.UNDECIDED)
-            if outcome == kc.CURVE:
-                holds(out, centre, axis, rho2)
-        else:
-            assert outcome in (kc.EMPTY, kc.UNDECIDED)
-
-
-@pytest.mark.parametrize("shift", [0.0, 1e5])
-def test_plane_sphere_encloses_the_true_circle(shift):
-    rng = np.random.default_rng(11)
-    for _ in range(30):
-        o, c = shift + rng.normal(size=3), shift + rng.normal(size=3) * 0.3
-        n = rng.normal(size=3)
-        r = rng.uniform(0.5, 2.0)
-        out = np.empty((10, 2))
-        centre, axis, rho2 = plane_sphere_truth(o, n, c, r)
-        outcome = kc.plane_sphere(o, n, c, r, out)
+        oa = rng.normal(size=3)
+        ob = oa + rng.normal(size=3) * 0.5
+        ra, rb = rng.uniform(0.5, 1.5), rng.uniform(0.5, 1.5)
+        truth = np.empty((kc.ROWS, 2))
+        outcome = kc.spheres(oa, ra, ob, rb, truth)
+        d = [y - x for x, y in zip(dec(oa), dec(ob))]
+        dd = dot(d, d)
+        kk = (dd + Decimal(ra) ** 2 - Decimal(rb) ** 2) / (2 * dd)
+        rho2 = Decimal(ra) ** 2 - kk * kk * dd
         assert outcome == (kc.CURVE if rho2 > 0 else kc.EMPTY)
         if outcome == kc.CURVE:
-            holds(out, centre, axis, rho2)
+            centre = [x + kk * y for x, y in zip(dec(oa), d)]
+            holds(truth, centre, 1 / rho2, Decimal(0), 1 / rho2, Decimal(1e-13))
 
 
-@pytest.mark.parametrize("shift", [0.0, 1e5])
-def test_plane_cylinder_encloses_the_true_ellipse(shift):
-    rng = np.random.default_rng(5)
-    for _ in range(30):
-        o, oc = shift + rng.normal(size=3), shift + rng.normal(size=3)
-        n, axis = rng.normal(size=3), rng.normal(size=3)
-        out = np.empty((10, 2))
-        assert kc.plane_cylinder(o, n, oc, axis, 0.7, out) == kc.CURVE
-        centre, a = plane_cylinder_truth(o, n, oc, axis)
-        holds(out, centre, a, Decimal(0.7) ** 2)
-
-
-def test_a_plane_along_the_axis_is_undecided():
-    out = np.empty((10, 2))
-    assert kc.plane_cylinder(np.zeros(3), np.array([1.0, 0.0, 0.0]), np.zeros(3), np.array([0.0, 0.0, 1.0]), 1.0,
-                             out) == kc.UNDECIDED
-
-
-def test_touching_spheres_are_undecided():
-    out = np.empty((10, 2))
-    assert kc.spheres(np.zeros(3), 1.0, np.array([2.0, 0.0, 0.0]), 1.0, out) == kc.UNDECIDED
-    assert kc.spheres(np.zeros(3), 1.0, np.zeros(3), 1.0, out) == kc.UNDECIDED            # concentric
-    assert kc.spheres(np.zeros(3), 1.0, np.array([0.1, 0.0, 0.0]), 0.5, out) == kc.EMPTY  # nested
+def test_undecided_and_empty():
+    truth = np.empty((kc.ROWS, 2))
+    z, x, y = np.zeros(3), np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
+    assert kc.spheres(z, 1.0, np.array([2.0, 0.0, 0.0]), 1.0, truth) == kc.UNDECIDED      # touching
+    assert kc.spheres(z, 1.0, z, 1.0, truth) == kc.UNDECIDED                               # concentric
+    assert kc.spheres(z, 1.0, np.array([0.1, 0.0, 0.0]), 0.5, truth) == kc.EMPTY          # nested
+    assert kc.plane_quadric(z, x, z, y, 1.0, 1.0, truth) == kc.UNDECIDED                   # plane along the axis
+    assert kc.plane_quadric(x, x, z, y, 0.0, 1.0, truth) == kc.UNDECIDED                   # plane touching a sphere
+    assert kc.plane_quadric(2 * x, x, z, y, 0.0, 1.0, truth) == kc.EMPTY
+    assert kc.cone_quadric(z, y, z, y, 1.0, truth) == kc.UNDECIDED                          # through the apex
+    assert kc.cone_quadric(z, x, z, y, 1.0, truth) == kc.UNDECIDED                          # a hyperbola

@@ -333,3 +333,21 @@ def test_a_contact_given_twice_is_not_distinct():
     curves = sk.intersect(a, b, certify=True)
     cert = certify(a, b, [curves[0].result, curves[0].result], curves[0].topology, 0.5)
     assert not cert.claims["distinct"].proven and "overlap" in cert.claims["distinct"].detail
+
+
+@pytest.mark.parametrize("axis_tilt, kind", [(0.2, "within"), (1.3, "saddle")])
+def test_an_apex_on_the_other_surface_gets_a_proven_ball(axis_tilt, kind):
+    """A cone's apex placed on a sphere: with the axis near the sphere's
+    normal there, the tangent plane misses the cone and the apex is an isolated point of the intersection (a ball
+    proven round it, holding all of the intersection nearby); tilted past the half angle, two branches cross there
+    (a proven saddle). Either way the claim is not proven and the ball holds the true apex."""
+    apex = np.array([0.6, 0.0, 0.8])                     # (off the sphere's poles, on it to round-off)
+    axis = sk.rotation_about((0, 1, 0), axis_tilt) @ apex
+    cone = sk.Cone(0.5, sk.Frame.from_z_axis(apex, axis), v_range=(-2.0, 2.0))
+    for pair in ((cone, sk.Sphere(1.0)), (sk.Sphere(1.0), cone)):
+        singular = sk.intersect(*pair, certify=True).certificate.claims["singular"]
+        assert not singular.proven and kind in singular.detail
+        near = [r for w, r in zip(singular.where, singular.radius) if np.linalg.norm(w - apex) < 1e-6]
+        assert near and all(np.isfinite(r) and r < 1e-6 for r in near)
+        assert all(np.linalg.norm(w - apex) <= r for w, r in zip(singular.where, singular.radius)
+                   if np.linalg.norm(w - apex) < 1e-6)

@@ -1,5 +1,5 @@
-"""Answers proven in closed form (spatialkin.tracing.certify.closed): two spheres, a sphere and a plane, a plane
-and a cylinder.
+"""Answers proven in closed form (spatialkin.tracing.certify.closed): two spheres, and a plane with a sphere, a
+cylinder or a cone.
 
 Oracle: the true curve as the surfaces' floats define it, in 30-digit arithmetic (tests.oracles.mp.foot: the
 nearest true point by Newton). The proven distance bound must hold both ways: every point of the dense output
@@ -28,6 +28,9 @@ def pairs():
         yield (sk.Plane(sk.Frame(o + scale * np.array([0.1, 0.2, 0.3]), rot), u_range=(-5 * scale, 5 * scale),
                         v_range=(-5 * scale, 5 * scale)),
                sk.Cylinder(scale, sk.Frame(o, tilt), v_range=(-4 * scale, 4 * scale)))
+        yield (sk.Plane(sk.Frame(o + scale * np.array([0.1, 0.2, 0.3]), rot)),
+               sk.Cone(0.5, sk.Frame(o - scale * (tilt @ np.array([0.0, 0.0, 1.5])), tilt),
+                       v_range=(0.2 * scale, 4 * scale)))
 
 
 def nearest_on(curve, y, s, dense):
@@ -81,8 +84,9 @@ def test_a_circle_moved_off_gets_a_bound_that_covers_the_move():
 
 
 def test_what_the_algebra_leaves_goes_to_the_search():
-    """Touching spheres, a circle crossing a plane's rectangle, an ellipse crossing a cylinder's rim and a trimmed
-    sphere are not settled in closed form: their certificates come from the search (another mode)."""
+    """Touching spheres, a circle crossing a plane's rectangle, an ellipse crossing a cylinder's rim, a hyperbola on
+    a cone and a trimmed sphere are not settled in closed form: their certificates come from the search (another
+    mode)."""
     touching = sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((2.0, 0.0, 0.0))), certify=True)
     assert touching.certificate.mode != "closed form" and not touching.certificate.proven
     strip = sk.Plane(sk.Frame((0.0, 0.0, 0.3)), u_range=(-0.5, 0.5), v_range=(-2.0, 2.0))
@@ -91,5 +95,8 @@ def test_what_the_algebra_leaves_goes_to_the_search():
     slanted = sk.Plane(sk.Frame((0.0, 0.0, 0.0), sk.rotation_about((1.0, 0.0, 0.0), 0.8)))
     rim = sk.intersect(slanted, sk.Cylinder(1.0, v_range=(-0.5, 3.0)), certify=True)
     assert rim.certificate.mode != "closed form" and all(not c.closed for c in rim)
+    hyperbola = sk.intersect(sk.Plane(sk.Frame((0.0, 0.0, 0.0), sk.rotation_about((1.0, 0.0, 0.0), 1.4))),
+                             sk.Cone(0.5, sk.Frame((0.0, 0.0, -1.0)), v_range=(0.1, 3.0)), certify=True)
+    assert hyperbola.certificate.mode != "closed form"
     assert closed_certificate(sk.Sphere(1.0, u_range=(0.0, 3.0)), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))),
                               []) is None

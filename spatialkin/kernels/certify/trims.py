@@ -20,7 +20,7 @@ import numpy as np
 from ..._lib.jit import jit
 from ..geometry.interval import (box_trig, down, iadd, idot, implicit_jet, imul, iscale, ishift, krawczyk_row,
                                  local_first, placed, point, transform, up)
-from .tubes import CU, CV, H, P, Q, T0, T1, _hull, arc_enclosure, piece_box
+from .tubes import H, P, Q, T0, T1, arc_enclosure, piece_box, stretch_box
 
 #: An edge of S's own parameters: EDGE_U (u = value) or EDGE_V (v = value); 0, 1, 2: T's local coordinate.
 EDGE_U, EDGE_V = -1, -2
@@ -123,7 +123,7 @@ def arc_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, inside, pie
         # the whole parallelogram first (most pieces lie well inside), then the arc's enclosure on each stretch
         W = (-piece[H], piece[H]) if level == 0.0 else arc_enclosure(s_data, t_data, m, c, pad, cpad, su, sv,
                                                                       piece, t0, t1)
-        U, V = _hull(piece[CU], piece[CV], piece[P], piece[Q], (t0, t1), W, su, sv)
+        U, V = stretch_box(piece, t0, t1, W, su, sv)
         _, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
         if (inside > 0.0 and e[0][0] > 0.0) or (inside < 0.0 and e[0][1] < 0.0):
             continue

@@ -87,8 +87,13 @@ def piece_span(piece):
 @jit
 def piece_box(piece, su, sv):
     """(U, V): the raw parameter intervals of the piece's parallelogram (scaled by su, sv)."""
-    xu, xv = piece_span(piece)
-    return iscale(xu, su), iscale(xv, sv)
+    return stretch_box(piece, piece[T0], piece[T1], (-piece[H], piece[H]), su, sv)
+
+
+@jit
+def stretch_box(piece, t0, t1, W, su, sv):
+    """(U, V): the raw parameter intervals of the parallelogram c + [t0, t1] a + W n of the piece's frame."""
+    return _hull(piece[CU], piece[CV], piece[P], piece[Q], (t0, t1), W, su, sv)
 
 
 @jit(forceinline=True)

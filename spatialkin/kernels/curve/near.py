@@ -7,8 +7,8 @@ The curve's dense output is read from flat tables (built by spatialkin.tracing.c
   ``charts_b`` and whose direction of travel is sign; compiled is 0 for a span these tables do not hold (a
   jump across a node or an apex, another solve_ivp method): a point whose Newton meets it is left to Python
   (verdict PYTHON); a re-measured segment (spatialkin.tracing.march.arclength.RemappedStates) first maps t to the
-  solver's time by np.interp through ``remap_new[remap_off[k]:remap_off[k + 1]]`` and ``remap_old[...]`` (an
-  empty range: no re-mapping);
+  solver's time by remapped_time through ``remap_new[remap_off[k]:remap_off[k + 1]]`` and ``remap_old[...]``
+  (an empty range: no re-mapping);
 * steps: span k's segment record (spatialkin.ode.record.Steps) has its step ends and states in rows
   ``t_off[k]:t_off[k + 1]`` of ``step_t`` and ``step_y`` and its step lengths and polynomials from row ``p_off[k]``
   of ``step_h`` and ``step_q`` (spatialkin.kernels.ode.rk.dense_into reads them, as the record does).
@@ -49,18 +49,20 @@ def solver_state(table, k, t, out):
 
 
 @jit
-def interp(x, xp, fp):
-    """np.interp(x, xp, fp) at one x (xp ascending), operation for operation as numpy computes it (arr_interp in
-    numpy/_core/src/multiarray/compiled_base.c: the ends, the knots and the NaN guard included)."""
+def remapped_time(x, xp, fp):
+    """The solver time of arc length x on a re-measured segment (knots xp ascending, solver times fp): np.interp(x,
+    xp, fp) between the knots, operation for operation as numpy computes it (arr_interp in
+    numpy/_core/src/multiarray/compiled_base.c: the knots and the NaN guard included); beyond either end, along the
+    end step's line (a loop's closure found past the last step extends that step)."""
     n = xp.shape[0]
     if n == 1:
         return fp[0]
     if math.isnan(x):
         return x
     if x < xp[0]:
-        return fp[0]
+        return fp[0] + (x - xp[0]) * ((fp[1] - fp[0]) / (xp[1] - xp[0]))
     if x > xp[n - 1]:
-        return fp[n - 1]
+        return fp[n - 1] + (x - xp[n - 1]) * ((fp[n - 1] - fp[n - 2]) / (xp[n - 1] - xp[n - 2]))
     j = np.searchsorted(xp, x, side="right") - 1          # xp[j] <= x < xp[j + 1], or j = n - 1 at the end
     if j == n - 1 or xp[j] == x:
         return fp[j]
@@ -71,6 +73,13 @@ def interp(x, xp, fp):
         if math.isnan(value) and fp[j] == fp[j + 1]:
             value = fp[j]
     return value
+
+
+@jit
+def remapped_times(x, xp, fp, out):
+    """remapped_time of every x (M,) into out (M,)."""
+    for i in range(x.shape[0]):
+        out[i] = remapped_time(x[i], xp, fp)
 
 
 @jit
@@ -99,7 +108,7 @@ def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangen
     t = spans[k, SHIFT] + flip * s
     remap_off, remap_new, remap_old = table[9], table[10], table[11]
     if remap_off[k + 1] > remap_off[k]:
-        t = interp(t, remap_new[remap_off[k]:remap_off[k + 1]], remap_old[remap_off[k]:remap_off[k + 1]])
+        t = remapped_time(t, remap_new[remap_off[k]:remap_off[k + 1]], remap_old[remap_off[k]:remap_off[k + 1]])
     solver_state(table, k, t, y)
     a, b = charts_a[k], charts_b[k]
     curve_frame(y, a, b, q, tangent)

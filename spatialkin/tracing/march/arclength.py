@@ -16,6 +16,7 @@ quadrature of the closed form), from 2.1e-8 and 1.7e-9.
 import numpy as np
 
 from ...geometry.quadrature import gauss_legendre
+from ...kernels.curve import near as kn
 from ...kernels.march import curve as kc
 from .segments import NEWTON_MAX_ITER
 
@@ -31,13 +32,23 @@ KEEP_RTOL = 1e-10
 
 
 class RemappedStates:
-    """A segment's dense output read at curve arc length t: t_new -> solver time (piecewise linear)."""
+    """A segment's dense output read at curve arc length t: t_new -> solver time (piecewise linear; beyond the
+    ends, along the end steps' lines, so that a loop's closure found past the segment's last step extends its
+    last step as a segment that was not re-measured does)."""
 
     def __init__(self, sol, t_new, t_old):
-        self.sol, self.t_new, self.t_old = sol, t_new, t_old
+        self.sol = sol
+        self.t_new, self.t_old = (np.ascontiguousarray(x, dtype=float) for x in (t_new, t_old))
 
     def __call__(self, t):
-        return self.sol(np.interp(t, self.t_new, self.t_old))
+        return self.sol(self.solver_time(t))
+
+    def solver_time(self, t):
+        """Solver times of the arc lengths t (float or array): kernels.curve.near.remapped_time."""
+        flat = np.ascontiguousarray(np.ravel(t), dtype=float)
+        out = np.empty(flat.size)
+        kn.remapped_times(flat, self.t_new, self.t_old, out)
+        return out.reshape(np.shape(t)) if np.ndim(t) else float(out[0])
 
 
 def step_lengths(seg, pullback, gap_tol):

@@ -210,16 +210,19 @@ def test_covered(kind):
         assert covered(p, [curve], radius) == (name == "on"), name
 
 
-def test_interp_is_numpys():
-    """kernels.curve.near.interp equals np.interp (to 1 ulp): between knots, at knots, at and beyond both ends, and
-    for a single knot."""
+def test_remapped_time_is_numpys_interp_and_extends_the_end_steps():
+    """kernels.curve.near.remapped_time equals np.interp (to 1 ulp) between the knots and at them, and beyond either
+    end the line through the two end knots (to 1e-15 relative), for a single knot the knot's value."""
     rng = np.random.default_rng(11)
     xp = np.cumsum(rng.uniform(0.1, 1.0, 30))
     fp = np.cumsum(rng.uniform(0.1, 1.0, 30))
-    x = np.concatenate([rng.uniform(xp[0] - 1.0, xp[-1] + 1.0, 500), xp, [xp[0], xp[-1]]])
-    got = np.array([kn.interp(v, xp, fp) for v in x])
-    np.testing.assert_array_max_ulp(got, np.interp(x, xp, fp), maxulp=1)
-    assert kn.interp(0.3, xp[:1], fp[:1]) == fp[0]
+    inside = np.concatenate([rng.uniform(xp[0], xp[-1], 500), xp])
+    got = np.array([kn.remapped_time(v, xp, fp) for v in inside])
+    np.testing.assert_array_max_ulp(got, np.interp(inside, xp, fp), maxulp=1)
+    for x, (i, j) in ((xp[0] - 0.7, (0, 1)), (xp[-1] + 0.4, (-2, -1))):
+        line = fp[i] + (x - xp[i]) * (fp[j] - fp[i]) / (xp[j] - xp[i])
+        assert abs(kn.remapped_time(x, xp, fp) - line) <= 1e-15 * abs(line)
+    assert kn.remapped_time(0.3, xp[:1], fp[:1]) == fp[0]
 
 
 @pytest.mark.parametrize("kind", ["torus-torus", "plane-plane", "sphere-cylinder"])

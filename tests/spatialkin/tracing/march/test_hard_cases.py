@@ -232,3 +232,28 @@ def test_viviani_trimmed_at_its_node():
         assert height.min() >= -1e-15 * r
         assert abs(c.length - lobe) <= 1e-9 * lobe
         assert c.max_distance <= 1e-14 * r
+
+
+def test_a_near_tangent_tiny_loop_is_dense_to_its_closure():
+    """A loop of 2.5e-6 where two tori nearly touch (normals 7e-7 apart, a re-measured segment whose closure lies
+    past its last step): the dense output runs on through the closing stretch, at speed 1 in s (chords of 201
+    evenly spaced samples, the wrap from the last to the first included, within 20% of their spacing: the
+    positions are fixed by the doubles to about 4e-10 here; over the last stored step, the distance to the closing
+    point is the arc length left), and the length agrees with the 40-digit oracle to the conditioning
+    u |x| / sin(normals)."""
+    from tests.oracles.mp import loop_length
+    from tests.oracles.ssi_cases import all_cases
+    case = next(c for c in all_cases() if c.name == "tiny/torus-torus/1e-06")
+    curves = sk.intersect(case.a, case.b)
+    assert len(curves) == 1 and curves[0].closed
+    curve = curves[0]
+    s = np.linspace(0.0, curve.length, 201)
+    chords = np.linalg.norm(np.diff(curve(s), axis=0), axis=1) / (s[1] - s[0])
+    assert np.all((chords > 0.8) & (chords < 1.2)), chords.min()
+    # the last stored step: the distance to the closing point falls as the arc length left
+    last = np.linspace(curve.s[-2], curve.length, 9)
+    left = np.linalg.norm(curve(last) - curve.points[0], axis=1)
+    assert np.max(np.abs(left - (curve.length - last))) < 0.1 * (curve.length - curve.s[-2])
+    length, _, sine = loop_length(case.a, case.b, curve.points[:-1])
+    size = np.max(np.abs(curve.points))
+    assert abs(curve.length - length) < 50 * np.finfo(float).eps * size / sine

@@ -3,9 +3,9 @@
 
 The workload calls what a user's first calls reach: ``sk.intersect`` on a general pair of every kind of surface (15
 kinds) and on trimmed faces, ``sk.trace``, the looper drive over a turn with its analysis (and a drive whose crank
-does not turn fully), ``certify=True`` on the looper pair, on circles in closed form and on a trimmed cylinder,
-its design sensitivities, and ``sk.intersect_many``; numba compiles every kernel and
-specialisation they reach into its cache.
+does not turn fully), ``certify=True`` on the looper pair, on circles in closed form, on a trimmed cylinder and
+on Viviani's figure-eight (a node), its design sensitivities, and ``sk.intersect_many``; numba compiles every
+kernel and specialisation they reach into its cache.
 """
 import time
 
@@ -36,6 +36,7 @@ def run():
     sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))), certify=True)
     sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))), certify=True)
     sk.intersect(sk.Cylinder(1.0, v_range=(-1.0, 1.0)), sk.Sphere(1.5, sk.Frame((0.05, 0.0, 0.0))), certify=True)
+    sk.intersect(sk.Sphere(1.0), sk.Cylinder(0.5, sk.Frame((0.5, 0.0, 0.0)), v_range=(-2.0, 2.0)), certify=True)
     angles = np.linspace(0.0, 2 * np.pi, ANGLES)
     motion = drive.solve(angles, omega=2.0, branch=0)
     drive.analyse(branch=0, samples=ANGLES)

@@ -17,6 +17,7 @@ from ...kernels.search import topology as ks
 from .certify_points import certify_points
 from ..search.topology import TopologyError, search
 from .trims import Ends, closed_inside, edges, open_curve, outside, q_edge_roots
+from .nodes import in_boxes, linked, node_boxes, typical_chord
 from .tubes import Chart, tube
 
 PROVEN, NOT_PROVEN = "proven", "not proven"
@@ -136,8 +137,9 @@ class Certificate:
         Per curve, the proven half-width of the box round each stored point (inf where not proven).
     distance_bounds : list of float
         Per curve, the proven bound of the distance from its stored points and dense samples to the intersection
-        (inf where its tube or a sample's box is not proven); proven in closed form, a bound of the Hausdorff
-        distance between its whole dense output and the true curve.
+        (inf where its tube or a sample's box is not proven; those within a node's box left out, the node's ball
+        bounding them); proven in closed form, a bound of the Hausdorff distance between its whole dense output and
+        the true curve.
     tubes : list of Tube or None
         Per curve, its chain of pieces (spatialkin.tracing.certify.tubes.Tube).
 
@@ -261,12 +263,13 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
     charted = topology if general is None else general
     chart = Chart(charted, scale) if charted is not None and charted.chart is not None else None
     trims, unsupported = edges(charted, chart) if chart is not None else ([], [])
+    nodes = node_boxes(chart, charted.nodes, typical_chord(chart, curves)) if chart is not None else []
     ends = Ends()
     radii, tubes, bounds = [], [], []
     points_failed, arcs_failed, whole_failed = [], [], []
     for i, curve in enumerate(curves):
         regular = curve.length > 0 and curve.status not in (TANGENT, CONTACT)
-        t = tube(chart, curve) if regular and chart is not None else None
+        t = tube(chart, curve, nodes) if regular and chart is not None else None
         tubes.append(t)
         if not regular:
             radii.append(np.full(len(curve.points), math.inf))
@@ -274,8 +277,13 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
             radii.append(certify_points(a, b, curve.points, curve.sol.tangent(curve.s)))
         else:
             radii.append(sample_radii(a, b, curve, t))
-        bounds.append(math.inf if t is None or not t.proven else
-                      float(max(np.max(radii[-1]), np.max(t.radii, initial=0.0)) * math.sqrt(3.0)))
+            if t.split and nodes:       # points within a node's box: within its diameter of a crossing there
+                inside = in_boxes(chart, nodes, curve.points) & ~np.isfinite(radii[-1])
+                if inside.any():
+                    feet = chart.p.point(*chart.p.parameters(curve.points[inside]).T)
+                    off = np.linalg.norm(curve.points[inside] - feet, axis=1) * (1.0 + 1e-9)
+                    radii[-1][inside] = 2.0 * max(node.radius for node in nodes) + off
+        bounds.append(math.inf if t is None or not t.proven else distance_bound(chart, nodes, curve, t, radii[-1]))
         bad = ~np.isfinite(radii[-1])
         if bad.any():
             points_failed.append((f"curve {i}: {int(bad.sum())} of {bad.size} stored points have no proven radius",
@@ -286,20 +294,26 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
             arcs_failed.append((f"curve {i}: {t.reason if t is not None else 'no search chart'}",
                                 None if t is None else t.where))
             whole_failed.append((f"curve {i}: its tube is not proven", None if t is None else t.where))
+        elif t.split:
+            node = next((n for n in nodes if n.index in t.passes), None)
+            whole_failed.append((f"curve {i} passes a node: which of the branches there join is not decided",
+                                 t.points[0] if node is None else node.point))
         elif not curve.closed and not open_curve(chart, trims, unsupported, t, curve, ends, i):
             whole_failed.append(ends.failures[-1])
         elif curve.closed and not closed_inside(chart, trims, unsupported, t, i, ends):
             whole_failed.append(ends.failures[-1])
-    singular = singular_places(charted, chart, curves, scale)
+    nodes, unlinked = linked(chart, nodes, tubes) if nodes else ([], [])
+    arcs_failed += unlinked
+    singular = singular_places(charted, chart, curves, scale, nodes)
     if topology is None:
         singular.append(("no search stands behind the answer: its singular points were not looked for", None))
-    isolated = [place[3] for place in singular if len(place) > 3]
+    isolated = [place[3] for place in singular if len(place) > 3] + [node.box for node in nodes]
     complete = (claim("complete", [(failure, None)], "") if failure is not None else
                 complete_claim(general, chart, tubes, curves, trims, unsupported, ends, isolated))
     claims = [complete,
               claim("one_component", whole_failed, "every closed curve's tube closes on itself, every open "
                     "curve runs between two proven crossings of trim edges"),
-              distinct_claim(chart, tubes, contact_boxes(curves, singular)),
+              distinct_claim(chart, tubes, contact_boxes(curves, singular), nodes),
               claim("points", points_failed, "every stored point has a proven radius"),
               claim("arcs", arcs_failed, "every curve lies in a chain of proven pieces"),
               claim("singular", [place[:3] for place in singular],
@@ -319,6 +333,21 @@ def contact_boxes(curves, singular):
     return out
 
 
+def distance_bound(chart, nodes, curve, t, radii):
+    """The proven bound of the distance from the curve's stored points (radii: their box half-widths) and the
+    tube's other samples to the intersection: sqrt(3) x the largest half-width, the samples inside node boxes left
+    out (the node's ball bounds them)."""
+    if t.split:
+        keep = ~in_boxes(chart, nodes, t.points)
+        every = np.full(len(t.s), np.nan)
+        stored = np.searchsorted(t.s, curve.s)
+        others = np.ones(len(t.s), dtype=bool)
+        others[stored] = False
+        every[stored], every[others] = radii, t.radii
+        return float(np.max(every[keep], initial=0.0) * math.sqrt(3.0))
+    return float(max(np.max(radii), np.max(t.radii, initial=0.0)) * math.sqrt(3.0))
+
+
 def sample_radii(a, b, curve, t):
     """The proven box half-widths (certify_points) of the curve's stored points, returned; those of the tube's
     other samples (its dense samples and refinements) kept on the tube as t.radii. The normal planes are across the
@@ -330,14 +359,19 @@ def sample_radii(a, b, curve, t):
     return every[stored]
 
 
-def singular_places(topology, chart, curves, scale):
+def singular_places(topology, chart, curves, scale, nodes=()):
     """(text, point, ball radius) of each singular place: the contacts and nodes the search recorded, and the
     returned contact points, with the ball of kernels.certify.singular where it is proven; apexes likewise, in the
     chart of the surface the apex is not on (where the other's implicit function has a critical point); tangencies
     along curves with none."""
     out = []
     if topology is not None:
-        points = [(p, "node") for p in topology.nodes] + [(p, "contact") for p in topology.contacts]
+        out += [(f"a node: its ball of {node.radius:.1e} holds one critical point of the level, a saddle, and four "
+                 "branches leaving it through proven tubes; which of them join there (a crossing, or two branches "
+                 "passing close) is not decided", node.point, node.radius) for node in nodes]
+        boxed = {node.index for node in nodes}
+        points = [(p, "node") for k, p in enumerate(topology.nodes) if k not in boxed]
+        points += [(p, "contact") for p in topology.contacts]
         points += [(c.points[0], "contact") for c in curves if c.status == CONTACT and
                    not any(np.array_equal(c.points[0], p) for p in topology.contacts)]
         points += [(p, "apex") for p in topology.apexes]
@@ -486,17 +520,26 @@ def within_isolated(chart, raw, isolated):
     return False
 
 
-def distinct_claim(chart, tubes, boxes=None):
+def distinct_claim(chart, tubes, boxes=None, nodes=()):
     """The curves' tubes pairwise disjoint (pieces_overlap, with whole periods of the chart); a contact point's
-    isolation box (boxes: {curve index: scaled box (4,)}) stands for its tube."""
+    isolation box (boxes: {curve index: scaled box (4,)}) stands for its tube, and the boxes of the nodes a curve
+    passes (nodes: NodeBox) belong to its tube; two curves through one node are not proven distinct."""
     boxes = boxes or {}
     pieces = [t.pieces if t is not None and t.proven else box_piece(boxes[i]) if i in boxes else None
               for i, t in enumerate(tubes)]
+    for i, t in enumerate(tubes):
+        if t is not None and t.proven and t.passes:
+            pieces[i] = np.concatenate([t.pieces] + [box_piece(n.box) for n in nodes if n.index in t.passes])
     failures = []
     for i in range(len(tubes)):
         for j in range(i + 1, len(tubes)):
             if pieces[i] is None or pieces[j] is None:
                 failures.append((f"curves {i} and {j}: a tube is not proven", None))
+                continue
+            shared = tubes[i].passes & tubes[j].passes if tubes[i] is not None and tubes[j] is not None else ()
+            if shared:
+                failures.append((f"curves {i} and {j} meet at a node, where which branches join is not decided",
+                                 None))
                 continue
             hit = overlapping(chart, pieces[i], pieces[j])
             if hit is not None:

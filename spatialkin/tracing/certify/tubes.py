@@ -15,6 +15,7 @@ from ...kernels.certify import tubes as kt
 from ...kernels.curve.stored import unwrap_turns
 from ..curve.exact import ExactSolution
 from ..search.topology import Reader
+from . import nodes as nd
 
 #: Dense samples per stored step (the chords between them carry the pieces).
 SAMPLES_PER_STEP = 2
@@ -28,6 +29,10 @@ MIN_CHORD = 0.2
 PIECES_PER_CHORD = 16
 #: Smallest half-width of a piece, in ulps of the scaled coordinates' magnitude.
 FLOOR_ULPS = 64.0
+#: Bisections on the dense output for a run's end inside a node box.
+NODE_BISECTIONS = 40
+#: Dense samples added in a chord that passes near a node.
+PASSAGE_SAMPLES = 32
 
 
 class Tube:
@@ -42,11 +47,16 @@ class Tube:
     x : ndarray (L, 2)       the scaled parameters of the samples the chain followed (unwrapped)
     radii : ndarray or None  the proven box half-widths of the samples other than the stored points (set by the
                              certificate, spatialkin.tracing.certify.certificate.sample_radii)
+    split : bool             made of one open chain per run of the curve between node boxes (their ends
+                             reaching into the boxes), not of one chain
+    passes : frozenset       the indices (among the search's nodes) of the node boxes the curve passes
     """
 
     def __init__(self, pieces, status, where, s, points, x):
         self.pieces, self.status, self.where, self.s, self.points, self.x = pieces, status, where, s, points, x
         self.radii = None
+        self.split = False
+        self.passes = frozenset()
 
     @property
     def proven(self):
@@ -116,14 +126,40 @@ def curve_samples(curve):
     return points, dense
 
 
-def tube(chart, curve):
-    """The Tube of one curve (a CurveResult of positive length) in the chart: where the chain fails, the samples
-    round the failing chord are refined (dense output at the midpoints) and the chain is proven again, up to
-    REFINEMENTS times."""
+def tube(chart, curve, nodes=()):
+    """The Tube of one curve (a CurveResult of positive length) in the chart: one chain along its samples, or, where
+    it passes the boxes of nodes (spatialkin.tracing.certify.nodes.NodeBox), one open chain along each run of
+    samples between them, each run's ends inside the node boxes it leaves and enters (node_runs)."""
     points, s = curve_samples(curve)
+    runs, passed = node_runs(chart, curve, points, s, nodes) if len(nodes) else (None, ())
+    if runs is None:
+        return chained(chart, curve, points, s, curve.closed)
+    if not runs:
+        failed = Tube(np.empty((0, kt.WIDTH)), kt.PIECE_FAILED, points[0], s, points, chart.scaled(points))
+        failed.split = True
+        failed.passes = frozenset(nodes[j].index for j in passed)
+        return failed
+    parts = [chained(chart, curve, run_points, run_s, False) for run_points, run_s in runs]
+    failed = next((t for t in parts if not t.proven), None)
+    every_s = np.concatenate([s] + [t.s for t in parts])     # (a closed curve's runs may pass s = 0)
+    every_s = np.where((every_s < 0.0) | (every_s > curve.length), np.mod(every_s, curve.length), every_s)
+    every_s, first = np.unique(every_s, return_index=True)
+    every_points = np.concatenate([points] + [t.points for t in parts])[first]
+    whole = Tube(np.concatenate([t.pieces for t in parts]), kt.PROVEN if failed is None else failed.status,
+                 None if failed is None else failed.where, every_s, every_points,
+                 np.concatenate([t.x for t in parts]))
+    whole.split = True
+    whole.passes = frozenset(nodes[j].index for j in passed)
+    return whole
+
+
+def chained(chart, curve, points, s, closed):
+    """The Tube of one chain along the samples points (M, 3) at arc lengths s (M,) of the curve (closed: the last
+    sample is the first one, a whole loop on): where the chain fails, the samples round the failing chord are
+    refined (dense output at the midpoints) and the chain is proven again, up to REFINEMENTS times."""
     for _ in range(REFINEMENTS):
-        x, kept = chain_samples(chart, curve, points)
-        pieces, status, chord = chain(chart, x, curve.closed, x[-1] - x[0] if curve.closed else np.zeros(2))
+        x, kept = chain_samples(chart, points, closed)
+        pieces, status, chord = chain(chart, x, closed, x[-1] - x[0] if closed else np.zeros(2))
         if status == kt.PROVEN:
             return Tube(pieces, status, None, s, points, x)
         at = kept[min(max(chord, 0), len(kept) - 2)]
@@ -132,6 +168,93 @@ def tube(chart, curve):
         s = np.sort(np.concatenate([s, mids]))
         points = merged(points, s, mids, np.asarray(curve.sol(mids), dtype=float).reshape(-1, 3))
     return Tube(pieces, status, points[kept][min(max(chord, 0), len(kept) - 1)], s, points, x)
+
+
+def node_runs(chart, curve, points, s, nodes):
+    """(runs, the indices into nodes of the boxes passed): the runs of the curve's samples outside the node boxes,
+    each (points (K, 3), s (K,)) beginning and ending at a point of the curve inside the box it comes from or goes
+    to (at half its half-width from the node, found by bisection on the dense output), or at the curve's own ends;
+    runs None when the curve passes no node box, [] when it lies wholly inside them."""
+    points, s = node_passages(chart, curve, points, s, nodes)
+    x = chart.scaled(points)
+    where = np.full(len(x), -1)
+    for j, node in enumerate(nodes):
+        where[nd.inside(chart, node, x)] = j
+    if not (where >= 0).any():
+        return None, ()
+    passed = set(where[where >= 0].tolist())
+    count = len(x) - 1 if curve.closed else len(x)       # (a closed curve's last sample is its first)
+    if (where[:count] >= 0).all():
+        return [], passed
+    order = np.arange(count)
+    if curve.closed:                 # start where the curve leaves a node box
+        start = next(k for k in range(count) if where[(k - 1) % count] >= 0 and where[k] < 0)
+        order = np.roll(order, -start)
+    flat_s = s[order] + np.where(order < order[0], curve.length, 0.0) if curve.closed else s[order]
+    runs, k = [], 0
+    while k < count:
+        if where[order[k]] >= 0:
+            k += 1
+            continue
+        first = k
+        while k < count and where[order[k]] < 0:
+            k += 1
+        idx = order[first:k]
+        run_points, run_s = list(points[idx]), list(flat_s[first:k])
+        before = order[first - 1] if first > 0 else (order[-1] if curve.closed else -1)
+        after = order[k] if k < count else (order[0] if curve.closed else -1)
+        if before >= 0 and where[before] >= 0:
+            s_in = flat_s[first - 1] if first > 0 else flat_s[-1] - curve.length
+            p, at = node_end(chart, curve, nodes[where[before]], s_in, flat_s[first])
+            run_points.insert(0, p)
+            run_s.insert(0, at)
+        if after >= 0 and where[after] >= 0:
+            s_in = flat_s[k] if k < count else flat_s[0] + curve.length
+            p, at = node_end(chart, curve, nodes[where[after]], s_in, flat_s[k - 1])
+            run_points.append(p)
+            run_s.append(at)
+        runs.append((np.array(run_points), np.array(run_s)))
+    return runs, passed
+
+
+def node_passages(chart, curve, points, s, nodes):
+    """(points, s): the samples with PASSAGE_SAMPLES dense ones added in each chord that comes within twice a
+    node box's half-width of the node (a passage whose samples straddle the box gets samples inside it)."""
+    x = chart.scaled(points)
+    near = np.zeros(len(x) - 1, dtype=bool)
+    for node in nodes:
+        ends = np.array([nd.shifted_into(chart, node, p) for p in x]) - node.x
+        lo, hi = np.minimum(ends[:-1], ends[1:]), np.maximum(ends[:-1], ends[1:])
+        near |= np.all((lo < 2.0 * node.h) & (hi > -2.0 * node.h), axis=1)
+    if not near.any():
+        return points, s
+    fractions = np.arange(1, PASSAGE_SAMPLES + 1) / (PASSAGE_SAMPLES + 1)
+    extra = (s[:-1][near, None] + np.diff(s)[near, None] * fractions[None, :]).ravel()
+    every = np.concatenate([s, extra])
+    order = np.argsort(every, kind="stable")
+    fresh = np.asarray(curve.sol(extra), dtype=float).reshape(-1, 3)
+    return np.concatenate([points, fresh])[order], every[order]
+
+
+def node_end(chart, curve, node, s_in, s_out):
+    """(point (3,), s) of the curve inside the node's box at about half its half-width from the node (in the
+    chart's scaled parameters, max norm), between the sample inside at s_in and the one outside at s_out
+    (bisection on the dense output); the inside sample itself when it is that far already."""
+    def reach(at):
+        p = np.asarray(curve.sol(at), dtype=float).reshape(3)
+        x = nd.shifted_into(chart, node, chart.scaled(p[None])[0])
+        return p, float(np.max(np.abs(x - node.x))) / node.h
+    p, r = reach(s_in)
+    if r >= 0.5:
+        return p, s_in
+    lo, hi = s_in, s_out
+    for _ in range(NODE_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        p, r = reach(mid)
+        if abs(r - 0.5) < 0.1:
+            return p, mid
+        lo, hi = (mid, hi) if r < 0.5 else (lo, mid)
+    return reach(0.5 * (lo + hi))[0], 0.5 * (lo + hi)
 
 
 def merged(points, s_new, mids, fresh):
@@ -146,11 +269,11 @@ def merged(points, s_new, mids, fresh):
     return out
 
 
-def chain_samples(chart, curve, points):
+def chain_samples(chart, points, closed):
     """(x (M, 2) scaled parameters of the kept samples, their indices): unwrapped, the closing point of a closed
-    curve put exactly a whole number of turns from the first, too-close samples dropped (spaced)."""
+    chain put exactly a whole number of turns from the first, too-close samples dropped (spaced)."""
     x = np.ascontiguousarray(chart.scaled(points))
-    if curve.closed:
+    if closed:
         shift = np.zeros(2)
         for j in range(2):
             if chart.periodic[j]:

@@ -106,8 +106,10 @@ class Certificate:
       of tangency) are reported, not proven (a tangency is an equality that floating point cannot decide), with
       their places and, for a contact, a proven ball (``radius``): the Krawczyk test proves a unique critical
       point of g in a box where its Hessian is definite, so the intersection within the box lies within the ball
-      (a point, a small loop or nothing); a node is proven the only critical point in its ball, a saddle
-      (spatialkin.kernels.certify.singular). An apex of a cone lying on the other surface gets its ball the same
+      (a point, a small loop or nothing); a node gets a box proven to hold one critical point, a saddle, and
+      exactly four branches leaving it, each through a proven tube (spatialkin.tracing.certify.nodes: the tubes
+      are chained between node boxes, so the arcs and completeness are proven through nodes, while which branches
+      join at a node, and so one_component and distinct for the curves through it, is not decided). An apex of a cone lying on the other surface gets its ball the same
       way, in the chart of the surface it is not an apex of (where the cone's implicit function has its critical
       point): isolated, or a saddle where two branches cross. Circles and segments of tangency get no ball.
       The search's boxes inside an isolated contact's box are accounted for by it in the completeness claim.

@@ -109,9 +109,10 @@ class Certificate:
       (a point, a small loop or nothing); a node gets a box proven to hold one critical point, a saddle, and
       exactly four branches leaving it, each through a proven tube (spatialkin.tracing.certify.nodes: the tubes
       are chained between node boxes, so the arcs and completeness are proven through nodes, while which branches
-      join at a node, and so one_component and distinct for the curves through it, is not decided). An apex of a cone lying on the other surface gets its ball the same
-      way, in the chart of the surface it is not an apex of (where the cone's implicit function has its critical
-      point): isolated, or a saddle where two branches cross. Circles and segments of tangency get no ball.
+      join at a node, and so one_component and distinct for the curves through it, is not decided). An apex of a
+      cone lying on the other surface gets its ball the same way, in the chart of the surface it is not an apex of
+      (where the cone's implicit function has its critical point): isolated, or a saddle where two branches cross.
+      Circles and segments of tangency get no ball.
       The search's boxes inside an isolated contact's box are accounted for by it in the completeness claim.
 
     An empty answer has a certificate too (``sk.intersect`` returns a list with a ``certificate`` attribute): it is

@@ -293,9 +293,9 @@ def villarceau():
 def test_circles_crossing_at_nodes_are_proven_apart_from_the_nodes():
     """The Villarceau circles: the arcs proven, the two nodes (0, +-0.75, +-0.433) proven saddles with four branches
     each in proven tubes; the curves are not proven distinct (they meet at the nodes). (Completeness is not: each
-    circle touches the torus chart's seam, the inner equator, where the search cannot resolve the double root.) Oracle: every point of the dense
-    output lies on one of the two circles (1e-12), and each curve is 2 pi R long (1e-8; the tracer may turn from one
-    circle to the other at a node)."""
+    circle touches the torus chart's seam, the inner equator, where the search cannot resolve the double root.)
+    Oracle: every point of the dense output lies on one of the two circles (1e-12), and each curve is 2 pi R long
+    (1e-8; the tracer may turn from one circle to the other at a node)."""
     torus, plane = villarceau()
     curves = sk.intersect(torus, plane, certify=True)
     cert = curves.certificate

@@ -1,7 +1,9 @@
-"""Ellipses proven in closed form: a plane meets a sphere, a cylinder or a cone, and two spheres meet (their radical
-plane meets either), in exactly one ellipse or circle (or in nothing), enclosed in outward-rounded intervals; a
-returned curve X(t) = c + P cos t + Q sin t (a circle or an ellipse in closed form) is proven within a distance of
-it.
+"""Ellipses and segments proven in closed form: a plane meets a sphere, a cylinder or a cone, and two spheres meet
+(their radical plane meets either), in exactly one ellipse or circle (or in nothing), and two trimmed planes in one
+segment (or nothing), enclosed in outward-rounded intervals; a returned curve X(t) = c + P cos t + Q sin t (a circle
+or an ellipse in closed form), or a returned segment, is proven within a distance of it (plane_plane and
+segment_bound: the segment's ends enclosed, the distance between two segments paired end to end at most the larger
+of their ends' distances).
 
 The surfaces are the sets the floats define: a plane (x - p) . n = 0 (n its frame's third column as stored), and the
 quadrics (x - o)^T (I - g a a^T) (x - o) = k, a the unit axis (the frame's third column normalised): a sphere
@@ -276,3 +278,66 @@ def semi_minor_squared(truth):
     disc = isub(isqr(trace), iscale(det, 4.0))
     top = iscale(iadd(trace, _isqrt((max(disc[0], 0.0), disc[1]))), 0.5)
     return down(1.0 / top[1])
+
+
+@jit
+def plane_plane(o1, n1, o2, n2, bands, ends):
+    """The segment where the planes through o1, o2 with normals n1, n2 (3,) meet inside the bands (K, 8) (rows
+    (o (3), e (3), lo, hi): lo < (x - o) . e < hi, the planes' trims): its ends into ends (6, 2) (intervals of A,
+    rows 0-2, and B, rows 3-5; A first along n1 x n2); CURVE, EMPTY (the line misses the bands' common part) or
+    UNDECIDED (the planes parallel to round-off, a band along the line, an end not decided).
+
+    The line is p0 + t d, d = n1 x n2, p0 = ((h1 |n2|^2 - h2 n1.n2) n1 + (h2 |n1|^2 - h1 n1.n2) n2) / |d|^2 with
+    h_i = n_i . o_i; a band holds it for t between (lo - a) / b and (hi - a) / b, a = e . (p0 - o), b = e . d; the
+    segment runs from the largest of the lower ends to the smallest of the upper ones."""
+    a1, a2 = _floats(n1), _floats(n2)
+    d = _cross(a1, a2)
+    dd = _dot(d, d)
+    if dd[0] <= 0.0:
+        return UNDECIDED
+    h1, h2 = _dot(a1, _floats(o1)), _dot(a2, _floats(o2))
+    n11, n22, n12 = _dot(a1, a1), _dot(a2, a2), _dot(a1, a2)
+    k1 = _idiv(isub(imul(h1, n22), imul(h2, n12)), dd)
+    k2 = _idiv(isub(imul(h2, n11), imul(h1, n12)), dd)
+    p0 = _axpy(k2, a2, _axpy(k1, a1, (point(0.0), point(0.0), point(0.0))))
+    t_lo, t_hi = (-math.inf, -math.inf), (math.inf, math.inf)
+    for k in range(bands.shape[0]):
+        o, e = (point(bands[k, 0]), point(bands[k, 1]), point(bands[k, 2])), _floats(bands[k, 3:6])
+        a = _dot(_sub(p0, o), e)
+        b = _dot(d, e)
+        if _holds_zero(b):
+            return UNDECIDED
+        first = _idiv(isub(point(bands[k, 6]), a), b) if math.isfinite(bands[k, 6]) else (-math.inf, math.inf)
+        last = _idiv(isub(point(bands[k, 7]), a), b) if math.isfinite(bands[k, 7]) else (-math.inf, math.inf)
+        if b[0] > 0.0:
+            lower, upper = ((-math.inf, -math.inf) if not math.isfinite(bands[k, 6]) else first,
+                            (math.inf, math.inf) if not math.isfinite(bands[k, 7]) else last)
+        else:
+            lower, upper = ((-math.inf, -math.inf) if not math.isfinite(bands[k, 7]) else last,
+                            (math.inf, math.inf) if not math.isfinite(bands[k, 6]) else first)
+        t_lo = (max(t_lo[0], lower[0]), max(t_lo[1], lower[1]))
+        t_hi = (min(t_hi[0], upper[0]), min(t_hi[1], upper[1]))
+    if not (math.isfinite(t_lo[0]) and math.isfinite(t_hi[1])):
+        return UNDECIDED
+    if t_lo[0] > t_hi[1]:
+        return EMPTY
+    if not t_lo[1] < t_hi[0]:
+        return UNDECIDED
+    A, B = _axpy(t_lo, d, p0), _axpy(t_hi, d, p0)
+    for i in range(3):
+        _set(ends, i, A[i])
+        _set(ends, 3 + i, B[i])
+    return CURVE
+
+
+@jit
+def segment_bound(ends, a, b):
+    """An upper bound of sup_tau |X(tau) - X'(tau)| for the returned segment X from a to b (3,) and the true one X'
+    between the ends (6, 2), paired with a and b the nearer way (both affine in tau: the larger end distance),
+    with the evaluation's round-off."""
+    A, B = _vec(ends, 0), _vec(ends, 3)
+    av, bv = _floats(a), _floats(b)
+    straight = max(_norm_up(_sub(av, A)), _norm_up(_sub(bv, B)))
+    crossed = max(_norm_up(_sub(av, B)), _norm_up(_sub(bv, A)))
+    size = math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) + math.sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2])
+    return up(min(straight, crossed) + up(EVAL_ULPS * EPS * size))

@@ -118,10 +118,11 @@ class Certificate:
     An empty answer has a certificate too (``sk.intersect`` returns a list with a ``certificate`` attribute): it is
     proven when the search found no root and no unresolved box, so no point is common to the two trimmed surfaces.
 
-    Two untrimmed spheres, and a plane with an untrimmed sphere, a cylinder or a cone, are proven in closed form
-    instead, with no search (mode 'closed form', spatialkin.tracing.certify.closed): interval arithmetic proves that
-    they meet in exactly one circle or ellipse inside the trims, or in nothing, and bounds the distance between the
-    returned curve's whole dense output and the true curve both ways (``distance_bounds``, a Hausdorff bound).
+    Two untrimmed spheres, a plane with an untrimmed sphere, a cylinder or a cone, and two planes are proven in
+    closed form instead, with no search (mode 'closed form', spatialkin.tracing.certify.closed): interval arithmetic
+    proves that they meet in exactly one circle, ellipse or segment inside the trims, or in nothing, and bounds the
+    distance between the returned curve's whole dense output and the true curve both ways (``distance_bounds``, a
+    Hausdorff bound).
 
     Attributes
     ----------

@@ -1,6 +1,6 @@
 """Certificates proven in closed form: two untrimmed spheres, or a plane and an untrimmed sphere, a cylinder or a
-cone (each trimmed by lengths, or not) meet in one circle or ellipse or in nothing, which interval arithmetic
-decides without a search (spatialkin.kernels.certify.closed). The returned curve is then proven within a Hausdorff
+cone (each trimmed by lengths, or not) meet in one circle or ellipse or in nothing, and two planes in one segment or
+nothing, which interval arithmetic decides without a search (spatialkin.kernels.certify.closed). The returned curve is then proven within a Hausdorff
 distance of the true one along its whole dense output, both ways. Any other answer, or a pair the algebra leaves
 undecided (a tangency, a hyperbola, a curve reaching a trim edge), goes to the search's certificate
 (spatialkin.tracing.certify.certificate).
@@ -12,12 +12,12 @@ import numpy as np
 from ...geometry.surfaces import Cone, Cylinder, Plane, Sphere
 from ...kernels.certify import closed as kc
 from ...kernels.geometry import surfaces as ks
-from ..closed.conic import ELLIPSE, ConicSolution
-from ..curve.exact import CircleSolution
+from ..closed.conic import ELLIPSE, LINE, ConicSolution
+from ..curve.exact import CircleSolution, SegmentSolution
 from .certificate import PROVEN, Certificate, Claim
 
 #: The pairs proven here (their class names, sorted).
-PAIRS = (("Sphere", "Sphere"), ("Plane", "Sphere"), ("Cylinder", "Plane"), ("Cone", "Plane"))
+PAIRS = (("Sphere", "Sphere"), ("Plane", "Sphere"), ("Cylinder", "Plane"), ("Cone", "Plane"), ("Plane", "Plane"))
 #: The distance bound must stay below this share of the true ellipse's smaller semi-axis.
 SMALL = 0.25
 
@@ -29,6 +29,8 @@ def closed_certificate(a, b, curves):
     kinds = tuple(type(s).__name__ for s in pair)
     if kinds not in PAIRS or any(s.region for s in pair) or any(isinstance(s, Sphere) and s.trimmed for s in pair):
         return None
+    if kinds == ("Plane", "Plane"):
+        return segment_certificate(pair, curves)
     truth = np.empty((kc.ROWS, 2))
     if kinds == ("Sphere", "Sphere"):
         outcome = kc.spheres(pair[0].frame.origin, pair[0].radius, pair[1].frame.origin, pair[1].radius, truth)
@@ -53,6 +55,32 @@ def closed_certificate(a, b, curves):
     radii = np.full(len(curves[0].points), bound)
     return answer([radii], [bound], "the surfaces meet in exactly one ellipse (or circle), crossing, inside the "
                   "trims (proven in closed form)", "the true curve")
+
+
+def segment_certificate(planes, curves):
+    """The Certificate of two planes' answer: one segment (the line of the planes inside both rectangles, a convex
+    set: one piece or none), proven in closed form, or None."""
+    bands = np.array([np.concatenate([plane.frame.origin, column(plane, k), [lo, hi]]) for plane in planes
+                      for k, (lo, hi) in enumerate(plane.bounds) if np.isfinite(lo) or np.isfinite(hi)])
+    ends = np.empty((6, 2))
+    outcome = kc.plane_plane(planes[0].frame.origin, column(planes[0], 2), planes[1].frame.origin,
+                             column(planes[1], 2), bands.reshape(-1, 8), ends)
+    if outcome == kc.EMPTY and not curves:
+        return answer([], [], "the surfaces have no common point (proven in closed form)", "no curve")
+    if outcome != kc.CURVE or len(curves) != 1 or curves[0].closed or not is_segment(curves[0].sol):
+        return None
+    curve = curves[0]
+    a, b = (np.asarray(p, dtype=float) for p in curve.sol(np.array([0.0, curve.length])))
+    bound = kc.segment_bound(ends, a, b)
+    if not bound < SMALL * float(np.linalg.norm(b - a)):
+        return None
+    return answer([np.full(len(curve.points), bound)], [bound], "the planes meet in exactly one segment, ending on "
+                  "their trims (proven in closed form)", "the true segment")
+
+
+def is_segment(sol):
+    """True for a straight closed form (a line conic, a segment): its dense output affine in s."""
+    return isinstance(sol, SegmentSolution) or (isinstance(sol, ConicSolution) and sol.conic.shape == LINE)
 
 
 def column(surface, k):

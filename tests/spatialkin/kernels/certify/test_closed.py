@@ -120,3 +120,50 @@ def test_undecided_and_empty():
     assert kc.plane_quadric(2 * x, x, z, y, 0.0, 1.0, truth) == kc.EMPTY
     assert kc.cone_quadric(z, y, z, y, 1.0, truth) == kc.UNDECIDED                          # through the apex
     assert kc.cone_quadric(z, x, z, y, 1.0, truth) == kc.UNDECIDED                          # a hyperbola
+
+
+def segment_truth(o1, n1, o2, n2, bands):
+    """The segment's ends (A, B) of two planes inside the bands, in Decimal (None when empty)."""
+    o1, n1, o2, n2 = dec(o1), dec(n1), dec(o2), dec(n2)
+    d = [n1[1] * n2[2] - n1[2] * n2[1], n1[2] * n2[0] - n1[0] * n2[2], n1[0] * n2[1] - n1[1] * n2[0]]
+    dd = dot(d, d)
+    h1, h2 = dot(n1, o1), dot(n2, o2)
+    k1 = (h1 * dot(n2, n2) - h2 * dot(n1, n2)) / dd
+    k2 = (h2 * dot(n1, n1) - h1 * dot(n1, n2)) / dd
+    p0 = [k1 * x + k2 * y for x, y in zip(n1, n2)]
+    lo, hi = Decimal("-1e400"), Decimal("1e400")
+    for band in bands:
+        o, e = dec(band[:3]), dec(band[3:6])
+        a, b = dot([x - y for x, y in zip(p0, o)], e), dot(d, e)
+        ends = sorted([(Decimal(float(band[6])) - a) / b, (Decimal(float(band[7])) - a) / b])
+        lo, hi = max(lo, ends[0]), min(hi, ends[1])
+    if lo > hi:
+        return None
+    return [x + lo * y for x, y in zip(p0, d)], [x + hi * y for x, y in zip(p0, d)]
+
+
+def test_two_planes_meet_in_the_true_segment():
+    rng = np.random.default_rng(13)
+    proven = 0
+    for _ in range(40):
+        o1, o2 = 0.2 * rng.normal(size=3), 0.2 * rng.normal(size=3)
+        n1, n2 = rng.normal(size=3), rng.normal(size=3)
+        e = [rng.normal(size=3) for _ in range(4)]
+        bands = np.array([np.concatenate([o1 if k < 2 else o2, e[k], [-rng.uniform(0.5, 3), rng.uniform(0.5, 3)]])
+                          for k in range(4)])
+        ends = np.empty((6, 2))
+        outcome = kc.plane_plane(o1, n1, o2, n2, bands, ends)
+        truth = segment_truth(o1, n1, o2, n2, bands)
+        if truth is None:
+            assert outcome in (kc.EMPTY, kc.UNDECIDED)
+            continue
+        assert outcome in (kc.CURVE, kc.UNDECIDED)
+        if outcome == kc.CURVE:
+            proven += 1
+            for i in range(3):
+                assert Decimal(ends[i, 0]) <= truth[0][i] <= Decimal(ends[i, 1])
+                assert Decimal(ends[3 + i, 0]) <= truth[1][i] <= Decimal(ends[3 + i, 1])
+    assert proven >= 20
+    parallel = np.empty((6, 2))
+    z = np.array([0.0, 0.0, 1.0])
+    assert kc.plane_plane(np.zeros(3), z, z, z, np.zeros((0, 8)), parallel) == kc.UNDECIDED

@@ -1,5 +1,5 @@
-"""Answers proven in closed form (spatialkin.tracing.certify.closed): two spheres, and a plane with a sphere, a
-cylinder or a cone.
+"""Answers proven in closed form (spatialkin.tracing.certify.closed): two spheres, a plane with a sphere, a
+cylinder or a cone, and two trimmed planes.
 
 Oracle: the true curve as the surfaces' floats define it, in 30-digit arithmetic (tests.oracles.mp.foot: the
 nearest true point by Newton). The proven distance bound must hold both ways: every point of the dense output
@@ -31,17 +31,23 @@ def pairs():
         yield (sk.Plane(sk.Frame(o + scale * np.array([0.1, 0.2, 0.3]), rot)),
                sk.Cone(0.5, sk.Frame(o - scale * (tilt @ np.array([0.0, 0.0, 1.5])), tilt),
                        v_range=(0.2 * scale, 4 * scale)))
+        yield (sk.Plane(sk.Frame(o + scale * np.array([0.1, 0.2, 0.3]), rot), u_range=(-scale, scale),
+                        v_range=(-2 * scale, 2 * scale)),
+               sk.Plane(sk.Frame(o, rot @ sk.rotation_about((0.3, 1.0, 0.2), 1.1)), u_range=(-3 * scale, 3 * scale),
+                        v_range=(-scale, 1.5 * scale)))
 
 
 def nearest_on(curve, y, s, dense):
     """The distance from y (3,) to the dense output, by Newton on the arc length from the nearest of the samples
-    dense (M, 3) at s (M,) (the tangent by central differences)."""
+    dense (M, 3) at s (M,) (the tangent by central differences; an open curve's s kept in [0, length])."""
+    def at(t):
+        return curve(t % curve.length if curve.closed else min(max(t, 0.0), curve.length))
     t = s[int(np.argmin(np.linalg.norm(dense - y, axis=1)))]
     h = 1e-6 * curve.length
     for _ in range(6):
-        tangent = (curve((t + h) % curve.length) - curve((t - h) % curve.length)) / (2 * h)
-        t += np.dot(y - curve(t % curve.length), tangent) / np.dot(tangent, tangent)
-    return np.linalg.norm(curve(t % curve.length) - y)
+        tangent = (at(t + h) - at(t - h)) / (2 * h)
+        t += np.dot(y - at(t), tangent) / np.dot(tangent, tangent)
+    return np.linalg.norm(at(t) - y)
 
 
 @pytest.mark.parametrize("pair", list(pairs()), ids=lambda p: f"{type(p[0]).__name__}-{type(p[1]).__name__}@"

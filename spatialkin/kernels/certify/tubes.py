@@ -35,7 +35,8 @@ import math
 import numpy as np
 
 from ..._lib.jit import jit
-from ..geometry.interval import EPS, box_trig, iadd, imul, iscale, ishift, isub, jet_first, mag, point, widen
+from ..geometry.interval import (EPS, box_trig, iadd, idot, implicit_jet, imul, iscale, ishift, isub, jet_first,
+                                 local_first, mag, placed, point, widen)
 
 #: Columns of a piece: centre (cu, cv), direction (p, q), T = [t0, t1], h, the enclosure [k0, k1] of w where the
 #: arc leaves the piece (at t = t1), and the index of the chord it lies along.
@@ -134,6 +135,21 @@ def _operator_on(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, g
     return ishift(K, wm), mag(contraction)
 
 
+@jit
+def centred_level(s_data, t_data, m, c, pad, cpad, U, V):
+    """An enclosure of g over a (near-)point box U x V in the centred form F_T(q~) + grad F_T(Q) . (Q - q~), Q
+    the enclosure of the point in T's frame and q~ its midpoint: near a tangency, where g is a small difference of
+    large terms, it is several times narrower than F_T(Q) (the width of Q times |grad F_T| instead of the spread
+    of every term)."""
+    x = local_first(s_data, U, V, box_trig(s_data, U, V))[0]
+    q = placed(m, c, x, pad, cpad)
+    mid = (point(0.5 * (q[0][0] + q[0][1])), point(0.5 * (q[1][0] + q[1][1])), point(0.5 * (q[2][0] + q[2][1])))
+    f_mid = implicit_jet(t_data, mid)[0]
+    naive, grad, _ = implicit_jet(t_data, q)
+    centred = iadd(f_mid, idot(grad, (isub(q[0], mid[0]), isub(q[1], mid[1]), isub(q[2], mid[2]))))
+    return max(naive[0], centred[0]), min(naive[1], centred[1])
+
+
 @jit(forceinline=True)
 def _passes(K, h):
     return K[0] > -h and K[1] < h and math.isfinite(K[0]) and math.isfinite(K[1])
@@ -147,7 +163,8 @@ def prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, t0, t1, h
     tm = 0.5 * (t0 + t1)
     # phi at the centre of the piece, and the preconditioner y from its w-derivative there
     Uc, Vc = _hull(cu, cv, p, q, point(tm), (0.0, 0.0), su, sv)
-    gc, gcu, gcv = jet_first(s_data, t_data, m, c, pad, cpad, Uc, Vc, box_trig(s_data, Uc, Vc))[0]
+    _, gcu, gcv = jet_first(s_data, t_data, m, c, pad, cpad, Uc, Vc, box_trig(s_data, Uc, Vc))[0]
+    gc = centred_level(s_data, t_data, m, c, pad, cpad, Uc, Vc)
     dw_mid = 0.5 * (gcu[0] + gcu[1]) * (-q * su) + 0.5 * (gcv[0] + gcv[1]) * (p * sv)
     if not (dw_mid != 0.0 and math.isfinite(dw_mid)):
         return False
@@ -182,7 +199,7 @@ def arc_enclosure(s_data, t_data, m, c, pad, cpad, su, sv, piece, t0, t1):
     for _ in range(ARC_ITERATIONS):
         wm = 0.5 * (lo + hi)
         Um, Vm = _hull(piece[CU], piece[CV], piece[P], piece[Q], point(tm), point(wm), su, sv)
-        gm = jet_first(s_data, t_data, m, c, pad, cpad, Um, Vm, box_trig(s_data, Um, Vm))[0][0]
+        gm = centred_level(s_data, t_data, m, c, pad, cpad, Um, Vm)
         K, _ = _operator_on(s_data, t_data, m, c, pad, cpad, su, sv, piece[CU], piece[CV], piece[P], piece[Q],
                             (t0, t1), tm, gm, 1.0 / dw_mid, (lo, hi), wm)
         if not (math.isfinite(K[0]) and math.isfinite(K[1])):

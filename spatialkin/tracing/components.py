@@ -174,7 +174,9 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         return [Curve(c, topology=topo) for c in curves]
     if found is None:
         curves, topo = searched(a, b, settings)
-        return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify)
+        proof = closed_certificate(a, b, curves)
+        return certified(a, b, curves, topo if proof is None else None, settings.scale, settings.tolerance, certify,
+                         proof=proof)
     # the closed forms' answer (the plain call's), proven in closed form or against the topology search
     curves = in_sk_order(clip_curves(a, b, found, settings.scale))
     proof = closed_certificate(a, b, curves)

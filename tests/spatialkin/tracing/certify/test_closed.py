@@ -106,3 +106,27 @@ def test_what_the_algebra_leaves_goes_to_the_search():
     assert hyperbola.certificate.mode != "closed form"
     assert closed_certificate(sk.Sphere(1.0, u_range=(0.0, 3.0)), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))),
                               []) is None
+
+
+@pytest.mark.parametrize("gap", [1e-4, 1e-8, 1e-10, 1e-12])
+def test_tiny_circles_of_nearly_touching_spheres_are_proven_or_said_not_to_be(gap):
+    """Two unit spheres whose centres are 2 - gap apart (moved 1e3 off) meet in one circle of radius about
+    sqrt(gap). Returned as a circle, it is proven in closed form, every stored point within its proven radius of the
+    true circle (30-digit oracle); returned as a contact point (the gap within the coordinates' round-off), it is
+    not proven. Touching spheres (gap 0) are never proven."""
+    o = np.array([1e3, -2e3, 5e2])
+    a, b = sk.Sphere(1.0, sk.Frame(o)), sk.Sphere(1.0, sk.Frame(o + [2.0 - gap, 0.0, 0.0]))
+    curves = sk.intersect(a, b, certify=True)
+    assert len(curves) == 1
+    curve = curves[0]
+    if curve.status == "contact":
+        assert not curves.certificate.proven
+    else:
+        assert curves.certificate.proven and curves.certificate.mode == "closed form"
+        radius = np.sqrt(1.0 - (1.0 - gap / 2) ** 2)
+        assert abs(curve.length - 2 * np.pi * radius) < 1e-2 * curve.length
+        assert curve.certificate.distance_bound < 1e-2 * radius
+        for x, r in zip(curve.points[::4], curve.certificate.radii[::4]):
+            assert foot(a, b, x)[0] <= r
+    touching = sk.intersect(a, sk.Sphere(1.0, sk.Frame(o + [2.0, 0.0, 0.0])), certify=True)
+    assert not touching.certificate.proven

@@ -319,7 +319,8 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
                     "curve runs between two proven crossings of trim edges"),
               distinct_claim(chart, tubes, contact_boxes(curves, singular), nodes),
               claim("points", points_failed, "every stored point has a proven radius"),
-              claim("arcs", arcs_failed, "every curve lies in a chain of proven pieces"),
+              claim("arcs", arcs_failed, "every curve lies in a chain of proven pieces" +
+                    (", outside the node boxes (whose branches leave through them)" if nodes else "")),
               claim("singular", [place[:3] for place in singular],
                     "no singular point (contact, node, apex, tangency) was found")]
     return Certificate(claims, topology, radii, tubes, bounds, len(curves))

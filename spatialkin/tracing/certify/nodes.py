@@ -111,8 +111,9 @@ def linked(chart, boxes, tubes):
 
 def edge_crossings(chart, x, h):
     """The scaled boxes (4,) of the roots of g on the four edges of the box x +- h, each verified simple and away
-    from the corners, then narrowed to a small box proven to hold it (kernels.certify.trims.crossing_radius, at most
-    the verified interval's width); None when an edge's search leaves a box unresolved or a root near a corner."""
+    from the corners, then narrowed to a small box proven to hold it (kernels.certify.trims.crossing_radius, inside
+    the verified interval along the edge); None when an edge's search leaves a box unresolved or a root near a
+    corner."""
     r = chart.reader
     su, sv = float(chart.units[0]), float(chart.units[1])
     out = np.empty((64, 2))
@@ -130,14 +131,17 @@ def edge_crossings(chart, x, h):
             for a, b in out[:n]:
                 if not (lo < a and b < hi):
                     return None
-                # narrowed: the 2 x 2 Krawczyk test of g = 0 and the edge round the root refined by Newton
-                mid = edge_root(r, fixed, value, a, b) / other
+                # narrowed: the 2 x 2 Krawczyk test of g = 0 and the edge round the root refined by Newton, in a
+                # box within the verified interval along the edge (so the root it holds is that interval's)
+                root = edge_root(r, fixed, value, a, b)
+                mid = root / other
                 cu, cv = (value / unit, mid) if fixed == 0 else (mid, value / unit)
                 size = max(1.0, abs(cu), abs(cv))
+                room = 0.999 * min(root - a, b - root) / other
                 radius = kr.crossing_radius(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv,
-                                            (kr.EDGE_U, kr.EDGE_V)[fixed], value, cu, cv, CROSSING_FIRST * size,
-                                            0.5 * (b - a) / other + CROSSING_FIRST * size)
-                if not math.isfinite(radius):
+                                            (kr.EDGE_U, kr.EDGE_V)[fixed], value, cu, cv,
+                                            min(CROSSING_FIRST * size, room), room)
+                if not (math.isfinite(radius) and radius < room):
                     return None
                 found.append(np.array([cu - radius, cu + radius, cv - radius, cv + radius]))
     return found

@@ -208,10 +208,12 @@ def spheres(oa, ra, ob, rb, truth):
 
 @jit
 def _inverse(truth):
-    """(i11, i12, i22): A^-1."""
+    """(i11, i12, i22, True): A^-1; (.., False) when det A is not proven positive (no enclosure then)."""
     a11, a12, a22 = _row(truth, A11), _row(truth, A12), _row(truth, A22)
     det = isub(imul(a11, a22), isqr(a12))
-    return _idiv(a22, det), _idiv((-a12[1], -a12[0]), det), _idiv(a11, det)
+    if det[0] <= 0.0:
+        return a11, a12, a22, False
+    return _idiv(a22, det), _idiv((-a12[1], -a12[0]), det), _idiv(a11, det), True
 
 
 @jit
@@ -220,7 +222,9 @@ def within_band(truth, o, e, lo, hi):
     column, a cylinder's or cone's axis): (z0 - o) . e +- sqrt(h^T A^-1 h), h = (e . f1, e . f2)."""
     ev = _floats(e)
     h1, h2 = _dot(ev, _vec(truth, F1)), _dot(ev, _vec(truth, F2))
-    i11, i12, i22 = _inverse(truth)
+    i11, i12, i22, ok = _inverse(truth)
+    if not ok:
+        return False
     spread = iadd(iadd(imul(i11, isqr(h1)), iscale(imul(i12, imul(h1, h2)), 2.0)), imul(i22, isqr(h2)))
     reach = _isqrt((max(spread[0], 0.0), spread[1]))
     at = _dot(_sub(_vec(truth, Z0), _floats(o)), ev)

@@ -93,7 +93,8 @@ class Certificate:
       edge inside the tube (the Krawczyk test on g = 0 and the edge), the arc crosses that edge once in the pieces
       that touch it, and every other piece lies strictly inside every trim (spatialkin.tracing.certify.trims; trims
       of length parameters only: angular trims are not proven).
-    - **distinct**: the tubes of different curves are proven disjoint (no two returned curves are one component).
+    - **distinct**: the tubes of different curves are proven disjoint: no two returned curves share a point (with
+      one_component, no two are pieces of one component).
     - **points**: every stored point has a finite proven radius (``radii``): a box of that half-width round it
       holds a true intersection point (the Krawczyk test on F_a = 0, F_b = 0 and the plane normal to the curve,
       spatialkin.tracing.certify.certify_points).
@@ -141,9 +142,9 @@ class Certificate:
         Per curve, the proven half-width of the box round each stored point (inf where not proven).
     distance_bounds : list of float
         Per curve, the proven bound of the distance from its stored points and dense samples to the intersection
-        (inf where its tube or a sample's box is not proven; those within a node's box left out, the node's ball
-        bounding them); proven in closed form, a bound of the Hausdorff distance between its whole dense output and
-        the true curve.
+        (inf where its tube or a sample's box is not proven; a sample with no proven box inside a node's box left
+        out, the node's ball bounding it); proven in closed form, a bound of the Hausdorff distance between its
+        whole dense output and the true curve.
     tubes : list of Tube or None
         Per curve, its chain of pieces (spatialkin.tracing.certify.tubes.Tube).
 
@@ -212,7 +213,8 @@ class CurveCertificate:
         The largest proven distance from a stored point to a true intersection point, radii.max() * sqrt(3).
     distance_bound : float
         Proven bound of the distance from every stored point and dense sample to the true curve (tube; inf when
-        not proven).
+        not proven; as the answer's distance_bounds), or, proven in closed form, of the Hausdorff distance between
+        the whole dense output and the true curve.
     components, mode, boxes, verified_roots, singular_points, search_seconds
         As in the answer's certificate.
     """
@@ -285,8 +287,8 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
                 inside = in_boxes(chart, nodes, curve.points) & ~np.isfinite(radii[-1])
                 if inside.any():
                     feet = chart.p.point(*chart.p.parameters(curve.points[inside]).T)
-                    off = np.linalg.norm(curve.points[inside] - feet, axis=1) * (1.0 + 1e-9)
-                    radii[-1][inside] = 2.0 * max(node.radius for node in nodes) + off
+                    off = np.linalg.norm(curve.points[inside] - feet, axis=1) * (1.0 + 1e-9) + 1e-300
+                    radii[-1][inside] = (2.0 * max(node.radius for node in nodes) + off) * (1.0 + 1e-15)
         bounds.append(math.inf if t is None or not t.proven else distance_bound(chart, nodes, curve, t, radii[-1]))
         bad = ~np.isfinite(radii[-1])
         if bad.any():
@@ -340,17 +342,16 @@ def contact_boxes(curves, singular):
 
 def distance_bound(chart, nodes, curve, t, radii):
     """The proven bound of the distance from the curve's stored points (radii: their box half-widths) and the
-    tube's other samples to the intersection: sqrt(3) x the largest half-width, the samples inside node boxes left
-    out (the node's ball bounds them)."""
+    tube's other samples to the intersection: sqrt(3) x the largest half-width; a sample with no proven box inside a
+    node's box (where the 3 x 3 test meets the node's singular system) is left out, the node's ball bounding it."""
+    every = np.full(len(t.s), np.nan)
+    stored = np.searchsorted(t.s, curve.s)
+    others = np.ones(len(t.s), dtype=bool)
+    others[stored] = False
+    every[stored], every[others] = radii, t.radii
     if t.split:
-        keep = ~in_boxes(chart, nodes, t.points)
-        every = np.full(len(t.s), np.nan)
-        stored = np.searchsorted(t.s, curve.s)
-        others = np.ones(len(t.s), dtype=bool)
-        others[stored] = False
-        every[stored], every[others] = radii, t.radii
-        return float(np.max(every[keep], initial=0.0) * math.sqrt(3.0))
-    return float(max(np.max(radii), np.max(t.radii, initial=0.0)) * math.sqrt(3.0))
+        every = every[np.isfinite(every) | ~in_boxes(chart, nodes, t.points)]
+    return float(np.max(every, initial=0.0) * math.sqrt(3.0))
 
 
 def sample_radii(a, b, curve, t):

@@ -11,6 +11,7 @@ import numpy as np
 
 from ...geometry.surfaces import Cone, Cylinder, Plane, Sphere
 from ...kernels.certify import closed as kc
+from ...kernels.geometry.interval import EPS, up
 from ...kernels.geometry import surfaces as ks
 from ..closed.conic import ELLIPSE, LINE, ConicSolution
 from ..curve.exact import CircleSolution, SegmentSolution
@@ -47,12 +48,13 @@ def closed_certificate(a, b, curves):
     if outcome != kc.CURVE or not inside_trims(truth, pair) or len(curves) != 1 or not curves[0].closed:
         return None
     c, P, Q = returned_curve(curves[0].sol)
-    if c is None:
+    off = faithful(curves[0], 2.0 * math.pi)
+    if c is None or off is None:
         return None
     bound = kc.distance_bound(truth, c, P, Q)
     if not bound < SMALL * math.sqrt(max(kc.semi_minor_squared(truth), 0.0)):
         return None
-    radii = np.full(len(curves[0].points), bound)
+    radii = np.full(len(curves[0].points), up(bound + off))
     return answer([radii], [bound], "the surfaces meet in exactly one ellipse (or circle), crossing, inside the "
                   "trims (proven in closed form)", "the true curve")
 
@@ -70,12 +72,40 @@ def segment_certificate(planes, curves):
     if outcome != kc.CURVE or len(curves) != 1 or curves[0].closed or not is_segment(curves[0].sol):
         return None
     curve = curves[0]
+    off = faithful(curve, None)
+    if off is None:
+        return None
     a, b = (np.asarray(p, dtype=float) for p in curve.sol(np.array([0.0, curve.length])))
     bound = kc.segment_bound(ends, a, b)
     if not bound < SMALL * float(np.linalg.norm(b - a)):
         return None
-    return answer([np.full(len(curve.points), bound)], [bound], "the planes meet in exactly one segment, ending on "
-                  "their trims (proven in closed form)", "the true segment")
+    return answer([np.full(len(curve.points), up(bound + off))], [bound], "the planes meet in exactly one segment, "
+                  "ending on their trims (proven in closed form)", "the true segment")
+
+
+def faithful(curve, turn):
+    """How far (at most) the curve's stored points lie from its dense output at their arc lengths, when its dense
+    output is the whole closed form the bound is about (turn: the parameter range of a whole turn, 2 pi, for a
+    circle or an ellipse; None for a segment: its length) and its length the dense output's; else None."""
+    sol = curve.sol
+    length = float(sol.length)
+    if not (length > 0.0 and abs(curve.length - length) <= 1e-12 * length):
+        return None
+    if isinstance(sol, CircleSolution):
+        whole = abs(length - turn * sol.radius) <= 1e-12 * length
+    elif isinstance(sol, ConicSolution):
+        t_lo, t_hi = sol._t_range[:2]
+        span = turn if turn is not None else length
+        whole = abs((t_hi - t_lo) - span) <= 1e-12 * max(span, 1.0)
+    else:                                           # a segment: its own length is its extent
+        whole = turn is None
+    if not whole or len(curve.points) != len(curve.s):
+        return None
+    points = np.asarray(curve.points, dtype=float)
+    dense = np.asarray(sol(np.asarray(curve.s, dtype=float)), dtype=float).reshape(-1, 3)
+    off = float(np.max(np.linalg.norm(points - dense, axis=1)))
+    size = float(np.max(np.abs(points)))
+    return off * (1.0 + 1e-9) + 64.0 * EPS * size if off <= 1e-9 * max(size, 1.0) else None
 
 
 def is_segment(sol):

@@ -167,3 +167,25 @@ def test_two_planes_meet_in_the_true_segment():
     parallel = np.empty((6, 2))
     z = np.array([0.0, 0.0, 1.0])
     assert kc.plane_plane(np.zeros(3), z, z, z, np.zeros((0, 8)), parallel) == kc.UNDECIDED
+
+
+def test_nearly_degenerate_ellipses_are_never_proven_inside_too_narrow_a_band():
+    """Planes 3e-8 to 3e-6 from parallel to a cylinder's axis: ellipses about 1 / eps long, whose matrix's
+    determinant may hold 0 in intervals; a band a tenth of that long is never proven to hold one (out of 3000)."""
+    rng = np.random.default_rng(2)
+    curves = 0
+    for _ in range(3000):
+        axis = rng.normal(size=3)
+        axis /= np.linalg.norm(axis)
+        w = rng.normal(size=3)
+        w -= w.dot(axis) * axis
+        w /= np.linalg.norm(w)
+        eps = 10 ** rng.uniform(-7.5, -5.5)
+        p = rng.uniform(-0.3, 0.3, 3)
+        truth = np.empty((kc.ROWS, 2))
+        if kc.plane_quadric(p, w + eps * axis, np.zeros(3), axis, 1.0, 1.0, truth) != kc.CURVE:
+            continue
+        curves += 1
+        cz = np.mean(truth[kc.Z0:kc.Z0 + 3], axis=1).dot(axis)
+        assert not kc.within_band(truth, np.zeros(3), axis, cz - 0.1 / eps, cz + 0.1 / eps)
+    assert curves > 30

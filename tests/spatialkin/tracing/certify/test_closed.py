@@ -6,6 +6,8 @@ nearest true point by Newton). The proven distance bound must hold both ways: ev
 (also between the stored points) within it of the true curve, and every true point (the feet of points between
 the samples) within it of the dense output (its nearest point by Newton on the arc length).
 """
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -130,3 +132,27 @@ def test_tiny_circles_of_nearly_touching_spheres_are_proven_or_said_not_to_be(ga
             assert foot(a, b, x)[0] <= r
     touching = sk.intersect(a, sk.Sphere(1.0, sk.Frame(o + [2.0, 0.0, 0.0])), certify=True)
     assert not touching.certificate.proven
+
+
+def test_answers_not_faithful_to_their_closed_form_are_left_to_the_search():
+    """The closed-form proof bounds the returned closed form's dense output: an answer whose stored points, length or
+    parameter range are not that whole closed form (half the circle's length, points moved by 0.3, a sixth of an
+    ellipse marked closed) is not proven in closed form (None: the search's certificate decides)."""
+    from spatialkin.tracing.closed.conic import ConicSolution
+    from spatialkin.tracing.curve.result import CurveResult
+    a, b = sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0)))
+    c = sk.intersect(a, b)[0].result
+    assert closed_certificate(a, b, [c]).proven
+    k = len(c.points) // 2 + 1
+    half = CurveResult(points=c.points[:k], s=c.s[:k], params=c.params[:k], closed=True, length=c.length / 2,
+                       status=c.status, message=c.message, tolerance=c.tolerance, sol=c.sol)
+    moved = dataclasses.replace(c, points=c.points + 0.3)
+    assert closed_certificate(a, b, [half]) is None and closed_certificate(a, b, [moved]) is None
+    plane = sk.Plane(sk.Frame((0.1, 0.2, 0.3)), u_range=(-5, 5), v_range=(-5, 5))
+    cylinder = sk.Cylinder(1.0, sk.Frame((0.0, 0.0, 0.0), sk.rotation_about((0.3, -1.0, 0.2), 0.5)), v_range=(-4, 4))
+    e = sk.intersect(plane, cylinder)[0].result
+    assert closed_certificate(plane, cylinder, [e]).proven
+    arc = ConicSolution(e.sol.surfaces, e.sol.conic, 0.0, np.pi / 3, False)
+    k = len(e.points) // 6
+    sixth = dataclasses.replace(e, sol=arc, length=arc.length, points=e.points[:k], s=e.s[:k], params=e.params[:k])
+    assert closed_certificate(plane, cylinder, [sixth]) is None

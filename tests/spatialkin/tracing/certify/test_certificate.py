@@ -282,6 +282,19 @@ def test_a_node_is_a_proven_saddle_and_not_proven():
     assert cert.distance_bounds[0] < 1e-6                # (samples near the node: their proven boxes grow)
 
 
+def test_a_point_moved_near_a_node_is_in_the_distance_bound():
+    """Viviani's stored point nearest the node moved by 2e-3: its proven radius covers the move, and so does the
+    curve's distance bound (a point near the node is not left out of it)."""
+    a, b = sk.Sphere(1.0), sk.Cylinder(0.5, sk.Frame((0.5, 0.0, 0.0)), v_range=(-2.0, 2.0))
+    curves = sk.intersect(a, b, certify=True)
+    c = curves[0].result
+    k = int(np.argmin(np.linalg.norm(c.points - [1.0, 0.0, 0.0], axis=1)))
+    points = c.points.copy()
+    points[k, 0] -= 2e-3
+    cert = certify(a, b, [dataclasses.replace(c, points=points)], curves[0].topology, 1.0)
+    assert cert.radii[0][k] * math.sqrt(3.0) >= 1e-3 and cert.distance_bounds[0] >= 1e-3
+
+
 def villarceau():
     """A ring torus (R = 1, r = 0.5) and its bitangent plane through the centre (turned about x by asin(r / R)):
     the two Villarceau circles of radius R about (+-r, 0, 0), crossing at two nodes."""

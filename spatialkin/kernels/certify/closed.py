@@ -34,7 +34,8 @@ arithmetic with outward rounding).
 import math
 
 from ..._lib.jit import jit
-from ..geometry.interval import EPS, down, iadd, imul, isqr, iscale, isub, mag, point, up
+from ..geometry.interval import (EPS, contains_zero, down, iadd, idiv, idot, imul, isqr, iscale, isqrt, isub, mag,
+                                 point, up)
 
 #: The outcomes: a curve proven, no common point proven, neither.
 CURVE, EMPTY, UNDECIDED = 0, 1, 2
@@ -43,24 +44,6 @@ EVAL_ULPS = 8.0
 #: Rows of a truth (12, 2).
 Z0, F1, F2, A11, A12, A22 = 0, 3, 6, 9, 10, 11
 ROWS = 12
-
-
-@jit
-def _isqrt(a):
-    """sqrt of an interval with a[0] >= 0."""
-    return (max(down(math.sqrt(a[0])), 0.0), up(math.sqrt(a[1])))
-
-
-@jit
-def _idiv(a, b):
-    """a / b for an interval b that does not hold 0."""
-    q1, q2, q3, q4 = a[0] / b[0], a[0] / b[1], a[1] / b[0], a[1] / b[1]
-    return (down(min(min(q1, q2), min(q3, q4))), up(max(max(q1, q2), max(q3, q4))))
-
-
-@jit
-def _holds_zero(a):
-    return a[0] <= 0.0 <= a[1]
 
 
 @jit
@@ -84,12 +67,6 @@ def _floats(v):
 
 
 @jit
-def _dot(x, y):
-    """x . y for interval 3-vectors."""
-    return iadd(iadd(imul(x[0], y[0]), imul(x[1], y[1])), imul(x[2], y[2]))
-
-
-@jit
 def _sub(x, y):
     return (isub(x[0], y[0]), isub(x[1], y[1]), isub(x[2], y[2]))
 
@@ -109,11 +86,11 @@ def _cross(x, y):
 @jit
 def _unit(v):
     """(v / |v|, True), or (v, False) when |v| may be 0."""
-    vv = _dot(v, v)
+    vv = idot(v, v)
     if vv[0] <= 0.0:
         return v, False
-    length = _isqrt(vv)
-    return (_idiv(v[0], length), _idiv(v[1], length), _idiv(v[2], length)), True
+    length = isqrt(vv)
+    return (idiv(v[0], length), idiv(v[1], length), idiv(v[2], length)), True
 
 
 @jit
@@ -125,7 +102,7 @@ def _norm_up(v):
 @jit
 def _form(a, g, x, y):
     """x^T (I - g a a^T) y for interval 3-vectors (a unit)."""
-    return isub(_dot(x, y), imul(g, imul(_dot(a, x), _dot(a, y))))
+    return isub(idot(x, y), imul(g, imul(idot(a, x), idot(a, y))))
 
 
 @jit
@@ -150,12 +127,12 @@ def _plane_quadric(p, n, o, a, g, k, truth):
     b1, b2 = _form(a, g, f1, d), _form(a, g, f2, d)
     c0 = isub(_form(a, g, d, d), k)
     det = isub(imul(a11, a22), isqr(a12))
-    if det[0] <= 0.0 or _holds_zero(a11):
+    if det[0] <= 0.0 or contains_zero(a11):
         return UNDECIDED                              # not proven an ellipse (a hyperbola, a parabola, lines)
-    z1 = _idiv(isub(imul(a12, b2), imul(a22, b1)), det)
-    z2 = _idiv(isub(imul(a12, b1), imul(a11, b2)), det)
+    z1 = idiv(isub(imul(a12, b2), imul(a22, b1)), det)
+    z2 = idiv(isub(imul(a12, b1), imul(a11, b2)), det)
     c1 = iadd(c0, iadd(imul(b1, z1), imul(b2, z2)))
-    if _holds_zero(c1):
+    if contains_zero(c1):
         return UNDECIDED
     if (c1[0] > 0.0) == (a11[0] > 0.0):
         return EMPTY
@@ -165,9 +142,9 @@ def _plane_quadric(p, n, o, a, g, k, truth):
         _set(truth, Z0 + i, centre[i])
         _set(truth, F1 + i, f1[i])
         _set(truth, F2 + i, f2[i])
-    _set(truth, A11, _idiv(a11, minus))
-    _set(truth, A12, _idiv(a12, minus))
-    _set(truth, A22, _idiv(a22, minus))
+    _set(truth, A11, idiv(a11, minus))
+    _set(truth, A12, idiv(a12, minus))
+    _set(truth, A22, idiv(a22, minus))
     return CURVE
 
 
@@ -197,11 +174,11 @@ def spheres(oa, ra, ob, rb, truth):
     """The circle of two spheres (centres oa, ob (3,), radii ra, rb): the radical plane's with the first (CURVE,
     EMPTY or UNDECIDED, also when concentric)."""
     d = _sub(_floats(ob), _floats(oa))
-    dd = _dot(d, d)
+    dd = idot(d, d)
     if dd[0] <= 0.0:
         return UNDECIDED
     ra2 = isqr(point(ra))
-    k = _idiv(isub(iadd(dd, ra2), isqr(point(rb))), iscale(dd, 2.0))
+    k = idiv(isub(iadd(dd, ra2), isqr(point(rb))), iscale(dd, 2.0))
     m = _axpy(k, d, _floats(oa))
     return _plane_quadric(m, d, _floats(oa), (point(0.0), point(0.0), point(1.0)), point(0.0), ra2, truth)
 
@@ -213,7 +190,7 @@ def _inverse(truth):
     det = isub(imul(a11, a22), isqr(a12))
     if det[0] <= 0.0:
         return a11, a12, a22, False
-    return _idiv(a22, det), _idiv((-a12[1], -a12[0]), det), _idiv(a11, det), True
+    return idiv(a22, det), idiv((-a12[1], -a12[0]), det), idiv(a11, det), True
 
 
 @jit
@@ -221,13 +198,13 @@ def within_band(truth, o, e, lo, hi):
     """True when lo < (x - o) . e < hi at every point x of the true ellipse (e (3,) any vector: a plane's frame
     column, a cylinder's or cone's axis): (z0 - o) . e +- sqrt(h^T A^-1 h), h = (e . f1, e . f2)."""
     ev = _floats(e)
-    h1, h2 = _dot(ev, _vec(truth, F1)), _dot(ev, _vec(truth, F2))
+    h1, h2 = idot(ev, _vec(truth, F1)), idot(ev, _vec(truth, F2))
     i11, i12, i22, ok = _inverse(truth)
     if not ok:
         return False
     spread = iadd(iadd(imul(i11, isqr(h1)), iscale(imul(i12, imul(h1, h2)), 2.0)), imul(i22, isqr(h2)))
-    reach = _isqrt((max(spread[0], 0.0), spread[1]))
-    at = _dot(_sub(_vec(truth, Z0), _floats(o)), ev)
+    reach = isqrt((max(spread[0], 0.0), spread[1]))
+    at = idot(_sub(_vec(truth, Z0), _floats(o)), ev)
     return lo < down(at[0] - reach[1]) and up(at[1] + reach[1]) < hi
 
 
@@ -245,25 +222,25 @@ def distance_bound(truth, c, P, Q):
     may vanish or Q's side is not decided."""
     f1, f2 = _vec(truth, F1), _vec(truth, F2)
     Pv, Qv = _floats(P), _floats(Q)
-    p1, p2 = _dot(f1, Pv), _dot(f2, Pv)
+    p1, p2 = idot(f1, Pv), idot(f2, Pv)
     lam2 = _quad(truth, p1, p2)
     if lam2[0] <= 0.0:
         return math.inf
-    lam = _isqrt(lam2)
-    u1, u2 = _idiv(p1, lam), _idiv(p2, lam)              # P' on the true ellipse
+    lam = isqrt(lam2)
+    u1, u2 = idiv(p1, lam), idiv(p2, lam)              # P' on the true ellipse
     ap1 = iadd(imul(_row(truth, A11), u1), imul(_row(truth, A12), u2))
     ap2 = iadd(imul(_row(truth, A12), u1), imul(_row(truth, A22), u2))
     d1, d2 = (-ap2[1], -ap2[0]), ap1                     # A P' turned a quarter: conjugate to P'
     mu2 = _quad(truth, d1, d2)
     if mu2[0] <= 0.0:
         return math.inf
-    side = iadd(imul(d1, _dot(f1, Qv)), imul(d2, _dot(f2, Qv)))
-    if _holds_zero(side):
+    side = iadd(imul(d1, idot(f1, Qv)), imul(d2, idot(f2, Qv)))
+    if contains_zero(side):
         return math.inf
-    mu = _isqrt(mu2)
+    mu = isqrt(mu2)
     if side[1] < 0.0:
         mu = (-mu[1], -mu[0])
-    w1, w2 = _idiv(d1, mu), _idiv(d2, mu)                # Q' on Q's side
+    w1, w2 = idiv(d1, mu), idiv(d2, mu)                # Q' on Q's side
     p_true = _axpy(u2, f2, _axpy(u1, f1, (point(0.0), point(0.0), point(0.0))))
     q_true = _axpy(w2, f2, _axpy(w1, f1, (point(0.0), point(0.0), point(0.0))))
     bound = up(up(_norm_up(_sub(_floats(c), _vec(truth, Z0))) + _norm_up(_sub(Pv, p_true)))
@@ -280,7 +257,7 @@ def semi_minor_squared(truth):
     trace = iadd(a11, a22)
     det = isub(imul(a11, a22), isqr(a12))
     disc = isub(isqr(trace), iscale(det, 4.0))
-    top = iscale(iadd(trace, _isqrt((max(disc[0], 0.0), disc[1]))), 0.5)
+    top = iscale(iadd(trace, isqrt((max(disc[0], 0.0), disc[1]))), 0.5)
     return down(1.0 / top[1])
 
 
@@ -296,23 +273,23 @@ def plane_plane(o1, n1, o2, n2, bands, ends):
     segment runs from the largest of the lower ends to the smallest of the upper ones."""
     a1, a2 = _floats(n1), _floats(n2)
     d = _cross(a1, a2)
-    dd = _dot(d, d)
+    dd = idot(d, d)
     if dd[0] <= 0.0:
         return UNDECIDED
-    h1, h2 = _dot(a1, _floats(o1)), _dot(a2, _floats(o2))
-    n11, n22, n12 = _dot(a1, a1), _dot(a2, a2), _dot(a1, a2)
-    k1 = _idiv(isub(imul(h1, n22), imul(h2, n12)), dd)
-    k2 = _idiv(isub(imul(h2, n11), imul(h1, n12)), dd)
+    h1, h2 = idot(a1, _floats(o1)), idot(a2, _floats(o2))
+    n11, n22, n12 = idot(a1, a1), idot(a2, a2), idot(a1, a2)
+    k1 = idiv(isub(imul(h1, n22), imul(h2, n12)), dd)
+    k2 = idiv(isub(imul(h2, n11), imul(h1, n12)), dd)
     p0 = _axpy(k2, a2, _axpy(k1, a1, (point(0.0), point(0.0), point(0.0))))
     t_lo, t_hi = (-math.inf, -math.inf), (math.inf, math.inf)
     for k in range(bands.shape[0]):
         o, e = (point(bands[k, 0]), point(bands[k, 1]), point(bands[k, 2])), _floats(bands[k, 3:6])
-        a = _dot(_sub(p0, o), e)
-        b = _dot(d, e)
-        if _holds_zero(b):
+        a = idot(_sub(p0, o), e)
+        b = idot(d, e)
+        if contains_zero(b):
             return UNDECIDED
-        first = _idiv(isub(point(bands[k, 6]), a), b) if math.isfinite(bands[k, 6]) else (-math.inf, math.inf)
-        last = _idiv(isub(point(bands[k, 7]), a), b) if math.isfinite(bands[k, 7]) else (-math.inf, math.inf)
+        first = idiv(isub(point(bands[k, 6]), a), b) if math.isfinite(bands[k, 6]) else (-math.inf, math.inf)
+        last = idiv(isub(point(bands[k, 7]), a), b) if math.isfinite(bands[k, 7]) else (-math.inf, math.inf)
         if b[0] > 0.0:
             lower, upper = ((-math.inf, -math.inf) if not math.isfinite(bands[k, 6]) else first,
                             (math.inf, math.inf) if not math.isfinite(bands[k, 7]) else last)

@@ -18,8 +18,8 @@ import math
 import numpy as np
 
 from ..._lib.jit import jit
-from ..geometry.interval import (box_trig, down, iadd, idot, implicit_jet, imul, iscale, ishift, krawczyk_row,
-                                 local_first, placed, point, transform, up)
+from ..geometry.interval import (box_trig, iadd, idiv, idot, implicit_jet, imul, ineg, iscale, ishift, krawczyk_row,
+                                 local_first, placed, point, transform)
 from .tubes import H, P, Q, T0, T1, arc_enclosure, piece_box, stretch_box
 
 #: An edge of S's own parameters: EDGE_U (u = value) or EDGE_V (v = value); 0, 1, 2: T's local coordinate.
@@ -99,8 +99,7 @@ def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, piece):
     phi_w = iadd(iscale(gu, -q), iscale(gv, p))
     if phi_w[0] <= 0.0 <= phi_w[1]:
         return -math.inf, math.inf
-    inv = (down(1.0 / phi_w[1]), up(1.0 / phi_w[0]))       # (phi_w keeps one sign: 1 / hi <= 1 / lo)
-    dw = iscale(imul(phi_t, inv), -1.0)
+    dw = ineg(idiv(phi_t, phi_w))
     du = iadd(point(p), iscale(dw, -q))
     dv = iadd(point(q), iscale(dw, p))
     rate = iadd(imul(eu, du), imul(ev, dv))

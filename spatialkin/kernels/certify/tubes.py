@@ -35,8 +35,8 @@ import math
 import numpy as np
 
 from ..._lib.jit import jit
-from ..geometry.interval import (EPS, box_trig, iadd, idot, implicit_jet, imul, iscale, ishift, isub, jet_first,
-                                 local_first, mag, placed, point, widen)
+from ..geometry.interval import (EPS, box_trig, iadd, idiv, idot, implicit_jet, imul, iscale, ishift, isub,
+                                 jet_first, local_first, mag, placed, point, widen)
 
 #: Columns of a piece: centre (cu, cv), direction (p, q), T = [t0, t1], h, the enclosure [k0, k1] of w where the
 #: arc leaves the piece (at t = t1), and the index of the chord it lies along.
@@ -54,14 +54,6 @@ ARC_ITERATIONS = 6
 MAX_DEPTH = 24
 #: Outcome of a chain: proven, or where it failed.
 PROVEN, PIECE_FAILED, LINK_FAILED, BUDGET = 0, 1, 2, 3
-
-
-@jit
-def _idiv_pos(a, d):
-    """a / d for an interval d > 0."""
-    lo = a[0] / d[1] if a[0] >= 0.0 else a[0] / d[0]
-    hi = a[1] / d[0] if a[1] >= 0.0 else a[1] / d[1]
-    return (lo - (abs(lo) * EPS + 1e-300), hi + (abs(hi) * EPS + 1e-300))
 
 
 @jit
@@ -104,8 +96,8 @@ def _in_frame(piece, xu, xv):
     rv = ishift(xv, -piece[CV])
     p2, q2 = piece[P], piece[Q]
     norm = iadd(imul(point(p2), point(p2)), imul(point(q2), point(q2)))
-    t = _idiv_pos(iadd(iscale(ru, p2), iscale(rv, q2)), norm)
-    w = _idiv_pos(iadd(iscale(ru, -q2), iscale(rv, p2)), norm)
+    t = idiv(iadd(iscale(ru, p2), iscale(rv, q2)), norm)
+    w = idiv(iadd(iscale(ru, -q2), iscale(rv, p2)), norm)
     return t, w
 
 

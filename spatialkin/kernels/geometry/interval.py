@@ -129,6 +129,19 @@ def widen(a, r):
 
 
 @jit
+def idiv(a, b):
+    """a / b for an interval b that does not hold 0."""
+    q1, q2, q3, q4 = a[0] / b[0], a[0] / b[1], a[1] / b[0], a[1] / b[1]
+    return (down(min(min(q1, q2), min(q3, q4))), up(max(max(q1, q2), max(q3, q4))))
+
+
+@jit
+def isqrt(a):
+    """sqrt of an interval with a[0] >= 0."""
+    return (max(down(math.sqrt(a[0])), 0.0), up(math.sqrt(a[1])))
+
+
+@jit
 def contains_zero(a):
     return a[0] <= 0.0 <= a[1]
 

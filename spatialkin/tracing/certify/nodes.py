@@ -19,7 +19,6 @@ import numpy as np
 
 from ...kernels.certify import singular as ks_singular
 from ...kernels.certify import trims as kr
-from ...kernels.geometry import interval as ki
 from ...kernels.certify import tubes as kt
 from ...kernels.search import topology as ks
 
@@ -30,8 +29,6 @@ SHARES = (0.1, 0.25, 0.5, 1.0, 2.0)
 EDGE_BOXES = 4000
 #: First half-width of a crossing's narrowed box, relative to max(1, |x|) in scaled parameters.
 CROSSING_FIRST = 1e-12
-#: Newton steps refining a root on an edge of a node's box.
-EDGE_NEWTON = 30
 
 
 @dataclass
@@ -133,7 +130,7 @@ def edge_crossings(chart, x, h):
                     return None
                 # narrowed: the 2 x 2 Krawczyk test of g = 0 and the edge round the root refined by Newton, in a
                 # box within the verified interval along the edge (so the root it holds is that interval's)
-                root = edge_root(r, fixed, value, a, b)
+                root = ks.refine_line(r.s.data, r.t.data, r.m, r.c, fixed, value, a, b)
                 mid = root / other
                 cu, cv = (value / unit, mid) if fixed == 0 else (mid, value / unit)
                 size = max(1.0, abs(cu), abs(cv))
@@ -147,31 +144,10 @@ def edge_crossings(chart, x, h):
     return found
 
 
-def edge_root(reader, fixed, value, a, b):
-    """The root of g on the parameter line (fixed, value) in the raw interval [a, b], refined by Newton in floating
-    point from its midpoint (kept in [a, b])."""
-    t = 0.5 * (a + b)
-    for _ in range(EDGE_NEWTON):
-        U, V = ((value, value), (t, t)) if fixed == 0 else ((t, t), (value, value))
-        g, gu, gv = ki.jet_first(reader.s.data, reader.t.data, reader.m, reader.c, reader.pad, reader.cpad, U, V,
-                                 ki.box_trig(reader.s.data, U, V))[0]
-        slope = 0.5 * ((gv if fixed == 0 else gu)[0] + (gv if fixed == 0 else gu)[1])
-        if not (slope != 0.0 and math.isfinite(slope)):
-            break
-        step = 0.5 * (g[0] + g[1]) / slope
-        t = min(max(t - step, a), b)
-        if abs(step) <= 4e-16 * max(abs(t), 1.0):
-            break
-    return t
-
-
 def inside(chart, node, x):
-    """(M,) bool: which scaled points x (M, 2) lie strictly inside the node's box, shifted by whole periods."""
-    out = np.zeros(len(x), dtype=bool)
-    centre = np.repeat(node.x, 2)
-    for su, sv in chart.shifts(centre, np.repeat(x[0], 2)):
-        out |= (np.abs(x[:, 0] + su - node.x[0]) < node.h) & (np.abs(x[:, 1] + sv - node.x[1]) < node.h)
-    return out
+    """(M,) bool: which scaled points x (M, 2) lie strictly inside the node's box (each shifted by the whole periods
+    that bring it nearest the node: shifted_into)."""
+    return np.all(np.abs(shifted_into(chart, node, x) - node.x) < node.h, axis=1)
 
 
 def in_boxes(chart, nodes, points):
@@ -184,7 +160,8 @@ def in_boxes(chart, nodes, points):
 
 
 def shifted_into(chart, node, x):
-    """x (2,) shifted by the whole periods that bring it nearest the node's centre."""
-    best = min(chart.shifts(np.repeat(node.x, 2), np.repeat(x, 2)),
-               key=lambda sh: math.hypot(x[0] + sh[0] - node.x[0], x[1] + sh[1] - node.x[1]))
-    return np.array([x[0] + best[0], x[1] + best[1]])
+    """The scaled points x (M, 2) (or one, (2,)), each shifted by the whole periods that bring it nearest the
+    node's centre (periodic parameters only)."""
+    turns = np.where(chart.periods > 0.0, np.round((node.x - x) / np.where(chart.periods > 0.0, chart.periods, 1.0)),
+                     0.0)
+    return x + turns * chart.periods

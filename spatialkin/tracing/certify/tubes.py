@@ -223,7 +223,7 @@ def node_passages(chart, curve, points, s, nodes):
     x = chart.scaled(points)
     near = np.zeros(len(x) - 1, dtype=bool)
     for node in nodes:
-        ends = np.array([nd.shifted_into(chart, node, p) for p in x]) - node.x
+        ends = nd.shifted_into(chart, node, x) - node.x
         lo, hi = np.minimum(ends[:-1], ends[1:]), np.maximum(ends[:-1], ends[1:])
         near |= np.all((lo < 2.0 * node.h) & (hi > -2.0 * node.h), axis=1)
     if not near.any():

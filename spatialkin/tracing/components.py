@@ -172,22 +172,23 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     if not certify:
         curves, topo = searched(a, b, settings)
         return [Curve(c, topology=topo) for c in curves]
+    # the general path's answer, or the closed forms' (the plain call's): proven in closed form where the algebra
+    # settles it, else against the topology search
     if found is None:
         curves, topo = searched(a, b, settings)
-        proof = closed_certificate(a, b, curves)
-        return certified(a, b, curves, topo if proof is None else None, settings.scale, settings.tolerance, certify,
-                         proof=proof)
-    # the closed forms' answer (the plain call's), proven in closed form or against the topology search
-    curves = in_sk_order(clip_curves(a, b, found, settings.scale))
+    else:
+        curves, topo = in_sk_order(clip_curves(a, b, found, settings.scale)), None
     proof = closed_certificate(a, b, curves)
     if proof is not None:
         return certified(a, b, curves, None, settings.scale, settings.tolerance, certify, proof=proof)
-    try:
-        topo = topology(a, b, settings.scale, settings.tolerance)
-    except TopologyError as err:
-        return certified(a, b, curves, None, settings.scale, settings.tolerance, certify,
-                         f"the search stopped ({err}); the answer is the closed form's")
+    if topo is None:
+        try:
+            topo = topology(a, b, settings.scale, settings.tolerance)
+        except TopologyError as err:
+            return certified(a, b, curves, None, settings.scale, settings.tolerance, certify,
+                             f"the search stopped ({err}); the answer is the closed form's")
     return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify)
+
 
 def searched(a, b, settings):
     """(CurveResults of every component, in sk's order; the Topology): the general path of intersect."""

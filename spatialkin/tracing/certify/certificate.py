@@ -17,7 +17,7 @@ from ...kernels.search import topology as ks
 from .certify_points import certify_points
 from ..search.topology import TopologyError, search
 from .trims import Ends, closed_inside, edges, open_curve, outside, q_edge_roots
-from .nodes import in_boxes, linked, node_boxes, typical_chord
+from .nodes import box_radii, in_boxes, linked, node_boxes, typical_chord
 from .tubes import Chart, tube
 
 PROVEN, NOT_PROVEN = "proven", "not proven"
@@ -283,12 +283,8 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
             radii.append(certify_points(a, b, curve.points, curve.sol.tangent(curve.s)))
         else:
             radii.append(sample_radii(a, b, curve, t))
-            if t.split and nodes:       # points within a node's box: within its diameter of a crossing there
-                inside = in_boxes(chart, nodes, curve.points) & ~np.isfinite(radii[-1])
-                if inside.any():
-                    feet = chart.p.point(*chart.p.parameters(curve.points[inside]).T)
-                    off = np.linalg.norm(curve.points[inside] - feet, axis=1) * (1.0 + 1e-9) + 1e-300
-                    radii[-1][inside] = (2.0 * max(node.radius for node in nodes) + off) * (1.0 + 1e-15)
+            if t.split:
+                box_radii(chart, nodes, curve.points, radii[-1])
         bounds.append(math.inf if t is None or not t.proven else distance_bound(chart, nodes, curve, t, radii[-1]))
         bad = ~np.isfinite(radii[-1])
         if bad.any():

@@ -159,6 +159,17 @@ def in_boxes(chart, nodes, points):
     return out
 
 
+def box_radii(chart, nodes, points, radii):
+    """Give the points (M, 3) inside a node box that have no proven radius (radii (M,), changed in place) one from
+    the boxes: within the largest box's diameter of a crossing on its edge (a true point), plus the point's distance
+    from the chart's surface."""
+    inside = in_boxes(chart, nodes, points) & ~np.isfinite(radii) if nodes else np.zeros(len(points), dtype=bool)
+    if inside.any():
+        feet = chart.p.point(*chart.p.parameters(points[inside]).T)
+        off = np.linalg.norm(points[inside] - feet, axis=1) * (1.0 + 1e-9) + 1e-300
+        radii[inside] = (2.0 * max(node.radius for node in nodes) + off) * (1.0 + 1e-15)
+
+
 def shifted_into(chart, node, x):
     """The scaled points x (M, 2) (or one, (2,)), each shifted by the whole periods that bring it nearest the
     node's centre (periodic parameters only)."""

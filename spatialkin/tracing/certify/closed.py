@@ -102,9 +102,11 @@ def faithful(curve, turn):
     if not whole or len(curve.points) != len(curve.s):
         return None
     points = np.asarray(curve.points, dtype=float)
+    size = float(np.max(np.abs(points)))
+    if points is sol.samples()[0] and curve.s is sol.knots:
+        return 64.0 * EPS * size                # the closed form's own samples at its knots (SampledResult)
     dense = np.asarray(sol(np.asarray(curve.s, dtype=float)), dtype=float).reshape(-1, 3)
     off = float(np.max(np.linalg.norm(points - dense, axis=1)))
-    size = float(np.max(np.abs(points)))
     return off * (1.0 + 1e-9) + 64.0 * EPS * size if off <= 1e-9 * max(size, 1.0) else None
 
 

@@ -170,14 +170,16 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor, scene)
     if not certify:
-        curves, topo = searched(a, b, settings)
+        curves, topo, _ = searched(a, b, settings)
         return [Curve(c, topology=topo) for c in curves]
     # the general path's answer, or the closed forms' (the plain call's): proven in closed form where the algebra
     # settles it, else against the topology search
+    wholes = None
     if found is None:
-        curves, topo = searched(a, b, settings)
+        curves, topo, wholes = searched(a, b, settings)
     else:
         curves, topo = in_sk_order(clip_curves(a, b, found, settings.scale)), None
+        wholes = found if a.region or b.region else None
     proof = closed_certificate(a, b, curves)
     if proof is not None:
         return certified(a, b, curves, None, settings.scale, settings.tolerance, certify, proof=proof)
@@ -187,11 +189,12 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         except TopologyError as err:
             return certified(a, b, curves, None, settings.scale, settings.tolerance, certify,
                              f"the search stopped ({err}); the answer is the closed form's")
-    return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify)
+    return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify, wholes=wholes)
 
 
 def searched(a, b, settings):
-    """(CurveResults of every component, in sk's order; the Topology): the general path of intersect."""
+    """(CurveResults of every component, in sk's order; the Topology; the components before the faces' regions
+    cut them, or None where neither surface has a region): the general path of intersect."""
     if stages.ON:
         stages.switch("topology")
     topo = topology(a, b, settings.scale, settings.tolerance)
@@ -234,10 +237,11 @@ def searched(a, b, settings):
         if not covered(c, kept + curves[i + 1:], radius):
             kept.append(c)
     on = lambda curve, whole: bool(within(whole, curve.points, radius).all())          # noqa: E731
-    curves = clip_curves(a, b, rejoined(a, b, kept, settings, on), settings.scale)
+    wholes = rejoined(a, b, kept, settings, on)
+    curves = clip_curves(a, b, wholes, settings.scale)
     if stages.ON:
         stages.switch("result")
-    return in_sk_order(curves), topo
+    return in_sk_order(curves), topo, (wholes if a.region or b.region else None)
 
 
 class Curves(list):
@@ -247,11 +251,11 @@ class Curves(list):
     certificate = None
 
 
-def certified(a, b, results, topo, scale, tolerance, mode, failure=None, proof=None):
+def certified(a, b, results, topo, scale, tolerance, mode, failure=None, proof=None, wholes=None):
     """The Curves of the results (CurveResults), each with its view of the answer's certificate (failure: why no
-    search stands behind them; proof: the certificate when made already, in closed form); with mode 'strict',
-    CertificationError when a claim is not proven."""
-    answer = proof if proof is not None else certify_answer(a, b, results, topo, scale, tolerance, failure)
+    search stands behind them; proof: the certificate when made already, in closed form; wholes: the components
+    before the faces' regions cut them); with mode 'strict', CertificationError when a claim is not proven."""
+    answer = proof if proof is not None else certify_answer(a, b, results, topo, scale, tolerance, failure, wholes)
     if mode == "strict" and not answer.proven:
         raise CertificationError(answer)
     out = Curves(Curve(c, topology=topo, certificate=CurveCertificate(answer, i)) for i, c in enumerate(results))

@@ -1,8 +1,11 @@
 """Proven trim crossings of a curve of the level g = F_T(S(u, v)) = 0, in S's (scaled) parameter plane.
 
-A trim edge is the zero set of e: a parameter of S held at a value (e = u - u0 or v - v0), or a local length
+A trim edge is the zero set of e: a parameter of S held at a value (e = u - u0 or v - v0), a local length
 coordinate of T (a plane's x or y, a cylinder's or cone's z) held at a value (e = q_axis - value, q = M s + c the
-point of S in T's frame, spatialkin.kernels.geometry.interval). ``crossing`` proves, by the Krawczyk operator of the
+point of S in T's frame, spatialkin.kernels.geometry.interval), or a face's limit (spatialkin.geometry.trims.Limit)
+read on the local point of S or of T: a half-plane through the local z axis at an angle, cos(angle) y - sin(angle) x
+(on a cone's lower nappe, z < 0, its negative), a local coordinate less a value, or the distance from the local z
+axis less a value. ``crossing`` proves, by the Krawczyk operator of the
 2 x 2 system (g, e) on a box of S's parameters, that the box holds exactly one point of the curve on the edge;
 ``edge_rate`` encloses de/dt along the arc of a tube piece (spatialkin.kernels.certify.tubes), so that a rate of one
 sign proves that the arc crosses the edge at most once there; ``arc_inside`` encloses e along a piece's arc (on
@@ -18,12 +21,50 @@ import math
 import numpy as np
 
 from ..._lib.jit import jit
-from ..geometry.interval import (box_trig, iadd, idiv, idot, implicit_jet, imul, ineg, iscale, ishift, krawczyk_row,
-                                 local_first, placed, point, transform)
+from ..geometry.interval import (box_trig, iadd, idiv, idot, implicit_jet, imul, ineg, iscale, ishift, isqr, isqrt,
+                                 isub, krawczyk_row, local_first, placed, point, transform, widen)
 from .tubes import H, P, Q, T0, T1, arc_enclosure, piece_box, stretch_box
 
 #: An edge of S's own parameters: EDGE_U (u = value) or EDGE_V (v = value); 0, 1, 2: T's local coordinate.
 EDGE_U, EDGE_V = -1, -2
+#: A face limit: FACE_S (on S's local point) or FACE_T (on T's) plus its kind: TURN (the half-plane through the
+#: axis at the angle value), NAPPES (TURN on a double cone), RADIUS, or HEIGHT + the local axis (0, 1, 2).
+FACE_S, FACE_T = 10, 20
+TURN, NAPPES, RADIUS, HEIGHT = 0, 1, 2, 3
+#: Relative widening of cos and sin of a limit's angle: two ulps hold the exact values (math.cos and math.sin
+#: are faithful, within one ulp).
+TRIG_ULPS = 4.5e-16
+
+
+@jit(forceinline=True)
+def _face(p, pu, pv, kind, value):
+    """(e, e_u, e_v) of a face limit of kind at value over the interval local point p (3 intervals) and its
+    derivatives; infinite where the limit is not one smooth function over the box (a cone's apex plane, the axis of
+    a radius)."""
+    whole = (-math.inf, math.inf)
+    if kind == TURN or kind == NAPPES:
+        c0, s0 = math.cos(value), math.sin(value)
+        c = widen(point(c0), TRIG_ULPS * abs(c0) + 1e-300)
+        s = widen(point(s0), TRIG_ULPS * abs(s0) + 1e-300)
+        e = isub(imul(c, p[1]), imul(s, p[0]))
+        eu = isub(imul(c, pu[1]), imul(s, pu[0]))
+        ev = isub(imul(c, pv[1]), imul(s, pv[0]))
+        if kind == NAPPES:
+            if p[2][1] < 0.0:
+                return ineg(e), ineg(eu), ineg(ev)
+            if not p[2][0] > 0.0:
+                return whole, whole, whole
+        return e, eu, ev
+    if kind == RADIUS:
+        r2 = iadd(isqr(p[0]), isqr(p[1]))
+        if not r2[0] > 0.0:
+            return whole, whole, whole
+        r = isqrt(r2)
+        eu = idiv(iadd(imul(p[0], pu[0]), imul(p[1], pu[1])), r)
+        ev = idiv(iadd(imul(p[0], pv[0]), imul(p[1], pv[1])), r)
+        return ishift(r, -value), eu, ev
+    axis = kind - HEIGHT
+    return ishift(p[axis], -value), pu[axis], pv[axis]
 
 
 @jit(forceinline=True)
@@ -39,6 +80,10 @@ def _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value):
         e = (ishift(U, -value), (1.0, 1.0), (0.0, 0.0))
     elif edge == EDGE_V:
         e = (ishift(V, -value), (0.0, 0.0), (1.0, 1.0))
+    elif edge >= FACE_T:
+        e = _face(q, qu, qv, edge - FACE_T, value)
+    elif edge >= FACE_S:
+        e = _face(x, xu, xv, edge - FACE_S, value)
     else:
         e = (ishift(q[edge], -value), qu[edge], qv[edge])
     return g, e

@@ -19,6 +19,7 @@ from ..search.topology import TopologyError, search
 from .trims import Ends, closed_inside, edges, open_curve, outside, q_edge_roots
 from .nodes import box_radii, in_boxes, linked, node_boxes, typical_chord
 from .tubes import Chart, tube
+from .faces import cut
 
 PROVEN, NOT_PROVEN = "proven", "not proven"
 #: Half-widths (relative to the root's magnitude, at least 1) of the smaller boxes round a search's refined root
@@ -63,6 +64,14 @@ def claim(name, failures, proven_text):
     return Claim(name, NOT_PROVEN, failures[0][0] + more, where, radius)
 
 
+def joined(base, failures, more_text):
+    """The claim base extended by failures (as claim reads them): base itself where it failed already, else
+    proven with more_text added to what it says, or not proven with the new failures."""
+    if not base.proven:
+        return base
+    return claim(base.name, failures, base.detail + more_text)
+
+
 class CertificationError(RuntimeError):
     """``sk.intersect(..., certify="strict")`` could not prove the whole answer; ``certificate`` says which claims
     failed and where (``certificate.failed``)."""
@@ -91,8 +100,12 @@ class Certificate:
       is a whole closed component of the trimmed patches. An open
       curve is one whole piece of its component within the trims when each end is a proven crossing of a trim
       edge inside the tube (the Krawczyk test on g = 0 and the edge), the arc crosses that edge once in the pieces
-      that touch it, and every other piece lies strictly inside every trim (spatialkin.tracing.certify.trims; trims
-      of length parameters only: angular trims are not proven).
+      that touch it, and every other piece lies strictly inside every trim (spatialkin.tracing.certify.trims, for
+      the trims of length parameters). Faces' regions (angular ranges, a sphere's latitudes, a plane's disc or
+      annulus) cut the components after tracing: the answer before the cut is proven, then each returned arc is
+      proven to run between two proven crossings of face edges along its component's tube, and every arc inside
+      both faces to be returned (spatialkin.tracing.certify.faces; a torus's tube-angle range, and a face searched
+      in a re-framed chart, are not proven).
     - **distinct**: the tubes of different curves are proven disjoint: no two returned curves share a point (with
       one_component, no two are pieces of one component).
     - **points**: every stored point has a finite proven radius (``radii``): a box of that half-width round it
@@ -169,8 +182,10 @@ class Certificate:
     True
     """
 
-    def __init__(self, claims, topology, radii, tubes, bounds, components):
+    def __init__(self, claims, topology, radii, tubes, bounds, components, chart=None):
         self.claims = {c.name: c for c in claims}
+        self.topology = topology
+        self.chart = chart
         self.components = int(components)
         self.mode = topology.mode if topology is not None else "closed form"
         self.boxes = topology.boxes if topology is not None else 0
@@ -252,12 +267,42 @@ class CurveCertificate:
                 f"points proven {proven}/{self.radii.size}, distance <= {self.distance_bound:.2e})")
 
 
-def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
+def certify(a, b, curves, topology, scale, tolerance=None, failure=None, wholes=None):
     """The Certificate of an answer (CurveResults, the curves sk.intersect returns, in order) and the search that
     found it (scale and tolerance: the scene's, spatialkin.tracing.march.trace.scene_lengths). A search that read
     the pair as coaxial or ruled, a symmetry decided within a tolerance, is run again as a general search, whose
     roots the completeness claim then places (except for two spheres, or a sphere and a plane, symmetric exactly
-    whatever their placement). failure: why no search stands behind the answer (topology None)."""
+    whatever their placement). failure: why no search stands behind the answer (topology None). wholes: the
+    components before the faces' regions cut them (spatialkin.tracing.curve.clip), when a surface has a region:
+    proven first, then the cut (spatialkin.tracing.certify.faces)."""
+    if wholes is None or not (a.region or b.region):
+        return uncut(a, b, curves, topology, scale, tolerance, failure)
+    base = uncut(a, b, wholes, topology, scale, tolerance, failure, regions=False)
+    failures, radii, tubes, bounds = cut(base, a, b, curves, wholes)
+    c = base.claims
+    claims = [joined(c["complete"], failures, " and every arc of a component inside both faces is returned (the "
+                     "crossings of their edges proven along its tube)"),
+              joined(c["one_component"], failures, "; every arc cut by the faces runs between two proven crossings "
+                     "of face edges"),
+              c["distinct"], claim("points", unproven_points(radii, curves), "every stored point has a proven radius"),
+              c["arcs"], c["singular"]]
+    return Certificate(claims, base.topology, radii, tubes, bounds, len(curves), base.chart)
+
+
+def unproven_points(radii, curves):
+    """(text, point) of each curve with a stored point of no proven radius (radii: (N,) per curve)."""
+    out = []
+    for i, (r, curve) in enumerate(zip(radii, curves)):
+        bad = ~np.isfinite(r)
+        if bad.any():
+            out.append((f"curve {i}: {int(bad.sum())} of {bad.size} stored points have no proven radius",
+                        curve.points[int(np.argmax(bad))]))
+    return out
+
+
+def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=True):
+    """The Certificate of an answer as certify makes it where no region cuts it (regions False: the faces'
+    regions left out, as the search leaves them)."""
     general = topology
     if topology is not None and topology.mode in ("coaxial", "ruled") and not exactly_symmetric(topology.P,
                                                                                                  topology.Q):
@@ -268,11 +313,11 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
             failure = f"the general search (the pair was read as {topology.mode}) stopped: {err}"
     charted = topology if general is None else general
     chart = Chart(charted, scale) if charted is not None and charted.chart is not None else None
-    trims, unsupported = edges(charted, chart) if chart is not None else ([], [])
+    trims, unsupported = edges(charted, chart, regions) if chart is not None else ([], [])
     nodes = node_boxes(chart, charted.nodes, typical_chord(chart, curves)) if chart is not None else []
     ends = Ends()
     radii, tubes, bounds = [], [], []
-    points_failed, arcs_failed, whole_failed = [], [], []
+    arcs_failed, whole_failed = [], []
     for i, curve in enumerate(curves):
         regular = curve.length > 0 and curve.status not in (TANGENT, CONTACT)
         t = tube(chart, curve, nodes) if regular and chart is not None else None
@@ -286,10 +331,6 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
             if t.split:
                 box_radii(chart, nodes, curve.points, radii[-1])
         bounds.append(math.inf if t is None or not t.proven else distance_bound(chart, nodes, curve, t, radii[-1]))
-        bad = ~np.isfinite(radii[-1])
-        if bad.any():
-            points_failed.append((f"curve {i}: {int(bad.sum())} of {bad.size} stored points have no proven radius",
-                                  curve.points[int(np.argmax(bad))]))
         if not regular:
             continue
         if t is None or not t.proven:
@@ -316,12 +357,12 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None):
               claim("one_component", whole_failed, "every closed curve's tube closes on itself, every open "
                     "curve runs between two proven crossings of trim edges"),
               distinct_claim(chart, tubes, contact_boxes(curves, singular), nodes),
-              claim("points", points_failed, "every stored point has a proven radius"),
+              claim("points", unproven_points(radii, curves), "every stored point has a proven radius"),
               claim("arcs", arcs_failed, "every curve lies in a chain of proven pieces" +
                     (", outside the node boxes (whose branches leave through them)" if nodes else "")),
               claim("singular", [place[:3] for place in singular],
                     "no singular point (contact, node, apex, tangency) was found")]
-    return Certificate(claims, topology, radii, tubes, bounds, len(curves))
+    return Certificate(claims, topology, radii, tubes, bounds, len(curves), chart)
 
 
 def contact_boxes(curves, singular):

@@ -2,8 +2,9 @@
 
 The trims proven are those of length parameters (a plane's u and v, a cylinder's or cone's v): in the search's
 chart of P they are lines of P's parameters, and Q's are levels of a local coordinate of Q at P(u, v)
-(spatialkin.kernels.certify.trims). The face trims (angular ranges, a plane's disc or annulus), and the trims of a
-P searched in another chart than its own, are not proven.
+(spatialkin.kernels.certify.trims). The trims of a P searched in another chart than its own are not proven. The
+face trims (angular ranges, a sphere's latitudes, a plane's disc or annulus) are proven apart, along the components
+before they cut them (spatialkin.tracing.certify.faces).
 """
 import math
 from dataclasses import dataclass
@@ -34,13 +35,13 @@ class Edge:
     inside: float
 
 
-def edges(topology, chart):
+def edges(topology, chart, regions=True):
     """(edges, unsupported): the trim edges of P and Q that can be proven (Edge), and the reasons the others
-    cannot."""
+    cannot (regions False: the faces' regions left out, spatialkin.tracing.certify.faces proves them)."""
     out, unsupported = [], []
     for owner, surface in (("P", topology.P), ("Q", topology.Q)):
         kind = traits(surface)
-        if surface.region:
+        if regions and surface.region:
             unsupported.append(f"the face trims of {owner} (angular ranges, a disc) are not proven")
         for j, (lo, hi) in enumerate(surface.bounds):
             for bound, inside in ((lo, 1.0), (hi, -1.0)):
@@ -118,6 +119,7 @@ def open_curve(chart, trims, unsupported, tube, curve, ends, index):
             return False
     for edge, box in found:
         ends.crossings.setdefault((edge.owner, edge.fixed, edge.value), []).append(box)
+    tube.end_boxes = [box for _, box in found]
     return True
 
 

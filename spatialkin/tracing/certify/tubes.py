@@ -50,6 +50,8 @@ class Tube:
     split : bool             made of one open chain per run of the curve between node boxes (their ends
                              reaching into the boxes), not of one chain
     passes : frozenset       the indices (among the search's nodes) of the node boxes the curve passes
+    end_boxes : list         an open curve's ends proven on trim edges: the scaled boxes (4,) holding them
+                             (spatialkin.tracing.certify.trims.open_curve), else empty
     """
 
     def __init__(self, pieces, status, where, s, points, x):
@@ -57,6 +59,7 @@ class Tube:
         self.radii = None
         self.split = False
         self.passes = frozenset()
+        self.end_boxes = []
 
     @property
     def proven(self):

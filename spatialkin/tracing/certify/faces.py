@@ -1,0 +1,324 @@
+"""Face trims in the certificate: an answer cut by the faces' regions, proven from the answer before the cut.
+
+The tracer follows each component on the surfaces as their length trims leave them and cuts it afterwards at the
+edges of the regions (angular ranges, a sphere's latitudes, a plane's disc or annulus; spatialkin.tracing.curve.clip).
+The certificate takes the same two steps. It proves the uncut answer claim by claim (the search reads the surfaces
+without their regions too), then, along each component's chain of proven pieces, encloses every limit of the
+regions (spatialkin.geometry.trims.Limit: >= 0 inside) over each piece's arc (kernels.certify.trims.arcs_inside):
+the arc lies inside the limit, outside it, or the limit may change sign there. A run of pieces where it may must
+hold one limit only, monotone along the run (its rate of one sign, kernels.certify.trims.edge_rate), and of
+opposite signs on the pieces either side: it then vanishes exactly once on the run's arc. Where that flips the
+regions' verdict, a returned arc must end there: its end is a proven crossing of that edge (the Krawczyk test of
+the level and the limit, kernels.certify.trims.crossing) inside the run. The returned curves must be exactly the
+arcs inside both regions, each from one such crossing (or the component's own end) to the next, a component
+inside all along returned whole and one outside all along not at all.
+
+A torus's tube-angle trim is not proven (its limit is not enclosed here), nor a point where a component touches a
+face edge from outside (clip's single points).
+
+References
+----------
+R. Krawczyk, "Newton-Algorithmen zur Bestimmung von Nullstellen mit Fehlerschranken", Computing 4 (1969) 187-201.
+B. Martin, A. Goldsztejn, L. Granvilliers, C. Jermann, "Certified parallelotope continuation for one-manifolds",
+SIAM J. Numer. Anal. 51 (2013) 3373-3401.
+"""
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...geometry.trims import HEIGHT, RADIUS, TUBE, TURN, Limit
+from ...kernels.certify import trims as kr
+from ...kernels.certify import tubes as kt
+from ..curve.clip import WindowSolution
+from ..curve.status import CONTACT, TANGENT
+from .certify_points import certify_points
+from .trims import ARC_DEPTH, CROSSING_CAP, CROSSING_FIRST
+
+#: A cut arc's end lies at its component's own end when their arc lengths differ by less than this many
+#: tolerances.
+SAME_END = 1e3
+
+
+@dataclass(frozen=True)
+class FaceLimit:
+    """One limit of a face's region as the kernels read it: of surface a (0) or b (1), in group ``group`` of its
+    region, e's code (kernels.certify.trims: FACE_S or FACE_T plus the kind) and value, and the side of the face
+    (inside: +1 where e > 0 inside, -1 where e < 0)."""
+    surface: int
+    group: int
+    limit: Limit
+    code: int
+    inside: float
+
+
+def face_limits(chart, a, b):
+    """(limits, unsupported): the FaceLimits of both surfaces' regions, and why the others cannot be proven."""
+    out, unsupported = [], []
+    r = chart.reader
+    for k, surface in enumerate((a, b)):
+        base = kr.FACE_S if surface is r.s else kr.FACE_T if surface is r.t else None
+        for g, group in enumerate(surface.region):
+            for limit in group:
+                if base is None or limit.kind == TUBE:
+                    unsupported.append(f"the tube-angle trim {limit.name} of {'ab'[k]} is not proven"
+                                       if base is not None else f"the face trims of {'ab'[k]} are not proven in "
+                                       "the search's chart (a re-framed copy of it)")
+                    continue
+                kind = {TURN: kr.NAPPES if limit.nappes else kr.TURN, RADIUS: kr.RADIUS,
+                        HEIGHT: kr.HEIGHT + limit.axis}[limit.kind]
+                out.append(FaceLimit(k, g, limit, base + kind, 1.0 if limit.lower else -1.0))
+    return out, unsupported
+
+
+def limit_signs(chart, limits, pieces):
+    """(L, K) int: +1 where the arc of piece k lies strictly inside limit l, -1 strictly outside, 0 undecided."""
+    r = chart.reader
+    su, sv = float(chart.units[0]), float(chart.units[1])
+    out = np.zeros((len(limits), len(pieces)), dtype=int)
+    strict = np.empty(len(pieces), dtype=np.bool_)
+    for i, fl in enumerate(limits):
+        for side in (1.0, -1.0):
+            kr.arcs_inside(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, fl.code, float(fl.limit.value), side,
+                           pieces, ARC_DEPTH, strict)
+            out[i, strict] = int(side * fl.inside)
+    return out
+
+
+def verdict(limits, signs):
+    """True (inside both regions), False (outside one) or None (undecided) from one piece's signs (L,)."""
+    result = True
+    for k in (0, 1):
+        groups = {}
+        for fl, sign in zip(limits, signs):
+            if fl.surface == k:
+                groups.setdefault(fl.group, []).append(sign)
+        for values in groups.values():
+            if any(v > 0 for v in values):
+                continue
+            if all(v < 0 for v in values):
+                return False
+            result = None
+    return result
+
+
+@dataclass
+class Flip:
+    """A run of pieces (first, last: chain indices, last < first across the start of a closed chain) on which each
+    of the limits (indices) vanishes once, the regions' verdict going from before to after (two limits vanish
+    together where an angular range is a half turn: its edges lie in one plane through the axis)."""
+    first: int
+    last: int
+    limits: tuple
+    before: bool
+    after: bool
+
+    def indices(self, count):
+        return [k % count for k in range(self.first, self.last + 1 + (count if self.last < self.first else 0))]
+
+
+def box_signs(chart, limits, box):
+    """(L,) int: the signs of the limits (as limit_signs) over a scaled parameter box (4,) of the chart."""
+    r = chart.reader
+    raw = np.ascontiguousarray(box * np.repeat(chart.units, 2))
+    out = np.zeros(len(limits), dtype=int)
+    for i, fl in enumerate(limits):
+        lo, hi = kr.box_trim(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, raw, fl.code, float(fl.limit.value))
+        out[i] = int(fl.inside) if lo > 0.0 else -int(fl.inside) if hi < 0.0 else 0
+    return out
+
+
+def flips(chart, limits, signs, pieces, closed, end_boxes=()):
+    """(flips in chain order, the verdict of every piece (K,): True, False, or None inside a flip's run; a reason
+    when the verdicts along the chain cannot be settled, else None). signs (L, K) is settled in place where a limit
+    is proven not to vanish on a run. end_boxes: an open chain's proven end boxes (scaled), whose signs stand
+    beside its first and last pieces."""
+    count = pieces.shape[0]
+    if not closed and len(end_boxes) == 2:          # the ends as pieces -1 and count: one more column each side
+        signs = np.column_stack([box_signs(chart, limits, end_boxes[0]), signs,
+                                 box_signs(chart, limits, end_boxes[1])])
+        pieces = np.vstack([pieces[:1], pieces, pieces[-1:]])
+        found, verdicts, reason = flips(chart, limits, signs, pieces, False)
+        if reason is not None:
+            return found, verdicts, reason
+        for flip in found:
+            flip.first, flip.last = max(flip.first - 1, 0), min(flip.last - 1, count - 1)
+        return found, verdicts[1:-1], None
+    verdicts = [verdict(limits, signs[:, k]) for k in range(count)]
+    undecided = [v is None for v in verdicts]
+    if not any(undecided):
+        return [], verdicts, None
+    if all(undecided):
+        return None, None, "no piece of its tube is proven inside or outside the faces"
+    start = next(k for k in range(count) if not undecided[k]) if closed else 0
+    runs, prev = [], None
+    for k in ((start + i) % count for i in range(count)):
+        if undecided[k]:
+            if prev is not None and undecided[prev]:
+                runs[-1][1] = k
+            else:
+                runs.append([k, k])
+        prev = k
+    out = []
+    r = chart.reader
+    su, sv = float(chart.units[0]), float(chart.units[1])
+    for first, last in runs:
+        if not closed and (first == 0 or last == count - 1):
+            return None, None, "a face edge comes near an end of the component"
+        run = Flip(first, last, (), False, False).indices(count)
+        zero = sorted({int(i) for k in run for i in np.flatnonzero(signs[:, k] == 0)})
+        before, after = (first - 1) % count, (last + 1) % count
+        crossing = []
+        for l in zero:
+            fl = limits[l]
+            if signs[l, before] == 0 or signs[l, after] == 0:
+                return None, None, f"the face edge {fl.limit.name} is not proven apart from a run of its tube"
+            rates = np.array([kr.edge_rate(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, fl.code,
+                                           float(fl.limit.value), pieces[k]) for k in run])
+            if not (np.all(rates[:, 0] > 0.0) or np.all(rates[:, 1] < 0.0)):
+                return None, None, f"the arc is not proven to cross the face edge {fl.limit.name} once"
+            if signs[l, before] == signs[l, after]:       # monotone, of one sign either side: it does not vanish
+                signs[l, run] = signs[l, before]
+            else:
+                crossing.append(l)
+        for k in run:
+            verdicts[k] = verdict(limits, signs[:, k])
+        if not crossing:
+            continue
+        names = ", ".join(limits[l].limit.name for l in crossing)
+        if verdicts[before] is None or verdicts[after] is None:
+            return None, None, f"the faces' verdict is not settled across the edge {names}"
+        for k in run:          # each side of the crossings, every piece of the run gives its neighbour's verdict
+            for side in (before, after):
+                trial = signs[:, k].copy()
+                trial[crossing] = signs[crossing, side]
+                if verdict(limits, trial) != verdicts[side]:
+                    return None, None, f"the faces' verdict is not settled across the edge {names}"
+        if verdicts[before] != verdicts[after]:
+            out.append(Flip(first, last, tuple(crossing), verdicts[before], verdicts[after]))
+    inside_flips = {k for flip in out for k in flip.indices(count)}
+    if any(verdicts[k] is None for k in range(count) if k not in inside_flips):
+        return None, None, "the faces' verdict is not settled along its tube"
+    out.sort(key=lambda flip: (flip.first - start) % count)
+    return out, verdicts, None
+
+
+def end_flip(chart, limits, pieces, count, found, x):
+    """The index in found (Flips) of the run holding a proven crossing of each of its limits round the scaled
+    parameters x (2,) (a cut arc's end), or None. The regions' verdict changes only where one of those limits
+    vanishes, once each on the run's arc, inside its box: the edge the arc crosses lies within those boxes."""
+    r = chart.reader
+    su, sv = float(chart.units[0]), float(chart.units[1])
+    size = max(1.0, float(np.max(np.abs(x))))
+    for i, flip in enumerate(found):
+        run = np.ascontiguousarray(pieces[flip.indices(count)])
+        for l in flip.limits:
+            fl = limits[l]
+            h = kr.crossing_radius(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, fl.code,
+                                   float(fl.limit.value), float(x[0]), float(x[1]), CROSSING_FIRST * size,
+                                   CROSSING_CAP * size)
+            box = np.array([x[0] - h, x[0] + h, x[1] - h, x[1] + h])
+            if not math.isfinite(h) or kt.point_in_pieces(run, len(run), box, chart.periods[0],
+                                                          chart.periods[1]) < 0:
+                break
+        else:
+            return i
+    return None
+
+
+def expected_arcs(found, verdicts, closed, count):
+    """[(start, end)] of the stretches inside both regions, each end a flip's index or 'start' / 'end' (an open
+    chain's own ends); 'whole' for a closed chain inside all along."""
+    if not found:
+        inside = verdicts[0]
+        return (["whole"] if closed else [("start", "end")]) if inside else []
+    out = []
+    if not closed and found[0].before:
+        out.append(("start", 0))
+    for i, flip in enumerate(found):
+        if flip.after:
+            nxt = i + 1
+            out.append((i, nxt % len(found) if closed else (nxt if nxt < len(found) else "end")))
+    return out
+
+
+def component_arcs(chart, limits, whole, t, returned):
+    """Failures (text, point) of one component (whole, its proven Tube t) against the returned curves cut from it
+    (returned: [CurveResult])."""
+    if t is None or not t.proven or t.split:
+        return [("a component cut by the faces has no proven tube of one chain", whole.points[0])]
+    pieces = t.pieces
+    count = len(pieces)
+    signs = limit_signs(chart, limits, pieces)
+    found, verdicts, reason = flips(chart, limits, signs, pieces, whole.closed, t.end_boxes)
+    if reason is not None:
+        return [(f"a component cut by the faces: {reason}", whole.points[0])]
+    want = expected_arcs(found, verdicts, whole.closed, count)
+    if want == ["whole"]:
+        if len(returned) == 1 and returned[0] is whole:
+            return []
+        return [("a component inside both faces all along is not returned whole", whole.points[0])]
+    got = []
+    for curve in returned:
+        if curve is whole or not isinstance(curve.sol, WindowSolution):
+            return [("a returned curve is not an arc of its component between proven face edges", curve.points[0])]
+        start, length = curve.sol.start, curve.length
+        ends = []
+        for s, point, own in ((start, curve.points[0], 0.0), (start + length, curve.points[-1], whole.length)):
+            if not whole.closed and abs(s - own) <= SAME_END * whole.tolerance:
+                ends.append("start" if own == 0.0 else "end")
+                continue
+            x = chart.scaled(point)[0]
+            i = end_flip(chart, limits, pieces, count, found, x)
+            if i is None:
+                return [("an end of a returned arc is not a proven crossing of a face edge", point)]
+            ends.append(i)
+        got.append(tuple(ends))
+    if sorted(map(str, got)) != sorted(map(str, want)):
+        return [(f"the arcs of a component inside both faces are {len(want)} between proven crossings, "
+                 f"{len(got)} returned", whole.points[0])]
+    return []
+
+
+def cut(base, a, b, curves, wholes):
+    """(failures, radii, tubes, bounds) of the cut answer (curves, the CurveResults returned) from base, the
+    Certificate of the answer before the cut (wholes): why the cut is not proven ((text, point) each; none when it
+    is), and each returned curve's stored points' proven radii, tube (its component's) and distance bound (its
+    component's, and its ends' radii)."""
+    chart = base.chart
+    failures = []
+    limits, unsupported = face_limits(chart, a, b) if chart is not None else ([], ["no search chart"])
+    owner = {}
+    for i, curve in enumerate(curves):
+        parent = curve.sol.whole if isinstance(curve.sol, WindowSolution) else curve.sol
+        j = next((j for j, w in enumerate(wholes) if w.sol is parent), None)
+        if j is None:
+            failures.append(("a point where a component touches a face edge (not proven)" if curve.length == 0 else
+                             "a returned curve comes from no traced component", curve.points[0]))
+        owner[i] = j
+    if unsupported:
+        failures.append((unsupported[0], None))
+    else:
+        for j, whole in enumerate(wholes):
+            mine = [c for i, c in enumerate(curves) if owner[i] == j]
+            regular = whole.length > 0 and whole.status not in (TANGENT, CONTACT)
+            if regular:
+                failures += component_arcs(chart, limits, whole, base.tubes[j], mine)
+            elif mine:
+                failures.append(("a singular component cut by the faces (not proven)", whole.points[0]))
+    radii, tubes, bounds = [], [], []
+    for i, curve in enumerate(curves):
+        j = owner[i]
+        if j is not None and curve is wholes[j]:
+            radii.append(base.radii[j])
+            bounds.append(base.distance_bounds[j])
+        else:
+            points = np.asarray(curve.points, dtype=float)
+            tangents = np.gradient(points, axis=0) if len(points) > 1 else np.zeros((len(points), 3))
+            radii.append(certify_points(a, b, points, tangents) if len(points) > 1 else np.full(len(points),
+                                                                                                  math.inf))
+            ends = radii[-1][[0, -1]] if len(points) else np.empty(0)
+            inner = base.distance_bounds[j] if j is not None else math.inf
+            bounds.append(max(inner, float(np.max(ends)) * math.sqrt(3.0)) if len(ends) else inner)
+        tubes.append(base.tubes[j] if j is not None else None)
+    return failures, radii, tubes, bounds

@@ -263,8 +263,14 @@ def component_arcs(chart, limits, whole, t, returned):
         if curve is whole or not isinstance(curve.sol, WindowSolution):
             return [("a returned curve is not an arc of its component between proven face edges", curve.points[0])]
         start, length = curve.sol.start, curve.length
+        longest = whole.length if whole.closed else whole.length + SAME_END * whole.tolerance
+        if not (0.0 < length < longest) or curve.sol.length != length:
+            return [("a returned arc is longer than its component", curve.points[0])]
+        _, at_ends, _, _ = curve.sol.evaluate(np.array([0.0, length]), with_params=False)
+        if np.max(np.abs(at_ends - curve.points[[0, -1]])) > SAME_END * curve.tolerance:
+            return [("a returned arc's stored ends are not its dense output's", curve.points[0])]
         ends = []
-        for s, point, own in ((start, curve.points[0], 0.0), (start + length, curve.points[-1], whole.length)):
+        for s, point, own in ((start, at_ends[0], 0.0), (start + length, at_ends[1], whole.length)):
             if not whole.closed and abs(s - own) <= SAME_END * whole.tolerance:
                 ends.append("start" if own == 0.0 else "end")
                 continue

@@ -126,3 +126,16 @@ def test_a_loop_outside_a_face_leaves_a_proven_empty_answer():
     assert len(full) == 1 and np.all(full[0].points[:, 1] < 0.0)
     curves = sk.intersect(a, b, certify=True)
     assert curves == [] and curves.certificate.proven, curves.certificate.failed
+
+
+def test_an_arc_run_once_round_its_loop_more_is_not_proven(monkeypatch):
+    """The arc inside the half cylinder run on for one more turn of its closed component, from the same crossing to
+    the same crossing: longer than its component, not proven."""
+    a, b = PAIRS["half cylinder, sphere"]
+    answer, topo, scale, tolerance, wholes = parts(monkeypatch, a, b)
+    arc, whole = answer[0], wholes[0]
+    assert whole.closed
+    edge = limits(a)[0]
+    longer = window(whole, (arc.sol.start, edge, 0), (arc.sol.start + arc.length + whole.length, edge, 0))
+    cert = certify(a, b, [longer], topo, scale, tolerance, wholes=wholes)
+    assert not cert.proven and not cert.claims["one_component"].proven

@@ -23,29 +23,43 @@ import numpy as np
 from ..._lib.jit import jit
 from ..geometry.interval import (box_trig, iadd, idiv, idot, implicit_jet, imul, ineg, iscale, ishift, isqr, isqrt,
                                  isub, krawczyk_row, local_first, placed, point, transform, widen)
+from ..geometry.surfaces import P0
 from .tubes import H, P, Q, T0, T1, arc_enclosure, piece_box, stretch_box
 
 #: An edge of S's own parameters: EDGE_U (u = value) or EDGE_V (v = value); 0, 1, 2: T's local coordinate.
 EDGE_U, EDGE_V = -1, -2
 #: A face limit: FACE_S (on S's local point) or FACE_T (on T's) plus its kind: TURN (the half-plane through the
-#: axis at the angle value), NAPPES (TURN on a double cone), RADIUS, or HEIGHT + the local axis (0, 1, 2).
+#: axis at the angle value), NAPPES (TURN on a double cone), RADIUS, HEIGHT + the local axis (0, 1, 2), or TUBE (a
+#: torus's tube angle: the half-plane of its meridian through the tube's centre at the angle value).
 FACE_S, FACE_T = 10, 20
-TURN, NAPPES, RADIUS, HEIGHT = 0, 1, 2, 3
+TURN, NAPPES, RADIUS, HEIGHT, TUBE = 0, 1, 2, 3, 6
 #: Relative widening of cos and sin of a limit's angle: two ulps hold the exact values (math.cos and math.sin
 #: are faithful, within one ulp).
 TRIG_ULPS = 4.5e-16
 
 
 @jit(forceinline=True)
-def _face(p, pu, pv, kind, value):
+def _face(p, pu, pv, kind, value, major):
     """(e, e_u, e_v) of a face limit of kind at value over the interval local point p (3 intervals) and its
-    derivatives; infinite where the limit is not one smooth function over the box (a cone's apex plane, the axis of
-    a radius)."""
+    derivatives (major: a torus's major radius, for TUBE); infinite where the limit is not one smooth function over
+    the box (a cone's apex plane, the axis for a radius or a tube angle)."""
     whole = (-math.inf, math.inf)
+    c0, s0 = math.cos(value), math.sin(value)
+    c = widen(point(c0), TRIG_ULPS * abs(c0) + 1e-300)
+    s = widen(point(s0), TRIG_ULPS * abs(s0) + 1e-300)
+    if kind == RADIUS or kind == TUBE:
+        r2 = iadd(isqr(p[0]), isqr(p[1]))
+        if not r2[0] > 0.0:
+            return whole, whole, whole
+        r = isqrt(r2)
+        ru = idiv(iadd(imul(p[0], pu[0]), imul(p[1], pu[1])), r)
+        rv = idiv(iadd(imul(p[0], pv[0]), imul(p[1], pv[1])), r)
+        if kind == RADIUS:
+            return ishift(r, -value), ru, rv
+        # cos(value) z - sin(value) (rho - R): the tube angle's half-plane, as spatialkin.geometry.trims.Limit reads it
+        e = isub(imul(c, p[2]), imul(s, ishift(r, -major)))
+        return e, isub(imul(c, pu[2]), imul(s, ru)), isub(imul(c, pv[2]), imul(s, rv))
     if kind == TURN or kind == NAPPES:
-        c0, s0 = math.cos(value), math.sin(value)
-        c = widen(point(c0), TRIG_ULPS * abs(c0) + 1e-300)
-        s = widen(point(s0), TRIG_ULPS * abs(s0) + 1e-300)
         e = isub(imul(c, p[1]), imul(s, p[0]))
         eu = isub(imul(c, pu[1]), imul(s, pu[0]))
         ev = isub(imul(c, pv[1]), imul(s, pv[0]))
@@ -55,14 +69,6 @@ def _face(p, pu, pv, kind, value):
             if not p[2][0] > 0.0:
                 return whole, whole, whole
         return e, eu, ev
-    if kind == RADIUS:
-        r2 = iadd(isqr(p[0]), isqr(p[1]))
-        if not r2[0] > 0.0:
-            return whole, whole, whole
-        r = isqrt(r2)
-        eu = idiv(iadd(imul(p[0], pu[0]), imul(p[1], pu[1])), r)
-        ev = idiv(iadd(imul(p[0], pv[0]), imul(p[1], pv[1])), r)
-        return ishift(r, -value), eu, ev
     axis = kind - HEIGHT
     return ishift(p[axis], -value), pu[axis], pv[axis]
 
@@ -81,9 +87,9 @@ def _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value):
     elif edge == EDGE_V:
         e = (ishift(V, -value), (0.0, 0.0), (1.0, 1.0))
     elif edge >= FACE_T:
-        e = _face(q, qu, qv, edge - FACE_T, value)
+        e = _face(q, qu, qv, edge - FACE_T, value, t_data[P0])
     elif edge >= FACE_S:
-        e = _face(x, xu, xv, edge - FACE_S, value)
+        e = _face(x, xu, xv, edge - FACE_S, value, s_data[P0])
     else:
         e = (ishift(q[edge], -value), qu[edge], qv[edge])
     return g, e

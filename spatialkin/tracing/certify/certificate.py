@@ -104,8 +104,8 @@ class Certificate:
       the trims of length parameters). Faces' regions (angular ranges, a sphere's latitudes, a plane's disc or
       annulus) cut the components after tracing: the answer before the cut is proven, then each returned arc is
       proven to run between two proven crossings of face edges along its component's tube, and every arc inside
-      both faces to be returned (spatialkin.tracing.certify.faces; a torus's tube-angle range, and a face searched
-      in a re-framed chart, are not proven).
+      both faces to be returned (spatialkin.tracing.certify.faces; the faces of a surface searched in a re-framed
+      chart are not proven).
     - **distinct**: the tubes of different curves are proven disjoint: no two returned curves share a point (with
       one_component, no two are pieces of one component).
     - **points**: every stored point has a finite proven radius (``radii``): a box of that half-width round it

@@ -13,8 +13,8 @@ the level and the limit, kernels.certify.trims.crossing) inside the run. The ret
 arcs inside both regions, each from one such crossing (or the component's own end) to the next, a component
 inside all along returned whole and one outside all along not at all.
 
-A torus's tube-angle trim is not proven (its limit is not enclosed here), nor a point where a component touches a
-face edge from outside (clip's single points).
+Not proven: a point where a component touches a face edge from outside (clip's single points), and the faces of a
+surface the search reads in a re-framed chart of its own.
 
 References
 ----------
@@ -60,12 +60,11 @@ def face_limits(chart, a, b):
         base = kr.FACE_S if surface is r.s else kr.FACE_T if surface is r.t else None
         for g, group in enumerate(surface.region):
             for limit in group:
-                if base is None or limit.kind == TUBE:
-                    unsupported.append(f"the tube-angle trim {limit.name} of {'ab'[k]} is not proven"
-                                       if base is not None else f"the face trims of {'ab'[k]} are not proven in "
-                                       "the search's chart (a re-framed copy of it)")
+                if base is None:
+                    unsupported.append(f"the face trims of {'ab'[k]} are not proven in the search's chart (a "
+                                       "re-framed copy of it)")
                     continue
-                kind = {TURN: kr.NAPPES if limit.nappes else kr.TURN, RADIUS: kr.RADIUS,
+                kind = {TURN: kr.NAPPES if limit.nappes else kr.TURN, RADIUS: kr.RADIUS, TUBE: kr.TUBE,
                         HEIGHT: kr.HEIGHT + limit.axis}[limit.kind]
                 out.append(FaceLimit(k, g, limit, base + kind, 1.0 if limit.lower else -1.0))
     return out, unsupported

@@ -113,7 +113,8 @@ def test_moved_point_is_not_vouched_for(factor):
 
 def test_strict_raises_with_the_failed_claims():
     """certify='strict' raises CertificationError naming the claims it could not prove (a sphere's angular range
-    cuts a circle into an arc: its ends on a face trim are not proven); True returns them, said not proven."""
+    cuts a circle into an arc, and the search reads the sphere in a turned chart, where its face trims are not
+    proven); True returns them, said not proven."""
     pair = (sk.Sphere(1.0, u_range=(-1.0, 1.0)), sk.Plane(sk.Frame((0.0, 0.0, 0.3))))
     loose = sk.intersect(*pair, certify=True)
     assert len(loose) == 1 and not loose.certificate.proven

@@ -3,9 +3,10 @@
 A trim edge is the zero set of e: a parameter of S held at a value (e = u - u0 or v - v0), a local length
 coordinate of T (a plane's x or y, a cylinder's or cone's z) held at a value (e = q_axis - value, q = M s + c the
 point of S in T's frame, spatialkin.kernels.geometry.interval), or a face's limit (spatialkin.geometry.trims.Limit)
-read on the local point of S or of T: a half-plane through the local z axis at an angle, cos(angle) y - sin(angle) x
-(on a cone's lower nappe, z < 0, its negative), a local coordinate less a value, or the distance from the local z
-axis less a value. ``crossing`` proves, by the Krawczyk operator of the
+read on the local point of its own surface (S placed in that surface's frame): a half-plane through the local z
+axis at an angle, cos(angle) y - sin(angle) x (on a cone's lower nappe, z < 0, its negative), a torus's tube angle
+cos(angle) z - sin(angle) (rho - R), a local coordinate less a value, or the distance rho from the local z axis less
+a value. ``crossing`` proves, by the Krawczyk operator of the
 2 x 2 system (g, e) on a box of S's parameters, that the box holds exactly one point of the curve on the edge;
 ``edge_rate`` encloses de/dt along the arc of a tube piece (spatialkin.kernels.certify.tubes), so that a rate of one
 sign proves that the arc crosses the edge at most once there; ``arc_inside`` encloses e along a piece's arc (on
@@ -22,17 +23,20 @@ import numpy as np
 
 from ..._lib.jit import jit
 from ..geometry.interval import (box_trig, iadd, idiv, idot, implicit_jet, imul, ineg, iscale, ishift, isqr, isqrt,
-                                 isub, krawczyk_row, local_first, placed, point, transform, widen)
-from ..geometry.surfaces import P0
+                                 isub, krawczyk_row, local_first, placed, point, transform, up, widen)
 from .tubes import H, P, Q, T0, T1, arc_enclosure, piece_box, stretch_box
 
 #: An edge of S's own parameters: EDGE_U (u = value) or EDGE_V (v = value); 0, 1, 2: T's local coordinate.
 EDGE_U, EDGE_V = -1, -2
-#: A face limit: FACE_S (on S's local point) or FACE_T (on T's) plus its kind: TURN (the half-plane through the
-#: axis at the angle value), NAPPES (TURN on a double cone), RADIUS, HEIGHT + the local axis (0, 1, 2), or TUBE (a
-#: torus's tube angle: the half-plane of its meridian through the tube's centre at the angle value).
-FACE_S, FACE_T = 10, 20
+#: A face limit: FACE plus its kind: TURN (the half-plane through the axis at the angle value), NAPPES (TURN on a
+#: double cone), RADIUS, HEIGHT + the local axis (0, 1, 2), or TUBE (a torus's tube angle: the half-plane of its
+#: meridian through the tube's centre at the angle value), read on the local point of the face's own surface: the
+#: point of S placed by ``face`` = (m, c, pad, cpad, major), the rigorous placement of S in that surface's frame
+#: (as T's is, spatialkin.kernels.geometry.interval.placed) and, for TUBE, its major radius. Other edges ignore face.
+FACE = 10
 TURN, NAPPES, RADIUS, HEIGHT, TUBE = 0, 1, 2, 3, 6
+#: The face argument of the edges that are no face limit.
+NO_FACE = (np.eye(3), np.zeros(3), 0.0, 0.0, 0.0)
 #: Relative widening of cos and sin of a limit's angle: two ulps hold the exact values (math.cos and math.sin
 #: are faithful, within one ulp).
 TRIG_ULPS = 4.5e-16
@@ -74,7 +78,7 @@ def _face(p, pu, pv, kind, value, major):
 
 
 @jit(forceinline=True)
-def _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value):
+def _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value, face):
     """((g, g_u, g_v), (e, e_u, e_v)) over the raw parameter box U x V."""
     x, xu, xv, _ = local_first(s_data, U, V, box_trig(s_data, U, V))
     q = placed(m, c, x, pad, cpad)
@@ -86,22 +90,22 @@ def _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value):
         e = (ishift(U, -value), (1.0, 1.0), (0.0, 0.0))
     elif edge == EDGE_V:
         e = (ishift(V, -value), (0.0, 0.0), (1.0, 1.0))
-    elif edge >= FACE_T:
-        e = _face(q, qu, qv, edge - FACE_T, value, t_data[P0])
-    elif edge >= FACE_S:
-        e = _face(x, xu, xv, edge - FACE_S, value, s_data[P0])
+    elif edge >= FACE:
+        fm, fc, fpad, fcpad, major = face
+        e = _face(placed(fm, fc, x, fpad, fcpad), transform(fm, xu, fpad), transform(fm, xv, fpad), edge - FACE, value,
+                  major)
     else:
         e = (ishift(q[edge], -value), qu[edge], qv[edge])
     return g, e
 
 
 @jit
-def crossing(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, cu, cv, h):
+def crossing(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, cu, cv, h):
     """True when the box (cu, cv) +- h (scaled parameters; su, sv the power-of-two units) holds exactly one solution
     of g = 0, e = 0 (the Krawczyk test)."""
     Uc = (cu * su, cu * su)
     Vc = (cv * sv, cv * sv)
-    gc, ec = _system(s_data, t_data, m, c, pad, cpad, Uc, Vc, edge, value)
+    gc, ec = _system(s_data, t_data, m, c, pad, cpad, Uc, Vc, edge, value, face)
     # the Jacobian at the centre, in scaled parameters, and its float inverse
     j00 = 0.5 * (gc[1][0] + gc[1][1]) * su
     j01 = 0.5 * (gc[2][0] + gc[2][1]) * sv
@@ -114,7 +118,7 @@ def crossing(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, cu, cv, h):
     B = (-h, h)
     U = iscale(iadd(point(cu), B), su)
     V = iscale(iadd(point(cv), B), sv)
-    g, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
+    g, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value, face)
     gu, gv = iscale(g[1], su), iscale(g[2], sv)
     eu, ev = iscale(e[1], su), iscale(e[2], sv)
     for row in range(2):
@@ -126,23 +130,23 @@ def crossing(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, cu, cv, h):
 
 
 @jit
-def crossing_radius(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, cu, cv, h0, cap):
+def crossing_radius(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, cu, cv, h0, cap):
     """The smallest half-width h (from h0, growing eightfold up to cap) whose box round (cu, cv) passes crossing;
     inf when none does."""
     h = h0
     while h <= cap:
-        if crossing(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, cu, cv, h):
+        if crossing(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, cu, cv, h):
             return h
         h *= 8.0
     return math.inf
 
 
 @jit
-def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, piece):
+def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece):
     """(lo, hi): an enclosure of de/dt along the arc of the piece (t its parameter along a): the arc's direction
     (du/dt, dv/dt) = a + n dw/dt, dw/dt = -phi_t / phi_w, over the piece."""
     U, V = piece_box(piece, su, sv)
-    g, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
+    g, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value, face)
     p, q = piece[P], piece[Q]
     gu, gv = iscale(g[1], su), iscale(g[2], sv)            # derivatives in scaled parameters
     eu, ev = iscale(e[1], su), iscale(e[2], sv)
@@ -158,7 +162,7 @@ def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, piece):
 
 
 @jit
-def arc_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, inside, piece, depth):
+def arc_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, inside, piece, depth):
     """True when the arc of the proven piece lies strictly on the inside of the edge (e > 0 for inside = +1, e < 0
     for inside = -1): e's enclosure over the parallelogram of each stretch of T and its arc's enclosure there
     (tubes.arc_enclosure) is of that sign, the stretch halved where it is not, at most depth - 1 times."""
@@ -174,7 +178,7 @@ def arc_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, inside, pie
         W = (-piece[H], piece[H]) if level == 0.0 else arc_enclosure(s_data, t_data, m, c, pad, cpad, su, sv,
                                                                       piece, t0, t1)
         U, V = stretch_box(piece, t0, t1, W, su, sv)
-        _, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value)
+        _, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value, face)
         if (inside > 0.0 and e[0][0] > 0.0) or (inside < 0.0 and e[0][1] < 0.0):
             continue
         if level >= depth or not (inside > 0.0 and e[0][1] > 0.0 or inside < 0.0 and e[0][0] < 0.0):
@@ -191,15 +195,28 @@ def arc_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, inside, pie
 
 
 @jit
-def arcs_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, inside, pieces, depth, out):
+def arcs_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, inside, pieces, depth, out):
     """arc_inside of every piece (K, WIDTH), into out (K,) bool."""
     for i in range(pieces.shape[0]):
-        out[i] = arc_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, inside, pieces[i], depth)
+        out[i] = arc_inside(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, inside, pieces[i], depth)
 
 
 
 @jit
-def box_trim(s_data, t_data, m, c, pad, cpad, box, edge, value):
+def box_trim(s_data, t_data, m, c, pad, cpad, box, edge, value, face):
     """(lo, hi): an enclosure of e over the raw parameter box (u lo, u hi, v lo, v hi) of S."""
-    _, e = _system(s_data, t_data, m, c, pad, cpad, (box[0], box[1]), (box[2], box[3]), edge, value)
+    _, e = _system(s_data, t_data, m, c, pad, cpad, (box[0], box[1]), (box[2], box[3]), edge, value, face)
     return e[0][0], e[0][1]
+
+
+@jit
+def box_diameter(s_data, box):
+    """An upper bound of the diameter of S over the raw parameter box (u lo, u hi, v lo, v hi): the diagonal of its
+    local point's enclosure."""
+    U, V = (box[0], box[1]), (box[2], box[3])
+    x, _, _, _ = local_first(s_data, U, V, box_trig(s_data, U, V))
+    total = 0.0
+    for k in range(3):
+        width = up(x[k][1] - x[k][0])
+        total = up(total + up(width * width))
+    return up(math.sqrt(total))

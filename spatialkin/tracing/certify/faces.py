@@ -13,8 +13,7 @@ the level and the limit, kernels.certify.trims.crossing) inside the run. The ret
 arcs inside both regions, each from one such crossing (or the component's own end) to the next, a component
 inside all along returned whole and one outside all along not at all.
 
-Not proven: a point where a component touches a face edge from outside (clip's single points), and the faces of a
-surface the search reads in a re-framed chart of its own.
+Not proven: a point where a component touches a face edge from outside (clip's single points).
 
 References
 ----------
@@ -29,45 +28,52 @@ import numpy as np
 
 from ...geometry.trims import HEIGHT, RADIUS, TUBE, TURN, Limit
 from ...kernels.certify import trims as kr
+from ...kernels.geometry import surfaces as ks
 from ...kernels.certify import tubes as kt
 from ..curve.clip import WindowSolution
 from ..curve.status import CONTACT, TANGENT
 from .certify_points import certify_points
-from .trims import ARC_DEPTH, CROSSING_CAP, CROSSING_FIRST
+from ..search.topology import Reader
+from .trims import ARC_DEPTH, CROSSING_CAP, CROSSING_FIRST, ON_EDGE
 
-#: A cut arc's end lies at its component's own end when their arc lengths differ by less than this many
-#: tolerances.
+#: The ulp of 1.0 (np.float64).
+EPS = np.finfo(float).eps
+#: A cut arc's stored ends may lie this many of its component's tolerances from its dense output's.
 SAME_END = 1e3
 
 
 @dataclass(frozen=True)
 class FaceLimit:
     """One limit of a face's region as the kernels read it: of surface a (0) or b (1), in group ``group`` of its
-    region, e's code (kernels.certify.trims: FACE_S or FACE_T plus the kind) and value, and the side of the face
-    (inside: +1 where e > 0 inside, -1 where e < 0)."""
+    region, e's code (kernels.certify.trims.FACE plus the kind), the placement of the search's chart in that
+    surface's frame (face: kernels.certify.trims's face argument), and the side of the face (inside: +1 where e > 0
+    inside, -1 where e < 0)."""
     surface: int
     group: int
     limit: Limit
     code: int
+    face: tuple
     inside: float
+
+    @property
+    def value(self):
+        return float(self.limit.value)
 
 
 def face_limits(chart, a, b):
-    """(limits, unsupported): the FaceLimits of both surfaces' regions, and why the others cannot be proven."""
-    out, unsupported = [], []
-    r = chart.reader
+    """The FaceLimits of both surfaces' regions, each read on its own surface's local point."""
+    out = []
     for k, surface in enumerate((a, b)):
-        base = kr.FACE_S if surface is r.s else kr.FACE_T if surface is r.t else None
+        if not surface.region:
+            continue
+        placing = Reader(chart.p, surface)          # the chart's local point in the surface's frame
+        face = (placing.m, placing.c, float(placing.pad), float(placing.cpad), float(surface.data[ks.P0]))
         for g, group in enumerate(surface.region):
             for limit in group:
-                if base is None:
-                    unsupported.append(f"the face trims of {'ab'[k]} are not proven in the search's chart (a "
-                                       "re-framed copy of it)")
-                    continue
                 kind = {TURN: kr.NAPPES if limit.nappes else kr.TURN, RADIUS: kr.RADIUS, TUBE: kr.TUBE,
                         HEIGHT: kr.HEIGHT + limit.axis}[limit.kind]
-                out.append(FaceLimit(k, g, limit, base + kind, 1.0 if limit.lower else -1.0))
-    return out, unsupported
+                out.append(FaceLimit(k, g, limit, kr.FACE + kind, face, 1.0 if limit.lower else -1.0))
+    return out
 
 
 def limit_signs(chart, limits, pieces):
@@ -78,7 +84,7 @@ def limit_signs(chart, limits, pieces):
     strict = np.empty(len(pieces), dtype=np.bool_)
     for i, fl in enumerate(limits):
         for side in (1.0, -1.0):
-            kr.arcs_inside(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, fl.code, float(fl.limit.value), side,
+            kr.arcs_inside(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, fl.code, fl.value, fl.face, side,
                            pieces, ARC_DEPTH, strict)
             out[i, strict] = int(side * fl.inside)
     return out
@@ -122,7 +128,7 @@ def box_signs(chart, limits, box):
     raw = np.ascontiguousarray(box * np.repeat(chart.units, 2))
     out = np.zeros(len(limits), dtype=int)
     for i, fl in enumerate(limits):
-        lo, hi = kr.box_trim(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, raw, fl.code, float(fl.limit.value))
+        lo, hi = kr.box_trim(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, raw, fl.code, fl.value, fl.face)
         out[i] = int(fl.inside) if lo > 0.0 else -int(fl.inside) if hi < 0.0 else 0
     return out
 
@@ -172,8 +178,8 @@ def flips(chart, limits, signs, pieces, closed, end_boxes=()):
             fl = limits[l]
             if signs[l, before] == 0 or signs[l, after] == 0:
                 return None, None, f"the face edge {fl.limit.name} is not proven apart from a run of its tube"
-            rates = np.array([kr.edge_rate(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, fl.code,
-                                           float(fl.limit.value), pieces[k]) for k in run])
+            rates = np.array([kr.edge_rate(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, fl.code, fl.value,
+                                           fl.face, pieces[k]) for k in run])
             if not (np.all(rates[:, 0] > 0.0) or np.all(rates[:, 1] < 0.0)):
                 return None, None, f"the arc is not proven to cross the face edge {fl.limit.name} once"
             if signs[l, before] == signs[l, after]:       # monotone, of one sign either side: it does not vanish
@@ -202,26 +208,34 @@ def flips(chart, limits, signs, pieces, closed, end_boxes=()):
     return out, verdicts, None
 
 
-def end_flip(chart, limits, pieces, count, found, x):
-    """The index in found (Flips) of the run holding a proven crossing of each of its limits round the scaled
-    parameters x (2,) (a cut arc's end), or None. The regions' verdict changes only where one of those limits
-    vanishes, once each on the run's arc, inside its box: the edge the arc crosses lies within those boxes."""
+def end_flip(chart, limits, pieces, count, found, x, tolerance):
+    """(index in found (Flips), distance bound) of the run holding a proven crossing of each of its limits round the
+    scaled parameters x (2,) (a cut arc's end, where each of those limits is within ON_EDGE tolerances of 0), or
+    None. The regions' verdict changes only where one of those limits vanishes, once each on the run's arc, inside
+    its box: the edge the arc crosses lies within those boxes, and the end within the bound (the diameter of the
+    surface over the largest box) of that crossing."""
     r = chart.reader
     su, sv = float(chart.units[0]), float(chart.units[1])
     size = max(1.0, float(np.max(np.abs(x))))
+    at = np.ascontiguousarray(np.repeat(x * chart.units, 2))
     for i, flip in enumerate(found):
         run = np.ascontiguousarray(pieces[flip.indices(count)])
+        widest = 0.0
         for l in flip.limits:
             fl = limits[l]
-            h = kr.crossing_radius(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, fl.code,
-                                   float(fl.limit.value), float(x[0]), float(x[1]), CROSSING_FIRST * size,
-                                   CROSSING_CAP * size)
+            lo, hi = kr.box_trim(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, at, fl.code, fl.value, fl.face)
+            if max(abs(lo), abs(hi)) > ON_EDGE * tolerance:
+                break
+            h = kr.crossing_radius(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, fl.code, fl.value, fl.face,
+                                   float(x[0]), float(x[1]), CROSSING_FIRST * size, CROSSING_CAP * size)
             box = np.array([x[0] - h, x[0] + h, x[1] - h, x[1] + h])
             if not math.isfinite(h) or kt.point_in_pieces(run, len(run), box, chart.periods[0],
                                                           chart.periods[1]) < 0:
                 break
+            widest = max(widest, h)
         else:
-            return i
+            raw = np.array([x[0] - widest, x[0] + widest, x[1] - widest, x[1] + widest]) * np.repeat(chart.units, 2)
+            return i, kr.box_diameter(chart.p.data, raw)
     return None
 
 
@@ -241,58 +255,82 @@ def expected_arcs(found, verdicts, closed, count):
     return out
 
 
+def own_points(whole, curve):
+    """True when the cut arc's stored points between its ends are the component's own, in order, at their arc
+    lengths (the arc's s plus its start, across s = 0 of a closed component a turn less), and its s runs from 0 to
+    its length."""
+    s = np.asarray(curve.s, dtype=float)
+    if len(s) < 2 or s[0] != 0.0 or s[-1] != curve.length or not np.all(np.diff(s) > 0.0):
+        return False
+    inner = s[1:-1] + curve.sol.start
+    if whole.closed:
+        inner = np.mod(inner, whole.length)
+    knots = np.asarray(whole.s, dtype=float)
+    at = np.clip(np.searchsorted(knots, inner), 1, len(knots) - 1)
+    at = np.where(np.abs(knots[at - 1] - inner) < np.abs(knots[at] - inner), at - 1, at)
+    slack = 64.0 * EPS * max(whole.length, 1.0)
+    return bool(np.all(np.abs(knots[at] - inner) <= slack) and np.array_equal(whole.points[at], curve.points[1:-1]))
+
+
 def component_arcs(chart, limits, whole, t, returned):
-    """Failures (text, point) of one component (whole, its proven Tube t) against the returned curves cut from it
-    (returned: [CurveResult])."""
+    """(failures (text, point), {id of a returned arc: proven distance of its ends from the face edges' crossings})
+    of one component (whole, its proven Tube t) against the returned curves cut from it (returned: [CurveResult])."""
     if t is None or not t.proven or t.split:
-        return [("a component cut by the faces has no proven tube of one chain", whole.points[0])]
+        return [("a component cut by the faces has no proven tube of one chain", whole.points[0])], {}
     pieces = t.pieces
     count = len(pieces)
     signs = limit_signs(chart, limits, pieces)
     found, verdicts, reason = flips(chart, limits, signs, pieces, whole.closed, t.end_boxes)
     if reason is not None:
-        return [(f"a component cut by the faces: {reason}", whole.points[0])]
+        return [(f"a component cut by the faces: {reason}", whole.points[0])], {}
     want = expected_arcs(found, verdicts, whole.closed, count)
     if want == ["whole"]:
         if len(returned) == 1 and returned[0] is whole:
-            return []
-        return [("a component inside both faces all along is not returned whole", whole.points[0])]
-    got = []
+            return [], {}
+        return [("a component inside both faces all along is not returned whole", whole.points[0])], {}
+    got, reach = [], {}
+    slack = 64.0 * EPS * max(whole.length, 1.0)
     for curve in returned:
-        if curve is whole or not isinstance(curve.sol, WindowSolution):
-            return [("a returned curve is not an arc of its component between proven face edges", curve.points[0])]
+        if curve is whole or not isinstance(curve.sol, WindowSolution) or curve.closed:
+            return [("a returned curve is not an arc of its component between proven face edges",
+                     curve.points[0])], {}
         start, length = curve.sol.start, curve.length
-        longest = whole.length if whole.closed else whole.length + SAME_END * whole.tolerance
+        longest = whole.length if whole.closed else whole.length + slack
         if not (0.0 < length < longest) or curve.sol.length != length:
-            return [("a returned arc is longer than its component", curve.points[0])]
+            return [("a returned arc is longer than its component", curve.points[0])], {}
         _, at_ends, _, _ = curve.sol.evaluate(np.array([0.0, length]), with_params=False)
-        if np.max(np.abs(at_ends - curve.points[[0, -1]])) > SAME_END * curve.tolerance:
-            return [("a returned arc's stored ends are not its dense output's", curve.points[0])]
-        ends = []
+        if np.max(np.abs(at_ends - curve.points[[0, -1]])) > SAME_END * whole.tolerance:
+            return [("a returned arc's stored ends are not its dense output's", curve.points[0])], {}
+        if not own_points(whole, curve):
+            return [("a returned arc's stored points are not its component's, at their arc lengths",
+                     curve.points[0])], {}
+        ends, bound = [], 0.0
         for s, point, own in ((start, at_ends[0], 0.0), (start + length, at_ends[1], whole.length)):
-            if not whole.closed and abs(s - own) <= SAME_END * whole.tolerance:
-                ends.append("start" if own == 0.0 else "end")
+            if not whole.closed and abs(s - own) <= slack:
+                ends.append("start" if own == 0.0 else "end")        # the component's own end (proven before)
                 continue
-            x = chart.scaled(point)[0]
-            i = end_flip(chart, limits, pieces, count, found, x)
-            if i is None:
-                return [("an end of a returned arc is not a proven crossing of a face edge", point)]
-            ends.append(i)
+            match = end_flip(chart, limits, pieces, count, found, chart.scaled(point)[0], whole.tolerance)
+            if match is None:
+                return [("an end of a returned arc is not a proven crossing of a face edge", point)], {}
+            ends.append(match[0])
+            bound = max(bound, match[1] + 64.0 * EPS * max(1.0, float(np.max(np.abs(point)))))
         got.append(tuple(ends))
+        reach[id(curve)] = bound
     if sorted(map(str, got)) != sorted(map(str, want)):
         return [(f"the arcs of a component inside both faces are {len(want)} between proven crossings, "
-                 f"{len(got)} returned", whole.points[0])]
-    return []
+                 f"{len(got)} returned", whole.points[0])], {}
+    return [], reach
 
 
 def cut(base, a, b, curves, wholes):
     """(failures, radii, tubes, bounds) of the cut answer (curves, the CurveResults returned) from base, the
     Certificate of the answer before the cut (wholes): why the cut is not proven ((text, point) each; none when it
     is), and each returned curve's stored points' proven radii, tube (its component's) and distance bound (its
-    component's, and its ends' radii)."""
+    component's, its ends' radii, and their distance from the crossings of the face edges)."""
     chart = base.chart
     failures = []
-    limits, unsupported = face_limits(chart, a, b) if chart is not None else ([], ["no search chart"])
+    limits = face_limits(chart, a, b) if chart is not None else []
+    unsupported = [] if chart is not None else ["no search chart"]
     owner = {}
     for i, curve in enumerate(curves):
         parent = curve.sol.whole if isinstance(curve.sol, WindowSolution) else curve.sol
@@ -301,16 +339,19 @@ def cut(base, a, b, curves, wholes):
             failures.append(("a point where a component touches a face edge (not proven)" if curve.length == 0 else
                              "a returned curve comes from no traced component", curve.points[0]))
         owner[i] = j
+    reach = {}
     if unsupported:
         failures.append((unsupported[0], None))
     else:
         for j, whole in enumerate(wholes):
-            mine = [c for i, c in enumerate(curves) if owner[i] == j]
-            regular = whole.length > 0 and whole.status not in (TANGENT, CONTACT)
-            if regular:
-                failures += component_arcs(chart, limits, whole, base.tubes[j], mine)
-            elif mine:
-                failures.append(("a singular component cut by the faces (not proven)", whole.points[0]))
+            if whole.length > 0 and whole.status not in (TANGENT, CONTACT):
+                more, ends = component_arcs(chart, limits, whole, base.tubes[j], [c for i, c in enumerate(curves)
+                                                                                  if owner[i] == j])
+                failures += more
+                reach.update(ends)
+            else:
+                failures.append(("a singular component or a single point, cut by the faces or not (not proven)",
+                                 whole.points[0]))
     radii, tubes, bounds = [], [], []
     for i, curve in enumerate(curves):
         j = owner[i]
@@ -322,8 +363,8 @@ def cut(base, a, b, curves, wholes):
             tangents = np.gradient(points, axis=0) if len(points) > 1 else np.zeros((len(points), 3))
             radii.append(certify_points(a, b, points, tangents) if len(points) > 1 else np.full(len(points),
                                                                                                   math.inf))
-            ends = radii[-1][[0, -1]] if len(points) else np.empty(0)
             inner = base.distance_bounds[j] if j is not None else math.inf
-            bounds.append(max(inner, float(np.max(ends)) * math.sqrt(3.0)) if len(ends) else inner)
+            ends = float(np.max(radii[-1][[0, -1]])) * math.sqrt(3.0) if len(points) else math.inf
+            bounds.append(max(inner, ends, reach.get(id(curve), math.inf)))
         tubes.append(base.tubes[j] if j is not None else None)
     return failures, radii, tubes, bounds

@@ -136,7 +136,7 @@ def edge_crossings(chart, x, h):
                 size = max(1.0, abs(cu), abs(cv))
                 room = 0.999 * min(root - a, b - root) / other
                 radius = kr.crossing_radius(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv,
-                                            (kr.EDGE_U, kr.EDGE_V)[fixed], value, cu, cv,
+                                            (kr.EDGE_U, kr.EDGE_V)[fixed], value, kr.NO_FACE, cu, cv,
                                             min(CROSSING_FIRST * size, room), room)
                 if not (math.isfinite(radius) and radius < room):
                     return None

@@ -62,7 +62,7 @@ def trim_value(reader, box, edge):
     """(lo, hi): e of the edge over the raw parameter box (4,) of reader.s (reader: P read against Q, so that a
     Q edge's code is Q's local axis)."""
     return kr.box_trim(reader.s.data, reader.t.data, reader.m, reader.c, reader.pad, reader.cpad,
-                       np.ascontiguousarray(box, dtype=float), edge.code, edge.value)
+                       np.ascontiguousarray(box, dtype=float), edge.code, edge.value, kr.NO_FACE)
 
 
 def outside(reader, box, trims):
@@ -129,7 +129,7 @@ def inner_pieces(chart, edge, pieces):
     r = chart.reader
     out = np.empty(len(pieces), dtype=np.bool_)
     kr.arcs_inside(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]), float(chart.units[1]),
-                   edge.code, edge.value, edge.inside, pieces, ARC_DEPTH, out)
+                   edge.code, edge.value, kr.NO_FACE, edge.inside, pieces, ARC_DEPTH, out)
     return out
 
 
@@ -161,7 +161,7 @@ def touching_runs(chart, edge, pieces, inner, found):
                    for k in run):
             return "the crossing at an end lies in no piece of the tube that touches the edge"
         rates = np.array([kr.edge_rate(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, edge.code,
-                                       edge.value, pieces[k]) for k in run])
+                                       edge.value, kr.NO_FACE, pieces[k]) for k in run])
         if not (np.all(rates[:, 0] > 0.0) or np.all(rates[:, 1] < 0.0)):
             return "its arc is not proven to cross the trim edge once"
     return None
@@ -198,7 +198,7 @@ def end_crossing(chart, trims, curve, x):
     for _, edge in sorted(near, key=lambda item: item[0]):
         size = max(1.0, float(np.max(np.abs(x))))
         h = kr.crossing_radius(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]),
-                               float(chart.units[1]), edge.code, edge.value, float(x[0]), float(x[1]),
+                               float(chart.units[1]), edge.code, edge.value, kr.NO_FACE, float(x[0]), float(x[1]),
                                CROSSING_FIRST * size, CROSSING_CAP * size)
         if math.isfinite(h):
             return edge, np.array([x[0] - h, x[0] + h, x[1] - h, x[1] + h])

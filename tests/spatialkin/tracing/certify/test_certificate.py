@@ -112,14 +112,13 @@ def test_moved_point_is_not_vouched_for(factor):
 
 
 def test_strict_raises_with_the_failed_claims():
-    """certify='strict' raises CertificationError naming the claims it could not prove (a sphere's angular range
-    cuts a circle into an arc, and the search reads the sphere in a turned chart, where its face trims are not
-    proven); True returns them, said not proven."""
-    pair = (sk.Sphere(1.0, u_range=(-1.0, 1.0)), sk.Plane(sk.Frame((0.0, 0.0, 0.3))))
+    """certify='strict' raises CertificationError naming the claims it could not prove (a sphere in a cylinder of
+    its radius touches it along a circle: a singular curve, not proven); True returns them, said not proven."""
+    pair = (sk.Sphere(1.0), sk.Cylinder(1.0, v_range=(-2.0, 2.0)))
     loose = sk.intersect(*pair, certify=True)
-    assert len(loose) == 1 and not loose.certificate.proven
-    assert not loose.certificate.claims["one_component"].proven
-    assert "face trims" in loose.certificate.claims["one_component"].detail
+    assert len(loose) == 1 and loose[0].status == "tangent" and not loose.certificate.proven
+    assert not loose.certificate.claims["singular"].proven
+    assert "tangency" in loose.certificate.claims["singular"].detail
     with pytest.raises(sk.CertificationError) as err:
         sk.intersect(*pair, certify="strict")
     assert isinstance(err.value, CertificationError)

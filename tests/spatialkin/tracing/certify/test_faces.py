@@ -2,6 +2,7 @@
 plane's disc or annulus proven claim by claim, each checked against the brute-force oracle's components and the
 faces' own inside test; answers made wrong on purpose (an arc dropped, cut short, run past its edge, or returned
 uncut) are not proven."""
+import dataclasses
 import math
 
 import numpy as np
@@ -108,15 +109,18 @@ def test_an_arc_cut_off_its_edge_is_not_proven(monkeypatch, move):
     assert not cert.proven and not cert.claims["one_component"].proven
 
 
-def test_faces_of_a_re_framed_chart_are_said_not_proven():
-    """A sphere's angular range where the search reads the sphere in a turned chart of its own: not proven, the
-    claims say why, and strict raises."""
-    pair = (sk.Sphere(1.0, u_range=(-1.0, 1.0)), sk.Plane(sk.Frame((0.0, 0.0, 0.3))))
-    curves = sk.intersect(*pair, certify=True)
-    assert len(curves) == 1 and not curves.certificate.proven
-    assert "re-framed" in curves.certificate.claims["complete"].detail
-    with pytest.raises(sk.CertificationError):
-        sk.intersect(*pair, certify="strict")
+def test_faces_of_a_sphere_searched_in_a_turned_chart_are_proven():
+    """A sphere's angular range |u| <= 1 where the search reads the sphere in a turned chart of its own (its limits
+    read through the chart's placement in the sphere's frame): the arc of the circle of radius rho = sqrt(0.91) at
+    z = 0.3, proven, of length 2 rho (1e-12), its ends at u = -1 and 1 (1e-12)."""
+    sphere = sk.Sphere(1.0, u_range=(-1.0, 1.0))
+    for pair in ((sphere, sk.Plane(sk.Frame((0.0, 0.0, 0.3)))), (sk.Plane(sk.Frame((0.0, 0.0, 0.3))), sphere)):
+        curves = sk.intersect(*pair, certify=True)
+        assert len(curves) == 1 and curves.certificate.proven, curves.certificate.failed
+        rho = math.sqrt(0.91)
+        assert abs(curves[0].length - 2.0 * rho) < 1e-12
+        ends = curves[0].points[[0, -1]]
+        assert np.allclose(np.sort(np.arctan2(ends[:, 1], ends[:, 0])), [-1.0, 1.0], atol=1e-12, rtol=0)
 
 
 def test_a_loop_outside_a_face_leaves_a_proven_empty_answer():
@@ -141,3 +145,56 @@ def test_an_arc_run_once_round_its_loop_more_is_not_proven(monkeypatch):
     longer = window(whole, (arc.sol.start, edge, 0), (arc.sol.start + arc.length + whole.length, edge, 0))
     cert = certify(a, b, [longer], topo, scale, tolerance, wholes=wholes)
     assert not cert.proven and not cert.claims["one_component"].proven
+
+
+def test_an_arc_run_past_its_edges_is_not_proven_or_bounded(monkeypatch):
+    """The arc inside the half cylinder run on past both face edges along its component: by 1e-5, not proven (its
+    ends are not on the edges); by 1e-9, proven only with a distance bound at least the ends' distance from the
+    crossings (the measured distance of the moved ends from the true ones)."""
+    a, b = PAIRS["half cylinder, sphere"]
+    answer, topo, scale, tolerance, wholes = parts(monkeypatch, a, b)
+    arc, whole = answer[0], wholes[0]
+    edge = limits(a)[0]
+    for move in (1e-5, 1e-9):
+        moved = window(whole, (arc.sol.start - move, edge, 0), (arc.sol.start + arc.length + move, edge, 0))
+        cert = certify(a, b, [moved], topo, scale, tolerance, wholes=wholes)
+        if move > 1e-7:
+            assert not cert.proven and not cert.claims["one_component"].proven
+        else:
+            shift = np.max(np.linalg.norm(moved.points[[0, -1]] - arc.points[[0, -1]], axis=1))
+            assert not cert.proven or cert.distance_bounds[0] >= shift
+
+
+def test_forged_stored_points_of_an_arc_are_not_proven(monkeypatch):
+    """The arc's dense output kept, its stored points replaced by points of its component outside the face (its
+    ends kept, or all of them with its tolerance raised to 1), or the arc flagged closed: not proven."""
+    a, b = PAIRS["half cylinder, sphere"]
+    answer, topo, scale, tolerance, wholes = parts(monkeypatch, a, b)
+    arc, whole = answer[0], wholes[0]
+    outside = np.linspace(arc.sol.start + arc.length + 0.3, arc.sol.start + whole.length - 0.3, len(arc.points))
+    elsewhere = whole.sol(outside % whole.length)
+    inner = arc.points.copy()
+    inner[1:-1] = elsewhere[1:-1]
+    assert not inside_region(a, elsewhere, 1e-9).any()
+    for forged in (dataclasses.replace(arc, points=inner), dataclasses.replace(arc, points=elsewhere, tolerance=1.0),
+                   dataclasses.replace(arc, closed=True)):
+        cert = certify(a, b, [forged], topo, scale, tolerance, wholes=wholes)
+        assert not cert.proven and not cert.claims["one_component"].proven
+
+
+def test_an_arc_stopped_short_of_its_components_end_is_not_proven(monkeypatch):
+    """A half cylinder of height 2 and the sphere: the component ends on the cylinder's rim; its arc inside the face
+    stopped 9e-8 short of that end (less than the proven crossing's tolerance) is not proven."""
+    a = sk.Cylinder(1.0, v_range=(0.0, 2.0), u_range=(0.0, math.pi))
+    b = PAIRS["half cylinder, sphere"][1]
+    answer, topo, scale, tolerance, wholes = parts(monkeypatch, a, b)
+    assert proven(a, b, answer, topo, scale, tolerance, wholes)
+    arc = next(c for c in answer if any(abs(c.sol.start + c.length - w.length) < 1e-12 or c.sol.start == 0.0
+                                        for w in wholes if w.sol is c.sol.whole))
+    whole = next(w for w in wholes if w.sol is arc.sol.whole)
+    lo, hi = arc.sol.start, arc.sol.start + arc.length
+    lo, hi = (lo + 9e-8, hi) if lo == 0.0 else (lo, hi - 9e-8)
+    short = window(whole, (lo, None, None), (hi, None, None))
+    rest = [c for c in answer if c is not arc]
+    cert = certify(a, b, [short] + rest, topo, scale, tolerance, wholes=wholes)
+    assert not cert.proven

@@ -103,11 +103,11 @@ class Certificate:
       curve is one whole piece of its component within the trims when each end is a proven crossing of a trim
       edge inside the tube (the Krawczyk test on g = 0 and the edge), the arc crosses that edge once in the pieces
       that touch it, and every other piece lies strictly inside every trim (spatialkin.tracing.certify.trims, for
-      the trims of length parameters). Faces' regions (angular ranges, a sphere's latitudes, a plane's disc or
-      annulus) cut the components after tracing: the answer before the cut is proven, then each returned arc is
-      proven to run between two proven crossings of face edges along its component's tube, and every arc inside
-      both faces to be returned (spatialkin.tracing.certify.faces; the faces of a surface searched in a re-framed
-      chart are not proven).
+      the trims of length parameters). Faces' regions (angular ranges, a sphere's latitudes, a torus's tube angles,
+      a plane's disc or annulus) cut the components after tracing: the answer before the cut is proven, then each
+      returned arc is proven to run between two proven crossings of face edges along its component's tube, and
+      every arc inside both faces to be returned (spatialkin.tracing.certify.faces; a point where a component
+      touches a face edge from outside is not proven).
     - **distinct**: the tubes of different curves are proven disjoint: no two returned curves share a point (with
       one_component, no two are pieces of one component).
     - **points**: every stored point has a finite proven radius (``radii``): a box of that half-width round it

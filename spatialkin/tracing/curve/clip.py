@@ -5,14 +5,15 @@ module keeps the arcs that lie inside both faces, and the points where a curve t
 
 Every limit is 1-Lipschitz in the point, so along a curve parametrised by arc length its value f(s) changes by
 at most |s' - s| (plus the points' error, ``slack``). Between two samples s_k < s_k+1 a zero of f is possible
-only where |f_k| + |f_k+1| <= (s_k+1 - s_k) + 2 slack: those intervals are halved until they are cleared or
-shorter than ``FINEST`` x scale, so no crossing, and no pair of crossings between two samples, is missed (a
+only where |f_k| + |f_k+1| <= (s_k+1 - s_k) + 2 slack: those intervals are cut into ``SECTIONS`` equal parts, round
+after round (one evaluation of the dense output per round), until they are cleared or shorter than ``FINEST`` x
+scale, so no crossing, and no pair of crossings between two samples, is missed (a
 curve that only touches an edge to within that length is taken as touching: no crossing). Each crossing is then
 solved on the dense output by Brent's method, exactly on the edge. The pieces between the crossings that lie
 inside both regions (within slack: a curve lying along an edge is kept; a short piece within slack of an edge
 between two inside ones is a touch from inside, cut by round-off) are the arcs returned; neighbours are merged,
 and a closed component that never leaves is returned whole. Where the curve comes within slack of an edge from
-outside without crossing it (a short piece, or an interval the halving left), the faces meet in one point: the
+outside without crossing it (a short piece, or an interval the cutting left), the faces meet in one point: the
 point of the curve deepest in both faces there, found by bounded Brent minimisation, returned with length 0.
 
 References
@@ -31,9 +32,12 @@ from .result import CurveResult
 from .status import BOUNDARY, CONTACT, TANGENT, open_outcome
 from ...geometry.traits import traits
 
-#: Intervals that may hide a crossing are halved down to this length (relative to the scale).
+#: Intervals that may hide a crossing are cut down to this length (relative to the scale) ...
 FINEST = 1e-9
-#: ... and at most this many intervals are kept while halving (a curve running along an edge stays unresolved
+#: ... into this many parts a round (a crossing's interval is open all the way down: the limit changes slower than
+#: the arc length) ...
+SECTIONS = 16
+#: ... and at most this many intervals are kept while cutting (a curve running along an edge stays unresolved
 #: there, which is what it is: on the edge).
 MOST_INTERVALS = 200_000
 #: A piece between two cuts is tested at this many points (its ends included).
@@ -183,15 +187,17 @@ def crossings(curve, surface, limit, k, slack, scale):
         done_s.append(np.stack([lo_s[settled], hi_s[settled]], axis=1))
         done_f.append(np.stack([lo_f[settled], hi_f[settled]], axis=1))
         lo_s, hi_s, lo_f, hi_f = lo_s[split], hi_s[split], lo_f[split], hi_f[split]
-        if not len(lo_s) or len(lo_s) > MOST_INTERVALS:
+        if not len(lo_s) or len(lo_s) * SECTIONS > MOST_INTERVALS:
             if len(lo_s):
                 done_s.append(np.stack([lo_s, hi_s], axis=1))
                 done_f.append(np.stack([lo_f, hi_f], axis=1))
             break
-        mid = 0.5 * (lo_s + hi_s)
-        f_mid = value(mid)
-        lo_s, hi_s = np.concatenate([lo_s, mid]), np.concatenate([mid, hi_s])
-        lo_f, hi_f = np.concatenate([lo_f, f_mid]), np.concatenate([f_mid, hi_f])
+        inner = (lo_s[:, None] + (hi_s - lo_s)[:, None] * (np.arange(1, SECTIONS) / SECTIONS)[None, :])
+        f_inner = value(inner.ravel()).reshape(inner.shape)
+        knots_s = np.concatenate([lo_s[:, None], inner, hi_s[:, None]], axis=1)
+        knots_f = np.concatenate([lo_f[:, None], f_inner, hi_f[:, None]], axis=1)
+        lo_s, hi_s = knots_s[:, :-1].ravel(), knots_s[:, 1:].ravel()
+        lo_f, hi_f = knots_f[:, :-1].ravel(), knots_f[:, 1:].ravel()
     ss, ff = np.concatenate(done_s), np.concatenate(done_f)
     change = (ff[:, 0] < 0.0) != (ff[:, 1] < 0.0)
     near = ~change & (np.abs(ff).max(axis=1) <= slack)

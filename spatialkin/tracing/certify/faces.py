@@ -1,17 +1,21 @@
 """Face trims in the certificate: an answer cut by the faces' regions, proven from the answer before the cut.
 
 The tracer follows each component on the surfaces as their length trims leave them and cuts it afterwards at the
-edges of the regions (angular ranges, a sphere's latitudes, a plane's disc or annulus; spatialkin.tracing.curve.clip).
-The certificate takes the same two steps. It proves the uncut answer claim by claim (the search reads the surfaces
-without their regions too), then, along each component's chain of proven pieces, encloses every limit of the
-regions (spatialkin.geometry.trims.Limit: >= 0 inside) over each piece's arc (kernels.certify.trims.arcs_inside):
-the arc lies inside the limit, outside it, or the limit may change sign there. A run of pieces where it may must
-hold one limit only, monotone along the run (its rate of one sign, kernels.certify.trims.edge_rate), and of
-opposite signs on the pieces either side: it then vanishes exactly once on the run's arc. Where that flips the
-regions' verdict, a returned arc must end there: its end is a proven crossing of that edge (the Krawczyk test of
-the level and the limit, kernels.certify.trims.crossing) inside the run. The returned curves must be exactly the
-arcs inside both regions, each from one such crossing (or the component's own end) to the next, a component
-inside all along returned whole and one outside all along not at all.
+edges of the regions (angular ranges, a sphere's latitudes, a torus's tube angles, a plane's disc or annulus;
+spatialkin.tracing.curve.clip). The certificate takes the same two steps. It proves the uncut answer claim by claim
+(the search reads the surfaces without their regions too), then, along each component's chain of proven pieces,
+encloses every limit of the regions (spatialkin.geometry.trims.Limit: >= 0 inside, read on its own surface's local
+point through the chart's rigorous placement in that surface's frame) over each piece's arc
+(kernels.certify.trims.arcs_inside): the arc lies inside the limit, outside it, or the limit may change sign there.
+On a run of pieces where limits may change sign, each of them must be monotone along the run (its rate of one sign,
+kernels.certify.trims.edge_rate) and of strict signs on the pieces either side: equal signs, it does not vanish
+there; opposite ones, it vanishes exactly once on the run's arc (two limits at once where an angular range is a
+half turn: its edges lie in one plane). Where the regions' verdict flips across the run, a returned arc must end
+there: within ON_EDGE tolerances of those edges, and inside a box round its end proven to hold a crossing of each
+of them (the Krawczyk test of the level and the limit, kernels.certify.trims.crossing) lying in the run; its
+distance bound counts the surface's diameter over that box. The returned curves must be exactly the arcs inside
+both regions, each from one such crossing (or the component's own end) to the next, with the component's own
+stored points between, a component inside all along returned whole and one outside all along not at all.
 
 Not proven: a point where a component touches a face edge from outside (clip's single points).
 
@@ -135,9 +139,9 @@ def box_signs(chart, limits, box):
 
 def flips(chart, limits, signs, pieces, closed, end_boxes=()):
     """(flips in chain order, the verdict of every piece (K,): True, False, or None inside a flip's run; a reason
-    when the verdicts along the chain cannot be settled, else None). signs (L, K) is settled in place where a limit
-    is proven not to vanish on a run. end_boxes: an open chain's proven end boxes (scaled), whose signs stand
-    beside its first and last pieces."""
+    when the verdicts along the chain cannot be settled, else None). signs (L, K): limit_signs of the pieces (a
+    limit proven not to vanish on a run gets its sign there). end_boxes: an open chain's proven end boxes (scaled),
+    whose signs stand beside its first and last pieces."""
     count = pieces.shape[0]
     if not closed and len(end_boxes) == 2:          # the ends as pieces -1 and count: one more column each side
         signs = np.column_stack([box_signs(chart, limits, end_boxes[0]), signs,

@@ -141,11 +141,9 @@ def crossing_radius(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, 
     return math.inf
 
 
-@jit
-def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece):
-    """(lo, hi): an enclosure of de/dt along the arc of the piece (t its parameter along a): the arc's direction
-    (du/dt, dv/dt) = a + n dw/dt, dw/dt = -phi_t / phi_w, over the piece."""
-    U, V = piece_box(piece, su, sv)
+@jit(forceinline=True)
+def _rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece, U, V):
+    """(lo, hi): an enclosure of de/dt along the arc of the piece over the raw box U x V holding that arc."""
     g, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value, face)
     p, q = piece[P], piece[Q]
     gu, gv = iscale(g[1], su), iscale(g[2], sv)            # derivatives in scaled parameters
@@ -159,6 +157,26 @@ def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece)
     dv = iadd(point(q), iscale(dw, p))
     rate = iadd(imul(eu, du), imul(ev, dv))
     return rate[0], rate[1]
+
+
+@jit
+def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece, stretches):
+    """(lo, hi): an enclosure of de/dt along the arc of the piece (t its parameter along a): the arc's direction
+    (du/dt, dv/dt) = a + n dw/dt, dw/dt = -phi_t / phi_w, over the piece's parallelogram (stretches 0), or the hull
+    of its enclosures over that many equal stretches of T, each with its arc's enclosure (tubes.arc_enclosure)."""
+    if stretches == 0:
+        U, V = piece_box(piece, su, sv)
+        return _rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece, U, V)
+    lo, hi = math.inf, -math.inf
+    t0, t1 = piece[T0], piece[T1]
+    for k in range(stretches):
+        a = t0 + (t1 - t0) * k / stretches
+        b = t1 if k == stretches - 1 else t0 + (t1 - t0) * (k + 1) / stretches
+        W = arc_enclosure(s_data, t_data, m, c, pad, cpad, su, sv, piece, a, b)
+        U, V = stretch_box(piece, a, b, W, su, sv)
+        r = _rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece, U, V)
+        lo, hi = min(lo, r[0]), max(hi, r[1])
+    return lo, hi
 
 
 @jit

@@ -38,7 +38,7 @@ from ..curve.clip import WindowSolution
 from ..curve.status import CONTACT, TANGENT
 from .certify_points import certify_points
 from ..search.topology import Reader
-from .trims import ARC_DEPTH, CROSSING_CAP, CROSSING_FIRST, ON_EDGE
+from .trims import ARC_DEPTH, CROSSING_CAP, CROSSING_FIRST, ON_EDGE, piece_rate
 
 #: The ulp of 1.0 (np.float64).
 EPS = np.finfo(float).eps
@@ -169,8 +169,6 @@ def flips(chart, limits, signs, pieces, closed, end_boxes=()):
                 runs.append([k, k])
         prev = k
     out = []
-    r = chart.reader
-    su, sv = float(chart.units[0]), float(chart.units[1])
     for first, last in runs:
         if not closed and (first == 0 or last == count - 1):
             return None, None, "a face edge comes near an end of the component"
@@ -182,8 +180,7 @@ def flips(chart, limits, signs, pieces, closed, end_boxes=()):
             fl = limits[l]
             if signs[l, before] == 0 or signs[l, after] == 0:
                 return None, None, f"the face edge {fl.limit.name} is not proven apart from a run of its tube"
-            rates = np.array([kr.edge_rate(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, fl.code, fl.value,
-                                           fl.face, pieces[k]) for k in run])
+            rates = np.array([piece_rate(chart, fl.code, fl.value, fl.face, pieces[k]) for k in run])
             if not (np.all(rates[:, 0] > 0.0) or np.all(rates[:, 1] < 0.0)):
                 return None, None, f"the arc is not proven to cross the face edge {fl.limit.name} once"
             if signs[l, before] == signs[l, after]:       # monotone, of one sign either side: it does not vanish

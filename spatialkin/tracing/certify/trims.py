@@ -21,6 +21,9 @@ CROSSING_FIRST, CROSSING_CAP = 1e-12, 1e-4
 ON_EDGE = 1e3
 #: Deepest halving of a piece's length when its arc is proven on one side of an edge.
 ARC_DEPTH = 8
+#: Stretches of a piece over which an edge's rate along its arc is enclosed again, where the whole parallelogram
+#: gives no sign.
+RATE_STRETCHES = 16
 
 
 @dataclass(frozen=True)
@@ -150,8 +153,6 @@ def touching_runs(chart, edge, pieces, inner, found):
         tail -= 1
     if head >= tail or np.any((touching >= head) & (touching < tail)):
         return "its tube comes near a trim edge away from its ends"
-    r = chart.reader
-    su, sv = (float(u) for u in chart.units)
     for run, (end_edge, box) in ((range(0, head), found[0]), (range(tail, count), found[1])):
         if not len(run):
             continue
@@ -160,11 +161,22 @@ def touching_runs(chart, edge, pieces, inner, found):
         if not any(kt.point_in_pieces(pieces[k:k + 1], 1, box, chart.periods[0], chart.periods[1]) == 0
                    for k in run):
             return "the crossing at an end lies in no piece of the tube that touches the edge"
-        rates = np.array([kr.edge_rate(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, edge.code,
-                                       edge.value, kr.NO_FACE, pieces[k]) for k in run])
+        rates = np.array([piece_rate(chart, edge.code, edge.value, kr.NO_FACE, pieces[k]) for k in run])
         if not (np.all(rates[:, 0] > 0.0) or np.all(rates[:, 1] < 0.0)):
             return "its arc is not proven to cross the trim edge once"
     return None
+
+
+def piece_rate(chart, code, value, face, piece):
+    """(lo, hi): an enclosure of an edge's rate along the arc of a proven piece (kernels.certify.trims.edge_rate),
+    over its parallelogram, or, where that holds 0, the hull over RATE_STRETCHES stretches of the arc."""
+    r = chart.reader
+    su, sv = float(chart.units[0]), float(chart.units[1])
+    for stretches in (0, RATE_STRETCHES):
+        lo, hi = kr.edge_rate(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, code, value, face, piece, stretches)
+        if lo > 0.0 or hi < 0.0:
+            break
+    return lo, hi
 
 
 def closed_inside(chart, trims, unsupported, tube, index, ends):

@@ -161,7 +161,14 @@ class Certificate:
         out, the node's ball bounding it); proven in closed form, a bound of the Hausdorff distance between its
         whole dense output and the true curve.
     tubes : list of Tube or None
-        Per curve, its chain of pieces (spatialkin.tracing.certify.tubes.Tube).
+        Per curve, its chain of pieces (spatialkin.tracing.certify.tubes.Tube); for an arc cut by the faces, its
+        component's.
+    topology, chart
+        The search behind the answer (spatialkin.tracing.search.topology.Topology, None for a closed form) and the
+        chart its tubes are read in (spatialkin.tracing.certify.tubes.Chart, or None).
+
+    Where a face's region cuts the answer, the claims are proven for its components before the cut (their failures
+    name those components) and for the cut itself (spatialkin.tracing.certify.faces).
 
     References
     ----------

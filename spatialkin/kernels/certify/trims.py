@@ -4,9 +4,9 @@ A trim edge is the zero set of e: a parameter of S held at a value (e = u - u0 o
 of T (a plane's x or y, a cylinder's or cone's z) held at a value (e = q_axis - value, q = M s + c the point of S in
 T's frame, spatialkin.kernels.geometry.interval), or a face's limit (spatialkin.geometry.trims.Limit) read on the
 local point of its own surface (S placed in that surface's frame): a half-plane through the local z axis at an
-angle, cos(angle) y - sin(angle) x (on a cone's lower nappe, z < 0, its negative), a torus's tube angle,
-cos(angle) z - sin(angle) (rho - R), a local coordinate less a value, or the distance rho from the local z axis
-less a value. ``crossing`` proves, by the Krawczyk operator of the 2 x 2 system (g, e) on a box of S's parameters, that the box
+angle, cos(angle) y - sin(angle) x (on a cone's lower nappe, z < 0, its negative), a torus's tube angle, cos(angle)
+z - sin(angle) (rho - R), a local coordinate less a value, or the distance rho from the local z axis less a value.
+``crossing`` proves, by the Krawczyk operator of the 2 x 2 system (g, e) on a box of S's parameters, that the box
 holds exactly one point of the curve on the edge; ``edge_rate`` encloses de/dt along the arc of a tube piece
 (spatialkin.kernels.certify.tubes), so that a rate of one sign proves that the arc crosses the edge at most once
 there; ``arc_inside`` encloses e along a piece's arc (on stretches of it, with the arc's own enclosure there), to

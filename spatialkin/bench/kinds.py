@@ -68,6 +68,21 @@ def special_cases():
     return [("steinmetz cyl-cyl", a, b)]
 
 
+def face_cases():
+    """[(name, a, b)] of CAD faces, in the pair kinds' placements: trims that are not ranges of a length (half and
+    quarter turns, a turn and a half, a sphere's band of latitudes, an annulus) cutting the components into arcs."""
+    cylinder, cone, torus = surface("cylinder", 0), surface("cone", 0), surface("torus", 0)
+    return [("half cylinder-sphere", Cylinder(CYLINDER_RADIUS, cylinder.frame, cylinder.v_range,
+                                              u_range=(0.0, math.pi)), surface("sphere", 1)),
+            ("quarter torus-cylinder", Torus(*TORUS_RADII, torus.frame, u_range=(0.0, 0.5 * math.pi)),
+             surface("cylinder", 1)),
+            ("3/4 cone-sphere", Cone(CONE_HALF_ANGLE, cone.frame, CONE_V_RANGE, u_range=(0.0, 1.5 * math.pi)),
+             surface("sphere", 1)),
+            ("sphere band-cylinder", Sphere(SPHERE_RADIUS, surface("sphere", 0).frame, v_range=(-0.4, 0.6)),
+             surface("cylinder", 1)),
+            ("annulus-torus", Plane(surface("plane", 0).frame, radius=1.6, inner_radius=0.6), surface("torus", 1))]
+
+
 # --- the same surfaces as OpenCascade geometry (cadquery-ocp) ----------------------------------------------
 def occ_surface(s):
     """The Geom_Surface of a spatialkin surface: the same placement (gp_Ax3 from its frame) and parametrisation

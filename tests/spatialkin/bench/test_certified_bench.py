@@ -1,15 +1,18 @@
-"""The certified bench (spatialkin.bench.certified): a row per pair kind, each certified answer's claims read from its
-certificate (the counts of curves against the plain call's), the closed-form kinds proven without a search."""
+"""The certified bench (spatialkin.bench.certified): a row per pair kind and per CAD face case, each certified answer's
+claims read from its certificate, the closed-form kinds proven without a search, the faces' arcs proven."""
 from spatialkin.bench import certified
-from spatialkin.bench.kinds import pair_kind_cases
+from spatialkin.bench.kinds import face_cases, pair_kind_cases
 
 
 def test_a_row_per_kind_with_what_was_proven():
     lines = []
     rows = certified.run(repeats=1, echo=lines.append)
-    names = [name for name, _, _ in pair_kind_cases()]
-    assert [r[0] for r in rows] == names and len(lines) == len(names) + 3
-    for (name, plain, cert, ratio, proven, failed, bound, how), line in zip(rows, lines[2:]):
+    kinds = [name for name, _, _ in pair_kind_cases()]
+    faces = [name for name, _, _ in face_cases()]
+    assert [r[0] for r in rows] == kinds + faces and len(lines) == len(kinds) + len(faces) + 4
+    table = lines[2:2 + len(kinds)] + lines[3 + len(kinds):-1]
+    assert lines[2 + len(kinds)].startswith("CAD faces")
+    for (name, plain, cert, ratio, proven, failed, bound, how), line in zip(rows, table):
         assert plain > 0 and cert > 0 and abs(ratio - cert / plain) < 1e-12
         assert (failed == "-") == proven and line.startswith(name) and how in line
         if proven:
@@ -18,3 +21,5 @@ def test_a_row_per_kind_with_what_was_proven():
     for name in ("plane-sphere", "sphere-sphere", "plane-cylinder"):
         assert how[name] == "closed form"
     assert how["torus-torus"] == "search"
+    for name in faces:
+        assert how[name] == "search" and next(r[4] for r in rows if r[0] == name)

@@ -66,12 +66,12 @@ def claim(name, failures, proven_text):
     return Claim(name, NOT_PROVEN, failures[0][0] + more, where, radius)
 
 
-def joined(base, failures, more_text):
+def joined(base, failures, proven_text):
     """The claim base extended by failures (as claim reads them): base itself where it failed already, else
-    proven with more_text added to what it says, or not proven with the new failures."""
+    proven saying proven_text, or not proven with the new failures."""
     if not base.proven:
         return base
-    return claim(base.name, failures, base.detail + more_text)
+    return claim(base.name, failures, proven_text)
 
 
 class CertificationError(RuntimeError):
@@ -289,11 +289,15 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None, wholes=
     base = uncut(a, b, wholes, topology, scale, tolerance, failure, regions=False)
     failures, radii, tubes, bounds = cut(base, a, b, curves, wholes)
     c = base.claims
-    claims = [joined(c["complete"], failures, " and every arc of a component inside both faces is returned (the "
-                     "crossings of their edges proven along its tube)"),
-              joined(c["one_component"], failures, "; every arc cut by the faces runs between two proven crossings "
-                     "of face edges"),
-              c["distinct"], claim("points", unproven_points(radii, curves), "every stored point has a proven radius"),
+    claims = [joined(c["complete"], failures, "every root of the search lies on a component traced before the faces "
+                     "cut it, and every arc of a component inside both faces is returned (the crossings of their "
+                     "edges proven along its tube)"),
+              joined(c["one_component"], failures, "every arc cut by the faces runs between two proven crossings of "
+                     "face edges (or its component's own ends), a component inside both faces all along is returned "
+                     "whole"),
+              joined(c["distinct"], [], "the components' tubes are pairwise disjoint, and the arcs cut from one "
+                     "component are parted by stretches of it outside the faces"),
+              claim("points", unproven_points(radii, curves), "every stored point has a proven radius"),
               c["arcs"], c["singular"]]
     return Certificate(claims, base.topology, radii, tubes, bounds, len(curves), base.chart)
 

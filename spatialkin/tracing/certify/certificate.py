@@ -295,7 +295,7 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None, wholes=
               joined(c["one_component"], failures, "every arc cut by the faces runs between two proven crossings of "
                      "face edges (or its component's own ends), a component inside both faces all along is returned "
                      "whole"),
-              joined(c["distinct"], [], "the components' tubes are pairwise disjoint, and the arcs cut from one "
+              joined(c["distinct"], failures, "the components' tubes are pairwise disjoint, and the arcs cut from one "
                      "component are parted by stretches of it outside the faces"),
               claim("points", unproven_points(radii, curves), "every stored point has a proven radius"),
               c["arcs"], c["singular"]]

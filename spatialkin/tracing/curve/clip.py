@@ -5,9 +5,11 @@ module keeps the arcs that lie inside both faces, and the points where a curve t
 
 Every limit is 1-Lipschitz in the point, so along a curve parametrised by arc length its value f(s) changes by
 at most |s' - s| (plus the points' error, ``slack``). Between two samples s_k < s_k+1 a zero of f is possible
-only where |f_k| + |f_k+1| <= (s_k+1 - s_k) + 2 slack: those intervals are cut into ``SECTIONS`` equal parts, round
-after round (one evaluation of the dense output per round), until they are cleared or shorter than ``FINEST`` x
-scale, so no crossing, and no pair of crossings between two samples, is missed (a
+only where |f_k| + |f_k+1| <= (s_k+1 - s_k) + 2 slack: those intervals are cut, round after round (one evaluation
+of the dense output per round), until they are cleared or shorter than ``FINEST`` x scale, so no crossing, and no
+pair of crossings between two samples, is missed: into ``SECTIONS`` equal parts, or, where f changes sign, at knots
+growing geometrically away from its root (Brent's method), which the same test clears where the curve crosses the
+edge at an angle (a
 curve that only touches an edge to within that length is taken as touching: no crossing). Each crossing is then
 solved on the dense output by Brent's method, exactly on the edge. The pieces between the crossings that lie
 inside both regions (within slack: a curve lying along an edge is kept; a short piece within slack of an edge
@@ -37,6 +39,8 @@ FINEST = 1e-9
 #: ... into this many parts a round (a crossing's interval is open all the way down: the limit changes slower than
 #: the arc length) ...
 SECTIONS = 16
+#: ... or, holding a sign change, at knots FINEST / 4 x GROWTH^j either side of its root ...
+GROWTH = 2.0
 #: ... and at most this many intervals are kept while cutting (a curve running along an edge stays unresolved
 #: there, which is what it is: on the edge).
 MOST_INTERVALS = 200_000
@@ -177,7 +181,8 @@ def crossings(curve, surface, limit, k, slack, scale):
     f = value(s)
     lo_s, hi_s, lo_f, hi_f = s[:-1], s[1:], f[:-1], f[1:]
     finest = FINEST * scale
-    done_s, done_f = [], []
+    xtol = 1e-15 * max(scale, length)
+    done_s, done_f, known = [], [], []
     while len(lo_s):
         width = hi_s - lo_s
         open_ = np.abs(lo_f) + np.abs(hi_f) <= width + 2.0 * slack
@@ -192,19 +197,46 @@ def crossings(curve, surface, limit, k, slack, scale):
                 done_s.append(np.stack([lo_s, hi_s], axis=1))
                 done_f.append(np.stack([lo_f, hi_f], axis=1))
             break
-        inner = (lo_s[:, None] + (hi_s - lo_s)[:, None] * (np.arange(1, SECTIONS) / SECTIONS)[None, :])
-        f_inner = value(inner.ravel()).reshape(inner.shape)
-        knots_s = np.concatenate([lo_s[:, None], inner, hi_s[:, None]], axis=1)
-        knots_f = np.concatenate([lo_f[:, None], f_inner, hi_f[:, None]], axis=1)
-        lo_s, hi_s = knots_s[:, :-1].ravel(), knots_s[:, 1:].ravel()
-        lo_f, hi_f = knots_f[:, :-1].ravel(), knots_f[:, 1:].ravel()
+        # an interval with a sign change: its root, then knots at distances finest / 4 x 2^j either side of it
+        # (near a crossing at an angle the limit changes nearly as fast as the arc length: those intervals are
+        # cleared by the same test, where halving would go on down to finest); any other: SECTIONS equal parts
+        change = (lo_f < 0.0) != (hi_f < 0.0)
+        knots = []
+        for a, b in zip(lo_s[change].tolist(), hi_s[change].tolist()):
+            root = brentq(lambda x: float(value(x)[0]), a, b, xtol=xtol, rtol=1e-15)
+            known.append(root)
+            steps = 0.25 * finest * GROWTH ** np.arange(int(np.log(max(b - a, finest) / finest) / np.log(GROWTH)) + 3)
+            knots.append(np.concatenate([[a], (root - steps[root - steps > a])[::-1],
+                                         root + steps[root + steps < b], [b]]))
+        inner = (lo_s[~change, None] + (hi_s - lo_s)[~change, None] * (np.arange(1, SECTIONS) / SECTIONS)[None, :])
+        fresh = np.concatenate([inner.ravel()] + [k[1:-1] for k in knots])
+        f_fresh = value(fresh) if len(fresh) else fresh
+        f_inner = f_fresh[:inner.size].reshape(inner.shape)
+        rows_s = np.concatenate([lo_s[~change, None], inner, hi_s[~change, None]], axis=1)
+        rows_f = np.concatenate([lo_f[~change, None], f_inner, hi_f[~change, None]], axis=1)
+        parts_s, parts_f = [rows_s[:, :-1].ravel()], [rows_s[:, 1:].ravel()]
+        parts_lf, parts_hf = [rows_f[:, :-1].ravel()], [rows_f[:, 1:].ravel()]
+        at = inner.size
+        for k_s, a_f, b_f in zip(knots, lo_f[change].tolist(), hi_f[change].tolist()):
+            count = len(k_s) - 2
+            k_f = np.concatenate([[a_f], f_fresh[at:at + count], [b_f]])
+            at += count
+            parts_s.append(k_s[:-1])
+            parts_f.append(k_s[1:])
+            parts_lf.append(k_f[:-1])
+            parts_hf.append(k_f[1:])
+        lo_s, hi_s = np.concatenate(parts_s), np.concatenate(parts_f)
+        lo_f, hi_f = np.concatenate(parts_lf), np.concatenate(parts_hf)
     ss, ff = np.concatenate(done_s), np.concatenate(done_f)
     change = (ff[:, 0] < 0.0) != (ff[:, 1] < 0.0)
     near = ~change & (np.abs(ff).max(axis=1) <= slack)
     touches = [tuple(pair) for pair in ss[near].tolist()]
     cuts = []
+    known = np.array(known)
     for (s0, s1), (f0, f1) in zip(ss[change], ff[change]):
-        root = brentq(lambda x: float(value(x)[0]), s0, s1, xtol=1e-15 * max(scale, length), rtol=1e-15)
+        found = known[(known >= s0) & (known <= s1)]
+        root = float(found[0]) if len(found) == 1 else brentq(lambda x: float(value(x)[0]), s0, s1, xtol=xtol,
+                                                                  rtol=1e-15)
         if not curve.closed and (root <= curve.tolerance or root >= length - curve.tolerance):
             continue                                       # the curve ends on this edge already
         if not limit.on_edge_side(frame.to_local(sol(np.array([root])).reshape(1, 3)))[0]:

@@ -203,19 +203,24 @@ class TracedSolution(CurveSolution):
         points = np.empty((s.size, 3))
         tangents = np.empty((s.size, 3))
         ys = np.empty((s.size, 4))
-        index = np.full(s.size, -1, dtype=np.int64)
         table = self.table
         if table is not None:
+            index = np.empty(s.size, dtype=np.int64)          # (curve_states writes every row: -1 where not held)
             kn.curve_states(table, self.closed, self.length, float(self.gap_tol), NEWTON_MAX_ITER,
                             np.ascontiguousarray(s), ys, points, tangents, index)
+        else:
+            index = np.full(s.size, -1, dtype=np.int64)
         rest = index < 0
-        if rest.any():
+        held = not rest.any()
+        if held and not with_params:
+            return s, points, tangents, None
+        if not held:
             index[rest] = np.clip(np.searchsorted(self._lo, s[rest], side="right") - 1, 0, len(self.spans) - 1)
         params = np.empty((s.size, 4)) if with_params else None
         for k in np.unique(index).tolist():
             span = self.spans[k]
             mask = index == k
-            if rest.any() and rest[mask].any():        # a span the tables do not hold
+            if not held and rest[mask].any():         # a span the tables do not hold
                 y = np.ascontiguousarray(span.states(s[mask]).T)
                 p, t, st = np.empty((len(y), 3)), np.empty((len(y), 3)), np.empty(len(y), dtype=np.int64)
                 if np.any(span.seg.normal):   # across a node or an apex

@@ -197,36 +197,7 @@ def crossings(curve, surface, limit, k, slack, scale):
                 done_s.append(np.stack([lo_s, hi_s], axis=1))
                 done_f.append(np.stack([lo_f, hi_f], axis=1))
             break
-        # an interval with a sign change: its root, then knots at distances finest / 4 x 2^j either side of it
-        # (near a crossing at an angle the limit changes nearly as fast as the arc length: those intervals are
-        # cleared by the same test, where halving would go on down to finest); any other: SECTIONS equal parts
-        change = (lo_f < 0.0) != (hi_f < 0.0)
-        knots = []
-        for a, b in zip(lo_s[change].tolist(), hi_s[change].tolist()):
-            root = brentq(lambda x: float(value(x)[0]), a, b, xtol=xtol, rtol=1e-15)
-            known.append(root)
-            steps = 0.25 * finest * GROWTH ** np.arange(int(np.log(max(b - a, finest) / finest) / np.log(GROWTH)) + 3)
-            knots.append(np.concatenate([[a], (root - steps[root - steps > a])[::-1],
-                                         root + steps[root + steps < b], [b]]))
-        inner = (lo_s[~change, None] + (hi_s - lo_s)[~change, None] * (np.arange(1, SECTIONS) / SECTIONS)[None, :])
-        fresh = np.concatenate([inner.ravel()] + [k[1:-1] for k in knots])
-        f_fresh = value(fresh) if len(fresh) else fresh
-        f_inner = f_fresh[:inner.size].reshape(inner.shape)
-        rows_s = np.concatenate([lo_s[~change, None], inner, hi_s[~change, None]], axis=1)
-        rows_f = np.concatenate([lo_f[~change, None], f_inner, hi_f[~change, None]], axis=1)
-        parts_s, parts_f = [rows_s[:, :-1].ravel()], [rows_s[:, 1:].ravel()]
-        parts_lf, parts_hf = [rows_f[:, :-1].ravel()], [rows_f[:, 1:].ravel()]
-        at = inner.size
-        for k_s, a_f, b_f in zip(knots, lo_f[change].tolist(), hi_f[change].tolist()):
-            count = len(k_s) - 2
-            k_f = np.concatenate([[a_f], f_fresh[at:at + count], [b_f]])
-            at += count
-            parts_s.append(k_s[:-1])
-            parts_f.append(k_s[1:])
-            parts_lf.append(k_f[:-1])
-            parts_hf.append(k_f[1:])
-        lo_s, hi_s = np.concatenate(parts_s), np.concatenate(parts_f)
-        lo_f, hi_f = np.concatenate(parts_lf), np.concatenate(parts_hf)
+        lo_s, hi_s, lo_f, hi_f = next_round(value, lo_s, hi_s, lo_f, hi_f, finest, xtol, known)
     ss, ff = np.concatenate(done_s), np.concatenate(done_f)
     change = (ff[:, 0] < 0.0) != (ff[:, 1] < 0.0)
     near = ~change & (np.abs(ff).max(axis=1) <= slack)
@@ -243,6 +214,37 @@ def crossings(curve, surface, limit, k, slack, scale):
             continue                 # the line of a half-plane through the axis, beyond it: not this edge
         cuts.append((float(root), limit, k))
     return cuts, touches
+
+
+def next_round(value, lo_s, hi_s, lo_f, hi_f, finest, xtol, known):
+    """The intervals (lo_s, hi_s, lo_f, hi_f) that replace the open ones given, with one evaluation of f (value)
+    for them all. An interval where f changes sign: its root (Brent's method, appended to known), then knots at
+    finest / 4 x GROWTH^j either side of it (near a crossing at an angle the limit changes nearly as fast as the arc
+    length, so those intervals are cleared by the same test, where equal parts would stay open down to finest); any
+    other: SECTIONS equal parts."""
+    change = (lo_f < 0.0) != (hi_f < 0.0)
+    knots = []
+    for a, b in zip(lo_s[change].tolist(), hi_s[change].tolist()):
+        root = brentq(lambda x: float(value(x)[0]), a, b, xtol=xtol, rtol=1e-15)
+        known.append(root)
+        steps = 0.25 * finest * GROWTH ** np.arange(int(np.log(max(b - a, finest) / finest) / np.log(GROWTH)) + 3)
+        knots.append(np.concatenate([[a], (root - steps[root - steps > a])[::-1], root + steps[root + steps < b],
+                                     [b]]))
+    inner = lo_s[~change, None] + (hi_s - lo_s)[~change, None] * (np.arange(1, SECTIONS) / SECTIONS)[None, :]
+    fresh = np.concatenate([inner.ravel()] + [k[1:-1] for k in knots])
+    f_fresh = value(fresh) if len(fresh) else fresh
+    rows_s = np.concatenate([lo_s[~change, None], inner, hi_s[~change, None]], axis=1)
+    rows_f = np.concatenate([lo_f[~change, None], f_fresh[:inner.size].reshape(inner.shape), hi_f[~change, None]],
+                            axis=1)
+    out_s, out_f = [rows_s], [rows_f]
+    at = inner.size
+    for k_s, a_f, b_f in zip(knots, lo_f[change].tolist(), hi_f[change].tolist()):
+        count = len(k_s) - 2
+        out_s.append(k_s[None, :])
+        out_f.append(np.concatenate([[a_f], f_fresh[at:at + count], [b_f]])[None, :])
+        at += count
+    return (np.concatenate([r[:, :-1].ravel() for r in out_s]), np.concatenate([r[:, 1:].ravel() for r in out_s]),
+            np.concatenate([r[:, :-1].ravel() for r in out_f]), np.concatenate([r[:, 1:].ravel() for r in out_f]))
 
 
 def window(curve, lo, hi):

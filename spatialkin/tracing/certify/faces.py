@@ -123,7 +123,13 @@ class Flip:
     after: bool
 
     def indices(self, count):
-        return [k % count for k in range(self.first, self.last + 1 + (count if self.last < self.first else 0))]
+        return run_indices(self.first, self.last, count)
+
+
+def run_indices(first, last, count):
+    """The chain indices of the run of pieces first to last of a chain of count (across its start when last <
+    first)."""
+    return [k % count for k in range(first, last + 1 + (count if last < first else 0))]
 
 
 def box_signs(chart, limits, box):
@@ -172,7 +178,7 @@ def flips(chart, limits, signs, pieces, closed, end_boxes=()):
     for first, last in runs:
         if not closed and (first == 0 or last == count - 1):
             return None, None, "a face edge comes near an end of the component"
-        run = Flip(first, last, (), False, False).indices(count)
+        run = run_indices(first, last, count)
         zero = sorted({int(i) for k in run for i in np.flatnonzero(signs[:, k] == 0)})
         before, after = (first - 1) % count, (last + 1) % count
         crossing = []
@@ -256,26 +262,28 @@ def expected_arcs(found, verdicts, closed, count):
     return out
 
 
-def own_points(whole, curve):
-    """True when the cut arc's stored points between its ends are the component's own, in order, at their arc
-    lengths (the arc's s plus its start, across s = 0 of a closed component a turn less), and its s runs from 0 to
-    its length."""
+def own_points(whole, curve, slack):
+    """The indices among the component's stored points of the cut arc's stored points between its ends, when they
+    are the component's own, in order, at their arc lengths (the arc's s plus its start, across s = 0 of a closed
+    component a turn less, within slack) and its s runs from 0 to its length; else None."""
     s = np.asarray(curve.s, dtype=float)
     if len(s) < 2 or s[0] != 0.0 or s[-1] != curve.length or not np.all(np.diff(s) > 0.0):
-        return False
+        return None
     inner = s[1:-1] + curve.sol.start
     if whole.closed:
         inner = np.mod(inner, whole.length)
     knots = np.asarray(whole.s, dtype=float)
     at = np.clip(np.searchsorted(knots, inner), 1, len(knots) - 1)
     at = np.where(np.abs(knots[at - 1] - inner) < np.abs(knots[at] - inner), at - 1, at)
-    slack = 64.0 * EPS * max(whole.length, 1.0)
-    return bool(np.all(np.abs(knots[at] - inner) <= slack) and np.array_equal(whole.points[at], curve.points[1:-1]))
+    if np.all(np.abs(knots[at] - inner) <= slack) and np.array_equal(whole.points[at], curve.points[1:-1]):
+        return at
+    return None
 
 
 def component_arcs(chart, limits, whole, t, returned):
-    """(failures (text, point), {id of a returned arc: proven distance of its ends from the face edges' crossings})
-    of one component (whole, its proven Tube t) against the returned curves cut from it (returned: [CurveResult])."""
+    """(failures (text, point), {id of a returned arc: (proven distance of its ends from the face edges' crossings,
+    the indices of its inner stored points among the component's, its ends (2, 3) and their tangents (2, 3))}) of
+    one component (whole, its proven Tube t) against the returned curves cut from it (returned: [CurveResult])."""
     if t is None or not t.proven or t.split:
         return [("a component cut by the faces has no proven tube of one chain", whole.points[0])], {}
     pieces = t.pieces
@@ -299,10 +307,11 @@ def component_arcs(chart, limits, whole, t, returned):
         longest = whole.length if whole.closed else whole.length + slack
         if not (0.0 < length < longest) or curve.sol.length != length:
             return [("a returned arc is longer than its component", curve.points[0])], {}
-        _, at_ends, _, _ = curve.sol.evaluate(np.array([0.0, length]), with_params=False)
+        _, at_ends, end_tangents, _ = curve.sol.evaluate(np.array([0.0, length]), with_params=False)
         if np.max(np.abs(at_ends - curve.points[[0, -1]])) > SAME_END * whole.tolerance:
             return [("a returned arc's stored ends are not its dense output's", curve.points[0])], {}
-        if not own_points(whole, curve):
+        rows = own_points(whole, curve, slack)
+        if rows is None:
             return [("a returned arc's stored points are not its component's, at their arc lengths",
                      curve.points[0])], {}
         ends, bound = [], 0.0
@@ -316,7 +325,7 @@ def component_arcs(chart, limits, whole, t, returned):
             ends.append(match[0])
             bound = max(bound, match[1] + 64.0 * EPS * max(1.0, float(np.max(np.abs(point)))))
         got.append(tuple(ends))
-        reach[id(curve)] = bound
+        reach[id(curve)] = (bound, rows, curve.points[[0, -1]], end_tangents)
     if sorted(map(str, got)) != sorted(map(str, want)):
         return [(f"the arcs of a component inside both faces are {len(want)} between proven crossings, "
                  f"{len(got)} returned", whole.points[0])], {}
@@ -359,13 +368,16 @@ def cut(base, a, b, curves, wholes):
         if j is not None and curve is wholes[j]:
             radii.append(base.radii[j])
             bounds.append(base.distance_bounds[j])
+        elif id(curve) in reach:       # a proven arc: its inner points are its component's, with their radii
+            bound, rows, ends, end_tangents = reach[id(curve)]
+            end_radii = certify_points(a, b, ends, end_tangents)
+            radii.append(np.concatenate([end_radii[:1], base.radii[j][rows], end_radii[1:]]))
+            bounds.append(max(base.distance_bounds[j], float(np.max(end_radii)) * math.sqrt(3.0), bound))
         else:
             points = np.asarray(curve.points, dtype=float)
             tangents = np.gradient(points, axis=0) if len(points) > 1 else np.zeros((len(points), 3))
             radii.append(certify_points(a, b, points, tangents) if len(points) > 1 else np.full(len(points),
                                                                                                   math.inf))
-            inner = base.distance_bounds[j] if j is not None else math.inf
-            ends = float(np.max(radii[-1][[0, -1]])) * math.sqrt(3.0) if len(points) else math.inf
-            bounds.append(max(inner, ends, reach.get(id(curve), math.inf)))
+            bounds.append(math.inf)
         tubes.append(base.tubes[j] if j is not None else None)
     return failures, radii, tubes, bounds

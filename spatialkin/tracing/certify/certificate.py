@@ -24,7 +24,7 @@ from .faces import cut
 PROVEN, NOT_PROVEN = "proven", "not proven"
 #: Half-widths (relative to the root's magnitude, at least 1) of the smaller boxes round a search's refined root
 #: that are proven to hold it when its verified box is too large to lie inside a tube: 1e-12 to 1e-6 in steps of
-#: sqrt(10) (the search's interval test resolves a box round a root of a tiny loop only above some width, which the
+#: sqrt(10) (the search's interval test resolves a box around a root of a tiny loop only above some width, which the
 #: piece's width must still exceed).
 SHRINK = tuple(10.0 ** (-k / 2) for k in range(24, 11, -1))
 #: Box budget of those proofs.

@@ -11,7 +11,7 @@ On a run of pieces where limits may change sign, each of them must be monotone a
 kernels.certify.trims.edge_rate) and of strict signs on the pieces either side: equal signs, it does not vanish
 there; opposite ones, it vanishes exactly once on the run's arc (two limits at once where an angular range is a
 half turn: its edges lie in one plane). Where the regions' verdict flips across the run, a returned arc must end
-there: within ON_EDGE tolerances of those edges, and inside a box round its end proven to hold a crossing of each
+there: within ON_EDGE tolerances of those edges, and inside a box around its end proven to hold a crossing of each
 of them (the Krawczyk test of the level and the limit, kernels.certify.trims.crossing) lying in the run; its
 distance bound counts the surface's diameter over that box. The returned curves must be exactly the arcs inside
 both regions, each from one such crossing (or the component's own end) to the next, with the component's own
@@ -216,7 +216,7 @@ def flips(chart, limits, signs, pieces, closed, end_boxes=()):
 
 
 def end_flip(chart, limits, pieces, count, found, x, tolerance):
-    """(index in found (Flips), distance bound) of the run holding a proven crossing of each of its limits round the
+    """(index in found (Flips), distance bound) of the run holding a proven crossing of each of its limits around the
     scaled parameters x (2,) (a cut arc's end, where each of those limits is within ON_EDGE tolerances of 0), or
     None. The regions' verdict changes only where one of those limits vanishes, once each on the run's arc, inside
     its box: the edge the arc crosses lies within those boxes, and the end within the bound (the diameter of the

@@ -1,7 +1,7 @@
 """Nodes in the certificate: where two branches of the level g = F_Q(P(u, v)) = 0 cross, or pass too close for
 floating point to tell.
 
-A node's box N (a square of the search chart's scaled parameters round it) is proven to hold exactly one critical
+A node's box N (a square of the search chart's scaled parameters around it) is proven to hold exactly one critical
 point of g, a saddle (the Krawczyk test of grad g = 0 with a Hessian of negative determinant over N,
 spatialkin.kernels.certify.singular), and g is proven to vanish at exactly four points of N's edges (simple roots
 isolated by the interval line search of the topology stage, none at a corner). Then the level inside N is two arcs
@@ -45,7 +45,7 @@ class NodeBox:
 
     @property
     def radius(self):
-        """A ball round the node's point holding its box (length unit): the box's half-diagonal times the largest
+        """A ball around the node's point holding its box (length unit): the box's half-diagonal times the largest
         speed of P over it."""
         return math.sqrt(2.0) * self.h * self.speed
 
@@ -128,7 +128,7 @@ def edge_crossings(chart, x, h):
             for a, b in out[:n]:
                 if not (lo < a and b < hi):
                     return None
-                # narrowed: the 2 x 2 Krawczyk test of g = 0 and the edge round the root refined by Newton, in a
+                # narrowed: the 2 x 2 Krawczyk test of g = 0 and the edge around the root refined by Newton, in a
                 # box within the verified interval along the edge (so the root it holds is that interval's)
                 root = ks.refine_line(r.s.data, r.t.data, r.m, r.c, fixed, value, a, b)
                 mid = root / other

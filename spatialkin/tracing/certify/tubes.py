@@ -158,7 +158,7 @@ def tube(chart, curve, nodes=()):
 
 def chained(chart, curve, points, s, closed):
     """The Tube of one chain along the samples points (M, 3) at arc lengths s (M,) of the curve (closed: the last
-    sample is the first one, a whole loop on): where the chain fails, the samples round the failing chord are
+    sample is the first one, a whole loop on): where the chain fails, the samples around the failing chord are
     refined (dense output at the midpoints) and the chain is proven again, up to REFINEMENTS times."""
     for _ in range(REFINEMENTS):
         x, kept = chain_samples(chart, points, closed)

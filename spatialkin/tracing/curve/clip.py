@@ -5,8 +5,8 @@ module keeps the arcs that lie inside both faces, and the points where a curve t
 
 Every limit is 1-Lipschitz in the point, so along a curve parametrised by arc length its value f(s) changes by
 at most |s' - s| (plus the points' error, ``slack``). Between two samples s_k < s_k+1 a zero of f is possible
-only where |f_k| + |f_k+1| <= (s_k+1 - s_k) + 2 slack: those intervals are cut, round after round (one evaluation
-of the dense output per round), until they are cleared or shorter than ``FINEST`` x scale, so no crossing, and no
+only where |f_k| + |f_k+1| <= (s_k+1 - s_k) + 2 slack: those intervals are cut, pass after pass (one evaluation
+of the dense output per pass), until they are cleared or shorter than ``FINEST`` x scale, so no crossing, and no
 pair of crossings between two samples, is missed: into ``SECTIONS`` equal parts, or, where f changes sign, at knots
 growing geometrically away from its root (Brent's method), which the same test clears where the curve crosses the
 edge at an angle (a
@@ -36,7 +36,7 @@ from ...geometry.traits import traits
 
 #: Intervals that may hide a crossing are cut down to this length (relative to the scale) ...
 FINEST = 1e-9
-#: ... into this many parts a round (a crossing's interval is open all the way down: the limit changes slower than
+#: ... into this many parts a pass (a crossing's interval is open all the way down: the limit changes slower than
 #: the arc length) ...
 SECTIONS = 16
 #: ... or, holding a sign change, at knots FINEST / 4 x GROWTH^j either side of its root ...

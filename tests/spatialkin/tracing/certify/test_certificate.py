@@ -266,7 +266,7 @@ def test_a_contact_gets_a_proven_ball():
 
 
 def test_a_node_is_a_proven_saddle_and_not_proven():
-    """Viviani's figure-eight (a sphere and a cylinder of half its radius through its centre): a box round the node
+    """Viviani's figure-eight (a sphere and a cylinder of half its radius through its centre): a box around the node
     at (1, 0, 0) is proven to hold one critical point of the level, a saddle, and four branches leaving it through
     the curve's proven tubes. The arcs and completeness are proven; the curve is not proven one component (which
     branches join at the node is an equality), so the answer is not proven."""
@@ -326,7 +326,7 @@ def test_circles_crossing_at_nodes_are_proven_apart_from_the_nodes():
 
 def test_a_circle_dropped_at_the_nodes_leaves_branches_unaccounted():
     """One Villarceau curve alone: the other's branches leave the node boxes through no proven tube, so the arcs
-    round the nodes are not proven (nor, then, is anything inside the nodes' boxes)."""
+    around the nodes are not proven (nor, then, is anything inside the nodes' boxes)."""
     torus, plane = villarceau()
     curves = sk.intersect(torus, plane, certify=True)
     cert = certify(torus, plane, [curves[0].result], curves[0].topology, 1.0)
@@ -398,7 +398,7 @@ def test_a_contact_given_twice_is_not_distinct():
 def test_an_apex_on_the_other_surface_gets_a_proven_ball(axis_tilt, kind):
     """A cone's apex placed on a sphere: with the axis near the sphere's
     normal there, the tangent plane misses the cone and the apex is an isolated point of the intersection (a ball
-    proven round it, holding all of the intersection nearby); tilted past the half angle, two branches cross there
+    proven around it, holding all of the intersection nearby); tilted past the half angle, two branches cross there
     (a proven saddle). Either way the claim is not proven and the ball holds the true apex."""
     apex = np.array([0.6, 0.0, 0.8])                     # (off the sphere's poles, on it to round-off)
     axis = sk.rotation_about((0, 1, 0), axis_tilt) @ apex
@@ -414,7 +414,7 @@ def test_an_apex_on_the_other_surface_gets_a_proven_ball(axis_tilt, kind):
 
 def test_tiny_loops_down_to_1e_5_are_proven():
     """The stress suite's tiny loops of 1e-5 to 1e-3 of the scene (every pair kind): one loop each, as the oracle
-    counts, proven claim by claim (the search's roots on them placed in their tubes by boxes shrunk round them)."""
+    counts, proven claim by claim (the search's roots on them placed in their tubes by boxes shrunk around them)."""
     from tests.oracles.ssi_cases import all_cases
     tiny = [c for c in all_cases() if c.family == "tiny" and not c.name.endswith("1e-06")]
     assert len(tiny) == 30

@@ -612,6 +612,10 @@ def clip(shape, rows, trims, graze, touch):
     touching an edge from outside); None where declined (a vertex's touch, an unbounded arc). An ellipse touching
     an edge from inside (within touch) is not cut there; crossings within touch of each other (a corner) are one
     end; a line along an edge is inside it or outside whole."""
+    if shape == LINE:
+        arc = line_arc(rows, trims, touch)
+        if arc is not None:
+            return arc
     (c0, c1, c2), (p0, p1, p2), (q0, q1, q2) = rows
     linear = []                                     # (alpha, beta, gamma, side): the trim's alpha + beta f + gamma g
     events = []
@@ -668,6 +672,40 @@ def clip(shape, rows, trims, graze, touch):
         ends = {t for t0, t1, _ in arcs for t in (t0, t1)}
         arcs += [(t, t, (edge, edge)) for t, edge in kept if t not in ends and within(linear, shape, t, touch)]
     return arcs
+
+
+def line_arc(rows, trims, touch):
+    """clip's answer for a line in the plain case, in one pass (the line inside every trim runs from its largest
+    lower bound to its smallest upper one): [(t_lo, t_hi, ends)] when both bounds exist, the line runs along no
+    trim, and every other crossing violates the trim of the bound beyond it by more than twice touch (so no two
+    crossings make a corner and none is a touch point: clip's events give this one arc, at the same t); else None
+    (clip's general path decides)."""
+    (c0, c1, c2), _, (q0, q1, q2) = rows
+    lows, highs = [], []                            # (t, |gamma|, edge) of the lower and the upper bounds
+    for (w0, w1, w2), bound, side, edge in trims:
+        alpha = w0 * c0 + w1 * c1 + w2 * c2 - bound         # (as clip computes it)
+        gamma = w0 * q0 + w1 * q1 + w2 * q2
+        if abs(gamma) <= SAME:
+            return None                                      # (along the trim's level)
+        (highs if gamma * side > 0.0 else lows).append((-alpha / gamma, abs(gamma), edge))
+    if not lows or not highs:
+        return None
+    t_lo, g_lo, e_lo = max(lows, key=_first)
+    t_hi, g_hi, e_hi = min(highs, key=_first)
+    margin = 2.0 * touch
+    if not (t_hi - t_lo) * min(g_lo, g_hi) > margin:
+        return None
+    for t, _, edge in lows:
+        if edge != e_lo and not (t_lo - t) * g_lo > margin:
+            return None
+    for t, _, edge in highs:
+        if edge != e_hi and not (t - t_hi) * g_hi > margin:
+            return None
+    return [(t_lo, t_hi, (e_lo, e_hi))]
+
+
+def _first(row):
+    return row[0]
 
 
 def within(linear, shape, t, touch):

@@ -25,11 +25,15 @@ def scene_scale(a, b):
     """Length scale of an intersection: the smaller characteristic length of the two surfaces, ignoring
     planes and untrimmed cones (which have none); without one, the smaller half-diagonal of the trimmed
     planes' rectangles (1 where there is none)."""
-    sizes = [x for x in (traits(s).scale_length(s) for s in (a, b)) if x is not None]
-    if sizes:
-        return min(sizes)
-    spans = [0.5 * np.hypot(u1 - u0, v1 - v0) for (u0, u1), (v0, v1) in (s.bounds for s in (a, b))]
-    spans = [x for x in spans if math.isfinite(x)]
+    size_a, size_b = traits(a).scale_length(a), traits(b).scale_length(b)
+    if size_a is not None or size_b is not None:
+        return size_a if size_b is None else size_b if size_a is None else min(size_a, size_b)
+    spans = []
+    for surface in (a, b):
+        (u0, u1), (v0, v1) = surface.bounds
+        span = 0.5 * math.hypot(float(u1 - u0), float(v1 - v0))
+        if math.isfinite(span):
+            spans.append(span)
     return min(spans) if spans else 1.0
 
 

@@ -67,17 +67,14 @@ def bench(args):
 
 def parser():
     from .. import __version__
-    from .looper_job import keys_help
+    from .looper_job import keys_help, outputs_help
     top = OneLineParser(prog="spatialkin", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     top.add_argument("--version", action="version", version=f"spatialkin {__version__}")
     sub = top.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
     p_looper = sub.add_parser("looper", help="the looper drive over a crank turn at machine speed: CSV, JSON record, "
                               "pictures, summary", formatter_class=argparse.RawDescriptionHelpFormatter,
-                              description="The looper drive over a crank turn at machine speed. Writes "
-                              "looper_motion.csv (units in the header, angles in degrees), looper_run.json "
-                              "(geometry, speed, branch, versions, measured errors), looper_cyclogram.png, "
-                              "looper_transmission.png, looper_speed.png and looper_3d.png, and prints a "
-                              "summary.", epilog=keys_help())
+                              description="The looper drive over a crank turn at machine speed: prints a "
+                              "summary and writes into --out\n" + outputs_help(), epilog=keys_help())
     p_looper.add_argument("--out", required=True, help="output folder (created if missing)")
     p_looper.add_argument("--config", default=None, help="TOML file overriding the built-in drive (keys below)")
     p_looper.set_defaults(func=looper)

@@ -4,18 +4,18 @@ fitted geometry as a config that ``spatialkin looper --config`` accepts.
 The targets file (angles in degrees, lengths in the drive's unit):
 
     [design]
-    free = ["crank_radius", "rocker_length", "rocker_x", "rocker_z"]   # parameters the fit may move
-    start = "start.toml"          # optional: a looper config to start from (default: the reference drive)
+    free = ["crank_radius", "rocker_length", "rocker_x", "rocker_z", "tip_x", "tip_z"]   # what the fit may move
+    # start = "start.toml"        # optional: a looper config to start from (default: the reference drive)
     [design.bounds]               # optional, {parameter = [low, high]}
     crank_radius = [5.0, 12.0]
 
     [[tip]]                       # looper tip targets, any number
-    crank_angle_deg = 90.0
-    point = [-9.8, 4.7, 36.4]
+    crank_angle_deg = 90.0        # the reference drive's tip is at (-2.76, -0.56, 34.17) here
+    point = [-4.0, -1.0, 35.0]
     [rocker]                      # optional
-    swing_deg = 40.0
-    u2_max_at_deg = 180.0         # optional pair: the rocker's turning points
-    u2_min_at_deg = 0.0
+    swing_deg = 40.0              # the reference drive swings 37.16 deg
+    u2_max_at_deg = 0.0           # optional pair: the rocker's turning points (the reference drive's: u2 is
+    u2_min_at_deg = 180.0         # greatest at crank angle 0, least at 180)
     [limits]                      # optional
     min_transmission_deg = 50.0
     min_assembly_margin = 0.5

@@ -9,6 +9,7 @@ import json
 import math
 import os
 import platform
+import textwrap
 import time
 import tomllib
 
@@ -35,6 +36,10 @@ PARALLEL_TOL = 1e-9
 
 #: The reference rocker rotation as a user types it in the TOML: the exact quarter turn (integer entries).
 REFERENCE_ROTATION = np.rint(ref.rocker_rotation()).astype(int).tolist()
+#: The reference crank rotation (the crank shaft along global z, u1 = 0 along global x), typed likewise.
+IDENTITY_ROTATION = np.eye(3, dtype=int).tolist()
+#: The rotation forms of a frame table; a table gives exactly one of them beside its origin.
+ROTATION_FORMS = ("rotation", "axis_angle", "z_axis")
 #: key: (default, unit, meaning) -- the keys a looper TOML file may hold (defaults: the reference drive).
 KEYS = {
     "length_unit": ("mm", "-", "unit of every length below: mm, cm, m or in"),
@@ -48,7 +53,7 @@ KEYS = {
     "looper_tip": (list(ref.LOOPER_TIP), "length", "looper tip in the looper link's frame (rocker arm: x from P2 to C)"),
     "picture_crank_angle_deg": (60.0, "deg", "crank angle at which the 3-D picture draws the links"),
     "cad_tolerance": (1e-5, "length", "largest distance of the CAD B-splines (DXF, STEP) from the exact paths"),
-    "crank_frame": ({"origin": [0.0, 0.0, 0.0]}, "length",
+    "crank_frame": ({"origin": [0.0, 0.0, 0.0], "rotation": IDENTITY_ROTATION}, "length",
                     "table: origin (crank shaft point O1) and one rotation form (local z = shaft); u1 from local x"),
     "rocker_frame": ({"origin": list(ref.ROCKER_CENTRE), "rotation": REFERENCE_ROTATION}, "length",
                      "table: origin (rocker centre P2) and one rotation form (local z = rocker shaft)"),
@@ -60,21 +65,57 @@ KEYS = {
                          "zeros: none)"),
 }
 DEFAULTS = {key: value[0] for key, value in KEYS.items()}
-#: Rotation forms of a frame table (besides origin); give at most one (none: the identity).
+#: How a frame table is typed: origin and exactly one rotation form.
 ROTATION_HELP = (
-    "rotation forms in a frame table: rotation = [[..], [..], [..]] (3x3, columns = local x, y, z; "
+    "a frame table holds origin and exactly one rotation form (for no rotation: rotation = [[1, 0, 0], "
+    "[0, 1, 0], [0, 0, 1]]): rotation = [[..], [..], [..]] (3x3, columns = local x, y, z; "
     f"re-orthonormalised when max |R^T R - I| <= {ROTATION_TOL:g}); axis_angle = {{ axis = [x, y, z], "
     "angle_deg = a }; z_axis = [x, y, z] with optional x_hint = [x, y, z] (x = hint made normal to z). "
     "z_axis alone fixes the angles by the physical drive: the crank's u1 = 0 points from its shaft towards "
     "the rocker centre; the rocker shaft is turned to the sense of (crank axis x (P2 - O1)) and its u2 = 0 is "
     "the crank's u1 = 0 direction made normal to it, so the same drive gives the same angles however its "
     "axes are typed.")
+#: Width of the --help text of the job's files (characters).
+HELP_WIDTH = 110
 #: The 3-D picture: its size in pixels.
 PICTURE_SIZE = (900, 1000)
+#: The table of the motion and the record of the run.
+TABLE_FILE = "looper_motion.csv"
+RECORD_FILE = "looper_run.json"
 #: The paths of the ball centre and the looper tip as B-splines: DXF always, STEP with the cad extra.
 CAD_FILES = ("looper_paths.dxf", "looper_paths.step")
 #: Figures written by the job, besides the table and the record.
 FIGURES = ("looper_cyclogram.png", "looper_transmission.png", "looper_speed.png", "looper_3d.png")
+#: What each file of the job holds (--help lists output_files() with these).
+FILE_NOTES = {
+    TABLE_FILE: "the motion, one row per crank angle: ball centre C, rocker angles u2, v2 and the looper tip with "
+                "velocities and accelerations at machine speed (units in the header, angles in degrees)",
+    RECORD_FILE: "the run's record: geometry, speed, branch, analysis, peaks, measured errors, times, versions, "
+                 "the files written",
+    "looper_cyclogram.png": "rocker angles and looper-tip coordinates against the crank angle",
+    "looper_transmission.png": "the transmission angle at C over the turn, its minimum marked",
+    "looper_speed.png": "speed and acceleration of C and the looper tip at machine speed",
+    "looper_3d.png": "the mechanism in 3-D at picture_crank_angle_deg, the paths coloured by speed",
+    "looper_paths.dxf": "the paths of C and the looper tip as B-splines within cad_tolerance",
+    "looper_paths.step": "the same B-splines as STEP (only with the cad extra: OpenCascade)",
+    "looper_forces.csv": "crank torque, power, joint loads, shaking force and moment over the turn (SI units; "
+                         "not written when links = {})",
+    "looper_torque.png": "the crank torque over the turn, its peak and the mean power (not written when links = {})",
+    "looper_bearing_loads.png": "each joint's load in its bearing's plane, as polar diagrams (not written when "
+                                "links = {})",
+}
+
+
+def output_files():
+    """Every file the job can write, in the order it writes them (the names run uses)."""
+    return (TABLE_FILE, RECORD_FILE) + FIGURES + CAD_FILES + forces.FILES
+
+
+def outputs_help():
+    """The files of the job with what each holds, for --help (one name a line, its note wrapped beside it)."""
+    width = max(map(len, output_files())) + 4
+    return "\n".join(textwrap.fill(f"  {name:<{width - 2}}{FILE_NOTES.get(name, '')}", HELP_WIDTH,
+                                   subsequent_indent=" " * width) for name in output_files())
 
 
 def keys_help():
@@ -125,7 +166,8 @@ def _normal_part(vector, z):
 
 
 def frame_from(name, table, physical=None):
-    """A Frame from a TOML table: 'origin' and at most one rotation form (see ROTATION_HELP).
+    """A Frame from a TOML table: 'origin' and exactly one rotation form (see ROTATION_HELP); ValueError naming
+    the table otherwise.
 
     physical : callable (origin, z) -> (z, x) or None
         Fixes the sense of z and the zero direction x from the drive when z_axis is given without x_hint.
@@ -136,13 +178,16 @@ def frame_from(name, table, physical=None):
     if unknown:
         raise ValueError(f"{name}: unknown keys {sorted(unknown)}; allowed: origin, rotation, axis_angle, "
                          "z_axis, x_hint")
-    forms = [k for k in ("rotation", "axis_angle", "z_axis") if k in table]
+    forms = [k for k in ROTATION_FORMS if k in table]
     if len(forms) > 1:
         raise ValueError(f"{name}: give one of rotation, axis_angle, z_axis; got {forms}")
     if "x_hint" in table and "z_axis" not in table:
         raise ValueError(f"{name}: x_hint goes with z_axis")
+    if not forms:
+        raise ValueError(f"{name}: origin alone does not place a frame; add one rotation form: rotation, "
+                         "axis_angle or z_axis (no rotation: rotation = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]; see "
+                         "spatialkin looper --help)")
     origin = _vector(f"{name}.origin", table.get("origin", [0.0, 0.0, 0.0]))
-    rotation = np.eye(3)
     if "rotation" in table:
         rotation = nearest_rotation(name, table["rotation"])
     elif "axis_angle" in table:
@@ -151,7 +196,7 @@ def frame_from(name, table, physical=None):
             raise ValueError(f"{name}.axis_angle must be a table {{ axis = [x, y, z], angle_deg = a }}")
         axis = _unit(f"{name}.axis_angle.axis", _vector(f"{name}.axis_angle.axis", aa["axis"]))
         rotation = rotation_about(axis, math.radians(_number(f"{name}.axis_angle.angle_deg", aa["angle_deg"])))
-    elif "z_axis" in table:
+    else:
         z = _unit(f"{name}.z_axis", _vector(f"{name}.z_axis", table["z_axis"]))
         x = None
         if "x_hint" in table:
@@ -224,6 +269,20 @@ def build(config):
 
 
 # --- the run ------------------------------------------------------------------------------------------------
+def check_out_dir(out_dir):
+    """ValueError naming --out when out_dir cannot be the job's folder: a file of that name, or a file where one
+    of the folders above it would be (a missing folder is created by the run)."""
+    path = os.path.abspath(out_dir)
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise ValueError(f"--out {out_dir}: a file of that name exists; give a folder (created if missing)")
+    above = os.path.dirname(path)
+    while not os.path.exists(above):
+        above = os.path.dirname(above)
+    if not os.path.isdir(above):
+        raise ValueError(f"--out {out_dir}: {above} is a file, so no folder can be made below it")
+    return out_dir
+
+
 def reachable_angles(drive, step_deg):
     """Crank angles (rad) of a turn on a grid of step_deg where the drive assembles with margin (CLEARANCE x
     size, as the analysis): the whole turn when the crank turns fully."""
@@ -277,6 +336,7 @@ def _peak(values, angles):
 def run(out_dir, config_path=None, echo=print):
     """Run the job; returns the LooperMotion. Every file is written whole or not at all."""
     t0 = time.perf_counter()
+    check_out_dir(out_dir)
     config = load_config(config_path)
     drive = build(config)
     branch = int(config["branch"])
@@ -291,9 +351,12 @@ def run(out_dir, config_path=None, echo=print):
     analysis = drive.analyse(branch=branch, motion=motion)
     found = findings(drive, motion, analysis, math.radians(config["step_deg"]))
 
-    os.makedirs(out_dir, exist_ok=True)
-    paths = {name: os.path.join(out_dir, name) for name in ("looper_motion.csv", "looper_run.json") + FIGURES}
-    with atomic_path(paths["looper_motion.csv"]) as tmp:
+    try:
+        os.makedirs(out_dir, exist_ok=True)
+    except OSError as err:
+        raise OSError(f"--out {out_dir}: cannot make the folder ({err.strerror or err})") from None
+    paths = {name: os.path.join(out_dir, name) for name in (TABLE_FILE, RECORD_FILE) + FIGURES}
+    with atomic_path(paths[TABLE_FILE]) as tmp:
         np.savetxt(tmp, table(motion), delimiter=",", header=",".join(columns(config["length_unit"])),
                    comments="", fmt="%.15g")
     for line in summary(config, drive, motion, analysis, found):
@@ -320,16 +383,16 @@ def run(out_dir, config_path=None, echo=print):
     t_forces = time.perf_counter() - t_forces
     times = {"solve": t_solve, "figures": t_fig, "picture_3d": t_picture, "cad": t_cad, "forces": t_forces,
              "job": time.perf_counter() - t0}
-    with atomic_path(paths["looper_run.json"]) as tmp:
+    with atomic_path(paths[RECORD_FILE]) as tmp:
         with open(tmp, "w") as f:
             rec = record(config, drive, motion, analysis, found, times)
             if peaks is not None:
                 rec["forces"] = peaks
-            rec["files"] = ["looper_motion.csv", *written]         # what this run wrote (STEP needs the extra)
+            rec["files"] = [TABLE_FILE, *written]         # what this run wrote (STEP needs the extra)
             json.dump(rec, f, indent=1)
     echo(f"time: solve {1e3 * t_solve:.1f} ms, figures {t_fig:.2f} s, 3-D picture {t_picture:.2f} s, CAD paths "
          f"{t_cad:.2f} s, forces {t_forces:.2f} s, whole job {time.perf_counter() - t0:.2f} s")
-    echo(f"wrote {', '.join(os.path.join(out_dir, n) for n in ['looper_motion.csv', 'looper_run.json'] + written)}")
+    echo(f"wrote {', '.join(os.path.join(out_dir, n) for n in [TABLE_FILE, RECORD_FILE] + written)}")
     return motion
 
 
@@ -496,7 +559,7 @@ def record(config, drive, motion, analysis, found, times):
         "measured_error": {**found["errors"], "unit": config["length_unit"]},
         "time_s": times,
         "versions": _versions(),
-        "files": ["looper_motion.csv", *FIGURES, *CAD_FILES],
+        "files": [TABLE_FILE, *FIGURES, *CAD_FILES],
     }
 
 

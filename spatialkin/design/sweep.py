@@ -1,5 +1,7 @@
 """Sweeps: evaluate thousands of looper geometries (a full crank turn each) on local processes or a Dask
-cluster; a geometry that fails is a row with the reason, never a lost run.
+cluster; a geometry that fails is a row with the reason, never a lost run. A local worker process that dies
+breaks the whole pool: that raises (from a script, the usual cause is a main module without
+``if __name__ == "__main__":``, which the workers re-import).
 
     from spatialkin.design import LooperDesign, sweep, grid_space
     space = grid_space(crank_radius=np.linspace(6, 10, 20), rocker_length=np.linspace(25, 35, 20))
@@ -10,6 +12,7 @@ import concurrent.futures
 import itertools
 import math
 import os
+from concurrent.futures.process import BrokenProcessPool
 
 import numpy as np
 
@@ -37,6 +40,12 @@ SWEEP_SAMPLES = 361
 CHUNK = 16
 #: Width of the 'reason' column (characters).
 REASON_WIDTH = 160
+#: Why a local pool breaks, and what to do (the RuntimeError sweep raises then).
+BROKEN_POOL = ("a worker process of spatialkin.design.sweep died ({rows} geometries on {workers} processes), so no "
+               "geometry can be evaluated there. From a script the usual cause is a main module without "
+               "'if __name__ == \"__main__\":' round its code: the worker processes re-import it, and Python refuses "
+               "to start them from that import; put the script's calls under the guard, or pass processes=0 to run "
+               "in this process (client= to run on a Dask cluster)")
 
 
 def grid_space(**axes):
@@ -149,10 +158,13 @@ def evaluate_chunk(base, names, rows, outputs, samples):
 
 
 def _result(future, rows, width):
-    """A finished task's rows; when the task itself failed (a worker died, a cluster error), its geometries
-    become failed rows with the reason, so the rest of the run is kept."""
+    """A finished task's rows; when the task itself failed (a cluster error, a Dask worker lost), its geometries
+    become failed rows with the reason, so the rest of the run is kept. A broken local pool (BrokenProcessPool:
+    none of its tasks can run) propagates, for sweep to raise."""
     try:
         return future.result()
+    except BrokenProcessPool:
+        raise
     except Exception as err:
         reason = f"worker failed: {type(err).__name__}: {err}"[:REASON_WIDTH]
         return [(False, reason, [math.nan] * width)] * rows
@@ -212,7 +224,8 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
     numpy structured array or pandas.DataFrame (M rows)
         The swept parameters, the outputs (angles in rad, lengths in the drive's unit, time in 1/omega with
         omega = 1), 'ok' (bool) and 'reason' (str, empty when ok). A geometry that fails (cannot be assembled,
-        a worker died) is a row with ok False, NaN outputs and the reason: a sweep never loses its run.
+        raises in its worker, its task lost on a Dask cluster) is a row with ok False, NaN outputs and the
+        reason: a sweep never loses its run to one geometry.
 
     Raises
     ------
@@ -220,6 +233,15 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
         Naming the argument: a space that is not a non-empty dict of 1-D arrays of one length over known
         parameters, unknown outputs, samples < 3, chunk < 1, processes < 0, a base that is not a LooperDesign,
         as_frame=True without pandas.
+    RuntimeError
+        A local worker process died, which breaks the pool (BrokenProcessPool, chained as the cause). From a
+        script the usual cause is a main module without ``if __name__ == "__main__":`` (the workers re-import
+        it); the message says so. processes=0 runs in this process.
+
+    Notes
+    -----
+    Local workers are started by forkserver (spawn where the platform has no fork) and re-import the caller's
+    main module: a script calls sweep under ``if __name__ == "__main__":``.
 
     See Also
     --------
@@ -278,14 +300,17 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
             if processes is not None:
                 check_count("processes", processes, 0)
             workers = processes or os.cpu_count() or 1
-            with concurrent.futures.ProcessPoolExecutor(workers, mp_context=_context()) as pool:
-                futures = {pool.submit(evaluate_chunk, portable, names, c, outputs, samples): k
-                           for k, c in enumerate(chunks)}
-                for future in concurrent.futures.as_completed(futures):
-                    k = futures[future]
-                    done[k] = _result(future, len(chunks[k]), len(outputs))
-                    if bar is not None:
-                        bar.update(len(chunks[k]))
+            try:
+                with concurrent.futures.ProcessPoolExecutor(workers, mp_context=_context()) as pool:
+                    futures = {pool.submit(evaluate_chunk, portable, names, c, outputs, samples): k
+                               for k, c in enumerate(chunks)}
+                    for future in concurrent.futures.as_completed(futures):
+                        k = futures[future]
+                        done[k] = _result(future, len(chunks[k]), len(outputs))
+                        if bar is not None:
+                            bar.update(len(chunks[k]))
+            except BrokenProcessPool as err:
+                raise RuntimeError(BROKEN_POOL.format(rows=len(rows), workers=workers)) from err
     finally:
         if bar is not None:
             bar.close()

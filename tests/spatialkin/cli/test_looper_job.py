@@ -1,8 +1,9 @@
 """The looper job as a designer runs it: units and machine speed, the JSON record, partial-turn drives,
-rotation forms in the TOML, one-line errors, --help and --version. Oracles: the closed form per crank angle
+rotation forms in the TOML, one-line errors, --help (every key, every file the job writes) and --version. Oracles: the closed form per crank angle
 (tests/oracles/closed_forms.py), the scaling of velocities with the crank speed (v ~ omega,
 a ~ omega^2), the blocked crank ranges' exact edges, and the reference rotation."""
 import json
+import os
 
 import numpy as np
 import pytest
@@ -12,7 +13,7 @@ import spatialkin as sk
 from spatialkin.mechanisms.looper import reference
 from spatialkin.cli import main
 from spatialkin.plots.looper import angle_span
-from spatialkin.cli.looper_job import DEFAULT_SPEED_RPM, KEYS, ROTATION_TOL, build, load_config
+from spatialkin.cli.looper_job import DEFAULT_SPEED_RPM, KEYS, ROTATION_TOL, build, load_config, output_files
 from spatialkin.mechanisms import LooperDrive
 
 #: Positions against the closed form (mm), and relative agreement of machine-speed values with rescaled ones.
@@ -91,7 +92,8 @@ def test_summary_states_units(tmp_path):
 
 def test_partial_turn_drive_is_analysed_over_its_reachable_ranges(tmp_path, capsys, blocked_drive):
     cfg = tmp_path / "rocking.toml"
-    cfg.write_text("rocker_frame = { origin = [40.0, 0.0, 60.0] }\nstep_deg = 0.5\n")      # blocked_drive typed
+    cfg.write_text("rocker_frame = { origin = [40.0, 0.0, 60.0], rotation = [[1, 0, 0], [0, 1, 0], [0, 0, 1]] }\n"
+                   "step_deg = 0.5\n")                                                     # blocked_drive typed
     out = tmp_path / "out"
     assert main(["looper", "--out", str(out), "--config", str(cfg)]) == 0
     assert "dead positions at crank angles" in capsys.readouterr().out
@@ -111,7 +113,7 @@ def test_partial_turn_drive_is_analysed_over_its_reachable_ranges(tmp_path, caps
 
 def test_never_assembling_drive_exits_2_with_the_clear_message(tmp_path, capsys):
     cfg = tmp_path / "far.toml"
-    cfg.write_text("rocker_frame = { origin = [600.0, 0.0, 75.0] }\n")
+    cfg.write_text("rocker_frame = { origin = [600.0, 0.0, 75.0], z_axis = [0, 1, 0] }\n")
     assert main(["looper", "--out", str(tmp_path / "o"), "--config", str(cfg)]) == 2
     err = capsys.readouterr().err
     assert "cannot be assembled at any crank angle" in err and len(err.strip().splitlines()) == 1
@@ -163,6 +165,9 @@ def test_crank_z_axis_alone_points_u1_zero_at_the_rocker():
     ("rocker_frame = { origin = [6, 0, 75], axis_angle = { axis = [0, 0, 0], angle_deg = 5 } }\n", "non-zero"),
     ("rocker_frame = { origin = [6, 0, 75], z_axis = [0, 1, 0], rotation = [[1, 0, 0], [0, 1, 0], [0, 0, 1]] }\n",
      "give one of"),
+    ("rocker_frame = { origin = [6.0, 0.0, 75.0] }\n", "rocker_frame: origin alone does not place a frame"),
+    ("crank_frame = { origin = [0.0, 0.0, 0.0] }\n", "crank_frame: origin alone does not place a frame"),
+    ("rocker_frame = {}\n", "rocker_frame: origin alone does not place a frame"),
     ("links = { crank = { mass = -1.0 } }\n", "links.crank: mass"),
     ("links = { looper = { mass = 1.0 } }\n", "unknown link 'looper'"),
     ("links = { coupler = { mass = 1.0, inertia = [1.0, -2.0, 1.0] } }\n", "links.coupler: inertia"),
@@ -186,6 +191,34 @@ def test_bad_command_lines_are_one_line_and_exit_2(capsys, argv):
         code = ex.code
     err = capsys.readouterr().err
     assert code == 2 and len(err.strip().splitlines()) == 1 and "Traceback" not in err, err
+
+
+def test_out_that_is_a_file_is_one_line_naming_out(tmp_path, capsys):
+    """--out naming an existing file, or a folder below one: exit 2 before any work, one line naming --out and
+    the reason, the file untouched."""
+    existing = tmp_path / "neg.toml"
+    existing.write_text("crank_radius = 8.0\n")
+    for out, reason in ((existing, "a file of that name exists"), (existing / "sub", "is a file")):
+        assert main(["looper", "--out", str(out)]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith(f"spatialkin looper: --out {out}: ") and reason in err, err
+        assert len(err.strip().splitlines()) == 1 and "Errno" not in err, err
+    assert existing.read_text() == "crank_radius = 8.0\n"
+
+
+def test_help_lists_every_file_the_job_writes(reference_run, capsys):
+    """Oracle: the files the reference run wrote (and the job's list of its outputs, which holds the STEP file
+    the cad extra adds) are each named in --help."""
+    out, _, _, record = reference_run
+    written = set(os.listdir(out))
+    assert written == set(record["files"]) | {"looper_run.json"}
+    assert written <= set(output_files())
+    with pytest.raises(SystemExit) as ex:
+        main(["looper", "--help"])
+    text = capsys.readouterr().out
+    assert ex.value.code == 0
+    for name in sorted(written | set(output_files())):
+        assert name in text, name
 
 
 def test_version_and_help_list_every_key(capsys):

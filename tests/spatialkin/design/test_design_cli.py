@@ -1,7 +1,11 @@
-"""spatialkin design --targets FILE.toml writes a config the main job accepts, whose drive meets the targets."""
+"""spatialkin design --targets FILE.toml writes a config the main job accepts, whose drive meets the targets; the
+example in its --help runs as copied."""
 import math
+import textwrap
 
 import numpy as np
+
+import pytest
 
 from spatialkin.cli import main
 from spatialkin.design import LooperDesign
@@ -63,3 +67,21 @@ def test_start_from_a_config_and_fit_tip_points(tmp_path):
     config = load_config(str(tmp_path / "t_fitted.toml"))
     assert abs(config["crank_radius"] - 8.0) < 1e-8
     assert config["step_deg"] == 0.5                     # the start's job settings carry over
+
+
+def test_the_help_example_meets_every_target_as_copied(tmp_path, capsys):
+    """The targets file shown by --help, copied as it stands: exit status 0, every target met (the report's own
+    verdict, within the example's tolerances), and the fitted config builds a drive."""
+    with pytest.raises(SystemExit) as ex:
+        main(["design", "--help"])
+    assert ex.value.code == 0
+    text = capsys.readouterr().out
+    example = text.split("lengths in the drive's unit):\n", 1)[1].split("\nParameter names", 1)[0]
+    path = tmp_path / "targets.toml"
+    path.write_text(textwrap.dedent(example))
+    assert main(["design", "--targets", str(path)]) == 0
+    report = capsys.readouterr().out
+    verdicts = [line for line in report.splitlines() if line.rstrip().endswith((": met", ": MISSED"))]
+    assert len(verdicts) == 6 and all(line.endswith(": met") for line in verdicts), report
+    drive = build(load_config(str(tmp_path / "targets_fitted.toml")))
+    assert drive.analyse().turns_fully

@@ -1,10 +1,24 @@
 """Sweeps: local processes and a Dask LocalCluster give the same table as an in-process loop; a failed
-geometry is a row with its reason."""
+geometry is a row with its reason; a broken pool of local workers raises, naming the missing main guard; the
+README's design example runs as a script."""
+import concurrent.futures
+import importlib
+import os
+import re
+import subprocess
+import sys
+from concurrent.futures.process import BrokenProcessPool
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from spatialkin.design import LooperDesign
 from spatialkin.design.sweep import evaluate, grid_space, random_space, sweep
+
+sweep_module = importlib.import_module("spatialkin.design.sweep")     # the package's 'sweep' is the function
+
+README = Path(__file__).resolve().parents[3] / "README.md"
 
 OUTPUTS = ("swing", "min_transmission", "assembly_margin", "u2_max_at", "tip_speed_max")
 
@@ -77,7 +91,7 @@ def test_bad_input_names_the_argument(kwargs, word):
 
 
 def test_a_failed_task_becomes_failed_rows():
-    """A task that raises (a dead worker, a cluster error) gives rows with the reason instead of ending the
+    """A task that raises (a cluster error, a lost Dask worker) gives rows with the reason instead of ending the
     run."""
     import concurrent.futures
 
@@ -103,3 +117,64 @@ def test_workers_fork_when_the_main_script_is_no_file(monkeypatch):
     from spatialkin.design.sweep import _context
     monkeypatch.setattr(sys.modules["__main__"], "__file__", "<stdin>", raising=False)
     assert _context().get_start_method() == "fork"
+
+
+def _die_in_worker(*args):
+    """A worker task that ends its own process, as a worker that cannot start or crashes does."""
+    os._exit(3)
+
+
+def test_a_dead_local_worker_raises_naming_the_main_guard(monkeypatch):
+    """Oracle: a worker process that dies breaks the pool (BrokenProcessPool); sweep raises RuntimeError with it
+    as the cause, naming the main-module guard and processes=0, instead of a table of failed rows."""
+    monkeypatch.setattr(sweep_module, "evaluate_chunk", _die_in_worker)
+    with pytest.raises(RuntimeError, match=r"if __name__ == \"__main__\":.*processes=0") as info:
+        sweep({"crank_radius": [8.0, 9.0]}, ("swing",), processes=1, progress=False, as_frame=False)
+    assert isinstance(info.value.__cause__, BrokenProcessPool)
+
+
+class _BrokenPool:
+    """A ProcessPoolExecutor whose every task fails as a broken pool's do."""
+
+    def __init__(self, *args, **kwargs):
+        pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        return False
+
+    def submit(self, fn, *args):
+        future = concurrent.futures.Future()
+        future.set_exception(BrokenProcessPool("A process in the process pool was terminated abruptly"))
+        return future
+
+
+def test_a_broken_pool_raises_instead_of_failed_rows(monkeypatch):
+    monkeypatch.setattr(concurrent.futures, "ProcessPoolExecutor", _BrokenPool)
+    with pytest.raises(RuntimeError, match="worker process of spatialkin.design.sweep died") as info:
+        sweep({"crank_radius": [8.0, 9.0, 10.0]}, ("swing",), processes=2, chunk=1, progress=False)
+    assert isinstance(info.value.__cause__, BrokenProcessPool)
+
+
+def test_a_geometry_that_raises_in_a_worker_is_a_failed_row():
+    """Oracle: crank radius 4 with rocker 20 cannot be assembled (its error, raised in the worker, is the row's
+    reason); the other geometry of the same task is evaluated as in this process."""
+    space = {"crank_radius": [4.0, 8.0], "rocker_length": [20.0, 30.0]}
+    table = sweep(space, ("swing",), processes=1, progress=False, as_frame=False)
+    assert table["ok"].tolist() == [False, True]
+    assert "cannot be assembled" in table["reason"][0] and np.isnan(table["swing"][0])
+    assert table["swing"][1] == pytest.approx(evaluate(LooperDesign.reference(), ("swing",))["swing"], rel=1e-12)
+
+
+def test_the_readme_design_example_runs_as_a_script(tmp_path):
+    """The README's design example, saved as a script and run by Python (its sweep on worker processes that
+    re-import the script), fits and sweeps without a failed worker."""
+    section = README.read_text().split("## Designing a looper drive", 1)[1]
+    code = re.search(r"^```python\n(.*?)^```", section, flags=re.S | re.M).group(1)
+    script = tmp_path / "design_example.py"
+    script.write_text(code)
+    run = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert "True" in run.stdout and "worker failed" not in run.stdout + run.stderr

@@ -5,12 +5,13 @@ argument, so that the object API turns a bad input into a clear message before a
 and math: every layer above the kernels may import this module (the kernels validate nothing).
 """
 import math
+import numbers
 
 import numpy as np
 
-__all__ = ["ORTHONORMAL_TOL", "check_real", "check_positive", "check_nonnegative", "check_count", "check_omega",
-           "check_choice", "check_range", "check_finite", "check_vector", "check_points", "check_angles",
-           "check_frame", "orthonormalised"]
+__all__ = ["ORTHONORMAL_TOL", "LENGTH_MIN", "LENGTH_MAX", "check_real", "check_positive", "check_nonnegative",
+           "check_real_type", "check_length", "check_count", "check_omega", "check_choice", "check_range",
+           "check_finite", "check_vector", "check_points", "check_angles", "check_frame", "orthonormalised"]
 
 #: Largest accepted deviation of R^T R from the identity (entrywise), for a rotation given in floats.
 ORTHONORMAL_TOL = 1e-9
@@ -18,12 +19,20 @@ ORTHONORMAL_TOL = 1e-9
 #: as given: its polar factor differs from it by round-off only (rotation_about's and rotation_to_z's reach
 #: 10 eps, measured).
 ROUNDOFF_DEVIATION = 64 * np.finfo(float).eps
+#: Lengths (radii, finite trims, frame origins' coordinates) are accepted within these magnitudes. The kernels raise
+#: coordinates to the 8th power (the torus's implicit function is quartic, and it is squared: Newton's and the
+#: certificates' |F|^2); 8th powers of values in [1e-32, 1e32], and of sums of a few of them, stay within about
+#: [1e-256, 1e264], clear of overflow (1.8e308) and of the subnormals (below 2.2e-308).
+LENGTH_MIN, LENGTH_MAX = 1e-32, 1e32
 
 
 # --- numbers ------------------------------------------------------------------------------------------------
-def check_real(name, value, finite=False):
+def check_real(name, value, finite=False, strict=False):
     """``float(value)``, or ValueError naming the argument when it is not a real number (or, with finite=True,
-    not a finite one)."""
+    not a finite one); with strict=True, TypeError naming it when value is not a real number by type (a str, a
+    bool, None, a sequence: nothing float() would guess from)."""
+    if strict:
+        check_real_type(name, value)
     try:
         x = float(value)
     except (TypeError, ValueError):
@@ -33,27 +42,62 @@ def check_real(name, value, finite=False):
     return x
 
 
-def check_positive(name, value, allow_none=False):
+def check_real_type(name, value):
+    """value itself when its type is a real number's (int, float, a numpy integer or float scalar or 0-d array), or
+    TypeError naming the argument (a bool, a str, None, a sequence)."""
+    kind = type(value)
+    if kind is float or kind is int:
+        return value
+    if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)):
+        return value
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":
+        return value
+    raise TypeError(f"{name} must be a real number, got {kind.__name__}")
+
+
+def check_positive(name, value, allow_none=False, strict=False):
     """A finite, strictly positive float (a length, a tolerance, a scale), or None when allowed.
 
     Raises
     ------
     ValueError
         Naming the argument when it is not a real number, not finite or not positive.
+    TypeError
+        With strict=True, naming the argument when its type is not a real number's (see check_real).
     """
     if value is None and allow_none:
         return None
-    x = check_real(name, value)
+    x = check_real(name, value, strict=strict)
     if not (math.isfinite(x) and x > 0):
         raise ValueError(f"{name} must be a positive finite number, got {value!r}")
     return x
 
 
-def check_nonnegative(name, value):
-    """A finite float >= 0 (an offset, a rate that may vanish), or ValueError naming the argument."""
-    x = check_real(name, value)
+def check_nonnegative(name, value, strict=False):
+    """A finite float >= 0 (an offset, a rate that may vanish), or ValueError naming the argument (TypeError with
+    strict=True, as check_real)."""
+    x = check_real(name, value, strict=strict)
     if not (math.isfinite(x) and x >= 0):
         raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+    return x
+
+
+def check_length(name, value, allow_zero=False):
+    """A length (a radius, a surface's shape parameter) as a float within [LENGTH_MIN, LENGTH_MAX] (or 0 with
+    allow_zero).
+
+    Raises
+    ------
+    TypeError
+        Naming the argument when its type is not a real number's (a bool, a str, None, a sequence).
+    ValueError
+        Naming the argument when it is not positive (>= 0 with allow_zero) and finite, or lies outside the
+        supported lengths.
+    """
+    x = (check_nonnegative if allow_zero else check_positive)(name, value, strict=True)
+    if not (LENGTH_MIN <= x <= LENGTH_MAX or (allow_zero and x == 0.0)):
+        raise ValueError(f"{name} must lie within [{LENGTH_MIN:g}, {LENGTH_MAX:g}] (the supported lengths), "
+                         f"got {value!r}")
     return x
 
 
@@ -86,8 +130,10 @@ def check_choice(name, value, choices):
     return value
 
 
-def check_range(name, value):
-    """(lo, hi) floats with lo < hi (either may be infinite, never NaN); None means unbounded."""
+def check_range(name, value, length=False):
+    """(lo, hi) floats with lo < hi (either may be infinite, never NaN); None means unbounded. With length=True
+    (a trim of a length parameter) the finite ends lie within LENGTH_MAX of 0, and a finite width is at least
+    LENGTH_MIN; or ValueError naming the argument."""
     if value is None:
         return -math.inf, math.inf
     try:
@@ -98,6 +144,10 @@ def check_range(name, value):
         raise ValueError(f"{name} must not contain NaN, got {value!r}")
     if not lo < hi:
         raise ValueError(f"{name} must satisfy min < max, got ({lo}, {hi})")
+    if length and ((math.isfinite(lo) and abs(lo) > LENGTH_MAX) or (math.isfinite(hi) and abs(hi) > LENGTH_MAX)
+                   or hi - lo < LENGTH_MIN):
+        raise ValueError(f"{name} must have finite ends within {LENGTH_MAX:g} of 0 and a width of at least "
+                         f"{LENGTH_MIN:g} (the supported lengths), got ({lo}, {hi})")
     return lo, hi
 
 
@@ -112,8 +162,9 @@ def check_finite(name, value):
 
 def check_vector(name, value, length=3):
     """value as a finite float array of shape (length,): a point or a direction, or one value per point of a
-    polyline; or ValueError naming the argument (and its first entry that is not finite)."""
-    arr = np.asarray(value, dtype=float)
+    polyline; or ValueError naming the argument (and its first entry that is not finite), TypeError naming it
+    when value is no array of real numbers (a str, an object)."""
+    arr = as_float_array(name, value)
     if arr.shape != (length,):
         raise ValueError(f"{name} must have shape ({length},), got {arr.shape}")
     if not np.all(np.isfinite(arr)):
@@ -151,6 +202,17 @@ def check_angles(name, values):
     return angles
 
 
+def as_float_array(name, value):
+    """np.asarray(value, dtype=float), or TypeError naming the argument when value is not numbers (a str, None, an
+    object)."""
+    if isinstance(value, str) or value is None:
+        raise TypeError(f"{name} must be an array of real numbers, got {type(value).__name__}")
+    try:
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be an array of real numbers, got {type(value).__name__}") from None
+
+
 # --- frames -------------------------------------------------------------------------------------------------
 def check_frame(origin, rotation):
     """Validate and return (origin (3,), rotation (3, 3)) of a frame as float arrays, the rotation orthonormalised
@@ -160,9 +222,15 @@ def check_frame(origin, rotation):
     ------
     ValueError
         If either is not finite, has the wrong shape, or rotation is not orthonormal (within ORTHONORMAL_TOL)
-        and right-handed.
+        and right-handed; or a coordinate of origin is larger than LENGTH_MAX.
+    TypeError
+        If either is not an array of real numbers.
     """
-    return check_vector("origin", origin), orthonormalised("rotation", rotation, ORTHONORMAL_TOL)
+    origin = check_vector("origin", origin)
+    if not (abs(origin[0]) <= LENGTH_MAX and abs(origin[1]) <= LENGTH_MAX and abs(origin[2]) <= LENGTH_MAX):
+        raise ValueError(f"origin must have coordinates within {LENGTH_MAX:g} of 0 (the supported lengths), "
+                         f"got {origin.tolist()}")
+    return origin, orthonormalised("rotation", rotation, ORTHONORMAL_TOL)
 
 
 def orthonormalised(name, rotation, tol, advice=""):
@@ -197,7 +265,7 @@ def orthonormalised(name, rotation, tol, advice=""):
     N. J. Higham, Functions of Matrices, SIAM 2008, Theorem 8.4 (the polar factor is the nearest orthogonal
     matrix in the Frobenius norm).
     """
-    rot = np.asarray(rotation, dtype=float)
+    rot = as_float_array(name, rotation)
     if rot.shape != (3, 3):
         raise ValueError(f"{name} must have shape (3, 3), got {rot.shape}")
     if not np.all(np.isfinite(rot)):

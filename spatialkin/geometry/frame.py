@@ -24,8 +24,9 @@ def rotation_about(axis, angle):
     Raises
     ------
     ValueError
-        Naming `axis` when it is not a finite 3-vector or is zero, naming `angle` when it is not a finite real
-        number.
+        Naming `axis` when it is not a finite 3-vector or is zero, naming `angle` when it is not finite.
+    TypeError
+        Naming `axis` when it is not an array of real numbers, `angle` when it is not a real number.
 
     Examples
     --------
@@ -47,7 +48,7 @@ def rotation_about(axis, angle):
     n = np.linalg.norm(k)
     if n == 0:
         raise ValueError("axis must be a non-zero vector")
-    check_real("angle", angle, finite=True)
+    angle = check_real("angle", angle, finite=True, strict=True)
     k = k / n
     kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
     return np.eye(3) + np.sin(angle) * kx + (1 - np.cos(angle)) * (kx @ kx)
@@ -105,7 +106,8 @@ class Frame:
     Parameters
     ----------
     origin : array_like, shape (3,), optional
-        Position of the local origin in global coordinates (the user's length unit); default the global origin.
+        Position of the local origin in global coordinates (the user's length unit), each coordinate within 1e32
+        of 0 (spatialkin._lib.validation.LENGTH_MAX); default the global origin.
     rotation : array_like, shape (3, 3), optional
         Proper rotation (orthonormal within 1e-9 entrywise, determinant +1); its columns are the local x, y, z
         axes in global coordinates. Default: the identity.
@@ -118,8 +120,10 @@ class Frame:
     Raises
     ------
     ValueError
-        Naming `origin` or `rotation`: non-finite entries, a wrong shape, a rotation that is not orthonormal or
-        is left-handed (a reflection).
+        Naming `origin` or `rotation`: non-finite entries, a wrong shape, an origin beyond the supported lengths,
+        a rotation that is not orthonormal or is left-handed (a reflection).
+    TypeError
+        Naming `origin` or `rotation` when it is not an array of real numbers.
 
     See Also
     --------

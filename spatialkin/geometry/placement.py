@@ -128,6 +128,9 @@ def regions_overlap(a, b):
     length trims and its region) and a's region; True when neither has a region (trims_overlap decides)."""
     if not (a.region or b.region):
         return True
+    own = getattr(traits(a), "regions_overlap", None)            # a kind that compares its patches itself
+    if own is not None:
+        return own(a, b)
     reach = OVERLAP_REACH * a.size
     (u0, u1), (v0, v1) = (np.clip(r, -reach, reach) for r in traits(a).natural_domain(a))
     u, v = np.meshgrid(np.linspace(u0, u1, REGION_SAMPLES)[1:-1], np.linspace(v0, v1, REGION_SAMPLES)[1:-1])
@@ -142,11 +145,12 @@ def regions_overlap(a, b):
 def check_not_coincident(a, b, scale):
     """Raise CoincidentSurfacesError when the patches overlap in a piece of surface, or when they are patches of
     one surface cut by angular or circular trims that do not overlap (they meet, if at all, along their edges)."""
-    if same_surface(a, b, scale) and trims_overlap(a, b) and (a.region or b.region) and not regions_overlap(a, b):
+    if not (same_surface(a, b, scale) and trims_overlap(a, b)):
+        return
+    if (a.region or b.region) and not regions_overlap(a, b):
         raise CoincidentSurfacesError(
             f"a and b are patches of the same {type(a).__name__.lower()} that share no area: they meet, if at all, "
             "along their trim edges, which sk.intersect does not compute for one surface given twice")
-    if same_surface(a, b, scale) and trims_overlap(a, b):
-        raise CoincidentSurfacesError(
-            f"a and b are the same {type(a).__name__.lower()} and their patches overlap: the intersection is a "
-            "piece of surface, not curves (compare them, or trim one so that the patches meet only along edges)")
+    raise CoincidentSurfacesError(
+        f"a and b are the same {type(a).__name__.lower()} and their patches overlap: the intersection is a "
+        "piece of surface, not curves (compare them, or trim one so that the patches meet only along edges)")

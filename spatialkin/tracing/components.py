@@ -66,9 +66,10 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         The two patches overlap in a piece of surface (the same sphere twice, coaxial equal cylinders, coplanar
         planes whose rectangles overlap). A subclass of ValueError.
     ValueError
-        Both surfaces unbounded, or bad arguments (named).
+        Both surfaces unbounded, or bad arguments (named; the options' ranges:
+        spatialkin.tracing.march.trace.check_options).
     TypeError
-        Naming `a` or `b` when it is not a spatialkin surface.
+        Naming `a` or `b` when it is not a spatialkin surface, an option when it is not a real number.
     TopologyError
         The search could not resolve the intersection within its budget (it never returns a guess instead).
     CertificationError
@@ -156,7 +157,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     """
     check_surface("a", a)
     check_surface("b", b)
-    if certify not in (False, True, "strict"):
+    if not (certify is False or certify is True or isinstance(certify, str) and certify == "strict"):
         raise ValueError(f"certify must be False, True or 'strict', got {certify!r}")
     warm.refresh()
     scene = None

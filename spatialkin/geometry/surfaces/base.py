@@ -13,9 +13,9 @@ import numpy as np
 from ..frame import Frame
 from ...kernels.geometry import surfaces as ks
 from ..traits import AXIS, check_surface, traits
-from ..._lib.validation import check_positive, check_range
+from ..._lib.validation import as_float_array, check_length, check_positive, check_range, check_real
 
-__all__ = ["Surface", "check_positive", "check_range", "check_surface"]
+__all__ = ["Surface", "check_length", "check_positive", "check_range", "check_surface"]
 
 
 class Surface:
@@ -45,7 +45,8 @@ class Surface:
     TypeError
         When `frame` is not a spatialkin.Frame.
     ValueError
-        Naming `u_range` or `v_range` when it is not a pair min < max (no NaN).
+        Naming `u_range` or `v_range` when it is not a pair min < max (no NaN) within the supported lengths
+        (spatialkin._lib.validation.check_range).
     """
 
     def __init__(self, frame, p0=0.0, p1=0.0, u_range=None, v_range=None, region=(), shown=None):
@@ -62,8 +63,8 @@ class Surface:
         data[ks.P1] = p1
         data[ks.ORIGIN:ks.ORIGIN + 3] = frame.origin
         data[ks.ROT:ks.ROT + 9] = frame.rotation.ravel()
-        data[ks.BOUNDS:ks.BOUNDS + 2] = check_range("u_range", u_range)
-        data[ks.BOUNDS + 2:ks.BOUNDS + 4] = check_range("v_range", v_range)
+        data[ks.BOUNDS:ks.BOUNDS + 2] = check_range("u_range", u_range, length=True)
+        data[ks.BOUNDS + 2:ks.BOUNDS + 4] = check_range("v_range", v_range, length=True)
         data.flags.writeable = False
         self.data = data
         self.region = tuple(region)
@@ -138,7 +139,9 @@ class Surface:
         Raises
         ------
         ValueError
-            When u and v do not broadcast together (numpy's message).
+            Naming `u` or `v` when it is not finite; when u and v do not broadcast together (numpy's message).
+        TypeError
+            Naming `u` or `v` when it is not real numbers.
 
         Examples
         --------
@@ -155,7 +158,7 @@ class Surface:
         >>> np.allclose(torus.distance(torus.point(u, v)), 0.0)
         True
         """
-        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        u, v = np.broadcast_arrays(finite_array("u", u), finite_array("v", v))
         uv = np.ascontiguousarray(np.stack([u.ravel(), v.ravel()], axis=1))
         out = np.empty((uv.shape[0], 3))
         ks.evaluate(self.data, uv, out)
@@ -164,7 +167,8 @@ class Surface:
     def derivatives(self, u, v):
         """Point and derivatives at one (u, v): array (6, 3), rows point, S_u, S_v, S_uu, S_uv, S_vv."""
         out = np.empty((6, 3))
-        ks.derivatives(self.data, float(u), float(v), out)
+        ks.derivatives(self.data, check_real("u", u, finite=True, strict=True),
+                       check_real("v", v, finite=True, strict=True), out)
         return out
 
     def normal(self, u, v):
@@ -191,7 +195,9 @@ class Surface:
         Raises
         ------
         ValueError
-            When `points` does not have shape (..., 3).
+            Naming `points` when it does not have shape (..., 3) or is not finite.
+        TypeError
+            Naming `points` when it is not real numbers.
 
         Examples
         --------
@@ -207,7 +213,7 @@ class Surface:
         ...
         ValueError: points must have shape (..., 3), got (2,)
         """
-        pts = np.asarray(points, dtype=float)
+        pts = finite_array("points", points)
         if pts.shape[-1:] != (3,):
             raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
         flat = np.ascontiguousarray(pts.reshape(-1, 3))
@@ -216,8 +222,11 @@ class Surface:
         return out.reshape(pts.shape[:-1])
 
     def parameters(self, points):
-        """Parameters (u, v) (..., 2) of the surface points nearest to global points (..., 3); u in (-pi, pi]."""
-        pts = np.asarray(points, dtype=float)
+        """Parameters (u, v) (..., 2) of the surface points nearest to global points (..., 3); u in (-pi, pi].
+        ValueError naming `points` when it does not have shape (..., 3) or is not finite."""
+        pts = finite_array("points", points)
+        if pts.shape[-1:] != (3,):
+            raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
         flat = np.ascontiguousarray(pts.reshape(-1, 3))
         out = np.empty((flat.shape[0], 2))
         ks.inverse(self.data, flat, out)
@@ -229,6 +238,15 @@ class Surface:
 
     def __repr__(self):
         return f"{type(self).__name__}({self._describe()}, frame={self.frame!r})"
+
+
+def finite_array(name, value):
+    """value as a float array, or TypeError naming the argument (not real numbers) or ValueError (an entry not
+    finite)."""
+    arr = as_float_array(name, value)
+    if not np.isfinite(arr).all():
+        raise ValueError(f"{name} must be finite")
+    return arr
 
 
 # --- pieces the kinds share --------------------------------------------------------------------------------

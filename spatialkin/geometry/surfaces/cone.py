@@ -40,10 +40,11 @@ class Cone(Surface):
     Raises
     ------
     ValueError
-        Naming `half_angle` (not in (0, pi/2)), `v_range` (not a pair min < max) or `u_range` (not finite, or
-        wider than a full turn).
+        Naming `half_angle` (not in (0, pi/2)), `v_range` (not a pair min < max within the supported lengths,
+        1e32 of 0) or `u_range` (not finite, or wider than a full turn).
     TypeError
-        When `frame` is not a spatialkin.Frame.
+        Naming `half_angle` when it is not a real number (a str, a bool, None); when `frame` is not a
+        spatialkin.Frame.
 
     Examples
     --------
@@ -61,14 +62,14 @@ class Cone(Surface):
     """
 
     def __init__(self, half_angle, frame=None, v_range=None, u_range=None):
-        a = check_positive("half_angle", half_angle)
+        a = check_positive("half_angle", half_angle, strict=True)
         if a >= math.pi / 2:
             raise ValueError(f"half_angle must lie in (0, pi/2), got {a}")
         self.half_angle = a
         turn = angle_range("u_range", u_range)
         super().__init__(frame, 0.0, math.tan(a), v_range=v_range,
                          region=angular_groups(("u_min", "u_max"), TURN, turn, nappes=True),
-                         shown=None if turn is None else (turn, tuple(check_range("v_range", v_range))))
+                         shown=None if turn is None else (turn, tuple(check_range("v_range", v_range, length=True))))
 
     def with_frame(self, frame):
         return Cone(self.half_angle, frame, self.v_range, self.u_range if self.region else None)

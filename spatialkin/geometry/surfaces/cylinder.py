@@ -6,7 +6,7 @@ import numpy as np
 from ...kernels.geometry import surfaces as ks
 from ..placement import on_line, parallel
 from ..traits import ANGLE, LENGTH, TRANSLATION, SurfaceTraits, register
-from .base import Surface, check_positive, check_range, own_axis, quadric_jets
+from .base import Surface, check_length, check_range, own_axis, quadric_jets
 from ..trims import TURN, angle_range, angular_groups
 
 
@@ -38,10 +38,11 @@ class Cylinder(Surface):
     Raises
     ------
     ValueError
-        Naming `radius` (not a positive finite number), `v_range` (not a pair min < max) or `u_range` (not
-        finite, or wider than a full turn).
+        Naming `radius` (not a positive finite number, or outside the supported lengths [1e-32, 1e32]),
+        `v_range` (not a pair min < max within them) or `u_range` (not finite, or wider than a full turn).
     TypeError
-        When `frame` is not a spatialkin.Frame.
+        Naming `radius` when it is not a real number (a str, a bool, None); when `frame` is not a
+        spatialkin.Frame.
 
     Examples
     --------
@@ -59,11 +60,11 @@ class Cylinder(Surface):
     """
 
     def __init__(self, radius, frame=None, v_range=None, u_range=None):
-        self.radius = check_positive("radius", radius)
+        self.radius = check_length("radius", radius)
         turn = angle_range("u_range", u_range)
         super().__init__(frame, self.radius, 0.0, v_range=v_range,
                          region=angular_groups(("u_min", "u_max"), TURN, turn),
-                         shown=None if turn is None else (turn, tuple(check_range("v_range", v_range))))
+                         shown=None if turn is None else (turn, tuple(check_range("v_range", v_range, length=True))))
 
     def with_frame(self, frame):
         return Cylinder(self.radius, frame, self.v_range, self.u_range if self.region else None)

@@ -6,14 +6,22 @@ import numpy as np
 from ...kernels.geometry import surfaces as ks
 from ..placement import parallel
 from ..traits import LENGTH, NORMAL, SurfaceTraits, register
-from .base import Surface, check_positive, check_range
-from ..trims import RADIUS, level_groups
-from ..._lib.validation import check_nonnegative
+from .base import Surface, check_length, check_range
+from ..trims import RADIUS, level_groups, region_values
 
-#: Coplanar rectangles are compared on a grid of this many samples per side of one of them.
-OVERLAP_SAMPLES = 64
-#: Infinite trims are clipped at this many times the other rectangle's magnitude for that grid.
-OVERLAP_REACH = 1e6
+#: Coplanar patches with circles (a disc, an annulus) are compared on a grid of this many samples per side of
+#: the overlap of their rectangles.
+OVERLAP_SAMPLES = 97
+#: Infinite trims are cut at this many times the distance from a's origin of the farthest corner of the lines
+#: bounding the two rectangles (every corner of their overlap lies within it) ...
+OVERLAP_REACH = 2.0
+#: ... of those lines that cross at more than this angle (radians): nearer parallel ones count as parallel, so the
+#: reach stays within 1e6 of the trims' magnitude.
+OVERLAP_ANGLE = 1e-6
+#: Two coplanar rectangles share an area when their overlap is wider than this fraction of that reach (the
+#: coincidence tolerance, spatialkin.geometry.placement.SAME: round-off of the frames leaves a sliver there
+#: where they only meet along an edge).
+OVERLAP_WIDTH = 1e-12
 
 
 class Plane(Surface):
@@ -45,10 +53,12 @@ class Plane(Surface):
     Raises
     ------
     ValueError
-        Naming `u_range` or `v_range` when it is not a pair min < max (no NaN), `radius` when not positive and
-        finite, `inner_radius` when not in [0, radius).
+        Naming `u_range` or `v_range` when it is not a pair min < max (no NaN, finite ends within 1e32 of 0),
+        `radius` when not positive and finite or outside the supported lengths [1e-32, 1e32], `inner_radius` when
+        not 0 or a length in [1e-32, radius).
     TypeError
-        When `frame` is not a spatialkin.Frame.
+        Naming `radius` or `inner_radius` when it is not a real number (a str, a bool); when `frame` is not a
+        spatialkin.Frame.
 
     Examples
     --------
@@ -69,11 +79,13 @@ class Plane(Surface):
     """
 
     def __init__(self, frame=None, u_range=None, v_range=None, radius=None, inner_radius=None):
-        self.radius = None if radius is None else check_positive("radius", radius)
-        self.inner_radius = None if inner_radius is None else check_nonnegative("inner_radius", inner_radius)
+        self.radius = None if radius is None else check_length("radius", radius)
+        self.inner_radius = (None if inner_radius is None
+                             else check_length("inner_radius", inner_radius, allow_zero=True))
         if self.inner_radius is not None and self.radius is not None and not self.inner_radius < self.radius:
             raise ValueError(f"inner_radius must be less than radius, got {self.inner_radius} and {self.radius}")
-        u_range, v_range = check_range("u_range", u_range), check_range("v_range", v_range)
+        u_range = check_range("u_range", u_range, length=True)
+        v_range = check_range("v_range", v_range, length=True)
         if self.radius is not None:        # the bounding square: the tracer's edges, the circle cut from the curves
             u_range = (max(u_range[0], -self.radius), min(u_range[1], self.radius))
             v_range = (max(v_range[0], -self.radius), min(v_range[1], self.radius))
@@ -144,18 +156,25 @@ class PlaneTraits(SurfaceTraits):
                 and abs((b.frame.origin - a.frame.origin) @ za) <= tol)
 
     def trims_overlap(self, a, b):
-        """b's rectangle, turned in a's plane: its bounding box first, then a grid of its inside."""
-        corners = []
-        (u0, u1), (v0, v1) = b.u_range, b.v_range
-        big = 1e300
-        for u in (max(u0, -big), min(u1, big)):
-            for v in (max(v0, -big), min(v1, big)):
-                corners.append(b.frame.to_global([u, v, 0.0]))
-        local = a.frame.to_local(np.array(corners))[:, :2]
-        lo, hi = local.min(axis=0), local.max(axis=0)
-        if (lo[0] >= a.u_range[1] or hi[0] <= a.u_range[0] or lo[1] >= a.v_range[1] or hi[1] <= a.v_range[0]):
+        """The rectangles share an area (their circles aside: regions_overlap)."""
+        return rectangles_overlap(a, b) is not None
+
+    def regions_overlap(self, a, b):
+        """The patches share an area: a grid of their rectangles' overlap has a point strictly inside both
+        rectangles and both regions (discs, annuli)."""
+        box = rectangles_overlap(a, b)
+        if box is None:
             return False
-        return rectangles_overlap(a, b)
+        (u0, v0), (u1, v1) = box
+        uu, vv = np.meshgrid(np.linspace(u0, u1, OVERLAP_SAMPLES)[1:-1], np.linspace(v0, v1, OVERLAP_SAMPLES)[1:-1])
+        points = a.frame.to_global(np.stack([uu.ravel(), vv.ravel(), np.zeros(uu.size)], axis=1))
+        inside = np.all(region_values(a, points) > 0.0, axis=1) & np.all(region_values(b, points) > 0.0, axis=1)
+        local = b.frame.to_local(points)
+        (bu0, bu1), (bv0, bv1) = b.u_range, b.v_range
+        inside &= (local[:, 0] > bu0) & (local[:, 0] < bu1) & (local[:, 1] > bv0) & (local[:, 1] < bv1)
+        inside &= (uu.ravel() > a.u_range[0]) & (uu.ravel() < a.u_range[1])
+        inside &= (vv.ravel() > a.v_range[0]) & (vv.ravel() < a.v_range[1])
+        return bool(inside.any())
 
     def implicit_jets(self, surface, q):
         """F = q_z."""
@@ -164,17 +183,60 @@ class PlaneTraits(SurfaceTraits):
         return q[:, 2], grad, np.zeros((len(q), 3, 3))
 
 
-def rectangles_overlap(a, b, samples=OVERLAP_SAMPLES):
-    """Two coplanar trimmed rectangles share an area: a grid of b's rectangle has a point strictly inside a's."""
-    (u0, u1), (v0, v1) = b.u_range, b.v_range
-    big = OVERLAP_REACH * max(1.0, *[abs(x) for x in (*a.u_range, *a.v_range) if np.isfinite(x)])
-    u0, u1, v0, v1 = max(u0, -big), min(u1, big), max(v0, -big), min(v1, big)
-    uu, vv = np.meshgrid(np.linspace(u0, u1, samples)[1:-1], np.linspace(v0, v1, samples)[1:-1])
-    pts = b.frame.to_global(np.stack([uu.ravel(), vv.ravel(), np.zeros(uu.size)], axis=1))
-    loc = a.frame.to_local(pts)
-    inside = ((loc[:, 0] > a.u_range[0]) & (loc[:, 0] < a.u_range[1]) & (loc[:, 1] > a.v_range[0])
-              & (loc[:, 1] < a.v_range[1]))
-    return bool(inside.any())
+def rectangles_overlap(a, b):
+    """The bounding box ((u0, v0), (u1, v1)), in a's (u, v), of the overlap of two coplanar trimmed rectangles
+    (strips, half-planes, the whole plane), or None when they share no area (they meet along an edge at most).
+
+    b's rectangle, mapped into a's plane, is clipped by a's (Sutherland-Hodgman), both cut at a reach that holds
+    every corner of the lines bounding them (OVERLAP_REACH, OVERLAP_ANGLE); the overlap shares an area when its
+    area exceeds its diameter times OVERLAP_WIDTH x the reach.
+    """
+    rot = a.frame.rotation.T @ b.frame.rotation                 # b's local axes in a's coordinates
+    axes = (rot[:2, 0], rot[:2, 1])
+    offset = a.frame.to_local(b.frame.origin)[:2]
+    ranges_a, ranges_b = (a.u_range, a.v_range), (b.u_range, b.v_range)
+    lines = []                                                  # (normal, level): normal . x = level, in a's (u, v)
+    for j in range(2):
+        normal = np.eye(2)[j]
+        lines += [(normal, x) for x in ranges_a[j] if math.isfinite(x)]
+        lines += [(axes[j], x + axes[j] @ offset) for x in ranges_b[j] if math.isfinite(x)]
+    far = max([1.0] + [abs(level) for _, level in lines])
+    for i, (n1, c1) in enumerate(lines):
+        for n2, c2 in lines[i + 1:]:
+            det = n1[0] * n2[1] - n1[1] * n2[0]
+            if abs(det) > OVERLAP_ANGLE:
+                corner = np.array([c1 * n2[1] - c2 * n1[1], n1[0] * c2 - n2[0] * c1]) / det
+                far = max(far, float(np.abs(corner).max()))
+    reach = OVERLAP_REACH * far
+    reach_b = reach + float(np.abs(offset).max())
+    (bu0, bu1), (bv0, bv1) = ((max(lo, -2 * reach_b), min(hi, 2 * reach_b)) for lo, hi in ranges_b)
+    polygon = [offset + u * axes[0] + v * axes[1] for u, v in ((bu0, bv0), (bu1, bv0), (bu1, bv1), (bu0, bv1))]
+    for j in range(2):
+        lo, hi = max(ranges_a[j][0], -reach), min(ranges_a[j][1], reach)
+        polygon = clipped(polygon, j, lo, 1.0)
+        polygon = clipped(polygon, j, hi, -1.0)
+        if len(polygon) < 3:
+            return None
+    pts = np.array(polygon)
+    x, y = pts[:, 0], pts[:, 1]
+    area = 0.5 * abs(float(x @ np.roll(y, -1) - y @ np.roll(x, -1)))
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    if not area > OVERLAP_WIDTH * reach * float(np.linalg.norm(hi - lo)):
+        return None
+    return lo, hi
+
+
+def clipped(polygon, axis, level, side):
+    """The convex polygon (a list of points (2,)) clipped to side * (x[axis] - level) >= 0 (Sutherland-Hodgman)."""
+    out = []
+    for k, p in enumerate(polygon):
+        q = polygon[k - 1]
+        dp, dq = side * (p[axis] - level), side * (q[axis] - level)
+        if (dp >= 0) != (dq >= 0):
+            out.append(q + (p - q) * (dq / (dq - dp)))
+        if dp >= 0:
+            out.append(p)
+    return out
 
 
 register(Plane, PlaneTraits())

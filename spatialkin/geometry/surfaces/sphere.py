@@ -6,7 +6,7 @@ import numpy as np
 from ..frame import Frame
 from ...kernels.geometry import surfaces as ks
 from ..traits import ANGLE, FULL_TURN, POINT, SurfaceTraits, register
-from .base import Surface, check_positive, check_range, quadric_jets, trims_described, trims_given
+from .base import Surface, check_length, check_range, quadric_jets, trims_described, trims_given
 from ..trims import FULL_TURN_SLACK, HEIGHT, TURN, angle_range, angular_groups, level_groups
 
 #: The latitudes of the poles, where the chart (u longitude, v latitude) collapses.
@@ -44,10 +44,12 @@ class Sphere(Surface):
     Raises
     ------
     ValueError
-        Naming `radius` when it is not a positive finite number, `u_range` when not finite or wider than a
-        full turn, `v_range` when not a pair of latitudes min < max within [-pi/2, pi/2].
+        Naming `radius` when it is not a positive finite number or lies outside the supported lengths
+        [1e-32, 1e32], `u_range` when not finite or wider than a full turn, `v_range` when not a pair of latitudes
+        min < max within [-pi/2, pi/2].
     TypeError
-        When `frame` is not a spatialkin.Frame.
+        Naming `radius` when it is not a real number (a str, a bool, None); when `frame` is not a
+        spatialkin.Frame.
 
     References
     ----------
@@ -68,7 +70,7 @@ class Sphere(Surface):
     """
 
     def __init__(self, radius, frame=None, u_range=None, v_range=None):
-        self.radius = check_positive("radius", radius)
+        self.radius = check_length("radius", radius)
         turn, zone = angle_range("u_range", u_range), latitudes(v_range)
         heights = None if zone is None else tuple(self.radius * math.sin(x) if abs(x) < POLES[1] else x * math.inf
                                                   for x in zone)

@@ -6,7 +6,7 @@ import numpy as np
 from ...kernels.geometry import surfaces as ks
 from ..placement import parallel
 from ..traits import ANGLE, SurfaceTraits, register
-from .base import Surface, check_positive, own_axis, trims_described, trims_given
+from .base import Surface, check_length, own_axis, trims_described, trims_given
 from ..trims import TUBE, TURN, angle_range, angular_groups
 
 
@@ -42,10 +42,12 @@ class Torus(Surface):
     Raises
     ------
     ValueError
-        Naming `major_radius` or `minor_radius` when it is not a positive finite number, `u_range` or `v_range`
-        when not finite or wider than a full turn, or set on a horn or spindle torus.
+        Naming `major_radius` or `minor_radius` when it is not a positive finite number or lies outside the
+        supported lengths [1e-32, 1e32], `u_range` or `v_range` when not finite or wider than a full turn, or set
+        on a horn or spindle torus.
     TypeError
-        When `frame` is not a spatialkin.Frame.
+        Naming `major_radius` or `minor_radius` when it is not a real number (a str, a bool, None); when `frame`
+        is not a spatialkin.Frame.
 
     References
     ----------
@@ -70,8 +72,8 @@ class Torus(Surface):
     """
 
     def __init__(self, major_radius, minor_radius, frame=None, u_range=None, v_range=None):
-        self.major_radius = check_positive("major_radius", major_radius)
-        self.minor_radius = check_positive("minor_radius", minor_radius)
+        self.major_radius = check_length("major_radius", major_radius)
+        self.minor_radius = check_length("minor_radius", minor_radius)
         turns = angle_range("u_range", u_range), angle_range("v_range", v_range)
         if turns != (None, None) and self.minor_radius >= self.major_radius:
             name = "u_range" if turns[0] is not None else "v_range"

@@ -8,7 +8,7 @@ import operator
 import numpy as np
 
 from ...kernels.geometry import surfaces as ks
-from ..._lib.validation import check_positive
+from ..._lib.validation import as_float_array, check_count, check_positive
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome
 from ...geometry.traits import traits
@@ -331,6 +331,8 @@ class Curve:
         ------
         ValueError
             When s is not finite, or lies outside [0, length] on an open curve.
+        TypeError
+            When s is not real numbers (a str, None).
 
         Examples
         --------
@@ -349,35 +351,42 @@ class Curve:
         ...
         ValueError: s must lie in [0, 3.14159265359] for this open curve
         """
-        return self._result.sol(s)
+        return self._result.sol(arc_lengths(s))
 
     def tangent(self, s):
         """Unit tangents (..., 3) at s, pointing towards increasing s."""
-        return self._result.sol.tangent(s)
+        return self._result.sol.tangent(arc_lengths(s))
 
     def parameters(self, s):
         """(u1, v1, u2, v2) (..., 4) at s (u wrapped to (-pi, pi] where a sphere had to be re-charted)."""
-        return self._result.sol.parameters(s)
+        return self._result.sol.parameters(arc_lengths(s))
 
     def predicted_parameters(self, s):
         """(u1, v1, u2, v2) (..., 4) at s from the solver's dense output alone, without the Newton correction:
         within the solver's tolerance of the curve, a cheap start for Newton (a sphere's (u, v) are those of
         the point on surface a, as in parameters())."""
-        return self._result.sol.predicted_parameters(s)
+        return self._result.sol.predicted_parameters(arc_lengths(s))
 
     def derivatives(self, s):
         """(points, unit tangents C', curvature vectors C'') (..., 3) each at arc lengths s: exact, from the
         corrected points and the two surfaces' implicit functions, or in closed form (NaN at a singular
         point)."""
-        return self._result.sol.derivatives(s)
+        return self._result.sol.derivatives(arc_lengths(s))
 
     def closest(self, points):
-        """Arc length (...,) of the curve point nearest to each point (..., 3), and the distance (...,)."""
-        return self._result.sol.closest(points)
+        """Arc length (...,) of the curve point nearest to each point (..., 3), and the distance (...,).
+        ValueError naming `points` when they are not finite or of shape (..., 3)."""
+        pts = as_float_array("points", points)
+        if pts.shape[-1:] != (3,):
+            raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
+        if not np.isfinite(pts).all():
+            raise ValueError("points must be finite")
+        return self._result.sol.closest(pts)
 
     def sample(self, n):
-        """n points evenly spaced in arc length (for a closed curve the last equals the first)."""
-        return self(np.linspace(0.0, self.length, int(n)))
+        """n points evenly spaced in arc length (for a closed curve the last equals the first); n an integer
+        >= 0 (ValueError naming it otherwise)."""
+        return self(np.linspace(0.0, self.length, check_count("n", n, minimum=0)))
 
     # --- measured against the surfaces ----------------------------------------------------------------------
     def distances(self, points=None):
@@ -456,6 +465,14 @@ class Curve:
 
 Curve.__doc__ = (Curve.__doc__.replace("{statuses}", describe(CURVE_STATUSES, 8))
                  .replace("{precedence}", ", ".join(f"'{s}'" for s in END_PRECEDENCE)))
+def arc_lengths(s):
+    """s as an array, or TypeError naming it when it is not real numbers (a str, None, a bool)."""
+    arr = np.asarray(s)
+    if arr.dtype.kind not in "iuf":
+        raise TypeError(f"s must be real numbers, got {type(s).__name__}")
+    return arr
+
+
 # --- states and parameters: helpers of the dense output (spatialkin.tracing.curve.dense) and of sk.trace ---------
 def set_states(y, points, a, b):
     """Rows of the states y (M, 4) moved to the foot parameters of points (M, 3) on the charts a, b (angles kept

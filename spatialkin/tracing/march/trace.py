@@ -27,7 +27,7 @@ from .start import locate_on_curve, parameter_units, scene_scale
 from ..curve.status import CLOSED, FAILED, open_outcome
 from ...geometry.traits import check_surface, traits
 from ..._lib import stages, warm
-from ..._lib.validation import check_choice, check_nonnegative, check_positive
+from ..._lib.validation import as_float_array, check_choice, check_nonnegative, check_positive
 
 # --- defaults -----------------------------------------------------------------------------------------
 #: Relative tolerance of solve_ivp on (u1, v1, u2, v2): sets how far a step may stray before the Newton
@@ -54,6 +54,17 @@ GAP_FRACTION = 1e-2
 ROUNDOFF_ULPS = 64
 #: The ulp of 1.0 (np.float64).
 EPS = np.finfo(float).eps
+#: Smallest rtol, singular_tol and atol (atol per unit of each parameter: 1 for an angle, the scene scale for a
+#: length): about 45 ulps of 1. Below it the tolerances ask for less than the round-off of the error estimates and
+#: the normals' sine, and the steps shrink until the budget runs out.
+TOLERANCE_MIN = 1e-14
+#: singular_tol lies below this: the integrator hands over to the fine events at HANDOFF_MARGIN (2) times it, a
+#: sine that must stay below 1 (sin 30 degrees; a branch stopped there is no longer near a singular point).
+SINGULAR_TOL_MAX = 0.5
+#: Largest pullback. Above about 10 the pull-back term's stiffness sets the solver's steps, and their number grows in
+#: proportion to it (torus-sphere loop: 24 stored points at 1, 352 at 100, 6408 at 1e4, the budget of a segment
+#: spent at 1e5) with no accuracy gained: Newton puts every stored point on both surfaces.
+PULLBACK_MAX = 100.0
 #: solve_ivp's methods, "compiled": solve_ivp with spatialkin.ode.solvers.CompiledDOP853 (scipy's DOP853 steps,
 #: many per solver step in compiled code), and "compiled-rk45" (CompiledRK45: scipy's RK45 steps), both handing hard
 #: cases to the compiled DOP853 with the fine events (spatialkin.tracing.march.ivp.FALLBACK_METHOD).
@@ -66,15 +77,34 @@ def extent(surface):
 
 
 def check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
-    """(tol, rtol, atol, max_length, singular_tol, pullback) checked (ValueError naming a bad one; atol and
-    max_length may be None); none depends on the surfaces."""
-    tol = check_positive("tol", tol)
-    rtol = check_positive("rtol", rtol)
+    """(tol, rtol, atol, max_length, singular_tol, pullback) checked (atol and max_length may be None); none
+    depends on the surfaces (atol's floor for length parameters: make_settings).
+
+    Raises
+    ------
+    TypeError
+        Naming an option that is not a real number (a str, a bool).
+    ValueError
+        Naming an option out of its range: tol, max_length > 0; rtol in [TOLERANCE_MIN, 1); atol >= TOLERANCE_MIN;
+        singular_tol in [TOLERANCE_MIN, SINGULAR_TOL_MAX); pullback in [0, PULLBACK_MAX]; method one of METHODS.
+    """
+    tol = check_positive("tol", tol, strict=True)
+    rtol = check_positive("rtol", rtol, strict=True)
+    if not TOLERANCE_MIN <= rtol < 1.0:
+        raise ValueError(f"rtol must lie in [{TOLERANCE_MIN:g}, 1), got {rtol!r}")
     check_choice("method", method, METHODS)
-    atol = None if atol is None else check_positive("atol", atol)
-    max_length = None if max_length is None else check_positive("max_length", max_length)
-    singular_tol = check_positive("singular_tol", singular_tol)
-    pullback = check_nonnegative("pullback", pullback)
+    if atol is not None:
+        atol = check_positive("atol", atol, strict=True)
+        if atol < TOLERANCE_MIN:
+            raise ValueError(f"atol must be at least {TOLERANCE_MIN:g}, got {atol!r}")
+    max_length = None if max_length is None else check_positive("max_length", max_length, strict=True)
+    singular_tol = check_positive("singular_tol", singular_tol, strict=True)
+    if not TOLERANCE_MIN <= singular_tol < SINGULAR_TOL_MAX:
+        raise ValueError(f"singular_tol must lie in [{TOLERANCE_MIN:g}, {SINGULAR_TOL_MAX:g}) (a sine of the angle "
+                         f"between the normals), got {singular_tol!r}")
+    pullback = check_nonnegative("pullback", pullback, strict=True)
+    if pullback > PULLBACK_MAX:
+        raise ValueError(f"pullback must lie in [0, {PULLBACK_MAX:g}], got {pullback!r}")
     return tol, rtol, atol, max_length, singular_tol, pullback
 
 
@@ -91,6 +121,10 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
         # angles get rtol, lengths (plane u, v; cylinder and cone v) rtol * scale
         atol = rtol * np.concatenate([parameter_units(a.data, scale), parameter_units(b.data, scale)])
     else:
+        unit = max(parameter_units(a.data, scale).max(), parameter_units(b.data, scale).max())
+        if atol < TOLERANCE_MIN * unit:
+            raise ValueError(f"atol must be at least {TOLERANCE_MIN:g} x the scale {unit:.6g} of the length "
+                             f"parameters, got {atol!r}")
         atol = np.full(4, atol)
     return Settings(method=method, rtol=rtol, atol=atol, gap_tol=gap_tol, scale=scale, tolerance=tolerance,
                     singular_tol=singular_tol, pullback=pullback / scale, max_length=max_length,
@@ -124,7 +158,7 @@ def scene_lengths(a, b, tol, max_length, magnitude):
 
 def start_point(a, b, start, gap_tol):
     """(point, y) on the curve from a 3-vector near it or from (u1, v1, u2, v2)."""
-    arr = np.asarray(start, dtype=float)
+    arr = as_float_array("start", start)
     if arr.shape not in ((3,), (4,)):
         raise ValueError(f"start must be a point (3,) or parameters (u1, v1, u2, v2) (4,), got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):
@@ -167,7 +201,7 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
         Pull-back rate times the scale: the gap |M1 - M2| of the integrated state decays like
         exp(-pullback * s / scale) (0 turns it off).
     close : bool
-        Detect closure (True) or trace on to max_length (False; for drift studies).
+        Detect closure (True) or trace on to max_length (False; for drift studies); a bool, nothing else.
 
     Returns
     -------
@@ -179,9 +213,10 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     ------
     ValueError
         For bad arguments (named: `start`, `tol`, `method`, `rtol`, `atol`, `max_length`, `singular_tol`,
-        `pullback`).
+        `pullback`; their ranges: check_options).
     TypeError
-        Naming `a` or `b` when it is not a spatialkin surface.
+        Naming `a` or `b` when it is not a spatialkin surface, `start` or an option when it is not real numbers,
+        `close` when it is not a bool.
     TracingError
         If no curve point is found near start (status 'no_start'), or start is a singular point of the
         intersection (the normals parallel there).
@@ -232,6 +267,8 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     """
     check_surface("a", a)
     check_surface("b", b)
+    if not isinstance(close, (bool, np.bool_)):
+        raise TypeError(f"close must be a bool, got {type(close).__name__}")
     warm.refresh()
     t_start = time.perf_counter()
     anchor = np.concatenate([a.frame.origin, b.frame.origin])

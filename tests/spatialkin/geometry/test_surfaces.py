@@ -108,7 +108,7 @@ def test_parameters_invert_point(kind):
     (lambda: sk.Torus(1, 0), "minor_radius", "positive"),
     (lambda: sk.Torus(np.nan, 1), "major_radius", "finite"),
     (lambda: sk.Sphere(np.inf), "radius", "finite"),
-    (lambda: sk.Sphere("a"), "radius", "real number"),
+    (lambda: sk.Sphere(1e-320), "radius", "supported lengths"),
     (lambda: sk.Cylinder(1, v_range=(2, 1)), "v_range", "min < max"),
     (lambda: sk.Cone(2.0), "half_angle", "pi/2"),
     (lambda: sk.Plane(u_range=(0, np.nan)), "u_range", "NaN"),

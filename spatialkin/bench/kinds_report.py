@@ -1,5 +1,5 @@
-"""The per-pair-kind side-by-side run (spatialkin.bench.sidebyside) written out: a CSV and a two-panel PNG (our
-speed over OpenCascade's per pair kind, against parity; both errors), each written whole or not at all."""
+"""The per-pair-kind side-by-side run (spatialkin.bench.sidebyside) written out: a CSV and a PNG (per pair kind,
+OpenCascade's time over ours drawn from parity, both times, both errors), each written whole or not at all."""
 import numpy as np
 
 from .._lib.files import atomic_path
@@ -11,10 +11,20 @@ from .sidebyside import OUR_TOL
 #: Columns of bench_kinds.csv: times in seconds, errors in length units, stage seconds per call.
 COLUMNS = (["pair kind", "ours s", "OCC s", "OCC/ours", "our error", "OCC error", "our curves", "OCC curves"]
            + [f"{stages.LABELS[s]} s" for s in stages.STAGES] + ["compiled kernels s", "ours with points read s"])
-#: The ratio axis reaches this many times past the largest ratio (room for the time labels).
-LABEL_ROOM = 60.0
+#: The ratio axis reaches this factor past the smallest and the largest ratio (and parity), room for their labels.
+RATIO_MARGIN = 2.5
 #: Errors below this are drawn at it (a log axis has no zero).
 ERROR_FLOOR = 1e-17
+#: Colours of a bar: sk.intersect faster (ratio above 1), OpenCascade faster.
+FASTER_COLOR, SLOWER_COLOR = "tab:green", "tab:red"
+#: Rows of the error panel: ours drawn this far (rows) above the row's centre, OpenCascade's as far below.
+ERROR_OFFSET = 0.2
+#: Figure size: width (inches), height per pair kind and for the title and axis labels; dots per inch.
+FIGURE_WIDTH, ROW_HEIGHT, FRAME_HEIGHT, DPI = 10.0, 0.34, 1.9, 100
+#: Text sizes (points): tick labels, axis labels, legends, per-bar numbers, title; characters a title line holds.
+TICK_SIZE, LABEL_SIZE, LEGEND_SIZE, NUMBER_SIZE, TITLE_SIZE, TITLE_WIDTH = 10, 10, 9, 9, 10, 110
+#: Widths of the three panels: ratio bars, the times column, errors.
+PANEL_WIDTHS = (1.0, 0.38, 1.0)
 
 
 def write_kinds_csv(rows, path):
@@ -32,46 +42,98 @@ def cell(value, spec):
 
 
 def plot_kinds(rows, path, title):
-    """Left: OCC time / our time per pair kind (log), with parity; right: both errors (log)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    names = [r.kind for r in rows]
-    y = np.arange(len(rows))
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 0.32 * len(rows) + 1.8), sharey=True)
-    ratios = np.array([r.ratio for r in rows])
-    measured = np.isfinite(ratios)
-    colours = ["tab:green" if q >= 1 else "tab:red" for q in ratios]
-    left.barh(y, np.where(measured, ratios, 0.0), color=colours)
-    if not measured.any():
-        left.text(0.5, 0.5, "OpenCascade (cadquery-ocp) not installed:\nno side-by-side times",
-                  transform=left.transAxes, ha="center", va="center", fontsize=8)
-    left.axvline(1.0, color="grey", ls=":", lw=1, label="parity")
-    left.set_xscale("log")
-    finite = ratios[np.isfinite(ratios)]
-    left.set_xlim(min(0.5, float(finite.min()) / 2) if finite.size else 0.1,
-                  LABEL_ROOM * max(1.0, float(finite.max()) if finite.size else 1.0))
-    left.set_xlabel("OpenCascade time / sk.intersect time (above 1: ours faster)")
-    left.set_yticks(y, names)
-    left.invert_yaxis()
-    left.legend(fontsize=7, loc="upper right")
-    left.grid(True, axis="x", which="both", alpha=0.3)
-    for k, r in enumerate(rows):
-        if not measured[k]:
-            continue
-        left.annotate(f"ours {1e3 * r.ours:.2f} ms, OCC {1e3 * r.occ:.2f} ms", (max(r.ratio, 1e-3), k), fontsize=6,
-                      xytext=(3, -2), textcoords="offset points")
-    right.plot([max(r.our_error, ERROR_FLOOR) for r in rows], y, "s", label=f"sk.intersect (tol {OUR_TOL:g})")
-    if measured.any():
-        right.plot([max(r.occ_error, ERROR_FLOOR) for r in rows], y, "X",
-                   label=f"GeomAPI_IntSS (tol {OCC_DEFAULT_TOL:g})")
-    right.set_xscale("log")
-    right.set_xlabel("largest distance to either surface [length units]")
-    right.legend(fontsize=7)
-    right.grid(True, axis="x", which="both", alpha=0.3)
-    fig.suptitle(title, fontsize=8)
-    fig.tight_layout()
+    """Write kinds_figure(rows, title) as a PNG, whole or not at all."""
+    fig = kinds_figure(rows, title)
     with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=90, format="png")
-    plt.close(fig)
+        fig.savefig(tmp, dpi=DPI, format="png")
+
+
+def kinds_figure(rows, title):
+    """Per pair kind (one row each), a matplotlib Figure of three panels sharing the rows.
+
+    Left: OpenCascade's time over ours on a log axis, each bar drawn from parity (1) to the ratio: to the right
+    (green) where sk.intersect is faster, to the left (red) where OpenCascade is; the ratio at the bar's end.
+    Middle: both times in ms. Right: the largest measured distance to either surface of each answer (log),
+    ours above the row's centre and OpenCascade's below it, so that equal errors do not hide each other.
+
+    Parameters
+    ----------
+    rows : list of sidebyside.KindRow
+        Times in seconds (OpenCascade's NaN when it is not installed), errors in length units.
+    title : str
+        Wrapped at its '; ' to lines of about TITLE_WIDTH characters.
+    """
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Patch
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
+
+    y = np.arange(len(rows))
+    ratios = np.array([r.ratio for r in rows], dtype=float)
+    measured = np.isfinite(ratios)
+    fig = Figure(figsize=(FIGURE_WIDTH, ROW_HEIGHT * len(rows) + FRAME_HEIGHT), layout="constrained")
+    left, middle, right = fig.subplots(1, 3, sharey=True, gridspec_kw={"width_ratios": PANEL_WIDTHS})
+    for ax in (left, middle, right):
+        for k in y[::2]:                                  # bands that carry the eye along a row
+            ax.axhspan(k - 0.5, k + 0.5, color="0.95", zorder=0, lw=0)
+        ax.tick_params(labelsize=TICK_SIZE)
+
+    colours = [FASTER_COLOR if q >= 1 else SLOWER_COLOR for q in np.where(measured, ratios, 1.0)]
+    left.barh(y[measured], ratios[measured] - 1.0, left=1.0, height=0.6, color=np.array(colours)[measured],
+              zorder=2)
+    left.axvline(1.0, color="black", lw=1, zorder=3)
+    left.set_xscale("log")
+    low = min(1.0, float(ratios[measured].min())) if measured.any() else 1.0
+    high = max(1.0, float(ratios[measured].max())) if measured.any() else 1.0
+    left.set_xlim(low / RATIO_MARGIN, high * RATIO_MARGIN)
+    left.xaxis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    left.xaxis.set_minor_locator(NullLocator())
+    left.xaxis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
+    for k in np.nonzero(measured)[0]:
+        q = ratios[k]
+        left.annotate(f"{q:.2g}\u00d7", (q, k), xytext=(4 if q >= 1 else -4, 0), textcoords="offset points",
+                      ha="left" if q >= 1 else "right", va="center", fontsize=NUMBER_SIZE)
+    if measured.any():
+        left.legend(handles=[Patch(color=FASTER_COLOR, label="sk.intersect faster"),
+                             Patch(color=SLOWER_COLOR, label="OpenCascade faster")],
+                    fontsize=LEGEND_SIZE, loc="upper right")
+    else:
+        left.text(0.5, 0.5, "OpenCascade (cadquery-ocp) not installed:\nno side-by-side times",
+                  transform=left.transAxes, ha="center", va="center", fontsize=LABEL_SIZE,
+                  bbox={"facecolor": "white", "edgecolor": "none"}, zorder=4)
+    left.set_xlabel("OpenCascade time / sk.intersect time\n(1 = parity; right of it: ours faster)",
+                    fontsize=LABEL_SIZE)
+    left.set_yticks(y, [r.kind for r in rows])
+    left.set_ylim(len(rows) - 0.5, -0.5)                  # first row on top
+    left.grid(True, axis="x", alpha=0.3)
+
+    middle.set_xlim(0.0, 1.0)
+    middle.tick_params(left=False, bottom=False, labelbottom=False)
+    for side in middle.spines.values():
+        side.set_visible(False)
+    for k, r in enumerate(rows):
+        occ = f"{1e3 * r.occ:.3g}" if np.isfinite(r.occ) else "\u2013"
+        middle.text(0.5, k, f"{1e3 * r.ours:.3g} / {occ}", ha="center", va="center", fontsize=NUMBER_SIZE)
+    middle.set_xlabel("time per call [ms]\nsk.intersect / OpenCascade", fontsize=LABEL_SIZE)
+
+    right.plot([max(r.our_error, ERROR_FLOOR) for r in rows], y - ERROR_OFFSET, "s", ms=6, color="tab:blue",
+               label=f"sk.intersect (tol {OUR_TOL:g})", zorder=3)
+    if measured.any():
+        right.plot([max(r.occ_error, ERROR_FLOOR) for r in rows], y + ERROR_OFFSET, "X", ms=7, color="tab:orange",
+                   label=f"GeomAPI_IntSS (tol {OCC_DEFAULT_TOL:g})", zorder=3)
+    right.set_xscale("log")
+    right.set_xlabel("largest distance to either surface\n[length units]", fontsize=LABEL_SIZE)
+    right.legend(fontsize=LEGEND_SIZE, loc="upper center")
+    right.grid(True, axis="x", which="major", alpha=0.3)
+    fig.suptitle(wrap_title(title), fontsize=TITLE_SIZE)
+    return fig
+
+
+def wrap_title(title, width=TITLE_WIDTH):
+    """title broken into lines at its '; ' (kept as ';'), each line as many parts as fit in width characters."""
+    lines = []
+    for part in str(title).split("; "):
+        if lines and len(lines[-1]) + 2 + len(part) <= width:
+            lines[-1] += "; " + part
+        else:
+            lines.append(part)
+    return ";\n".join(lines)

@@ -8,7 +8,6 @@ from .scene import ARROW_FRACTION, Scene
 
 #: Names drawn beside the joints (shaft centre, crank pin, ball centre, rocker centre) and the looper tip.
 JOINT_NAMES = ("O1 crank shaft", "A crank pin (crank 1 = O1A)", "C ball joint", "P2 rocker centre")
-#: The crank shaft's name sits at the lower end of its drawn axis (the crank pin's name sits by O1).
 TIP_NAME = "T looper tip"
 #: Link names drawn at the middle of each link.
 LINK_NAMES = {"coupler": "coupler 2", "rocker_arm": "rocker arm 3", "looper": "looper"}
@@ -18,6 +17,8 @@ PATH_CMAPS = ("winter", "autumn")
 GAP_STEPS = 1.5
 #: Lower-left corners of the two colour bars (fractions of the window) in a labelled picture.
 BAR_POSITIONS = ((0.05, 0.03), (0.55, 0.03))
+#: Points per link where a path's name looks for the place seen farthest from the links.
+PATH_SAMPLES = 40
 #: Camera of a labelled picture: looking at the middle of the mechanism from this direction (fixed axes),
 #: z up, zoomed so that the mechanism fills the frame between the title and the colour bars.
 LABELLED_VIEW = (1.0, -0.75, 0.45)
@@ -42,11 +43,12 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
     color_by : {'speed', 's', None}
         Colour of the two paths: speed |v| of the point, arc length, or plain.
     labels : bool
-        A picture to read at a glance: joints and links named, an axes marker, and a colour bar per path
-        titled with its quantity and unit (speeds in m/s when `unit` is mm, cm, m or in), each path on its own
-        colour scale; the camera closer. Give a title through scene_args.
+        A picture to read at a glance: joints, links and paths named (each name set off clear of the drawing,
+        with a leader line), an axes marker, a scale bar (in `unit`; the view then a parallel projection) and a
+        colour bar per path titled with its quantity and unit (speeds in m/s when `unit` is mm, cm, m or in),
+        each path on its own colour scale; the camera closer. Give a title through scene_args.
     unit : str, optional
-        The drive's length unit, for the colour bars' titles.
+        The drive's length unit, for the colour bars' titles and the scale bar.
     **scene_args
         Passed to Scene (window_size, theme, camera_position, zoom, title, axes).
 
@@ -61,6 +63,7 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
         raise ValueError(f"velocities must be a non-negative integer (arrows per path), got {velocities!r}")
     if labels:
         scene_args.setdefault("axes", True)
+        scene_args.setdefault("scale_bar", True)
         scene_args.setdefault("zoom", LABELLED_ZOOM)
         if "camera_position" not in scene_args:
             links, joints = geo.looper_links(motion, index)
@@ -69,7 +72,7 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
             view = np.asarray(LABELLED_VIEW) / np.linalg.norm(LABELLED_VIEW)
             reach = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
             scene_args["camera_position"] = [tuple(centre + 3 * reach * view), tuple(centre), (0.0, 0.0, 1.0)]
-    scene = Scene(**scene_args)
+    scene = Scene(unit=unit, **scene_args)
     drive = motion.drive
     if surfaces:
         scene.add_surface(drive.torus, name="torus", color="#9ecae1")
@@ -95,13 +98,13 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
     scene.add_looper(motion, index, name="looper")
     if labels:
         links, joints = geo.looper_links(motion, index)
-        joints = joints.copy()
-        joints[0] = links["crank_shaft"][0]
         points = np.vstack([joints, links["looper"][-1:],
                             [0.5 * (links[k][0] + links[k][-1]) if k != "looper" else links[k][1] for k in LINK_NAMES]])
-        # each path named at its point farthest from where its point is drawn now
+        # each path named at its point seen farthest from the other path and the links
         paths = [(motion.ball_center, joints[2], "path of C"), (tip.position, links["looper"][-1], "path of T")]
-        path_points = [p[int(np.argmax(np.linalg.norm(p - now, axis=1)))] for p, now, _ in paths]
+        drawn = [densified(pts, PATH_SAMPLES) for pts in links.values()]
+        path_points = [clearest_point(p, np.vstack([*drawn, other]), scene.camera_position, now)
+                       for (p, now, _), other in zip(paths, (tip.position, motion.ball_center))]
         scene.add_labels(np.vstack([points, path_points]),
                          [*JOINT_NAMES, TIP_NAME, *LINK_NAMES.values(), *(name for _, _, name in paths)], name="names")
     if count:
@@ -114,3 +117,24 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
         scene.add_arrows(tip.position[every], tip.velocity[every], scale=scale, name="tip_velocity",
                          color="#2ca02c")
     return scene
+
+
+def densified(points, count):
+    """count points evenly along each segment of a polyline (N, 3): (count * (N - 1), 3)."""
+    t = np.linspace(0.0, 1.0, count)[:, None]
+    return np.vstack([a + t * (b - a) for a, b in zip(points[:-1], points[1:])])
+
+
+def clearest_point(path, others, camera_position, now):
+    """The point of path (N, 3) farthest, as the camera sees it (projected on the plane facing it), from the
+    nearest of others (M, 3); for a camera given by name ('iso', ...), the point of path farthest from now (3,)."""
+    if isinstance(camera_position, str):
+        return path[int(np.argmax(np.linalg.norm(path - now, axis=1)))]
+    position, focal, up = (np.asarray(x, dtype=float) for x in camera_position)
+    view = (position - focal) / np.linalg.norm(position - focal)
+    right = np.cross(up, view)
+    right /= np.linalg.norm(right)
+    basis = np.column_stack([right, np.cross(view, right)])
+    seen, clutter = path @ basis, others @ basis
+    gaps = np.min(np.linalg.norm(seen[:, None, :] - clutter[None, :, :], axis=2), axis=1)
+    return path[int(np.argmax(gaps))]

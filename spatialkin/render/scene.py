@@ -17,6 +17,7 @@ from .._lib.files import atomic_path
 from ..tracing.curve.result import Curve
 from .._lib.validation import check_choice, check_points, check_positive, check_range, check_vector
 from . import geometry as geo
+from . import labels as lab
 from ._backend import pyvista
 
 #: Default window (pixels) of a picture.
@@ -43,9 +44,24 @@ COLOR_MODES = ("s", "speed", None)
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#17becf")
 #: Colours of the mechanism's parts.
 LINK_COLOR, JOINT_COLOR, SHAFT_COLOR = "#4d4d4d", "#b8860b", "#9e9e9e"
-#: Text: title, labels and colour bars (points), a horizontal bar's size (fractions of the window) and ticks.
-TITLE_FONT_SIZE, LABEL_FONT_SIZE, BAR_FONT_SIZE = 14, 13, 13
+#: Text: title and colour bars (pyvista's points), labels (VTK's font size, about its height in pixels), a
+#: horizontal bar's size (fractions of the window) and ticks.
+TITLE_FONT_SIZE, LABEL_FONT_SIZE, BAR_FONT_SIZE = 14, 16, 13
 BAR_WIDTH, BAR_HEIGHT, BAR_LABELS, BAR_TITLE_SIZE = 0.38, 0.07, 5, 11
+#: Colour bars placed by the scene: lower-left corner of the first, the step to the next one in a row (two a
+#: row), and the height of a row (bar, its tick labels and its title above), as fractions of the window.
+BAR_ORIGIN, BAR_STEP, BAR_ROW, BARS_PER_ROW = (0.05, 0.03), 0.5, 0.13, 2
+#: Space kept between a bar's title and the next bar (fraction of the window's width); a longer title is made
+#: smaller. Titles are text of VTK font size 2 x BAR_TITLE_SIZE (pyvista's points).
+BAR_TITLE_GAP = 0.03
+#: Placements of labels: set off their points clear of what is drawn (with leader lines), or at their points.
+LABEL_PLACEMENTS = ("auto", "point")
+#: Label boxes: opacity of their white background; spacing (pixels) of the drawn points they keep clear of;
+#: margin (pixels) kept from the window's edges.
+LABEL_BOX_OPACITY, OBSTACLE_STEP, LABEL_MARGIN = 0.8, 3.0, 6.0
+#: Scale bar: longest length (fraction of the window's width), lower-left corner (fraction of the width;
+#: pixels above the colour bars), tick height and line width (pixels).
+SCALE_BAR_FRACTION, SCALE_BAR_X, SCALE_BAR_GAP, SCALE_BAR_TICK, SCALE_BAR_LINE = 0.22, 0.05, 10.0, 8.0, 3.0
 #: Where the orientation marker goes (fractions of the window: x0, y0, x1, y1): lower right, above colour bars.
 AXES_VIEWPORT = (0.82, 0.13, 1.0, 0.31)
 #: File suffixes of screenshot() and export().
@@ -80,7 +96,15 @@ class Scene:
     title : str, optional
         A title along the picture's upper edge.
     axes : bool
-        Draw an orientation marker (the x, y, z axes, lower left).
+        Draw an orientation marker (the x, y, z axes, lower right).
+    unit : str, optional
+        The length unit of the coordinates (e.g. 'mm'): colour bars of arc length and the scale bar name it.
+    scale_bar : bool
+        Draw a scale bar of a round length (in `unit`), lower left; the view is then a parallel projection,
+        so that the bar measures lengths anywhere in the picture (in planes facing the camera).
+    focal_point : array_like (3,), optional
+        The point the camera looks at (the scene fitted first, then the camera moved parallel to its view);
+        default the middle of the scene.
 
     Examples
     --------
@@ -91,7 +115,7 @@ class Scene:
     """
 
     def __init__(self, window_size=None, theme=None, camera_position="iso", zoom=1.0, off_screen=True, title=None,
-                 axes=False):
+                 axes=False, unit=None, scale_bar=False, focal_point=None):
         if window_size is not None:
             try:
                 w, h = (int(x) for x in window_size)
@@ -107,6 +131,9 @@ class Scene:
         self.off_screen = bool(off_screen)
         self.title = None if title is None else str(title)
         self.axes = bool(axes)
+        self.unit = None if unit is None else str(unit)
+        self.scale_bar = bool(scale_bar)
+        self.focal_point = None if focal_point is None else check_vector("focal_point", focal_point, 3)
         self._items = []
 
     def __repr__(self):
@@ -133,7 +160,13 @@ class Scene:
         raise ValueError(f"name: no item {name!r} in the scene; it holds {self.names}")
 
     def _add(self, name, kind, data, style):
-        name = f"{kind}{len(self._items)}" if name is None else str(name)
+        if name is None:                           # the kind's own count: 'curve0' is the first curve added
+            number = sum(item.kind == kind for item in self._items)
+            while f"{kind}{number}" in self.names:
+                number += 1
+            name, style["label"] = f"{kind}{number}", f"{kind} {number}"
+        name = str(name)
+        style.setdefault("label", name)
         if name in self.names:
             raise ValueError(f"name: the scene already holds an item named {name!r}")
         if style.get("color") is None and kind != "links":
@@ -184,12 +217,14 @@ class Scene:
         clim : (float, float), optional
             Range of the colour map (share one between curves to compare them); default the curve's own.
         scalar_bar : bool
-            Show a colour bar titled '<name>: <color_by>' (or bar_title).
+            Show a horizontal colour bar, titled above its tick labels with the curve's name ('curve 0' for the
+            first curve added without one) and the quantity: 'curve 0: arc length s [mm]' (the scene's unit,
+            or 'length unit' when it has none), 'curve 0: speed'.
         bar_title : str, optional
-            The colour bar's title (give the quantity and its unit).
+            The colour bar's title instead (give the quantity and its unit).
         bar_position : (float, float), optional
-            Lower-left corner of a horizontal colour bar, as fractions of the window (pyvista's default
-            place otherwise); give each curve its own to keep bars apart.
+            Lower-left corner of the colour bar, as fractions of the window; by default the scene lines its
+            bars up along the bottom, two to a row.
         breaks : sequence of int
             Indices of points that start a new piece (a path with gaps: nothing is drawn across them).
         chord_tol : float, optional
@@ -221,8 +256,19 @@ class Scene:
                  "bar_position": None if bar_position is None else tuple(float(x) for x in bar_position)}
         return self._add(name, "curve", data, style)
 
-    def add_labels(self, points, labels, name=None, color="black"):
+    def add_labels(self, points, labels, name=None, color="black", font_size=LABEL_FONT_SIZE, placement="auto"):
         """Add text labels (names of joints or links) at points (N, 3), drawn always visible.
+
+        Parameters
+        ----------
+        points : array_like (N, 3)
+        labels : sequence of str (N,)
+        font_size : int
+            Height of the text (VTK's font size: about its height in pixels).
+        placement : {'auto', 'point'}
+            'auto': each label set off its point where it covers least of the curves, links and joints and
+            no other label, joined to its point by a leader line (chosen in the picture, after the camera);
+            'point': at its point.
 
         Returns
         -------
@@ -232,7 +278,10 @@ class Scene:
         labels = [str(x) for x in labels]
         if len(labels) != len(points):
             raise ValueError(f"labels must give one text per point ({len(points)}), got {len(labels)}")
-        return self._add(name, "labels", pyvista().PolyData(points), {"labels": labels, "color": color})
+        check_choice("placement", placement, LABEL_PLACEMENTS)
+        style = {"labels": labels, "color": color, "font_size": int(check_positive("font_size", font_size)),
+                 "placement": placement}
+        return self._add(name, "labels", pyvista().PolyData(points), style)
 
     def add_arrows(self, points, vectors, scale=None, name=None, color=None):
         """Add arrows (velocity or acceleration glyphs) at points.
@@ -305,19 +354,66 @@ class Scene:
             kwargs["window_size"] = list(self.window_size or WINDOW_SIZE)
         plotter = pv.Plotter(**kwargs)
         size = self.extent()
+        bars = self._bar_places()
         for item in self._items:
-            _draw(plotter, item, _drawn(item, size))
+            _draw(plotter, item, _drawn(item, size), self, bars)
         if any(item.kind == "surface" and item.style["opacity"] < 1 for item in self._items):
             plotter.ren_win.SetMultiSamples(0)      # see ANTI_ALIASING
             plotter.enable_depth_peeling()
         plotter.camera_position = self.camera_position
+        if self.scale_bar:
+            plotter.camera.parallel_projection = True
         plotter.reset_camera()
+        if self.focal_point is not None:
+            camera = plotter.camera
+            shift = self.focal_point - np.asarray(camera.focal_point)
+            camera.focal_point = tuple(self.focal_point)
+            camera.position = tuple(np.asarray(camera.position) + shift)
+            plotter.renderer.ResetCameraClippingRange()
         plotter.camera.zoom(self.zoom)
         if self.title:
             plotter.add_text(self.title, position="upper_edge", font_size=TITLE_FONT_SIZE, color="black")
         if self.axes:
             plotter.add_axes(line_width=3, labels_off=False, viewport=AXES_VIEWPORT)
+        width, height = plotter.window_size
+        bottom = max([(y + BAR_HEIGHT) * height + 2.5 * BAR_TITLE_SIZE for _, y in bars.values()], default=0.0)
+        if self.scale_bar:
+            bottom = _draw_scale_bar(plotter, self.unit, bottom)
+        top = height - (3.0 * TITLE_FONT_SIZE if self.title else 0.0)
+        placed = [item for item in self._items if item.kind == "labels" and item.style["placement"] == "auto"]
+        if placed:
+            _place_labels(plotter, placed, self, (LABEL_MARGIN, bottom + LABEL_MARGIN, width - LABEL_MARGIN,
+                                                  top - LABEL_MARGIN))
         return plotter
+
+    def bar_title(self, name):
+        """The colour-bar title of the curve `name`: its bar_title, else its name ('curve 0' for the first curve
+        added unnamed) and the quantity it is coloured by, arc length with the scene's unit."""
+        item = self._item(name)
+        style = item.style
+        if style.get("bar_title"):
+            return style["bar_title"]
+        if style["color_by"] == "s":
+            return f"{style['label']}: arc length s [{self.unit or 'length unit'}]"
+        return f"{style['label']}: {style['color_by']}"
+
+    def _bar_places(self):
+        """Lower-left corners (fractions of the window) of the colour bars shown, by title: the curve's own
+        bar_position, else the next free place along the bottom (BARS_PER_ROW a row, rows upwards)."""
+        places, count = {}, 0
+        for item in self._items:
+            if item.kind != "curve" or item.style["color_by"] is None or not item.style["scalar_bar"]:
+                continue
+            title = self.bar_title(item.name)
+            if title in places:
+                continue
+            if item.style.get("bar_position") is not None:
+                places[title] = item.style["bar_position"]
+                continue
+            row, column = divmod(count, BARS_PER_ROW)
+            places[title] = (BAR_ORIGIN[0] + column * BAR_STEP, BAR_ORIGIN[1] + row * BAR_ROW)
+            count += 1
+        return places
 
     def image(self):
         """The picture as an array (height, width, 3) of uint8, rendered off-screen."""
@@ -448,7 +544,7 @@ def _drawn(item, size):
     return out
 
 
-def _draw(plotter, item, mesh):
+def _draw(plotter, item, mesh, scene, bars):
     style = item.style
     if item.kind == "surface":
         plotter.add_mesh(mesh, color=style["color"], opacity=style["opacity"], smooth_shading=True,
@@ -458,29 +554,154 @@ def _draw(plotter, item, mesh):
         if mode is None:
             plotter.add_mesh(mesh, color=style["color"], name=item.name)
         else:
-            bar = {"title": style.get("bar_title") or f"{item.name}: {mode}"}
-            if style.get("bar_position") is not None:
-                bar.update(position_x=style["bar_position"][0], position_y=style["bar_position"][1],
-                           width=BAR_WIDTH, height=BAR_HEIGHT, vertical=False, title_font_size=BAR_FONT_SIZE,
-                           label_font_size=BAR_FONT_SIZE, n_labels=BAR_LABELS, fmt="%.3g", color="black")
+            title = scene.bar_title(item.name)
+            bar = {"title": title}
+            if style["scalar_bar"]:
+                x, y = bars[title]
+                bar.update(position_x=x, position_y=y, width=BAR_WIDTH, height=BAR_HEIGHT, vertical=False,
+                           title_font_size=BAR_FONT_SIZE, label_font_size=BAR_FONT_SIZE, n_labels=BAR_LABELS,
+                           fmt="%.3g", color="black")
             plotter.add_mesh(mesh, scalars=mode, cmap=style["cmap"], clim=style["clim"],
                              show_scalar_bar=style["scalar_bar"], scalar_bar_args=bar, name=item.name)
-            if style.get("bar_position") is not None and style["scalar_bar"]:
+            if style["scalar_bar"] and title not in plotter.actors:
                 # VTK draws a horizontal bar's title over its tick labels: the title goes above, as text
-                plotter.scalar_bars[bar["title"]].SetTitle("")
+                plotter.scalar_bars[title].SetTitle("")
                 width, height = plotter.window_size
-                x, y = style["bar_position"]
-                plotter.add_text(bar["title"], position=(int(x * width), int((y + BAR_HEIGHT) * height)),
-                                 font_size=BAR_TITLE_SIZE, color="black", name=f"{item.name}/bar_title")
+                room = (BAR_STEP - BAR_TITLE_GAP) * width         # a title never reaches the next bar's
+                actor, (w, _) = _text(plotter, title, (x * width, (y + BAR_HEIGHT) * height),
+                                      2 * BAR_TITLE_SIZE, name=title)
+                if w > room:
+                    actor.GetTextProperty().SetFontSize(int(2 * BAR_TITLE_SIZE * room / w))
     elif item.kind == "labels":
-        plotter.add_point_labels(mesh, style["labels"], font_size=LABEL_FONT_SIZE, text_color=style["color"],
-                                 point_size=0, shape_opacity=0.55, always_visible=True, name=item.name)
+        if style["placement"] == "point":
+            plotter.add_point_labels(mesh, style["labels"], font_size=style["font_size"], text_color=style["color"],
+                                     point_size=0, shape_opacity=0.55, always_visible=True, name=item.name)
     elif item.kind == "arrows":
         plotter.add_mesh(mesh, color=style["color"], name=item.name)
     else:
         for key in mesh.keys():
             color = JOINT_COLOR if key == "joints" else SHAFT_COLOR if key.endswith("shaft") else LINK_COLOR
             plotter.add_mesh(mesh[key], color=color, smooth_shading=True, name=f"{item.name}/{key}")
+
+
+def to_pixels(plotter, points):
+    """Window pixels (N, 2) of points (N, 3) as the plotter's camera shows them (x right, y up from the lower
+    left)."""
+    width, height = plotter.window_size
+    matrix = plotter.camera.GetCompositeProjectionTransformMatrix(width / height, -1.0, 1.0)
+    m = np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
+    h = np.column_stack([np.asarray(points, dtype=float).reshape(-1, 3), np.ones(len(points))]) @ m.T
+    ndc = h[:, :2] / h[:, 3:]
+    return np.column_stack([(ndc[:, 0] + 1.0) * 0.5 * width, (ndc[:, 1] + 1.0) * 0.5 * height])
+
+
+def pixels_per_length(plotter):
+    """Pixels per length unit at the camera's focal point (everywhere in a parallel projection)."""
+    camera = plotter.camera
+    height = plotter.window_size[1]
+    if camera.parallel_projection:
+        return height / (2.0 * camera.parallel_scale)
+    return height / (2.0 * camera.distance * np.tan(np.radians(camera.view_angle) / 2.0))
+
+
+def _overlay_lines(plotter, segments, color="black", width=1.0):
+    """Lines in window pixels drawn over everything: segments (K, 2, 2)."""
+    pv = pyvista()
+    from vtkmodules.vtkRenderingCore import vtkActor2D, vtkPolyDataMapper2D
+    segments = np.asarray(segments, dtype=float).reshape(-1, 2, 2)
+    points = np.column_stack([segments.reshape(-1, 2), np.zeros(2 * len(segments))])
+    cells = np.column_stack([np.full(len(segments), 2), 2 * np.arange(len(segments)), 2 * np.arange(len(segments)) + 1])
+    lines = pv.PolyData(points, lines=cells.ravel())
+    mapper = vtkPolyDataMapper2D()
+    mapper.SetInputData(lines)
+    actor = vtkActor2D()
+    actor.SetMapper(mapper)
+    actor.GetProperty().SetColor(pv.Color(color).float_rgb)
+    actor.GetProperty().SetLineWidth(width)
+    plotter.add_actor(actor, reset_camera=False, pickable=False)
+    return actor
+
+
+def _text(plotter, text, position, font_size, color="black", box=False, name=None):
+    """A text actor at a pixel position (lower-left corner), VTK font size `font_size`, on a translucent white
+    box when asked; returns it with its (width, height) in pixels."""
+    actor = plotter.add_text(text, position=tuple(int(round(x)) for x in position), color=color, name=name)
+    prop = actor.GetTextProperty()
+    prop.SetFontSize(int(font_size))
+    if box:
+        prop.SetBackgroundColor(1.0, 1.0, 1.0)
+        prop.SetBackgroundOpacity(LABEL_BOX_OPACITY)
+    bounds = [0.0] * 4
+    actor.GetBoundingBox(plotter.renderer, bounds)
+    return actor, (bounds[1] - bounds[0], bounds[3] - bounds[2])
+
+
+def _draw_scale_bar(plotter, unit, bottom):
+    """A bar of a round length (at most SCALE_BAR_FRACTION of the window's width) with end ticks and its length
+    above it, lower left above `bottom` (pixels); returns the pixel height it reaches."""
+    per_unit = pixels_per_length(plotter)
+    width = plotter.window_size[0]
+    length = lab.round_length(SCALE_BAR_FRACTION * width / per_unit)
+    x0, y0 = SCALE_BAR_X * width, bottom + SCALE_BAR_GAP
+    x1 = x0 + length * per_unit
+    tick = SCALE_BAR_TICK
+    _overlay_lines(plotter, [[(x0, y0), (x1, y0)], [(x0, y0), (x0, y0 + tick)], [(x1, y0), (x1, y0 + tick)]],
+                   width=SCALE_BAR_LINE)
+    text = f"{length:g} {unit}" if unit else f"{length:g} (length unit)"
+    actor, (w, h) = _text(plotter, text, (x0, y0), LABEL_FONT_SIZE, name="scale_bar")
+    actor.SetPosition(0.5 * (x0 + x1) - 0.5 * w, y0 + 0.5 * tick)
+    return y0 + 0.5 * tick + h
+
+
+def _obstacle_pixels(plotter, scene):
+    """Pixels (M, 2) of what the scene draws that labels should keep clear of: curves, links, joints and arrows
+    (each polyline densified to OBSTACLE_STEP pixels)."""
+    out = [np.zeros((0, 2))]
+    for item in scene._items:
+        if item.kind == "curve":
+            pieces = [item.data]
+        elif item.kind == "links":
+            pieces = [item.data[key] for key in item.data.keys()]
+        elif item.kind == "arrows":
+            tips = np.asarray(item.data.points) + np.asarray(item.data.point_data[VECTOR_ARRAY])
+            out += [lab.densify(to_pixels(plotter, [a, b]), OBSTACLE_STEP) for a, b in zip(item.data.points, tips)]
+            continue
+        else:
+            continue
+        for piece in pieces:
+            pixels = to_pixels(plotter, np.asarray(piece.points))
+            if piece.n_lines == 0:
+                out.append(pixels)
+                continue
+            lines = np.asarray(piece.lines)
+            k = 0
+            while k < len(lines):
+                n = lines[k]
+                out.append(lab.densify(pixels[lines[k + 1:k + 1 + n]], OBSTACLE_STEP))
+                k += n + 1
+    return np.vstack(out)
+
+
+def _place_labels(plotter, items, scene, frame):
+    """Draw labels items set off their points, all placed together (labels.place_labels, in the order added),
+    with leader lines."""
+    anchors, actors, sizes, colours = [], [], [], []
+    for item in items:
+        style = item.style
+        anchors.append(to_pixels(plotter, np.asarray(item.data.points)))
+        for k, text in enumerate(style["labels"]):
+            actor, size = _text(plotter, text, (0, 0), style["font_size"], color=style["color"], box=True,
+                                name=f"{item.name}/{k}")
+            actors.append(actor)
+            sizes.append(size)
+            colours.append(style["color"])
+    boxes, leaders = lab.place_labels(np.vstack(anchors), sizes, _obstacle_pixels(plotter, scene), frame)
+    for actor, box in zip(actors, boxes):
+        actor.SetPosition(box[0], box[1])
+    for colour in dict.fromkeys(colours):
+        segments = [leader for leader, c in zip(leaders, colours) if leader is not None and c == colour]
+        if segments:
+            _overlay_lines(plotter, segments, color=colour, width=1.0)
 
 
 def as_polydata(meshes):

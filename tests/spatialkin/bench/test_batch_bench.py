@@ -74,3 +74,38 @@ def test_kinds_files_without_opencascade_hold_no_nan(tmp_path):
     row = list(csv.reader(text.splitlines()))[1]
     assert row[2] == row[3] == row[5] == "" and float(row[1]) == 1e-2
     assert (tmp_path / "k.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_kinds_bars_start_at_parity():
+    """Each ratio bar runs from parity (1) to the ratio: OCC/ours = 0.1 to the left of 1 (red), 20 to its right
+    (green); the axis holds both with their labels and no more than RATIO_MARGIN past them; the numbers are
+    readable (at least NUMBER_SIZE points) and both times in ms are written."""
+    from matplotlib.colors import to_rgba
+    from spatialkin.bench.kinds_report import (FASTER_COLOR, NUMBER_SIZE, RATIO_MARGIN, SLOWER_COLOR,
+                                               kinds_figure)
+    fig = kinds_figure(fake_rows(), "title")
+    bars, middle, errors = fig.axes
+    spans = sorted((p.get_x(), p.get_x() + p.get_width(), p.get_facecolor()) for p in bars.patches
+                   if p.get_height() < 1 and p.get_width() != 0)
+    (lo0, hi0, c0), (lo1, hi1, c1) = spans
+    assert min(lo0, hi0) == pytest.approx(0.1) and max(lo0, hi0) == pytest.approx(1.0) and c0 == to_rgba(SLOWER_COLOR)
+    assert min(lo1, hi1) == pytest.approx(1.0) and max(lo1, hi1) == pytest.approx(20.0) and c1 == to_rgba(FASTER_COLOR)
+    assert bars.get_xscale() == "log"
+    np.testing.assert_allclose(bars.get_xlim(), (0.1 / RATIO_MARGIN, 20.0 * RATIO_MARGIN), rtol=1e-12)
+    labels = [t.get_text() for t in bars.texts]
+    assert labels == ["0.1\u00d7", "20\u00d7"]
+    assert [t.get_text() for t in middle.texts] == ["2 / 0.2", "10 / 200"]
+    assert min(t.get_fontsize() for t in bars.texts + middle.texts) >= NUMBER_SIZE >= 9
+    assert min(t.get_fontsize() for t in bars.get_yticklabels()) >= 9
+
+
+def test_kinds_errors_do_not_hide_each_other():
+    """Equal errors of both on one row: ours and OpenCascade's markers at different heights, told apart by a
+    legend."""
+    from spatialkin.bench.kinds_report import kinds_figure
+    prof = stages.StageProfile({s: 1e-4 for s in stages.STAGES}, 7e-4)
+    rows = [KindRow("plane-sphere", 3e-5, 3e-5, 4e-16, 4e-16, 1, 1, prof)]
+    errors = kinds_figure(rows, "title").axes[2]
+    ours, occ = errors.get_lines()
+    assert ours.get_xdata()[0] == occ.get_xdata()[0] and abs(ours.get_ydata()[0] - occ.get_ydata()[0]) >= 0.3
+    assert [t.get_text() for t in errors.get_legend().get_texts()][1].startswith("GeomAPI_IntSS")

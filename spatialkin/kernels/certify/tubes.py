@@ -15,6 +15,13 @@ along the centre line), and 1 - y phi_w(X) the derivative of w - y phi(t, w), so
 one-variable equation at every t at once. The level inside X is then the graph of a smooth function w(t) (phi_w
 keeps its sign on X): one arc, entering through the face t = t0 and leaving through t = t1.
 
+Where this first-order test fails, the same operator is formed to second order (_operator_second: phi on the centre
+line by Taylor's theorem with phi_tt over X, phi_w over X by the mean value theorem from its value at the centre),
+which near a tangency of the surfaces, where g's gradient is small and its Hessian is not, is far narrower. A piece
+along a chord that fails is tried again centred on the arc (arc_frame: a float Newton step to the level and its
+tangent, only a frame: the test alone proves), and, once halved NARROWER_DEPTH times, narrower (a branch may run
+close beside the arc).
+
 Two pieces are linked when the point where the first one's arc leaves it (t = t1, its w enclosed by the same test
 on that single cross-section, with a W inside the piece's: exit_enclosure) lies strictly inside the second: the
 first piece's arc passes into the second's, so the union of a linked chain is one connected arc; a chain whose
@@ -35,8 +42,8 @@ import math
 import numpy as np
 
 from ..._lib.jit import jit
-from ..geometry.interval import (EPS, box_trig, iadd, idiv, idot, implicit_jet, imul, iscale, ishift, isub,
-                                 jet_first, local_first, mag, placed, point, widen)
+from ..geometry.interval import (EPS, box_trig, iadd, idiv, idot, implicit_jet, imul, intersect, iscale, ishift,
+                                 isqr, isub, jet, jet_first, local_first, mag, placed, point, widen)
 
 #: Columns of a piece: centre (cu, cv), direction (p, q), T = [t0, t1], h, the enclosure [k0, k1] of w where the
 #: arc leaves the piece (at t = t1), and the index of the chord it lies along.
@@ -46,6 +53,15 @@ WIDTH = 10
 OVERLAP = 0.125
 #: Tries of the half-width h (each from the last K) before the piece is split.
 H_TRIES = 4
+#: Before a failing piece is split again, it is tried this many times more with its half-width divided by NARROWER
+#: each time (down to the floor): a piece as long but narrow enough to leave out a branch close beside the arc (two
+#: rulings of a plane nearly tangent to a cylinder), where halving its length would need thousands of pieces ...
+NARROWER_TRIES, NARROWER = 3, 64.0
+#: ... once it has been halved this many times (a piece that fails only for its length passes before).
+NARROWER_DEPTH = 3
+#: A failing piece along a chord is tried again centred on the arc (arc_frame: at most ARC_NEWTON float Newton
+#: steps, settled when a step is below ARC_SETTLED of the piece's length).
+ARC_NEWTON, ARC_SETTLED = 6, 1e-9
 #: The exit enclosure's first half-width, as a fraction of the piece's, and its growth.
 EXIT_FIRST, EXIT_GROWTH = 1e-6, 16.0
 #: Most Krawczyk iterations narrowing an arc's enclosure on a stretch of a piece.
@@ -128,6 +144,39 @@ def _operator_on(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, g
 
 
 @jit
+def _operator_second(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, gc, y, h):
+    """(K, |1 - y phi_w(X)|) as _operator (W = [-h, h], centred on (tm, 0)), its enclosures of phi over the centre
+    line and of phi_w over X taken to second order where that is narrower: phi(t, 0) in phi(tm, 0) + phi_t(tm, 0)
+    (t - tm) + phi_tt(X) (t - tm)^2 / 2, and phi_w(X) in phi_w(tm, 0) + phi_tw(X) (T - tm) + phi_ww(X) W (the mean
+    value theorem; each met with the first-order enclosure). Along a level whose gradient is small beside a close
+    branch (surfaces nearly touching), the first-order enclosures grow with the width of g's Hessian over X times the
+    piece's length, far beyond the gradient itself; these only with its variation along the arc."""
+    W = (-h, h)
+    U, V = _hull(cu, cv, p, q, T, W, su, sv)
+    g, gu, gv, guu, guv, gvv = jet(s_data, t_data, m, c, pad, cpad, U, V)
+    Uc, Vc = _hull(cu, cv, p, q, point(tm), (0.0, 0.0), su, sv)
+    _, cu_, cv_ = jet_first(s_data, t_data, m, c, pad, cpad, Uc, Vc, box_trig(s_data, Uc, Vc))[0]
+    au, av, nu, nv = p * su, q * sv, -q * su, p * sv          # d/dt and d/dw in raw parameters
+    d_t = iadd(iscale(gu, au), iscale(gv, av))
+    d_w = iadd(iscale(gu, nu), iscale(gv, nv))
+    dc_t = iadd(iscale(cu_, au), iscale(cv_, av))
+    dc_w = iadd(iscale(cu_, nu), iscale(cv_, nv))
+    # (each product with a factor at a time: au, av, nu, nv are exact, p and q times powers of two; their products
+    # would round)
+    d_tt = iadd(iadd(iscale(iscale(guu, au), au), iscale(iscale(guv, au), 2.0 * av)), iscale(iscale(gvv, av), av))
+    d_tw = iadd(iadd(iscale(iscale(guu, au), nu), iadd(iscale(iscale(guv, au), nv), iscale(iscale(guv, av), nu))),
+                iscale(iscale(gvv, av), nv))
+    d_ww = iadd(iadd(iscale(iscale(guu, nu), nu), iscale(iscale(guv, nu), 2.0 * nv)), iscale(iscale(gvv, nv), nv))
+    dT = isub(T, point(tm))
+    first = iadd(gc, imul(d_t, dT))
+    second = iadd(iadd(gc, imul(dc_t, dT)), iscale(imul(d_tt, isqr(dT)), 0.5))
+    value = intersect(first, second)
+    slope = intersect(d_w, iadd(iadd(dc_w, imul(d_tw, dT)), imul(d_ww, W)))
+    contraction = isub((1.0, 1.0), iscale(slope, y))
+    return iadd(iscale(value, -y), imul(contraction, W)), mag(contraction)
+
+
+@jit
 def centred_level(s_data, t_data, m, c, pad, cpad, U, V):
     """An enclosure of g over a (near-)point box U x V in the centred form F_T(q~) + grad F_T(Q) . (Q - q~), Q
     the enclosure of the point in T's frame and q~ its midpoint: near a tangency, where g is a small difference of
@@ -163,6 +212,11 @@ def prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, t0, t1, h
     y = 1.0 / dw_mid
     for _ in range(H_TRIES):
         K, contraction = _operator(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, gc, y, h)
+        if not _passes(K, h):
+            K2, contraction2 = _operator_second(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, gc, y,
+                                                h)
+            if _passes(K2, h) or max(abs(K2[0]), abs(K2[1])) < max(abs(K[0]), abs(K[1])):
+                K, contraction = K2, contraction2
         if _passes(K, h):
             out[CU], out[CV], out[P], out[Q] = cu, cv, p, q
             out[T0], out[T1], out[H], out[K0], out[K1] = t0, t1, h, K[0], K[1]
@@ -240,6 +294,34 @@ def linked(first, second, shift_u, shift_v):
 
 
 @jit
+def arc_frame(s_data, t_data, m, c, pad, cpad, su, sv, xu, xv, p, q, span):
+    """(found, cu, cv, p, q): the point of the level g = 0 on the line through (xu, xv) along n = (-q, p) (float
+    Newton from it, at most ARC_NEWTON steps, within span of it) and the unit tangent of the level there, turned
+    towards (p, q); found False where Newton does not settle. Only a frame for a piece to be proven: nothing here
+    is a proof."""
+    w = 0.0
+    for _ in range(ARC_NEWTON):
+        cu, cv = xu - w * q, xv + w * p
+        U, V = point(cu * su), point(cv * sv)
+        g, gu, gv = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))[0]
+        du, dv = 0.5 * (gu[0] + gu[1]) * su, 0.5 * (gv[0] + gv[1]) * sv        # (the gradient, scaled)
+        d_w = -q * du + p * dv
+        if not (d_w != 0.0 and math.isfinite(d_w)):
+            return False, xu, xv, p, q
+        step = 0.5 * (g[0] + g[1]) / d_w
+        w -= step
+        if not (abs(w) < span):
+            return False, xu, xv, p, q
+        if abs(step) <= ARC_SETTLED * span:
+            norm = math.hypot(du, dv)
+            tp, tq = dv / norm, -du / norm
+            if tp * p + tq * q < 0.0:
+                tp, tq = -tp, -tq
+            return True, xu - w * q, xv + w * p, tp, tq
+    return False, xu, xv, p, q
+
+
+@jit
 def tube_chain(s_data, t_data, m, c, pad, cpad, su, sv, x, closed, shift_u, shift_v, h_floor, max_pieces, pieces):
     """Prove a chain of linked pieces along the polyline x (N, 2) of scaled parameters (consecutive points of one
     curve; for a closed curve the last point is the first shifted by (shift_u, shift_v)), each chord covered by
@@ -272,6 +354,20 @@ def tube_chain(s_data, t_data, m, c, pad, cpad, su, sv, x, closed, shift_u, shif
             h = max(h_floor, 0.25 * span)
             ok = prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, x[k, 0], x[k, 1], p, q, start - pad_t,
                              end + pad_t, h, pieces[count])
+            if not ok:      # the same stretch on the arc itself: centred on it, along its tangent
+                tm = 0.5 * (start + end)
+                found, ac_u, ac_v, ap, aq = arc_frame(s_data, t_data, m, c, pad, cpad, su, sv, x[k, 0] + tm * p,
+                                                      x[k, 1] + tm * q, p, q, span)
+                half = 0.5 * span + pad_t
+                if found:
+                    ok = prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, ac_u, ac_v, ap, aq, -half, half, h,
+                                     pieces[count])
+                for _ in range(NARROWER_TRIES if found and depth >= NARROWER_DEPTH else 0):
+                    if ok or h <= h_floor:      # (narrower, as long: another branch may run close beside this one)
+                        break
+                    h = max(h_floor, h / NARROWER)
+                    ok = prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, ac_u, ac_v, ap, aq, -half, half, h,
+                                     pieces[count])
             if not ok:
                 if depth >= MAX_DEPTH:
                     return count, PIECE_FAILED, k

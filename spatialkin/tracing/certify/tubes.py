@@ -168,6 +168,9 @@ def chained(chart, curve, points, s, closed):
         at = kept[min(max(chord, 0), len(kept) - 2)]
         lo, hi = max(at - WINDOW, 0), min(at + WINDOW + 1, len(s) - 1)
         mids = 0.5 * (s[lo:hi] + s[lo + 1:hi + 1])
+        mids = mids[(mids > s[lo:hi]) & (mids < s[lo + 1:hi + 1])]      # (none between neighbouring floats)
+        if not len(mids):
+            break
         s = np.sort(np.concatenate([s, mids]))
         points = merged(points, s, mids, np.asarray(curve.sol(mids), dtype=float).reshape(-1, 3))
     return Tube(pieces, status, points[kept][min(max(chord, 0), len(kept) - 1)], s, points, x)

@@ -67,8 +67,8 @@ MESSAGES = {
                              "{sin:.2g}"),
     "solver_singular": (SINGULAR, "singular point (normals parallel) near s = {s:.6g}"),
     "newton_failed": (FAILED, "Newton correction failed at s = {s:.6g}"),
-    "stalled": (FAILED, "integration stalled after s = {s:.6g} ({budget} right-hand-side evaluations in one "
-                        "segment), near point {point}"),
+    "stalled": (FAILED, "the segment's budget of {budget} right-hand-side evaluations ran out at s = {s:.6g}, near "
+                        "point {point} (the budget is per segment: a shorter max_length asks for less)"),
     "solver_failed": (FAILED, "solve_ivp failed at s = {s:.6g}: {message}"),
     "too_many_segments": (FAILED, "more than {count} segments"),
 }

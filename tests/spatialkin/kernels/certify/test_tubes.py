@@ -56,3 +56,52 @@ def test_arc_enclosures_hold_the_true_curve_and_narrow_on_short_stretches():
                     assert -piece[kt.H] <= whole[0] <= w[k] + slack and w[k] - slack <= whole[1] <= piece[kt.H]
                     checked += 1
     assert checked > 50
+
+
+def test_pieces_beside_a_close_branch_hold_their_own_line_only():
+    """A plane at 1 - eps from a unit cylinder's axis, parallel to it, cuts it in the two rulings u = +-acos(1 - eps),
+    2 sqrt(2 eps) apart (eps = 1e-8, below the closed forms' grazing distance: the search and the tubes prove them).
+    Both are proven, every stored point within the proven distance bound of its ruling; every piece holds its own
+    ruling (its points inside the piece's W wherever they lie in its T) and none of the other one's."""
+    eps = 1e-8
+    cylinder = sk.Cylinder(1.0, v_range=(-1.0, 1.0))
+    plane = sk.Plane(sk.Frame((1.0 - eps, 0.0, 0.0), sk.rotation_about((0.0, 1.0, 0.0), math.pi / 2)))
+    curves = sk.intersect(cylinder, plane, certify=True)
+    assert curves.certificate.proven, curves.certificate.failed
+    assert len(curves) == 2
+    u_star = math.acos(1.0 - eps)
+    chart = curves.certificate.chart
+    assert chart.p is cylinder or type(chart.p) is sk.Cylinder
+    v = np.linspace(-1.0, 1.0, 2001)
+    for curve, tube in zip(curves, curves.certificate.tubes):
+        side = np.sign(curve.points[0, 1])
+        own = chart.scaled(np.column_stack([np.full_like(v, np.cos(u_star)), side * np.full_like(v, np.sin(u_star)),
+                                            v]))
+        other = chart.scaled(np.column_stack([np.full_like(v, np.cos(u_star)), -side * np.full_like(v, np.sin(u_star)),
+                                              v]))
+        off = np.hypot(curve.points[:, 0] - math.cos(u_star), curve.points[:, 1] - side * math.sin(u_star))
+        assert np.all(off <= curve.certificate.distance_bound) and curve.certificate.distance_bound < 1e-9
+        for piece in tube.pieces:
+            held = 0
+            for shift in chart.shifts(np.repeat(piece[[kt.CU, kt.CV]], 2), np.repeat(own[0], 2)):
+                t, w = frame_coordinates(piece, own + np.array(shift))
+                within = (t > piece[kt.T0]) & (t < piece[kt.T1]) & (np.abs(w) < 1.0)    # (this turn of u)
+                held += np.count_nonzero(within)
+                assert np.all(np.abs(w[within]) < piece[kt.H])
+                t_o, w_o = frame_coordinates(piece, other + np.array(shift))
+                within_o = (t_o > piece[kt.T0]) & (t_o < piece[kt.T1])
+                assert np.all(np.abs(w_o[within_o]) > piece[kt.H])
+            assert held > 0
+
+
+def test_close_branches_of_nearly_touching_surfaces_are_proven():
+    """Stress cases where the surfaces nearly touch and two components run close beside each other (a plane just
+    inside a torus's top, two cylinders nearly tangent from outside): proven, with the oracle's two components."""
+    from tests.oracles.ssi_cases import all_cases
+    names = ("contact/plane-torus/top-in", "contact/cylinder-cylinder/ext-in", "contact/plane-cylinder/in")
+    cases = {c.name: c for c in all_cases() if c.name in names}
+    assert len(cases) == len(names)
+    for name, case in cases.items():
+        curves = sk.intersect(case.a, case.b, certify=True)
+        assert curves.certificate.proven, (name, curves.certificate.failed)
+        assert len(curves) == case.count == 2, name

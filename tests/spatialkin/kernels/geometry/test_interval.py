@@ -62,6 +62,29 @@ def test_jet_encloses_values_and_derivatives(seed):
             assert np.all(gv >= enc[2][0] - slack) and np.all(gv <= enc[2][1] + slack)
 
 
+def test_placement_pad_covers_the_rounding_of_the_translation():
+    """c = R_T^T (o_S - o_T) as relative_placement rounds it lies within 2 ulps of its returned magnitude of the
+    exact value (rational arithmetic on the same floats), so the pad of PLACEMENT_ULPS ulps covers it: for surfaces
+    near the origin, 1e9 away from it and near each other, and far apart."""
+    from fractions import Fraction
+    rng = np.random.default_rng(21)
+    worst = 0.0
+    for _ in range(3000):
+        base = rng.normal(size=3) * 10.0 ** rng.integers(-3, 10)
+        spread = 10.0 ** rng.integers(-8, 10)
+        s = sk.Sphere(1.0, sk.Frame(base + rng.normal(size=3) * spread, random_rotation(rng)))
+        t = sk.Torus(2.0, 0.5, sk.Frame(base + rng.normal(size=3) * spread, random_rotation(rng)))
+        m, c = np.empty((3, 3)), np.empty(3)
+        mag = ki.relative_placement(s.data, t.data, m, c)
+        rot, o_s, o_t = t.frame.rotation, s.frame.origin, t.frame.origin
+        for i in range(3):
+            exact = sum(Fraction(rot[k, i]) * (Fraction(o_s[k]) - Fraction(o_t[k])) for k in range(3))
+            error = abs(Fraction(c[i]) - exact)
+            assert error <= Fraction(2.0 * ki.EPS * mag), (i, float(error), mag)
+            worst = max(worst, float(error) / (ki.EPS * mag)) if mag > 0 else worst
+    assert worst > 0.0                   # (the test meets real round-off, not only exact cases)
+
+
 def test_outward_rounding_on_trigonometry():
     """cos and sin enclosures contain the extreme values inside the box and the endpoint values."""
     rng = np.random.default_rng(5)

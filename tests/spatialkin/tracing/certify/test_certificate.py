@@ -412,16 +412,24 @@ def test_an_apex_on_the_other_surface_gets_a_proven_ball(axis_tilt, kind):
                    if np.linalg.norm(w - apex) < 1e-6)
 
 
-def test_tiny_loops_down_to_1e_5_are_proven():
-    """The stress suite's tiny loops of 1e-5 to 1e-3 of the scene (every pair kind): one loop each, as the oracle
-    counts, proven claim by claim (the search's roots on them placed in their tubes by boxes shrunk around them)."""
+#: Pair kinds whose 1e-6 tiny loop of the stress suite is proven: the closed forms' (the search's enclosures of the
+#: level, padded for the placement's round-off, are too wide for the marching kinds' there).
+PROVEN_AT_1E_6 = ("plane-sphere", "sphere-sphere", "plane-cone")
+
+
+def test_tiny_loops_are_proven_or_said_not_to_be():
+    """The stress suite's tiny loops of 1e-6 to 1e-3 of the scene (every pair kind): every answer proven has the
+    oracle's one loop; those of 1e-5 and more are all proven (the search's roots on them placed in their tubes by
+    boxes shrunk around them), and at 1e-6 those of PROVEN_AT_1E_6."""
     from tests.oracles.ssi_cases import all_cases
-    tiny = [c for c in all_cases() if c.family == "tiny" and not c.name.endswith("1e-06")]
-    assert len(tiny) == 30
+    tiny = [c for c in all_cases() if c.family == "tiny"]
+    assert len(tiny) == 40
     for case in tiny:
         curves = sk.intersect(case.a, case.b, certify=True)
-        assert len(curves) == case.count, case.name
-        assert curves.certificate.proven, (case.name, curves.certificate.failed)
+        if curves.certificate.proven:
+            assert len(curves) == case.count, case.name
+        if not case.name.endswith("1e-06") or case.name.split("/")[1] in PROVEN_AT_1E_6:
+            assert curves.certificate.proven, (case.name, curves.certificate.failed)
 
 
 def test_arcs_crossing_a_trim_edge_at_a_shallow_angle_are_proven():

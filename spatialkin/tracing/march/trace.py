@@ -62,8 +62,8 @@ TOLERANCE_MIN = 1e-14
 #: sine that must stay below 1 (sin 30 degrees; a branch stopped there is no longer near a singular point).
 SINGULAR_TOL_MAX = 0.5
 #: Largest pullback. Above about 10 the pull-back term's stiffness sets the solver's steps, and their number grows in
-#: proportion to it (torus-sphere loop: 24 stored points at 1, 352 at 100, 6408 at 1e4, the budget of a segment
-#: spent at 1e5) with no accuracy gained: Newton puts every stored point on both surfaces.
+#: proportion to it with no accuracy gained (Newton puts every stored point on both surfaces), until a segment's
+#: budget of evaluations runs out.
 PULLBACK_MAX = 100.0
 #: solve_ivp's methods, "compiled": solve_ivp with spatialkin.ode.solvers.CompiledDOP853 (scipy's DOP853 steps,
 #: many per solver step in compiled code), and "compiled-rk45" (CompiledRK45: scipy's RK45 steps), both handing hard

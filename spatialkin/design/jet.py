@@ -224,6 +224,12 @@ def matvec(m, v):
     return (m * Jet(v.coef[..., None, :, :, :])).sum(-1)
 
 
+def _writable(x):
+    """x, or a copy of it where it is read-only (a broadcast view, a frame's arrays): numba compiles a kernel anew
+    for each read-only flag of its arguments, and spatialkin warmup compiles the writable one."""
+    return x if x.flags.writeable else x.copy()
+
+
 def _mul(c, d):
     """Product of coefficient arrays (..., T, Q) in R[t, eps]/(t**T, eps_i eps_j), broadcasting the leading
     dimensions (a jitted kernel on the flattened arrays)."""
@@ -233,8 +239,8 @@ def _mul(c, d):
         c = np.broadcast_to(c, shape)
     if d.shape != shape:
         d = np.broadcast_to(d, shape)
-    c = np.ascontiguousarray(c).reshape(flat)
-    d = np.ascontiguousarray(d).reshape(flat)
+    c = _writable(np.ascontiguousarray(c).reshape(flat))
+    d = _writable(np.ascontiguousarray(d).reshape(flat))
     out = np.empty_like(c)
     jet_product(c, d, out)
     return out.reshape(shape)

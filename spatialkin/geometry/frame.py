@@ -96,6 +96,11 @@ def rotation_to_z(z_axis):
     return np.column_stack([x, cross(z, x), z])
 
 
+def _read_only(x):
+    x.flags.writeable = False
+    return x
+
+
 class Frame:
     """A placement of local coordinates in global ones: global = origin + rotation @ local.
 
@@ -157,6 +162,14 @@ class Frame:
         rot.flags.writeable = False
         self.origin = origin
         self.rotation = rot
+
+    def __getstate__(self):
+        return self.origin, self.rotation
+
+    def __setstate__(self, state):
+        """Unpickled (a worker process's copy) as made: its arrays read-only again (numba compiles a kernel anew for
+        each read-only flag of its arguments; a pickled array comes back writable)."""
+        self.origin, self.rotation = (_read_only(x) for x in state)
 
     @classmethod
     def from_z_axis(cls, origin, z_axis):

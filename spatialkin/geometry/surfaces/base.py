@@ -70,6 +70,12 @@ class Surface:
         self.region = tuple(region)
         self._shown = shown
 
+    def __setstate__(self, state):
+        """Unpickled (a worker process's copy) as made: its packed data read-only again (numba compiles a kernel anew
+        for each read-only flag of its arguments; a pickled array comes back writable)."""
+        self.__dict__.update(state)
+        self.data.flags.writeable = False
+
     # --- the kind's traits --------------------------------------------------------------------------------------
     @property
     def kind(self):

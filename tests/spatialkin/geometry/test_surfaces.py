@@ -128,3 +128,17 @@ def test_torus_shape_names():
     assert sk.Torus(3, 1).shape == "ring"
     assert sk.Torus(2, 2).shape == "horn"
     assert sk.Torus(1, 2).shape == "spindle"
+
+
+def test_a_pickled_surface_comes_back_read_only():
+    """A surface sent to a worker process (pickled) keeps its packed data and its frame's arrays read-only, as made
+    (the compiled kernels are specialised on that flag: a writable copy would compile them again there), and equal
+    to the original's."""
+    import pickle
+    frame = sk.Frame((1.0, -2.0, 3.0), sk.rotation_about((1.0, 1.0, 0.0), 0.7))
+    for surface in (sk.Torus(2.0, 0.5, frame), sk.Sphere(1.5, frame), sk.Plane(frame, (-1.0, 1.0), (0.0, 2.0)),
+                    sk.Cylinder(0.8, frame, (-1.0, 1.0)), sk.Cone(0.4, frame, (0.1, 2.0))):
+        copy = pickle.loads(pickle.dumps(surface))
+        assert not copy.data.flags.writeable
+        assert not copy.frame.origin.flags.writeable and not copy.frame.rotation.flags.writeable
+        assert np.array_equal(copy.data, surface.data) and type(copy) is type(surface)

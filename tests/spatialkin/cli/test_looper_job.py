@@ -309,3 +309,17 @@ def test_forces_at_machine_speed_with_si_units(reference_run, tmp_path):
     assert main(["looper", "--out", str(tmp_path / "o"), "--config", str(off)]) == 0
     assert not (tmp_path / "o" / "looper_forces.csv").exists()
     assert "forces" not in json.loads((tmp_path / "o" / "looper_run.json").read_text())
+
+
+def test_demo_times_a_second_call():
+    """spatialkin demo prints the components and, apart, the first call's time (import and kernels included) and a
+    second call's, whose curves' times the table shows: no curve's time carries the first call's loading (each at
+    most the second call's whole time)."""
+    import re
+    import subprocess
+    import sys
+    out = subprocess.run([sys.executable, "-m", "spatialkin.cli", "demo"], capture_output=True, text=True, check=True)
+    rows = [line.split() for line in out.stdout.splitlines() if re.match(r"\s*\d+\s+closed", line)]
+    assert len(rows) == 2
+    again = float(re.search(r"a second call: ([\d.]+) ms", out.stdout).group(1))
+    assert all(float(row[-1]) <= again for row in rows)

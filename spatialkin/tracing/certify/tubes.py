@@ -25,8 +25,9 @@ REFINEMENTS = 96
 WINDOW = 4
 #: Shortest chord kept, relative to the median chord.
 MIN_CHORD = 0.2
-#: Pieces allowed per chord, on average, before the chain gives up (BUDGET).
-PIECES_PER_CHORD = 16
+#: Pieces allowed per chord, on average, before the chain gives up (BUDGET); a chain that runs out is tried again
+#: with twice as many, up to MOST_PIECES_PER_CHORD, before its samples are refined.
+PIECES_PER_CHORD, MOST_PIECES_PER_CHORD = 16, 128
 #: Smallest half-width of a piece, in ulps of the scaled coordinates' magnitude.
 FLOOR_ULPS = 64.0
 #: Bisections on the dense output for a run's end inside a node box.
@@ -159,14 +160,21 @@ def tube(chart, curve, nodes=()):
 def chained(chart, curve, points, s, closed):
     """The Tube of one chain along the samples points (M, 3) at arc lengths s (M,) of the curve (closed: the last
     sample is the first one, a whole loop on): where the chain fails, the samples around the failing chord are
-    refined (dense output at the midpoints) and the chain is proven again, up to REFINEMENTS times."""
+    refined (dense output at the midpoints) and the chain is proven again, up to REFINEMENTS times; where it runs
+    out of pieces, it is given more (up to MOST_PIECES_PER_CHORD per chord), then every chord is halved."""
+    per_chord = PIECES_PER_CHORD
     for _ in range(REFINEMENTS):
         x, kept = chain_samples(chart, points, closed)
-        pieces, status, chord = chain(chart, x, closed, x[-1] - x[0] if closed else np.zeros(2))
+        pieces, status, chord = chain(chart, x, closed, x[-1] - x[0] if closed else np.zeros(2), per_chord)
         if status == kt.PROVEN:
             return Tube(pieces, status, None, s, points, x)
+        if status == kt.BUDGET and per_chord < MOST_PIECES_PER_CHORD:
+            per_chord *= 2              # (pieces short all along, near a tangency: more of them, the same samples)
+            continue
         at = kept[min(max(chord, 0), len(kept) - 2)]
         lo, hi = max(at - WINDOW, 0), min(at + WINDOW + 1, len(s) - 1)
+        if status == kt.BUDGET:
+            lo, hi = 0, len(s) - 1          # (out of pieces all along: every chord halved)
         mids = 0.5 * (s[lo:hi] + s[lo + 1:hi + 1])
         mids = mids[(mids > s[lo:hi]) & (mids < s[lo + 1:hi + 1])]      # (none between neighbouring floats)
         if not len(mids):
@@ -289,10 +297,11 @@ def chain_samples(chart, points, closed):
     return np.ascontiguousarray(x[keep]), keep
 
 
-def chain(chart, x, closed, shift):
-    """(pieces (K, WIDTH), status, failing chord) of kernels.certify.tubes.tube_chain along x."""
+def chain(chart, x, closed, shift, per_chord=PIECES_PER_CHORD):
+    """(pieces (K, WIDTH), status, failing chord) of kernels.certify.tubes.tube_chain along x, with per_chord
+    pieces per chord on average at most."""
     floor = FLOOR_ULPS * np.finfo(float).eps * max(float(np.max(np.abs(x))), 1.0)
-    pieces = np.empty((PIECES_PER_CHORD * len(x) + 8, kt.WIDTH))
+    pieces = np.empty((per_chord * len(x) + 8, kt.WIDTH))
     r = chart.reader
     count, status, chord = kt.tube_chain(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]),
                                          float(chart.units[1]), x, bool(closed), float(shift[0]), float(shift[1]),

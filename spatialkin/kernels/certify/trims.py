@@ -22,9 +22,10 @@ import math
 import numpy as np
 
 from ..._lib.jit import jit
-from ..geometry.interval import (box_trig, iadd, idiv, idot, implicit_jet, imul, ineg, iscale, ishift, isqr, isqrt,
-                                 isub, krawczyk_row, local_first, placed, point, transform, up, widen)
-from .tubes import H, P, Q, T0, T1, arc_enclosure, piece_box, stretch_box
+from ..geometry.interval import (box_trig, iadd, idiv, idot, implicit_jet, imul, ineg, intersect, iscale, ishift,
+                                 isqr, isqrt, isub, jet, jet_first, krawczyk_row, local_first, placed, point,
+                                 transform, up, widen)
+from .tubes import H, P, Q, T0, T1, arc_enclosure, frame_hessian, piece_box, stretch_box
 
 #: An edge of S's own parameters: EDGE_U (u = value) or EDGE_V (v = value); 0, 1, 2: T's local coordinate.
 EDGE_U, EDGE_V = -1, -2
@@ -147,9 +148,14 @@ def _rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece, U, 
     g, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value, face)
     p, q = piece[P], piece[Q]
     gu, gv = iscale(g[1], su), iscale(g[2], sv)            # derivatives in scaled parameters
+    return _arc_rate(e, p, q, su, sv, iadd(iscale(gu, p), iscale(gv, q)), iadd(iscale(gu, -q), iscale(gv, p)))
+
+
+@jit(forceinline=True)
+def _arc_rate(e, p, q, su, sv, phi_t, phi_w):
+    """(lo, hi): de/dt along the arc of a piece with direction (p, q), from the enclosures of e's jet (raw
+    parameters) and of phi_t, phi_w (g's derivatives along the piece's a and n)."""
     eu, ev = iscale(e[1], su), iscale(e[2], sv)
-    phi_t = iadd(iscale(gu, p), iscale(gv, q))
-    phi_w = iadd(iscale(gu, -q), iscale(gv, p))
     if phi_w[0] <= 0.0 <= phi_w[1]:
         return -math.inf, math.inf
     dw = ineg(idiv(phi_t, phi_w))
@@ -157,6 +163,29 @@ def _rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece, U, 
     dv = iadd(point(q), iscale(dw, p))
     rate = iadd(imul(eu, du), imul(ev, dv))
     return rate[0], rate[1]
+
+
+@jit
+def _rate_second(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece, t0, t1, W):
+    """(lo, hi): _rate over the stretch [t0, t1] x W of the piece with phi_t and phi_w enclosed to second order too
+    (the mean value theorem from the stretch's centre, g's Hessian over it; each met with the first-order
+    enclosure): near a tangency, where g's gradient is small and its Hessian is not, the first-order phi_w holds 0
+    over all but the shortest stretches."""
+    U, V = stretch_box(piece, t0, t1, W, su, sv)
+    _, e = _system(s_data, t_data, m, c, pad, cpad, U, V, edge, value, face)
+    _, gu, gv, guu, guv, gvv = jet(s_data, t_data, m, c, pad, cpad, U, V)
+    tm, wm = 0.5 * (t0 + t1), 0.5 * (W[0] + W[1])
+    Uc, Vc = stretch_box(piece, tm, tm, (wm, wm), su, sv)
+    _, cu_, cv_ = jet_first(s_data, t_data, m, c, pad, cpad, Uc, Vc, box_trig(s_data, Uc, Vc))[0]
+    p, q = piece[P], piece[Q]
+    au, av, nu, nv = p * su, q * sv, -q * su, p * sv
+    d_tt, d_tw, d_ww = frame_hessian(guu, guv, gvv, p, q, su, sv)
+    dT, dW = isub((t0, t1), point(tm)), isub(W, point(wm))
+    phi_t = intersect(iadd(iscale(gu, au), iscale(gv, av)),
+                      iadd(iadd(iadd(iscale(cu_, au), iscale(cv_, av)), imul(d_tt, dT)), imul(d_tw, dW)))
+    phi_w = intersect(iadd(iscale(gu, nu), iscale(gv, nv)),
+                      iadd(iadd(iadd(iscale(cu_, nu), iscale(cv_, nv)), imul(d_tw, dT)), imul(d_ww, dW)))
+    return _arc_rate(e, p, q, su, sv, phi_t, phi_w)
 
 
 @jit
@@ -175,6 +204,9 @@ def edge_rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece,
         W = arc_enclosure(s_data, t_data, m, c, pad, cpad, su, sv, piece, a, b)
         U, V = stretch_box(piece, a, b, W, su, sv)
         r = _rate(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece, U, V)
+        if not (r[0] > 0.0 or r[1] < 0.0):
+            r2 = _rate_second(s_data, t_data, m, c, pad, cpad, su, sv, edge, value, face, piece, a, b, W)
+            r = (max(r[0], r2[0]), min(r[1], r2[1]))
         lo, hi = min(lo, r[0]), max(hi, r[1])
     return lo, hi
 

@@ -143,6 +143,19 @@ def _operator_on(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, g
     return ishift(K, wm), mag(contraction)
 
 
+@jit(forceinline=True)
+def frame_hessian(guu, guv, gvv, p, q, su, sv):
+    """(phi_tt, phi_tw, phi_ww): g's second derivatives (raw parameters) along a = (p, q) and n = (-q, p) of a
+    piece's frame in scaled parameters, each product made one factor at a time (p su, q sv are exact: su and sv
+    are powers of two; their products would round)."""
+    au, av, nu, nv = p * su, q * sv, -q * su, p * sv
+    d_tt = iadd(iadd(iscale(iscale(guu, au), au), iscale(iscale(guv, au), 2.0 * av)), iscale(iscale(gvv, av), av))
+    d_tw = iadd(iadd(iscale(iscale(guu, au), nu), iadd(iscale(iscale(guv, au), nv), iscale(iscale(guv, av), nu))),
+                iscale(iscale(gvv, av), nv))
+    d_ww = iadd(iadd(iscale(iscale(guu, nu), nu), iscale(iscale(guv, nu), 2.0 * nv)), iscale(iscale(gvv, nv), nv))
+    return d_tt, d_tw, d_ww
+
+
 @jit
 def _operator_second(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, tm, gc, y, h):
     """(K, |1 - y phi_w(X)|) as _operator (W = [-h, h], centred on (tm, 0)), its enclosures of phi over the centre
@@ -161,12 +174,7 @@ def _operator_second(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, p, q, T, t
     d_w = iadd(iscale(gu, nu), iscale(gv, nv))
     dc_t = iadd(iscale(cu_, au), iscale(cv_, av))
     dc_w = iadd(iscale(cu_, nu), iscale(cv_, nv))
-    # (each product with a factor at a time: au, av, nu, nv are exact, p and q times powers of two; their products
-    # would round)
-    d_tt = iadd(iadd(iscale(iscale(guu, au), au), iscale(iscale(guv, au), 2.0 * av)), iscale(iscale(gvv, av), av))
-    d_tw = iadd(iadd(iscale(iscale(guu, au), nu), iadd(iscale(iscale(guv, au), nv), iscale(iscale(guv, av), nu))),
-                iscale(iscale(gvv, av), nv))
-    d_ww = iadd(iadd(iscale(iscale(guu, nu), nu), iscale(iscale(guv, nu), 2.0 * nv)), iscale(iscale(gvv, nv), nv))
+    d_tt, d_tw, d_ww = frame_hessian(guu, guv, gvv, p, q, su, sv)
     dT = isub(T, point(tm))
     first = iadd(gc, imul(d_t, dT))
     second = iadd(iadd(gc, imul(dc_t, dT)), iscale(imul(d_tt, isqr(dT)), 0.5))

@@ -96,11 +96,12 @@ def test_pieces_beside_a_close_branch_hold_their_own_line_only():
 
 def test_close_branches_of_nearly_touching_surfaces_are_proven():
     """Stress cases where the surfaces nearly touch and two components run close beside each other (a plane just
-    inside a torus's top, two cylinders nearly tangent from outside, a sphere and a cone nearly touching along a
+    inside a torus's top, two cylinders nearly tangent from outside, and from inside with arcs ending on their rims
+    (each crossing its edge once: the arc's slope to second order), a sphere and a cone nearly touching along a
     circle, whose tubes need more pieces than the first budget): proven, with the oracle's two components."""
     from tests.oracles.ssi_cases import all_cases
     names = ("contact/plane-torus/top-in", "contact/cylinder-cylinder/ext-in", "contact/plane-cylinder/in",
-             "contact/sphere-cone/circle-out")
+             "contact/sphere-cone/circle-out", "contact/cylinder-cylinder/int-out")
     cases = {c.name: c for c in all_cases() if c.name in names}
     assert len(cases) == len(names)
     for name, case in cases.items():

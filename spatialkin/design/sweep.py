@@ -43,7 +43,7 @@ REASON_WIDTH = 160
 #: Why a local pool breaks, and what to do (the RuntimeError sweep raises then).
 BROKEN_POOL = ("a worker process of spatialkin.design.sweep died ({rows} geometries on {workers} processes), so no "
                "geometry can be evaluated there. From a script the usual cause is a main module without "
-               "'if __name__ == \"__main__\":' round its code: the worker processes re-import it, and Python refuses "
+               "'if __name__ == \"__main__\":' around its code: the worker processes re-import it, and Python refuses "
                "to start them from that import; put the script's calls under the guard, or pass processes=0 to run "
                "in this process (client= to run on a Dask cluster)")
 

@@ -9,9 +9,9 @@ import numpy as np
 
 #: Distances (pixels) from a label's point to the nearest edge of its box, tried in turn (nearest first).
 OFFSETS = (14.0, 26.0, 42.0, 64.0, 92.0)
-#: Directions tried at each distance (evenly round the point, starting to the right).
+#: Directions tried at each distance (evenly around the point, starting to the right).
 DIRECTIONS = 16
-#: Clearance (pixels) kept between a label's box and other boxes, and added round drawn points.
+#: Clearance (pixels) kept between a label's box and other boxes, and added around drawn points.
 CLEARANCE = 4.0
 #: Cost of one drawn point under a label's box, of a leader line crossing another box, and of a pixel of leader.
 POINT_COST, CROSSING_COST, LEADER_COST = 40.0, 400.0, 0.6

@@ -13,7 +13,7 @@ import numpy as np
 from ..frame import Frame
 from ...kernels.geometry import surfaces as ks
 from ..traits import AXIS, check_surface, traits
-from ..._lib.validation import as_float_array, check_length, check_positive, check_range, check_real
+from ..._lib.validation import check_finite, check_length, check_positive, check_range, check_real
 
 __all__ = ["Surface", "check_length", "check_positive", "check_range", "check_surface"]
 
@@ -164,7 +164,7 @@ class Surface:
         >>> np.allclose(torus.distance(torus.point(u, v)), 0.0)
         True
         """
-        u, v = np.broadcast_arrays(finite_array("u", u), finite_array("v", v))
+        u, v = np.broadcast_arrays(check_finite("u", u), check_finite("v", v))
         uv = np.ascontiguousarray(np.stack([u.ravel(), v.ravel()], axis=1))
         out = np.empty((uv.shape[0], 3))
         ks.evaluate(self.data, uv, out)
@@ -219,7 +219,7 @@ class Surface:
         ...
         ValueError: points must have shape (..., 3), got (2,)
         """
-        pts = finite_array("points", points)
+        pts = check_finite("points", points)
         if pts.shape[-1:] != (3,):
             raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
         flat = np.ascontiguousarray(pts.reshape(-1, 3))
@@ -230,7 +230,7 @@ class Surface:
     def parameters(self, points):
         """Parameters (u, v) (..., 2) of the surface points nearest to global points (..., 3); u in (-pi, pi].
         ValueError naming `points` when it does not have shape (..., 3) or is not finite."""
-        pts = finite_array("points", points)
+        pts = check_finite("points", points)
         if pts.shape[-1:] != (3,):
             raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
         flat = np.ascontiguousarray(pts.reshape(-1, 3))
@@ -244,15 +244,6 @@ class Surface:
 
     def __repr__(self):
         return f"{type(self).__name__}({self._describe()}, frame={self.frame!r})"
-
-
-def finite_array(name, value):
-    """value as a float array, or TypeError naming the argument (not real numbers) or ValueError (an entry not
-    finite)."""
-    arr = as_float_array(name, value)
-    if not np.isfinite(arr).all():
-        raise ValueError(f"{name} must be finite")
-    return arr
 
 
 # --- pieces the kinds share --------------------------------------------------------------------------------

@@ -8,7 +8,7 @@ import operator
 import numpy as np
 
 from ...kernels.geometry import surfaces as ks
-from ..._lib.validation import as_float_array, check_count, check_positive
+from ..._lib.validation import check_count, check_finite, check_positive
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome
 from ...geometry.traits import traits
@@ -376,11 +376,9 @@ class Curve:
     def closest(self, points):
         """Arc length (...,) of the curve point nearest to each point (..., 3), and the distance (...,).
         ValueError naming `points` when they are not finite or of shape (..., 3)."""
-        pts = as_float_array("points", points)
+        pts = check_finite("points", points)
         if pts.shape[-1:] != (3,):
             raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
-        if not np.isfinite(pts).all():
-            raise ValueError("points must be finite")
         return self._result.sol.closest(pts)
 
     def sample(self, n):

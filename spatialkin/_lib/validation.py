@@ -156,7 +156,7 @@ def check_finite(name, value):
     """value as a float array of any shape with every entry finite, or ValueError naming the argument (TypeError
     naming it when value is no array of real numbers: as_float_array)."""
     arr = as_float_array(name, value)
-    if not np.all(np.isfinite(arr)):
+    if not np.isfinite(arr).all():
         raise ValueError(f"{name} must be finite")
     return arr
 

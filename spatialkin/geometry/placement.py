@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from .traits import AXIS, NORMAL, POINT, SCALING, TRANSLATION, traits
+from .traits import AXIS, NORMAL, POINT, SCALING, TRANSLATION
 from .trims import region_values
 
 #: Two positions closer than this (relative to the scene scale), or two directions closer than this (radians),
@@ -40,7 +40,7 @@ class CoincidentSurfacesError(ValueError):
 
 def bounding_ball(surface):
     """(centre (3,), radius) of a ball holding the (trimmed) surface, or None when it is unbounded."""
-    return traits(surface).bounding_ball(surface)
+    return surface.traits.bounding_ball(surface)
 
 
 def on_line(point, line_point, direction, tol):
@@ -62,7 +62,7 @@ def common_axis(a, b, scale):
     and a plane, or two spheres, always have one (two concentric spheres: any line through the centre).
     """
     tol = SAME * scale
-    sym = [traits(s).symmetry(s) for s in (a, b)]
+    sym = [s.traits.symmetry(s) for s in (a, b)]
     if sym[0] is None or sym[1] is None:
         return None                                        # a kind that is no surface of revolution
     if sym[0][0] != AXIS and sym[1][0] != AXIS:
@@ -92,10 +92,10 @@ def ruled_along(a, b, scale=1.0):
     its axis or a cylinder with a parallel axis (invariant along the axis), a cone and a plane through its apex
     (invariant under scaling about it). Then the intersection is made of whole rulings."""
     for p, q in ((a, b), (b, a)):
-        ruling = traits(p).ruling(p)
+        ruling = p.traits.ruling(p)
         if ruling is None:
             continue
-        kind, q_traits = ruling[0], traits(q)
+        kind, q_traits = ruling[0], q.traits
         if kind == SCALING and q_traits.keeps_scaling(q, ruling[1], SAME * scale):
             return p
         if kind == TRANSLATION and q_traits.keeps_translation(q, ruling[1], SAME):
@@ -105,8 +105,8 @@ def ruled_along(a, b, scale=1.0):
 
 def same_surface(a, b, scale):
     """True when a and b are the same untrimmed surface (the same set of points)."""
-    kind = traits(a)
-    if kind is not traits(b):
+    kind = a.traits
+    if kind is not b.traits:
         return False
     return kind.same_surface(a, b, SAME * scale, SAME)
 
@@ -114,7 +114,7 @@ def same_surface(a, b, scale):
 def trims_overlap(a, b):
     """For the same surface given twice: True when the two trimmed patches share a piece of positive area
     (compared in a's parameters; b's trim is mapped into them)."""
-    return traits(a).trims_overlap(a, b)
+    return a.traits.trims_overlap(a, b)
 
 
 #: Same-surface patches with angular or circular trims are compared on a grid of this many samples per
@@ -128,11 +128,11 @@ def regions_overlap(a, b):
     length trims and its region) and a's region; True when neither has a region (trims_overlap decides)."""
     if not (a.region or b.region):
         return True
-    own = getattr(traits(a), "regions_overlap", None)            # a kind that compares its patches itself
+    own = getattr(a.traits, "regions_overlap", None)            # a kind that compares its patches itself
     if own is not None:
         return own(a, b)
     reach = OVERLAP_REACH * a.size
-    (u0, u1), (v0, v1) = (np.clip(r, -reach, reach) for r in traits(a).natural_domain(a))
+    (u0, u1), (v0, v1) = (np.clip(r, -reach, reach) for r in a.traits.natural_domain(a))
     u, v = np.meshgrid(np.linspace(u0, u1, REGION_SAMPLES)[1:-1], np.linspace(v0, v1, REGION_SAMPLES)[1:-1])
     points = a.point(u.ravel(), v.ravel())
     inside = np.all(region_values(a, points) > 0.0, axis=1) & np.all(region_values(b, points) > 0.0, axis=1)

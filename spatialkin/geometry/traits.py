@@ -5,8 +5,8 @@ extent and size, the units and periodicity of (u, v), where its parametrisation 
 apexes), its natural domain, its re-chart (the sphere's chart turned away from its poles), and the placement
 knowledge of the topology stage (symmetry axes, rulings, coincidence, its polynomial implicit function).
 ``register(cls, traits)`` files the traits under the class and under the kind code that every surface writes to
-``data[KIND]`` of its packed kernel data; tracing asks ``traits(surface)`` or ``traits(data)`` and never switches
-on a kind code or on a surface class. A kind that is not registered raises UnknownSurfaceKindError.
+``data[KIND]`` of its packed kernel data, and sets them as the class attribute ``traits`` (so ``surface.traits``);
+tracing asks ``surface.traits`` or ``traits(data)`` and never switches on a kind code or on a surface class. A kind that is not registered raises UnknownSurfaceKindError.
 
 This module belongs to the tracing layer and imports only the kernels: tracing reads the traits without importing
 the domain layer, whose kind modules register themselves here.
@@ -106,12 +106,13 @@ class SurfaceTraits:
     def natural_domain(self, surface):
         """((u_lo, u_hi), (v_lo, v_hi)) of the surface's own chart: the full turn for a periodic angle, else the
         trims (infinite where unbounded)."""
-        ranges = surface.bounds
-        return tuple(FULL_TURN if self.periodic[j] else tuple(ranges[j]) for j in range(2))
+        (u_range, v_range), (u_periodic, v_periodic) = surface.bounds, self.periodic
+        return FULL_TURN if u_periodic else tuple(u_range), FULL_TURN if v_periodic else tuple(v_range)
 
     def parameter_units(self, scale):
         """Length of a unit step of (u, v) (2,): 1 for an angle, scale for a length."""
-        return np.array([scale if unit == LENGTH else 1.0 for unit in self.units])
+        u_unit, v_unit = self.units
+        return np.array((scale if u_unit == LENGTH else 1.0, scale if v_unit == LENGTH else 1.0))
 
     @property
     def angular(self):
@@ -233,6 +234,7 @@ def register(cls, kind):
                          "is not an int)")
     _BY_CODE[kind.code] = kind
     _BY_CLASS[cls] = kind
+    cls.traits = kind               # (read as surface.traits on the hot paths: an attribute, not a call)
     return kind
 
 
@@ -240,6 +242,7 @@ def unregister(cls):
     """Remove the kind registered under the class cls (a test kind's cleanup)."""
     kind = _BY_CLASS.pop(cls)
     del _BY_CODE[kind.code]
+    del cls.traits
 
 
 def traits(x):

@@ -95,7 +95,11 @@ class Event:
         self.terminal = bool(terminal or level)
         self.level = level
         self.probed = bool(probed)
-        self.mode = event_mode(self.level, self.probed, self.terminal)
+        # its entry in spatialkin.kernels.ode.rk.advance's modes
+        if level is not None:
+            self.mode = rk.LEVEL_AFTER if level == "after" else (rk.LEVEL_BEFORE_PROBED if probed else rk.LEVEL_BEFORE)
+        else:
+            self.mode = rk.TERMINAL_PROBED if probed else (rk.TERMINAL if self.terminal else rk.CROSSING)
         self._only = self._out = None        # work arrays, made at the first call (solve_ivp's methods only)
 
     def __call__(self, t, y, *_):
@@ -106,17 +110,6 @@ class Event:
             self._out = np.empty(system.n_events)
         system.events(t, y, system.args, system.eargs, self._only, self._out)
         return self._out[self.index]
-
-
-def event_mode(level, probed, terminal):
-    """An Event's entry in spatialkin.kernels.ode.rk.advance's modes (Event.mode)."""
-    if level is not None:
-        if level == "after":
-            return rk.LEVEL_AFTER
-        return rk.LEVEL_BEFORE_PROBED if probed else rk.LEVEL_BEFORE
-    if probed:
-        return rk.TERMINAL_PROBED
-    return rk.TERMINAL if terminal else rk.CROSSING
 
 
 class Watch(tuple):
@@ -131,7 +124,7 @@ class Watch(tuple):
     directions : ndarray (n_events,)
         Each watched event's direction (0 elsewhere).
     modes : ndarray (n_events,) of int64
-        Each watched event's mode (event_mode; 0 elsewhere).
+        Each watched event's mode (Event.mode; 0 elsewhere).
     position : dict
         Event index -> position in the tuple.
 
@@ -234,8 +227,9 @@ class CompiledRK45(OdeSolver):
             y0 = y0.astype(float, copy=False)
         if y0.ndim != 1:
             raise ValueError("`y0` must be 1-dimensional.")
-        if not all(math.isfinite(value) for value in y0.tolist()):
-            raise ValueError("All components of the initial state `y0` must be finite.")
+        for value in y0.tolist():
+            if not math.isfinite(value):
+                raise ValueError("All components of the initial state `y0` must be finite.")
 
         def fun_counted(t, y):
             self.nfev += 1

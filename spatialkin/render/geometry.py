@@ -5,7 +5,6 @@ import math
 import numpy as np
 
 from ..geometry.surfaces import Plane, Surface
-from ..geometry.traits import traits
 from .._lib.validation import check_range
 
 #: Default grid of a surface: samples along u and along v.
@@ -23,7 +22,7 @@ def chord_length(points):
 def natural_domain(surface):
     """((u_lo, u_hi), (v_lo, v_hi)) of a surface's face: its trims where it has them (an angular range too),
     else its own chart's (the full turn of an angle), infinite where the surface is unbounded."""
-    own = traits(surface).natural_domain(surface)
+    own = surface.traits.natural_domain(surface)
     return tuple(tuple(trim) if math.isfinite(trim[0]) and math.isfinite(trim[1]) else domain
                  for trim, domain in zip((surface.u_range, surface.v_range), own))
 

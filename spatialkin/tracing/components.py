@@ -18,8 +18,8 @@ from .closed.forms import closed_form, closed_settings
 from .._lib import stages, warm
 from .curve.status import BOUNDARY, CONTACT, FAILED, TANGENT
 from .search.rescue import LOST_RADIUS, crossing_starts
-from .search.topology import TopologyError, points_at, topology
-from ..geometry.traits import check_surface, traits
+from .search.topology import TopologyError, distances_at, points_at, topology
+from ..geometry.traits import check_surface
 from .march.trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
@@ -213,7 +213,7 @@ def searched(a, b, settings):
                                                  for point, index, fixed, value in topo.edge_starts) if y is not None]
     if topo.seeds:
         seeds = np.array(topo.seeds, dtype=float).reshape(-1, 3)
-        on = np.maximum(a.distance(seeds), b.distance(seeds)) <= settings.tolerance
+        on = np.maximum(distances_at(a, seeds), distances_at(b, seeds)) <= settings.tolerance
         pending += [(seed, None, bool(exact)) for seed, exact in zip(seeds, on)]
     if stages.ON:
         stages.switch("dedupe")
@@ -281,7 +281,12 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
                 continue
             if stages.ON:
                 stages.switch("dedupe")
-            if any(near_curve(c, point, radius)[0] for c in curves):
+            for curve in curves:
+                if near_curve(curve, point, radius)[0]:
+                    break
+            else:
+                curve = None
+            if curve is not None:                   # (on a curve traced already)
                 continue
         if stages.ON:
             stages.switch("trace_setup")
@@ -351,7 +356,7 @@ def other_sheet(curve, points):
     out = np.zeros(len(points), dtype=bool)
     guard = curve.tolerance
     for surface in getattr(curve.sol, "surfaces", ()):
-        if traits(surface).name != "cone":
+        if surface.traits.name != "cone":
             continue
         heights = surface.frame.to_local(curve.points)[..., 2]
         side = 1.0 if np.all(heights > guard) else -1.0 if np.all(heights < -guard) else 0.0

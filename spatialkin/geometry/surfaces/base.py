@@ -77,6 +77,9 @@ class Surface:
         self.data.flags.writeable = False
 
     # --- the kind's traits --------------------------------------------------------------------------------------
+    #: The kind's SurfaceTraits (spatialkin.geometry.traits), set on its class when the kind registers.
+    traits = None
+
     @property
     def kind(self):
         """The kind code (data[KIND]), the key of the kind's traits."""
@@ -85,18 +88,18 @@ class Surface:
     @property
     def compact(self):
         """True when the surface is compact (closed and bounded): intersect() can seed it exhaustively."""
-        return traits(self).compact
+        return self.traits.compact
 
     @property
     def periodic_v(self):
         """True when v is periodic (2 pi), as u is for every kind but the plane."""
-        return traits(self).periodic[1]
+        return self.traits.periodic[1]
 
     # --- geometry ---------------------------------------------------------------------------------------------
     @property
     def size(self):
         """Characteristic length: the radius, the outer radius of a torus, 1 for an unbounded plane."""
-        return float(traits(self).size(self))
+        return float(self.traits.size(self))
 
     @property
     def bounds(self):

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...geometry.traits import LENGTH, traits
+from ...geometry.traits import LENGTH
 from ...kernels.certify import trims as kr
 from ...kernels.certify import tubes as kt
 
@@ -43,7 +43,7 @@ def edges(topology, chart, regions=True):
     cannot (regions False: the faces' regions left out, spatialkin.tracing.certify.faces proves them)."""
     out, unsupported = [], []
     for owner, surface in (("P", topology.P), ("Q", topology.Q)):
-        kind = traits(surface)
+        kind = surface.traits
         if regions and surface.region:
             unsupported.append(f"the face trims of {owner} (angular ranges, a disc) are not proven")
         for j, (lo, hi) in enumerate(surface.bounds):
@@ -226,10 +226,10 @@ def q_edge_roots(chart, topology, found, trims, unsupported, ends, candidates):
     where = lambda box: found.reader.s.point(0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]))  # noqa: E731
     if unsupported:
         return [(f"roots on Q's trim edge: {unsupported[0]}", where(found.verified[0]))]
-    q_kind = traits(topology.Q)
+    q_kind = topology.Q.traits
     p_trims = [e for e in trims if e.owner == "P"]
     # P's trims read on Q: P's local axes (the reader of Q against P)
-    p_kind = traits(topology.P)
+    p_kind = topology.P.traits
     on_q = [Edge("P", e.fixed, e.value, p_kind.parameter_axes[e.fixed], e.inside) for e in p_trims]
     outside_count = sum(any(outside(found.reader, box, on_q) for box in candidates(found, i))
                         for i in range(len(found.verified)))

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from ...geometry.traits import power_of_two, traits
+from ...geometry.traits import power_of_two
 from ...kernels.certify import tubes as kt
 from ...kernels.curve.stored import unwrap_turns
 from ..curve.exact import ExactSolution
@@ -81,7 +81,7 @@ class Chart:
         """other: Q's chart (Q read against the search's P) instead."""
         self.p, q = (topology.Q, topology.chart) if other else (topology.chart, topology.Q)
         self.reader = Reader(self.p, q)
-        kind = traits(self.p)
+        kind = self.p.traits
         self.units = np.array([power_of_two(x) for x in kind.parameter_units(scale)])
         self.periodic = tuple(bool(x) for x in kind.periodic)
         self.periods = np.array([2.0 * math.pi / self.units[j] if self.periodic[j] else 0.0 for j in range(2)])

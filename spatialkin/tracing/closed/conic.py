@@ -19,7 +19,6 @@ from scipy.special import cython_special, ellipeinc
 
 from ..curve.exact import EXACT_SAMPLES, ExactSolution, counting
 from ...geometry.quadrature import gauss_legendre
-from ...geometry.traits import traits
 
 LINE, ELLIPSE, HYPERBOLA, PARABOLA = "line", "ellipse", "hyperbola", "parabola"
 #: Gauss-Legendre nodes per panel of a hyperbola's arc-length quadrature ...
@@ -200,7 +199,7 @@ class ConicSolution(ExactSolution):
         if with_params:
             near = self.params[np.clip(np.searchsorted(self.knots, s), 0, len(self.knots) - 1)]
             for k, surf in enumerate(self.surfaces):
-                kind = traits(surf)
+                kind = surf.traits
                 if kind.periodic[0] and not kind.recharts:
                     u = params[:, 2 * k]
                     u -= 2.0 * np.pi * np.round((u - near[:, 2 * k]) / (2.0 * np.pi))

@@ -38,7 +38,6 @@ from .split import may_split, split_planes
 from ..curve.status import BOUNDARY, CLOSED, open_outcome, outcome
 from ..search.topology import Topology
 from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
-from ...geometry.traits import traits
 
 #: A curve within this many times the tolerance of touching the other surface (tangency, a plane through an apex)
 #: or of a vertex's touch of a trim level is left to the general path.
@@ -114,7 +113,7 @@ class Placed:
 def closed_form(a, b, settings):
     """The components of a ∩ b (CurveResults, longest first, as sk.intersect sorts them), or None when the pair
     or its placement is not handled here (see the module docstring). settings: a Scene or a trace Settings."""
-    kinds = (traits(a), traits(b))
+    kinds = (a.traits, b.traits)
     names = (kinds[0].name, kinds[1].name)
     if not (kinds[0].compact or kinds[1].compact or math.isfinite(kinds[0].extent(a))
             or math.isfinite(kinds[1].extent(b))):

@@ -32,7 +32,6 @@ from .dense import CurveSolution
 from .exact import contact_point
 from .result import CurveResult
 from .status import BOUNDARY, CONTACT, TANGENT, open_outcome
-from ...geometry.traits import traits
 
 #: Intervals that may hide a crossing are cut down to this length (relative to the scale) ...
 FINEST = 1e-9
@@ -291,7 +290,7 @@ def period_shift(curve):
 def align_angles(params, surfaces):
     """The angular columns of params (M, 4) made continuous (each row within pi of the one before), in place."""
     for k, surface in enumerate(surfaces):
-        for j, angle in enumerate(traits(surface).angular):
+        for j, angle in enumerate(surface.traits.angular):
             if angle:
                 params[:, 2 * k + j] = np.unwrap(params[:, 2 * k + j])
 

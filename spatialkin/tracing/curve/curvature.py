@@ -5,7 +5,6 @@ surface, and C'' is normal to C': three linear equations for the curvature vecto
 """
 import numpy as np
 
-from ...geometry.traits import traits
 
 
 def implicit_jets(surface, points):
@@ -15,7 +14,7 @@ def implicit_jets(surface, points):
     coordinates."""
     rot = surface.frame.rotation
     q = (np.asarray(points, dtype=float) - surface.frame.origin) @ rot
-    value, grad, hess = traits(surface).implicit_jets(surface, q)
+    value, grad, hess = surface.traits.implicit_jets(surface, q)
     return value, grad @ rot.T, np.einsum("ij,njk,lk->nil", rot, hess, rot)
 
 

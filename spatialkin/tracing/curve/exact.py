@@ -16,7 +16,6 @@ from ...geometry.vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult
 from .status import MESSAGES, outcome
-from ...geometry.traits import traits
 
 #: Stored points of a circle or a segment in closed form.
 EXACT_SAMPLES = 65
@@ -136,7 +135,7 @@ class ExactSolution(CurveSolution):
                 points[-1] = points[0]
             params = surface_parameters(self.surfaces, points)
             for k, surf in enumerate(self.surfaces):
-                if traits(surf).periodic[0]:
+                if surf.traits.periodic[0]:
                     unwrap_turns(params[:, 2 * k])
             self._samples = points, params
         return self._samples

@@ -490,7 +490,7 @@ def in_sk_order(curves, first_point=lambda c: c.points[0]):
     """The CurveResults sorted as sk.intersect returns them: longest first, then by first point (rounded to 9
     decimals); first_point reads a curve's first point (a closed form's without sampling the others)."""
     if len(curves) > 1:
-        curves.sort(key=lambda c: (-c.length, tuple(np.round(first_point(c), 9))))
+        curves.sort(key=lambda c: (-c.length, tuple(np.asarray(first_point(c)).round(9).tolist())))
     return curves
 
 

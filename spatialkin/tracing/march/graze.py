@@ -21,7 +21,6 @@ from ..curve.clip import clip_curve
 from ..curve.result import TracingError
 from ..curve.status import BOUNDARY
 from .trace import trace_from
-from ...geometry.traits import traits
 
 #: Ends of open curves on trim edges closer than this (relative to the scale) are the two sides of a graze.
 GAP = 1e-3
@@ -41,7 +40,7 @@ class Face:
 def length_limits(surface):
     """The groups of limits of the trims the tracer watches (ranges of a length along a local axis)."""
     groups = ()
-    for j, (axis, bounds) in enumerate(zip(traits(surface).parameter_axes, surface.bounds)):
+    for j, (axis, bounds) in enumerate(zip(surface.traits.parameter_axes, surface.bounds)):
         if axis is not None:
             groups += level_groups((f"{'uv'[j]}_min", f"{'uv'[j]}_max"), HEIGHT, bounds, axis)
     return groups
@@ -51,7 +50,7 @@ def widened(surface, margin):
     """A copy of the surface with its length trims widened by margin (a cone's not across its apex)."""
     out = copy.copy(surface)
     data = surface.data.copy()
-    cone = traits(surface).name == "cone"
+    cone = surface.traits.name == "cone"
     for j in range(4):
         bound = data[ks.BOUNDS + j]
         if not math.isfinite(bound):

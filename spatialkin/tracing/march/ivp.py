@@ -28,7 +28,6 @@ from .segments import (EDGE_NAMES, EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_
                        area_flag, finite_bounds, newton_fixed, project_state, segment_start)
 from ..curve.status import outcome
 from .singular import APEX_GUARD, closes_within_jump, jump_across, jump_past_edge, take_jump
-from ...geometry.traits import traits
 from ..._lib import stages
 
 # --- named limits -------------------------------------------------------------------------------------
@@ -100,7 +99,7 @@ def area_weight(area_a, area_b):
 
 
 def branch_event_params(a, b, settings, start, direction):
-    """The event parameters (kb.P_SIZE,) every segment of a branch shares (charts a, b of the surfaces' kinds,
+    """The event parameters (kb.P_SIZE,) every segment of a branch shares (charts of the surfaces a, b,
     the closure plane through start normal to direction): all but the bounds and the closure's arm, which
     segment_system sets."""
     ep = np.zeros(kb.P_SIZE)
@@ -197,7 +196,7 @@ def at_outer_edge(a, b, y, sign, bounds):
     return False
 
 
-def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
+def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settings):
     """Integrate one direction from point (on the curve, unit tangent N1 x N2/|.| there).
 
     y_start holds the non-sphere parameters at point (a sphere's come from its chart). Singular points on
@@ -214,8 +213,9 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
     compiled = settings.method in COMPILED_SOLVERS
     near_edge = False
     watch_apex = True
-    recharts = (traits(a_user).recharts, traits(b_user).recharts)
-    shared = branch_event_params(a_user, b_user, settings, start, direction)
+    a_user, b_user = a_surface.data, b_surface.data
+    recharts = (a_surface.traits.recharts, b_surface.traits.recharts)
+    shared = branch_event_params(a_surface, b_surface, settings, start, direction)
     area = (float(shared[kb.P_FLAG_A]), float(shared[kb.P_FLAG_B]))        # every segment's area_flag
     # a re-chart turns a chart's axes only: every segment's charts have the user's bounds, and for one method and
     # near_edge the same events, made once per branch and pointed at each segment's System
@@ -295,7 +295,9 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
         if status == 0:
             branch.status, branch.message = outcome("max_length", max_length=settings.max_length)
             break
-        hit = next(i for i, te in enumerate(t_events) if te.size)
+        hit = 0
+        while not t_events[hit].size:       # (the first event that fired)
+            hit += 1
         kind, info = kinds[hit]
         y = y_events[hit][0].copy()
         kc.curve_frame(y, a, b, point, tangent)
@@ -348,8 +350,8 @@ def integrate_branch(a_user, b_user, point, tangent, y_start, sign, settings):
                 stages.leave(mark)
             gap = p_e - start
             close_enough = math.sqrt(gap.dot(gap)) <= radius           # (np.linalg.norm's sum and root)
-            if close_enough and float(np.dot(sign * t_e, direction)) >= CLOSURE_COSINE:
-                remaining = float(np.dot(start - p_e, sign * t_e))
+            if close_enough and float((sign * t_e).dot(direction)) >= CLOSURE_COSINE:
+                remaining = float((start - p_e).dot(sign * t_e))
                 branch.status, branch.message = outcome("closed", s=s + remaining)
                 branch.length = s + remaining
                 branch.end_state = yp

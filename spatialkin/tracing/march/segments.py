@@ -12,7 +12,7 @@ import numpy as np
 from ...kernels.march import curve as kc
 from ...kernels.march import restart as kr
 from ...kernels.geometry import surfaces as ks
-from ...geometry.traits import LENGTH, traits
+from ...geometry.traits import LENGTH
 
 # --- named limits -------------------------------------------------------------------------------------
 #: A re-charting surface (a sphere) is re-charted when |cos(latitude)| falls below this (latitude beyond 60
@@ -94,15 +94,15 @@ class Settings:
     apexes: np.ndarray = field(default_factory=lambda: np.empty((0, 3)))  # (K, 3) the surfaces' apexes
 
 
-def area_flag(data, scale):
+def area_flag(surface, scale):
     """The unit of the relative area element of this surface's parametrisation when it is watched (its traits'
     area watch: a degenerate parametrisation ends a branch): the length of a unit step of v in a scene of this
     scale (kernels.curve.relative_area); 0.0 when it is not watched."""
-    kind = traits(data)
+    kind = surface.traits
     return (float(scale) if kind.units[1] == LENGTH else 1.0) if kind.area_watch else 0.0
 
 
-def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):
+def charts_at(a_surface, b_surface, point, tangent, y_prev=None, bend=None):
     """Charts for a new segment at point and the state there in them (kernels.march.restart.chart_states).
 
     Surfaces whose traits re-chart (spheres) are re-charted at point (so it lies on their equator, tangent along
@@ -117,9 +117,9 @@ def charts_at(a_user, b_user, point, tangent, y_prev=None, bend=None):
     y_prev = np.ascontiguousarray(y_prev, dtype=float) if keep else np.zeros(4)
     y = np.empty(4)
     charts = []
-    for k, user in enumerate((a_user, b_user)):
-        rechart = traits(user).recharts
-        out = np.empty_like(user)
+    for k, surface in enumerate((a_surface, b_surface)):
+        user, rechart = surface.data, surface.traits.recharts
+        out = np.empty(user.shape)
         kr.chart_states(user, rechart, point, tangent, bend, y_prev, k, out, y, keep)
         charts.append(out if rechart else user)
     return charts[0], charts[1], y
@@ -130,7 +130,7 @@ def segment_start(a_user, b_user, recharts, point, direction, y_prev, settings):
     the charts (re-charting the surfaces whose recharts flag is set, along direction, then along the curve's
     curvature vector where it is defined), then project_state. A surface that keeps its chart is returned as the
     user's data itself, a new chart read-only (as every Surface's data)."""
-    a_out, b_out = np.empty_like(a_user), np.empty_like(b_user)
+    a_out, b_out = np.empty(a_user.shape), np.empty(b_user.shape)
     y, p, t = np.empty(4), np.empty(3), np.empty(3)
     ok = kr.segment_start(a_user, b_user, recharts[0], recharts[1], np.ascontiguousarray(point, dtype=float),
                           np.ascontiguousarray(direction, dtype=float), np.ascontiguousarray(y_prev, dtype=float),

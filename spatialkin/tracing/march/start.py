@@ -15,7 +15,6 @@ from ...kernels.geometry import surfaces as ks
 from .segments import NEWTON_MAX_ITER
 from .segments import newton_fixed
 from ..curve.result import TracingError
-from ...geometry.traits import traits
 
 #: Samples of an auxiliary parameter line when looking for its crossings with the other surface.
 AUX_SAMPLES = 720
@@ -25,7 +24,7 @@ def scene_scale(a, b):
     """Length scale of an intersection: the smaller characteristic length of the two surfaces, ignoring
     planes and untrimmed cones (which have none); without one, the smaller half-diagonal of the trimmed
     planes' rectangles (1 where there is none)."""
-    size_a, size_b = traits(a).scale_length(a), traits(b).scale_length(b)
+    size_a, size_b = a.traits.scale_length(a), b.traits.scale_length(b)
     if size_a is not None or size_b is not None:
         return size_a if size_b is None else size_b if size_a is None else min(size_a, size_b)
     spans = []
@@ -35,12 +34,6 @@ def scene_scale(a, b):
         if math.isfinite(span):
             spans.append(span)
     return min(spans) if spans else 1.0
-
-
-def parameter_units(data, scale):
-    """Length of a unit step in (u, v) (2,): 1 for an angle, scale for a length (plane u and v, the axial v
-    of a cylinder or cone). Sets absolute tolerances and difference steps per parameter."""
-    return traits(data).parameter_units(scale)
 
 
 def locate_on_curve(a, b, guess, gap_tol, y_guess=None):
@@ -53,7 +46,7 @@ def locate_on_curve(a, b, guess, gap_tol, y_guess=None):
     p1, y_user = np.empty(3), np.empty(4)
     keep = y_guess is not None
     # charts_at, project_to_curve and curve_frame, and a re-charted surface's own (u, v), in one compiled call
-    if not kr.locate(a.data, b.data, traits(a).recharts, traits(b).recharts, np.ascontiguousarray(guess),
+    if not kr.locate(a.data, b.data, a.traits.recharts, b.traits.recharts, np.ascontiguousarray(guess),
                      np.ascontiguousarray(y_guess, dtype=float) if keep else np.zeros(4), keep, gap_tol,
                      NEWTON_MAX_ITER, p1, y_user):
         raise TracingError.of("no_start", where=guess, point=guess.tolist())

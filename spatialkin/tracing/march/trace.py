@@ -23,9 +23,9 @@ from ...ode.solvers import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from ..curve.dense import Span, TracedSolution
 from ..curve.result import Curve, CurveResult, TracingError, DUPLICATE_SPACING
-from .start import locate_on_curve, parameter_units, scene_scale
+from .start import locate_on_curve, scene_scale
 from ..curve.status import CLOSED, FAILED, open_outcome
-from ...geometry.traits import check_surface, traits
+from ...geometry.traits import check_surface
 from ..._lib import stages, warm
 from ..._lib.validation import as_float_array, check_choice, check_nonnegative, check_positive
 
@@ -73,7 +73,7 @@ METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", *COMPILED_SOLVERS)
 
 def extent(surface):
     """A length that bounds the surface (inf for an untrimmed plane, cylinder or cone): its traits' extent."""
-    return traits(surface).extent(surface)
+    return surface.traits.extent(surface)
 
 
 def check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
@@ -119,9 +119,9 @@ def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullb
     (tol, rtol, atol, _, singular_tol, pullback), (scale, tolerance, gap_tol, max_length) = scene
     if atol is None:
         # angles get rtol, lengths (plane u, v; cylinder and cone v) rtol * scale
-        atol = rtol * np.concatenate([parameter_units(a.data, scale), parameter_units(b.data, scale)])
+        atol = rtol * np.concatenate([a.traits.parameter_units(scale), b.traits.parameter_units(scale)])
     else:
-        unit = max(parameter_units(a.data, scale).max(), parameter_units(b.data, scale).max())
+        unit = max(a.traits.parameter_units(scale).max(), b.traits.parameter_units(scale).max())
         if atol < TOLERANCE_MIN * unit:
             raise ValueError(f"atol must be at least {TOLERANCE_MIN:g} x the scale {unit:.6g} of the length "
                              f"parameters, got {atol!r}")
@@ -135,7 +135,7 @@ def apex_points(a, b):
     """(K, 3) the apexes of both surfaces (a cone's, a horn or spindle torus's points on its axis)."""
     rows = []
     for surface in (a, b):
-        vs = traits(surface).apexes(surface)
+        vs = surface.traits.apexes(surface)
         if vs:
             out = np.empty((len(vs), 3))
             ks.evaluate(surface.data, np.array([(0.0, v) for v in vs], dtype=float), out)
@@ -288,7 +288,7 @@ def trace_from(a, b, point, y, settings, t_start):
     output."""
     tangent = np.empty(3)
     p = np.empty(3)
-    a_chart, b_chart, y_chart = charts_at(a.data, b.data, point, np.zeros(3), y)
+    a_chart, b_chart, y_chart = charts_at(a, b, point, np.zeros(3), y)
     sin_normals = kc.curve_frame(y_chart, a_chart, b_chart, p, tangent)
     if sin_normals < settings.singular_tol:
         raise TracingError.of("singular_start", where=point, point=point.tolist(), sin=sin_normals)
@@ -310,7 +310,7 @@ def trace_from(a, b, point, y, settings, t_start):
             closed, length = False, backward.length + forward.length
             status, message = open_outcome(backward.status, backward.message, forward.status, forward.message)
     mark = stages.enter("result") if stages.ON else None
-    spans, ys, ss, charts = [], [], [], []
+    spans, ys, ss, counts = [], [], [], []
     for branch, flip, offset in branches:
         pieces = []
         for seg in branch.segments:
@@ -328,14 +328,15 @@ def trace_from(a, b, point, y, settings, t_start):
             spans.append(span)
             ss.append(s_pts)
             ys.append(y_pts)
-            charts.append(np.full(len(s_pts), len(spans) - 1))
+            counts.append(len(s_pts))
     if not ss:
         raise TracingError.of("nothing_traced", where=point, status=status, point=point.tolist(), message=message)
     s_all = np.concatenate(ss)
     y_all = np.ascontiguousarray(np.concatenate(ys))
-    span_of = np.concatenate(charts)
-    keep = np.ones(len(s_all), dtype=bool)
-    keep[1:] = np.diff(s_all) > DUPLICATE_SPACING * settings.scale
+    span_of = np.arange(len(spans)).repeat(counts)
+    keep = np.empty(len(s_all), dtype=bool)
+    keep[0] = True
+    keep[1:] = s_all[1:] - s_all[:-1] > DUPLICATE_SPACING * settings.scale
     if closed:
         spans[-1].hi = length
         keep &= s_all < length - DUPLICATE_SPACING * settings.scale
@@ -373,7 +374,7 @@ def in_order(s, y):
 def measured_branch(a, b, point, tangent, y, sign, settings):
     """One direction integrated from point (integrate_branch) with its arc length re-measured on the curve
     (remeasure_branch, timed as correction)."""
-    branch = integrate_branch(a.data, b.data, point, tangent, y, sign, settings)
+    branch = integrate_branch(a, b, point, tangent, y, sign, settings)
     if branch.status == FAILED:
         end = branch_end(branch, point)
         raise TracingError.of("branch_failed", where=end, point=np.round(end, 12).tolist(), message=branch.message)
@@ -402,13 +403,13 @@ def _corrected(a, b, y_all, span_of, spans, settings):
     is not the user's; then unwrap_turns of a re-charting surface's u)."""
     n = len(y_all)
     points, params, raw_gap = np.empty((n, 3)), np.empty((n, 4)), np.empty(n)
-    breaks = np.flatnonzero(span_of[1:] != span_of[:-1])
+    breaks = (span_of[1:] != span_of[:-1]).nonzero()[0]
     cuts = np.empty(len(breaks) + 2, dtype=np.int64)
     cuts[0], cuts[1:-1], cuts[-1] = 0, breaks + 1, n
     segs = [spans[k].seg for k in span_of[cuts[:-1]].tolist()]
-    recharts = bool(traits(a).recharts), bool(traits(b).recharts)
+    recharts = bool(a.traits.recharts), bool(b.traits.recharts)
     # (a surface that re-charts has a chart of its own in every segment: segment_start makes one at each start)
-    own = [np.full(len(segs), flag) for flag in recharts]
+    own = [np.zeros(len(segs), dtype=bool) | flag for flag in recharts]
     kst.corrected_spans(np.ascontiguousarray(y_all, dtype=float), cuts, np.array([seg.a for seg in segs]),
                         np.array([seg.b for seg in segs]), np.array([seg.normal for seg in segs], dtype=float),
                         a.data, b.data, own[0], own[1], recharts[0], recharts[1], settings.gap_tol, NEWTON_MAX_ITER,
@@ -421,7 +422,7 @@ def _closing_params(a, b, first, last):
     so that they continue the last point's."""
     out = first.copy()
     for k, surface in enumerate((a, b)):
-        for j, periodic in enumerate(traits(surface).periodic):
+        for j, periodic in enumerate(surface.traits.periodic):
             if periodic:       # (np.rint is np.round to 0 decimals)
                 i = 2 * k + j
                 out[i] = first[i] + 2 * np.pi * np.rint((last[i] - first[i]) / (2 * np.pi))

@@ -22,7 +22,6 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from ...geometry.traits import traits
 
 #: The meridian is sought on a grid of this many angles u, g read at MERIDIAN_SAMPLES angles v round the tube.
 U_GRID = 1440
@@ -46,7 +45,7 @@ REVOLVED = ("torus", "cone", "cylinder")
 def tangent_meridians(p, reader, v_range):
     """Angles u0 of the meridians of p (a torus, cone or cylinder) along which it touches the surface q of reader
     (topology.Reader(p, q): g = F_q o p), v in v_range (finite); [] when there is none or p has no such meridians."""
-    if traits(p).name not in REVOLVED:
+    if p.traits.name not in REVOLVED:
         return []
     u = np.linspace(-math.pi, math.pi, U_GRID, endpoint=False)
     v = np.linspace(*v_range, MERIDIAN_SAMPLES)
@@ -87,7 +86,7 @@ def meridian_segment(p, q, u0, v_range):
     ends = p.point(np.full(2, u0), np.asarray(v_range, dtype=float))
     local = q.frame.to_local(ends)
     lo, hi = 0.0, 1.0
-    for axis, (a, b) in zip(traits(q).parameter_axes, q.bounds):
+    for axis, (a, b) in zip(q.traits.parameter_axes, q.bounds):
         if axis is None:
             continue
         x0, dx = local[0, axis], local[1, axis] - local[0, axis]

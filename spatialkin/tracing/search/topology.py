@@ -44,7 +44,7 @@ from ...kernels.search import topology as kt
 from .meridians import BAND, BESIDE, REVOLVED, meridian_circle, meridian_nodes, meridian_segment, tangent_meridians
 from ...geometry.placement import bounding_ball, check_not_coincident, common_axis, ruled_along
 from ..march.trace import EPS, ROUNDOFF_ULPS
-from ...geometry.traits import LENGTH, power_of_two, traits
+from ...geometry.traits import LENGTH, power_of_two
 
 #: The fixed direction d (an angle in the plane of scaled parameters) whose extremes seed the closed loops;
 #: any direction works, a generic one keeps straight pieces of the level from lying along d's normal.
@@ -196,24 +196,24 @@ def choose_roles(a, b, axis, ruled):
     """(P, Q, mode): P parametrised, Q implicit; the same for (a, b) and (b, a). Coaxial: P has parallels."""
     if axis is not None:
         mode = "coaxial"
-        cands = [s for s in (a, b) if traits(s).has_parallels]
+        cands = [s for s in (a, b) if s.traits.has_parallels]
     elif ruled is not None:
         return ruled, (b if ruled is a else a), "ruled"
     else:
         mode = "general"
         cands = [a, b]
-    ranks = [traits(s).rank for s in cands]
+    ranks = [s.traits.rank for s in cands]
     if len(cands) == 2 and ranks[0] != ranks[1]:
         best = cands[0] if ranks[0] < ranks[1] else cands[1]     # (the key's first entry decides)
     else:
-        best = min(cands, key=lambda s: (traits(s).rank, -s.size, tuple(s.data)))
+        best = min(cands, key=lambda s: (s.traits.rank, -s.size, tuple(s.data)))
     return best, (b if best is a else a), mode
 
 
 def domain(p, q_ball):
     """(box (4,) = u_lo, u_hi, v_lo, v_hi of P's domain, u periodic, v periodic): P's natural domain, a length
     parameter where it is unbounded limited by Q's bounding ball."""
-    kind = traits(p)
+    kind = p.traits
     ranges = [list(r) for r in kind.natural_domain(p)]
     if q_ball is not None:
         centre = p.frame.to_local(q_ball[0])
@@ -226,7 +226,7 @@ def domain(p, q_ball):
 
 def limited_range(surface, j, ball):
     """The trims of parameter j of a surface, an unbounded length limited by the other surface's ball."""
-    kind = traits(surface)
+    kind = surface.traits
     lo, hi = kind.natural_domain(surface)[j]
     axis = kind.parameter_axes[j]
     if axis is not None and (not math.isfinite(lo) or not math.isfinite(hi)) and ball is not None:
@@ -347,6 +347,15 @@ def points_at(surface, uv):
     return out
 
 
+def distances_at(surface, points):
+    """Distances (N,) of points (N, 3) (finite floats, made by the search) to the untrimmed surface:
+    Surface.distance without its argument checks."""
+    points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
+    out = np.empty(len(points))
+    ks.distances(surface.data, points, out)
+    return out
+
+
 def topology(a, b, scale, tolerance):
     """Start points on every component of a ∩ b (see the module docstring). Returns a Topology.
 
@@ -363,7 +372,7 @@ def topology(a, b, scale, tolerance):
         return search(a, b, scale, tolerance)
     except TopologyError:
         for p, q in ((a, b), (b, a)):                    # a meridian of a surface of revolution along which they touch?
-            if traits(p).name in REVOLVED:
+            if p.traits.name in REVOLVED:
                 box, _, _ = domain(p, bounding_ball(q))
                 if not (math.isfinite(box[2]) and math.isfinite(box[3])):
                     continue
@@ -390,14 +399,14 @@ def search(a, b, scale, tolerance, tangent=None, general=False):
         topo.seconds = time.perf_counter() - t0
         return topo                                  # Q's ball misses P's trimmed domain
     pq, qp = Reader(p, q), Reader(q, p)
-    collapse = traits(p).collapse_lines(p)
+    collapse = p.traits.collapse_lines(p)
     if mode == "general":
         place_seams(pq, box, u_periodic, v_periodic, collapse)
     if tangent is not None:                          # the band round the meridian of tangency: its edges are the seam
         u0 = tangent[2]
         box[0], box[1] = u0 + BAND, u0 + 2 * math.pi - BAND
         topo.skipped.append(("a band round the meridian along which the surfaces touch", points_at(p, (u0, 0.0))[0]))
-        if traits(p).name == "torus":
+        if p.traits.name == "torus":
             topo.tangent_circles.append(meridian_circle(p, u0))
         else:
             segment = meridian_segment(p, q, u0, box[2:])
@@ -455,7 +464,7 @@ def search(a, b, scale, tolerance, tangent=None, general=False):
         bands = []
         v_unit = step_units(p, scale)[1]         # RINGS are in units of v (a cone's v is a length)
         for v, apex in zip(apexes, apex_points):
-            if float(q.distance(apex)) > 1e3 * tolerance:
+            if distances_at(q, apex)[0] > 1e3 * tolerance:
                 continue
             bands.append((v - RINGS[-1] * v_unit, v + RINGS[-1] * v_unit))
             topo.skipped.append(("a thin band round an apex or pole", apex))
@@ -471,9 +480,9 @@ def search(a, b, scale, tolerance, tangent=None, general=False):
                 topo.contacts.append(apex)           # on Q to round-off, with no branch round it
         # Q's own apexes on P: singular points of the curve (known, so that the tracer's jumps pass them exactly;
         # a chart's poles are no points of the curve's kind)
-        for v in traits(q).apexes(q):
+        for v in q.traits.apexes(q):
             apex = points_at(q, (0.0, v))[0]
-            if float(p.distance(apex)) <= 1e3 * tolerance and qp.on_level((0.0, v)):
+            if distances_at(p, apex)[0] <= 1e3 * tolerance and qp.on_level((0.0, v)):
                 topo.apexes.append(apex)
         # Q's trim edges, as curves on Q where F_P = 0
         q_edges(q, qp, balls[id(p_user)], add_line_roots, q_index)
@@ -481,7 +490,7 @@ def search(a, b, scale, tolerance, tangent=None, general=False):
         # (less the thin bands round apexes on Q: a branch through the apex crosses the ring at the band's edge;
         # inside the band g and the extremal condition may vanish all along the apex line)
         for lo, hi in split_range(box[2], box[3], bands):
-            roots, unresolved = pq.extremal(np.array([box[0], box[1], lo, hi]), traits(p).parameter_units(scale),
+            roots, unresolved = pq.extremal(np.array([box[0], box[1], lo, hi]), p.traits.parameter_units(scale),
                                             topo)
             topo.seeds += keep.select_on(p, roots)
             loose += [(pq, uv) for uv in unresolved]
@@ -510,9 +519,9 @@ def search_roles(a, b, scale, general=False):
     p_user, q, mode = choose_roles(a, b, axis, ruled)
     if mode == "ruled" and balls[id(p_user)] is None and balls[id(q)] is None:
         raise ValueError("intersect needs a bounded pair")
-    p = traits(p_user).aligned(p_user, axis) if mode == "coaxial" else p_user
+    p = p_user.traits.aligned(p_user, axis) if mode == "coaxial" else p_user
     if mode == "general":
-        p = traits(p).general_chart(p, q)
+        p = p.traits.general_chart(p, q)
     return p_user, q, mode, p, balls
 
 
@@ -541,7 +550,7 @@ def q_edges(q, qp, p_ball, add_line_roots, q_index):
     """Roots of F_P on the trim edges of Q (a trimmed plane's sides, a cylinder's or cone's rims), each edge over
     the other parameter's range (limited by P's ball where it is an unbounded length)."""
     for j, trim in enumerate(q.bounds):
-        if not any(math.isfinite(bound) for bound in trim):
+        if not (math.isfinite(trim[0]) or math.isfinite(trim[1])):
             continue
         lo, hi = limited_range(q, 1 - j, p_ball)
         for bound in trim:
@@ -554,11 +563,11 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
     meridian. A simple root is a circle crossed transversally (traced); a multiple root where g keeps its sign
     is a circle of tangency; a root where the parallel collapses (a pole, an apex) is a contact point."""
     roots, unresolved = pq.line(0, -math.pi, box[2], box[3], topo, "meridian")
-    apexes = traits(p).collapse_lines(p)
+    apexes = p.traits.collapse_lines(p)
     v_unit = step_units(p, scale)[1]                 # (a cone's or cylinder's v is a length)
-    q_rim = traits(q).trim_breaks_revolution(q)
+    q_rim = q.traits.trim_breaks_revolution(q)
     found = [(v, True) for v in roots]
-    linear_v = traits(p).units[1] == LENGTH      # v runs on past a trim (a cylinder's or cone's rim)
+    linear_v = p.traits.units[1] == LENGTH      # v runs on past a trim (a cylinder's or cone's rim)
     for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2])):
         # a cluster across which g changes sign is a simple root blurred by round-off (a tiny parallel near a
         # pole); one across which it keeps its sign is a multiple root (a tangency); at a rim, g is read past it
@@ -606,7 +615,7 @@ def ruled_components(p, q, pq, box, topo, scale):
     (straight segments, through the apex for a cone): the roots of g on one cross-section (P's traits choose it:
     off a cone's apex, through which all its rulings pass). Each line is clipped to both trims; a simple root is
     traced, a multiple root where g keeps its sign is a line of tangency."""
-    v_mid = traits(p).cross_section(box[2], box[3])
+    v_mid = p.traits.cross_section(box[2], box[3])
     roots, unresolved = pq.line(1, v_mid, -math.pi, math.pi, topo, "cross-section")
     for u, simple in [(u, True) for u in roots] + [(u, False) for u in merge_values(unresolved, 8 * COARSE * math.pi)]:
         if not simple:
@@ -630,7 +639,7 @@ def step_units(surface, scale):
     """(2,) the length of a unit step of (u, v) of the surface (traits' parameter_units: 1 for an angle, the scale
     for a length) rounded to a power of two (power_of_two): the units of the stops and moves of the Newton and
     root-finder iterations here, so that they do not depend on the scene's scale."""
-    return np.array([power_of_two(x) for x in traits(surface).parameter_units(scale)])
+    return np.array([power_of_two(x) for x in surface.traits.parameter_units(scale)])
 
 
 def double_root(reader, fixed, value, t, unit=1.0):
@@ -658,7 +667,7 @@ def clip_line(p, u, v_lo, v_hi, q, scale):
     lo, hi = 0.0, 1.0
     local = q.frame.to_local(ends)
     slack = ROUNDOFF_ULPS * EPS * max(scale, float(np.max(np.abs(ends))), float(np.max(np.abs(q.frame.origin))))
-    limits = [(axis, *trim) for axis, trim in zip(traits(q).parameter_axes, q.bounds)
+    limits = [(axis, *trim) for axis, trim in zip(q.traits.parameter_axes, q.bounds)
               if axis is not None]
     for k, a, b in limits:
         x0, x1 = local[0, k], local[1, k]
@@ -699,7 +708,7 @@ def trim_bounds(surface, tolerance):
     (u0, u1), (v0, v1) = surface.bounds
     if not (math.isfinite(u0) or math.isfinite(u1) or math.isfinite(v0) or math.isfinite(v1)):
         return np.full(4, np.nan)
-    u_slack, v_slack = traits(surface).trim_slack(surface, 10.0 * tolerance)
+    u_slack, v_slack = surface.traits.trim_slack(surface, 10.0 * tolerance)
     return np.array([u0 - u_slack, u1 + u_slack, v0 - v_slack, v1 + v_slack])
 
 

@@ -61,7 +61,8 @@ def comparison_lines(c, runner_module):
         f"vs per-angle root solve: looper full turn{angles} with velocities and accelerations, scipy root time / "
         f"LooperDrive time: {measured(c.looper_ratio, c.looper_detail)}",
         f"start-up: import + first intersect in a fresh process (warm numba cache): {startup}",
-    ]
+    ] + ([f"calls: one sk.intersect of the looper's pair calls {c.calls[0]} Python functions, each compiled kernel "
+          f"one of them ({c.calls[1]} with C builtins; cProfile)"] if c.calls else [])
 
 
 def write_table(path, columns, lines):

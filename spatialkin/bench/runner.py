@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..mechanisms import LooperDrive
+from ..mechanisms.looper.reference import looper_pair
 from ..tracing.components import intersect
 from ..tracing.march.start import scene_scale
 from ..tracing.search.topology import topology
@@ -267,6 +268,24 @@ def startup_seconds(runs=STARTUP_RUNS):
     return statistics.median(times)
 
 
+def calls_of(func, *args):
+    """(Python functions, all functions with C builtins) that one call func(*args) makes, func's own call included,
+    counted by cProfile (a compiled kernel counts as a Python function: each is a call from Python)."""
+    prof = cProfile.Profile()
+    prof.runcall(func, *args)
+    stats = pstats.Stats(prof).stats
+    calls = [(path, count) for (path, _, name), (_, count, _, _, _) in stats.items()
+             if "_lsprof.Profiler" not in name]                  # (not the profiler's own disable)
+    return sum(count for path, count in calls if path != "~"), sum(count for _, count in calls)
+
+
+def intersect_calls(pair):
+    """calls_of one sk.intersect of the pair after three warm calls."""
+    for _ in range(3):
+        intersect(*pair)
+    return calls_of(intersect, *pair)
+
+
 @dataclass
 class Comparisons:
     """The ratios against the peers and the start-up time, with what they compare.
@@ -286,6 +305,9 @@ class Comparisons:
         Crank angles of the looper's turn (0 if not measured).
     startup : float
         Seconds of a fresh process importing spatialkin and intersecting the looper's pair; nan with --quick.
+    calls : tuple of int
+        Python functions (then all functions) one sk.intersect of the looper's pair calls (intersect_calls); () if
+        not counted.
     """
     occ_ratio: float
     occ_detail: str
@@ -293,10 +315,12 @@ class Comparisons:
     looper_detail: str
     looper_angles: int
     startup: float
+    calls: tuple = ()
 
 
-def comparisons(rows, startup):
-    """The ratios against the peers from the measured rows (nan where a side is missing)."""
+def comparisons(rows, startup, calls=()):
+    """The ratios against the peers from the measured rows (nan where a side is missing); calls: intersect_calls'
+    count, passed through."""
     occ = [r for r in rows if r.case == "looper" and r.solver == "OCC IntSS"
            and r.rtol == baselines.OCC_DEFAULT_TOL]
     # settings that found every component within COMPARE_ERROR in every case (no setting picked for one case)
@@ -323,7 +347,7 @@ def comparisons(rows, startup):
         looper_ratio, looper_angles = root.seconds / ours.seconds, ours.curves
         looper_detail = (f"scipy root {1e3 * root.seconds:.1f} ms (error {root.error:.1e}) vs LooperDrive "
                          f"{1e3 * ours.seconds:.1f} ms (error {ours.error:.1e})")
-    return Comparisons(occ_ratio, occ_detail, looper_ratio, looper_detail, looper_angles, startup)
+    return Comparisons(occ_ratio, occ_detail, looper_ratio, looper_detail, looper_angles, startup, tuple(calls))
 
 
 def run_all(quick=False, echo=print):
@@ -341,4 +365,4 @@ def run_all(quick=False, echo=print):
     echo("... looper drive")
     rows += looper_rows(repeats)
     startup = np.nan if quick else startup_seconds()
-    return rows, comparisons(rows, startup)
+    return rows, comparisons(rows, startup, intersect_calls(looper_pair()))

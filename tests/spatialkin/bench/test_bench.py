@@ -167,3 +167,25 @@ def test_length_error_against_a_circle():
         errs.append(runner.length_error([c]))
         assert abs(errs[-1] - abs(c.length - exact) / exact) < 1e-12
     assert errs[1] < 1e-9 and errs[1] < errs[0]
+
+
+def _leaf(x):
+    return len(x)
+
+
+def _branch(n):
+    return [_leaf([k]) for k in range(n)] + [abs(-n)]
+
+
+def test_calls_counted_by_function_kind():
+    """calls_of counts a call tree known by construction: _branch(3) calls itself, its list comprehension and _leaf
+    three times (5 Python functions), and len three times and abs once (9 in all); the bench's line reports the
+    looper pair's count."""
+    from spatialkin.bench import report, runner
+    assert runner.calls_of(_branch, 3) == (5, 9)
+    assert runner.calls_of(_branch, 0) == (2, 3)
+    c = runner.Comparisons(np.nan, "-", np.nan, "-", 0, np.nan, (378, 917))
+    assert report.comparison_lines(c, runner)[3] == ("calls: one sk.intersect of the looper's pair calls 378 Python "
+                                                     "functions, each compiled kernel one of them (917 with C builtins; "
+                                                     "cProfile)")
+    assert len(report.comparison_lines(runner.Comparisons(np.nan, "-", np.nan, "-", 0, np.nan), runner)) == 3

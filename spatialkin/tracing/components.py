@@ -12,6 +12,8 @@ from .march.segments import NEWTON_MAX_ITER
 from .march.start import locate_on_curve, newton_fixed_surfaces
 from .certify.certificate import CertificationError, CurveCertificate, certify as certify_answer
 from .certify.closed import closed_certificate
+from .certify.coaxial import coaxial_certificate
+from .certify.parallel import parallel_certificate
 from .curve.clip import clip_curves
 from .march.graze import across_edges, rejoined
 from .closed.forms import closed_form, closed_settings
@@ -182,6 +184,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         curves, topo = in_sk_order(clip_curves(a, b, found, settings.scale)), None
         wholes = found if a.region or b.region else None
     proof = closed_certificate(a, b, curves)
+    if proof is None:
+        proof = coaxial_certificate(a, b, curves) or parallel_certificate(a, b, curves)
     if proof is not None:
         return certified(a, b, curves, None, settings.scale, settings.tolerance, certify, proof=proof)
     if topo is None:

@@ -149,7 +149,8 @@ class Certificate:
     components : int
         How many curves were returned.
     mode : str
-        The configuration the search recognised ('general', 'coaxial', 'ruled'), or 'closed form' (no search).
+        The configuration the search recognised ('general', 'coaxial', 'ruled'), or, with no search, 'closed form'
+        (spatialkin.tracing.certify.closed) or 'exact (coaxial)' (spatialkin.tracing.certify.coaxial).
     boxes, verified_roots, singular_points : int
         The search's boxes, verified roots and unresolved boxes.
     search_seconds : float
@@ -191,12 +192,12 @@ class Certificate:
     True
     """
 
-    def __init__(self, claims, topology, radii, tubes, bounds, components, chart=None):
+    def __init__(self, claims, topology, radii, tubes, bounds, components, chart=None, mode=None):
         self.claims = {c.name: c for c in claims}
         self.topology = topology
         self.chart = chart
         self.components = int(components)
-        self.mode = topology.mode if topology is not None else "closed form"
+        self.mode = mode if mode is not None else topology.mode if topology is not None else "closed form"
         self.boxes = topology.boxes if topology is not None else 0
         self.verified_roots = topology.verified if topology is not None else 0
         self.singular_points = topology.unresolved if topology is not None else 0

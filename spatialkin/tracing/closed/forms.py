@@ -98,7 +98,7 @@ class Placed:
     __slots__ = ("surface", "kind", "name", "origin", "rot", "z", "bounds", "form")
 
     def __init__(self, surface, kind):
-        data = surface.data.tolist()
+        data = surface.floats
         self.surface = surface
         self.kind = kind
         self.name = kind.name

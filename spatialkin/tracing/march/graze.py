@@ -9,7 +9,6 @@ arc). Each such component is traced again on the surfaces with their length trim
 cone's never across its apex), and cut at the true trims by spatialkin.tracing.curve.clip (Lipschitz-bounded crossings,
 touches from inside kept whole, from outside a point).
 """
-import copy
 import math
 import time
 
@@ -48,7 +47,6 @@ def length_limits(surface):
 
 def widened(surface, margin):
     """A copy of the surface with its length trims widened by margin (a cone's not across its apex)."""
-    out = copy.copy(surface)
     data = surface.data.copy()
     cone = surface.traits.name == "cone"
     for j in range(4):
@@ -59,9 +57,7 @@ def widened(surface, margin):
         if cone and j >= 2 and bound != 0.0 and (moved > 0.0) != (bound > 0.0):
             moved = 0.5 * bound                              # short of the apex
         data[ks.BOUNDS + j] = moved
-    data.flags.writeable = False
-    out.data = data
-    return out
+    return surface.with_data(data)
 
 
 def across_edges(a, b, point, y, settings):

@@ -46,15 +46,20 @@ def test_looper_pair_is_proven_claim_by_claim():
 
 def test_empty_answer_carries_a_proven_certificate():
     """Disjoint surfaces: an empty list whose certificate proves that nothing was missed: a general placement, two
-    spheres (exactly symmetric about the line through their centres), and a sphere on a torus's axis (read as
-    coaxial within a tolerance, so proven by a general search)."""
+    spheres (exactly symmetric about the line through their centres), a sphere on a turned torus's axis (read as
+    coaxial within a tolerance, so proven by a general search), and on the axis of a torus placed by the identity
+    (coaxial exactly: proven in rational arithmetic)."""
     for pair in ((sk.Torus(1.0, 0.4), sk.Sphere(0.3, sk.Frame((0.5, 0.7, 2.0)))),
                  (sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((3.0, 0.0, 0.0))))):
         curves = sk.intersect(*pair, certify=True)
         assert curves == [] and curves.certificate.proven
         assert curves.certificate.claims["complete"].proven
-    coaxial = sk.intersect(sk.Torus(1.0, 0.4), sk.Sphere(0.3, sk.Frame((0.0, 0.0, 2.0))), certify=True)
+    turn = sk.rotation_about((1.0, 2.0, 0.5), 0.7)
+    coaxial = sk.intersect(sk.Torus(1.0, 0.4, sk.Frame((0.0, 0.0, 0.0), turn)),
+                           sk.Sphere(0.3, sk.Frame(2.0 * turn[:, 2])), certify=True)
     assert coaxial == [] and coaxial.certificate.mode == "coaxial" and coaxial.certificate.proven
+    exact = sk.intersect(sk.Torus(1.0, 0.4), sk.Sphere(0.3, sk.Frame((0.0, 0.0, 2.0))), certify=True)
+    assert exact == [] and exact.certificate.mode == "exact (coaxial)" and exact.certificate.proven
 
 
 def test_merged_curves_fail():
@@ -113,8 +118,11 @@ def test_moved_point_is_not_vouched_for(factor):
 
 def test_strict_raises_with_the_failed_claims():
     """certify='strict' raises CertificationError naming the claims it could not prove (a sphere in a cylinder of
-    its radius touches it along a circle: a singular curve, not proven); True returns them, said not proven."""
-    pair = (sk.Sphere(1.0), sk.Cylinder(1.0, v_range=(-2.0, 2.0)))
+    its radius, both turned by one rotation that is not a signed permutation, touches it along a circle: a singular
+    curve, not proven: the turned floats are not exactly coaxial); True returns them, said not proven."""
+    turn = sk.rotation_about((1.0, 2.0, 0.5), 0.7)
+    pair = (sk.Sphere(1.0, sk.Frame((0.0, 0.0, 0.0), turn)),
+            sk.Cylinder(1.0, sk.Frame((0.0, 0.0, 0.0), turn), v_range=(-2.0, 2.0)))
     loose = sk.intersect(*pair, certify=True)
     assert len(loose) == 1 and loose[0].status == "tangent" and not loose.certificate.proven
     assert not loose.certificate.claims["singular"].proven
@@ -241,14 +249,17 @@ def test_loops_just_inside_a_rim_are_proven_whole(gap):
 
 @pytest.mark.parametrize("radius", [0.7, 1.1, 1.4])
 def test_coaxial_circles_are_proven_by_a_general_search(radius):
-    """A sphere centred on a torus's axis cuts it in two parallels (the meridian circles meet twice): read as
-    coaxial, proven by a general search; each curve a circle about the axis (constant distance from it, length
-    2 pi times it, 1e-9)."""
-    curves = sk.intersect(sk.Torus(1.0, 0.4), sk.Sphere(radius, sk.Frame((0.0, 0.0, 0.1))), certify=True)
+    """A sphere centred on a torus's axis cuts it in two parallels (the meridian circles meet twice): turned by a
+    rotation that is not a signed permutation (so coaxial only within a tolerance), read as coaxial, proven by a
+    general search; each curve a circle about the axis (constant distance from it, length 2 pi times it, 1e-9)."""
+    turn = sk.rotation_about((1.0, 2.0, 0.5), 0.7)
+    curves = sk.intersect(sk.Torus(1.0, 0.4, sk.Frame((0.0, 0.0, 0.0), turn)),
+                          sk.Sphere(radius, sk.Frame(0.1 * turn[:, 2])), certify=True)
     assert len(curves) == 2 and curves.certificate.mode == "coaxial" and curves.certificate.proven
     for curve in curves:
-        rho = np.hypot(curve.points[:, 0], curve.points[:, 1])
-        assert np.ptp(rho) < 1e-12 and np.ptp(curve.points[:, 2]) < 1e-12
+        local = curve.points @ turn
+        rho = np.hypot(local[:, 0], local[:, 1])
+        assert np.ptp(rho) < 1e-12 and np.ptp(local[:, 2]) < 1e-12
         assert abs(curve.length - 2 * math.pi * rho.mean()) < 1e-9
 
 

@@ -93,10 +93,11 @@ def test_a_circle_moved_off_gets_a_bound_that_covers_the_move():
 
 def test_what_the_algebra_leaves_goes_to_the_search():
     """Touching spheres, a circle crossing a plane's rectangle, an ellipse crossing a cylinder's rim, a hyperbola on
-    a cone and a trimmed sphere are not settled in closed form: their certificates come from the search (another
-    mode)."""
+    a cone and a trimmed sphere are not settled in closed form: their certificates come from elsewhere (another
+    mode: touching spheres whose centres differ along a coordinate axis are exactly coaxial, proven in rational
+    arithmetic; the rest from the search)."""
     touching = sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((2.0, 0.0, 0.0))), certify=True)
-    assert touching.certificate.mode != "closed form" and not touching.certificate.proven
+    assert touching.certificate.mode == "exact (coaxial)" and touching.certificate.proven
     strip = sk.Plane(sk.Frame((0.0, 0.0, 0.3)), u_range=(-0.5, 0.5), v_range=(-2.0, 2.0))
     cut = sk.intersect(sk.Sphere(1.0), strip, certify=True)
     assert cut.certificate.mode != "closed form" and len(cut) == 2
@@ -115,7 +116,8 @@ def test_tiny_circles_of_nearly_touching_spheres_are_proven_or_said_not_to_be(ga
     """Two unit spheres whose centres are 2 - gap apart (moved 1e3 off) meet in one circle of radius about
     sqrt(gap). Returned as a circle, it is proven in closed form, every stored point within its proven radius of the
     true circle (30-digit oracle); returned as a contact point (the gap within the coordinates' round-off), it is
-    not proven. Touching spheres (gap 0) are never proven."""
+    not proven (the floats' exact answer is a circle). Touching spheres (gap 0, exactly: the centres 2 apart along
+    x) are proven in rational arithmetic, their contact point within its bound of the true one."""
     o = np.array([1e3, -2e3, 5e2])
     a, b = sk.Sphere(1.0, sk.Frame(o)), sk.Sphere(1.0, sk.Frame(o + [2.0 - gap, 0.0, 0.0]))
     curves = sk.intersect(a, b, certify=True)
@@ -131,7 +133,9 @@ def test_tiny_circles_of_nearly_touching_spheres_are_proven_or_said_not_to_be(ga
         for x, r in zip(curve.points[::4], curve.certificate.radii[::4]):
             assert foot(a, b, x)[0] <= r
     touching = sk.intersect(a, sk.Sphere(1.0, sk.Frame(o + [2.0, 0.0, 0.0])), certify=True)
-    assert not touching.certificate.proven
+    assert touching.certificate.proven and touching.certificate.mode == "exact (coaxial)"
+    assert len(touching) == 1 and touching[0].status == "contact"
+    assert np.linalg.norm(touching[0].points[0] - (o + [1.0, 0.0, 0.0])) <= touching.certificate.distance_bounds[0]
 
 
 def test_answers_not_faithful_to_their_closed_form_are_left_to_the_search():

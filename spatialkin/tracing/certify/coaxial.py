@@ -1,0 +1,412 @@
+"""Certificates proven exactly for two surfaces of revolution about one axis, in rational arithmetic on the floats.
+
+A sphere, a torus (R > r), a cylinder, a cone and a plane normal to the axis, each placed by a frame whose rotation
+is a signed permutation (entries -1, 0, 1: exactly orthogonal), are exactly surfaces of revolution about the line of
+their frame's z axis. Where both lines are one line (the same coordinate axis, the same other two coordinates of the
+origins; a sphere's centre on the other's line), a point lies on both surfaces exactly when its radius rho from the
+axis and its coordinate h along it lie on both meridians: curves of the (rho, h) half-plane rho >= 0, each a circle
+a (rho^2 + h^2) + b rho + c h + d = 0 or a line (a = 0) with rational coefficients (a sphere's and a torus's circle,
+a cylinder's line rho = r, a plane's h = p, a cone's two rays rho = +-tan (h - apex)). Two of them meet where a
+quadratic with rational coefficients vanishes, solved exactly: its roots are p + q sqrt(D) with rationals p, q, D, and
+every sign they are tested by (rho >= 0, a ray's side of the apex, a trim) is decided exactly. A double root
+(D = 0) is a tangency of the meridians, so of the surfaces: a circle of tangency, or, on the axis, a contact point.
+
+The intersection is then exactly one parallel circle per common point of the meridians with rho > 0 and one point
+per common point on the axis, those inside the trims: every claim of the certificate (no component missed, each curve
+one component, the curves distinct, the singular points) holds in exact arithmetic, and each returned circle is
+bounded against its true circle along its whole dense output both ways (spatialkin.kernels.certify.closed's
+distance_bound, in outward-rounded intervals), each contact point by its distance to the true one. A tangency, which
+no interval method can prove, is proven here because rational arithmetic decides the equality; the same placement
+moved by one ulp is decided too (and its answer then checked against that truth).
+
+Pairs outside this (a rotation that is not a signed permutation, trims that cut a circle into arcs, angular trims,
+a horn or spindle torus, a circle on a trim edge) get no certificate here (None) and go to the search's.
+
+References
+----------
+R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, ch. 5-6 (outward rounding).
+"""
+import math
+from fractions import Fraction
+
+import numpy as np
+
+from ...geometry.surfaces import Cone, Cylinder, Plane, Sphere, Torus
+from ...kernels.certify import closed as kc
+from ...kernels.geometry import surfaces as ks
+from ..curve.exact import CircleSolution, PointSolution
+from ..curve.status import CLOSED, CONTACT, TANGENT
+from .certificate import PROVEN, Certificate, Claim
+from .closed import SMALL, faithful, returned_curve
+
+#: Mode of the certificates made here.
+MODE = "exact (coaxial)"
+#: The singular claim where no point is singular.
+NO_SINGULAR = "no singular point: the surfaces cross transversally, or do not meet"
+
+
+# --- exact numbers p + q sqrt(d) --------------------------------------------------------------------------------
+class Surd:
+    """p + q sqrt(d) with rationals p, q and d >= 0 (d = 0 or q = 0: the rational p), exact."""
+
+    __slots__ = ("p", "q", "d")
+
+    def __init__(self, p, q=Fraction(0), d=Fraction(0)):
+        self.p, self.q, self.d = Fraction(p), Fraction(q), Fraction(d)
+        if self.q == 0 or self.d == 0:
+            self.q, self.d = Fraction(0), Fraction(0)
+
+    def __sub__(self, x):
+        """self - x for a rational x."""
+        return Surd(self.p - Fraction(x), self.q, self.d)
+
+    def sign(self):
+        """-1, 0 or 1: the exact sign (p and q sqrt(d) compared through their squares where their signs differ)."""
+        sp, sq = _sign(self.p), _sign(self.q)
+        if sq == 0 or sp == sq:
+            return sp if sp else sq
+        if sp == 0:
+            return sq
+        diff = self.p * self.p - self.q * self.q * self.d           # |p| vs |q| sqrt(d)
+        return sp if diff > 0 else sq if diff < 0 else 0
+
+    def key(self):
+        return (self.p, self.q, self.d)
+
+    def enclosure(self):
+        """(lo, hi) floats holding the value."""
+        p, q = _enclose(self.p), _enclose(self.q)
+        if self.q == 0:
+            return p
+        d = _enclose(self.d)
+        root = (_down(math.sqrt(max(d[0], 0.0))), _up(math.sqrt(d[1])))
+        products = [x * y for x in q for y in root]
+        return _down(p[0] + _down(min(products))), _up(p[1] + _up(max(products)))
+
+
+def _sign(x):
+    return (x > 0) - (x < 0)
+
+
+def _down(x):
+    return math.nextafter(x, -math.inf)
+
+
+def _up(x):
+    return math.nextafter(x, math.inf)
+
+
+def _enclose(x):
+    """(lo, hi) floats holding the rational x (float(x) is correctly rounded: one ulp either side holds it)."""
+    f = float(x)
+    return (f, f) if Fraction(f) == x else (_down(f), _up(f))
+
+
+# --- the surfaces as meridians -----------------------------------------------------------------------------------
+class Meridian:
+    """A piece of a surface's meridian: a (rho^2 + h^2) + b rho + c h + d = 0 (rationals), valid where side * (h -
+    apex) >= 0 (a cone's ray; side 0: everywhere), with the surface's trim along the axis (lo, hi) in h (Fractions,
+    or None where untrimmed)."""
+
+    __slots__ = ("a", "b", "c", "d", "side", "apex", "trim")
+
+    def __init__(self, a, b, c, d, side=0, apex=Fraction(0), trim=None):
+        self.a, self.b, self.c, self.d = (Fraction(x) for x in (a, b, c, d))
+        self.side, self.apex, self.trim = side, Fraction(apex), trim
+
+
+def signed_axis(rotation):
+    """(k, sign) of the frame's z column sign * e_k when the rotation is a signed permutation, else None."""
+    r = np.asarray(rotation, dtype=float)
+    if not (np.all(np.isin(r, (-1.0, 0.0, 1.0))) and np.all(np.abs(r).sum(axis=0) == 1.0)
+            and np.all(np.abs(r).sum(axis=1) == 1.0)):
+        return None
+    k = int(np.flatnonzero(r[:, 2])[0])
+    return k, int(r[k, 2])
+
+
+def _axial_trim(surface, k, sign):
+    """A cylinder's or cone's v range as a range of h (Fractions), or None when untrimmed; False when it is trimmed
+    in u (an angular range: arcs, not circles)."""
+    if surface.region:
+        return False
+    (v0, v1) = surface.v_range
+    if not (math.isinf(v0) and math.isinf(v1)) and not (math.isfinite(v0) and math.isfinite(v1)):
+        return False                                    # (half-open: left to the search)
+    if math.isinf(v0):
+        return None
+    o = Fraction(surface.frame.origin[k])
+    ends = sorted((o + sign * Fraction(v0), o + sign * Fraction(v1)))
+    return tuple(ends)
+
+
+def meridians(surface, axis):
+    """The Meridian pieces of the surface about axis = (k, other two coordinates (Fractions)), or None where the
+    surface is not exactly a surface of revolution about that line (or is trimmed so that it cuts circles into
+    arcs)."""
+    k, line = axis
+    others = [j for j in range(3) if j != k]
+    origin = [Fraction(x) for x in surface.frame.origin.tolist()]
+    own = signed_axis(surface.frame.rotation)
+    if own is None:
+        return None
+    h0 = origin[k]
+    if isinstance(surface, Plane):
+        if own[0] != k or surface.region:
+            return None
+        return [Meridian(0, 0, 1, -h0)]
+    if [origin[j] for j in others] != list(line):
+        return None
+    if isinstance(surface, Sphere):
+        if surface.trimmed:
+            return None
+        r = Fraction(surface.radius)
+        return [Meridian(1, 0, -2 * h0, h0 * h0 - r * r)]
+    if own[0] != k:
+        return None
+    if isinstance(surface, Torus):
+        big, small = Fraction(surface.major_radius), Fraction(surface.minor_radius)
+        if surface.trimmed or not big > small:
+            return None
+        return [Meridian(1, -2 * big, -2 * h0, big * big + h0 * h0 - small * small)]
+    trim = _axial_trim(surface, k, own[1])
+    if trim is False:
+        return None
+    if isinstance(surface, Cylinder):
+        return [Meridian(0, 1, 0, -Fraction(surface.radius), trim=trim)]
+    if isinstance(surface, Cone):
+        t = Fraction(surface.floats[ks.P1])
+        return [Meridian(0, 1, -side * t, side * t * h0, side, h0, trim) for side in (1, -1)]
+    return None
+
+
+def common_axis(a, b):
+    """(k, the other two coordinates of the line) of a line both surfaces turn about exactly, or None."""
+    axes = [signed_axis(s.frame.rotation) for s in (a, b)]
+    if axes[0] is None or axes[1] is None:
+        return None
+    for s, own in ((a, axes[0]), (b, axes[1])):
+        if not isinstance(s, (Sphere, Plane)):
+            k = own[0]
+            return k, tuple(Fraction(s.frame.origin[j]) for j in range(3) if j != k)
+    for s, own in ((a, axes[0]), (b, axes[1])):                # two spheres, or a sphere and a plane
+        if isinstance(s, Plane):
+            other = b if s is a else a
+            k = own[0]
+            return k, tuple(Fraction(other.frame.origin[j]) for j in range(3) if j != k)
+    diff = [Fraction(x) - Fraction(y) for x, y in zip(a.frame.origin.tolist(), b.frame.origin.tolist())]
+    moved = [j for j in range(3) if diff[j] != 0]
+    if len(moved) > 1:
+        return None                                           # (centres apart along no coordinate axis)
+    k = moved[0] if moved else 2
+    return k, tuple(Fraction(a.frame.origin[j]) for j in range(3) if j != k)
+
+
+# --- common points of two meridians --------------------------------------------------------------------------------
+def _quadratic(a2, a1, a0):
+    """[(root, double)] of a2 x^2 + a1 x + a0 = 0 (a2 != 0) as Surds; [] for no real root."""
+    disc = a1 * a1 - 4 * a2 * a0
+    if disc < 0:
+        return []
+    if disc == 0:
+        return [(Surd(-a1 / (2 * a2)), True)]
+    return [(Surd(-a1 / (2 * a2), s / (2 * a2), disc), False) for s in (1, -1)]
+
+
+def _on_line(b, c, d, x, solve_h):
+    """The other coordinate (a Surd) on the line b rho + c h + d = 0 at x (a Surd of rho, or of h when solve_h is
+    False): rationals combine with x's own sqrt(d)."""
+    if solve_h:                                          # h = -(b rho + d) / c
+        return Surd(-(b * x.p + d) / c, -b * x.q / c, x.d)
+    return Surd(-(c * x.p + d) / b, -c * x.q / b, x.d)
+
+
+def crossings(m, n):
+    """[(rho, h, double)] (Surds) where the meridian pieces m and n meet (before their validity and trims), or None
+    where they share a whole piece (the same surface)."""
+    if m.a == 0 and n.a != 0:
+        m, n = n, m
+    if m.a != 0 and n.a != 0:                            # two circles: their radical line, then either circle
+        b, c, d = n.a * m.b - m.a * n.b, n.a * m.c - m.a * n.c, n.a * m.d - m.a * n.d
+        if b == 0 and c == 0:
+            return None if d == 0 else []
+        line = (b, c, d)
+    elif m.a != 0:
+        line = (n.b, n.c, n.d)
+    else:                                                # two lines
+        det = m.b * n.c - n.b * m.c
+        if det == 0:
+            return None if m.b * n.d == n.b * m.d and m.c * n.d == n.c * m.d else []
+        rho = (m.c * n.d - n.c * m.d) / det
+        h = (n.b * m.d - m.b * n.d) / det
+        return [(Surd(rho), Surd(h), False)]
+    b, c, d = line
+    if c != 0:         # h = -(b rho + d) / c into m: a rho^2 + a h^2 + mb rho + mc h + md = 0
+        k1, k0 = -b / c, -d / c
+        a2 = m.a * (1 + k1 * k1)
+        a1 = 2 * m.a * k1 * k0 + m.b + m.c * k1
+        a0 = m.a * k0 * k0 + m.c * k0 + m.d
+        return [(rho, _on_line(b, c, d, rho, True), double) for rho, double in _quadratic(a2, a1, a0)]
+    k0 = -d / b        # rho = -d / b
+    a2 = m.a
+    a1 = m.c
+    a0 = m.a * k0 * k0 + m.b * k0 + m.d
+    return [(Surd(k0), h, double) for h, double in _quadratic(a2, a1, a0)]
+
+
+def _valid(piece, rho, h):
+    """1 where the point lies on the piece's valid part and strictly inside its trim, 0 where strictly outside
+    either, None where it lies on the edge of one (a ray's end at an apex counts as on the ray)."""
+    if piece.side and piece.side * (h - piece.apex).sign() < 0:
+        return 0
+    if piece.trim is None:
+        return 1
+    lo, hi = (h - piece.trim[0]).sign(), (h - piece.trim[1]).sign()
+    if lo == 0 or hi == 0:
+        return None
+    return 1 if lo > 0 > hi else 0
+
+
+def _plane_holds(plane, axis, rho):
+    """1 where the circle of radius rho (a Surd; 0: the point) about the axis, in the plane, lies strictly inside
+    the plane's rectangle (or the plane is untrimmed), None otherwise (a circle the trims cut, touch or miss is left
+    to the search)."""
+    bounds = [x for pair in plane.bounds for x in pair]
+    if all(math.isinf(x) for x in bounds):
+        return 1
+    if not all(math.isfinite(x) for x in bounds):
+        return None
+    k, line = axis
+    centre = dict(zip([j for j in range(3) if j != k], line))
+    rot = plane.frame.rotation
+    for col, (lo, hi) in enumerate(plane.bounds):
+        j = int(np.flatnonzero(rot[:, col])[0])
+        c = (centre[j] - Fraction(plane.frame.origin[j])) * int(rot[j, col])      # the centre's plane coordinate
+        for gap in (c - Fraction(lo), Fraction(hi) - c):                       # to each edge: beyond rho
+            if not (rho - gap).sign() < 0:
+                return None
+    return 1
+
+
+def exact_points(a, b):
+    """(axis, [(rho, h, double)]): every common point of the two surfaces' meridians in the half-plane rho >= 0
+    inside both trims (exact Surds; double: a tangency), or None where the pair is not one this module decides."""
+    axis = common_axis(a, b)
+    if axis is None:
+        return None
+    ma, mb = meridians(a, axis), meridians(b, axis)
+    if ma is None or mb is None:
+        return None
+    found = {}
+    for m in ma:
+        for n in mb:
+            points = crossings(m, n)
+            if points is None:
+                return None                                   # (a shared piece: the same surface)
+            for rho, h, double in points:
+                if rho.sign() < 0:
+                    continue
+                held = [_valid(m, rho, h), _valid(n, rho, h)]
+                held += [_plane_holds(s, axis, rho) for s in (a, b) if isinstance(s, Plane)]
+                if None in held:
+                    return None                               # (on a trim edge, or a circle the trims cut)
+                if all(held):
+                    key = (rho.key(), h.key())
+                    found[key] = (rho, h, double or (key in found and found[key][2]))
+    return axis, list(found.values())
+
+
+def _truth(axis, rho, h):
+    """The true circle (rho > 0) at h about the axis as kernels.certify.closed's truth rows (its centre, the plane's
+    basis: the other two coordinate axes, exact; A = I / rho^2), or its centre alone (3, 2) for a point."""
+    k, line = axis
+    centre = np.empty((3, 2))
+    others = [j for j in range(3) if j != k]
+    for j, x in zip(others, line):
+        centre[j] = _enclose(x)
+    centre[k] = h.enclosure()
+    if rho.sign() == 0:
+        return centre
+    truth = np.zeros((kc.ROWS, 2))
+    truth[kc.Z0:kc.Z0 + 3] = centre
+    truth[kc.F1 + others[0]] = 1.0
+    truth[kc.F2 + others[1]] = 1.0
+    lo, hi = rho.enclosure()
+    truth[kc.A11] = truth[kc.A22] = (_down(1.0 / _up(hi * hi)), _up(1.0 / _down(lo * lo)))
+    return truth
+
+
+def _point_bound(p, box):
+    """An upper bound of the distance from the point p (3,) to every point of the box (3, 2)."""
+    total = 0.0
+    for x, (lo, hi) in zip(np.asarray(p, dtype=float).tolist(), box.tolist()):
+        far = max(_up(x - lo), _up(hi - x))
+        total = _up(total + _up(far * far))
+    return _up(math.sqrt(total))
+
+
+def _bound(curve, axis, rho, h, double):
+    """The proven bound between the returned curve and the true circle or point (rho, h), or None when the curve is
+    not of its kind (a contact for a point on the axis, a tangent circle for a double point, a closed one else) or
+    lies far from it."""
+    truth = _truth(axis, rho, h)
+    if rho.sign() == 0:
+        if curve.status != CONTACT or not isinstance(curve.sol, PointSolution):
+            return None
+        bound = _point_bound(curve.points[0], truth)
+        return bound if bound <= 1e3 * curve.tolerance else None
+    if curve.status != (TANGENT if double else CLOSED) or not isinstance(curve.sol, CircleSolution):
+        return None
+    c, P, Q = returned_curve(curve.sol)
+    off = faithful(curve, 2.0 * math.pi)
+    if c is None or off is None:
+        return None
+    bound = kc.distance_bound(truth, np.ascontiguousarray(c, dtype=float), np.ascontiguousarray(P, dtype=float),
+                              np.ascontiguousarray(Q, dtype=float))
+    if not bound < SMALL * rho.enclosure()[0]:
+        return None
+    return _up(bound + off)
+
+
+def coaxial_certificate(a, b, curves):
+    """The Certificate of the answer curves (CurveResults) of two surfaces turning about one axis exactly, every
+    claim proven in exact arithmetic, or None when the pair is not one this module decides or the answer is not the
+    exact one (its curves one to one with the true circles and points, each of the right kind and within the
+    bound)."""
+    found = exact_points(a, b)
+    if found is None:
+        return None
+    axis, points = found
+    how = ("the surfaces turn about one axis exactly (their frames are signed permutations): they meet in the "
+           "parallels through the common points of their meridians, found in rational arithmetic")
+    touching = sum(1 for rho, _, double in points if double or rho.sign() == 0)
+    singular = (f"{touching} circle(s) of tangency or point(s) of contact, each a double common point of the "
+                "meridians (or one on the axis), exact in rational arithmetic" if touching else NO_SINGULAR)
+    return exact_certificate(curves, [lambda curve, p=p: _bound(curve, axis, *p) for p in points], how, singular,
+                             "true circle or point", MODE)
+
+
+def exact_certificate(curves, bounds_of, how, singular, truth, mode):
+    """The Certificate, every claim proven (complete, one_component and distinct for the reason how, singular for
+    the reason singular), of curves matched one to one with the true curves: bounds_of holds, per true curve, a
+    function of a returned curve giving its proven bound, or None where that curve is not it (of another kind, or
+    far); None when the curves cannot be matched so. truth: what the bounds are to."""
+    if len(bounds_of) != len(curves):
+        return None
+    bounds = [None] * len(curves)
+    for bound_of in bounds_of:
+        options = [(bound, i) for i, curve in enumerate(curves) if bounds[i] is None
+                   for bound in [bound_of(curve)] if bound is not None]
+        if not options:
+            return None
+        bound, i = min(options)
+        bounds[i] = bound
+    radii = [np.full(len(curve.points), bound) for curve, bound in zip(curves, bounds)]
+    none = np.empty((0, 3))
+    texts = {"complete": how, "one_component": how, "distinct": how,
+             "points": f"every stored point lies within the distance bound of its {truth}",
+             "arcs": f"the whole dense output lies within the distance bound of the {truth}, and it within the bound "
+                     "of the dense output",
+             "singular": singular}
+    claims = [Claim(name, PROVEN, text, none, np.empty(0)) for name, text in texts.items()]
+    return Certificate(claims, None, radii, [None] * len(radii), bounds, len(radii), mode=mode)

@@ -46,7 +46,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     certify : bool or 'strict'
         Prove the answer (in outward-rounded interval arithmetic; a closed form's answer in closed form where the
         pair is two spheres, or a plane and a sphere, cylinder or cone, meeting in one whole ellipse or not at all,
-        or two planes, else against the topology search): the
+        or two planes; exactly, in rational arithmetic, where the surfaces turn about one coordinate axis or run
+        along one, placed by signed permutations, tangencies included; else against the topology search): the
         returned list then has a ``certificate`` (spatialkin.tracing.certify.certificate.Certificate) stating each
         claim (no component missed, each curve one component, the curves distinct, the stored points, the arcs
         between them, the singular points) as proven or not, and where; every curve has its view of it

@@ -119,7 +119,8 @@ class Certificate:
       ``distance_bounds`` bound the distance from each stored point and dense sample (the points the tube was
       built on, each given a proven box) to the intersection.
     - **singular**: points where the surfaces touch or branches cross (contacts, nodes, apexes, circles or segments
-      of tangency) are reported, not proven (a tangency is an equality that floating point cannot decide), with
+      of tangency) are reported, not proven (a tangency is an equality that floating point cannot decide; see
+      below for the placements that make it exact), with
       their places and, for a contact, a proven ball (``radius``): the Krawczyk test proves a unique critical
       point of g in a box where its Hessian is definite, so the intersection within the box lies within the ball
       (a point, a small loop or nothing); a node gets a box proven to hold one critical point, a saddle, and
@@ -138,7 +139,10 @@ class Certificate:
     closed form instead, with no search (mode 'closed form', spatialkin.tracing.certify.closed): interval arithmetic
     proves that they meet in exactly one circle, ellipse or segment inside the trims, or in nothing, and bounds the
     distance between the returned curve's whole dense output and the true curve both ways (``distance_bounds``, a
-    Hausdorff bound).
+    Hausdorff bound). Two surfaces turning about one coordinate axis, or running along one, placed by frames that are
+    signed permutations, are proven exactly in rational arithmetic on the floats (modes 'exact (coaxial)' and
+    'exact (parallel)', spatialkin.tracing.certify.coaxial and .parallel): the common points of their meridians or
+    cross-sections, tangencies included, decided exactly, each returned curve bounded likewise.
 
     Attributes
     ----------

@@ -567,12 +567,14 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
     v_unit = step_units(p, scale)[1]                 # (a cone's or cylinder's v is a length)
     q_rim = q.traits.trim_breaks_revolution(q)
     found = [(v, True) for v in roots]
-    linear_v = p.traits.units[1] == LENGTH      # v runs on past a trim (a cylinder's or cone's rim)
+    # v runs on past a trim (a cylinder's or cone's rim), or round a periodic v's seam (a torus's inner equator)
+    beyond = p.traits.units[1] == LENGTH or p.traits.periodic[1]
     for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2])):
         # a cluster across which g changes sign is a simple root blurred by round-off (a tiny parallel near a
-        # pole); one across which it keeps its sign is a multiple root (a tangency); at a rim, g is read past it
+        # pole); one across which it keeps its sign is a multiple root (a tangency); at a rim or a seam, g is read
+        # past it
         h = CLUSTER_SIDE * (box[3] - box[2])
-        lo, hi = (v - h, v + h) if linear_v else (max(v - h, box[2]), min(v + h, box[3]))
+        lo, hi = (v - h, v + h) if beyond else (max(v - h, box[2]), min(v + h, box[3]))
         side = pq.values([[-math.pi, lo], [-math.pi, hi]])[:, 0]
         clear = not pq.on_level((-math.pi, lo)) and not pq.on_level((-math.pi, hi))
         if clear and side[0] * side[1] < 0:
@@ -598,7 +600,8 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
             # a parallel crossed transversally, in closed form (traced, its parameters would move linearly in
             # s, and the solver's error estimate, zero, would let one step lap a small circle)
             centre = p.frame.to_global([0.0, 0.0, p.frame.to_local(pt)[2]])
-            if keep(pt):
+            if keep(pt) and not any(np.linalg.norm(centre - c) <= 1e-9 * scale and abs(radius - r) <= 1e-9 * scale
+                                    for c, _, r in topo.circles):       # (once: a seam's two ends are one circle)
                 topo.circles.append((centre, p.frame.rotation[:, 2].copy(), radius))
             continue
         # an arc of a circle cut by a trimmed plane: seed it at a point inside both trims

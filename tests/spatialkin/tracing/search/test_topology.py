@@ -86,6 +86,24 @@ def test_tangency_along_a_circle_and_a_line():
             assert abs(curves[0].length - length) < 1e-12 and on_both(curves, x, y) < 1e-14
 
 
+@pytest.mark.parametrize("turn", [None, (1.0, 2.0, 0.5)])
+def test_a_torus_and_its_equatorial_plane_cross_along_both_equators(turn):
+    """A plane through a torus's centre normal to its axis meets it in the outer and inner equators, crossing it
+    (the torus's normal lies in the plane) along both: two closed circles of radii R + r and R - r (their lengths in
+    closed form), neither said to be a tangency, the inner one lying on the seam of the torus's tube angle; placed
+    by the identity or turned, in both argument orders."""
+    big, small = 1.3394697620205813, 0.5656870850124908
+    rotation = np.eye(3) if turn is None else sk.rotation_about(turn, 0.7)
+    torus = sk.Torus(big, small, sk.Frame((0.3, -0.2, 0.1), rotation))
+    plane = sk.Plane(sk.Frame((0.3, -0.2, 0.1), rotation))
+    for x, y in ((torus, plane), (plane, torus)):
+        curves = sk.intersect(x, y)
+        assert [c.status for c in curves] == ["closed", "closed"]
+        assert abs(curves[0].length - 2 * math.pi * (big + small)) < 1e-12
+        assert abs(curves[1].length - 2 * math.pi * (big - small)) < 1e-12
+        assert on_both(curves, x, y) < 1e-14
+
+
 def test_trim_of_either_surface_is_respected():
     """A torus and a small plane patch far from it meet nowhere; a patch cutting one tube gives open curves
     that end exactly on the patch's edges and lie on the patch."""

@@ -6,7 +6,8 @@ apexes), its natural domain, its re-chart (the sphere's chart turned away from i
 knowledge of the topology stage (symmetry axes, rulings, coincidence, its polynomial implicit function).
 ``register(cls, traits)`` files the traits under the class and under the kind code that every surface writes to
 ``data[KIND]`` of its packed kernel data, and sets them as the class attribute ``traits`` (so ``surface.traits``);
-tracing asks ``surface.traits`` or ``traits(data)`` and never switches on a kind code or on a surface class. A kind that is not registered raises UnknownSurfaceKindError.
+tracing asks ``surface.traits`` or ``traits(data)`` and never switches on a kind code or on a surface class. A kind
+that is not registered raises UnknownSurfaceKindError.
 
 This module belongs to the tracing layer and imports only the kernels: tracing reads the traits without importing
 the domain layer, whose kind modules register themselves here.

@@ -185,7 +185,7 @@ def test_calls_counted_by_function_kind():
     assert runner.calls_of(_branch, 3) == (5, 9)
     assert runner.calls_of(_branch, 0) == (2, 3)
     c = runner.Comparisons(np.nan, "-", np.nan, "-", 0, np.nan, (378, 917))
-    assert report.comparison_lines(c, runner)[3] == ("calls: one sk.intersect of the looper's pair calls 378 Python "
-                                                     "functions, each compiled kernel one of them (917 with C builtins; "
-                                                     "cProfile)")
+    line = report.comparison_lines(c, runner)[3]
+    assert line == ("calls: one sk.intersect of the looper's pair calls 378 Python functions, each compiled kernel one "
+                    "of them (917 with C builtins; cProfile)")
     assert len(report.comparison_lines(runner.Comparisons(np.nan, "-", np.nan, "-", 0, np.nan), runner)) == 3

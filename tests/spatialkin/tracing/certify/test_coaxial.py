@@ -48,10 +48,10 @@ def cases():
            True)
     yield ("sphere-sphere inside", sk.Sphere(1.0), sk.Sphere(0.5, sk.Frame((0, 0, 0.5))), 2, (0, 0),
            _circles([(0, 1.0)]), True)
-    # transversal parallels: a torus and a cylinder through its tube; a cylinder and a cone; a sphere and a torus
+    # transversal parallels: a cylinder through a torus's tube; a cylinder and a cone; a sphere and a torus
+    half = s(mp.mpf(0.25) - (mp.mpf(2.2) - 2) ** 2)
     yield ("cylinder-torus crossing", sk.Torus(2.0, 0.5), sk.Cylinder(2.2, v_range=(-1, 1)), 2, (0, 0),
-           [(mp.mpf(2.2), s(mp.mpf(0.25) - (mp.mpf(2.2) - 2) ** 2)), (mp.mpf(2.2), -s(mp.mpf(0.25) - (mp.mpf(2.2) - 2) ** 2))],
-           False)
+           [(mp.mpf(2.2), half), (mp.mpf(2.2), -half)], False)
     yield ("cylinder-cone", sk.Cylinder(0.5, v_range=(-3, 3)), sk.Cone(math.atan(0.25), v_range=(-4, 4)), 2, (0, 0),
            _circles([(0.5, 2.0), (0.5, -2.0)]), False)
     # torus (R 2, r 0.5) and sphere (R 2) at the same centre: rho^2 + h^2 = 4, (rho - 2)^2 + h^2 = 0.25

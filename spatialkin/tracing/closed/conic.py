@@ -167,7 +167,11 @@ class ConicSolution(ExactSolution):
 
     def first_point(self):
         """The first stored point (3,) (the first row of samples' points, without making the others)."""
-        return self._samples[0][0] if self._samples is not None else self.conic.at(self.t_knots[:1])[0]
+        if self._samples is not None:
+            return self._samples[0][0]
+        if self._first is None:
+            self._first = self.conic.at(self.t_knots[:1])[0]
+        return self._first
 
     def sample_points(self):
         """The exact points (N, 3) at t_knots (ExactSolution.samples makes the rest)."""

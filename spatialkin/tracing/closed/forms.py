@@ -180,7 +180,7 @@ def components(placed, conics, trims, graze, touch, settings, topo, nodes=()):
             if curve is None or curve.length > MAX_LENGTH_SHARE * settings.max_length:
                 return None                                  # (the tracer would stop at max_length)
             curves.append(curve)
-    return in_sk_order(curves, lambda c: c.sol.first_point())
+    return in_sk_order(curves)
 
 
 class Cut:
@@ -240,7 +240,7 @@ def split_conics(placed, graze, gap, settings, topo):
         return None
     surfaces = (placed[0].surface, placed[1].surface)
     curves += [exact_curve(surfaces, settings.tolerance, segment=ends, topology=topo) for ends in segments]
-    return in_sk_order(curves, lambda c: c.sol.first_point())
+    return in_sk_order(curves)
 
 
 def tangent_ruling(placed, normal, point, graze):

@@ -83,6 +83,11 @@ class SampledResult(CurveResult):
             state.update(points=points, s=s, params=params)
         self.__post_init__()
 
+    def first_point(self):
+        """The first stored point (3,), without sampling the others where they are not made yet (the dense output's
+        first_point: the same bits as its samples' first row)."""
+        return self.__dict__["points"][0] if "points" in self.__dict__ else self.sol.first_point()
+
     def __getattr__(self, name):
         """A sampled field, a default factory's or the message not made yet (Python asks only for attributes the
         instance does not hold)."""
@@ -108,6 +113,7 @@ class ExactSolution(CurveSolution):
     (``bend``); the parameters are the surfaces' own (Surface.parameters) of the exact points."""
 
     _samples = None
+    _first = None
     _knots = None
 
     @property
@@ -146,7 +152,11 @@ class ExactSolution(CurveSolution):
 
     def first_point(self):
         """The first stored point (3,), without making the others (the same bits as samples()'s first row)."""
-        return self._samples[0][0] if self._samples is not None else self.points_at(self.knots[:1])[0]
+        if self._samples is not None:
+            return self._samples[0][0]
+        if self._first is None:
+            self._first = self.points_at(self.knots[:1])[0]
+        return self._first
 
     def at(self, s):
         """(points (M, 3), unit tangents (M, 3)) at the wrapped arc lengths s (M,)."""

@@ -107,6 +107,10 @@ class CurveResult:
     topology: object = None
     certificate: object = None
 
+    def first_point(self):
+        """The first stored point (3,) (points[0])."""
+        return self.points[0]
+
     def __post_init__(self):
         state = self.__dict__                   # (frozen: written as object.__setattr__ writes, at a third of its cost)
         for name, kind in (("closed", bool), ("length", float), ("tolerance", float), ("nfev", int),
@@ -486,11 +490,11 @@ def set_states(y, points, a, b):
     return y
 
 
-def in_sk_order(curves, first_point=lambda c: c.points[0]):
+def in_sk_order(curves):
     """The CurveResults sorted as sk.intersect returns them: longest first, then by first point (rounded to 9
-    decimals); first_point reads a curve's first point (a closed form's without sampling the others)."""
+    decimals; CurveResult.first_point: a closed form's without sampling the others)."""
     if len(curves) > 1:
-        curves.sort(key=lambda c: (-c.length, tuple(np.asarray(first_point(c)).round(9).tolist())))
+        curves.sort(key=lambda c: (-c.length, tuple(np.asarray(c.first_point()).round(9).tolist())))
     return curves
 
 

@@ -16,7 +16,9 @@ class Cone(Surface):
 
     M(u, v) = frame(v tan(a) cos u, v tan(a) sin u, v), a the half angle: u the angle round the axis (radians),
     v the height along it (the user's length unit; v < 0 is the other nappe). The apex (v = 0) is a singular
-    point of the surface. v_range optionally trims it along the axis, u_range round it.
+    point of the surface. v_range optionally trims it along the axis, u_range round it. tan(a) is the double
+    ``slope = math.tan(a)`` (within an ulp of the true tangent, which no double holds for a != 0): every point,
+    distance and certificate is of the cone of that slope (``sk.Cone(math.atan(0.75))`` has slope 0.75 exactly).
 
     Parameters
     ----------
@@ -33,6 +35,8 @@ class Cone(Surface):
     Attributes
     ----------
     half_angle : float
+    slope : float
+        math.tan(half_angle): the cone's radius per unit of height, as every computation reads it.
     frame : Frame
     u_range, v_range : (float, float)
         The trims ((-inf, inf) where there is none).
@@ -66,8 +70,9 @@ class Cone(Surface):
         if a >= math.pi / 2:
             raise ValueError(f"half_angle must lie in (0, pi/2), got {a}")
         self.half_angle = a
+        self.slope = math.tan(a)
         turn = angle_range("u_range", u_range)
-        super().__init__(frame, 0.0, math.tan(a), v_range=v_range,
+        super().__init__(frame, 0.0, self.slope, v_range=v_range,
                          region=angular_groups(("u_min", "u_max"), TURN, turn, nappes=True),
                          shown=None if turn is None else (turn, tuple(check_range("v_range", v_range, length=True))))
 

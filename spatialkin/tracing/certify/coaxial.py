@@ -6,10 +6,11 @@ their frame's z axis. Where both lines are one line (the same coordinate axis, t
 origins; a sphere's centre on the other's line), a point lies on both surfaces exactly when its radius rho from the
 axis and its coordinate h along it lie on both meridians: curves of the (rho, h) half-plane rho >= 0, each a circle
 a (rho^2 + h^2) + b rho + c h + d = 0 or a line (a = 0) with rational coefficients (a sphere's and a torus's circle,
-a cylinder's line rho = r, a plane's h = p, a cone's two rays rho = +-tan (h - apex)). Two of them meet where a
-quadratic with rational coefficients vanishes, solved exactly: its roots are p + q sqrt(D) with rationals p, q, D, and
-every sign they are tested by (rho >= 0, a ray's side of the apex, a trim) is decided exactly. A double root
-(D = 0) is a tangency of the meridians, so of the surfaces: a circle of tangency, or, on the axis, a contact point.
+a cylinder's line rho = r, a plane's h = p, a cone's two rays rho = +-slope (h - apex), the slope its stored double
+Cone.slope). Two of them meet where a quadratic with rational coefficients vanishes, solved exactly: its roots
+are p + q sqrt(D) with rationals p, q, D, and every sign they are tested by (rho >= 0, a ray's side of the apex, a
+trim) is decided exactly. A double root (D = 0) is a tangency of the meridians, so of the surfaces: a circle of tangency,
+or, on the axis, a contact point.
 
 The intersection is then exactly one parallel circle per common point of the meridians with rho > 0 and one point
 per common point on the axis, those inside the trims: every claim of the certificate (no component missed, each curve
@@ -34,6 +35,7 @@ import numpy as np
 from ...geometry.surfaces import Cone, Cylinder, Plane, Sphere, Torus
 from ...kernels.certify import closed as kc
 from ...kernels.geometry import surfaces as ks
+from ..closed.conic import ConicSolution
 from ..curve.exact import CircleSolution, PointSolution
 from ..curve.status import CLOSED, CONTACT, TANGENT
 from .certificate import PROVEN, Certificate, Claim
@@ -53,6 +55,9 @@ class Surd:
 
     def __init__(self, p, q=Fraction(0), d=Fraction(0)):
         self.p, self.q, self.d = Fraction(p), Fraction(q), Fraction(d)
+        root = _rational_root(self.d)
+        if root is not None:                                # (a square: one rational, so that equal values compare
+            self.p, self.q, self.d = self.p + self.q * root, Fraction(0), Fraction(0)     # equal as keys)
         if self.q == 0 or self.d == 0:
             self.q, self.d = Fraction(0), Fraction(0)
 
@@ -82,6 +87,13 @@ class Surd:
         root = (_down(math.sqrt(max(d[0], 0.0))), _up(math.sqrt(d[1])))
         products = [x * y for x in q for y in root]
         return _down(p[0] + _down(min(products))), _up(p[1] + _up(max(products)))
+
+
+def _rational_root(d):
+    """sqrt(d) for a rational d >= 0 that is the square of a rational, else None."""
+    n, m = d.numerator, d.denominator
+    rn, rm = math.isqrt(n), math.isqrt(m)
+    return Fraction(rn, rm) if rn * rn == n and rm * rm == m else None
 
 
 def _sign(x):
@@ -175,7 +187,7 @@ def meridians(surface, axis):
     if isinstance(surface, Cylinder):
         return [Meridian(0, 1, 0, -Fraction(surface.radius), trim=trim)]
     if isinstance(surface, Cone):
-        t = Fraction(surface.floats[ks.P1])
+        t = Fraction(surface.floats[ks.P1])             # (the cone of its stored slope: Cone.slope)
         return [Meridian(0, 1, -side * t, side * t * h0, side, h0, trim) for side in (1, -1)]
     return None
 
@@ -355,7 +367,7 @@ def _bound(curve, axis, rho, h, double):
             return None
         bound = _point_bound(curve.points[0], truth)
         return bound if bound <= 1e3 * curve.tolerance else None
-    if curve.status != (TANGENT if double else CLOSED) or not isinstance(curve.sol, CircleSolution):
+    if curve.status != (TANGENT if double else CLOSED) or not isinstance(curve.sol, (CircleSolution, ConicSolution)):
         return None
     c, P, Q = returned_curve(curve.sol)
     off = faithful(curve, 2.0 * math.pi)

@@ -162,3 +162,33 @@ def test_surd_signs_against_high_precision():
             assert surd.sign() == (exact > 0) - (exact < 0)
             lo, hi = surd.enclosure()
             assert lo <= exact <= hi
+
+
+def test_cones_are_the_cones_of_their_stored_slope():
+    """A cone's slope is its stored double (Cone.slope): atan(0.75) stores 0.75 exactly, and the sphere of radius 3
+    five above the apex touches that cone along one circle (rho 2.4 at h 3.2: a 3-4-5 triangle), proven exactly; a
+    sphere through the apex meets the cone in the apex and one circle, both proven (the apex a point of both rays,
+    found once); the distances measured on the cone of slope 0.75 (mpmath)."""
+    cone = sk.Cone(math.atan(0.75))
+    assert cone.slope == 0.75
+    touching = sk.intersect(cone, sk.Sphere(3.0, sk.Frame((0.0, 0.0, 5.0))), certify=True)
+    assert touching.certificate.proven and touching.certificate.mode == cx.MODE
+    assert [c.status for c in touching] == ["tangent"]
+    assert np.max(_meridian_distance(touching[0].points, 2, (0, 0), (mp.mpf(2.4), mp.mpf(3.2)))) <= \
+        touching.certificate.distance_bounds[0]
+    through = sk.intersect(cone, sk.Sphere(5.0, sk.Frame((0.0, 0.0, 5.0))), certify=True)
+    assert through.certificate.proven and sorted(c.status for c in through) == ["closed", "contact"]
+    # rho = 0.75 h on rho^2 + (h - 5)^2 = 25: h = 6.4, rho = 4.8
+    circle = next(c for c in through if c.status == "closed")
+    assert np.max(_meridian_distance(circle.points, 2, (0, 0), (mp.mpf(4.8), mp.mpf(6.4)))) <= \
+        through.certificate.distance_bounds[list(through).index(circle)]
+
+
+def test_circles_cut_from_a_trimmed_plane_are_proven():
+    """A torus and its equatorial plane trimmed to a square holding both equators: the closed forms' ellipses (two
+    circles) are proven exactly, each within its bound of the true equator."""
+    torus, plane = sk.Torus(2.0, 0.5), sk.Plane(u_range=(-3.0, 3.0), v_range=(-3.0, 3.0))
+    curves = sk.intersect(torus, plane, certify=True)
+    assert curves.certificate.proven and curves.certificate.mode == cx.MODE
+    for curve, bound, rho in zip(curves, curves.certificate.distance_bounds, (2.5, 1.5)):
+        assert np.max(_meridian_distance(curve.points, 2, (0, 0), (mp.mpf(rho), mp.mpf(0)))) <= bound

@@ -186,7 +186,7 @@ def intersect_rows(case, repeats):
     rows = [Row(case.name, "intersect", DEFAULT_METHOD, np.nan, len(curves), case.components, seconds,
                 seconds / max(1, len(curves)), curve_error(curves, pair),
                 sum(c.nfev for c in curves) // max(1, len(curves)), length_error=length_error(curves), extra=note)]
-    c_seconds, c_curves = best_time(lambda: intersect(*pair, tol=TRACE_TOL, certify=True), 1)
+    c_seconds, c_curves = best_time(lambda: intersect(*pair, tol=TRACE_TOL, certify=True), repeats)
     bound = max(c_curves.certificate.distance_bounds, default=np.nan)
     state = "proven" if c_curves.certificate.proven else "not proven"
     rows.append(Row(case.name, "certified", DEFAULT_METHOD, np.nan, len(c_curves), case.components, c_seconds,

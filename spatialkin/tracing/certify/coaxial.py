@@ -38,7 +38,7 @@ from ...kernels.geometry import surfaces as ks
 from ..closed.conic import ConicSolution
 from ..curve.exact import CircleSolution, PointSolution
 from ..curve.status import CLOSED, CONTACT, TANGENT
-from .certificate import PROVEN, Certificate, Claim
+from .certificate import CLAIMS, NOT_PROVEN, PROVEN, Certificate, Claim
 from .closed import SMALL, faithful, returned_curve
 
 #: Mode of the certificates made here.
@@ -394,17 +394,27 @@ def coaxial_certificate(a, b, curves):
     touching = sum(1 for rho, _, double in points if double or rho.sign() == 0)
     singular = (f"{touching} circle(s) of tangency or point(s) of contact, each a double common point of the "
                 "meridians (or one on the axis), exact in rational arithmetic" if touching else NO_SINGULAR)
+    kinds = [("circle(s) of tangency", sum(1 for rho, _, double in points if double and rho.sign() > 0)),
+             ("circle(s) crossed", sum(1 for rho, _, double in points if not double and rho.sign() > 0)),
+             ("point(s) on the axis", sum(1 for rho, _, _ in points if rho.sign() == 0))]
+    exact = "the surfaces meet in " + (", ".join(f"{n} {kind}" for kind, n in kinds if n) or "no point")
     return exact_certificate(curves, [lambda curve, p=p: _bound(curve, axis, *p) for p in points], how, singular,
-                             "true circle or point", MODE)
+                             "true circle or point", MODE, exact)
 
 
-def exact_certificate(curves, bounds_of, how, singular, truth, mode):
+def exact_certificate(curves, bounds_of, how, singular, truth, mode, exact):
     """The Certificate, every claim proven (complete, one_component and distinct for the reason how, singular for
     the reason singular), of curves matched one to one with the true curves: bounds_of holds, per true curve, a
     function of a returned curve giving its proven bound, or None where that curve is not it (of another kind, or
-    far); None when the curves cannot be matched so. truth: what the bounds are to."""
+    far); None when the curves cannot be matched so. truth: what the bounds are to. Where the answer has another
+    number of curves than the exact one (exact: what that is, said), the answer is wrong: a Certificate with every
+    claim not proven, saying so."""
     if len(bounds_of) != len(curves):
-        return None
+        text = f"the answer is not the exact one: exactly, {exact}; {len(curves)} curve(s) returned"
+        none = np.empty((0, 3))
+        claims = [Claim(name, NOT_PROVEN, text, none, np.empty(0)) for name in CLAIMS]
+        return Certificate(claims, None, [np.full(len(curve.points), math.inf) for curve in curves],
+                           [None] * len(curves), [math.inf] * len(curves), len(curves), mode=mode)
     bounds = [None] * len(curves)
     for bound_of in bounds_of:
         options = [(bound, i) for i, curve in enumerate(curves) if bounds[i] is None

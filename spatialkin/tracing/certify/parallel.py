@@ -159,5 +159,9 @@ def parallel_certificate(a, b, curves):
     touching = sum(1 for *_, double in segments if double)
     singular = (f"{touching} segment(s) of tangency, each through a double common point of the cross-sections, "
                 "exact in rational arithmetic" if touching else NO_SINGULAR)
+    crossed = len(segments) - touching
+    exact = "the surfaces meet in " + (", ".join(f"{n} {kind}" for kind, n in (("segment(s) of tangency", touching),
+                                                                               ("segment(s) crossed", crossed)) if n)
+                                       or "no point")
     return exact_certificate(curves, [lambda curve, s=s: _bound(curve, k, others, *s) for s in segments], how,
-                             singular, "true segment", MODE)
+                             singular, "true segment", MODE, exact)

@@ -100,7 +100,7 @@ def test_exact_answers_proven_and_bounded(case):
 def test_one_ulp_off_is_never_proven_wrongly():
     """The cylinder's radius one ulp above the sphere's: exactly, no common point; one ulp below: two circles about
     2e-8 apart. Whatever the plain answer (a circle of tangency within its tolerance), it is proven only where it is
-    the exact one."""
+    the exact one; with another number of curves, the certificate says the exact answer."""
     for r in (math.nextafter(1.5, 2.0), math.nextafter(1.5, 1.0)):
         a, b = sk.Sphere(1.5), sk.Cylinder(r, v_range=(-1, 1))
         axis, points = cx.exact_points(a, b)
@@ -108,17 +108,22 @@ def test_one_ulp_off_is_never_proven_wrongly():
         assert exact == (0 if r > 1.5 else 2)
         curves = sk.intersect(a, b, certify=True)
         assert not curves.certificate.proven or len(curves) == exact
+        if len(curves) != exact:
+            said = curves.certificate.claims["complete"].detail
+            assert "not the exact one" in said and ("no point" if exact == 0 else "2 circle(s) crossed") in said
 
 
 def test_tampered_answers_are_not_proven():
-    """The exact answer, then a curve dropped, one added twice, its points moved by 10 radii, its status changed:
-    only the first is proven."""
+    """The exact answer, then a curve dropped, one added twice (said not to be the exact answer), its points moved
+    1e-6, its status changed (left to the search): only the first is proven."""
     a, b = sk.Torus(2.0, 0.5), sk.Sphere(2.0)
     results = [c.result for c in plain_intersect(a, b)]
     assert cx.coaxial_certificate(a, b, results).proven
     radius = float(cx.coaxial_certificate(a, b, results).radii[0][0])
-    assert cx.coaxial_certificate(a, b, results[:1]) is None
-    assert cx.coaxial_certificate(a, b, results + results[:1]) is None
+    for wrong in (results[:1], results + results[:1]):
+        cert = cx.coaxial_certificate(a, b, wrong)
+        assert not cert.proven and all(not c.proven for c in cert.claims.values())
+        assert "exactly, the surfaces meet in 2 circle(s) crossed" in cert.claims["complete"].detail
     far = dataclasses.replace(results[0], points=results[0].points + 1e-6)
     assert cx.coaxial_certificate(a, b, [far, results[1]]) is None
     # moved by 10 radii, within the round-off the stored points may keep from the dense output: still proven, with

@@ -7,9 +7,9 @@ origins; a sphere's centre on the other's line), a point lies on both surfaces e
 axis and its coordinate h along it lie on both meridians: curves of the (rho, h) half-plane rho >= 0, each a circle
 a (rho^2 + h^2) + b rho + c h + d = 0 or a line (a = 0) with rational coefficients (a sphere's and a torus's circle,
 a cylinder's line rho = r, a plane's h = p, a cone's two rays rho = +-slope (h - apex), the slope its stored double
-Cone.slope). Two of them meet where a quadratic with rational coefficients vanishes, solved exactly: its roots
-are p + q sqrt(D) with rationals p, q, D, and every sign they are tested by (rho >= 0, a ray's side of the apex, a
-trim) is decided exactly. A double root (D = 0) is a tangency of the meridians, so of the surfaces: a circle of tangency,
+Cone.slope). Two of them meet where a quadratic with rational coefficients vanishes, solved exactly: its roots are
+p + q sqrt(D) with rationals p, q, D, and every sign they are tested by (rho >= 0, a ray's side of the apex, a trim)
+is decided exactly. A double root (D = 0) is a tangency of the meridians, so of the surfaces: a circle of tangency,
 or, on the axis, a contact point.
 
 The intersection is then exactly one parallel circle per common point of the meridians with rho > 0 and one point
@@ -20,8 +20,11 @@ distance_bound, in outward-rounded intervals), each contact point by its distanc
 no interval method can prove, is proven here because rational arithmetic decides the equality; the same placement
 moved by one ulp is decided too (and its answer then checked against that truth).
 
-Pairs outside this (a rotation that is not a signed permutation, trims that cut a circle into arcs, angular trims,
-a horn or spindle torus, a circle on a trim edge) get no certificate here (None) and go to the search's.
+An answer with another number of curves than the exact one is wrong: its certificate says so, with the exact answer,
+every claim not proven. An answer of the right count whose curves cannot be matched (another kind, or farther than
+the bounds allow) and pairs outside this (a rotation that is not a signed permutation, trims that cut a circle into
+arcs, angular trims, a horn or spindle torus, a circle on a trim edge) get no certificate here (None) and go to the
+search's.
 
 References
 ----------

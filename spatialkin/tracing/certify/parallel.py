@@ -10,11 +10,12 @@ double root, D = 0, is a tangency of the sections, so of the surfaces along a li
 sections is a line along e_k, cut by the trims along e_k (a cylinder's v, the plane's range along it) into one
 segment, kept where it lies strictly inside the plane's range across it.
 
-The intersection is then exactly those segments: every claim holds in exact arithmetic, and each returned segment
-(a segment of tangency or a line of the closed forms, its dense output affine in s) is bounded against its true
-segment, ends enclosed in intervals (spatialkin.kernels.certify.closed.segment_bound). An answer traced by the tracer
-(its dense output is not affine), a segment ending on a trim in a single point, a half-open trim, and any other
-placement get no certificate here (None).
+The intersection is then exactly those segments: every claim holds in exact arithmetic, and each returned segment (a
+segment of tangency or a line of the closed forms, its dense output affine in s) is bounded against its true
+segment, ends enclosed in intervals (spatialkin.kernels.certify.closed.segment_bound). An answer with another number
+of curves than the exact one is said to be wrong (spatialkin.tracing.certify.coaxial.exact_certificate). An answer
+traced by the tracer (its dense output is not affine), a segment ending on a trim in a single point, a half-open
+trim, and any other placement get no certificate here (None).
 
 References
 ----------

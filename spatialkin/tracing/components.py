@@ -184,9 +184,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     else:
         curves, topo = in_sk_order(clip_curves(a, b, found, settings.scale)), None
         wholes = found if a.region or b.region else None
-    proof = closed_certificate(a, b, curves)
-    if proof is None:
-        proof = coaxial_certificate(a, b, curves) or parallel_certificate(a, b, curves)
+    # exactly (where the placement is exact: the tightest bounds), else in closed form
+    proof = coaxial_certificate(a, b, curves) or parallel_certificate(a, b, curves) or closed_certificate(a, b, curves)
     if proof is not None:
         return certified(a, b, curves, None, settings.scale, settings.tolerance, certify, proof=proof)
     if topo is None:

@@ -5,7 +5,7 @@ A cylinder and a plane placed by frames whose rotations are signed permutations 
 invariant along their frame's z axis (the cylinder) or along an in-plane axis (the plane). Where both run along the
 same coordinate axis e_k, a point lies on both exactly when its other two coordinates lie on both cross-sections:
 a circle (x - a)^2 + (y - b)^2 = r^2 or a line x = p, with rational coefficients, met where a quadratic vanishes,
-solved exactly as in spatialkin.tracing.certify.coaxial (crossings: roots p + q sqrt(D), signs decided exactly; a
+solved exactly as in spatialkin.tracing.search.exact (crossings: roots p + q sqrt(D), signs decided exactly; a
 double root, D = 0, is a tangency of the sections, so of the surfaces along a line). Each common point of the
 sections is a line along e_k, cut by the trims along e_k (a cylinder's v, the plane's range along it) into one
 segment, kept where it lies strictly inside the plane's range across it.
@@ -30,7 +30,8 @@ from ...geometry.surfaces import Cylinder, Plane
 from ...kernels.certify import closed as kc
 from ..curve.status import BOUNDARY, TANGENT
 from .closed import SMALL, faithful, is_segment
-from .coaxial import NO_SINGULAR, Meridian, _enclose, crossings, exact_certificate, signed_axis
+from ..search.exact import Meridian, crossings, enclose, signed_axis
+from .coaxial import NO_SINGULAR, exact_certificate
 
 #: Mode of the certificates made here.
 MODE = "exact (parallel)"
@@ -127,7 +128,7 @@ def _ends(k, others, x0, x1, lo, hi):
     for row, h in ((0, lo), (3, hi)):
         ends[row + others[0]] = x0.enclosure()
         ends[row + others[1]] = x1.enclosure()
-        ends[row + k] = _enclose(h)
+        ends[row + k] = enclose(h)
     return ends
 
 

@@ -75,9 +75,13 @@ def test_proven_with_a_hausdorff_bound_both_ways(pair):
 
 
 def test_apart_and_nested_spheres_are_proven_empty():
-    for b in (sk.Sphere(1.0, sk.Frame((3.0, 0.0, 0.0))), sk.Sphere(0.5, sk.Frame((0.1, 0.2, 0.0)))):
+    """Spheres apart or nested are proven empty: in closed form, or exactly where the centres lie on a line along a
+    coordinate axis."""
+    for b, mode in ((sk.Sphere(1.0, sk.Frame((1.8, 2.4, 0.0))), "closed form"),
+                    (sk.Sphere(0.5, sk.Frame((0.1, 0.2, 0.0))), "closed form"),
+                    (sk.Sphere(1.0, sk.Frame((3.0, 0.0, 0.0))), "exact (coaxial)")):
         curves = sk.intersect(sk.Sphere(1.0), b, certify=True)
-        assert curves == [] and curves.certificate.proven and curves.certificate.mode == "closed form"
+        assert curves == [] and curves.certificate.proven and curves.certificate.mode == mode
 
 
 def test_a_circle_moved_off_gets_a_bound_that_covers_the_move():
@@ -113,13 +117,14 @@ def test_what_the_algebra_leaves_goes_to_the_search():
 
 @pytest.mark.parametrize("gap", [1e-4, 1e-8, 1e-10, 1e-12])
 def test_tiny_circles_of_nearly_touching_spheres_are_proven_or_said_not_to_be(gap):
-    """Two unit spheres whose centres are 2 - gap apart (moved 1e3 off) meet in one circle of radius about
-    sqrt(gap). Returned as a circle, it is proven in closed form, every stored point within its proven radius of the
-    true circle (30-digit oracle); returned as a contact point (the gap within the coordinates' round-off), it is
-    not proven (the floats' exact answer is a circle). Touching spheres (gap 0, exactly: the centres 2 apart along
-    x) are proven in rational arithmetic, their contact point within its bound of the true one."""
+    """Two unit spheres whose centres are 2 - gap apart (moved 1e3 off, along (0.6, 0.8, 0): no coordinate axis, so
+    not an exact placement) meet in one circle of radius about sqrt(gap). Returned as a circle, it is proven in
+    closed form, every stored point within its proven radius of the true circle (30-digit oracle); returned as a
+    contact point (the gap within the coordinates' round-off), it is not proven. Along x the placement is exact:
+    a circle returned (or, at gap 0, the contact point) is proven in rational arithmetic, within its bound of the
+    true one; a contact returned there is not proven (exactly, the spheres meet in a circle)."""
     o = np.array([1e3, -2e3, 5e2])
-    a, b = sk.Sphere(1.0, sk.Frame(o)), sk.Sphere(1.0, sk.Frame(o + [2.0 - gap, 0.0, 0.0]))
+    a, b = sk.Sphere(1.0, sk.Frame(o)), sk.Sphere(1.0, sk.Frame(o + (2.0 - gap) * np.array([0.6, 0.8, 0.0])))
     curves = sk.intersect(a, b, certify=True)
     assert len(curves) == 1
     curve = curves[0]
@@ -132,6 +137,14 @@ def test_tiny_circles_of_nearly_touching_spheres_are_proven_or_said_not_to_be(ga
         assert curve.certificate.distance_bound < 1e-2 * radius
         for x, r in zip(curve.points[::4], curve.certificate.radii[::4]):
             assert foot(a, b, x)[0] <= r
+    aligned = sk.Sphere(1.0, sk.Frame(o + [2.0 - gap, 0.0, 0.0]))
+    exact = sk.intersect(a, aligned, certify=True)
+    if exact[0].status == "contact":                # (the search's answer within round-off; exactly, a circle)
+        assert not exact.certificate.proven
+    else:
+        assert exact.certificate.proven and exact.certificate.mode == "exact (coaxial)"
+        for x, r in zip(exact[0].points[::8], exact[0].certificate.radii[::8]):
+            assert foot(a, aligned, x)[0] <= r
     touching = sk.intersect(a, sk.Sphere(1.0, sk.Frame(o + [2.0, 0.0, 0.0])), certify=True)
     assert touching.certificate.proven and touching.certificate.mode == "exact (coaxial)"
     assert len(touching) == 1 and touching[0].status == "contact"

@@ -1,5 +1,5 @@
-"""Exact common points of two surfaces about one axis, in rational arithmetic on the floats: the solver behind the
-exact certificates (spatialkin.tracing.certify.coaxial, .parallel).
+"""Exact common points of two surfaces about one axis, or along one, in rational arithmetic on the floats: the solvers
+behind the exact certificates (spatialkin.tracing.certify.coaxial, .parallel).
 
 A sphere, a torus (R > r), a cylinder, a cone and a plane normal to the axis, each placed by a frame whose rotation
 is a signed permutation (entries -1, 0, 1: exactly orthogonal), are exactly surfaces of revolution about the line of
@@ -14,8 +14,13 @@ is decided exactly. A double root (D = 0) is a tangency of the meridians, so of 
 or, on the axis, a contact point. The intersection is then exactly one parallel circle per common point with rho > 0
 and one point per common point on the axis, those inside the trims.
 
+Likewise a cylinder and a plane so placed are exactly invariant along their frame's z axis (the cylinder) or an
+in-plane axis (the plane); where both run along one coordinate axis e_k, a point lies on both exactly when its other
+two coordinates lie on both cross-sections (a circle or a line, met as the meridians are: crossings), each common
+point a line along e_k, cut by the trims along it into one segment (exact_segments).
+
 Pairs outside this (a rotation that is not a signed permutation, trims that cut a circle into arcs, angular trims,
-a horn or spindle torus, a circle on a trim edge) are not decided here (None).
+a horn or spindle torus, a circle or a segment on a trim edge) are not decided here (None).
 """
 import math
 from fractions import Fraction
@@ -306,3 +311,89 @@ def exact_points(a, b):
                     key = (rho.key(), h.key())
                     found[key] = (rho, h, double or (key in found and found[key][2]))
     return axis, list(found.values())
+
+
+# --- surfaces along one coordinate axis: their cross-sections -------------------------------------------------
+def _range(surface, col, k, sign):
+    """The surface's trim of parameter col (0: u, 1: v) as a range of coordinate k (Fractions, sorted), None when
+    untrimmed, False when half-open."""
+    lo, hi = surface.bounds[col]
+    if math.isinf(lo) and math.isinf(hi):
+        return None
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        return False
+    o = Fraction(surface.frame.origin[k])
+    return tuple(sorted((o + sign * Fraction(lo), o + sign * Fraction(hi))))
+
+
+def section(surface, k, others):
+    """(its cross-section normal to e_k as a Meridian in the coordinates others, its range along e_k, its range
+    across (coordinate index among others, range) or None), or None where the surface does not run along e_k
+    exactly or is trimmed otherwise."""
+    rot = np.asarray(surface.frame.rotation, dtype=float)
+    if signed_axis(rot) is None or surface.region:
+        return None
+    origin = [Fraction(surface.frame.origin[j]) for j in range(3)]
+    axes = [int(np.flatnonzero(rot[:, col])[0]) for col in range(3)]
+    signs = [int(rot[axes[col], col]) for col in range(3)]
+    if isinstance(surface, Cylinder):
+        if axes[2] != k or not all(math.isinf(x) for x in surface.bounds[0]):
+            return None
+        a, b, r = origin[others[0]], origin[others[1]], Fraction(surface.radius)
+        along = _range(surface, 1, k, signs[2])
+        return None if along is False else (Meridian(1, -2 * a, -2 * b, a * a + b * b - r * r), along, None)
+    if not isinstance(surface, Plane) or k not in axes[:2]:
+        return None
+    normal = others.index(axes[2])
+    p = origin[axes[2]]
+    line = Meridian(0, 1, 0, -p) if normal == 0 else Meridian(0, 0, 1, -p)
+    col_along = axes.index(k)
+    col_across = 1 - col_along
+    along = _range(surface, col_along, k, signs[col_along])
+    across = _range(surface, col_across, axes[col_across], signs[col_across])
+    if along is False or across is False:
+        return None
+    return line, along, None if across is None else (others.index(axes[col_across]), across)
+
+
+def exact_segments(a, b):
+    """(k, others, [(x0, x1, lo, hi, double)]): the segments along e_k where the surfaces meet, each at the common
+    point (x0, x1) (Surds) of their sections, from lo to hi (Fractions) along e_k; or None where the pair is not one
+    this module decides."""
+    if not (isinstance(a, Cylinder) or isinstance(b, Cylinder)):
+        return None
+    cylinder = a if isinstance(a, Cylinder) else b
+    own = signed_axis(cylinder.frame.rotation)
+    if own is None:
+        return None
+    k = own[0]
+    others = [j for j in range(3) if j != k]
+    sections = [section(s, k, others) for s in (a, b)]
+    if sections[0] is None or sections[1] is None:
+        return None
+    points = crossings(sections[0][0], sections[1][0])
+    if points is None:
+        return None
+    lows = [s[1][0] for s in sections if s[1] is not None]
+    highs = [s[1][1] for s in sections if s[1] is not None]
+    if not lows:
+        return None                                             # (unbounded along e_k)
+    lo, hi = max(lows), min(highs)
+    out = []
+    for x0, x1, double in points:
+        inside = True
+        for _, _, across in sections:
+            if across is None:
+                continue
+            index, (near, far) = across
+            x = (x0, x1)[index]
+            signs = ((x - near).sign(), (x - far).sign())
+            if 0 in signs:
+                return None                                     # (on the plane's edge across)
+            inside = inside and signs[0] > 0 > signs[1]
+        if not inside or lo > hi:
+            continue
+        if lo == hi:
+            return None                                         # (a single point of the trims' edges)
+        out.append((x0, x1, lo, hi, double))
+    return k, others, out

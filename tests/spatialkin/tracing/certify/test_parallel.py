@@ -14,6 +14,7 @@ import pytest
 
 import spatialkin as sk
 from spatialkin.tracing.certify import parallel as px
+from spatialkin.tracing.search.exact import exact_segments
 from spatialkin.tracing.components import intersect as plain_intersect
 
 mp.mp.dps = 40
@@ -68,7 +69,7 @@ def test_one_ulp_off_is_never_proven_wrongly():
     answer is proven only where it is the exact one."""
     for p in (math.nextafter(1.0, 2.0), math.nextafter(1.0, 0.0)):
         a, b = sk.Cylinder(1.0, v_range=(-2, 2)), sk.Plane(sk.Frame((p, 0, 0), ALONG_Z))
-        _, _, segments = px.exact_segments(a, b)
+        _, _, segments = exact_segments(a, b)
         assert len(segments) == (0 if p > 1.0 else 2)
         curves = sk.intersect(a, b, certify=True)
         assert not curves.certificate.proven or len(curves) == len(segments)

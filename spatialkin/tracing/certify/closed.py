@@ -21,6 +21,8 @@ from .certificate import PROVEN, Certificate, Claim
 PAIRS = (("Sphere", "Sphere"), ("Plane", "Sphere"), ("Cylinder", "Plane"), ("Cone", "Plane"), ("Plane", "Plane"))
 #: The distance bound must stay below this share of the true ellipse's smaller semi-axis.
 SMALL = 0.25
+#: The singular claim where no point is singular.
+NO_SINGULAR = "no singular point: the surfaces cross transversally, or do not meet"
 
 
 def closed_certificate(a, b, curves):
@@ -144,14 +146,15 @@ def returned_curve(sol):
     return None, None, None
 
 
-def answer(radii, bounds, how, truth):
-    """The Certificate of an answer proven in closed form: every claim proven, for the reason `how` (truth: what
-    the curves are proven near)."""
+def answer(radii, bounds, how, truth, singular=NO_SINGULAR, mode=None):
+    """The Certificate of an answer proven in closed form (or exactly: mode): every claim proven, complete,
+    one_component and distinct for the reason `how`, the singular points for the reason `singular` (truth: what the
+    curves are proven near)."""
     none = np.empty((0, 3))
     texts = {"complete": how, "one_component": how, "distinct": how,
              "points": f"every stored point lies within the distance bound of {truth}",
              "arcs": f"the whole dense output lies within the distance bound of {truth}, and {truth} within it of "
                      "the dense output",
-             "singular": "no singular point: the surfaces cross transversally, or do not meet"}
+             "singular": singular}
     claims = [Claim(name, PROVEN, text, none, np.empty(0)) for name, text in texts.items()]
-    return Certificate(claims, None, radii, [None] * len(radii), bounds, len(radii))
+    return Certificate(claims, None, radii, [None] * len(radii), bounds, len(radii), mode=mode)

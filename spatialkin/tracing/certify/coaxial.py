@@ -26,13 +26,11 @@ from ..closed.conic import ConicSolution
 from ..curve.exact import CircleSolution, PointSolution
 from ..curve.status import CLOSED, CONTACT, TANGENT
 from ..search.exact import enclose, exact_points, float_above, float_below
-from .certificate import CLAIMS, NOT_PROVEN, PROVEN, Certificate, Claim
-from .closed import SMALL, faithful, returned_curve
+from .certificate import CLAIMS, NOT_PROVEN, Certificate, Claim
+from .closed import NO_SINGULAR, SMALL, answer, faithful, returned_curve
 
 #: Mode of the certificates made here.
 MODE = "exact (coaxial)"
-#: The singular claim where no point is singular.
-NO_SINGULAR = "no singular point: the surfaces cross transversally, or do not meet"
 
 
 def _truth(axis, rho, h):
@@ -131,11 +129,4 @@ def exact_certificate(curves, bounds_of, how, singular, truth, mode, exact):
         bound, i = min(options)
         bounds[i] = bound
     radii = [np.full(len(curve.points), bound) for curve, bound in zip(curves, bounds)]
-    none = np.empty((0, 3))
-    texts = {"complete": how, "one_component": how, "distinct": how,
-             "points": f"every stored point lies within the distance bound of its {truth}",
-             "arcs": f"the whole dense output lies within the distance bound of the {truth}, and it within the bound "
-                     "of the dense output",
-             "singular": singular}
-    claims = [Claim(name, PROVEN, text, none, np.empty(0)) for name, text in texts.items()]
-    return Certificate(claims, None, radii, [None] * len(radii), bounds, len(radii), mode=mode)
+    return answer(radii, bounds, how, f"its {truth}", singular, mode)

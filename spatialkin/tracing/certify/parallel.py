@@ -15,15 +15,13 @@ References
 ----------
 R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIAM 2009, ch. 5-6 (outward rounding).
 """
-import math
-
 import numpy as np
 
 from ...kernels.certify import closed as kc
 from ..curve.status import BOUNDARY, TANGENT
-from .closed import SMALL, faithful, is_segment
-from ..search.exact import enclose, exact_segments
-from .coaxial import NO_SINGULAR, exact_certificate
+from .closed import NO_SINGULAR, SMALL, faithful, is_segment
+from ..search.exact import enclose, exact_segments, float_above
+from .coaxial import exact_certificate
 
 #: Mode of the certificates made here.
 MODE = "exact (parallel)"
@@ -51,7 +49,7 @@ def _bound(curve, k, others, x0, x1, lo, hi, double):
     bound = kc.segment_bound(_ends(k, others, x0, x1, lo, hi), a, b)
     if not bound < SMALL * float(hi - lo):
         return None
-    return math.nextafter(bound + off, math.inf)
+    return float_above(bound + off)
 
 
 def parallel_certificate(a, b, curves):

@@ -122,21 +122,6 @@ def signed_axis(rotation):
     return k, int(r[k, 2])
 
 
-def _axial_trim(surface, k, sign):
-    """A cylinder's or cone's v range as a range of h (Fractions), or None when untrimmed; False when it is trimmed
-    in u (an angular range: arcs, not circles)."""
-    if surface.region:
-        return False
-    (v0, v1) = surface.v_range
-    if not (math.isinf(v0) and math.isinf(v1)) and not (math.isfinite(v0) and math.isfinite(v1)):
-        return False                                    # (half-open: left to the search)
-    if math.isinf(v0):
-        return None
-    o = Fraction(surface.frame.origin[k])
-    ends = sorted((o + sign * Fraction(v0), o + sign * Fraction(v1)))
-    return tuple(ends)
-
-
 def meridians(surface, axis):
     """The Meridian pieces of the surface about axis = (k, other two coordinates (Fractions)), or None where the
     surface is not exactly a surface of revolution about that line (or is trimmed so that it cuts circles into
@@ -166,7 +151,7 @@ def meridians(surface, axis):
         if surface.trimmed or not big > small:
             return None
         return [Meridian(1, -2 * big, -2 * h0, big * big + h0 * h0 - small * small)]
-    trim = _axial_trim(surface, k, own[1])
+    trim = False if surface.region else _range(surface, 1, k, own[1])     # (an angular trim: arcs, not circles)
     if trim is False:
         return None
     if isinstance(surface, Cylinder):

@@ -71,12 +71,32 @@ class Surface:
         self.floats = tuple(data.tolist())
         self.region = tuple(region)
         self._shown = shown
+        self._memo = {}
+
+    def __getstate__(self):
+        """Pickled, or copied, without the values derived from it (memo): a copy makes its own."""
+        state = dict(self.__dict__)
+        state.pop("_memo", None)
+        return state
 
     def __setstate__(self, state):
         """Unpickled (a worker process's copy) as made: its packed data read-only again (numba compiles a kernel anew
         for each read-only flag of its arguments; a pickled array comes back writable)."""
         self.__dict__.update(state)
+        self._memo = {}
         self.data.flags.writeable = False
+
+    def memo(self, key, make):
+        """The value make(surface) derived from the surface alone, made on the first request for key and kept: a
+        surface never changes (its packed data is read-only), so the value never goes stale. The layers above keep
+        their per-surface readings here (the scene's lengths, the closed forms' reading of the surface and its
+        trims), so that a surface intersected many times is read once. A copy (with other data: with_data) and an
+        unpickled one start with none."""
+        memo = self._memo
+        value = memo.get(key, memo)
+        if value is memo:                   # (the memo itself: no value kept yet; None may be one)
+            value = memo[key] = make(self)
+        return value
 
     # --- the kind's traits --------------------------------------------------------------------------------------
     #: The kind's SurfaceTraits (spatialkin.geometry.traits), set on its class when the kind registers.
@@ -108,7 +128,7 @@ class Surface:
 
     def with_data(self, data):
         """A copy of the surface whose packed data is data (DATA_SIZE,), read-only as every surface's."""
-        out = copy.copy(self)
+        out = copy.copy(self)                   # (copied as pickled: without the memo)
         out.data = np.array(data, dtype=float)
         out.data.flags.writeable = False
         out.floats = tuple(out.data.tolist())

@@ -37,7 +37,7 @@ from ..march.segments import EDGE_NAMES
 from .split import may_split, split_planes
 from ..curve.status import BOUNDARY, CLOSED, open_outcome, outcome
 from ..search.topology import Topology
-from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
+from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, extent, scene_lengths
 
 #: A curve within this many times the tolerance of touching the other surface (tangency, a plane through an apex)
 #: or of a vertex's touch of a trim level is left to the general path.
@@ -83,22 +83,23 @@ def closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pul
     """The Scene of sk.intersect's options (named as there), checked as make_settings checks them (ValueError
     naming a bad one), its lengths those make_settings gives (spatialkin.tracing.march.trace.scene_lengths)."""
     options = check_options(tol, method, rtol, atol, max_length, singular_tol, pullback)
-    origins = a.frame.origin.tolist() + b.frame.origin.tolist()
-    lengths = scene_lengths(a, b, options[0], options[3], max(map(abs, origins)))
+    reach = max(a.memo("placed", Placed).reach, b.memo("placed", Placed).reach)
+    lengths = scene_lengths(a, b, options[0], options[3], reach)
     scale, tolerance, _, max_length = lengths
     return Scene(scale, tolerance, options[4], max_length, (options, lengths))
 
 
 class Placed:
-    """A surface as the closed forms read it, once per call: its traits and name, and its frame's origin (3 floats),
+    """A surface as the closed forms read it, once per surface (kept in its memo): its traits and name, and its frame's origin (3 floats),
     rotation (9 floats, row by row: its local axis j is rot[j::3]) and local z axis (a plane's normal), trims
     (u_min, u_max, v_min, v_max) as floats, read from its packed data; a quadric's (mu, rho) (quadric_form; None
-    for a plane)."""
+    for a plane); reach, the largest |coordinate| of its origin."""
 
-    __slots__ = ("surface", "kind", "name", "origin", "rot", "z", "bounds", "form")
+    __slots__ = ("surface", "kind", "name", "origin", "rot", "z", "bounds", "form", "reach")
 
-    def __init__(self, surface, kind):
+    def __init__(self, surface):
         data = surface.floats
+        kind = surface.traits
         self.surface = surface
         self.kind = kind
         self.name = kind.name
@@ -106,6 +107,7 @@ class Placed:
         self.rot = rot = data[ks.ROT:ks.ROT + 9]
         self.z = rot[2::3]
         self.bounds = data[ks.BOUNDS:ks.BOUNDS + 4]
+        self.reach = max(map(abs, self.origin))
         self.form = quadric_form(self) if self.name in QUADRICS else (
             (data[ks.P0], data[ks.P1]) if self.name == "torus" else None)
 
@@ -115,8 +117,7 @@ def closed_form(a, b, settings):
     or its placement is not handled here (see the module docstring). settings: a Scene or a trace Settings."""
     kinds = (a.traits, b.traits)
     names = (kinds[0].name, kinds[1].name)
-    if not (kinds[0].compact or kinds[1].compact or math.isfinite(kinds[0].extent(a))
-            or math.isfinite(kinds[1].extent(b))):
+    if not (kinds[0].compact or kinds[1].compact or math.isfinite(extent(a)) or math.isfinite(extent(b))):
         return None                                          # (a compact kind is bounded)
     graze = GRAZE * settings.tolerance
     topo = Topology(P=a, Q=b, mode=MODE)
@@ -125,7 +126,7 @@ def closed_form(a, b, settings):
         if not circle:
             return None if circle is None else []
         return [exact_curve((a, b), settings.tolerance, circle=circle, event="axis_circle", topology=topo)]
-    placed = (Placed(a, kinds[0]), Placed(b, kinds[1]))
+    placed = (a.memo("placed", Placed), b.memo("placed", Placed))
     gap = roundoff(placed, settings.scale)
     if names == ("plane", "plane"):
         conics = plane_line(*placed, graze, settings.scale)
@@ -157,7 +158,7 @@ def closed_form(a, b, settings):
 def roundoff(placed, scale):
     """The round-off of the pair's (Placed) coordinates: ROUNDOFF_ULPS ulps of the larger of the scale and their
     origins' largest coordinate (the floor trace.scene_lengths puts under the tolerance)."""
-    return ROUNDOFF_ULPS * EPS * max(scale, *map(abs, placed[0].origin + placed[1].origin))
+    return ROUNDOFF_ULPS * EPS * max(scale, placed[0].reach, placed[1].reach)
 
 
 def components(placed, conics, trims, graze, touch, settings, topo, nodes=()):
@@ -353,18 +354,18 @@ def sphere_circle(a, b, graze, scale):
 def plane_line(a, b, graze, scale):
     """[(LINE, rows)] of two planes (Placed); [] for parallel planes apart; None for (nearly) coplanar ones or a
     line farther than LARGE x scale."""
-    oa, ob = a.origin, b.origin
-    n1, n2 = a.z, b.z
-    along = cross_list(n1, n2)
-    sin = math.sqrt(dot(along, along))
-    gap = dot(n2, [ob[i] - oa[i] for i in range(3)])
+    (o0, o1, o2), (p0, p1, p2) = a.origin, b.origin
+    (m0, m1, m2), (n0, n1, n2) = a.z, b.z
+    l0, l1, l2 = m1 * n2 - m2 * n1, m2 * n0 - m0 * n2, m0 * n1 - m1 * n0      # (along = cross(a.z, b.z))
+    sin = math.sqrt(l0 * l0 + l1 * l1 + l2 * l2)
+    gap = n0 * (p0 - o0) + n1 * (p1 - o1) + n2 * (p2 - o2)
     if sin <= SAME:
         return None if abs(gap) <= graze else []
     if abs(gap) > LARGE * scale * sin:
         return None
-    foot = cross_list(along, n1)                            # a's origin to its foot on the line, over gap / sin^2
-    k = gap / (sin * sin)
-    return [(LINE, [[oa[i] + k * foot[i] for i in range(3)], [0.0, 0.0, 0.0], [x / sin for x in along]])]
+    k = gap / (sin * sin)                           # a's origin to its foot on the line: k cross(along, a.z)
+    foot = [o0 + k * (l1 * m2 - l2 * m1), o1 + k * (l2 * m0 - l0 * m2), o2 + k * (l0 * m1 - l1 * m0)]
+    return [(LINE, [foot, [0.0, 0.0, 0.0], [l0 / sin, l1 / sin, l2 / sin]])]
 
 
 def coplanar_faces(surfaces, placed, touch, settings, topo):
@@ -555,18 +556,29 @@ def linear_trims(surfaces):
     """[(w (3,), bound, side, (surface index, edge index))] of every finite trim of the surfaces (Placed):
     x . w - bound <= 0 inside when side is 1 (an upper bound), >= 0 when it is -1 (a trimmed parameter is a length
     along a local axis: x . w - w . origin); None if a finite trim is not such a length."""
+    first = surfaces[0].surface.memo("linear_trims_a", own_trims_a)
+    second = surfaces[1].surface.memo("linear_trims_b", own_trims_b)
+    return None if first is None or second is None else first + second
+
+
+def own_trims(surface, k):
+    """linear_trims' rows of one surface, its index k in the pair."""
+    surf = surface.memo("placed", Placed)
     trims = []
-    for k, surf in enumerate(surfaces):
-        axes = surf.kind.parameter_axes
-        o0, o1, o2 = surf.origin
-        for j, value in enumerate(surf.bounds):
-            if math.isfinite(value):
-                axis = axes[j // 2]
-                if axis is None:
-                    return None
-                w = surf.rot[axis::3]
-                trims.append((w, value + (w[0] * o0 + w[1] * o1 + w[2] * o2), 1.0 if j % 2 else -1.0, (k, j)))
+    axes = surf.kind.parameter_axes
+    o0, o1, o2 = surf.origin
+    for j, value in enumerate(surf.bounds):
+        if math.isfinite(value):
+            axis = axes[j // 2]
+            if axis is None:
+                return None
+            w = surf.rot[axis::3]
+            trims.append((w, value + (w[0] * o0 + w[1] * o1 + w[2] * o2), 1.0 if j % 2 else -1.0, (k, j)))
     return trims
+
+
+own_trims_a = functools.partial(own_trims, k=0)
+own_trims_b = functools.partial(own_trims, k=1)
 
 
 def crossings(shape, beta, gamma, level, graze, touch):
@@ -689,8 +701,8 @@ def line_arc(rows, trims, touch):
         (highs if gamma * side > 0.0 else lows).append((-alpha / gamma, abs(gamma), edge))
     if not lows or not highs:
         return None
-    t_lo, g_lo, e_lo = max(lows, key=_first)
-    t_hi, g_hi, e_hi = min(highs, key=_first)
+    t_lo, g_lo, e_lo = max(lows)                    # (a tie in t is a corner: declined below)
+    t_hi, g_hi, e_hi = min(highs)
     margin = 2.0 * touch
     if not (t_hi - t_lo) * min(g_lo, g_hi) > margin:
         return None
@@ -701,10 +713,6 @@ def line_arc(rows, trims, touch):
         if edge != e_hi and not (t - t_hi) * g_hi > margin:
             return None
     return [(t_lo, t_hi, (e_lo, e_hi))]
-
-
-def _first(row):
-    return row[0]
 
 
 def within(linear, shape, t, touch):

@@ -113,9 +113,9 @@ class CurveResult:
 
     def __post_init__(self):
         state = self.__dict__                   # (frozen: written as object.__setattr__ writes, at a third of its cost)
-        for name, kind in (("closed", bool), ("length", float), ("tolerance", float), ("nfev", int),
-                           ("wall_time", float)):
-            state[name] = kind(state[name])
+        state["closed"], state["length"], state["tolerance"] = (bool(state["closed"]), float(state["length"]),
+                                                                float(state["tolerance"]))
+        state["nfev"], state["wall_time"] = int(state["nfev"]), float(state["wall_time"])
         if self.status not in CURVE_STATUSES:
             raise ValueError(f"a curve's status is one of {CURVE_STATUSES}, got {self.status!r}")
 

@@ -24,16 +24,23 @@ def scene_scale(a, b):
     """Length scale of an intersection: the smaller characteristic length of the two surfaces, ignoring
     planes and untrimmed cones (which have none); without one, the smaller half-diagonal of the trimmed
     planes' rectangles (1 where there is none)."""
-    size_a, size_b = a.traits.scale_length(a), b.traits.scale_length(b)
+    size_a, size_b = a.memo("scale_length", scale_length), b.memo("scale_length", scale_length)
     if size_a is not None or size_b is not None:
         return size_a if size_b is None else size_b if size_a is None else min(size_a, size_b)
-    spans = []
-    for surface in (a, b):
-        (u0, u1), (v0, v1) = surface.bounds
-        span = 0.5 * math.hypot(float(u1 - u0), float(v1 - v0))
-        if math.isfinite(span):
-            spans.append(span)
-    return min(spans) if spans else 1.0
+    span = min(a.memo("half_diagonal", half_diagonal), b.memo("half_diagonal", half_diagonal))
+    return span if math.isfinite(span) else 1.0
+
+
+def scale_length(surface):
+    """The surface's own length of the scene scale, or None (its traits' scale_length)."""
+    return surface.traits.scale_length(surface)
+
+
+def half_diagonal(surface):
+    """Half the diagonal of the surface's trims (u, v) (inf where one is unbounded)."""
+    (u0, u1), (v0, v1) = surface.bounds
+    span = 0.5 * math.hypot(u1 - u0, v1 - v0)
+    return span if math.isfinite(span) else math.inf
 
 
 def locate_on_curve(a, b, guess, gap_tol, y_guess=None):

@@ -8,6 +8,7 @@ the solution of a Cauchy problem.
 E. Hairer, S. P. Nørsett, G. Wanner, Solving Ordinary Differential Equations I, 2nd ed., Springer, 1993: the
 Dormand-Prince pairs (DOP853), dense output and step-size control.
 """
+import functools
 import math
 import time
 
@@ -72,11 +73,16 @@ METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", *COMPILED_SOLVERS)
 
 
 def extent(surface):
-    """A length that bounds the surface (inf for an untrimmed plane, cylinder or cone): its traits' extent."""
+    """A length that bounds the surface (inf for an untrimmed plane, cylinder or cone): its traits' extent (made
+    once per surface)."""
+    return surface.memo("extent", _extent)
+
+
+def _extent(surface):
     return surface.traits.extent(surface)
 
 
-def check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
+def _check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
     """(tol, rtol, atol, max_length, singular_tol, pullback) checked (atol and max_length may be None); none
     depends on the surfaces (atol's floor for length parameters: make_settings).
 
@@ -106,6 +112,20 @@ def check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
     if pullback > PULLBACK_MAX:
         raise ValueError(f"pullback must lie in [0, {PULLBACK_MAX:g}], got {pullback!r}")
     return tol, rtol, atol, max_length, singular_tol, pullback
+
+
+#: check_options of the options of recent calls (a bad one raises, and is not kept).
+_checked_options = functools.lru_cache(maxsize=64, typed=True)(_check_options)
+
+
+def check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
+    """The options checked as _check_options checks them (raising as it does), its answer kept for the options of
+    recent calls (by value and type: True is not 1); an unhashable option (a 0-d array) or a bad one checked anew,
+    which raises."""
+    try:
+        return _checked_options(tol, method, rtol, atol, max_length, singular_tol, pullback)
+    except TypeError:
+        return _check_options(tol, method, rtol, atol, max_length, singular_tol, pullback)
 
 
 def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor, scene=None):

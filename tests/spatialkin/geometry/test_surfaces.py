@@ -142,3 +142,30 @@ def test_a_pickled_surface_comes_back_read_only():
         assert not copy.data.flags.writeable
         assert not copy.frame.origin.flags.writeable and not copy.frame.rotation.flags.writeable
         assert np.array_equal(copy.data, surface.data) and type(copy) is type(surface)
+
+
+def test_a_value_derived_from_a_surface_is_made_once_and_not_carried_to_other_data():
+    """Surface.memo makes a derived value on the first request only (None kept as a value too); a copy with other
+    packed data (with_data) and a pickled copy make their own: a closed-form intersection read through it (the
+    plane's trims) gives, for the copy with wider trims, what a fresh plane with those trims gives."""
+    import pickle
+    made = []
+
+    def count(surface):
+        made.append(surface)
+        return None
+
+    plane = sk.Plane(sk.Frame((0.0, 0.0, 0.5)), (-0.5, 0.5), (-2.0, 2.0))
+    assert plane.memo("probe", count) is None and plane.memo("probe", count) is None and made == [plane]
+    for other in (plane.with_data(plane.data), pickle.loads(pickle.dumps(plane))):
+        other.memo("probe", count)
+        assert made[-1] is other
+    assert len(made) == 3
+    sphere = sk.Sphere(1.0)
+    cut = sk.intersect(plane, sphere)                       # the circle of radius sqrt(0.75), cut by u = +-0.5
+    assert len(cut) == 2 and not cut[0].closed
+    wider = plane.with_data(np.concatenate([plane.data[:-4], [-3.0, 3.0, -3.0, 3.0]]))
+    whole = sk.intersect(wider, sphere)
+    assert len(whole) == 1 and whole[0].closed
+    assert abs(whole[0].length - 2.0 * np.pi * np.sqrt(0.75)) < 1e-12
+    assert [c.length for c in sk.intersect(plane, sphere)] == [c.length for c in cut]

@@ -75,6 +75,25 @@ def test_defaults_and_the_values_in_use_stay_valid():
     check_options(1e-10, "compiled", np.float64(1e-10), np.float32(1e-9), np.int64(10), 1e-7, PULLBACK_MAX)
 
 
+def test_options_checked_once_still_refuse_what_compares_equal():
+    """Options kept from an earlier call are matched by type too: a bool equal to an accepted int, or an unhashable
+    0-d array, is checked anew (the bool refused, the array read as its float)."""
+    def options(**given):
+        values = dict(tol=1e-10, method="compiled", rtol=DEFAULT_RTOL, atol=None, max_length=None,
+                      singular_tol=DEFAULT_SINGULAR_TOL, pullback=DEFAULT_PULLBACK)
+        values.update(given)
+        return check_options(**values)
+
+    assert options(pullback=1) == options(pullback=1) == options(pullback=1.0)
+    with pytest.raises(TypeError, match="^pullback must be a real number"):
+        options(pullback=True)
+    assert options(tol=np.array(1e-9)) == options(tol=1e-9)
+    with pytest.raises(ValueError, match="^tol must be"):
+        options(tol=np.array(-1e-9))
+    with pytest.raises(ValueError, match="^tol must be"):
+        options(tol=float("nan"))
+
+
 @pytest.mark.parametrize("close", [None, "no", 1, 0.0])
 def test_close_must_be_a_bool(close):
     with pytest.raises(TypeError, match="^close must be a bool"):

@@ -150,10 +150,9 @@ def test_may_split_is_necessary_and_cheap_to_refuse():
     from spatialkin.bench.kinds import pair_kind_cases
     from spatialkin.tracing.closed.forms import Placed
     from spatialkin.tracing.closed.split import may_split, split_planes
-    from spatialkin.geometry.traits import traits
 
     def args(a, b):
-        placed = [Placed(s, traits(s)) for s in (a, b)]
+        placed = [Placed(s) for s in (a, b)]
         return placed, [(p.name, p.origin, p.z, p.form) for p in placed]
 
     for _, a, b in scenes():

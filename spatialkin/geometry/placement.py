@@ -39,8 +39,18 @@ class CoincidentSurfacesError(ValueError):
 
 
 def bounding_ball(surface):
-    """(centre (3,), radius) of a ball holding the (trimmed) surface, or None when it is unbounded."""
-    return surface.traits.bounding_ball(surface)
+    """(centre (3,), radius) of a ball holding the (trimmed) surface, or None when it is unbounded (made once per
+    surface; the centre read-only)."""
+    return surface.memo("bounding_ball", _bounding_ball)
+
+
+def _bounding_ball(surface):
+    ball = surface.traits.bounding_ball(surface)
+    if ball is None:
+        return None
+    centre = np.array(ball[0], dtype=float)
+    centre.flags.writeable = False
+    return centre, float(ball[1])
 
 
 def on_line(point, line_point, direction, tol):

@@ -12,6 +12,7 @@ import math
 import numpy as np
 
 from ...kernels.curve.stored import unwrap_turns
+from ...kernels.geometry import surfaces as ks
 from ...geometry.vectors import cross
 from .dense import CurveSolution
 from .result import CurveResult
@@ -299,8 +300,15 @@ def event_message(event, shape):
 
 
 def surface_parameters(surfaces, points):
-    """(u1, v1, u2, v2) (N, 4) of the points (N, 3) on the two surfaces (Surface.parameters of each, u wrapped)."""
-    return np.concatenate([surfaces[0].parameters(points), surfaces[1].parameters(points)], axis=1)
+    """(u1, v1, u2, v2) (N, 4) of the points (N, 3, finite: made here) on the two surfaces (Surface.parameters of
+    each, u wrapped, without its argument checks)."""
+    points = np.ascontiguousarray(points, dtype=float)
+    uv = np.empty((len(points), 2))
+    out = np.empty((len(points), 4))
+    for k in range(2):
+        ks.inverse(surfaces[k].data, points, uv)
+        out[:, 2 * k:2 * k + 2] = uv
+    return out
 
 
 def contact_point(surfaces, point, tolerance, event="contact"):

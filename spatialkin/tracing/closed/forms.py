@@ -24,6 +24,7 @@ configurations whose conic would be huge, both surfaces unbounded.
 import collections
 import functools
 import math
+import weakref
 
 import numpy as np
 
@@ -95,12 +96,12 @@ class Placed:
     (u_min, u_max, v_min, v_max) as floats, read from its packed data; a quadric's (mu, rho) (quadric_form; None
     for a plane); reach, the largest |coordinate| of its origin."""
 
-    __slots__ = ("surface", "kind", "name", "origin", "rot", "z", "bounds", "form", "reach")
+    __slots__ = ("_surface", "kind", "name", "origin", "rot", "z", "bounds", "form", "reach")
 
     def __init__(self, surface):
         data = surface.floats
         kind = surface.traits
-        self.surface = surface
+        self._surface = weakref.ref(surface)        # (kept in the surface's memo: no cycle holding it)
         self.kind = kind
         self.name = kind.name
         self.origin = data[ks.ORIGIN:ks.ORIGIN + 3]
@@ -110,6 +111,11 @@ class Placed:
         self.reach = max(map(abs, self.origin))
         self.form = quadric_form(self) if self.name in QUADRICS else (
             (data[ks.P0], data[ks.P1]) if self.name == "torus" else None)
+
+    @property
+    def surface(self):
+        """The surface read (alive while the call that reads it runs)."""
+        return self._surface()
 
 
 def closed_form(a, b, settings):

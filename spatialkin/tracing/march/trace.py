@@ -120,12 +120,14 @@ _checked_options = functools.lru_cache(maxsize=64, typed=True)(_check_options)
 
 def check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
     """The options checked as _check_options checks them (raising as it does), its answer kept for the options of
-    recent calls (by value and type: True is not 1); an unhashable option (a 0-d array) or a bad one checked anew,
-    which raises."""
+    recent calls (by value and type: True is not 1; a bad one is not kept); an unhashable option (a 0-d array)
+    checked each time."""
+    options = (tol, method, rtol, atol, max_length, singular_tol, pullback)
     try:
-        return _checked_options(tol, method, rtol, atol, max_length, singular_tol, pullback)
-    except TypeError:
-        return _check_options(tol, method, rtol, atol, max_length, singular_tol, pullback)
+        hash(options)
+    except TypeError:                       # (an unhashable option: a 0-d array)
+        return _check_options(*options)
+    return _checked_options(*options)
 
 
 def make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor, scene=None):

@@ -169,3 +169,20 @@ def test_a_value_derived_from_a_surface_is_made_once_and_not_carried_to_other_da
     assert len(whole) == 1 and whole[0].closed
     assert abs(whole[0].length - 2.0 * np.pi * np.sqrt(0.75)) < 1e-12
     assert [c.length for c in sk.intersect(plane, sphere)] == [c.length for c in cut]
+
+
+def test_a_surface_read_by_an_intersection_is_freed_as_soon_as_it_is_dropped():
+    """What an intersection keeps in a surface's memo holds no reference back to it: the surface is freed by its
+    reference count alone (the cyclic collector off), as one that was never intersected."""
+    import gc
+    import weakref
+    gc.disable()
+    try:
+        for other in (sk.Sphere(1.0), sk.Cylinder(0.5, sk.Frame((0.0, 0.0, 0.2)), (-2.0, 2.0))):
+            plane = sk.Plane(sk.Frame((0.0, 0.0, 0.3)), (-2.0, 2.0), (-2.0, 2.0))
+            assert sk.intersect(plane, other) and plane.memo("placed", lambda s: None) is not None
+            alive = weakref.ref(plane)
+            del plane
+            assert alive() is None
+    finally:
+        gc.enable()

@@ -85,8 +85,9 @@ def test_options_checked_once_still_refuse_what_compares_equal():
         return check_options(**values)
 
     assert options(pullback=1) == options(pullback=1) == options(pullback=1.0)
-    with pytest.raises(TypeError, match="^pullback must be a real number"):
+    with pytest.raises(TypeError, match="^pullback must be a real number") as refused:
         options(pullback=True)
+    assert refused.value.__context__ is None                 # (raised once, not chained to a second check)
     assert options(tol=np.array(1e-9)) == options(tol=1e-9)
     with pytest.raises(ValueError, match="^tol must be"):
         options(tol=np.array(-1e-9))

@@ -91,10 +91,10 @@ def closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pul
 
 
 class Placed:
-    """A surface as the closed forms read it, once per surface (kept in its memo): its traits and name, and its frame's origin (3 floats),
-    rotation (9 floats, row by row: its local axis j is rot[j::3]) and local z axis (a plane's normal), trims
-    (u_min, u_max, v_min, v_max) as floats, read from its packed data; a quadric's (mu, rho) (quadric_form; None
-    for a plane); reach, the largest |coordinate| of its origin."""
+    """A surface as the closed forms read it, once per surface (kept in its memo): its traits and name, and its
+    frame's origin (3 floats), rotation (9 floats, row by row: its local axis j is rot[j::3]) and local z axis (a
+    plane's normal), trims (u_min, u_max, v_min, v_max) as floats, read from its packed data; a quadric's (mu, rho)
+    (quadric_form; None for a plane); reach, the largest |coordinate| of its origin."""
 
     __slots__ = ("_surface", "kind", "name", "origin", "rot", "z", "bounds", "form", "reach")
 

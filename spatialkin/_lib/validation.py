@@ -26,6 +26,10 @@ ROUNDOFF_DEVIATION = 64 * np.finfo(float).eps
 LENGTH_MIN, LENGTH_MAX = 1e-32, 1e32
 
 
+#: What a bad argument's message says of an integer too large for a float (rather than its hundreds of digits).
+TOO_LARGE = "an integer too large for a float"
+
+
 # --- numbers ------------------------------------------------------------------------------------------------
 def check_real(name, value, finite=False, strict=False):
     """``float(value)``, or ValueError naming the argument when it is not a real number (or, with finite=True,
@@ -35,6 +39,8 @@ def check_real(name, value, finite=False, strict=False):
         check_real_type(name, value)
     try:
         x = float(value)
+    except OverflowError:
+        raise ValueError(f"{name} must be finite, got {TOO_LARGE}") from None
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be a real number, got {value!r}") from None
     if finite and not math.isfinite(x):
@@ -114,6 +120,8 @@ def check_omega(omega):
     """A driver's rate omega (rad per unit time) as a finite, non-zero float, or ValueError naming it."""
     try:
         value = float(omega)
+    except OverflowError:
+        raise ValueError(f"omega must be finite and non-zero, got {TOO_LARGE}") from None
     except (TypeError, ValueError):
         raise ValueError(f"omega must be a real number (rad per unit time), got {omega!r}") from None
     if not math.isfinite(value) or value == 0:
@@ -138,6 +146,8 @@ def check_range(name, value, length=False):
         return -math.inf, math.inf
     try:
         lo, hi = (float(x) for x in value)
+    except OverflowError:
+        raise ValueError(f"{name} must have finite or infinite float ends, got {TOO_LARGE}") from None
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be a pair (min, max), got {value!r}") from None
     if math.isnan(lo) or math.isnan(hi):
@@ -194,6 +204,8 @@ def check_angles(name, values):
     (also for an empty one: a motion has at least one position)."""
     try:
         angles = np.atleast_1d(np.asarray(values, dtype=float))
+    except OverflowError:
+        raise ValueError(f"{name} must be a finite 1-D array, got {TOO_LARGE}") from None
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be real numbers (radians), got {values!r}") from None
     if angles.ndim != 1 or not np.all(np.isfinite(angles)):
@@ -210,6 +222,8 @@ def as_float_array(name, value):
         raise TypeError(f"{name} must be an array of real numbers, got {type(value).__name__}")
     try:
         return np.asarray(value, dtype=float)
+    except OverflowError:
+        raise ValueError(f"{name} must be finite, got {TOO_LARGE}") from None
     except (TypeError, ValueError):
         raise TypeError(f"{name} must be an array of real numbers, got {type(value).__name__}") from None
 

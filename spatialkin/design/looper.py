@@ -3,7 +3,7 @@ import numpy as np
 
 from ..geometry.frame import Frame
 from ..mechanisms import LooperDrive
-from .._lib.validation import check_choice
+from .._lib.validation import TOO_LARGE, check_choice
 from .params import (PARAMETERS, angles_from_rotation, check_names, check_values, default_bounds,
                      rotation_from_angles)
 
@@ -82,6 +82,8 @@ class LooperDesign:
             for name, pair in bounds.items():
                 try:
                     lo, hi = (float(b) for b in pair)
+                except OverflowError:
+                    raise ValueError(f"bounds: {name} must be finite, got {TOO_LARGE}") from None
                 except (TypeError, ValueError):
                     raise ValueError(f"bounds: {name} must be a pair (low, high), got {pair!r}") from None
                 if not lo < hi:

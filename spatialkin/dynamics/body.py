@@ -9,7 +9,7 @@ J. L. Meriam, L. G. Kraige, Engineering Mechanics: Dynamics, Wiley (moments of i
 """
 import numpy as np
 
-from .._lib.validation import check_nonnegative, check_vector
+from .._lib.validation import TOO_LARGE, check_nonnegative, check_vector
 
 #: An inertia tensor's asymmetry and negative eigenvalues allowed, relative to its largest entry (round-off of
 #: values typed or computed elsewhere).
@@ -52,6 +52,8 @@ class Body:
     def __init__(self, mass, com=(0.0, 0.0, 0.0), inertia=None):
         try:
             mass = float(mass)
+        except OverflowError:
+            raise ValueError(f"mass must be a finite number >= 0 (kg), got {TOO_LARGE}") from None
         except (TypeError, ValueError):
             raise ValueError(f"mass must be a finite number >= 0 (kg), got {mass!r}") from None
         if not (np.isfinite(mass) and mass >= 0):

@@ -24,6 +24,8 @@ import math
 
 import numpy as np
 
+from .._lib.validation import TOO_LARGE
+
 #: A range of an angle at least this close to a full turn (relative) is no trim.
 FULL_TURN_SLACK = 1e-12
 
@@ -83,6 +85,8 @@ def angle_range(name, value):
         return None
     try:
         lo, hi = (float(x) for x in value)
+    except OverflowError:
+        raise ValueError(f"{name} must be finite angles in radians, got {TOO_LARGE}") from None
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be a pair (min, max) of angles in radians, got {value!r}") from None
     if not (math.isfinite(lo) and math.isfinite(hi)):

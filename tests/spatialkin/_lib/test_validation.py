@@ -51,6 +51,12 @@ def test_good_values_come_back_converted(check, good, want):
     (lambda x: v.check_angles("crank_angles", x), [[0.0]], "crank_angles must be a finite 1-D array"),
     (lambda x: v.check_frame((0, 0, 0), x), np.diag([1.0, 1.0, -1.0]), "rotation must be right-handed"),
     (lambda x: v.check_frame((0, 0, 0), x), np.diag([1.0, 1.0, 2.0]), "rotation must be orthonormal"),
+    (lambda x: v.check_real("max_length", x), 10 ** 400, "max_length must be finite, got an integer too large"),
+    (lambda x: v.check_positive("tol", x), -10 ** 400, "tol must be finite, got an integer too large"),
+    (v.check_omega, 10 ** 400, "omega must be finite and non-zero, got an integer too large"),
+    (lambda x: v.check_range("v_range", x), (0, 10 ** 400), "v_range must have finite or infinite float ends"),
+    (lambda x: v.check_angles("crank_angles", x), [0, 10 ** 400], "crank_angles must be a finite 1-D array"),
+    (lambda x: v.check_vector("origin", x), (0, 10 ** 400, 0), "origin must be finite, got an integer too large"),
 ])
 def test_bad_values_name_the_argument(check, bad, words):
     with pytest.raises(ValueError, match=words):

@@ -106,6 +106,8 @@ def test_from_drive_round_trip():
 
 @pytest.mark.parametrize("kwargs, word", [(dict(free=("crank", )), "free"), (dict(free=()), "free"),
                                           (dict(bounds={"crank_radius": (3, 2)}), "bounds"),
+                                          (dict(bounds={"crank_radius": (0, 10 ** 400)}),
+                                           "bounds: crank_radius must be finite, got an integer too large"),
                                           (dict(branch=2), "branch")])
 def test_bad_input_names_the_argument(kwargs, word):
     with pytest.raises(ValueError, match=word):

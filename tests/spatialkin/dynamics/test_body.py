@@ -22,6 +22,7 @@ def test_rod_disc_and_point_against_the_textbook():
 
 
 @pytest.mark.parametrize("args, key", [((-1.0,), "mass"), ((np.nan,), "mass"), (("x",), "mass"),
+                                       ((10 ** 400,), "mass must be a finite number >= 0 \\(kg\\), got an integer too"),
                                        ((1.0, (0.0, np.inf, 0.0)), "com"), ((1.0, (0.0, 1.0)), "com"),
                                        ((1.0, (0, 0, 0), [[1.0, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]),
                                         "symmetric"),

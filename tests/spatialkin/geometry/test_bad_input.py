@@ -63,6 +63,20 @@ def test_a_length_out_of_the_supported_range_is_refused(make, name):
         make()
 
 
+@pytest.mark.parametrize("make, name", [
+    (lambda: sk.Sphere(10 ** 400), "radius"),
+    (lambda: sk.Torus(8, -10 ** 400), "minor_radius"),
+    (lambda: sk.Plane(u_range=(0, 10 ** 400)), "u_range"),
+    (lambda: sk.Sphere(1.0, u_range=(0, 10 ** 400)), "u_range"),
+    (lambda: sk.Frame((0, 10 ** 400, 0)), "origin"),
+    (lambda: sk.Frame((0, 0, 0), [[10 ** 400, 0, 0], [0, 1, 0], [0, 0, 1]]), "rotation"),
+])
+def test_an_integer_too_large_for_a_float_is_refused_by_name(make, name):
+    """An int past the float range is a ValueError naming the argument, not Python's OverflowError."""
+    with pytest.raises(ValueError, match=rf"^{name} must .*an integer too large for a float"):
+        make()
+
+
 def test_lengths_at_the_ends_of_the_range_are_accepted():
     """The ends themselves, a zero inner radius and infinite trims are valid."""
     assert sk.Sphere(LENGTH_MIN).radius == LENGTH_MIN and sk.Sphere(LENGTH_MAX).radius == LENGTH_MAX

@@ -8,7 +8,7 @@ import operator
 import numpy as np
 
 from ...kernels.geometry import surfaces as ks
-from ..._lib.validation import check_count, check_finite, check_positive
+from ..._lib.validation import TOO_LARGE, check_count, check_finite, check_positive
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome
 from ...geometry.traits import traits
@@ -467,9 +467,17 @@ class Curve:
 
 Curve.__doc__ = (Curve.__doc__.replace("{statuses}", describe(CURVE_STATUSES, 8))
                  .replace("{precedence}", ", ".join(f"'{s}'" for s in END_PRECEDENCE)))
+
+
 def arc_lengths(s):
-    """s as an array, or TypeError naming it when it is not real numbers (a str, None, a bool)."""
+    """s as an array, or TypeError naming it when it is not real numbers (a str, None, a bool); ValueError naming it
+    for an integer too large for a float."""
     arr = np.asarray(s)
+    if arr.dtype.kind == "O" and all(type(x) in (int, float) for x in arr.flat):     # (ints past int64: objects)
+        try:
+            arr = arr.astype(float)
+        except OverflowError:
+            raise ValueError(f"s must be finite, got {TOO_LARGE}") from None
     if arr.dtype.kind not in "iuf":
         raise TypeError(f"s must be real numbers, got {type(s).__name__}")
     return arr

@@ -100,3 +100,19 @@ def test_closed_form_components():
     np.testing.assert_allclose(np.einsum("ij,ij->i", tangents, points), 0.0, atol=ROUND_OFF)
     np.testing.assert_allclose(bend, -points, atol=ROUND_OFF)
     assert circle.points[-1].tolist() == circle.points[0].tolist() and abs(circle.length - 2 * np.pi) <= ROUND_OFF
+
+
+def test_arc_lengths_given_as_python_ints_past_int64_are_read_or_named():
+    """curve(s) reads ints past numpy's int64 as floats (an array of objects), names an int too large for a float,
+    and refuses what is no number; the oracle: the circle of radius 0.8 cut by z = 0.6, closed form."""
+    curve, = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))))
+    big = 10 ** 20                                  # (past int64, within a float: wraps round the loop)
+    point = curve(big)
+    assert abs(np.hypot(point[0], point[1]) - 0.8) < ROUND_OFF and abs(point[2] - 0.6) < ROUND_OFF
+    assert np.array_equal(curve([0, big]), curve([0.0, float(big)]))
+    for s in (10 ** 400, [0.5, 10 ** 400]):
+        with pytest.raises(ValueError, match="^s must be finite, got an integer too large for a float"):
+            curve(s)
+    for s in ("a", True, None, [None, 1.0]):
+        with pytest.raises(TypeError, match="^s must be real numbers"):
+            curve(s)

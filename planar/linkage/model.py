@@ -27,7 +27,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from spatialkin.continuation import CurveKernels, solve_at, trace_cycle
-from spatialkin._lib.validation import check_angles, check_omega, check_positive
+from spatialkin._lib.validation import check_angles, check_omega, check_positive, check_vector
 
 from . import kernels as kn
 from .motion import LinkageMotion, LockError
@@ -322,9 +322,12 @@ class Linkage:
         return np.append(q, angle)
 
     def positions(self, state):
-        """Dict joint -> (x, y) of one scaled state (fixed joints included)."""
+        """Dict joint -> (x, y) of one scaled state (fixed joints included): the moving joints' scaled (x, y) in
+        their order, then the input angle (2 x moving joints + 1 floats); ValueError naming `state` for another
+        shape or a value that is not finite, TypeError for what is no array of numbers."""
+        state = check_vector("state", state, 2 * len(self.moving) + 1)
         out = {k: v.copy() for k, v in self.fixed.items()}
-        q = np.asarray(state[:-1]).reshape(-1, 2) * self.mean_length
+        q = state[:-1].reshape(-1, 2) * self.mean_length
         out.update({j: q[i] for i, j in enumerate(self.moving)})
         return out
 

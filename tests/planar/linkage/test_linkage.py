@@ -220,6 +220,13 @@ def test_bad_input_is_rejected(mech, sol):
         sixbar(omega_ratio=math.pi)
     with pytest.raises(ValueError, match="link 3"):
         Linkage(mech.fixed, mech.cranks, [Link("3", ("A", "B"), length=-1.0)] + mech.links[1:])
+    size = 2 * len(mech.moving) + 1
+    with pytest.raises(ValueError, match=rf"^state must have shape \({size},\)"):
+        mech.positions([1.0, 2.0])
+    with pytest.raises(ValueError, match="^state must be finite, got an integer too large for a float"):
+        mech.positions([10 ** 400] * size)
+    with pytest.raises(TypeError, match="^state must be an array of real numbers"):
+        mech.positions("a")
 
 
 def four_bar_with_pin_on_the_coupler():

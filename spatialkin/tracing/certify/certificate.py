@@ -154,7 +154,8 @@ class Certificate:
         How many curves were returned.
     mode : str
         The configuration the search recognised ('general', 'coaxial', 'ruled'), or, with no search, 'closed form'
-        (spatialkin.tracing.certify.closed) or 'exact (coaxial)' (spatialkin.tracing.certify.coaxial).
+        (spatialkin.tracing.certify.closed), 'exact (coaxial)' or 'exact (parallel)'
+        (spatialkin.tracing.certify.coaxial and .parallel).
     boxes, verified_roots, singular_points : int
         The search's boxes, verified roots and unresolved boxes.
     search_seconds : float

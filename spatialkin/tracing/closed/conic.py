@@ -165,13 +165,9 @@ class ConicSolution(ExactSolution):
         knots[0] = 0.0
         return knots
 
-    def first_point(self):
-        """The first stored point (3,) (the first row of samples' points, without making the others)."""
-        if self._samples is not None:
-            return self._samples[0][0]
-        if self._first is None:
-            self._first = self.conic.at(self.t_knots[:1])[0]
-        return self._first
+    def first_sample(self):
+        """The first stored point (3,), made alone as sample_points makes it (at t_knots[0])."""
+        return self.conic.at(self.t_knots[:1])[0]
 
     def sample_points(self):
         """The exact points (N, 3) at t_knots (ExactSolution.samples makes the rest)."""

@@ -156,8 +156,12 @@ class ExactSolution(CurveSolution):
         if self._samples is not None:
             return self._samples[0][0]
         if self._first is None:
-            self._first = self.points_at(self.knots[:1])[0]
+            self._first = self.first_sample()
         return self._first
+
+    def first_sample(self):
+        """The first stored point (3,), made alone as sample_points makes it."""
+        return self.points_at(self.knots[:1])[0]
 
     def at(self, s):
         """(points (M, 3), unit tangents (M, 3)) at the wrapped arc lengths s (M,)."""
@@ -176,7 +180,7 @@ class ExactSolution(CurveSolution):
         points, tangents = self.at(s)
         params = None
         if with_params:
-            params = np.concatenate([surf.parameters(points) for surf in self.surfaces], axis=1)
+            params = surface_parameters(self.surfaces, points)
         return s, points, tangents, params
 
     def derivatives(self, s):

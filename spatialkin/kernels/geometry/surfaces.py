@@ -79,11 +79,11 @@ def local_rows(data, u, v):
     """Local point and derivatives (point, S_u, S_v, S_uu, S_uv, S_vv), each a 3-tuple: no allocation (the hot
     path; the rows a caller does not use cost a few multiplications, the trigonometry is shared)."""
     geometry = int(data[GEOMETRY])
-    cu = math.cos(u)
-    su = math.sin(u)
     zero = (0.0, 0.0, 0.0)
     if geometry == PLANE:
         return (u, v, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), zero, zero, zero
+    cu = math.cos(u)
+    su = math.sin(u)
     if geometry == SPHERE or geometry == TORUS:
         big = 0.0 if geometry == SPHERE else data[P0]
         small = data[P0] if geometry == SPHERE else data[P1]
@@ -108,7 +108,7 @@ def rotated(data, x):
             data[ROT + 6] * x[0] + data[ROT + 7] * x[1] + data[ROT + 8] * x[2])
 
 
-@jit
+@jit(forceinline=True)          # (the right-hand side's hot path: spatialkin.kernels.march.curve.dragilev_into)
 def frame(data, u, v):
     """Global point and first derivatives (point, S_u, S_v), each a 3-tuple (no allocation)."""
     rows = local_rows(data, u, v)

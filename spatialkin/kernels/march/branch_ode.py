@@ -75,7 +75,7 @@ def branch_rhs(s, y, a, b, sign, pullback, memo):
     return dragilev_rhs(s, y, a, b, sign, pullback)
 
 
-@jit
+@jit(inline="always")          # (inlined into the engine: see curve.dragilev_into)
 def branch_fun(t, y, args, out):
     """dy/ds of the branch (Dragilev's right-hand side with its pull-back), args = branch_args(...); the state,
     the sine and M1 kept in the memo."""

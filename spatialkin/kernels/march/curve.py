@@ -78,7 +78,7 @@ def tangent_from_normals(su1, sv1, su2, sv2, t):
     return c
 
 
-@jit
+@jit(forceinline=True)
 def min_norm_step(su1, sv1, su2, sv2, gap):
     """(step, ok): the minimum-norm Gauss-Newton step (4-tuple) in (u1, v1, u2, v2) that removes the gap
     M1 - M2 to first order, -J^T (J J^T)^-1 gap with J = [su1, sv1, -su2, -sv2], its columns first scaled to
@@ -150,7 +150,10 @@ def dragilev_rhs(s, y, a, b, sign, pullback):
     return dy
 
 
-@jit
+# Inlined at numba's level into the engine's step (with branch_ode.branch_fun), and frame and min_norm_step at
+# LLVM's (forceinline): as separate calls, their array arguments' reference counts (atomic operations) and the
+# calls themselves cost about as much as the arithmetic. The results are the same bits.
+@jit(inline="always")
 def dragilev_into(y, a, b, sign, pullback, out):
     """dragilev_rhs written to out (4,), without allocating (the compiled integrator's hot path). Returns (sin of
     the normals' angle, M1) at y, which it computed on the way (as degeneracy and frame give them)."""

@@ -114,7 +114,7 @@ def min_norm_step(su1, sv1, su2, sv2, gap):
     return (-dot(su1, w) * w0, -dot(sv1, w) * w1, dot(su2, w) * w2, dot(sv2, w) * w3), True
 
 
-@jit
+@jit(inline="always")
 def gap_correction(su1, sv1, su2, sv2, gap, out):
     """min_norm_step written to out (4,); returns its ok flag."""
     step, ok = min_norm_step(su1, sv1, su2, sv2, gap)
@@ -181,7 +181,7 @@ def curve_frame(y, a, b, point, tangent):
     return frame_of(frame(a, y[0], y[1]), frame(b, y[2], y[3]), point, tangent)
 
 
-@jit
+@jit(inline="always")
 def frame_of(f1, f2, point, tangent):
     """curve_frame from the surfaces' frames f1 = frame(a, y[0], y[1]) and f2 = frame(b, y[2], y[3]) at the state
     y, made by the caller."""
@@ -211,7 +211,7 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
     return status
 
 
-@jit
+@jit(inline="always")          # (the stored points' correction: inlined as dragilev_into is, with its helpers)
 def newton_from(y, a, b, q, t, gap_tol, max_iter, f1, f2):
     """project_to_curve from the frames f1 = frame(a, y[0], y[1]) and f2 = frame(b, y[2], y[3]) at the given y
     (made by the caller, who needed them too). Returns (iterations or -1 as project_to_curve, fresh, f1, f2):
@@ -320,7 +320,7 @@ def _project_row(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent
                            frame(b, y[2], y[3]))
 
 
-@jit
+@jit(inline="always")
 def _project_frames(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent, f1, f2):
     """_project_row from the frames f1, f2 at y: curve_frame, project_to_curve and frame_along of y, each surface
     evaluated once where two of them evaluate it at the same parameters (the same values: the same kernels)."""
@@ -344,7 +344,7 @@ def frame_along(y, a, b, normal, fixed, point, tangent):
     turn_along(tangent, normal, fixed)
 
 
-@jit
+@jit(inline="always")
 def turn_along(tangent, normal, fixed):
     """The tangent (3,) reversed in place when fixed and it points against the vector normal."""
     if fixed and dot(tangent, normal) < 0.0:

@@ -8,7 +8,9 @@ Python (spatialkin._lib.jit.use), one warning says so, and a background process 
 them (``python -m`` each registered workload: spatialkin.cli.warmup, and planar.warmup once planar is imported),
 then writes a stamp naming the cache index of every kernel it compiled. The next call of an entry point after it
 finishes (``refresh``) turns the kernels to their compiled, cached form, in this process too; later processes find
-the stamps and start compiled.
+the stamps and start compiled. Kernels inline kernels of other modules, and numba checks a cached kernel against its
+own module only: a stamp also holds a digest of every kernel module, and once any of them changes, the kernels it
+names are dropped from the cache and compile again (``drop_stale``).
 
 ``SPATIALKIN_FIRST_RUN=compile`` turns this off: kernels compile in the foreground, as numba does by default
 (announced by the entry that compiles). ``spatialkin warmup`` compiles everything in the foreground ahead (for an
@@ -38,6 +40,10 @@ BACKGROUND_NICENESS = 19
 STALE_LOCK_S = 900.0
 #: refresh() looks at the background warm-ups at most this often (s).
 POLL_S = 1.0
+#: The folder of the kernel modules (beside this one), which inline one another's kernels: numba checks a cached
+#: kernel against its own module's source only, so a stamp records a digest of them all (kernels_digest), and a
+#: change to any of them makes every kernel the stamp names compile again (drop_stale).
+KERNELS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "kernels")
 #: The line of a cold cache, and of a compile in the foreground (each once per process).
 COLD = ("spatialkin: first use of its compiled kernels on this machine: they are being compiled in the background "
         "(about a minute); until then they run as plain Python (the same results, slower), and this process turns "
@@ -79,6 +85,22 @@ def source_hash(path):
         return hashlib.sha256(f.read()).hexdigest()
 
 
+@functools.lru_cache(maxsize=1)
+def kernels_digest():
+    """sha256 over the sources of every kernel module (the .py files under KERNELS, by relative path), read once per
+    process."""
+    digest = hashlib.sha256()
+    for folder, subfolders, names in os.walk(KERNELS):
+        subfolders.sort()
+        for name in sorted(names):
+            if name.endswith(".py"):
+                path = os.path.join(folder, name)
+                digest.update(os.path.relpath(path, KERNELS).encode())
+                with open(path, "rb") as f:
+                    digest.update(hashlib.sha256(f.read()).digest())
+    return digest.hexdigest()
+
+
 def versions():
     """The versions a stamp is valid for."""
     import numba
@@ -99,7 +121,7 @@ def ready(workload=WORKLOAD):
             stamp = json.load(f)
     except (OSError, ValueError):
         return False
-    if not isinstance(stamp, dict) or stamp.get("versions") != versions():
+    if not isinstance(stamp, dict) or stamp.get("versions") != versions() or stamp.get("kernels") != kernels_digest():
         return False
     hashes = {}
     try:
@@ -132,11 +154,42 @@ def write_stamp(workload=WORKLOAD):
     try:
         os.makedirs(folder, exist_ok=True)
         with open(tmp, "w") as f:
-            json.dump({"versions": versions(), "indexes": indexes}, f)
+            json.dump({"versions": versions(), "kernels": kernels_digest(), "indexes": indexes}, f)
         os.replace(tmp, path)
     except OSError:                     # a read-only cache: numba itself then uses another folder
         if os.path.exists(tmp):
             os.remove(tmp)
+
+
+def drop_stale(workload=WORKLOAD):
+    """Remove the cache index of every kernel the workload's stamp names, and the stamp, when a kernel module changed
+    since the stamp was written (its kernels digest differs): a kernel may have inlined the changed one, and numba,
+    which compares a cached kernel with its own module only, would load it as it was. Returns how many indexes were
+    removed (none when the stamp is current, absent or unreadable)."""
+    folder = cache_folder()
+    if folder is None:
+        return 0
+    path = os.path.join(folder, STAMP.format(workload))
+    try:
+        with open(path) as f:
+            stamp = json.load(f)
+        if stamp.get("kernels") == kernels_digest():
+            return 0
+        indexes = [entry[0] for entry in stamp.get("indexes", [])]
+    except (OSError, ValueError, TypeError, AttributeError, IndexError, KeyError):
+        return 0
+    removed = 0
+    for index in indexes:
+        try:
+            os.remove(index)
+            removed += 1
+        except (OSError, TypeError):
+            pass
+    try:
+        os.remove(path)
+    except OSError:
+        pass
+    return removed
 
 
 def start_background(workload=WORKLOAD):
@@ -192,6 +245,7 @@ def background(workload, lock):
         pass
     try:
         import importlib
+        drop_stale(workload)
         importlib.import_module(workload).run()
         write_stamp(workload)
     finally:
@@ -213,6 +267,8 @@ def register(workload):
         _WORKLOADS.append(workload)
     if wanted() and not ready(workload):
         _go_cold(workload)
+    elif not wanted():
+        drop_stale(workload)
 
 
 def decide():
@@ -223,6 +279,8 @@ def decide():
     jit.announce_compilation(lambda: _say(COMPILING))
     if wanted() and not ready(WORKLOAD):
         _go_cold(WORKLOAD)
+    elif not wanted():              # (compiling in the foreground: no kernel inlining a changed one loaded as it was)
+        drop_stale(WORKLOAD)
 
 
 def _go_cold(workload):

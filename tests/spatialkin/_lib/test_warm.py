@@ -29,7 +29,8 @@ def test_ready_needs_a_stamp_of_these_versions_naming_every_index_of_the_same_so
     source, index = tmp_path / "k.py", tmp_path / "k.nbi"
     source.write_text("x = 1\n")
     index.write_text("i")
-    stamp = {"versions": warm.versions(), "indexes": [[str(index), str(source), warm.source_hash(source)]]}
+    stamp = {"versions": warm.versions(), "kernels": warm.kernels_digest(),
+             "indexes": [[str(index), str(source), warm.source_hash(source)]]}
     (tmp_path / warm.STAMP.format(warm.WORKLOAD)).write_text(json.dumps(stamp))
     assert warm.ready()
     assert not warm.ready("planar.warmup")        # each workload its own stamp
@@ -43,6 +44,50 @@ def test_ready_needs_a_stamp_of_these_versions_naming_every_index_of_the_same_so
     stamp["versions"] = {**stamp["versions"], "numba": "0.0"}
     (tmp_path / warm.STAMP.format(warm.WORKLOAD)).write_text(json.dumps(stamp))
     assert not warm.ready()
+
+
+def test_a_change_to_any_kernel_module_drops_every_stamped_index(tmp_path, monkeypatch):
+    """A kernel inlines kernels of other modules (the engine's right-hand side, the small LU solvers), and numba
+    checks a cached kernel against its own module only: a stamp whose kernels digest is not the current one is not
+    ready, and drop_stale removes every index it names, and the stamp; a current stamp keeps them."""
+    monkeypatch.setattr(warm, "cache_folder", lambda: str(tmp_path))
+    assert warm.drop_stale() == 0                 # no stamp: nothing to drop
+    source = tmp_path / "k.py"
+    source.write_text("x = 1\n")
+    indexes = [tmp_path / "k.f-1.py311.nbi", tmp_path / "k.g-9.py311.nbi"]
+    for index in indexes:
+        index.write_text("i")
+    entries = [[str(index), str(source), warm.source_hash(source)] for index in indexes]
+    stamp_path = tmp_path / warm.STAMP.format(warm.WORKLOAD)
+    stamp_path.write_text(json.dumps({"versions": warm.versions(), "kernels": warm.kernels_digest(),
+                                      "indexes": entries}))
+    assert warm.ready() and warm.drop_stale() == 0
+    assert all(index.exists() for index in indexes) and stamp_path.exists()
+    stamp_path.write_text(json.dumps({"versions": warm.versions(), "kernels": "0" * 64, "indexes": entries}))
+    assert not warm.ready()
+    assert warm.drop_stale() == 2
+    assert not any(index.exists() for index in indexes) and not stamp_path.exists()
+    assert not warm.ready("planar.warmup") and warm.drop_stale("planar.warmup") == 0
+
+
+def test_the_kernels_digest_covers_every_kernel_module(tmp_path, monkeypatch):
+    """kernels_digest reads every module of spatialkin.kernels (its sources, by relative path): the digest of a copy
+    is the same, and that of the copy with one module changed differs."""
+    import shutil
+    original = warm.kernels_digest()
+    copy = tmp_path / "kernels"
+    shutil.copytree(warm.KERNELS, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    monkeypatch.setattr(warm, "KERNELS", str(copy))
+    try:
+        warm.kernels_digest.cache_clear()
+        assert warm.kernels_digest() == original
+        with open(copy / "linalg.py", "a") as f:
+            f.write("\n# changed\n")
+        warm.kernels_digest.cache_clear()
+        assert warm.kernels_digest() != original
+    finally:
+        warm.kernels_digest.cache_clear()         # (the next reading is of the real folder again)
+    assert len(original) == 64
 
 
 def spheres_circle():

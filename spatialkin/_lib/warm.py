@@ -9,8 +9,8 @@ them (``python -m`` each registered workload: spatialkin.cli.warmup, and planar.
 then writes a stamp naming the cache index of every kernel it compiled. The next call of an entry point after it
 finishes (``refresh``) turns the kernels to their compiled, cached form, in this process too; later processes find
 the stamps and start compiled. Kernels inline kernels of other modules, and numba checks a cached kernel against its
-own module only: a stamp also holds a digest of every kernel module, and once any of them changes, the kernels it
-names are dropped from the cache and compile again (``drop_stale``).
+own module only: a stamp also holds a digest of every kernel module, and once any of them changes, every cached
+kernel of the stamp's folders is dropped and compiles again (``drop_stale``).
 
 ``SPATIALKIN_FIRST_RUN=compile`` turns this off: kernels compile in the foreground, as numba does by default
 (announced by the entry that compiles). ``spatialkin warmup`` compiles everything in the foreground ahead (for an
@@ -42,7 +42,7 @@ STALE_LOCK_S = 900.0
 POLL_S = 1.0
 #: The folder of the kernel modules (beside this one), which inline one another's kernels: numba checks a cached
 #: kernel against its own module's source only, so a stamp records a digest of them all (kernels_digest), and a
-#: change to any of them makes every kernel the stamp names compile again (drop_stale).
+#: change to any of them makes every kernel of the stamp's folders compile again (drop_stale).
 KERNELS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "kernels")
 #: The line of a cold cache, and of a compile in the foreground (each once per process).
 COLD = ("spatialkin: first use of its compiled kernels on this machine: they are being compiled in the background "
@@ -142,7 +142,7 @@ def write_stamp(workload=WORKLOAD):
     for d in jit.dispatchers():
         if not d.signatures or d.py_func.__module__.partition(".")[0] not in jit.PACKAGES:
             continue
-        index = getattr(getattr(getattr(d, "_cache", None), "_cache_file", None), "_index_path", None)
+        index = _index_of(d)
         if index is None or not os.path.exists(index):     # (a kernel not cached on disk: nothing to stamp)
             continue
         source = d.py_func.__code__.co_filename
@@ -161,11 +161,27 @@ def write_stamp(workload=WORKLOAD):
             os.remove(tmp)
 
 
+def _index_of(dispatcher):
+    """The path of a kernel's cache index in numba's layout, or None where that layout is unknown."""
+    return getattr(getattr(getattr(dispatcher, "_cache", None), "_cache_file", None), "_index_path", None)
+
+
+def kernel_folders(package):
+    """The cache folders of the package's kernels registered in this process (one per source folder)."""
+    folders = set()
+    for d in jit.dispatchers():
+        index = _index_of(d)
+        if index is not None and d.py_func.__module__.partition(".")[0] == package:
+            folders.add(os.path.dirname(index))
+    return folders
+
+
 def drop_stale(workload=WORKLOAD):
-    """Remove the cache index of every kernel the workload's stamp names, and the stamp, when a kernel module changed
-    since the stamp was written (its kernels digest differs): a kernel may have inlined the changed one, and numba,
-    which compares a cached kernel with its own module only, would load it as it was. Returns how many indexes were
-    removed (none when the stamp is current, absent or unreadable)."""
+    """Remove the workload's stamp and every cache index in the folders of its kernels (those the stamp names, and
+    those of its package's kernels registered here) when a kernel module changed since the stamp was written (its
+    kernels digest differs): a kernel may have inlined the changed one, and numba, which compares a cached kernel
+    with its own module only, would load it as it was. Returns how many indexes were removed (none when the stamp
+    is current, absent or unreadable)."""
     folder = cache_folder()
     if folder is None:
         return 0
@@ -175,16 +191,23 @@ def drop_stale(workload=WORKLOAD):
             stamp = json.load(f)
         if stamp.get("kernels") == kernels_digest():
             return 0
-        indexes = [entry[0] for entry in stamp.get("indexes", [])]
+        folders = {os.path.dirname(entry[0]) for entry in stamp.get("indexes", [])}
     except (OSError, ValueError, TypeError, AttributeError, IndexError, KeyError):
         return 0
+    folders |= kernel_folders(workload.partition(".")[0])
     removed = 0
-    for index in indexes:
+    for where in folders:
         try:
-            os.remove(index)
-            removed += 1
+            names = os.listdir(where)
         except (OSError, TypeError):
-            pass
+            continue
+        for name in names:
+            if name.endswith(".nbi"):
+                try:
+                    os.remove(os.path.join(where, name))
+                    removed += 1
+                except OSError:
+                    pass
     try:
         os.remove(path)
     except OSError:

@@ -46,27 +46,35 @@ def test_ready_needs_a_stamp_of_these_versions_naming_every_index_of_the_same_so
     assert not warm.ready()
 
 
-def test_a_change_to_any_kernel_module_drops_every_stamped_index(tmp_path, monkeypatch):
+def test_a_change_to_any_kernel_module_drops_every_index_of_its_folders(tmp_path, monkeypatch):
     """A kernel inlines kernels of other modules (the engine's right-hand side, the small LU solvers), and numba
     checks a cached kernel against its own module only: a stamp whose kernels digest is not the current one is not
-    ready, and drop_stale removes every index it names, and the stamp; a current stamp keeps them."""
-    monkeypatch.setattr(warm, "cache_folder", lambda: str(tmp_path))
+    ready, and drop_stale removes every index in the folders of the kernels it names or that are registered (a
+    callee's too), and the stamp; a current stamp keeps them, and other folders are left alone."""
+    cache, kernels, other = tmp_path / "cache", tmp_path / "kernels", tmp_path / "other"
+    for folder in (cache, kernels, other):
+        folder.mkdir()
+    monkeypatch.setattr(warm, "cache_folder", lambda: str(cache))
+    monkeypatch.setattr(warm, "kernel_folders", lambda package: {str(kernels)} if package == "spatialkin" else set())
     assert warm.drop_stale() == 0                 # no stamp: nothing to drop
     source = tmp_path / "k.py"
     source.write_text("x = 1\n")
-    indexes = [tmp_path / "k.f-1.py311.nbi", tmp_path / "k.g-9.py311.nbi"]
-    for index in indexes:
-        index.write_text("i")
-    entries = [[str(index), str(source), warm.source_hash(source)] for index in indexes]
-    stamp_path = tmp_path / warm.STAMP.format(warm.WORKLOAD)
+    stamped = [cache / "k.f-1.py311.nbi", cache / "k.g-9.py311.nbi"]
+    callee, elsewhere = kernels / "m.h-3.py311.nbi", other / "n.i-4.py311.nbi"
+    data = cache / "k.f-1.py311.1.nbc"
+    for path in stamped + [callee, elsewhere, data]:
+        path.write_text("i")
+    entries = [[str(index), str(source), warm.source_hash(source)] for index in stamped]
+    stamp_path = cache / warm.STAMP.format(warm.WORKLOAD)
     stamp_path.write_text(json.dumps({"versions": warm.versions(), "kernels": warm.kernels_digest(),
                                       "indexes": entries}))
     assert warm.ready() and warm.drop_stale() == 0
-    assert all(index.exists() for index in indexes) and stamp_path.exists()
+    assert all(path.exists() for path in stamped + [callee, elsewhere]) and stamp_path.exists()
     stamp_path.write_text(json.dumps({"versions": warm.versions(), "kernels": "0" * 64, "indexes": entries}))
     assert not warm.ready()
-    assert warm.drop_stale() == 2
-    assert not any(index.exists() for index in indexes) and not stamp_path.exists()
+    assert warm.drop_stale() == 3
+    assert not any(path.exists() for path in stamped + [callee]) and not stamp_path.exists()
+    assert elsewhere.exists() and data.exists()   # (another folder; numba's data files, unreachable without index)
     assert not warm.ready("planar.warmup") and warm.drop_stale("planar.warmup") == 0
 
 

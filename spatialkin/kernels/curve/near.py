@@ -17,7 +17,8 @@ Every state is then corrected onto both surfaces by Newton (project_to_curve in 
 ``curve_states`` is the dense output of a traced curve (spatialkin.tracing.curve.dense.TracedSolution evaluates
 through it), and the foot point is found by Newton in s (foot_distance; foot_many and closest_many are
 TracedSolution's foot and closest points). near_mask, the test against a radius, stops at the first Newton iterate
-within it (a point of the curve too).
+within it (a point of the curve too). curve_point and its helpers are inlined into these loops at numba's level: as
+separate calls, the reference counting of their array arguments costs about a third of a point.
 """
 import math
 
@@ -39,7 +40,7 @@ UNDECIDED = 2
 PYTHON = 3
 
 
-@jit
+@jit(inline="always")
 def solver_state(table, k, t, out):
     """The solver's state at its time t on span k into out (4,), as the segment's record gives it
     (spatialkin.ode.record.Steps: rk.dense_into on its steps)."""
@@ -48,7 +49,7 @@ def solver_state(table, k, t, out):
     dense_into(step_t[lo:hi], step_y[lo:hi], step_h[p:], step_q[p:], t, out)
 
 
-@jit
+@jit(inline="always")
 def remapped_time(x, xp, fp):
     """The solver time of arc length x on a re-measured segment (knots xp ascending, solver times fp): np.interp(x,
     xp, fp) between the knots, operation for operation as numpy computes it (arr_interp in
@@ -82,7 +83,7 @@ def remapped_times(x, xp, fp, out):
         out[i] = remapped_time(x[i], xp, fp)
 
 
-@jit
+@jit(inline="always")
 def span_at(spans, s):
     """The span k holding arc length s (already wrapped): searchsorted(lo, s, 'right') - 1, clipped to the spans
     (lo ascending)."""
@@ -93,7 +94,7 @@ def span_at(spans, s):
     return k
 
 
-@jit
+@jit(inline="always")
 def curve_point(table, closed, length, gap_tol, max_iter, s, y, q, point, tangent):
     """Point (3,) and unit tangent (3,) (towards increasing s) of the curve at arc length s, the state corrected
     onto both surfaces into y (4,) (q (3,): work space); returns s wrapped into [0, length) for a closed curve, or

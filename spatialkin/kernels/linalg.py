@@ -1,8 +1,9 @@
 """Small dense linear systems in jitted code: LU with partial pivoting, in place (no allocation).
 
 Used by the curve kernels' 3 x 3 and 4 x 4 Newton systems and by planar linkages' Schur complements. Each is
-inlined into its callers at numba's level (inline='always'): as a separate call, the reference counting of its array
-arguments (atomic operations) costs about as much as the elimination of a 4 x 4 system.
+inlined into spatialkin's kernels at numba's level (the inline cost model _into_spatialkin): as a separate call, the
+reference counting of its array arguments (atomic operations) costs about as much as the elimination of a 4 x 4
+system.
 """
 import math
 
@@ -14,7 +15,14 @@ __all__ = ["PIVOT_EPS", "lu_factor", "lu_solve", "balance_columns", "unbalance"]
 PIVOT_EPS = 1e-14
 
 
-@jit(inline="always")
+def _into_spatialkin(expr, caller, callee):
+    """numba's inline cost model of these solvers: inlined into spatialkin's kernels (Newton's 4 x 4 systems, solved
+    point after point), called from the others (planar's linkages: one solve a step, where inlining costs only
+    compile time)."""
+    return caller.func_id.modname.partition(".")[0] == "spatialkin"
+
+
+@jit(inline=_into_spatialkin)
 def lu_factor(m, piv):
     """LU factorisation with partial pivoting of the square m, in place; False if a pivot vanishes
     relative to the largest entry (a singular matrix)."""
@@ -45,7 +53,7 @@ def lu_factor(m, piv):
     return True
 
 
-@jit(inline="always")
+@jit(inline=_into_spatialkin)
 def lu_solve(m, piv, r, x):
     """x = m^-1 r from lu_factor's m, piv (r is left untouched)."""
     n = m.shape[0]
@@ -65,7 +73,7 @@ def lu_solve(m, piv, r, x):
         x[i] /= m[i, i]
 
 
-@jit(inline="always")
+@jit(inline=_into_spatialkin)
 def balance_columns(m, scales):
     """Scale each column of m in place by a power of two (into scales, (n,)) that puts its largest entry in
     [0.5, 1): exact, so lu_factor of the balanced m gives the same numbers up to those powers, but its pivot test
@@ -85,7 +93,7 @@ def balance_columns(m, scales):
                 m[i, j] *= scales[j]
 
 
-@jit(inline="always")
+@jit(inline=_into_spatialkin)
 def unbalance(x, scales):
     """The solution of the original system from that of the balanced one (balance_columns), in place."""
     for j in range(x.shape[0]):

@@ -86,18 +86,25 @@ def source_hash(path):
 
 
 @functools.lru_cache(maxsize=1)
-def kernels_digest():
-    """sha256 over the sources of every kernel module (the .py files under KERNELS, by relative path), read once per
+def kernel_hashes():
+    """{path: source_hash} of every kernel module (the .py files under KERNELS, in a fixed order), read once per
     process."""
-    digest = hashlib.sha256()
+    hashes = {}
     for folder, subfolders, names in os.walk(KERNELS):
         subfolders.sort()
         for name in sorted(names):
             if name.endswith(".py"):
                 path = os.path.join(folder, name)
-                digest.update(os.path.relpath(path, KERNELS).encode())
-                with open(path, "rb") as f:
-                    digest.update(hashlib.sha256(f.read()).digest())
+                hashes[path] = source_hash(path)
+    return hashes
+
+
+def kernels_digest():
+    """sha256 over every kernel module's relative path and source hash (kernel_hashes)."""
+    digest = hashlib.sha256()
+    for path, source in kernel_hashes().items():
+        digest.update(os.path.relpath(path, KERNELS).encode())
+        digest.update(source.encode())
     return digest.hexdigest()
 
 
@@ -123,7 +130,7 @@ def ready(workload=WORKLOAD):
         return False
     if not isinstance(stamp, dict) or stamp.get("versions") != versions() or stamp.get("kernels") != kernels_digest():
         return False
-    hashes = {}
+    hashes = dict(kernel_hashes())          # (the kernel modules read once: the digest above read them)
     try:
         for index, source, digest in stamp.get("indexes", []):
             if not os.path.exists(index) or hashes.setdefault(source, source_hash(source)) != digest:

@@ -87,14 +87,14 @@ def test_the_kernels_digest_covers_every_kernel_module(tmp_path, monkeypatch):
     shutil.copytree(warm.KERNELS, copy, ignore=shutil.ignore_patterns("__pycache__"))
     monkeypatch.setattr(warm, "KERNELS", str(copy))
     try:
-        warm.kernels_digest.cache_clear()
+        warm.kernel_hashes.cache_clear()
         assert warm.kernels_digest() == original
         with open(copy / "linalg.py", "a") as f:
             f.write("\n# changed\n")
-        warm.kernels_digest.cache_clear()
+        warm.kernel_hashes.cache_clear()
         assert warm.kernels_digest() != original
     finally:
-        warm.kernels_digest.cache_clear()         # (the next reading is of the real folder again)
+        warm.kernel_hashes.cache_clear()         # (the next reading is of the real folder again)
     assert len(original) == 64
 
 

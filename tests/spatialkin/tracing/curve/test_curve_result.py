@@ -106,7 +106,7 @@ def test_arc_lengths_given_as_python_ints_past_int64_are_read_or_named():
     """curve(s) reads ints past numpy's int64 as floats (an array of objects), names an int too large for a float,
     and refuses what is no number; the oracle: the circle of radius 0.8 cut by z = 0.6, closed form."""
     curve, = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))))
-    big = 10 ** 20                                  # (past int64, within a float: wraps round the loop)
+    big = 10 ** 20                                  # (past int64, within a float: wraps around the loop)
     point = curve(big)
     assert abs(np.hypot(point[0], point[1]) - 0.8) < ROUND_OFF and abs(point[2] - 0.6) < ROUND_OFF
     assert np.array_equal(curve([0, big]), curve([0.0, float(big)]))

@@ -13,6 +13,8 @@ import os
 import sys
 
 import numba
+import numba.extending
+from numba.core import types
 from numba.core import event as _event
 
 #: True when kernels run as plain Python (debugging / coverage).
@@ -103,3 +105,46 @@ def announce_compilation(announce):
     listener = _FirstCompile(announce)
     _event.register("numba:compile", listener)
     return listener
+
+
+def borrowed(value):
+    """The same array (or tuple holding arrays), borrowed: in compiled code, a view of each array without its
+    memory's reference count (a NULL meminfo), so that the code it passes through counts no references to it.
+    numba counts a reference, with an atomic operation, for every array a variable takes, an inlined function's
+    arguments included; in the integrator's and Newton's loops these cost as much as the arithmetic. A borrowed
+    view is valid only while its array is alive: a kernel's argument (its caller holds it), or an array the kernel
+    keeps alive with ``kept``; it is never returned or stored. In Python, the value itself."""
+    return value
+
+
+def kept(*arrays):
+    """Nothing: a use of each array, so that compiled code keeps them alive up to this point (the owners of
+    borrowed views)."""
+
+
+def _borrow(context, builder, typ, value):
+    """borrowed's code: the value of type typ with every array's meminfo set to NULL (tuples item by item)."""
+    if isinstance(typ, types.Array):
+        view = context.make_array(typ)(context, builder, value=value)
+        view.meminfo = context.get_constant_null(types.MemInfoPointer(types.voidptr))
+        return view._getvalue()
+    if isinstance(typ, types.BaseTuple):
+        items = [_borrow(context, builder, t, builder.extract_value(value, i)) for i, t in enumerate(typ.types)]
+        return context.make_tuple(builder, typ, items)
+    context.nrt.incref(builder, typ, value)        # (anything else: a new reference, as any returned value)
+    return value
+
+
+@numba.extending.intrinsic
+def _borrowed(typingctx, value):
+    return value(value), lambda context, builder, signature, args: _borrow(context, builder, value, args[0])
+
+
+@numba.extending.overload(borrowed, jit_options={"cache": True})
+def _borrowed_overload(value):
+    return lambda value: _borrowed(value)
+
+
+@numba.extending.overload(kept, jit_options={"cache": True})
+def _kept_overload(*arrays):
+    return lambda *arrays: None

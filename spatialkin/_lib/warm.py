@@ -41,8 +41,9 @@ STALE_LOCK_S = 900.0
 #: refresh() looks at the background warm-ups at most this often (s).
 POLL_S = 1.0
 #: The folder of the kernel modules (beside this one), which inline one another's kernels: numba checks a cached
-#: kernel against its own module's source only, so a stamp records a digest of them all (kernels_digest), and a
-#: change to any of them makes every kernel of the stamp's folders compile again (drop_stale).
+#: kernel against its own module's source only, so a stamp records a digest of them all and of the jit module
+#: (kernels_digest), and a change to any of them makes every kernel of the stamp's folders compile again
+#: (drop_stale).
 KERNELS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "kernels")
 #: The line of a cold cache, and of a compile in the foreground (each once per process).
 COLD = ("spatialkin: first use of its compiled kernels on this machine: they are being compiled in the background "
@@ -87,9 +88,9 @@ def source_hash(path):
 
 @functools.lru_cache(maxsize=1)
 def kernel_hashes():
-    """{path: source_hash} of every kernel module (the .py files under KERNELS, in a fixed order), read once per
-    process."""
-    hashes = {}
+    """{path: source_hash} of every kernel module (the .py files under KERNELS, in a fixed order) and of the jit
+    module, whose compiled helpers (borrowed, kept) the kernels compile into themselves; read once per process."""
+    hashes = {jit.__file__: source_hash(jit.__file__)}
     for folder, subfolders, names in os.walk(KERNELS):
         subfolders.sort()
         for name in sorted(names):
@@ -100,10 +101,11 @@ def kernel_hashes():
 
 
 def kernels_digest():
-    """sha256 over every kernel module's relative path and source hash (kernel_hashes)."""
+    """sha256 over every kernel module's relative path and source hash, and the jit module's (kernel_hashes)."""
     digest = hashlib.sha256()
     for path, source in kernel_hashes().items():
-        digest.update(os.path.relpath(path, KERNELS).encode())
+        name = "jit" if path == jit.__file__ else os.path.relpath(path, KERNELS)
+        digest.update(name.encode())
         digest.update(source.encode())
     return digest.hexdigest()
 

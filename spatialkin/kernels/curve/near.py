@@ -17,14 +17,15 @@ Every state is then corrected onto both surfaces by Newton (project_to_curve in 
 ``curve_states`` is the dense output of a traced curve (spatialkin.tracing.curve.dense.TracedSolution evaluates
 through it), and the foot point is found by Newton in s (foot_distance; foot_many and closest_many are
 TracedSolution's foot and closest points). near_mask, the test against a radius, stops at the first Newton iterate
-within it (a point of the curve too). curve_point and its helpers are inlined into these loops at numba's level: as
-separate calls, the reference counting of their array arguments costs about a third of a point.
+within it (a point of the curve too). curve_point and its helpers are inlined into these loops at numba's level, and
+the kernels' arrays are borrowed (spatialkin._lib.jit.borrowed): as separate calls, or with reference counts on their
+arrays, the counting costs as much as the arithmetic.
 """
 import math
 
 import numpy as np
 
-from ..._lib.jit import jit
+from ..._lib.jit import borrowed, jit, kept
 from ..march.curve import curve_frame, project_to_curve
 from ..ode.rk import dense_into
 
@@ -125,7 +126,9 @@ def curve_states(table, closed, length, gap_tol, max_iter, s, ys, points, tangen
     """The curve at arc lengths s (M,) (wrapped already): corrected states ys (M, 4), points (M, 3) and unit tangents
     (M, 3) (curve_point for each), and the span of each into index (M,), -1 where the tables do not hold it (its
     rows then unwritten)."""
-    q = np.empty(3)
+    table, s, ys, points, tangents, index = borrowed((table, s, ys, points, tangents, index))
+    work = np.empty(3)
+    q = borrowed(work)
     spans = table[0]
     for m in range(s.shape[0]):
         k = span_at(spans, s[m])
@@ -134,6 +137,7 @@ def curve_states(table, closed, length, gap_tol, max_iter, s, ys, points, tangen
             continue
         curve_point(table, closed, length, gap_tol, max_iter, s[m], ys[m], q, points[m], tangents[m])
         index[m] = k
+    kept(work)
 
 
 @jit
@@ -142,7 +146,17 @@ def foot_distance(table, closed, length, gap_tol, max_iter, p, s, steps, enough)
     CurveSolution.foot_points (its dot product summed as numpy's einsum sums three terms: (0 + 2) + 1); or, at
     the first curve point met within `enough` of p, that point's (a negative `enough`: never); (NaN, NaN) when
     Newton meets a span the tables do not hold."""
-    y, q, at, tangent = np.empty(4), np.empty(3), np.empty(3), np.empty(3)
+    table, p = borrowed((table, p))
+    work = (np.empty(4), np.empty(3), np.empty(3), np.empty(3))
+    y, q, at, tangent = borrowed(work)
+    s, dist = _foot(table, closed, length, gap_tol, max_iter, p, s, steps, enough, y, q, at, tangent)
+    kept(work)
+    return s, dist
+
+
+@jit(inline="always")
+def _foot(table, closed, length, gap_tol, max_iter, p, s, steps, enough, y, q, at, tangent):
+    """foot_distance with its work arrays y (4,), q, at, tangent (3,)."""
     for _ in range(steps):
         s_at = curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
         if math.isnan(s_at):
@@ -207,6 +221,7 @@ def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, 
     the Newton iterates before it: each is a point of the curve); PYTHON when that Newton met a span the tables
     do not hold (or gave NaN); UNDECIDED otherwise. Returns the number of UNDECIDED and PYTHON points.
     """
+    points, stored, s_stored, table, verdict = borrowed((points, stored, s_stored, table, verdict))
     reach = reach_of(s_stored, radius)
     undecided = 0
     for m in range(points.shape[0]):
@@ -229,6 +244,7 @@ def near_mask(points, stored, s_stored, radius, table, closed, length, gap_tol, 
 def foot_many(table, closed, length, gap_tol, max_iter, points, s, steps, s_out, d_out):
     """foot_distance (every step taken) of each point (M, 3) from its start s (M,): arc lengths s_out (M,) and
     distances d_out (M,), NaN where Newton met a span the tables do not hold."""
+    table, points, s, s_out, d_out = borrowed((table, points, s, s_out, d_out))
     for m in range(points.shape[0]):
         s_out[m], d_out[m] = foot_distance(table, closed, length, gap_tol, max_iter, points[m], s[m], steps, -1.0)
 
@@ -239,6 +255,7 @@ def closest_many(points, grid_s, grid, table, closed, length, gap_tol, max_iter,
     `candidates` grid points (arc lengths grid_s (G,), points grid (G, 3)) nearest to it, the nearest of them (the
     first of equals): its arc length s_out (M,) and distance d_out (M,), NaN where a Newton met a span the tables
     do not hold."""
+    points, grid_s, grid, table, s_out, d_out = borrowed((points, grid_s, grid, table, s_out, d_out))
     k = min(candidates, grid.shape[0])
     best_d, best_i = np.empty(k), np.empty(k, dtype=np.int64)
     for m in range(points.shape[0]):

@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from ..._lib.jit import jit
+from ..._lib.jit import borrowed, jit, kept
 from ..march.curve import corrected_many
 from ..geometry.surfaces import inverse
 
@@ -56,9 +56,12 @@ def corrected_spans(y_all, cuts, charts_a, charts_b, normals, user_a, user_b, ow
     (N,) as corrected_many writes them, params (N, 4) the corrected states, where own_a[j] (own_b[j]) with
     surface a's (b's) (u, v) from the points in the user's chart user_a (user_b); with unwrap_a (unwrap_b) the
     whole turns removed from that surface's u over all N points."""
+    y_all, charts_a, charts_b, normals, points, params, gaps = borrowed((y_all, charts_a, charts_b, normals, points,
+                                                                         params, gaps))
     for j in range(cuts.shape[0] - 1):
         lo, hi = cuts[j], cuts[j + 1]
-        y = y_all[lo:hi].copy()
+        states = y_all[lo:hi].copy()
+        y = borrowed(states)
         corrected_many(y, charts_a[j], charts_b[j], normals[j], gap_tol, max_iter, points[lo:hi], gaps[lo:hi])
         for k in range(hi - lo):
             for i in range(4):
@@ -67,6 +70,7 @@ def corrected_spans(y_all, cuts, charts_a, charts_b, normals, user_a, user_b, ow
             user_parameters(user_a, points, lo, hi, 0, params)
         if own_b[j]:
             user_parameters(user_b, points, lo, hi, 2, params)
+        kept(states)
     if unwrap_a:
         unwrap_turns(params[:, 0])
     if unwrap_b:

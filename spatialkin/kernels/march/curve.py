@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from ..._lib.jit import jit
+from ..._lib.jit import borrowed, jit, kept
 from ..linalg import PIVOT_EPS, balance_columns, lu_factor, lu_solve, unbalance
 from ..geometry.surfaces import frame, second
 
@@ -207,21 +207,26 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
         parallel normals, keeps the steps above gap_tol while the point sits on both surfaces), or -1 if
         Newton failed (singular system or no convergence within max_iter).
     """
-    status, _, _, _ = newton_from(y, a, b, q, t, gap_tol, max_iter, frame(a, y[0], y[1]), frame(b, y[2], y[3]))
+    work = newton_work()
+    status, _, _, _ = newton_from(y, a, b, q, t, gap_tol, max_iter, frame(a, y[0], y[1]), frame(b, y[2], y[3]),
+                                  borrowed(work))
+    kept(work)
     return status
 
 
+@jit
+def newton_work():
+    """Newton's work arrays for newton_from: (m (4, 4), r, dx, piv, scales (4,))."""
+    return np.empty((4, 4)), np.empty(4), np.empty(4), np.empty(4, dtype=np.int64), np.empty(4)
+
+
 @jit(inline="always")          # (the stored points' correction: inlined as dragilev_into is, with its helpers)
-def newton_from(y, a, b, q, t, gap_tol, max_iter, f1, f2):
+def newton_from(y, a, b, q, t, gap_tol, max_iter, f1, f2, work):
     """project_to_curve from the frames f1 = frame(a, y[0], y[1]) and f2 = frame(b, y[2], y[3]) at the given y
     (made by the caller, who needed them too). Returns (iterations or -1 as project_to_curve, fresh, f1, f2):
     with fresh, f1 and f2 are the frames at the returned y (Newton stopped on its test before a step), else at
     the y before the last step."""
-    m = np.empty((4, 4))
-    r = np.empty(4)
-    dx = np.empty(4)
-    piv = np.empty(4, dtype=np.int64)
-    scales = np.empty(4)
+    m, r, dx, piv, scales = work
     use_plane = dot(t, t) > 0.0
     step = np.inf
     prev_step = np.inf
@@ -282,9 +287,10 @@ def project_many(ys, a, b, normal, gap_tol, max_iter, points, tangents, status):
     status[k] = iterations used or -1."""
     q = np.empty(3)
     t = np.empty(3)
+    work = newton_work()
     fixed = dot(normal, normal) > 0.0
     for k in range(ys.shape[0]):
-        status[k] = _project_row(ys[k], a, b, normal, fixed, gap_tol, max_iter, q, t, points[k], tangents[k])
+        status[k] = _project_row(ys[k], a, b, normal, fixed, gap_tol, max_iter, q, t, points[k], tangents[k], work)
 
 
 @jit
@@ -301,34 +307,36 @@ def project_through(ys, a, b, normal, targets, gap_tol, max_iter, points, tangen
 def corrected_many(ys, a, b, normal, gap_tol, max_iter, points, gaps):
     """project_many for the stored states of a traced segment: the rows of ys (N, 4) projected in place, their
     points (N, 3), and gaps[k] = |M1 - M2| of each row before its projection (the solver's own gap)."""
-    q = np.empty(3)
-    t = np.empty(3)
-    tangent = np.empty(3)
+    ys, a, b, normal, points, gaps = borrowed((ys, a, b, normal, points, gaps))     # (see borrowed)
+    vectors, newton = np.empty((3, 3)), newton_work()
+    q, t, tangent = borrowed((vectors[0], vectors[1], vectors[2]))
     fixed = dot(normal, normal) > 0.0
     for k in range(ys.shape[0]):
         f1 = frame(a, ys[k, 0], ys[k, 1])
         f2 = frame(b, ys[k, 2], ys[k, 3])
         p1, p2 = f1[0], f2[0]
         gaps[k] = math.sqrt((p1[0] - p2[0]) ** 2 + (p1[1] - p2[1]) ** 2 + (p1[2] - p2[2]) ** 2)
-        _project_frames(ys[k], a, b, normal, fixed, gap_tol, max_iter, q, t, points[k], tangent, f1, f2)
+        _project_frames(ys[k], a, b, normal, fixed, gap_tol, max_iter, q, t, points[k], tangent, f1, f2,
+                        borrowed(newton))
+    kept(vectors, newton)
 
 
 @jit
-def _project_row(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent):
+def _project_row(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent, work):
     """One row of project_many (q, t: work vectors); returns Newton's iterations or -1."""
     return _project_frames(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent, frame(a, y[0], y[1]),
-                           frame(b, y[2], y[3]))
+                           frame(b, y[2], y[3]), work)
 
 
 @jit(inline="always")
-def _project_frames(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent, f1, f2):
+def _project_frames(y, a, b, normal, fixed, gap_tol, max_iter, q, t, point, tangent, f1, f2, work):
     """_project_row from the frames f1, f2 at y: curve_frame, project_to_curve and frame_along of y, each surface
     evaluated once where two of them evaluate it at the same parameters (the same values: the same kernels)."""
     frame_of(f1, f2, q, t)                              # curve_frame(y, a, b, q, t)
     if fixed:
         for i in range(3):
             t[i] = normal[i]
-    status, fresh, f1, f2 = newton_from(y, a, b, q, t, gap_tol, max_iter, f1, f2)
+    status, fresh, f1, f2 = newton_from(y, a, b, q, t, gap_tol, max_iter, f1, f2, work)
     if not fresh:
         f1 = frame(a, y[0], y[1])
         f2 = frame(b, y[2], y[3])

@@ -27,7 +27,7 @@ tableau read from the public class scipy.integrate.DOP853: A, B, C, A_EXTRA, C_E
 import numpy as np
 from scipy.integrate import DOP853 as _DOP853      # its tableau, as class attributes
 
-from ..._lib.jit import jit
+from ..._lib.jit import borrowed, jit, kept
 
 # --- what advance returns ----------------------------------------------------------------------------------
 #: Took max_steps steps, or reached t_bound, without an event: call again.
@@ -628,18 +628,17 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
     hit_ts : ndarray (k,)
     hit_ys : ndarray (k, n)
     """
+    # the arguments (their caller holds them) and the arrays made here are used through borrowed views: no atomic
+    # reference counts in the loops (the arrays made here are kept alive to the end)
+    args, eargs, y, f, atol, g, active, directions, modes = borrowed((args, eargs, y, f, atol, g, active, directions,
+                                                                      modes))
     n = y.shape[0]
     ne = g.shape[0]
-    ts = np.empty(max_steps + 1)
-    ys = np.empty((max_steps + 1, n))
-    hs = np.empty(max_steps)
-    qs = np.empty((max_steps, n, DENSE_COLUMNS[method]))
-    hits = np.empty(ne, dtype=np.int64)
-    hit_ts = np.empty(ne)
-    hit_ys = np.empty((ne, n))
+    records = (np.empty(max_steps + 1), np.empty((max_steps + 1, n)), np.empty(max_steps),
+               np.empty((max_steps, n, DENSE_COLUMNS[method])), np.empty(ne, dtype=np.int64), np.empty(ne),
+               np.empty((ne, n)), np.zeros(ne, dtype=np.bool_), np.empty(ne))
+    ts, ys, hs, qs, hits, hit_ts, hit_ys, only, values = borrowed(records)
     n_hits = 0
-    only = np.zeros(ne, dtype=np.bool_)
-    values = np.empty(ne)
     ts[0] = t
     copy_into(ys[0], y)
     count = 1
@@ -650,18 +649,12 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         if h <= 0.0:
             h = initial_step(fun, args, t, y, f, t_bound, max_step, rtol, atol, ERROR_ORDERS[method])
             nfev += 1
-    k = np.empty((STAGE_ROWS[method], n))
     last = END_ROWS[method]
     exponent = -1.0 / (ERROR_ORDERS[method] + 1)
-    y_new = np.empty(n)
-    stage = np.empty(n)
-    err = np.empty(n)
-    coefficients = np.empty(7)
-    scale = np.empty(n)
-    g_new = np.empty(g.shape[0])
-    g_last = np.empty(g.shape[0])
-    g_now = np.empty(g.shape[0])
-    probed = np.zeros(ne, dtype=np.bool_)               # the probed level events
+    work = (np.empty((STAGE_ROWS[method], n)), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(7),
+            np.empty(ne), np.empty(ne), np.empty(ne), np.zeros(ne, dtype=np.bool_))
+    k, y_new, stage, err, scale, coefficients, g_new, g_last, g_now, probed = borrowed(work)  # (probed: the probed
+    # level events)
     any_probed = False
     for i in range(ne):
         probed[i] = active[i] and modes[i] == LEVEL_BEFORE_PROBED
@@ -799,5 +792,7 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         if n_hits:
             status = EVENT
             break
-    return (status, t, h, nfev, ts[:count].copy(), ys[:count].copy(), hs[:count - 1].copy(),
-            qs[:count - 1].copy(), hits[:n_hits].copy(), hit_ts[:n_hits].copy(), hit_ys[:n_hits].copy())
+    result = (status, t, h, nfev, ts[:count].copy(), ys[:count].copy(), hs[:count - 1].copy(),
+              qs[:count - 1].copy(), hits[:n_hits].copy(), hit_ts[:n_hits].copy(), hit_ys[:n_hits].copy())
+    kept(records, work)
+    return result

@@ -8,6 +8,9 @@ Each kernel is kept both ways: its plain Python function and its numba dispatche
 name in spatialkin's and planar's modules to one or the other, so that a process whose kernels are not compiled
 yet runs them as plain Python (the same arithmetic, about a hundred times slower, with no wait) and turns to the
 compiled ones once they are in numba's cache (spatialkin._lib.warm decides when).
+
+``borrowed`` and ``kept`` let a kernel use arrays without numba's reference counts (atomic operations) where a loop
+would count them at every step: the integrator's, Newton's and the dense output's.
 """
 import os
 import sys

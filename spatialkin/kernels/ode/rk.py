@@ -653,8 +653,8 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
     exponent = -1.0 / (ERROR_ORDERS[method] + 1)
     work = (np.empty((STAGE_ROWS[method], n)), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(7),
             np.empty(ne), np.empty(ne), np.empty(ne), np.zeros(ne, dtype=np.bool_))
-    k, y_new, stage, err, scale, coefficients, g_new, g_last, g_now, probed = borrowed(work)  # (probed: the probed
-    # level events)
+    # probed: the probed level events
+    k, y_new, stage, err, scale, coefficients, g_new, g_last, g_now, probed = borrowed(work)
     any_probed = False
     for i in range(ne):
         probed[i] = active[i] and modes[i] == LEVEL_BEFORE_PROBED

@@ -79,8 +79,9 @@ def test_a_change_to_any_kernel_module_drops_every_index_of_its_folders(tmp_path
 
 
 def test_the_kernels_digest_covers_every_kernel_module(tmp_path, monkeypatch):
-    """kernels_digest reads every module of spatialkin.kernels (its sources, by relative path): the digest of a copy
-    is the same, and that of the copy with one module changed differs."""
+    """kernels_digest reads every module of spatialkin.kernels (its sources, by relative path) and the jit module: the
+    digest of a copy is the same, that of the copy with one module changed differs, and so does that with the jit
+    module changed too."""
     import shutil
     original = warm.kernels_digest()
     copy = tmp_path / "kernels"

@@ -26,7 +26,7 @@ SLOW = (
     "tests/spatialkin/design/test_design_sweep.py::test_workers_fork_when_the_main_script_is_no_file",
     "tests/spatialkin/_lib/test_warm.py::test_a_cold_cache_runs_plain_python_at_once_and_warms_in_the_background",
     "tests/spatialkin/_lib/test_warm.py::test_the_looper_job_on_a_cold_cache_says_so_once_and_gives_the_compiled_table",
-    "tests/spatialkin/_lib/test_warm.py::test_warmup_compiles_the_workload_and_stamps_the_cache",
+    "tests/spatialkin/_lib/test_warm.py::test_after_spatialkin_warmup_the_stress_cases_compile_nothing",
     "tests/spatialkin/bench/test_compile.py",
     "tests/spatialkin/bench/test_bench.py::test_bench_quick_command",
 )

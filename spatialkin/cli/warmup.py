@@ -2,10 +2,11 @@
 ``spatialkin warmup``.
 
 The workload calls what a user's first calls reach: ``sk.intersect`` on a general pair of every kind of surface (15
-kinds) and on trimmed faces, ``sk.trace``, the looper drive over a turn with its analysis (and a drive whose crank
-does not turn fully), ``certify=True`` on the looper pair, on circles in closed form, on a trimmed cylinder and
-on Viviani's figure-eight (a node), its design sensitivities, and ``sk.intersect_many``; numba compiles every
-kernel and specialisation they reach into its cache.
+kinds) and on trimmed faces (arcs ending on trim edges, open pieces of one loop told apart), each with and without
+``certify=True`` (the closed forms' proofs, the tubes, the arcs against the trims), ``sk.trace``, the looper drive
+over a turn with its analysis (and a drive whose crank does not turn fully), ``certify=True`` on the looper pair,
+on circles in closed form, on a trimmed cylinder and on Viviani's figure-eight (a node), its design sensitivities,
+and ``sk.intersect_many``; numba compiles every kernel and specialisation they reach into its cache.
 """
 import time
 
@@ -18,16 +19,19 @@ def run():
     import numpy as np
 
     import spatialkin as sk
-    from ..bench.kinds import pair_kind_cases
+    from ..bench.kinds import face_cases, pair_kind_cases
     from ..design import LooperDesign
     from ..mechanisms import LooperDrive
-    for _, a, b in pair_kind_cases():
+    for _, a, b in pair_kind_cases() + face_cases():
         for curve in sk.intersect(a, b):
             if curve.length > 0:
                 curve(np.linspace(0.0, curve.length, 5))
                 curve.closest(curve.points[:3])
+        sk.intersect(a, b, certify=True)
     face = sk.Cylinder(1.0, u_range=(0.0, 2.0), v_range=(-1.0, 1.0))
     sk.intersect(face, sk.Sphere(1.2, sk.Frame((0.5, 0.0, 0.3)), u_range=(-1.0, 2.5)))
+    across = sk.Frame((0.1, 0.0, 0.0), [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])   # (a plane normal to x)
+    sk.intersect(sk.Torus(1.0, 0.4), sk.Plane(across, u_range=(-2.0, 2.0), v_range=(-0.2, 0.2)))   # (4 arcs)
     sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))))
     sk.trace(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))), (0.5, 0.9, 0.0))
     sk.intersect_many([(sk.Torus(2.0, 1.0), sk.Sphere(1.2, sk.Frame((2.5, 0.0, 0.3))))])

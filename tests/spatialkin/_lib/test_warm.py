@@ -1,9 +1,10 @@
 """The kernels' first use on a machine (spatialkin._lib.warm, spatialkin._lib.jit): when the cache is warm, the
 kernels switched between their compiled and plain Python forms in place, a cold start in a fresh process (plain
-Python at once, one line, a background warm-up), the line while kernels compile, and no compiling at import.
+Python at once, one line, a background warm-up), the line while kernels compile, no compiling at import, and none
+after `spatialkin warmup` on pairs its workload never saw.
 
 Oracles: closed forms (two spheres meet in a circle of radius sqrt(3)/2; the looper drive's ball centre on both
-surfaces) and the compiled results."""
+surfaces), the compiled results and numba's compile events."""
 import json
 import os
 import signal
@@ -241,12 +242,55 @@ def test_the_looper_job_on_a_cold_cache_says_so_once_and_gives_the_compiled_tabl
     np.testing.assert_allclose(b, a, rtol=1e-13, atol=1e-13 * np.max(np.abs(a)))
 
 
+#: Every how many-th stress case the warm-up's coverage is tried on (all of them take a minute).
+COVERAGE_STRIDE = 4
+
+
 @pytest.mark.skipif(_jit.JIT_DISABLED, reason="no cache with jit off")
-def test_warmup_compiles_the_workload_and_stamps_the_cache(capsys):
-    """`spatialkin warmup` (the suite's cache: it loads or compiles every kernel of the workload) reports and leaves
-    the cache stamped warm for the workload."""
-    from spatialkin.cli import main
-    assert main(["warmup"]) == 0
-    out = capsys.readouterr().out
-    assert out.startswith("spatialkin warmup: ") and "kernel specialisations ready" in out
-    assert warm.ready(warm.WORKLOAD)
+def test_after_spatialkin_warmup_the_stress_cases_compile_nothing(tmp_path):
+    """On an empty cache, `spatialkin warmup` in one process (it reports, and leaves the cache stamped warm for its
+    workload); then, in a fresh one, a user's calls on pairs the workload never saw (every COVERAGE_STRIDE-th stress
+    case: with and without certify=True, then a dense evaluation and closest points of each curve) compile no
+    spatialkin kernel: each loads from the cache the warm-up left. Oracle: numba's compile events (numba fires none
+    for a kernel loaded from its cache)."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    env.pop(warm.ENV, None)
+    warmed = subprocess.run([sys.executable, "-m", "spatialkin.cli", "warmup"], capture_output=True, text=True,
+                            env=env, timeout=900)
+    assert warmed.returncode == 0, warmed.stderr[-2000:]
+    assert warmed.stdout.startswith("spatialkin warmup: ") and "kernel specialisations ready" in warmed.stdout
+    code = textwrap.dedent(f"""
+        import numpy as np
+        from numba.core import event
+        import spatialkin as sk
+        from spatialkin._lib import warm
+        print(warm.ready(warm.WORKLOAD))
+        from tests.oracles.ssi_cases import all_cases
+        compiled = set()
+        class Listener(event.Listener):
+            def on_start(self, e):
+                kernel = getattr(e.data.get("dispatcher"), "py_func", None)
+                if (getattr(kernel, "__module__", "") or "").startswith("spatialkin"):
+                    compiled.add(kernel.__module__ + "." + kernel.__name__)
+            def on_end(self, e):
+                pass
+        event.register("numba:compile", Listener())
+        for case in all_cases()[::{COVERAGE_STRIDE}]:
+            for certify in (False, True):
+                try:
+                    curves = sk.intersect(case.a, case.b, certify=certify)
+                except (sk.TopologyError, ValueError):
+                    continue
+                for curve in curves:
+                    if curve.length > 0:
+                        curve(np.linspace(0.0, curve.length, 3))
+                        curve.closest(curve.points[:2])
+        print(sorted(compiled))
+        """)
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")]))
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=root,
+                         timeout=900)
+    assert out.returncode == 0, out.stderr[-2000:]
+    stamped, *_, compiled = out.stdout.strip().splitlines()
+    assert stamped == "True" and compiled == "[]"

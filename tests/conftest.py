@@ -5,6 +5,10 @@ import pytest
 os.environ.setdefault("PYVISTA_OFF_SCREEN", "true")
 # the suite compiles its kernels in the foreground: no background warm-up process (spatialkin._lib.warm)
 os.environ.setdefault("SPATIALKIN_FIRST_RUN", "compile")
+# every process the suite starts (scripts, notebook kernels, workers) imports the package under test, this checkout,
+# whatever copy is installed: the same code, and the kernels numba has cached for it (a cache is per source path)
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [ROOT, os.environ.get("PYTHONPATH")]))
 
 _REPORT = []
 

@@ -3,7 +3,6 @@ a cell that raises fails the test. Cells' own prints carry the measured checks. 
 running them: stored without outputs, an opening markdown cell, a closing "What to try next", a gallery picture
 (notebooks/figures/<name>.png, from the cell tagged "gallery") shown in notebooks/README.md, and no development
 history."""
-import os
 import pathlib
 import re
 
@@ -12,8 +11,7 @@ import pytest
 nbformat = pytest.importorskip("nbformat")
 nbclient = pytest.importorskip("nbclient")
 
-ROOT = pathlib.Path(__file__).parents[2]
-FOLDER = ROOT / "notebooks"
+FOLDER = pathlib.Path(__file__).parents[2] / "notebooks"
 NOTEBOOKS = sorted(FOLDER.glob("*.ipynb"))
 #: Per-cell time limit (s): generous for a cold numba cache on a fresh machine.
 CELL_TIMEOUT = 600
@@ -40,10 +38,7 @@ def test_notebook_layout(path):
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
-def test_notebook_runs(path, tmp_path, monkeypatch):
-    # the kernel imports the package under test (this checkout), as the suite does, whatever copy is installed:
-    # the same code and the same compiled kernels in numba's cache
-    monkeypatch.setenv("PYTHONPATH", os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])))
+def test_notebook_runs(path, tmp_path):
     nb = nbformat.read(path, as_version=4)
     client = nbclient.NotebookClient(nb, timeout=CELL_TIMEOUT, kernel_name="python3",
                                      resources={"metadata": {"path": str(tmp_path)}})

@@ -35,7 +35,7 @@ from ...geometry.placement import SAME
 from ...geometry.vectors import cross_list
 from ..curve.result import in_sk_order
 from ..march.segments import EDGE_NAMES
-from .split import may_split, split_planes
+from .split import split_planes
 from ..curve.status import BOUNDARY, CLOSED, open_outcome, outcome
 from ..search.topology import Topology
 from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, extent, scene_lengths
@@ -207,9 +207,7 @@ def split_conics(placed, graze, gap, settings, topo):
     tangent to a cone along a ruling that lies on the other surface too (a cone touching a cylinder or a cone all
     along a line) gives that ruling, clipped, as a segment of tangency (status 'tangent'). None where declined (the
     pair does not split, or a conic is not an ellipse or that ruling, a circle about the axis, or off a surface)."""
-    if not may_split([(p.name, p.origin, p.z, p.form) for p in placed], settings.scale):
-        return None
-    found = split_planes([(p.origin, p.rot, p.form) for p in placed], np.array(placed[0].origin), settings.scale)
+    found = split_planes([(p.name, p.origin, p.rot, p.form) for p in placed], settings.scale)
     trims = linear_trims(placed)
     if found is None or trims is None:
         return None

@@ -1,17 +1,27 @@
-"""Quadric pairs whose intersection splits into two conics: the pencil A - lambda B of their 4 x 4 matrices holds a
-pair of real crossing planes, and the quartic curve is the two conics those planes cut from either quadric, crossing
-at the nodes where the planes' common line meets it.
+"""Quadric pairs whose intersection splits into two conics: two cylinders or cones tangent to one sphere (Monge's
+case), whose quartic curve is the two ellipses that two crossing planes cut from either quadric, crossing at the
+nodes where the planes' common line meets it.
 
 Two cylinders of equal radii whose axes cross (the Steinmetz curves: two ellipses through two nodes, a pipe tee),
-and cylinders and cones that share an inscribed sphere (Monge), are such pairs. Their nodes are where the tracer
-must jump between branches (near-parallel normals, a hand-over to the fine DOP853 events), which makes tracing them
-slow; in closed form it is the plane–cylinder case twice. spatialkin.tracing.closed.forms clips the conics
-and makes the components; this module finds the planes and the nodes, and declines (None) everything else.
+and cylinders and cones that share an inscribed sphere, are such pairs. Their nodes are where the tracer must jump
+between branches (near-parallel normals, a hand-over to the fine DOP853 events), which makes tracing them slow; in
+closed form it is the plane–cylinder case twice. spatialkin.tracing.closed.forms clips the conics and makes the
+components; this module finds the planes and the nodes, and declines (None) everything else.
 
-Only a member whose two smallest eigenvalues are round-off (RANK_TOL) counts, and closed.split_conics then checks
-the ellipses on both surfaces (closed.SPLIT_FIT): a pair 1e-12 (relative) from splitting meets in loops passing a
-waist, left to the general path. Parallel planes (coaxial surfaces: their
-parallels) are left to the topology stage's placements.
+**The planes.** A quadric x^2 + y^2 + mu z^2 = rho (local coordinates; a cylinder mu = 0, rho = r^2; a cone
+mu = -tan^2 of its half angle, rho = 0, its apex at the origin) whose axis z passes through a point O, with
+c = z . (O - o) the height of O on its axis, reads, in x' = x - O,
+
+    Q(x') = |x'|^2 - k (z . x' - d)^2 - s^2,   k = 1 - mu,  d = mu c / k,  s^2 = rho - mu c^2 / k,
+
+the sphere |x'| = s about O less the square of a linear function: the quadric touches that sphere along the circle
+z . x' = d. Two such quadrics with a common O and equal s differ by k2 L2^2 - k1 L1^2 (L = z . x' - d), a difference
+of two squares: every common point lies on one of the planes sqrt(k2) L2 = +-sqrt(k1) L1, which cross (k >= 1 and
+the axes are not parallel), and each plane cuts an ellipse from either quadric. O is where the axes cross (within
+AXES_GAP x scale; the least-squares point on the first axis) and the two radii s must agree within AXES_GAP x scale:
+a pair only nearly so is declined by closed.split_conics, which checks the ellipses on both surfaces
+(closed.SPLIT_FIT): a pair 1e-12 (relative) from splitting meets in loops passing a waist, left to the general
+path. Parallel axes (coaxial surfaces: their parallels) are left to the topology stage's placements.
 
 References
 ----------
@@ -23,20 +33,13 @@ N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design an
 import math
 
 import numpy as np
-import scipy.linalg
 
-from ...geometry.vectors import cross
+from ...geometry.vectors import cross_list
 
-#: A member of the pencil is a pair of planes when its two smallest eigenvalues (in magnitude) are at most this
-#: fraction of its largest: round-off of the matrices, in coordinates scaled by the scene (the splitting pairs of
-#: the stress cases: below 1e-15; a pair of cylinders whose radii differ by 1e-9: 2e-9).
-RANK_TOL = 1e-12
-#: An eigenvalue of the pencil is real when its imaginary part is at most this fraction of its size.
-REAL_TOL = 1e-9
 #: The axes of a pair that may split cross within this (relative to the scale), and the spheres inscribed about
-#: their crossing have radii equal within it (may_split: a loose necessary condition; the pencil decides).
+#: their crossing have radii equal within it.
 AXES_GAP = 1e-6
-#: The planes must cross: the sine of their angle above this (parallel planes are coaxial surfaces' parallels).
+#: The axes must cross at an angle whose sine is above this (parallel axes: coaxial surfaces' parallels).
 CROSSING_SIN = 1e-6
 #: The planes' common line meets the quadric in two points farther apart than this (relative to the scale), two
 #: nodes; closer, it touches the quadric and the conics touch there: one node (a cone touching a cylinder along a
@@ -44,96 +47,79 @@ CROSSING_SIN = 1e-6
 NODE_SEPARATION = 1e-6
 
 
-def may_split(quadrics, scale):
-    """A necessary condition for a split, cheap to test first: both quadrics are cylinders or cones (a sphere's
-    pencil with them holds no pair of crossing planes), their axes cross (within AXES_GAP x scale), and a sphere
-    about the crossing is inscribed in both (a cylinder's radius; a cone's distance from its apex times the sine
-    of its half angle; equal within AXES_GAP x scale). quadrics: (name, origin (3 floats), axis (3 floats),
-    (mu, rho)) each, the cone's origin its apex."""
-    (n1, o1, z1, f1), (n2, o2, z2, f2) = quadrics
+def _dot(x, y):
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
+
+
+def inscribed(quadrics, scale):
+    """(O, forms): the crossing O (3 floats) of the axes of two cylinders or cones and each one's (k, z, d) (see the
+    module docstring) when a sphere about O is inscribed in both (radii s equal within AXES_GAP x scale); None
+    otherwise (a sphere among them, axes parallel or apart). quadrics: (name, origin, rot (9 floats, row by row),
+    (mu, rho)) each, a cone's origin its apex."""
+    (n1, o1, r1, _), (n2, o2, r2, _) = quadrics
     if "sphere" in (n1, n2):
-        return False
-    n = cross(z1, z2)
-    sin = math.sqrt(float(n @ n))
-    if sin <= CROSSING_SIN:
-        return False
-    d = np.subtract(o2, o1)
-    if abs(float(d @ n)) > AXES_GAP * scale * sin:
-        return False
-    # the crossing: o1 + s z1 = o2 + t z2 (least squares on the two lines)
-    c = float(np.dot(z1, z2))
-    s1 = (float(d @ z1) - c * float(d @ z2)) / (sin * sin)
-    cross_point = np.add(o1, s1 * np.asarray(z1))
-    radii = [math.sqrt(rho) if name == "cylinder" else
-             float(np.linalg.norm(cross_point - np.asarray(o))) * math.sqrt(-mu / (1.0 - mu))
-             for name, o, (mu, rho) in ((n1, o1, f1), (n2, o2, f2))]
-    return abs(radii[0] - radii[1]) <= AXES_GAP * scale
-
-
-def quadric_matrix(origin, rot, form, centre, scale):
-    """The symmetric 4 x 4 matrix M of a quadric x^2 + y^2 + mu z^2 = rho (local; form = (mu, rho)) placed at origin
-    with rotation rot (9 floats, row by row), in the coordinates X = ((p - centre) / scale, 1): X^T M X = 0."""
-    r = np.array(rot, dtype=float).reshape(3, 3)
-    mu, rho = form
-    s = (r * np.array([1.0, 1.0, mu])) @ r.T
-    o = (np.array(origin, dtype=float) - centre) / scale
-    so = s @ o
-    m = np.empty((4, 4))
-    m[:3, :3] = s
-    m[:3, 3] = m[3, :3] = -so
-    m[3, 3] = o @ so - rho / (scale * scale)
-    return m
-
-
-def plane_pair(a, b):
-    """The two planes (P+, P-) (4-vectors of the scaled coordinates: X . P = 0) of a member of the pencil of the
-    matrices a, b that is a pair of real planes crossing each other; None when there is none."""
-    with np.errstate(all="ignore"):
-        values = scipy.linalg.eigvals(a, b)
-    for lam in values:
-        if not (np.isfinite(lam) and abs(lam.imag) <= REAL_TOL * max(1.0, abs(lam))):
-            continue
-        w, v = np.linalg.eigh(a - lam.real * b)
-        order = np.argsort(np.abs(w))
-        big = abs(w[order[3]])
-        if big == 0.0 or abs(w[order[1]]) > RANK_TOL * big or w[order[2]] * w[order[3]] >= 0.0:
-            continue                                       # not rank 2, or a real line (imaginary planes)
-        i, j = (order[2], order[3]) if w[order[2]] > 0 else (order[3], order[2])
-        p, q = math.sqrt(w[i]) * v[:, i], math.sqrt(-w[j]) * v[:, j]
-        planes = (p + q, p - q)
-        n0, n1 = planes[0][:3], planes[1][:3]
-        size = np.linalg.norm(n0) * np.linalg.norm(n1)
-        if size == 0.0 or np.linalg.norm(cross(n0, n1)) <= CROSSING_SIN * size:
-            continue
-        return planes
-    return None
-
-
-def split_planes(quadrics, centre, scale):
-    """The two crossing planes that split the intersection of two quadrics ((origin, rot, form) each), as
-    (unit normal (3,), a point on it (3,)) in global coordinates, and the nodes (K, 3) where both planes meet the
-    first quadric (K = 0, 1 where the line touches it, or 2); None when the pair does not split (or splits only in
-    parallel planes)."""
-    a, b = (quadric_matrix(*q, centre, scale) for q in quadrics)
-    planes = plane_pair(a, b)
-    if planes is None:
         return None
-    out = []
-    for plane in planes:
-        n, d = plane[:3], plane[3]
-        norm2 = float(n @ n)
-        out.append((n / math.sqrt(norm2), centre - scale * d / norm2 * n))
-    (n0, p0), (n1, p1) = out
-    # the planes' common line, p + t e (scaled coordinates), on the first quadric: a quadratic in t
-    e = cross(n0, n1)
-    e /= np.linalg.norm(e)
-    rows = np.array([n0, n1, e])
-    foot = np.linalg.solve(rows, [n0 @ (p0 - centre) / scale, n1 @ (p1 - centre) / scale, 0.0])
-    x, y = np.append(foot, 1.0), np.append(e, 0.0)
-    qa, qb, qc = y @ a @ y, 2.0 * (x @ a @ y), x @ a @ x
-    disc = qb * qb - 4.0 * qa * qc
+    z1, z2 = r1[2::3], r2[2::3]
+    n = cross_list(z1, z2)
+    sin = math.sqrt(_dot(n, n))
+    if sin <= CROSSING_SIN:
+        return None
+    d = [o2[0] - o1[0], o2[1] - o1[1], o2[2] - o1[2]]
+    if abs(_dot(d, n)) > AXES_GAP * scale * sin:
+        return None
+    # the crossing: o1 + s z1 = o2 + t z2 (least squares on the two lines)
+    c = _dot(z1, z2)
+    s1 = (_dot(d, z1) - c * _dot(d, z2)) / (sin * sin)
+    centre = [o1[0] + s1 * z1[0], o1[1] + s1 * z1[1], o1[2] + s1 * z1[2]]
+    forms, radii = [], []
+    for (_, o, rot, (mu, rho)) in quadrics:
+        z = rot[2::3]
+        height = z[0] * (centre[0] - o[0]) + z[1] * (centre[1] - o[1]) + z[2] * (centre[2] - o[2])
+        k = 1.0 - mu
+        forms.append((k, z, mu * height / k))
+        radii.append(math.sqrt(max(rho - mu * height * height / k, 0.0)))
+    if abs(radii[0] - radii[1]) > AXES_GAP * scale:
+        return None
+    return centre, forms
+
+
+def split_planes(quadrics, scale):
+    """The two crossing planes that split the intersection of two quadrics ((name, origin, rot, form) each, as
+    inscribed reads them), as (unit normal (3,), a point on it (3,)) in global coordinates, and the nodes (K, 3)
+    where both planes meet the first quadric (K = 0, 1 where their common line touches it, or 2); None when the
+    pair is no such pair (inscribed)."""
+    found = inscribed(quadrics, scale)
+    if found is None:
+        return None
+    centre, ((k1, z1, d1), (k2, z2, d2)) = found
+    a, b = math.sqrt(k1), math.sqrt(k2)
+    units, offsets, out = [], [], []
+    for sign in (1.0, -1.0):                   # sqrt(k2) L2 = sign sqrt(k1) L1
+        normal = [b * z2[i] - sign * a * z1[i] for i in range(3)]
+        size = math.sqrt(_dot(normal, normal))
+        unit = [x / size for x in normal]
+        offset = (b * d2 - sign * a * d1) / size       # unit . x' on the plane
+        units.append(unit)
+        offsets.append(offset)
+        out.append((np.array(unit), np.array([centre[i] + offset * unit[i] for i in range(3)])))
+    # the planes' common line, O + f + t e, on the first quadric (its local form, exactly): a quadratic in t (scaled)
+    (u0, u1), (w0, w1) = units, offsets
+    g = _dot(u0, u1)
+    alpha, beta = (w0 - g * w1) / (1.0 - g * g), (w1 - g * w0) / (1.0 - g * g)
+    e = cross_list(u0, u1)
+    size = math.sqrt(_dot(e, e))
+    e = [x / size for x in e]
+    foot = [centre[i] + alpha * u0[i] + beta * u1[i] for i in range(3)]
+    _, origin, rot, (mu, rho) = quadrics[0]
+    rel = [(foot[i] - origin[i]) / scale for i in range(3)]
+    p = [rot[j] * rel[0] + rot[3 + j] * rel[1] + rot[6 + j] * rel[2] for j in range(3)]       # R^T (foot - o)
+    q = [rot[j] * e[0] + rot[3 + j] * e[1] + rot[6 + j] * e[2] for j in range(3)]             # R^T e
+    qa = q[0] * q[0] + q[1] * q[1] + mu * q[2] * q[2]
+    qb = 2.0 * (p[0] * q[0] + p[1] * q[1] + mu * p[2] * q[2])
+    qc = p[0] * p[0] + p[1] * p[1] + mu * p[2] * p[2] - rho / (scale * scale)
     if qa == 0.0:
         return None
+    disc = qb * qb - 4.0 * qa * qc
     root = math.sqrt(abs(disc))
     if root / abs(qa) <= NODE_SEPARATION:
         ts = (-qb / (2.0 * qa),)                  # the line touches the quadric: the conics touch there (one node)
@@ -141,4 +127,4 @@ def split_planes(quadrics, centre, scale):
         return out, np.empty((0, 3))
     else:
         ts = ((-qb - root) / (2.0 * qa), (-qb + root) / (2.0 * qa))
-    return out, np.array([centre + scale * (foot + t * e) for t in ts])
+    return out, np.array([[foot[i] + scale * t * e[i] for i in range(3)] for t in ts])

@@ -88,9 +88,9 @@ def test_steinmetz_closed_form():
 
 @pytest.mark.parametrize("offset", [1e-9, 1e-6])
 def test_near_split_pairs_take_the_general_path(offset, monkeypatch):
-    """Radii 1 and 1 - offset: the pencil's nearest member is not a pair of planes within round-off (its small
-    eigenvalues are about 2 x offset), so the pair is traced: two loops passing a waist, as the general path finds
-    them."""
+    """Radii 1 and 1 - offset: the planes of the two cylinders' difference of squares cut ellipses lying about the
+    offset off the other cylinder, beyond the split's fit (SPLIT_FIT = 1e-13 x scale), so the pair is traced: two
+    loops passing a waist, as the general path finds them."""
     rot = random_rotation(np.random.default_rng(5))
     o = np.array([0.1, 0.2, -0.3])
     a = sk.Cylinder(1.0, sk.Frame(o, rot), v_range=(-3.0, 3.0))
@@ -101,9 +101,9 @@ def test_near_split_pairs_take_the_general_path(offset, monkeypatch):
 
 
 def test_axes_missing_by_1e_12_take_the_general_path():
-    """Equal cylinders whose axes miss each other by 1.4e-12 of the radius: the pencil's member passes the rank
-    test, but its ellipses lie 1.6e-12 x scale off the surfaces, beyond the split's fit (SPLIT_FIT = 1e-13 x
-    scale): the pair is traced, one closed loop through a waist, not two ellipses."""
+    """Equal cylinders whose axes miss each other by 1.4e-12 of the radius: they pass the crossing test (within
+    AXES_GAP), but the planes' ellipses lie about 1e-12 x scale off the surfaces, beyond the split's fit (SPLIT_FIT =
+    1e-13 x scale): the pair is traced, one closed loop through a waist, not two ellipses."""
     a = sk.Cylinder(94.57052564861789, sk.Frame(
         [1353.2678431571949, -2387.5946620871246, -1600.3622979617073],
         [[0.7800252477520986, 0.4272470765078407, -0.4571876512820313],
@@ -122,7 +122,8 @@ def test_axes_missing_by_1e_12_take_the_general_path():
 
 def test_a_trim_through_both_nodes():
     """Equal cylinders with crossing axes, b's trim passing exactly through both nodes: in either order two arcs,
-    each listing both nodes (at its ends), inside b's trim to round-off."""
+    each listing both nodes (at its ends), inside b's trim to round-off: 8 ulps of the trim's bounds (the arc's ends
+    are the edge's crossings of an ellipse whose plane is known to a few ulps of the coordinates)."""
     a = sk.Cylinder(0.0030864655572198463, sk.Frame(
         [-0.005240491689181651, -0.00326973829279299, -0.006688478077075634],
         [[0.2960055335119358, -0.3163746880178444, -0.9012700932084267],
@@ -135,34 +136,35 @@ def test_a_trim_through_both_nodes():
          [0.6477788267886427, 0.7155380100158305, 0.26151089420311896]]),
         v_range=(-0.005843944592629173, 0.006501917636250212))
     lo, hi = b.v_range
+    roundoff = 8.0 * np.finfo(float).eps * max(abs(lo), abs(hi))
     for first, second in ((a, b), (b, a)):
         curves = sk.intersect(first, second)
         assert len(curves) == 2 and all(c.nfev == 0 for c in curves)
         assert [len(c.nodes) for c in curves] == [2, 2]
         for c in curves:
             v = (c(np.linspace(0.0, c.length, 2001)) - b.frame.origin) @ b.frame.rotation[:, 2]
-            assert lo - v.min() <= 1e-15 * a.radius and v.max() - hi <= 1e-15 * a.radius
+            assert lo - v.min() <= roundoff and v.max() - hi <= roundoff
 
 
-def test_may_split_is_necessary_and_cheap_to_refuse():
-    """may_split (the test run before the pencil's eigenvalues) holds for every splitting scene above and fails on
-    the bench's general pairs of quadrics (which do not split: the pencil finds no pair of planes in them either)."""
+def test_split_planes_finds_every_splitting_scene_and_refuses_general_pairs():
+    """split_planes (a sphere inscribed in both quadrics about their axes' crossing) finds the planes of every
+    splitting scene above, in either order, and refuses the bench's general pairs of quadrics (which do not split:
+    the general path finds single loops in them)."""
     from spatialkin.bench.kinds import pair_kind_cases
     from spatialkin.tracing.closed.forms import Placed
-    from spatialkin.tracing.closed.split import may_split, split_planes
+    from spatialkin.tracing.closed.split import split_planes
 
-    def args(a, b):
-        placed = [Placed(s) for s in (a, b)]
-        return placed, [(p.name, p.origin, p.z, p.form) for p in placed]
+    def quadrics(a, b):
+        return [(p.name, p.origin, p.rot, p.form) for p in (Placed(a), Placed(b))]
 
     for _, a, b in scenes():
-        assert may_split(args(a, b)[1], 0.7) and may_split(args(b, a)[1], 0.7)
+        for first, second in ((a, b), (b, a)):
+            cuts, nodes = split_planes(quadrics(first, second), 0.7)
+            assert len(cuts) == 2 and len(nodes) in (1, 2)
     for name, a, b in pair_kind_cases():
         if "plane" in name or "torus" in name or name == "sphere-sphere":
             continue
-        placed, quads = args(a, b)
-        assert not may_split(quads, 1.0)
-        assert split_planes([(p.origin, p.rot, p.form) for p in placed], np.array(placed[0].origin), 1.0) is None
+        assert split_planes(quadrics(a, b), 1.0) is None
 
 
 def tangent_ruling_scene(rng, alpha=0.6, r=0.9):

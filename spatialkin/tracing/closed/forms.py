@@ -37,7 +37,7 @@ from ..curve.result import in_sk_order
 from ..march.segments import EDGE_NAMES
 from .split import split_planes
 from ..curve.status import BOUNDARY, CLOSED, open_outcome, outcome
-from ..search.topology import Topology
+from ..search.topology import Topology, distances_at
 from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, extent, scene_lengths
 
 #: A curve within this many times the tolerance of touching the other surface (tangency, a plane through an apex)
@@ -73,6 +73,9 @@ RULING_COS = 1e-9
 #: Points of an arc through nodes among which the one with the largest angle between the normals orients it.
 NODE_PROBES = 8
 TWO_PI = 2.0 * math.pi
+#: The SPLIT_CHECKS angles' cosines and sines (columns), at which a split pair's ellipses are checked.
+SPLIT_COS = np.cos(np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False))[:, None]
+SPLIT_SIN = np.sin(np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False))[:, None]
 
 #: What the closed forms read of the settings (a trace Settings has these fields too; closed_form takes either).
 #: What the closed forms read of sk.intersect's options; ``checked`` is the options and lengths make_settings
@@ -225,9 +228,7 @@ def split_conics(placed, graze, gap, settings, topo):
             return None
         conics += cut
     fit = max(SPLIT_FIT * settings.scale, gap)
-    t = np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False)
-    samples = [np.array(c) + np.cos(t)[:, None] * np.array(p) + np.sin(t)[:, None] * np.array(q)
-               for _, (c, p, q) in conics]
+    samples = [np.array(c) + SPLIT_COS * np.array(p) + SPLIT_SIN * np.array(q) for _, (c, p, q) in conics]
     segments = []
     for apex, direction in rulings:
         span = line_span(trims, apex, direction)
@@ -237,8 +238,9 @@ def split_conics(placed, graze, gap, settings, topo):
             ends = (apex + span[0] * direction, apex + span[1] * direction)
             segments.append(ends)
             samples.append(np.linspace(*ends, SPLIT_CHECKS))
-    for points in samples:
-        if max(float(np.max(surf.surface.distance(points))) for surf in placed) > fit:
+    if samples:
+        points = np.concatenate(samples)
+        if max(float(np.max(distances_at(surf.surface, points))) for surf in placed) > fit:
             return None
     curves = components(placed, conics, trims, graze, gap, settings, topo, nodes) if conics else []
     if curves is None:
@@ -732,20 +734,24 @@ def normal(surf, point):
     plane)."""
     if surf.form is None:
         return surf.z
-    origin, rot = surf.origin, surf.rot
-    q = to_local(rot, [point[0] - origin[0], point[1] - origin[1], point[2] - origin[2]])
+    (o0, o1, o2), (r00, r01, r02, r10, r11, r12, r20, r21, r22) = surf.origin, surf.rot
+    x0, x1, x2 = point[0] - o0, point[1] - o1, point[2] - o2
+    q0, q1, q2 = (r00 * x0 + r10 * x1 + r20 * x2, r01 * x0 + r11 * x1 + r21 * x2,
+                  r02 * x0 + r12 * x1 + r22 * x2)                                      # (to_local)
     if surf.name == "torus":
-        ring = surf.form[0] / math.hypot(q[0], q[1])         # q less its nearest point of the core circle
-        return to_global(rot, [q[0] - ring * q[0], q[1] - ring * q[1], q[2]])
-    q[2] *= surf.form[0]
-    return to_global(rot, q)
+        ring = surf.form[0] / math.hypot(q0, q1)             # q less its nearest point of the core circle
+        q0, q1 = q0 - ring * q0, q1 - ring * q1
+    else:
+        q2 *= surf.form[0]
+    return [r00 * q0 + r01 * q1 + r02 * q2, r10 * q0 + r11 * q1 + r12 * q2,
+            r20 * q0 + r21 * q1 + r22 * q2]                                             # (to_global)
 
 
 def normals_sine(placed, point):
     """sin of the angle between the surfaces' (Placed) normals at a point on both, squared."""
-    na, nb = normal(placed[0], point), normal(placed[1], point)
-    along = cross_list(na, nb)
-    return dot(along, along) / (dot(na, na) * dot(nb, nb))
+    (a0, a1, a2), (b0, b1, b2) = normal(placed[0], point), normal(placed[1], point)
+    c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0              # (cross_list)
+    return (c0 * c0 + c1 * c1 + c2 * c2) / ((a0 * a0 + a1 * a1 + a2 * a2) * (b0 * b0 + b1 * b1 + b2 * b2))
 
 
 def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, nodes=()):

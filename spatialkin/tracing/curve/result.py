@@ -501,8 +501,7 @@ def set_states(y, points, a, b):
 def in_sk_order(curves):
     """The CurveResults sorted as sk.intersect returns them: longest first, then by first point (rounded to 9
     decimals; CurveResult.first_point: a closed form's without sampling the others). The first points are read only
-    where two lengths are equal (a closed form's first point places its arc-length knots, which an ellipse finds by
-    Newton)."""
+    where two lengths are equal (a closed form's first point is an evaluation of its conic)."""
     if len(curves) > 1:
         curves.sort(key=lambda c: -c.length)
         if any(c.length == d.length for c, d in zip(curves, curves[1:])):

@@ -32,7 +32,7 @@ from ...kernels.geometry import surfaces as ks
 from .conic import ELLIPSE, HYPERBOLA, LINE, PARABOLA, Conic, ConicSolution, basis
 from ..curve.exact import SampledResult, contact_point, exact_curve
 from ...geometry.placement import SAME
-from ...geometry.vectors import cross_list
+from ...geometry.vectors import cross_list, dot_list as dot
 from ..curve.result import in_sk_order
 from ..march.segments import EDGE_NAMES
 from .split import split_planes
@@ -309,11 +309,7 @@ def on_arc(shape, rows, t_lo, t_hi, ends, x, near=0.0):
 
 
 # --- small vectors as lists of floats (numpy costs more than the arithmetic on them) ---------------------------
-# (their cross product is spatialkin.geometry.vectors.cross_list)
-def dot(x, y):
-    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
-
-
+# (their dot and cross products are spatialkin.geometry.vectors.dot_list, imported as dot, and cross_list)
 def combine(rows, f, g):
     """rows[0] + f rows[1] + g rows[2] (3-lists)."""
     c, p, q = rows

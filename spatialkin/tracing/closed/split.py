@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from ...geometry.vectors import cross_list
+from ...geometry.vectors import cross_list, dot_list
 
 #: The axes of a pair that may split cross within this (relative to the scale), and the spheres inscribed about
 #: their crossing have radii equal within it.
@@ -47,10 +47,6 @@ CROSSING_SIN = 1e-6
 NODE_SEPARATION = 1e-6
 
 
-def _dot(x, y):
-    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
-
-
 def inscribed(quadrics, scale):
     """(O, forms): the crossing O (3 floats) of the axes of two cylinders or cones and each one's (k, z, d) (see the
     module docstring) when a sphere about O is inscribed in both (radii s equal within AXES_GAP x scale); None
@@ -61,15 +57,15 @@ def inscribed(quadrics, scale):
         return None
     z1, z2 = r1[2::3], r2[2::3]
     n = cross_list(z1, z2)
-    sin = math.sqrt(_dot(n, n))
+    sin = math.sqrt(dot_list(n, n))
     if sin <= CROSSING_SIN:
         return None
     d = [o2[0] - o1[0], o2[1] - o1[1], o2[2] - o1[2]]
-    if abs(_dot(d, n)) > AXES_GAP * scale * sin:
+    if abs(dot_list(d, n)) > AXES_GAP * scale * sin:
         return None
     # the crossing: o1 + s z1 = o2 + t z2 (least squares on the two lines)
-    c = _dot(z1, z2)
-    s1 = (_dot(d, z1) - c * _dot(d, z2)) / (sin * sin)
+    c = dot_list(z1, z2)
+    s1 = (dot_list(d, z1) - c * dot_list(d, z2)) / (sin * sin)
     centre = [o1[0] + s1 * z1[0], o1[1] + s1 * z1[1], o1[2] + s1 * z1[2]]
     forms, radii = [], []
     for (_, o, rot, (mu, rho)) in quadrics:
@@ -96,7 +92,7 @@ def split_planes(quadrics, scale):
     units, offsets, out = [], [], []
     for sign in (1.0, -1.0):                   # sqrt(k2) L2 = sign sqrt(k1) L1
         normal = [b * z2[i] - sign * a * z1[i] for i in range(3)]
-        size = math.sqrt(_dot(normal, normal))
+        size = math.sqrt(dot_list(normal, normal))
         unit = [x / size for x in normal]
         offset = (b * d2 - sign * a * d1) / size       # unit . x' on the plane
         units.append(unit)
@@ -104,10 +100,10 @@ def split_planes(quadrics, scale):
         out.append((np.array(unit), np.array([centre[i] + offset * unit[i] for i in range(3)])))
     # the planes' common line, O + f + t e, on the first quadric (its local form, exactly): a quadratic in t (scaled)
     (u0, u1), (w0, w1) = units, offsets
-    g = _dot(u0, u1)
+    g = dot_list(u0, u1)
     alpha, beta = (w0 - g * w1) / (1.0 - g * g), (w1 - g * w0) / (1.0 - g * g)
     e = cross_list(u0, u1)
-    size = math.sqrt(_dot(e, e))
+    size = math.sqrt(dot_list(e, e))
     e = [x / size for x in e]
     foot = [centre[i] + alpha * u0[i] + beta * u1[i] for i in range(3)]
     _, origin, rot, (mu, rho) = quadrics[0]

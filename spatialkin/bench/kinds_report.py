@@ -9,14 +9,17 @@ from .baselines import OCC_DEFAULT_TOL
 from .sidebyside import OUR_TOL
 
 #: Columns of bench_kinds.csv: times in seconds, errors in length units, stage seconds per call.
+#: "ours s", "OCC s" and "OCC/ours" are warm (each call right after the same call), the cold ones right after the other
+#: library's calls (spatialkin.bench.sidebyside.KindRow).
 COLUMNS = (["pair kind", "ours s", "OCC s", "OCC/ours", "our error", "OCC error", "our curves", "OCC curves"]
-           + [f"{stages.LABELS[s]} s" for s in stages.STAGES] + ["compiled kernels s", "ours with points read s"])
+           + [f"{stages.LABELS[s]} s" for s in stages.STAGES] + ["compiled kernels s", "ours with points read s",
+                                                                  "ours cold s", "OCC cold s", "OCC/ours cold"])
 #: The ratio axis reaches this factor past the smallest and the largest ratio (and parity), room for their labels.
 RATIO_MARGIN = 2.5
 #: Errors below this are drawn at it (a log axis has no zero).
 ERROR_FLOOR = 1e-17
-#: Colours of a bar: sk.intersect faster (ratio above 1), OpenCascade faster.
-FASTER_COLOR, SLOWER_COLOR = "tab:green", "tab:red"
+#: Colours of a bar: sk.intersect faster (ratio above 1), OpenCascade faster; of the cold ratio's marker.
+FASTER_COLOR, SLOWER_COLOR, COLD_COLOR = "tab:green", "tab:red", "black"
 #: Rows of the error panel: ours drawn this far (rows) above the row's centre, OpenCascade's as far below.
 ERROR_OFFSET = 0.2
 #: Figure size: width (inches), height per pair kind and for the title and axis labels; dots per inch.
@@ -32,7 +35,8 @@ def write_kinds_csv(rows, path):
     write_table(path, COLUMNS, ([r.kind, cell(r.ours, ".6g"), cell(r.occ, ".6g"), cell(r.ratio, ".4g"),
                                  cell(r.our_error, ".3e"), cell(r.occ_error, ".3e"), r.our_curves, r.occ_curves]
                                 + [f"{r.profile.seconds[s]:.6g}" for s in stages.STAGES]
-                                + [cell(r.kernel, ".6g"), cell(r.ours_points, ".6g")]
+                                + [cell(r.kernel, ".6g"), cell(r.ours_points, ".6g"), cell(r.ours_cold, ".6g"),
+                                   cell(r.occ_cold, ".6g"), cell(r.cold_ratio, ".4g")]
                                 for r in rows))
 
 
@@ -51,8 +55,10 @@ def plot_kinds(rows, path, title):
 def kinds_figure(rows, title):
     """Per pair kind (one row each), a matplotlib Figure of three panels sharing the rows.
 
-    Left: OpenCascade's time over ours on a log axis, each bar drawn from parity (1) to the ratio: to the right
-    (green) where sk.intersect is faster, to the left (red) where OpenCascade is; the ratio at the bar's end.
+    Left: OpenCascade's time over ours on a log axis, each bar drawn from parity (1) to the warm ratio (each call
+    right after the same call): to the right (green) where sk.intersect is faster, to the left (red) where
+    OpenCascade is; the ratio at the bar's end; a black mark at the cold ratio (each call right after the other
+    library's), where measured.
     Middle: both times in ms. Right: the largest measured distance to either surface of each answer (log),
     ours above the row's centre and OpenCascade's below it, so that equal errors do not hide each other.
 
@@ -64,12 +70,15 @@ def kinds_figure(rows, title):
         Wrapped at its '; ' to lines of about TITLE_WIDTH characters.
     """
     from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
     from matplotlib.ticker import FuncFormatter, LogLocator, NullLocator
 
     y = np.arange(len(rows))
     ratios = np.array([r.ratio for r in rows], dtype=float)
     measured = np.isfinite(ratios)
+    colds = np.array([r.cold_ratio for r in rows], dtype=float)
+    cold = np.isfinite(colds)
     fig = Figure(figsize=(FIGURE_WIDTH, ROW_HEIGHT * len(rows) + FRAME_HEIGHT), layout="constrained")
     left, middle, right = fig.subplots(1, 3, sharey=True, gridspec_kw={"width_ratios": PANEL_WIDTHS})
     for ax in (left, middle, right):
@@ -82,8 +91,11 @@ def kinds_figure(rows, title):
               zorder=2)
     left.axvline(1.0, color="black", lw=1, zorder=3)
     left.set_xscale("log")
-    low = min(1.0, float(ratios[measured].min())) if measured.any() else 1.0
-    high = max(1.0, float(ratios[measured].max())) if measured.any() else 1.0
+    if cold.any():
+        left.plot(colds[cold], y[cold], "|", ms=14, mew=2.5, color=COLD_COLOR, zorder=4)
+    drawn = np.concatenate([ratios[measured], colds[cold]])
+    low = min(1.0, float(drawn.min())) if drawn.size else 1.0
+    high = max(1.0, float(drawn.max())) if drawn.size else 1.0
     left.set_xlim(low / RATIO_MARGIN, high * RATIO_MARGIN)
     left.xaxis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
     left.xaxis.set_minor_locator(NullLocator())
@@ -93,14 +105,17 @@ def kinds_figure(rows, title):
         left.annotate(f"{q:.2g}\u00d7", (q, k), xytext=(4 if q >= 1 else -4, 0), textcoords="offset points",
                       ha="left" if q >= 1 else "right", va="center", fontsize=NUMBER_SIZE)
     if measured.any():
-        left.legend(handles=[Patch(color=FASTER_COLOR, label="sk.intersect faster"),
-                             Patch(color=SLOWER_COLOR, label="OpenCascade faster")],
-                    fontsize=LEGEND_SIZE, loc="upper right")
+        handles = [Patch(color=FASTER_COLOR, label="sk.intersect faster"),
+                   Patch(color=SLOWER_COLOR, label="OpenCascade faster")]
+        if cold.any():
+            handles.append(Line2D([], [], marker="|", ms=10, mew=2.5, ls="none", color=COLD_COLOR,
+                                  label="cold: each call after\nthe other library's"))
+        left.legend(handles=handles, fontsize=LEGEND_SIZE, loc="upper right")
     else:
         left.text(0.5, 0.5, "OpenCascade (cadquery-ocp) not installed:\nno side-by-side times",
                   transform=left.transAxes, ha="center", va="center", fontsize=LABEL_SIZE,
                   bbox={"facecolor": "white", "edgecolor": "none"}, zorder=4)
-    left.set_xlabel("OpenCascade time / sk.intersect time\n(1 = parity; right of it: ours faster)",
+    left.set_xlabel("OpenCascade time / sk.intersect time, warm\n(1 = parity; right of it: ours faster)",
                     fontsize=LABEL_SIZE)
     left.set_yticks(y, [r.kind for r in rows])
     left.set_ylim(len(rows) - 0.5, -0.5)                  # first row on top
@@ -113,7 +128,7 @@ def kinds_figure(rows, title):
     for k, r in enumerate(rows):
         occ = f"{1e3 * r.occ:.3g}" if np.isfinite(r.occ) else "\u2013"
         middle.text(0.5, k, f"{1e3 * r.ours:.3g} / {occ}", ha="center", va="center", fontsize=NUMBER_SIZE)
-    middle.set_xlabel("time per call [ms]\nsk.intersect / OpenCascade", fontsize=LABEL_SIZE)
+    middle.set_xlabel("ms per call, warm\nsk.intersect / OpenCascade", fontsize=LABEL_SIZE)
 
     right.plot([max(r.our_error, ERROR_FLOOR) for r in rows], y - ERROR_OFFSET, "s", ms=6, color="tab:blue",
                label=f"sk.intersect (tol {OUR_TOL:g})", zorder=3)

@@ -1,6 +1,6 @@
 """Per pair kind: where the time of sk.intersect goes (the stage profile) and sk.intersect beside OpenCascade's
-GeomAPI_IntSS, both measured in this process, interleaved call by call (A B A B ...), medians, so that the ratio
-does not depend on the machine's mood; errors are measured distances of the returned points and dense samples
+GeomAPI_IntSS, both measured in this process, interleaved call by call (OCC, ours, OCC, ours with the points read,
+...), medians, so that the ratio does not depend on the machine's mood; errors are measured distances of the returned points and dense samples
 to both surfaces (exact distance functions, surface.distance).
 """
 import statistics
@@ -17,7 +17,8 @@ from .runner import curve_error, kernel_seconds, points_error
 
 #: Accuracy asked of sk.intersect (relative to the scene scale): the library's default.
 OUR_TOL = 1e-10
-#: Interleaved timed calls per side and pair kind (full run, --quick), after one untimed call of each.
+#: Rounds of timed calls per pair kind (full run, --quick), after one untimed call of each side: each round times
+#: OCC twice (cold, then warm), ours twice (cold, then warm), then ours with the points read.
 CALLS = 30
 QUICK_CALLS = 5
 #: Profiled calls per pair kind (the profile is their mean; the stage timer is on only for them).
@@ -39,7 +40,8 @@ class KindRow:
         'plane-sphere', ...
     ours, occ : float
         Median wall time of one sk.intersect call (tol OUR_TOL) and one GeomAPI_IntSS call (its default
-        tolerance), seconds; nan for OCC when it is not installed.
+        tolerance), each made right after the same call (warm: a loop of calls), seconds; nan for OCC when it is
+        not installed.
     our_error, occ_error : float
         Largest measured distance to either surface of the returned points and dense samples (length units).
     our_curves, occ_curves : int
@@ -51,7 +53,10 @@ class KindRow:
         what remains of a call if every line of Python around them went.
     ours_points : float
         Median wall time of one sk.intersect call followed by reading every returned curve's points, s and params
-        (a closed form samples them on first read; OCC's result curves are not sampled either), seconds.
+        (a closed form samples them on first read; OCC's result curves are not sampled either), warm, seconds.
+    ours_cold, occ_cold : float
+        As ours and occ, each call made right after the other side's calls (cold: their work has evicted its
+        code and data from the caches, as a call among other work meets them), seconds.
     """
     kind: str
     ours: float
@@ -63,11 +68,18 @@ class KindRow:
     profile: stages.StageProfile
     kernel: float = float("nan")
     ours_points: float = float("nan")
+    ours_cold: float = float("nan")
+    occ_cold: float = float("nan")
 
     @property
     def ratio(self):
-        """OCC's time over ours (above 1: sk.intersect is faster)."""
+        """OCC's time over ours, warm (above 1: sk.intersect is faster)."""
         return self.occ / self.ours
+
+    @property
+    def cold_ratio(self):
+        """OCC's time over ours, cold."""
+        return self.occ_cold / self.ours_cold
 
 
 def occ_points(inter, samples):
@@ -89,7 +101,8 @@ def profile_of(pair, calls):
 
 
 def measure(kind, a, b, calls, profile_calls, occ_samples):
-    """The KindRow of one pair: interleaved timings (ours, OCC, ours, OCC, ...), errors and the profile."""
+    """The KindRow of one pair: interleaved timings (OCC twice, ours twice, ours with the points read, ...: each
+    side's first call cold, its second warm), errors and the profile."""
     pair = (a, b)
     curves = intersect(*pair, tol=OUR_TOL)          # untimed: first-call work done, results kept for the error
     has_occ = baselines.occ_available()
@@ -99,27 +112,39 @@ def measure(kind, a, b, calls, profile_calls, occ_samples):
         inter = GeomAPI_IntSS(*geoms, baselines.OCC_DEFAULT_TOL)
         if not inter.IsDone():
             raise RuntimeError(f"GeomAPI_IntSS did not finish on {kind}")
-    ours, occ, ours_points = [], [], []
-    for k in range(calls):
-        # ours with and without the points read, in turn first after OCC's call (which evicts ours from the caches)
-        for read in ((False, True) if k % 2 == 0 else (True, False)):
-            t0 = time.perf_counter()
-            found = intersect(*pair, tol=OUR_TOL)
-            if read:
-                read_points(found)
-            (ours_points if read else ours).append(time.perf_counter() - t0)
+    def timed(call):
+        t0 = time.perf_counter()
+        call()
+        return time.perf_counter() - t0
+
+    def ours():
+        intersect(*pair, tol=OUR_TOL)
+
+    def ours_read():
+        read_points(intersect(*pair, tol=OUR_TOL))
+
+    def occ():
+        GeomAPI_IntSS(*geoms, baselines.OCC_DEFAULT_TOL)
+
+    times = {name: [] for name in ("ours", "occ", "ours_cold", "occ_cold", "ours_points")}
+    for _ in range(calls):
+        # cold: each side's first call right after the other side's calls (which evict its working set from the
+        # caches); warm: its next call, right after its own (a loop of calls); the points read last, warm
         if has_occ:
-            t0 = time.perf_counter()
-            GeomAPI_IntSS(*geoms, baselines.OCC_DEFAULT_TOL)
-            occ.append(time.perf_counter() - t0)
+            times["occ_cold"].append(timed(occ))
+            times["occ"].append(timed(occ))
+        times["ours_cold"].append(timed(ours))
+        times["ours"].append(timed(ours))
+        times["ours_points"].append(timed(ours_read))
+    median = {name: statistics.median(t) if t else np.nan for name, t in times.items()}
     occ_error, occ_curves = np.nan, 0
     if has_occ:
         occ_error = points_error(occ_points(inter, occ_samples), pair)
         occ_curves = inter.NbLines()
     kernel, _ = kernel_seconds(lambda: [intersect(*pair, tol=OUR_TOL) for _ in range(profile_calls)])
-    return KindRow(kind, statistics.median(ours), statistics.median(occ) if occ else np.nan,
-                   curve_error(curves, pair, OUR_SAMPLES), occ_error, len(curves), occ_curves,
-                   profile_of(pair, profile_calls), kernel / profile_calls, statistics.median(ours_points))
+    return KindRow(kind, median["ours"], median["occ"], curve_error(curves, pair, OUR_SAMPLES), occ_error,
+                   len(curves), occ_curves, profile_of(pair, profile_calls), kernel / profile_calls,
+                   median["ours_points"], median["ours_cold"], median["occ_cold"])
 
 
 def read_points(curves):
@@ -139,22 +164,25 @@ def kind_rows(quick=False, echo=print, cases=None):
 
 
 def occ_table(rows, calls, summary=True):
-    """The side-by-side table as text lines (with summary, the ratios' median and extremes)."""
-    head = (f"{'pair kind':<18} {'ours ms':>8} {'OCC ms':>8} {'OCC/ours':>8} {'+points':>8} {'OCC/that':>8} "
-            f"{'our error':>9} {'OCC error':>9} {'curves':>7}")
+    """The side-by-side table as text lines (with summary, the ratios' medians and extremes, warm and cold)."""
+    head = (f"{'pair kind':<18} {'ours ms':>8} {'OCC ms':>8} {'OCC/ours':>8} {'cold':>8} {'OCC cold':>8} "
+            f"{'OCC/ours':>8} {'+points':>8} {'OCC/that':>8} {'our error':>9} {'OCC error':>9} {'curves':>7}")
     lines = [f"sk.intersect (tol {OUR_TOL:g}) vs GeomAPI_IntSS (tol {baselines.OCC_DEFAULT_TOL:g}), interleaved, "
-             f"median of {calls} calls each; error: largest distance to either surface of the returned points "
-             "and dense samples; +points: ours with every curve's points, s and params read (closed forms sample "
-             "them on first read)", head, "-" * len(head)]
+             f"median of {calls} calls each; warm: each call right after the same call (a loop of calls); cold: "
+             "right after the other library's calls; error: largest distance to either surface of the returned "
+             "points and dense samples; +points: ours (warm) with every curve's points, s and params read (closed "
+             "forms sample them on first read)", head, "-" * len(head)]
     for r in rows:
         lines.append(f"{r.kind:<18} {1e3 * r.ours:>8.3f} {1e3 * r.occ:>8.3f} {r.ratio:>8.2f} "
+                     f"{1e3 * r.ours_cold:>8.3f} {1e3 * r.occ_cold:>8.3f} {r.cold_ratio:>8.2f} "
                      f"{1e3 * r.ours_points:>8.3f} {r.occ / r.ours_points:>8.2f} {r.our_error:>9.1e} "
                      f"{r.occ_error:>9.1e} {r.our_curves:>3}/{r.occ_curves:<3}")
-    ratios = np.array([r.ratio for r in rows])
-    if summary and np.all(np.isfinite(ratios)):
-        lines.append(f"OCC/ours: median {np.median(ratios):.2f}, min {ratios.min():.2f} "
-                     f"({rows[int(np.argmin(ratios))].kind}), max {ratios.max():.2f} "
-                     f"({rows[int(np.argmax(ratios))].kind})")
+    for label, ratios in (("warm", [r.ratio for r in rows]), ("cold", [r.cold_ratio for r in rows])):
+        ratios = np.array(ratios)
+        if summary and np.all(np.isfinite(ratios)):
+            lines.append(f"OCC/ours {label}: median {np.median(ratios):.2f}, min {ratios.min():.2f} "
+                         f"({rows[int(np.argmin(ratios))].kind}), max {ratios.max():.2f} "
+                         f"({rows[int(np.argmax(ratios))].kind})")
     return lines
 
 
@@ -194,8 +222,9 @@ def run(quick=False, echo=print):
         for line in occ_table(rows, QUICK_CALLS if quick else CALLS):
             echo(line)
         special = kind_rows(quick=quick, echo=echo, cases=special_cases())
-        echo("special placements (not in the median above): " + "; ".join(
-            f"{r.kind}: ours {1e3 * r.ours:.3f} ms, OCC {1e3 * r.occ:.3f} ms, OCC/ours {r.ratio:.2f}, "
+        echo("special placements (not in the medians above): " + "; ".join(
+            f"{r.kind}: ours {1e3 * r.ours:.3f} ms, OCC {1e3 * r.occ:.3f} ms, OCC/ours {r.ratio:.2f} (cold: "
+            f"{1e3 * r.ours_cold:.3f} ms, {1e3 * r.occ_cold:.3f} ms, {r.cold_ratio:.2f}), "
             f"errors {r.our_error:.1e} / {r.occ_error:.1e}, curves {r.our_curves}/{r.occ_curves}" for r in special))
     else:
         echo("OpenCascade (cadquery-ocp) not installed: the side-by-side table is skipped")

@@ -38,7 +38,8 @@ from ..march.segments import EDGE_NAMES
 from .split import split_planes
 from ..curve.status import BOUNDARY, CLOSED, open_outcome, outcome
 from ..search.topology import Topology, distances_at
-from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, extent, scene_lengths
+from ..march.start import scene_reading
+from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
 
 #: A curve within this many times the tolerance of touching the other surface (tangency, a plane through an apex)
 #: or of a vertex's touch of a trim level is left to the general path.
@@ -126,7 +127,8 @@ def closed_form(a, b, settings):
     or its placement is not handled here (see the module docstring). settings: a Scene or a trace Settings."""
     kinds = (a.traits, b.traits)
     names = (kinds[0].name, kinds[1].name)
-    if not (kinds[0].compact or kinds[1].compact or math.isfinite(extent(a)) or math.isfinite(extent(b))):
+    if not (kinds[0].compact or kinds[1].compact or math.isfinite(scene_reading(a)[2])
+            or math.isfinite(scene_reading(b)[2])):
         return None                                          # (a compact kind is bounded)
     graze = GRAZE * settings.tolerance
     topo = Topology(P=a, Q=b, mode=MODE)
@@ -759,13 +761,17 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, nodes=()):
     if len(nodes):
         t_mid = max((t_lo + (k + 0.5) / NODE_PROBES * (t_hi - t_lo) for k in range(NODE_PROBES)),
                     key=lambda t: normals_sine(placed, combine(rows, *basis(shape, t, 0, math))))
-    point = combine(rows, *basis(shape, t_mid, 0, math))
+    centre, P, Q = rows
+    if shape == LINE:                               # (combine and basis of a line: centre + t Q, its tangent Q)
+        point, tangent = [centre[0] + t_mid * Q[0], centre[1] + t_mid * Q[1], centre[2] + t_mid * Q[2]], Q
+    else:
+        point = combine(rows, *basis(shape, t_mid, 0, math))
+        tangent = combine([[0.0] * 3, P, Q], *basis(shape, t_mid, 1, math))
     na, nb = normal(placed[0], point), normal(placed[1], point)
     along = cross_list(na, nb)
     if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
         return None
-    centre, P, Q = rows
-    if dot(along, combine([[0.0] * 3, P, Q], *basis(shape, t_mid, 1, math))) < 0:
+    if dot(along, tangent) < 0:
         Q, t_lo, t_hi = [-x for x in Q], -t_hi, -t_lo       # run it backwards: C(-t), g odd
         ends = None if ends is None else ends[::-1]
     closed = ends is None

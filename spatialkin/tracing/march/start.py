@@ -24,23 +24,30 @@ def scene_scale(a, b):
     """Length scale of an intersection: the smaller characteristic length of the two surfaces, ignoring
     planes and untrimmed cones (which have none); without one, the smaller half-diagonal of the trimmed
     planes' rectangles (1 where there is none)."""
-    size_a, size_b = a.memo("scale_length", scale_length), b.memo("scale_length", scale_length)
+    return scale_of(scene_reading(a), scene_reading(b))
+
+
+def scale_of(first, second):
+    """scene_scale from the two surfaces' scene_readings."""
+    size_a, size_b = first[0], second[0]
     if size_a is not None or size_b is not None:
         return size_a if size_b is None else size_b if size_a is None else min(size_a, size_b)
-    span = min(a.memo("half_diagonal", half_diagonal), b.memo("half_diagonal", half_diagonal))
+    span = min(first[1], second[1])
     return span if math.isfinite(span) else 1.0
 
 
-def scale_length(surface):
-    """The surface's own length of the scene scale, or None (its traits' scale_length)."""
-    return surface.traits.scale_length(surface)
+def scene_reading(surface):
+    """(scale length or None, half diagonal of its trims, extent) of the surface, made once (its memo): its traits'
+    scale_length (its own length of the scene scale), half the diagonal of its trims (u, v) (inf where one is
+    unbounded) and its traits' extent (a length that bounds it; inf for an untrimmed plane, cylinder or cone)."""
+    return surface.memo("scene", read_scene)
 
 
-def half_diagonal(surface):
-    """Half the diagonal of the surface's trims (u, v) (inf where one is unbounded)."""
+def read_scene(surface):
+    traits = surface.traits
     (u0, u1), (v0, v1) = surface.bounds
     span = 0.5 * math.hypot(u1 - u0, v1 - v0)
-    return span if math.isfinite(span) else math.inf
+    return traits.scale_length(surface), span if math.isfinite(span) else math.inf, traits.extent(surface)
 
 
 def locate_on_curve(a, b, guess, gap_tol, y_guess=None):

@@ -24,7 +24,7 @@ from ...ode.solvers import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from ..curve.dense import Span, TracedSolution
 from ..curve.result import Curve, CurveResult, TracingError, DUPLICATE_SPACING
-from .start import locate_on_curve, scene_scale
+from .start import locate_on_curve, scale_of, scene_reading
 from ..curve.status import CLOSED, FAILED, open_outcome
 from ...geometry.traits import check_surface
 from ..._lib import stages, warm
@@ -74,12 +74,8 @@ METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", *COMPILED_SOLVERS)
 
 def extent(surface):
     """A length that bounds the surface (inf for an untrimmed plane, cylinder or cone): its traits' extent (made
-    once per surface)."""
-    return surface.memo("extent", _extent)
-
-
-def _extent(surface):
-    return surface.traits.extent(surface)
+    once per surface: its scene_reading)."""
+    return scene_reading(surface)[2]
 
 
 def _check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
@@ -168,9 +164,10 @@ def apex_points(a, b):
 def scene_lengths(a, b, tol, max_length, magnitude):
     """(scale, tolerance, gap_tol, max_length) of the settings (see make_settings; tol and max_length checked,
     max_length None for the default), magnitude the largest |coordinate| of the surfaces' origins."""
-    scale = scene_scale(a, b)
+    first, second = scene_reading(a), scene_reading(b)
+    scale = scale_of(first, second)
     if max_length is None:
-        bound = min(extent(a), extent(b))
+        bound = min(first[2], second[2])
         max_length = MAX_LENGTH_TURNS * 2 * math.pi * (bound if math.isfinite(bound) else 1e3 * scale)
     magnitude = max(scale, magnitude)
     gap_tol = max(GAP_FRACTION * tol * scale, ROUNDOFF_ULPS * EPS * magnitude)

@@ -71,8 +71,12 @@ SPLIT_FIT = 1e-13
 #: A plane through a cone's apex touches it along a ruling when the axis projected on the plane makes the half angle
 #: with the axis to within this (in cosine; a plane tangent to the cone within round-off).
 RULING_COS = 1e-9
-#: Points of an arc through nodes among which the one with the largest angle between the normals orients it.
+#: Points of an arc through nodes among which the one with the largest angle between the normals orients it ...
 NODE_PROBES = 8
+#: ... the first of them where the normals' sine (squared) lies within this fraction of the largest: a symmetric
+#: pair's probes tie to round-off on both arcs between its nodes, where N_a x N_b runs opposite ways along the
+#: curve, and round-off must not choose the direction.
+PROBE_TIE = 1e-9
 TWO_PI = 2.0 * math.pi
 #: The SPLIT_CHECKS angles' cosines and sines (columns), at which a split pair's ellipses are checked.
 SPLIT_COS = np.cos(np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False))[:, None]
@@ -756,11 +760,14 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, nodes=()):
     """The CurveResult of the arc t in [t_lo, t_hi] (ends None: the whole closed conic) of the surfaces (Placed),
     run along N_a x N_b at its middle; None where the surfaces are nearly tangent there. nodes: the points (3,) on
     the arc where it crosses another conic of the pair (its nodes; with nodes the arc is run along N_a x N_b where
-    the normals' angle is largest among NODE_PROBES points of it, away from the nodes, where N_a x N_b vanishes)."""
+    the normals' angle is largest among NODE_PROBES points of it, the first of those that tie (PROBE_TIE), away from
+    the nodes, where N_a x N_b vanishes)."""
     t_mid = 0.5 * (t_lo + t_hi)
     if len(nodes):
-        t_mid = max((t_lo + (k + 0.5) / NODE_PROBES * (t_hi - t_lo) for k in range(NODE_PROBES)),
-                    key=lambda t: normals_sine(placed, combine(rows, *basis(shape, t, 0, math))))
+        probes = [t_lo + (k + 0.5) / NODE_PROBES * (t_hi - t_lo) for k in range(NODE_PROBES)]
+        sines = [normals_sine(placed, combine(rows, *basis(shape, t, 0, math))) for t in probes]
+        top = (1.0 - PROBE_TIE) * max(sines)
+        t_mid = next(t for t, sine in zip(probes, sines) if sine >= top)      # (the first of those that tie)
     centre, P, Q = rows
     if shape == LINE:                               # (combine and basis of a line: centre + t Q, its tangent Q)
         point, tangent = [centre[0] + t_mid * Q[0], centre[1] + t_mid * Q[1], centre[2] + t_mid * Q[2]], Q

@@ -273,3 +273,37 @@ def test_general_path_finds_both_arcs_beside_an_outside_node(monkeypatch):
         found = sorted(c.length for c in traced(first, second, monkeypatch))
         assert len(found) == 2
         np.testing.assert_allclose(found, exact, rtol=1e-7)
+
+
+def test_round_off_does_not_choose_a_closed_ellipses_direction():
+    """A Steinmetz pair is symmetric: its ellipses' probes for the direction (NODE_PROBES points, the one with the
+    largest angle between the normals) tie in pairs, on the two arcs between the nodes, where N_a x N_b points
+    opposite ways along the curve. Moved by amounts that only change the round-off (1e-9 to 1e-7 of the scale),
+    each ellipse runs the same way: its unit tangent at the point nearest a fixed point of it keeps its sign
+    (oracle: the unmoved pair's tangents)."""
+    a = sk.Cylinder(0.7, sk.Frame((0.0, 0.0, 0.0), sk.rotation_about((1.0, 2.0, 0.5), 0.4)), v_range=(-3.0, 3.0))
+    b = sk.Cylinder(0.7, sk.Frame((0.0, 0.0, 0.0), sk.rotation_about(a.frame.rotation[:, 0], 1.2) @ a.frame.rotation),
+                    v_range=(-3.0, 3.0))
+
+    def tangents(shift):
+        """The unit tangent, at each reference point (moved), of the curve through it."""
+        moved = [type(s)(s.radius, sk.Frame(s.frame.origin + shift, s.frame.rotation), v_range=s.v_range)
+                 for s in (a, b)]
+        curves = sk.intersect(*moved)
+        assert len(curves) == 2
+        out = []
+        for ref in references:
+            nearest = [c.closest(ref + shift) for c in curves]
+            k = int(np.argmin([dist for _, dist in nearest]))
+            assert nearest[k][1] < 1e-9
+            out.append(curves[k].derivatives(np.atleast_1d(nearest[k][0]))[1][0])
+        return out
+
+    curves = sk.intersect(a, b)
+    references = [c.points[len(c.points) // 3] for c in curves]          # (away from the nodes)
+    base = tangents(np.zeros(3))
+    rng = np.random.default_rng(3)
+    for _ in range(24):
+        shift = rng.uniform(-1e-7, 1e-7, 3) * rng.choice([1.0, 1e-1, 1e-2])
+        for t0, t1 in zip(base, tangents(shift)):
+            assert t0 @ t1 > 0.99

@@ -44,6 +44,7 @@ def scene_reading(surface):
 
 
 def read_scene(surface):
+    """scene_reading's value, made."""
     traits = surface.traits
     (u0, u1), (v0, v1) = surface.bounds
     span = 0.5 * math.hypot(u1 - u0, v1 - v0)

@@ -16,7 +16,7 @@ from .certify.coaxial import coaxial_certificate
 from .certify.parallel import parallel_certificate
 from .curve.clip import clip_curves
 from .march.graze import across_edges, rejoined
-from .closed.forms import closed_form, closed_settings
+from .closed.forms import Placed, along_normals, closed_form, closed_settings
 from .._lib import stages, warm
 from .curve.status import BOUNDARY, CONTACT, FAILED, TANGENT
 from .search.rescue import LOST_RADIUS, crossing_starts
@@ -61,7 +61,9 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         single contact points (status 'contact', length 0) and circles or segments along which the surfaces
         touch (status 'tangent', in closed form: spatialkin.tracing.curve.exact); empty when the surfaces do not meet.
         Curves come longest first; the result does not depend on the argument order, on translation or on
-        scale.
+        scale. Each curve runs along N_a x N_b (a's normal S_u x S_v crossed with b's), as the Cauchy problem
+        does, whether traced or in closed form (past a node, along the branch it follows); a curve of tangency,
+        where N_a x N_b vanishes, runs counterclockwise about its axis.
 
     Raises
     ------
@@ -209,7 +211,9 @@ def searched(a, b, settings):
     # the components as CurveResults (each made a Curve once, complete, at the end)
     curves = [contact_point((a, b), p, settings.tolerance) for p in topo.contacts]
     curves += [exact_curve((a, b), settings.tolerance, circle=c) for c in topo.tangent_circles]
-    curves += [exact_curve((a, b), settings.tolerance, circle=c, event="axis_circle") for c in topo.circles]
+    placed = (a.memo("placed", Placed), b.memo("placed", Placed)) if topo.circles else ()
+    curves += [exact_curve((a, b), settings.tolerance, circle=along_normals(placed, c), event="axis_circle")
+               for c in topo.circles]
     curves += [exact_curve((a, b), settings.tolerance, segment=seg) for seg in topo.tangent_segments]
     radius = SAME_COMPONENT * settings.scale
     # (point, y, on the curve): exact starts on the edges, then the seeds, located only when one is traced

@@ -153,7 +153,7 @@ def closed_form(a, b, settings):
             return apex_components((a, b), placed, plane, quadric, graze, gap, settings, topo)
         conics = plane_conics(plane, quadric, graze, settings.scale, gap)
         if isinstance(conics, tuple):                       # a circle about a common axis: as the general path
-            return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=conics,
+            return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=along_normals(placed, conics),
                                                       event="axis_circle", topology=topo)]
     elif names[0] in QUADRICS and names[1] in QUADRICS:
         return split_conics(placed, graze, gap, settings, topo)
@@ -747,6 +747,23 @@ def normal(surf, point):
         q2 *= surf.form[0]
     return [r00 * q0 + r01 * q1 + r02 * q2, r10 * q0 + r11 * q1 + r12 * q2,
             r20 * q0 + r21 * q1 + r22 * q2]                                             # (to_global)
+
+
+def along_normals(placed, circle):
+    """The circle (centre, unit axis, radius) that the surfaces (Placed) cross, its axis turned where need be so that
+    it runs along N_a x N_b, as a traced curve and every conic here do (CircleSolution runs counterclockwise about its
+    axis): N_a x N_b keeps its sense all round such a circle, read at one point of it. A circle of two spheres, whose
+    axis runs from a's centre to b's, runs that way already (N_a x N_b = (c_b - c_a) x (x - c_a))."""
+    centre, axis, radius = circle
+    w0, w1, w2 = axis
+    least = min(range(3), key=lambda k: abs(axis[k]))          # (a coordinate axis least aligned with it)
+    e = cross_list(axis, [1.0 if k == least else 0.0 for k in range(3)])
+    size = radius / math.sqrt(dot(e, e))
+    point = [centre[0] + size * e[0], centre[1] + size * e[1], centre[2] + size * e[2]]
+    along = cross_list(normal(placed[0], point), normal(placed[1], point))
+    if dot(along, cross_list(axis, e)) < 0.0:
+        return centre, [-w0, -w1, -w2], radius
+    return circle
 
 
 def normals_sine(placed, point):

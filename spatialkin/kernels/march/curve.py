@@ -460,6 +460,24 @@ def curve_derivatives(y, a, b, sign, dy, ddy, d1, d2):
 
 
 @jit
+def longest_step_bend(t, y, a, b):
+    """(length of the longest step of a segment, the larger curvature |C''| at that step's ends (0 at a singular
+    point)): t (m >= 2,) its step points, y (4, m) the states there, a, b its charts."""
+    j = 0
+    for i in range(1, t.shape[0] - 1):
+        if t[i + 1] - t[i] > t[j + 1] - t[j]:
+            j = i
+    state, dy, ddy, d1, d2 = np.empty(4), np.empty(4), np.empty(4), np.empty(3), np.empty(3)
+    bend = 0.0
+    for i in (j, j + 1):
+        for c in range(4):
+            state[c] = y[c, i]
+        if curve_derivatives(state, a, b, 1.0, dy, ddy, d1, d2):
+            bend = max(bend, math.sqrt(d2[0] * d2[0] + d2[1] * d2[1] + d2[2] * d2[2]))
+    return t[j + 1] - t[j], bend
+
+
+@jit
 def _quadratic(sec, du, dv):
     """S_uu du^2 + 2 S_uv du dv + S_vv dv^2 (a 3-tuple) from sec = (S_uu, S_uv, S_vv)."""
     return (sec[0][0] * du * du + 2.0 * sec[1][0] * du * dv + sec[2][0] * dv * dv,

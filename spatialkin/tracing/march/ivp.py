@@ -50,6 +50,13 @@ KNOWN_NODE = 1e-3
 APEX_REARM = 2.0
 #: Where Newton fails with the normals closer to parallel than this (sine), the branch ends at a singular point.
 NEWTON_NEAR_SINGULAR = 1e-3
+#: A step may pass the start unseen: one that crosses the closure plane beside the start and back at the far side of
+#: the loop shows no crossing (a loop the solver integrates exactly, a circle about a common axis whose parameters run
+#: linearly in s, has a zero error estimate and steps of most of a lap, and would close a lap late). A branch that
+#: closes with a segment whose longest step turns the tangent by more than LAP_TURN (radians: the step's length times
+#: the larger curvature at its ends) is integrated again from that segment with steps turning it by at most MAX_TURN.
+LAP_TURN = 0.75 * math.pi
+MAX_TURN = 0.25 * math.pi
 #: Arc-length step (relative to the curve scale) of the difference that gives the slope of that sine.
 SLOPE_STEP = 1e-7
 #: Minima are watched only where the sine is below this, and counted once its slope (times the scale)
@@ -179,6 +186,20 @@ def event_plan(compiled, near_edge, flagged, bounds, recharts, close):
             tuple(kind for _, _, kind, _ in plan))
 
 
+def lapping(branch, max_step):
+    """(index of the first segment of the branch whose longest step turns the tangent by more than LAP_TURN, the
+    largest step that turns it by MAX_TURN where that step bends most, at most max_step), or None. A step that hides
+    a pass by the start turns the tangent by more than half a turn: on a loop integrated exactly (a circle) every
+    step turns it alike, and the longest most. Jumps across singular points are not steps."""
+    for k, seg in enumerate(branch.segments):
+        if len(seg.t) < 2 or seg.normal.any():
+            continue
+        step, bend = kc.longest_step_bend(seg.t, seg.y, seg.a, seg.b)
+        if step * bend > LAP_TURN:
+            return k, min(max_step, MAX_TURN / bend)
+    return None
+
+
 def at_outer_edge(a, b, y, sign, bounds):
     """True where y lies on (or past) an edge of a trimmed surface and the direction of travel leaves it (a curve
     running along the edge does not leave it). bounds: finite_bounds(a, b); the direction of travel is evaluated
@@ -221,6 +242,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
     # near_edge the same events, made once per branch and pointed at each segment's System
     bounds = finite_bounds(a_user, b_user)
     watched = {}
+    max_step = settings.max_step
     for _ in range(MAX_SEGMENTS):
         y_prev = y
         mark = stages.enter("correction") if stages.ON else None
@@ -260,7 +282,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
         mark = stages.enter("integration") if stages.ON else None
         try:
             res = integrate(system, (0.0, settings.max_length - s), y, method, events, settings.rtol, settings.atol,
-                            settings.max_step, SEGMENT_MAX_EVALUATIONS)
+                            max_step, SEGMENT_MAX_EVALUATIONS)
         except BudgetExceeded:
             branch.status, branch.message = outcome("stalled", s=s, budget=SEGMENT_MAX_EVALUATIONS,
                                                     point=point.tolist())
@@ -351,6 +373,14 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
             gap = p_e - start
             close_enough = math.sqrt(gap.dot(gap)) <= radius           # (np.linalg.norm's sum and root)
             if close_enough and float((sign * t_e).dot(direction)) >= CLOSURE_COSINE:
+                redo = lapping(branch, max_step)
+                if redo is not None:             # integrated again from that segment, with shorter steps
+                    k, max_step = redo
+                    seg = branch.segments[k]
+                    del branch.segments[k:]
+                    s, sign, a, b, y, compiled = seg.s0, seg.sign, seg.a, seg.b, seg.y[:, 0].copy(), seg.compiled
+                    kc.curve_frame(y, a, b, point, tangent)
+                    continue
                 remaining = float((start - p_e).dot(sign * t_e))
                 branch.status, branch.message = outcome("closed", s=s + remaining)
                 branch.length = s + remaining

@@ -45,6 +45,9 @@ NODE_SUSPECT = 1e-4
 #: A minimum of the sine below NODE_SUSPECT is a node only within this distance (relative to the scale) of a
 #: singular point proven by the topology stage (when the trace comes from sk.intersect).
 KNOWN_NODE = 1e-3
+#: Without the topology stage (sk.trace), an apex is a singular point of the curve where it lies within this many times
+#: the tolerance of both surfaces (as the topology stage takes an apex on the other surface).
+APEX_ON_CURVE = 1e3
 #: An apex event away from a proven apex is not watched again until a segment starts with the relative area element
 #: above this many times APEX_GUARD.
 APEX_REARM = 2.0
@@ -85,15 +88,19 @@ def known_node(point, settings):
     return bool(len(nodes)) and float(np.min(np.linalg.norm(nodes - point, axis=1))) <= KNOWN_NODE * settings.scale
 
 
-def known_apex(point, settings):
-    """True unless the topology stage has proven where the singular points are and the apex of the surfaces
-    (Settings.apexes: a cone's, a horn or spindle torus's points on its axis) nearest to point is none of them. An
-    apex event fires where a relative area element falls to APEX_GUARD, which lies farther from the apex than
-    KNOWN_NODE where the element grows with the square of the distance (a horn torus's cusp: 0.02 x its minor
-    radius), so the apex itself is tested, not the point of the event."""
-    if settings.nodes is None or not len(settings.apexes):
+def known_apex(point, settings, surfaces):
+    """True where the apex of the surfaces (Settings.apexes: a cone's, a horn or spindle torus's points on its axis)
+    nearest to point is a singular point of the curve: one the topology stage proved (known_node), or, without it
+    (sk.trace), one lying within APEX_ON_CURVE x the tolerance of both surfaces (else the curve passes beside it, and
+    the branch goes round it). An apex event fires where a relative area element falls to APEX_GUARD, which lies
+    farther from the apex than KNOWN_NODE where the element grows with the square of the distance (a horn torus's
+    cusp: 0.02 x its minor radius), so the apex itself is tested, not the point of the event."""
+    if not len(settings.apexes):
         return known_node(point, settings)
-    return known_node(settings.apexes[np.argmin(np.linalg.norm(settings.apexes - point, axis=1))], settings)
+    apex = settings.apexes[np.argmin(np.linalg.norm(settings.apexes - point, axis=1))]
+    if settings.nodes is None:
+        return max(float(surf.distance(apex)) for surf in surfaces) <= APEX_ON_CURVE * settings.tolerance
+    return known_node(apex, settings)
 
 
 def area_weight(area_a, area_b):
@@ -331,7 +338,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
             continue
         # (a trim edge met beside a node, where the traced path is off the curve by gap / sine, may be the node's
         # own crossing of the edge: it is taken through the node, and the jump ends on the edge)
-        singular = kind == "singular" or (kind == "apex" and known_apex(point, settings)) or (
+        singular = kind == "singular" or (kind == "apex" and known_apex(point, settings, (a_surface, b_surface))) or (
             kind in ("minimum", "chart", "boundary") and kc.degeneracy(y, a, b, 0.0, 0.0) < NODE_SUSPECT
             and known_node(point, settings))
         jump = jump_across(branch, seg, t_events[hit][0], y, settings) if singular else None

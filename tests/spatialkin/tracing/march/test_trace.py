@@ -257,3 +257,26 @@ def test_a_circle_the_solver_integrates_exactly_closes_after_one_lap():
         assert loop.closed and np.ptp(radius) < 1e-12
         assert abs(loop.length - 2 * np.pi * radius.mean()) <= 1e-9 * loop.length
         assert abs(abs(loop.params[-1, 2] - loop.params[0, 2]) - 2 * np.pi) < 1e-9
+
+
+def test_a_branch_beside_an_apex_goes_round_it():
+    """Two cones with perpendicular axes, the apex of the first 2.2e-4 off the second (its scale about 1): the curves
+    on its two nappes pass 2.4e-4 and 1.2e-3 from the apex without meeting. sk.trace, without the topology stage's
+    proof of where the singular points are, goes round the apex (an apex is a singular point of the curve only on
+    both surfaces): traced from four points of each of the two curves near it, every dense sample lies on both
+    surfaces (oracle: their exact distance functions, 1e-9), and the trace ends where sk.intersect's curve does."""
+    a = sk.Cone(0.7067288711463966, sk.Frame((0.465, 0.234, 0.265), [[0.0, -1.0, 0.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]]),
+                v_range=(-1.5216902476354528, 1.4586651536584672))
+    b = sk.Cone(0.8283762795582951, sk.Frame((0.0, -0.128, -0.276), [[-1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]]),
+                v_range=(0.350452639852212, 2.217356357903618))
+    apex = a.frame.origin
+    assert 1e-4 < b.distance(apex) < 1e-3
+    near = [c for c in sk.intersect(a, b) if c.closest(apex)[1] < 1e-2]
+    assert len(near) == 2
+    for curve in near:
+        ends = {tuple(np.round(curve.points[0], 9)), tuple(np.round(curve.points[-1], 9))}
+        for s in np.linspace(0.0, curve.length, 6)[1:-1]:
+            loop = sk.trace(a, b, curve(np.array([s]))[0])
+            samples = loop.sample(2000)
+            assert max(float(np.max(a.distance(samples))), float(np.max(b.distance(samples)))) < 1e-9
+            assert {tuple(np.round(loop.points[0], 9)), tuple(np.round(loop.points[-1], 9))} == ends

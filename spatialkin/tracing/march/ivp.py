@@ -45,8 +45,8 @@ NODE_SUSPECT = 1e-4
 #: A minimum of the sine below NODE_SUSPECT is a node only within this distance (relative to the scale) of a
 #: singular point proven by the topology stage (when the trace comes from sk.intersect).
 KNOWN_NODE = 1e-3
-#: Without the topology stage (sk.trace), an apex is a singular point of the curve where it lies within this many times
-#: the tolerance of both surfaces (as the topology stage takes an apex on the other surface).
+#: An apex lies on the other surface, and so on the curve, within this many times the tolerance: the topology stage
+#: seeds such apexes, and without it (sk.trace) only such an apex is a singular point of the curve.
 APEX_ON_CURVE = 1e3
 #: An apex event away from a proven apex is not watched again until a segment starts with the relative area element
 #: above this many times APEX_GUARD.

@@ -72,12 +72,6 @@ PULLBACK_MAX = 100.0
 METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA", *COMPILED_SOLVERS)
 
 
-def extent(surface):
-    """A length that bounds the surface (inf for an untrimmed plane, cylinder or cone): its traits' extent (made
-    once per surface: its scene_reading)."""
-    return scene_reading(surface)[2]
-
-
 def _check_options(tol, method, rtol, atol, max_length, singular_tol, pullback):
     """(tol, rtol, atol, max_length, singular_tol, pullback) checked (atol and max_length may be None); none
     depends on the surfaces (atol's floor for length parameters: make_settings).

@@ -43,6 +43,7 @@ from ...kernels.geometry import surfaces as ks
 from ...kernels.search import topology as kt
 from .meridians import BAND, BESIDE, REVOLVED, meridian_circle, meridian_nodes, meridian_segment, tangent_meridians
 from ...geometry.placement import bounding_ball, check_not_coincident, common_axis, ruled_along
+from ..march.ivp import APEX_ON_CURVE
 from ..march.trace import EPS, ROUNDOFF_ULPS
 from ...geometry.traits import LENGTH, power_of_two
 
@@ -464,7 +465,7 @@ def search(a, b, scale, tolerance, tangent=None, general=False):
         bands = []
         v_unit = step_units(p, scale)[1]         # RINGS are in units of v (a cone's v is a length)
         for v, apex in zip(apexes, apex_points):
-            if distances_at(q, apex)[0] > 1e3 * tolerance:
+            if distances_at(q, apex)[0] > APEX_ON_CURVE * tolerance:
                 continue
             bands.append((v - RINGS[-1] * v_unit, v + RINGS[-1] * v_unit))
             topo.skipped.append(("a thin band round an apex or pole", apex))
@@ -482,7 +483,7 @@ def search(a, b, scale, tolerance, tangent=None, general=False):
         # a chart's poles are no points of the curve's kind)
         for v in q.traits.apexes(q):
             apex = points_at(q, (0.0, v))[0]
-            if distances_at(p, apex)[0] <= 1e3 * tolerance and qp.on_level((0.0, v)):
+            if distances_at(p, apex)[0] <= APEX_ON_CURVE * tolerance and qp.on_level((0.0, v)):
                 topo.apexes.append(apex)
         # Q's trim edges, as curves on Q where F_P = 0
         q_edges(q, qp, balls[id(p_user)], add_line_roots, q_index)

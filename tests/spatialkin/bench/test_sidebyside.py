@@ -12,7 +12,6 @@ from spatialkin.bench.kinds import KINDS, STEINMETZ_ANGLE, occ_surface, pair_kin
 from spatialkin.geometry.surfaces import Cone
 from spatialkin._lib import stages
 from spatialkin.tracing.components import intersect
-from spatialkin.tracing.march.trace import extent
 
 #: Agreement of the same point from spatialkin's and OpenCascade's parametrisations (round-off of unit-sized
 #: coordinates).
@@ -36,7 +35,7 @@ def test_fifteen_pair_kinds_all_bounded():
     assert len(cases) == 15
     for _, a, b in cases:
         for s in (a, b):
-            assert np.isfinite(extent(s))          # trimmed where the kind is unbounded
+            assert np.isfinite(s.traits.extent(s))          # trimmed where the kind is unbounded
 
 
 def test_special_case_is_a_steinmetz_pair():

@@ -33,7 +33,7 @@ from .geometry.frame import Frame, rotation_about, rotation_to_z  # noqa: E402
 from .geometry.surfaces import Cone, Cylinder, Plane, Sphere, Surface, Torus  # noqa: E402
 from .tracing.curve.result import Curve, TracingError  # noqa: E402
 from .tracing.march.start import auxiliary_starts  # noqa: E402
-from .tracing.march.trace import trace  # noqa: E402
+from .tracing.single import trace  # noqa: E402
 from .tracing.components import intersect  # noqa: E402
 from .tracing.batch import BatchError, intersect_many  # noqa: E402
 from .geometry.placement import CoincidentSurfacesError  # noqa: E402

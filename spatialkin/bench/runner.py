@@ -18,7 +18,8 @@ from ..mechanisms.looper.reference import looper_pair
 from ..tracing.components import intersect
 from ..tracing.march.start import scene_scale
 from ..tracing.search.topology import topology
-from ..tracing.march.trace import DEFAULT_METHOD, METHODS, trace
+from ..tracing.march.trace import DEFAULT_METHOD, METHODS
+from ..tracing.single import trace
 from . import baselines
 from .cases import looper_closed_form, torus_sphere_cases
 

@@ -3,10 +3,11 @@
 
 The workload calls what a user's first calls reach: ``sk.intersect`` on a general pair of every kind of surface (15
 kinds) and on trimmed faces (arcs ending on trim edges, open pieces of one loop told apart), each with and without
-``certify=True`` (the closed forms' proofs, the tubes, the arcs against the trims), ``sk.trace``, the looper drive
-over a turn with its analysis (and a drive whose crank does not turn fully), ``certify=True`` on the looper pair,
-on circles in closed form, on a trimmed cylinder and on Viviani's figure-eight (a node), its design sensitivities,
-and ``sk.intersect_many``; numba compiles every kernel and specialisation they reach into its cache.
+``certify=True`` (the closed forms' proofs, the tubes, the arcs against the trims), ``sk.trace`` (from a point, and
+from ``sk.auxiliary_starts``), the looper drive over a turn with its analysis (and a drive whose crank does not turn
+fully), ``certify=True`` on the looper pair, on circles in closed form, on a trimmed cylinder and on Viviani's
+figure-eight (a node), its design sensitivities, and ``sk.intersect_many``; numba compiles every kernel and
+specialisation they reach into its cache.
 """
 import time
 
@@ -37,6 +38,7 @@ def run():
     sk.intersect_many([(sk.Torus(2.0, 1.0), sk.Sphere(1.2, sk.Frame((2.5, 0.0, 0.3))))])
     drive = LooperDrive.reference()
     sk.intersect(drive.torus, drive.sphere, certify=True)
+    sk.trace(drive.torus, drive.sphere, sk.auxiliary_starts(drive.torus, drive.sphere)[0])
     sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.0))), certify=True)
     sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))), certify=True)
     sk.intersect(sk.Cylinder(1.0, v_range=(-1.0, 1.0)), sk.Sphere(1.5, sk.Frame((0.05, 0.0, 0.0))), certify=True)

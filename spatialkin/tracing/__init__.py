@@ -3,7 +3,7 @@
 the curve record and ``Curve`` (``curve``), what certify=True proves (``certify``); ``intersect`` (``components``)
 and ``intersect_many`` (``batch``) on top."""
 from .curve.result import Curve, TracingError
-from .march.trace import trace
+from .single import trace
 from .components import intersect
 from .batch import BatchError, intersect_many
 from .search.topology import TopologyError

@@ -204,8 +204,9 @@ def project_to_curve(y, a, b, q, t, gap_tol, max_iter):
     int
         Number of iterations used (>= 0) on convergence (|M1 - M2| <= gap_tol and the last step below
         gap_tol, or stopped contracting: near tangency round-off in the gap, amplified by the nearly
-        parallel normals, keeps the steps above gap_tol while the point sits on both surfaces), or -1 if
-        Newton failed (singular system or no convergence within max_iter).
+        parallel normals, keeps the steps above gap_tol while the point sits on both surfaces, or the tangent
+        planes too nearly parallel for a step while it does), or -1 if Newton failed (singular system off the
+        curve, or no convergence within max_iter).
     """
     work = newton_work()
     status, _, _, _ = newton_from(y, a, b, q, t, gap_tol, max_iter, frame(a, y[0], y[1]), frame(b, y[2], y[3]),
@@ -263,10 +264,10 @@ def newton_from(y, a, b, q, t, gap_tol, max_iter, f1, f2, work):
             else:
                 # a parametrisation degenerates (an apex, a pole): take the minimum-norm step instead
                 if not gap_correction(su1, sv1, su2, sv2, gap, dx):
-                    return -1, True, f1, f2
+                    return (it if err <= gap_tol else -1), True, f1, f2
         else:
             if not gap_correction(su1, sv1, su2, sv2, gap, dx):
-                return -1, True, f1, f2
+                return (it if err <= gap_tol else -1), True, f1, f2
         for i in range(4):
             y[i] += dx[i]
         # the size of the step in space, measured on both surfaces

@@ -29,7 +29,7 @@ from ...tracing.march.start import auxiliary_starts
 from ...tracing.curve.bspline import fit as fit_spline
 from ...tracing.components import intersect
 from ...tracing.curve.result import TracingError
-from ...tracing.march.trace import trace
+from ...tracing.single import trace
 from ...motion.trajectory import Trajectory, time_map, to_time
 from ..._lib.validation import check_choice, check_positive, check_vector
 from ..common import PointMotion, angle_range_text, check_branch, check_drive

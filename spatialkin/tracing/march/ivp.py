@@ -43,10 +43,10 @@ CLOSURE_COSINE = 0.9
 #: the turn onto the other branch (a branch jump), which is never taken.
 NODE_SUSPECT = 1e-4
 #: A minimum of the sine below NODE_SUSPECT is a node only within this distance (relative to the scale) of a
-#: singular point proven by the topology stage (when the trace comes from sk.intersect).
+#: singular point proven by the topology stage (sk.intersect's, or the search sk.trace runs at its first such minimum).
 KNOWN_NODE = 1e-3
 #: An apex lies on the other surface, and so on the curve, within this many times the tolerance: the topology stage
-#: seeds such apexes, and without it (sk.trace) only such an apex is a singular point of the curve.
+#: seeds such apexes, and where its proof is not known only such an apex is a singular point of the curve.
 APEX_ON_CURVE = 1e3
 #: An apex event away from a proven apex is not watched again until a segment starts with the relative area element
 #: above this many times APEX_GUARD.
@@ -79,26 +79,37 @@ HANDOFF_MARGIN = 2.0
 MAX_SEGMENTS = 10_000
 
 
+def proven_nodes(settings):
+    """The singular points the topology stage proved (settings.nodes), or None when they are not known. sk.intersect
+    gives them; sk.trace asks for them once, at its first suspect point (settings.find_nodes runs the search), and
+    gets None where the search cannot run."""
+    if settings.nodes is None and settings.find_nodes is not None:
+        settings.nodes, settings.find_nodes = settings.find_nodes(), None
+    return settings.nodes
+
+
 def known_node(point, settings):
     """True unless the topology stage has proven where the singular points are and none is near point (then a
-    narrow waist between two branches is not a node: the branch goes round it)."""
-    if settings.nodes is None:
+    narrow waist between two branches, or a small loop round a critical point off the curve, is not a node: the
+    branch goes round it); True wherever they are not known (proven_nodes)."""
+    nodes = proven_nodes(settings)
+    if nodes is None:
         return True
-    nodes = np.asarray(settings.nodes).reshape(-1, 3)
+    nodes = np.asarray(nodes).reshape(-1, 3)
     return bool(len(nodes)) and float(np.min(np.linalg.norm(nodes - point, axis=1))) <= KNOWN_NODE * settings.scale
 
 
 def known_apex(point, settings, surfaces):
     """True where the apex of the surfaces (Settings.apexes: a cone's, a horn or spindle torus's points on its axis)
-    nearest to point is a singular point of the curve: one the topology stage proved (known_node), or, without it
-    (sk.trace), one lying within APEX_ON_CURVE x the tolerance of both surfaces (else the curve passes beside it, and
-    the branch goes round it). An apex event fires where a relative area element falls to APEX_GUARD, which lies
+    nearest to point is a singular point of the curve: one the topology stage proved (known_node), or, where that
+    is not known, one lying within APEX_ON_CURVE x the tolerance of both surfaces (else the curve passes beside it,
+    and the branch goes round it). An apex event fires where a relative area element falls to APEX_GUARD, which lies
     farther from the apex than KNOWN_NODE where the element grows with the square of the distance (a horn torus's
     cusp: 0.02 x its minor radius), so the apex itself is tested, not the point of the event."""
     if not len(settings.apexes):
         return known_node(point, settings)
     apex = settings.apexes[np.argmin(np.linalg.norm(settings.apexes - point, axis=1))]
-    if settings.nodes is None:
+    if proven_nodes(settings) is None:
         return max(float(surf.distance(apex)) for surf in surfaces) <= APEX_ON_CURVE * settings.tolerance
     return known_node(apex, settings)
 

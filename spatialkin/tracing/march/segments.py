@@ -91,6 +91,7 @@ class Settings:
     max_step: float
     close: bool = True
     nodes: np.ndarray = None  # (K, 3) singular points proven by the topology stage, or None when not known
+    find_nodes: object = None  # a callable giving nodes (or None) when they are first asked for (sk.trace)
     apexes: np.ndarray = field(default_factory=lambda: np.empty((0, 3)))  # (K, 3) the surfaces' apexes
 
 

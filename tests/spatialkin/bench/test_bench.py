@@ -13,7 +13,7 @@ from spatialkin.bench.cases import looper_closed_form, torus_sphere_cases
 from spatialkin.cli import main
 from spatialkin.mechanisms import LooperDrive
 from spatialkin.tracing.components import intersect
-from spatialkin.tracing.march.trace import trace
+from spatialkin.tracing.single import trace
 
 from tests.oracles.closed_forms import sphere_distance, torus_distance, torus_sphere_closed_form, torus_sphere_components
 

@@ -71,16 +71,16 @@ SPLIT_FIT = 1e-13
 #: A plane through a cone's apex touches it along a ruling when the axis projected on the plane makes the half angle
 #: with the axis to within this (in cosine; a plane tangent to the cone within round-off).
 RULING_COS = 1e-9
-#: Points of an arc through nodes among which the one with the largest angle between the normals orients it ...
-NODE_PROBES = 8
-#: ... the first of them where the normals' sine (squared) lies within this fraction of the largest: a symmetric
-#: pair's probes tie to round-off on both arcs between its nodes, where N_a x N_b runs opposite ways along the
-#: curve, and round-off must not choose the direction.
+#: An arc through nodes is oriented at the middle of the piece between its nodes (and ends) where the normals'
+#: angle is largest, the first of those where the normals' sine (squared) lies within this fraction of the largest:
+#: a symmetric pair's probes tie to round-off on both arcs between its nodes, where N_a x N_b runs opposite ways
+#: along the curve, and round-off must not choose the direction.
 PROBE_TIE = 1e-9
 TWO_PI = 2.0 * math.pi
-#: The SPLIT_CHECKS angles' cosines and sines (columns), at which a split pair's ellipses are checked.
-SPLIT_COS = np.cos(np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False))[:, None]
-SPLIT_SIN = np.sin(np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False))[:, None]
+#: The SPLIT_CHECKS angles at which a split pair's ellipses are checked ...
+SPLIT_ANGLES = np.linspace(0.0, TWO_PI, SPLIT_CHECKS, endpoint=False)
+#: ... and the weights (1, cos t, sin t) of an ellipse's rows (centre, P, Q) there.
+SPLIT_WEIGHTS = np.column_stack([np.ones(SPLIT_CHECKS), np.cos(SPLIT_ANGLES), np.sin(SPLIT_ANGLES)])
 
 #: What the closed forms read of the settings (a trace Settings has these fields too; closed_form takes either).
 #: What the closed forms read of sk.intersect's options; ``checked`` is the options and lengths make_settings
@@ -234,7 +234,7 @@ def split_conics(placed, graze, gap, settings, topo):
             return None
         conics += cut
     fit = max(SPLIT_FIT * settings.scale, gap)
-    samples = [np.array(c) + SPLIT_COS * np.array(p) + SPLIT_SIN * np.array(q) for _, (c, p, q) in conics]
+    samples = [(SPLIT_WEIGHTS @ np.array([rows for _, rows in conics])).reshape(-1, 3)] if conics else []
     segments = []
     for apex, direction in rulings:
         span = line_span(trims, apex, direction)
@@ -767,21 +767,23 @@ def along_normals(placed, circle):
 
 
 def normals_sine(placed, point):
-    """sin of the angle between the surfaces' (Placed) normals at a point on both, squared."""
+    """sin of the angle between the surfaces' (Placed) normals at a point on both, squared (0 at a cone's apex,
+    where a normal vanishes)."""
     (a0, a1, a2), (b0, b1, b2) = normal(placed[0], point), normal(placed[1], point)
     c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0              # (cross_list)
-    return (c0 * c0 + c1 * c1 + c2 * c2) / ((a0 * a0 + a1 * a1 + a2 * a2) * (b0 * b0 + b1 * b1 + b2 * b2))
+    sizes = (a0 * a0 + a1 * a1 + a2 * a2) * (b0 * b0 + b1 * b1 + b2 * b2)
+    return (c0 * c0 + c1 * c1 + c2 * c2) / sizes if sizes > 0.0 else 0.0
 
 
 def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, nodes=()):
     """The CurveResult of the arc t in [t_lo, t_hi] (ends None: the whole closed conic) of the surfaces (Placed),
     run along N_a x N_b at its middle; None where the surfaces are nearly tangent there. nodes: the points (3,) on
-    the arc where it crosses another conic of the pair (its nodes; with nodes the arc is run along N_a x N_b where
-    the normals' angle is largest among NODE_PROBES points of it, the first of those that tie (PROBE_TIE), away from
-    the nodes, where N_a x N_b vanishes)."""
+    the arc where it crosses another conic of the pair (its nodes; with nodes the arc is run along N_a x N_b at the
+    middle of the piece between two nodes, or a node and an end, where the normals' angle is largest, the first of
+    those that tie (PROBE_TIE): N_a x N_b vanishes at the nodes and turns round along the curve there)."""
     t_mid = 0.5 * (t_lo + t_hi)
     if len(nodes):
-        probes = [t_lo + (k + 0.5) / NODE_PROBES * (t_hi - t_lo) for k in range(NODE_PROBES)]
+        probes = piece_middles(shape, rows, t_lo, t_hi, ends is None, nodes)
         sines = [normals_sine(placed, combine(rows, *basis(shape, t, 0, math))) for t in probes]
         top = (1.0 - PROBE_TIE) * max(sines)
         t_mid = next(t for t, sine in zip(probes, sines) if sine >= top)      # (the first of those that tie)
@@ -810,6 +812,25 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, nodes=()):
     extra = {"nodes": np.array(nodes, dtype=float).reshape(-1, 3)} if len(nodes) else {}
     return SampledResult(closed=closed, length=length, status=status, tolerance=settings.tolerance, sol=sol,
                          topology=topo, message_of=functools.partial(arc_message, ends, length), **extra)
+
+
+def piece_middles(shape, rows, t_lo, t_hi, closed, nodes):
+    """The parameters t of the middles of the pieces into which the nodes (points (3,) on it) cut the arc
+    [t_lo, t_hi] of an ellipse (rows = centre, P, Q with P normal to Q) or a line (centre + t Q), in order along it
+    (a node at an end, a line's apex, leaves no piece there); closed: the whole ellipse, whose pieces run round from
+    the last node to the first."""
+    c, p, q = rows
+    cuts = []
+    for x in nodes:
+        d = [x[0] - c[0], x[1] - c[1], x[2] - c[2]]
+        if shape == LINE:
+            cuts.append(dot(d, q) / dot(q, q))
+        else:
+            t = math.atan2(dot(d, q) / dot(q, q), dot(d, p) / dot(p, p))
+            cuts.append(t_lo + (t - t_lo) % TWO_PI)          # (its turn within [t_lo, t_lo + 2 pi))
+    cuts = sorted(min(max(t, t_lo), t_hi) for t in cuts)
+    pairs = zip(cuts, cuts[1:] + [cuts[0] + TWO_PI]) if closed else zip([t_lo] + cuts, cuts + [t_hi])
+    return [0.5 * (t0 + t1) for t0, t1 in pairs if t1 > t0] or [0.5 * (t_lo + t_hi)]
 
 
 def arc_message(ends, length):

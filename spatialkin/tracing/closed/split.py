@@ -81,9 +81,9 @@ def inscribed(quadrics, scale):
 
 def split_planes(quadrics, scale):
     """The two crossing planes that split the intersection of two quadrics ((name, origin, rot, form) each, as
-    inscribed reads them), as (unit normal (3,), a point on it (3,)) in global coordinates, and the nodes (K, 3)
-    where both planes meet the first quadric (K = 0, 1 where their common line touches it, or 2); None when the
-    pair is no such pair (inscribed)."""
+    inscribed reads them), as (unit normal (3,), a point on it (3,)) in global coordinates, and the nodes (K points,
+    3 floats each) where both planes meet the first quadric (K = 0, 1 where their common line touches it, or 2);
+    None when the pair is no such pair (inscribed)."""
     found = inscribed(quadrics, scale)
     if found is None:
         return None
@@ -120,7 +120,7 @@ def split_planes(quadrics, scale):
     if root / abs(qa) <= NODE_SEPARATION:
         ts = (-qb / (2.0 * qa),)                  # the line touches the quadric: the conics touch there (one node)
     elif disc < 0.0:
-        return out, np.empty((0, 3))
+        return out, []
     else:
         ts = ((-qb - root) / (2.0 * qa), (-qb + root) / (2.0 * qa))
-    return out, np.array([[foot[i] + scale * t * e[i] for i in range(3)] for t in ts])
+    return out, [[foot[i] + scale * t * e[i] for i in range(3)] for t in ts]

@@ -148,7 +148,7 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     t_start = time.perf_counter()
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, close, anchor)
-    settings.find_nodes = functools.partial(proven_nodes, a, b, settings.scale, settings.tolerance)
+    settings.find_nodes = functools.partial(searched_nodes, a, b, settings.scale, settings.tolerance)
     point, y = start_point(a, b, start, settings.gap_tol)
     whole = trace_from(a, b, point, y, settings, t_start)
     if not (a.region or b.region):
@@ -159,10 +159,11 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     return Curve(min(arcs, key=lambda arc: float(arc.sol.closest(point)[1])))
 
 
-def proven_nodes(a, b, scale, tolerance):
+def searched_nodes(a, b, scale, tolerance):
     """(K, 3) the singular points of a ∩ b the topology search proves a branch may pass (the nodes, and the apexes
-    and poles lying on the other surface), as sk.intersect hands them to the march; None where the search cannot run (neither surface bounded, the surfaces
-    coincide) or stops (TopologyError): every suspect minimum is then taken for a node."""
+    and poles lying on the other surface), as sk.intersect hands them to the march; None where the search cannot
+    run (neither surface bounded, the surfaces coincide) or stops (TopologyError): every suspect minimum is then
+    taken for a node."""
     try:
         topo = topology(a, b, scale, tolerance)
     except (TopologyError, ValueError):

@@ -43,7 +43,8 @@ CLOSURE_COSINE = 0.9
 #: the turn onto the other branch (a branch jump), which is never taken.
 NODE_SUSPECT = 1e-4
 #: A minimum of the sine below NODE_SUSPECT is a node only within this distance (relative to the scale) of a
-#: singular point proven by the topology stage (sk.intersect's, or the search sk.trace runs at its first such minimum).
+#: singular point proven by the topology stage (sk.intersect's, or the search sk.trace runs at its first such
+#: minimum).
 KNOWN_NODE = 1e-3
 #: An apex lies on the other surface, and so on the curve, within this many times the tolerance: the topology stage
 #: seeds such apexes, and where its proof is not known only such an apex is a singular point of the curve.

@@ -49,13 +49,13 @@ def test_trace_runs_the_search_only_at_a_suspect_point(monkeypatch):
     """The looper's loop, its normals far from parallel, is traced without the topology search (sk.trace's cost
     stays the march's); a loop 1e-5 of the scale round a contact asks for it once."""
     calls = []
-    real = single.proven_nodes
+    real = single.searched_nodes
 
     def counted(*args):
         calls.append(args)
         return real(*args)
 
-    monkeypatch.setattr(single, "proven_nodes", counted)
+    monkeypatch.setattr(single, "searched_nodes", counted)
     torus, sphere = reference.looper_pair()
     start = sk.auxiliary_starts(torus, sphere)[0]
     assert sk.trace(torus, sphere, start).status == "closed"

@@ -107,3 +107,20 @@ def test_locate_lands_on_the_curve(kind, order):
     except TracingError:
         return
     assert max(a.distance(point), b.distance(point)) <= ON_SURFACES * gap_tol * max(1.0, scale)
+
+
+def test_locate_accepts_a_start_already_on_a_loop_near_a_tangency():
+    """On a loop 1e-6 of the scale round a plane-torus contact the tangent planes are too nearly parallel for a Newton
+    step; a start already on both surfaces within gap_tol is the point itself. Oracle: the loop's points by rays from
+    the contact bisected onto both surfaces (tests.oracles.ssi_cases.tiny_family); each located point lies within
+    gap_tol of both surfaces (exact distance functions) and within 1e-2 of the loop's radius of its start (both lie
+    within round-off over the normals' sine, about 1e-6, of the loop: measured 3e-3; 2 of the 32 starts raised
+    TracingError before)."""
+    from spatialkin.tracing.march.start import locate_on_curve
+    from tests.oracles.ssi_cases import tiny_family
+    case = next(c for c in tiny_family(np.random.default_rng(1406)) if c.name == "tiny/plane-torus/1e-06")
+    gap_tol = 1e-12 * case.scale
+    for start in case.samples:
+        point, _ = locate_on_curve(case.a, case.b, start, gap_tol)
+        assert max(case.a.distance(point), case.b.distance(point)) <= gap_tol
+        assert np.linalg.norm(point - start) <= 1e-2 * 1e-6 * case.scale

@@ -4,14 +4,6 @@ The march (spatialkin.tracing.march) integrates it; where the normals come close
 their angle (NODE_SUSPECT), only the topology search (spatialkin.tracing.search.topology) tells a node, where the
 branch jumps across, from a narrow waist or a small loop round a critical point off the curve, which it follows: the
 search runs then, once per call (settings.find_nodes), as sk.intersect runs it first.
-
-References
-----------
-"Investigation of the trajectories of characteristic points of spatial mechanisms of technological machines of the
-light industry" (in Ukrainian; [Looper]): Dragilev's method, the intersection line parametrised by arc length as
-the solution of a Cauchy problem.
-E. Hairer, S. P. Nørsett, G. Wanner, Solving Ordinary Differential Equations I, 2nd ed., Springer, 1993: the
-Dormand-Prince pairs (DOP853), dense output and step-size control.
 """
 import functools
 import time
@@ -109,7 +101,8 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
     onto both surfaces by Newton, and the arc length is re-measured on the corrected curve. The integrator is
     a Dormand-Prince pair with dense output [2]_. Where the normals come within about 1e-4 rad of parallel (a
     crossing of branches, a narrow waist, a small loop near a tangency) or the curve nears a cone's apex, the
-    topology search of ``intersect`` runs once, and the branch jumps across only the singular points it proves.
+    topology search of ``intersect`` runs once (where a surface is bounded), and the branch jumps across only the
+    singular points it proves.
 
     References
     ----------

@@ -31,6 +31,9 @@ SHRINK = tuple(10.0 ** (-k / 2) for k in range(24, 11, -1))
 SHRINK_BOXES = 200
 #: The modes of a topology search (a Topology of another mode comes from a closed form: nothing searched).
 SEARCHED = ("general", "coaxial", "ruled")
+#: An apex on the curve is also a collapse of the other surface's chart within this distance (relative to the
+#: scale): no chart passes it (other_chart).
+APEX_SHARED = 1e-6
 #: The claims, in the order they are reported.
 CLAIMS = ("complete", "one_component", "distinct", "points", "arcs", "singular")
 
@@ -129,6 +132,8 @@ class Certificate:
       join at a node, and so one_component and distinct for the curves through it, is not decided). An apex of a
       cone lying on the other surface gets its ball the same way, in the chart of the surface it is not an apex of
       (where the cone's implicit function has its critical point): isolated, or a saddle where two branches cross.
+      Where the search's own chart collapses at such an apex, the whole answer is read in the other surface's
+      chart (a general search there, other_chart), where the tubes pass the apex as they pass a node.
       Circles and segments of tangency get no ball.
       The search's boxes inside an isolated contact's box are accounted for by it in the completeness claim.
 
@@ -323,14 +328,19 @@ def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=T
     """The Certificate of an answer as certify makes it where no region cuts it (regions False: the faces'
     regions left out, as the search leaves them)."""
     general = topology
+    tolerance = scale * 1e-10 if tolerance is None else tolerance
     if topology is not None and topology.mode in ("coaxial", "ruled") and not exactly_symmetric(topology.P,
                                                                                                  topology.Q):
         try:
-            general = search(a, b, scale, scale * 1e-10 if tolerance is None else tolerance, general=True)
+            general = search(a, b, scale, tolerance, general=True)
         except TopologyError as err:
             general = None
             failure = f"the general search (the pair was read as {topology.mode}) stopped: {err}"
     charted = topology if general is None else general
+    other = other_chart(a, b, charted, scale, tolerance)
+    if other is not None:
+        general = charted = other
+        failure = None
     chart = Chart(charted, scale) if charted is not None and charted.chart is not None else None
     trims, unsupported = edges(charted, chart, regions) if chart is not None else ([], [])
     nodes = node_boxes(chart, charted.nodes, typical_chord(chart, curves)) if chart is not None else []
@@ -480,6 +490,28 @@ def singular_ball(chart, point, what):
         return (f"{what}: the only critical point of the level within {ball:.1e} of it is a saddle (a node, or "
                 "two branches passing close); the branches there are not proven", point, ball)
     return (f"{what} (not proven)", point, math.inf)
+
+
+def other_chart(a, b, topology, scale, tolerance):
+    """The general search with the other surface as its chart, where an apex or a pole of the search's chart P lies
+    on the curve (topology.apexes): there P's chart collapses and no tube passes, while in the other chart the
+    apex is a point of the level like any node, whose runs the tubes prove on either side. None where there is no
+    such apex, the other chart's search stops, or its chart collapses at one of those apexes too (two cones
+    sharing their apex)."""
+    if topology is None or not topology.apexes or topology.chart is None:
+        return None
+    try:
+        other = search(a, b, scale, tolerance, general=True, chart_of=topology.Q)
+    except (TopologyError, ValueError):
+        return None
+    p = other.chart
+    if p is None:
+        return None
+    collapsed = [p.point(0.0, v) for v in p.traits.collapse_lines(p)]
+    near = APEX_SHARED * scale
+    if any(np.linalg.norm(np.asarray(x) - apex) <= near for x in collapsed for apex in topology.apexes):
+        return None
+    return other
 
 
 def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends, isolated=()):

@@ -383,14 +383,15 @@ def topology(a, b, scale, tolerance):
         raise
 
 
-def search(a, b, scale, tolerance, tangent=None, general=False):
+def search(a, b, scale, tolerance, tangent=None, general=False, chart_of=None):
     """topology() in one configuration; tangent: (torus P, Q, u0) for a pair that touches along the meridian
     u = u0 of the torus (spatialkin.tracing.search.meridians): P is searched less a band round it; general: the
     general search even where the pair has a common axis or direction (the certificate's completeness, which
-    cannot rest on a symmetry decided within a tolerance)."""
+    cannot rest on a symmetry decided within a tolerance); chart_of: a or b, the surface P of that general search
+    (the certificate's, where the other's apex lies on the curve and its chart collapses there)."""
     t0 = time.perf_counter()
     check_not_coincident(a, b, scale)
-    p_user, q, mode, p, balls = search_roles(a, b, scale, general)
+    p_user, q, mode, p, balls = search_roles(a, b, scale, general, chart_of)
     if tangent is not None:
         p_user, q, mode = tangent[0], tangent[1], "general"
         p = p_user
@@ -508,16 +509,20 @@ def search(a, b, scale, tolerance, tangent=None, general=False):
 
 
 
-def search_roles(a, b, scale, general=False):
+def search_roles(a, b, scale, general=False, chart_of=None):
     """(P as given, Q, mode, P in the chart searched, {id: bounding ball}) of a pair that is not coincident: the roles
-    and chart of topology()'s searches (ValueError for an unbounded pair); general: no symmetric configuration."""
+    and chart of topology()'s searches (ValueError for an unbounded pair); general: no symmetric configuration;
+    chart_of: P of the general search (a or b), else choose_roles'."""
     balls = {id(a): bounding_ball(a), id(b): bounding_ball(b)}
     if balls[id(a)] is None and balls[id(b)] is None:
         raise ValueError(f"intersect needs a bounded pair: {type(a).__name__} and {type(b).__name__} are both "
                          "unbounded (give a Plane u_range and v_range, a Cylinder or Cone a v_range)")
     axis = None if general else common_axis(a, b, scale)
     ruled = ruled_along(a, b, scale) if axis is None and not general else None
-    p_user, q, mode = choose_roles(a, b, axis, ruled)
+    if general and chart_of is not None:
+        p_user, q, mode = chart_of, (b if chart_of is a else a), "general"
+    else:
+        p_user, q, mode = choose_roles(a, b, axis, ruled)
     if mode == "ruled" and balls[id(p_user)] is None and balls[id(q)] is None:
         raise ValueError("intersect needs a bounded pair")
     p = p_user.traits.aligned(p_user, axis) if mode == "coaxial" else p_user

@@ -31,8 +31,8 @@ SHRINK = tuple(10.0 ** (-k / 2) for k in range(24, 11, -1))
 SHRINK_BOXES = 200
 #: The modes of a topology search (a Topology of another mode comes from a closed form: nothing searched).
 SEARCHED = ("general", "coaxial", "ruled")
-#: An apex on the curve is also a collapse of the other surface's chart within this distance (relative to the
-#: scale): no chart passes it (other_chart).
+#: A chart collapses at a point of the curve (an apex or a pole lies there) within this distance, relative to the
+#: scale (other_chart).
 APEX_SHARED = 1e-6
 #: The claims, in the order they are reported.
 CLAIMS = ("complete", "one_component", "distinct", "points", "arcs", "singular")
@@ -494,24 +494,26 @@ def singular_ball(chart, point, what):
 
 def other_chart(a, b, topology, scale, tolerance):
     """The general search with the other surface as its chart, where an apex or a pole of the search's chart P lies
-    on the curve (topology.apexes): there P's chart collapses and no tube passes, while in the other chart the
+    on the curve (among topology.apexes): there P's chart collapses and no tube passes, while in the other chart the
     apex is a point of the level like any node, whose runs the tubes prove on either side. None where there is no
     such apex, the other chart's search stops, or its chart collapses at one of those apexes too (two cones
     sharing their apex)."""
-    if topology is None or not topology.apexes or topology.chart is None:
+    if topology is None or topology.chart is None or not collapses_at(topology.chart, topology.apexes, scale):
         return None
     try:
         other = search(a, b, scale, tolerance, general=True, chart_of=topology.Q)
     except (TopologyError, ValueError):
         return None
-    p = other.chart
-    if p is None:
-        return None
-    collapsed = [p.point(0.0, v) for v in p.traits.collapse_lines(p)]
-    near = APEX_SHARED * scale
-    if any(np.linalg.norm(np.asarray(x) - apex) <= near for x in collapsed for apex in topology.apexes):
+    if other.chart is None or collapses_at(other.chart, topology.apexes, scale):
         return None
     return other
+
+
+def collapses_at(chart, points, scale):
+    """True when the chart (a Surface in the chart searched) collapses within APEX_SHARED x scale of one of the
+    points (3,): its apex, or a pole."""
+    collapsed = [np.asarray(chart.point(0.0, v)) for v in chart.traits.collapse_lines(chart)]
+    return any(np.linalg.norm(x - np.asarray(p)) <= APEX_SHARED * scale for x in collapsed for p in points)
 
 
 def complete_claim(topology, chart, tubes, curves, trims, unsupported, ends, isolated=()):

@@ -207,7 +207,7 @@ def searched(a, b, settings):
     topo = topology(a, b, settings.scale, settings.tolerance)
     if stages.ON:
         stages.switch("setup")
-    settings.nodes = np.array(topo.nodes + topo.apexes).reshape(-1, 3)
+    settings.nodes = topo.crossings()
     # the components as CurveResults (each made a Curve once, complete, at the end)
     curves = [contact_point((a, b), p, settings.tolerance) for p in topo.contacts]
     curves += [exact_curve((a, b), settings.tolerance, circle=c) for c in topo.tangent_circles]

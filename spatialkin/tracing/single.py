@@ -161,4 +161,4 @@ def searched_nodes(a, b, scale, tolerance):
         topo = topology(a, b, scale, tolerance)
     except (TopologyError, ValueError):
         return None
-    return np.array(topo.nodes + topo.apexes, dtype=float).reshape(-1, 3)
+    return topo.crossings()

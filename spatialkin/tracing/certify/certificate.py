@@ -15,7 +15,7 @@ from ...kernels.certify import tubes as kt
 from ...kernels.certify import singular as ks_singular
 from ...kernels.search import topology as ks
 from .certify_points import certify_points
-from ..search.topology import TopologyError, search
+from ..search.topology import TopologyError, points_at, search
 from .trims import Ends, closed_inside, edges, open_curve, outside, q_edge_roots
 from .nodes import box_radii, in_boxes, linked, node_boxes, typical_chord
 from .tubes import Chart, tube
@@ -512,7 +512,7 @@ def other_chart(a, b, topology, scale, tolerance):
 def collapses_at(chart, points, scale):
     """True when the chart (a Surface in the chart searched) collapses within APEX_SHARED x scale of one of the
     points (3,): its apex, or a pole."""
-    collapsed = [np.asarray(chart.point(0.0, v)) for v in chart.traits.collapse_lines(chart)]
+    collapsed = points_at(chart, [(0.0, v) for v in chart.traits.collapse_lines(chart)])
     return any(np.linalg.norm(x - np.asarray(p)) <= APEX_SHARED * scale for x in collapsed for p in points)
 
 

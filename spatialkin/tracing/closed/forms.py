@@ -307,11 +307,21 @@ def on_arc(shape, rows, t_lo, t_hi, ends, x, near=0.0):
     for t in (t_lo, t_hi):                                   # a node at an end of the arc (a trim through it)
         if math.dist(combine(rows, *basis(shape, t, 0, math)), x) <= near:
             return True
-    (c, p, q), d = rows, [x[0] - rows[0][0], x[1] - rows[0][1], x[2] - rows[0][2]]
+    t = parameter_at(shape, rows, x)
     if shape == LINE:
-        return t_lo <= dot(d, q) / dot(q, q) <= t_hi
-    t = math.atan2(dot(d, q) / dot(q, q), dot(d, p) / dot(p, p)) % TWO_PI
+        return t_lo <= t <= t_hi
+    t %= TWO_PI
     return t_lo <= t <= t_hi or t_lo <= t + TWO_PI <= t_hi
+
+
+def parameter_at(shape, rows, x):
+    """The parameter t of the point x (3,) of a conic: an ellipse's angle in (-pi, pi] (rows = centre, P, Q with P
+    normal to Q), or a line's t (centre + t Q)."""
+    c, p, q = rows
+    d = [x[0] - c[0], x[1] - c[1], x[2] - c[2]]
+    if shape == LINE:
+        return dot(d, q) / dot(q, q)
+    return math.atan2(dot(d, q) / dot(q, q), dot(d, p) / dot(p, p))
 
 
 # --- small vectors as lists of floats (numpy costs more than the arithmetic on them) ---------------------------
@@ -819,15 +829,9 @@ def piece_middles(shape, rows, t_lo, t_hi, closed, nodes):
     [t_lo, t_hi] of an ellipse (rows = centre, P, Q with P normal to Q) or a line (centre + t Q), in order along it
     (a node at an end, a line's apex, leaves no piece there); closed: the whole ellipse, whose pieces run round from
     the last node to the first."""
-    c, p, q = rows
-    cuts = []
-    for x in nodes:
-        d = [x[0] - c[0], x[1] - c[1], x[2] - c[2]]
-        if shape == LINE:
-            cuts.append(dot(d, q) / dot(q, q))
-        else:
-            t = math.atan2(dot(d, q) / dot(q, q), dot(d, p) / dot(p, p))
-            cuts.append(t_lo + (t - t_lo) % TWO_PI)          # (its turn within [t_lo, t_lo + 2 pi))
+    cuts = [parameter_at(shape, rows, x) for x in nodes]
+    if shape != LINE:
+        cuts = [t_lo + (t - t_lo) % TWO_PI for t in cuts]          # (each one's turn within [t_lo, t_lo + 2 pi))
     cuts = sorted(min(max(t, t_lo), t_hi) for t in cuts)
     pairs = zip(cuts, cuts[1:] + [cuts[0] + TWO_PI]) if closed else zip([t_lo] + cuts, cuts + [t_hi])
     return [0.5 * (t0 + t1) for t0, t1 in pairs if t1 > t0] or [0.5 * (t_lo + t_hi)]

@@ -177,6 +177,11 @@ class Topology:
     unresolved: int = 0
     seconds: float = 0.0
 
+    def crossings(self):
+        """(K, 3) the singular points a branch may pass across: the nodes, and the apexes and poles on the curve (what
+        the march takes for proven nodes, Settings.nodes)."""
+        return np.array(self.nodes + self.apexes, dtype=float).reshape(-1, 3)
+
 
 @dataclass
 class RootBoxes:

@@ -199,24 +199,30 @@ def components(placed, conics, trims, graze, touch, settings, topo, nodes=()):
     return in_sk_order(curves)
 
 
+#: An untrimmed plane's bounds.
+UNBOUNDED = (-math.inf, math.inf, -math.inf, math.inf)
+
+
 class Cut:
     """An untrimmed plane as plane_conics reads it (a Placed plane's origin, z and bounds), from its unit normal and
-    a point on it (arrays (3,))."""
+    a point on it (3 floats each)."""
 
     __slots__ = ("origin", "z", "bounds")
 
     def __init__(self, normal, point):
-        self.origin, self.z, self.bounds = point.tolist(), normal.tolist(), (-math.inf, math.inf, -math.inf, math.inf)
+        self.origin, self.z, self.bounds = point, normal, UNBOUNDED
 
 
 def split_conics(placed, graze, gap, settings, topo):
     """The components of two quadrics (Placed) whose intersection splits into two ellipses (split.split_planes), cut
-    from the first by the two planes, checked on both surfaces (SPLIT_CHECKS points of each within SPLIT_FIT x scale,
+    from the first by the two planes, checked on the second (SPLIT_CHECKS points of each within SPLIT_FIT x scale,
     or the coordinates' round-off) and clipped by both trims, the nodes given to the arcs through them; a plane
     tangent to a cone along a ruling that lies on the other surface too (a cone touching a cylinder or a cone all
-    along a line) gives that ruling, clipped, as a segment of tangency (status 'tangent'). None where declined (the
-    pair does not split, or a conic is not an ellipse or that ruling, a circle about the axis, or off a surface)."""
-    found = split_planes([(p.name, p.origin, p.rot, p.form) for p in placed], settings.scale)
+    along a line) gives that ruling, clipped, as a segment of tangency (status 'tangent', checked on both). None
+    where declined (the pair does not split, or a conic is not an ellipse or that ruling, a circle about the axis,
+    or off a surface)."""
+    a, b = placed
+    found = split_planes(((a.name, a.origin, a.rot, a.form), (b.name, b.origin, b.rot, b.form)), settings.scale)
     trims = linear_trims(placed)
     if found is None or trims is None:
         return None
@@ -234,7 +240,9 @@ def split_conics(placed, graze, gap, settings, topo):
             return None
         conics += cut
     fit = max(SPLIT_FIT * settings.scale, gap)
-    samples = [(SPLIT_WEIGHTS @ np.array([rows for _, rows in conics])).reshape(-1, 3)] if conics else []
+    if conics and float(np.max(distances_at(placed[1].surface, (SPLIT_WEIGHTS @ np.array(
+            [rows for _, rows in conics])).reshape(-1, 3)))) > fit:
+        return None                                          # (cut from the first: on it to round-off)
     segments = []
     for apex, direction in rulings:
         span = line_span(trims, apex, direction)
@@ -243,11 +251,9 @@ def split_conics(placed, graze, gap, settings, topo):
         if span:
             ends = (apex + span[0] * direction, apex + span[1] * direction)
             segments.append(ends)
-            samples.append(np.linspace(*ends, SPLIT_CHECKS))
-    if samples:
-        points = np.concatenate(samples)
-        if max(float(np.max(distances_at(surf.surface, points))) for surf in placed) > fit:
-            return None
+            points = np.linspace(*ends, SPLIT_CHECKS)
+            if max(float(np.max(distances_at(surf.surface, points))) for surf in placed) > fit:
+                return None
     curves = components(placed, conics, trims, graze, gap, settings, topo, nodes) if conics else []
     if curves is None:
         return None
@@ -257,9 +263,10 @@ def split_conics(placed, graze, gap, settings, topo):
 
 
 def tangent_ruling(placed, normal, point, graze):
-    """(apex (3,), unit direction (3,)) of the ruling along which the plane (unit normal and a point on it, arrays)
-    touches a cone of the pair (Placed): the plane passes through the cone's apex (within graze) and holds exactly
-    one of its rulings (the axis projected on the plane, at the half angle to the axis); None otherwise."""
+    """(apex (3,), unit direction (3,)) of the ruling along which the plane (unit normal and a point on it, 3 floats
+    each) touches a cone of the pair (Placed): the plane passes through the cone's apex (within graze) and holds
+    exactly one of its rulings (the axis projected on the plane, at the half angle to the axis); None otherwise."""
+    normal, point = np.array(normal), np.array(point)
     for quadric in placed:
         if quadric.name != "cone":
             continue
@@ -495,9 +502,11 @@ def plane_conics(plane, quadric, graze, scale, apex_gap=None):
                 axis = normal if name == "sphere" else quadric.z
                 return np.array(combine([origin, to_global(rot, centre), zero], 1.0, 0.0)), np.array(axis), minor
             if minor <= major:
-                local = [(ELLIPSE, [centre, [minor * x for x in e1], [major * x for x in e2]])]
+                local = [(ELLIPSE, [centre, [minor * e1[0], minor * e1[1], minor * e1[2]],
+                                    [major * a0, major * a1, major * a2]])]
             else:
-                local = [(ELLIPSE, [centre, [major * x for x in e2], [-minor * x for x in e1]])]
+                local = [(ELLIPSE, [centre, [major * a0, major * a1, major * a2],
+                                    [-minor * e1[0], -minor * e1[1], -minor * e1[2]]])]
         else:                                                # a hyperbola's two branches
             u, v = (e2, e1) if K < 0 else (e1, e2)
             ku, kv = (math.sqrt(K / A), math.sqrt(-K)) if K < 0 else (math.sqrt(K), math.sqrt(-K / A))
@@ -776,13 +785,13 @@ def along_normals(placed, circle):
     return circle
 
 
-def normals_sine(placed, point):
-    """sin of the angle between the surfaces' (Placed) normals at a point on both, squared (0 at a cone's apex,
-    where a normal vanishes)."""
-    (a0, a1, a2), (b0, b1, b2) = normal(placed[0], point), normal(placed[1], point)
-    c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0              # (cross_list)
-    sizes = (a0 * a0 + a1 * a1 + a2 * a2) * (b0 * b0 + b1 * b1 + b2 * b2)
-    return (c0 * c0 + c1 * c1 + c2 * c2) / sizes if sizes > 0.0 else 0.0
+def normals_at(placed, point):
+    """(sine, N_a, N_b, N_a x N_b) of the surfaces (Placed) at a point on both: their normals (normal), their cross
+    product, and the sine of their angle squared (0 where a normal vanishes, at a cone's apex)."""
+    na, nb = normal(placed[0], point), normal(placed[1], point)
+    along = cross_list(na, nb)
+    sizes = dot(na, na) * dot(nb, nb)
+    return (dot(along, along) / sizes if sizes > 0.0 else 0.0), na, nb, along
 
 
 def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, nodes=()):
@@ -791,20 +800,16 @@ def component(placed, shape, rows, t_lo, t_hi, ends, settings, topo, nodes=()):
     the arc where it crosses another conic of the pair (its nodes; with nodes the arc is run along N_a x N_b at the
     middle of the piece between two nodes, or a node and an end, where the normals' angle is largest, the first of
     those that tie (PROBE_TIE): N_a x N_b vanishes at the nodes and turns round along the curve there)."""
-    t_mid = 0.5 * (t_lo + t_hi)
     if len(nodes):
-        probes = piece_middles(shape, rows, t_lo, t_hi, ends is None, nodes)
-        sines = [normals_sine(placed, combine(rows, *basis(shape, t, 0, math))) for t in probes]
-        top = (1.0 - PROBE_TIE) * max(sines)
-        t_mid = next(t for t, sine in zip(probes, sines) if sine >= top)      # (the first of those that tie)
-    centre, P, Q = rows
-    if shape == LINE:                               # (combine and basis of a line: centre + t Q, its tangent Q)
-        point, tangent = [centre[0] + t_mid * Q[0], centre[1] + t_mid * Q[1], centre[2] + t_mid * Q[2]], Q
+        read = [(t, normals_at(placed, combine(rows, *basis(shape, t, 0, math))))
+                for t in piece_middles(shape, rows, t_lo, t_hi, ends is None, nodes)]
+        top = (1.0 - PROBE_TIE) * max(sine for _, (sine, _, _, _) in read)
+        t_mid, (_, na, nb, along) = next(probe for probe in read if probe[1][0] >= top)   # (the first that ties)
     else:
-        point = combine(rows, *basis(shape, t_mid, 0, math))
-        tangent = combine([[0.0] * 3, P, Q], *basis(shape, t_mid, 1, math))
-    na, nb = normal(placed[0], point), normal(placed[1], point)
-    along = cross_list(na, nb)
+        t_mid = 0.5 * (t_lo + t_hi)
+        _, na, nb, along = normals_at(placed, combine(rows, *basis(shape, t_mid, 0, math)))
+    centre, P, Q = rows
+    tangent = Q if shape == LINE else combine([[0.0] * 3, P, Q], *basis(shape, t_mid, 1, math))
     if dot(along, along) < settings.singular_tol ** 2 * dot(na, na) * dot(nb, nb):
         return None
     if dot(along, tangent) < 0:
@@ -829,10 +834,10 @@ def piece_middles(shape, rows, t_lo, t_hi, closed, nodes):
     [t_lo, t_hi] of an ellipse (rows = centre, P, Q with P normal to Q) or a line (centre + t Q), in order along it
     (a node at an end, a line's apex, leaves no piece there); closed: the whole ellipse, whose pieces run round from
     the last node to the first."""
-    cuts = [parameter_at(shape, rows, x) for x in nodes]
-    if shape != LINE:
-        cuts = [t_lo + (t - t_lo) % TWO_PI for t in cuts]          # (each one's turn within [t_lo, t_lo + 2 pi))
-    cuts = sorted(min(max(t, t_lo), t_hi) for t in cuts)
+    if shape == LINE:
+        cuts = sorted(min(max(parameter_at(shape, rows, x), t_lo), t_hi) for x in nodes)
+    else:                                                   # (each one's turn within [t_lo, t_lo + 2 pi))
+        cuts = sorted(min(max(t_lo + (parameter_at(shape, rows, x) - t_lo) % TWO_PI, t_lo), t_hi) for x in nodes)
     pairs = zip(cuts, cuts[1:] + [cuts[0] + TWO_PI]) if closed else zip([t_lo] + cuts, cuts + [t_hi])
     return [0.5 * (t0 + t1) for t0, t1 in pairs if t1 > t0] or [0.5 * (t_lo + t_hi)]
 

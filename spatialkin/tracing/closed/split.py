@@ -32,8 +32,6 @@ N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design an
 """
 import math
 
-import numpy as np
-
 from ...geometry.vectors import cross_list, dot_list
 
 #: The axes of a pair that may split cross within this (relative to the scale), and the spheres inscribed about
@@ -81,7 +79,7 @@ def inscribed(quadrics, scale):
 
 def split_planes(quadrics, scale):
     """The two crossing planes that split the intersection of two quadrics ((name, origin, rot, form) each, as
-    inscribed reads them), as (unit normal (3,), a point on it (3,)) in global coordinates, and the nodes (K points,
+    inscribed reads them), as (unit normal, a point on it) (3 floats each) in global coordinates, and the nodes (K points,
     3 floats each) where both planes meet the first quadric (K = 0, 1 where their common line touches it, or 2);
     None when the pair is no such pair (inscribed)."""
     found = inscribed(quadrics, scale)
@@ -91,25 +89,25 @@ def split_planes(quadrics, scale):
     a, b = math.sqrt(k1), math.sqrt(k2)
     units, offsets, out = [], [], []
     for sign in (1.0, -1.0):                   # sqrt(k2) L2 = sign sqrt(k1) L1
-        normal = [b * z2[i] - sign * a * z1[i] for i in range(3)]
-        size = math.sqrt(dot_list(normal, normal))
-        unit = [x / size for x in normal]
+        n0, n1, n2 = b * z2[0] - sign * a * z1[0], b * z2[1] - sign * a * z1[1], b * z2[2] - sign * a * z1[2]
+        size = math.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+        unit = [n0 / size, n1 / size, n2 / size]
         offset = (b * d2 - sign * a * d1) / size       # unit . x' on the plane
         units.append(unit)
         offsets.append(offset)
-        out.append((np.array(unit), np.array([centre[i] + offset * unit[i] for i in range(3)])))
-    # the planes' common line, O + f + t e, on the first quadric (its local form, exactly): a quadratic in t (scaled)
+        out.append((unit, [centre[0] + offset * unit[0], centre[1] + offset * unit[1], centre[2] + offset * unit[2]]))
     (u0, u1), (w0, w1) = units, offsets
     g = dot_list(u0, u1)
     alpha, beta = (w0 - g * w1) / (1.0 - g * g), (w1 - g * w0) / (1.0 - g * g)
     e = cross_list(u0, u1)
     size = math.sqrt(dot_list(e, e))
-    e = [x / size for x in e]
-    foot = [centre[i] + alpha * u0[i] + beta * u1[i] for i in range(3)]
+    e0, e1, e2 = e[0] / size, e[1] / size, e[2] / size
+    foot = [centre[0] + alpha * u0[0] + beta * u1[0], centre[1] + alpha * u0[1] + beta * u1[1],
+            centre[2] + alpha * u0[2] + beta * u1[2]]
     _, origin, rot, (mu, rho) = quadrics[0]
-    rel = [(foot[i] - origin[i]) / scale for i in range(3)]
-    p = [rot[j] * rel[0] + rot[3 + j] * rel[1] + rot[6 + j] * rel[2] for j in range(3)]       # R^T (foot - o)
-    q = [rot[j] * e[0] + rot[3 + j] * e[1] + rot[6 + j] * e[2] for j in range(3)]             # R^T e
+    r0, r1, r2 = (foot[0] - origin[0]) / scale, (foot[1] - origin[1]) / scale, (foot[2] - origin[2]) / scale
+    p = [rot[j] * r0 + rot[3 + j] * r1 + rot[6 + j] * r2 for j in range(3)]       # R^T (foot - o)
+    q = [rot[j] * e0 + rot[3 + j] * e1 + rot[6 + j] * e2 for j in range(3)]       # R^T e
     qa = q[0] * q[0] + q[1] * q[1] + mu * q[2] * q[2]
     qb = 2.0 * (p[0] * q[0] + p[1] * q[1] + mu * p[2] * q[2])
     qc = p[0] * p[0] + p[1] * p[1] + mu * p[2] * p[2] - rho / (scale * scale)
@@ -123,4 +121,4 @@ def split_planes(quadrics, scale):
         return out, []
     else:
         ts = ((-qb - root) / (2.0 * qa), (-qb + root) / (2.0 * qa))
-    return out, [[foot[i] + scale * t * e[i] for i in range(3)] for t in ts]
+    return out, [[foot[0] + scale * t * e0, foot[1] + scale * t * e1, foot[2] + scale * t * e2] for t in ts]

@@ -9,11 +9,12 @@ from .baselines import OCC_DEFAULT_TOL
 from .sidebyside import OUR_TOL
 
 #: Columns of bench_kinds.csv: times in seconds, errors in length units, stage seconds per call.
-#: "ours s", "OCC s" and "OCC/ours" are warm (each call right after the same call), the cold ones right after the other
-#: library's calls (spatialkin.bench.sidebyside.KindRow).
+#: "ours s", "OCC s" and "OCC/ours" are warm (each side's second call in a row), the cold ones its first (right after
+#: the other library's calls), the loop ones per call in blocks of calls back to back (sidebyside.KindRow).
 COLUMNS = (["pair kind", "ours s", "OCC s", "OCC/ours", "our error", "OCC error", "our curves", "OCC curves"]
            + [f"{stages.LABELS[s]} s" for s in stages.STAGES] + ["compiled kernels s", "ours with points read s",
-                                                                  "ours cold s", "OCC cold s", "OCC/ours cold"])
+                                                                  "ours cold s", "OCC cold s", "OCC/ours cold",
+                                                                  "ours loop s", "OCC loop s", "OCC/ours loop"])
 #: The ratio axis reaches this factor past the smallest and the largest ratio (and parity), room for their labels.
 RATIO_MARGIN = 2.5
 #: Errors below this are drawn at it (a log axis has no zero).
@@ -36,7 +37,8 @@ def write_kinds_csv(rows, path):
                                  cell(r.our_error, ".3e"), cell(r.occ_error, ".3e"), r.our_curves, r.occ_curves]
                                 + [f"{r.profile.seconds[s]:.6g}" for s in stages.STAGES]
                                 + [cell(r.kernel, ".6g"), cell(r.ours_points, ".6g"), cell(r.ours_cold, ".6g"),
-                                   cell(r.occ_cold, ".6g"), cell(r.cold_ratio, ".4g")]
+                                   cell(r.occ_cold, ".6g"), cell(r.cold_ratio, ".4g"), cell(r.ours_loop, ".6g"),
+                                   cell(r.occ_loop, ".6g"), cell(r.loop_ratio, ".4g")]
                                 for r in rows))
 
 
@@ -55,10 +57,10 @@ def plot_kinds(rows, path, title):
 def kinds_figure(rows, title):
     """Per pair kind (one row each), a matplotlib Figure of three panels sharing the rows.
 
-    Left: OpenCascade's time over ours on a log axis, each bar drawn from parity (1) to the warm ratio (each call
-    right after the same call): to the right (green) where sk.intersect is faster, to the left (red) where
-    OpenCascade is; the ratio at the bar's end; a black mark at the cold ratio (each call right after the other
-    library's), where measured.
+    Left: OpenCascade's time over ours on a log axis, each bar drawn from parity (1) to the warm ratio (each side's
+    second call in a row): to the right (green) where sk.intersect is faster, to the left (red) where OpenCascade
+    is; a black mark at the cold ratio (each side's first call, right after the other library's) and a hollow
+    diamond at the loop ratio (calls back to back), where measured; the warm ratio written past the row's marks.
     Middle: both times in ms. Right: the largest measured distance to either surface of each answer (log),
     ours above the row's centre and OpenCascade's below it, so that equal errors do not hide each other.
 
@@ -79,6 +81,8 @@ def kinds_figure(rows, title):
     measured = np.isfinite(ratios)
     colds = np.array([r.cold_ratio for r in rows], dtype=float)
     cold = np.isfinite(colds)
+    loops = np.array([r.loop_ratio for r in rows], dtype=float)
+    loop = np.isfinite(loops)
     fig = Figure(figsize=(FIGURE_WIDTH, ROW_HEIGHT * len(rows) + FRAME_HEIGHT), layout="constrained")
     left, middle, right = fig.subplots(1, 3, sharey=True, gridspec_kw={"width_ratios": PANEL_WIDTHS})
     for ax in (left, middle, right):
@@ -93,7 +97,9 @@ def kinds_figure(rows, title):
     left.set_xscale("log")
     if cold.any():
         left.plot(colds[cold], y[cold], "|", ms=14, mew=2.5, color=COLD_COLOR, zorder=4)
-    drawn = np.concatenate([ratios[measured], colds[cold]])
+    if loop.any():
+        left.plot(loops[loop], y[loop], "D", ms=6, mew=1.5, mfc="none", color=COLD_COLOR, zorder=4)
+    drawn = np.concatenate([ratios[measured], colds[cold], loops[loop]])
     low = min(1.0, float(drawn.min())) if drawn.size else 1.0
     high = max(1.0, float(drawn.max())) if drawn.size else 1.0
     left.set_xlim(low / RATIO_MARGIN, high * RATIO_MARGIN)
@@ -101,8 +107,10 @@ def kinds_figure(rows, title):
     left.xaxis.set_minor_locator(NullLocator())
     left.xaxis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
     for k in np.nonzero(measured)[0]:
-        q = ratios[k]
-        left.annotate(f"{q:.2g}\u00d7", (q, k), xytext=(4 if q >= 1 else -4, 0), textcoords="offset points",
+        q = ratios[k]                   # the warm ratio, written past the bar's end and the row's marks
+        marks = [x for x in (q, colds[k], loops[k]) if np.isfinite(x)]
+        at = max(marks) if q >= 1 else min(marks)
+        left.annotate(f"{q:.2g}\u00d7", (at, k), xytext=(8 if q >= 1 else -8, 0), textcoords="offset points",
                       ha="left" if q >= 1 else "right", va="center", fontsize=NUMBER_SIZE)
     if measured.any():
         handles = [Patch(color=FASTER_COLOR, label="sk.intersect faster"),
@@ -110,12 +118,15 @@ def kinds_figure(rows, title):
         if cold.any():
             handles.append(Line2D([], [], marker="|", ms=10, mew=2.5, ls="none", color=COLD_COLOR,
                                   label="cold: each call after\nthe other library's"))
+        if loop.any():
+            handles.append(Line2D([], [], marker="D", ms=6, mew=1.5, mfc="none", ls="none", color=COLD_COLOR,
+                                  label="loop: calls\nback to back"))
         left.legend(handles=handles, fontsize=LEGEND_SIZE, loc="upper right")
     else:
         left.text(0.5, 0.5, "OpenCascade (cadquery-ocp) not installed:\nno side-by-side times",
                   transform=left.transAxes, ha="center", va="center", fontsize=LABEL_SIZE,
                   bbox={"facecolor": "white", "edgecolor": "none"}, zorder=4)
-    left.set_xlabel("OpenCascade time / sk.intersect time, warm\n(1 = parity; right of it: ours faster)",
+    left.set_xlabel("OpenCascade time / sk.intersect time\n(bars: warm; 1 = parity; right: ours faster)",
                     fontsize=LABEL_SIZE)
     left.set_yticks(y, [r.kind for r in rows])
     left.set_ylim(len(rows) - 0.5, -0.5)                  # first row on top

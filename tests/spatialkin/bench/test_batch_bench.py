@@ -111,21 +111,30 @@ def test_kinds_errors_do_not_hide_each_other():
     assert [t.get_text() for t in errors.get_legend().get_texts()][1].startswith("GeomAPI_IntSS")
 
 
-def test_kinds_cold_ratio_marked_beside_the_warm_bar(tmp_path):
-    """Where the cold times are measured, each row has a mark at OCC cold / ours cold (here 0.5 and 5, inside the
-    axis), told apart by a legend entry; the CSV carries the cold times and their ratio."""
+def test_kinds_cold_and_loop_ratios_marked_beside_the_warm_bar(tmp_path):
+    """Where the cold and loop times are measured, each row has a mark at OCC cold / ours cold (here 0.5 and 5) and
+    a hollow diamond at OCC loop / ours loop (here 0.25 and 40), inside the axis, told apart by legend entries; the
+    CSV carries the cold and loop times and their ratios."""
     from spatialkin.bench.kinds_report import kinds_figure
     prof = stages.StageProfile({s: 1e-4 for s in stages.STAGES}, 7e-4)
-    rows = [KindRow("plane-plane", 2e-3, 2e-4, 3e-16, 4e-16, 1, 1, prof, ours_cold=4e-3, occ_cold=2e-3),
-            KindRow("torus-torus", 1e-2, 2e-1, 8e-16, 5e-8, 1, 10, prof, ours_cold=4e-2, occ_cold=2e-1)]
+    rows = [KindRow("plane-plane", 2e-3, 2e-4, 3e-16, 4e-16, 1, 1, prof, ours_cold=4e-3, occ_cold=2e-3,
+                    ours_loop=1e-3, occ_loop=2.5e-4),
+            KindRow("torus-torus", 1e-2, 2e-1, 8e-16, 5e-8, 1, 10, prof, ours_cold=4e-2, occ_cold=2e-1,
+                    ours_loop=5e-3, occ_loop=2e-1)]
     bars = kinds_figure(rows, "title").axes[0]
     mark, = [line for line in bars.get_lines() if line.get_marker() == "|"]
     np.testing.assert_allclose(mark.get_xdata(), [0.5, 5.0], rtol=1e-12)
     np.testing.assert_allclose(mark.get_ydata(), [0, 1])
+    diamond, = [line for line in bars.get_lines() if line.get_marker() == "D"]
+    np.testing.assert_allclose(diamond.get_xdata(), [0.25, 40.0], rtol=1e-12)
+    np.testing.assert_allclose(diamond.get_ydata(), [0, 1])
     lo, hi = bars.get_xlim()
-    assert lo < 0.1 and hi > 20.0
-    assert any(t.get_text().startswith("cold") for t in bars.get_legend().get_texts())
+    assert lo < 0.25 and hi > 40.0
+    legend = [t.get_text() for t in bars.get_legend().get_texts()]
+    assert any(t.startswith("cold") for t in legend) and any(t.startswith("loop") for t in legend)
     write_kinds_csv(rows, tmp_path / "k.csv")
     with open(tmp_path / "k.csv") as f:
         table = list(csv.reader(f))
-    assert [float(x) for x in table[2][-3:]] == pytest.approx([4e-2, 2e-1, 5.0])
+    assert table[0][-6:] == ["ours cold s", "OCC cold s", "OCC/ours cold", "ours loop s", "OCC loop s",
+                             "OCC/ours loop"]
+    assert [float(x) for x in table[2][-6:]] == pytest.approx([4e-2, 2e-1, 5.0, 5e-3, 2e-1, 40.0])

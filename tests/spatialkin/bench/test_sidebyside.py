@@ -95,7 +95,7 @@ def test_rows_and_profile(rows):
 def test_ratios_finite_and_occ_errors_measured(rows):
     """With OpenCascade: finite positive ratios; its error recomputed from its own sampled curves."""
     from OCP.GeomAPI import GeomAPI_IntSS
-    assert all(np.isfinite(q) and q > 0 for r in rows for q in (r.ratio, r.cold_ratio))
+    assert all(np.isfinite(q) and q > 0 for r in rows for q in (r.ratio, r.cold_ratio, r.loop_ratio))
     assert all(r.occ_curves >= 1 and np.isfinite(r.occ_error) for r in rows)
     name, a, b = pair_kind_cases()[4]
     inter = GeomAPI_IntSS(occ_surface(a), occ_surface(b), baselines.OCC_DEFAULT_TOL)
@@ -103,4 +103,4 @@ def test_ratios_finite_and_occ_errors_measured(rows):
     worst = max(float(np.max(a.distance(pts))), float(np.max(b.distance(pts))))
     assert abs(rows[4].occ_error - worst) <= DISTANCE_AGREEMENT
     table = sidebyside.occ_table(rows, sidebyside.QUICK_CALLS)
-    assert len(table) == 3 + 15 + 2
+    assert len(table) == 3 + 15 + 3

@@ -1,8 +1,9 @@
 """Per pair kind: where the time of sk.intersect goes (the stage profile) and sk.intersect beside OpenCascade's
 GeomAPI_IntSS, both measured in this process, interleaved round by round (OCC twice, ours twice, ours with the
 points read: each side's first call cold, right after the other's, its second warm), then in loops (blocks of calls
-back to back, the two sides' blocks in turn), medians, so that the ratios do not depend on the machine's mood; errors are measured distances of the returned points and dense samples to both
-surfaces (exact distance functions, surface.distance).
+back to back, the two sides' blocks in turn), medians, so that the ratios do not depend on the machine's mood;
+errors are measured distances of the returned points and dense samples to both surfaces (exact distance functions,
+surface.distance).
 """
 import statistics
 import time

@@ -79,9 +79,9 @@ def inscribed(quadrics, scale):
 
 def split_planes(quadrics, scale):
     """The two crossing planes that split the intersection of two quadrics ((name, origin, rot, form) each, as
-    inscribed reads them), as (unit normal, a point on it) (3 floats each) in global coordinates, and the nodes (K points,
-    3 floats each) where both planes meet the first quadric (K = 0, 1 where their common line touches it, or 2);
-    None when the pair is no such pair (inscribed)."""
+    inscribed reads them), as (unit normal, a point on it) (3 floats each) in global coordinates, and the nodes (K
+    points, 3 floats each) where both planes meet the first quadric (K = 0, 1 where their common line touches it, or
+    2); None when the pair is no such pair (inscribed)."""
     found = inscribed(quadrics, scale)
     if found is None:
         return None
@@ -96,6 +96,7 @@ def split_planes(quadrics, scale):
         units.append(unit)
         offsets.append(offset)
         out.append((unit, [centre[0] + offset * unit[0], centre[1] + offset * unit[1], centre[2] + offset * unit[2]]))
+    # the planes' common line, O + f + t e, on the first quadric (its local form, exactly): a quadratic in t (scaled)
     (u0, u1), (w0, w1) = units, offsets
     g = dot_list(u0, u1)
     alpha, beta = (w0 - g * w1) / (1.0 - g * g), (w1 - g * w0) / (1.0 - g * g)

@@ -54,6 +54,9 @@ MESSAGES = {
     "nothing_traced": (None, "nothing could be traced from {point}: {message}"),
     "no_start": (NO_START, "no intersection point found near start {point}: Newton on M1 = M2 did not converge"),
     "branch_failed": (FAILED, "the curve could not be traced past {point}: {message}"),
+    "runs_over_itself": (FAILED, "the curve runs over itself: its end {point} lies {gap:.2g} from its own path at "
+                                 "s = {s:.6g} (a jump across a singular point landed on a branch followed already: "
+                                 "a loop through that point shorter than the jump)"),
     "outside_trims": (NO_START, "the component through start {point} lies outside the trims of the surfaces"),
     # the ends of a branch (spatialkin.tracing.march.ivp)
     "closed": (CLOSED, "closed on its start after s = {s:.12g}"),

@@ -22,10 +22,10 @@ from .arclength import remeasure_branch
 from .ivp import integrate_branch
 from ...ode.solvers import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
-from ..curve.dense import Span, TracedSolution
+from ..curve.dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS, Span, TracedSolution
 from ..curve.result import CurveResult, TracingError, DUPLICATE_SPACING
 from .start import scale_of, scene_reading
-from ..curve.status import CLOSED, FAILED, open_outcome
+from ..curve.status import CLOSED, FAILED, SINGULAR, open_outcome
 from ..._lib import stages
 from ..._lib.validation import check_choice, check_nonnegative, check_positive
 
@@ -48,6 +48,10 @@ DEFAULT_METHOD = COMPILED
 MAX_STEP = 0.2
 #: Without a max_length, a branch may run this many times 2 pi times the larger surface extent.
 MAX_LENGTH_TURNS = 32
+#: An open curve whose two ends stop at singular points runs over itself where an end lies within OVER_ITSELF x
+#: scale of its own path farther than ITSELF_CLEAR x scale (in arc length) from that end: a jump across a singular
+#: point landed on a branch the curve had followed already (a loop through the point shorter than the jump).
+OVER_ITSELF, ITSELF_CLEAR = 1e-6, 1e-2
 #: Newton's target for |M1 - M2|, as a fraction of the requested tolerance ...
 GAP_FRACTION = 1e-2
 #: ... but never below this many ulps of the coordinates' magnitude (round-off floor).
@@ -237,12 +241,36 @@ def trace_from(a, b, point, y, settings, t_start):
     nodes = np.array([p for branch, _, _ in branches for _, p in branch.nodes]).reshape(-1, 3)
     sol = TracedSolution(surfaces=(a, b), spans=spans, nodes=nodes, gap_tol=settings.gap_tol, length=length,
                          closed=closed, knots=s_all)
+    if not closed and backward.status == SINGULAR and forward.status == SINGULAR:
+        overlap = over_itself(sol, settings.scale)
+        if overlap is not None:
+            end, gap, s_near = overlap
+            raise TracingError.of("runs_over_itself", where=end, point=np.round(end, 12).tolist(), gap=gap, s=s_near)
     result = CurveResult(points=points, s=s_all, params=params, closed=closed, length=length, status=status,
                          message=message, tolerance=settings.tolerance, sol=sol, nodes=nodes, solver_gap=raw_gap,
                          nfev=nfev, wall_time=time.perf_counter() - t_start)
     if mark is not None:
         stages.leave(mark)
     return result
+
+
+def over_itself(sol, scale):
+    """(end (3,), gap, s) where an end of the open curve (its dense output sol) lies within OVER_ITSELF x scale of
+    the curve's own path at an arc length s more than ITSELF_CLEAR x scale from that end (the nearest of the
+    CLOSEST_CANDIDATES grid points there, refined by Newton in s); None where neither end does."""
+    grid_s, grid = sol.grid()
+    clear = ITSELF_CLEAR * scale
+    for s_end in (0.0, sol.length):
+        end = np.asarray(sol(s_end), dtype=float).reshape(3)
+        far = np.nonzero(np.abs(grid_s - s_end) > clear)[0]
+        if not len(far):
+            continue
+        near = far[np.argsort(np.linalg.norm(grid[far] - end, axis=1))[:CLOSEST_CANDIDATES]]
+        s, gap = sol.foot_points(np.repeat(end[None], len(near), axis=0), grid_s[near], CLOSEST_NEWTON_STEPS)
+        hit = np.nonzero((np.abs(s - s_end) > clear) & (gap <= OVER_ITSELF * scale))[0]
+        if len(hit):
+            return end, float(gap[hit[0]]), float(s[hit[0]])
+    return None
 
 
 def in_order(s, y):

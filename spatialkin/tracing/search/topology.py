@@ -84,8 +84,12 @@ LOOP_FLOOR = 0.1
 CLUSTER_SIDE = 1e-6
 #: Eigenvalues of the Hessian of g below this fraction of the largest are zero (a degenerate singular point).
 EIGEN_RATIO = 1e-10
-#: Seeds on the arms of a node sit this far (relative to the scale) from it.
+#: Seeds on the arms of a node sit this far (relative to the scale) from it, or closer where the arm bends away
+#: from its tangent sooner: halved up to ARM_HALVINGS times until Newton on g settles within ARM_FIT of the offset
+#: (arm_point); at most ARM_NEWTON steps, settled at a step below ARM_SETTLED of that (settles).
 NODE_OFFSET = 2e-2
+ARM_HALVINGS, ARM_FIT = 24, 0.25
+ARM_NEWTON, ARM_SETTLED = 8, 1e-6
 #: Where the seams of periodic parameters are cut (offsets from -pi, tried in turn): any position proves the
 #: same, but a component lying along the seam itself (a meridian plane through a torus axis) must be avoided.
 SEAM_OFFSETS = (0.0, 0.7236, 2.2019, 4.0537, 5.3211)
@@ -829,14 +833,47 @@ def classify(loose, topo, scale, keep):
                 topo.nodes.append(at)
             ratio = math.sqrt(-lam[0] / lam[1])
             d = reader.s.derivatives(*crit)
+            jacobian = np.column_stack([d[1], d[2]])
             for w in (vec[:, 0] + ratio * vec[:, 1], vec[:, 0] - ratio * vec[:, 1]):
                 step = NODE_OFFSET * scale / max(np.linalg.norm(d[1] * w[0] + d[2] * w[1]), 1e-300)
                 for sense in (1.0, -1.0):
-                    arm = reader.s.point(*(crit + sense * step * w))
+                    arm = reader.s.point(*arm_point(reader, crit, sense * step * w, jacobian))
                     if keep(arm):
                         topo.seeds.append(arm)
         elif inside:
             topo.seeds.append(at)
+
+
+def arm_point(reader, crit, offset, jacobian):
+    """The parameters of a seed on a node's arm: crit + offset, the offset halved (up to ARM_HALVINGS times) until
+    Newton on g from there settles on the level within ARM_FIT of the offset's length (settles): the branch may
+    bend away from its tangent at the node within the first offset (a loop through the node smaller than
+    NODE_OFFSET, such as one through a cone's apex lying on the other surface); the first offset where none
+    settles. jacobian (3, 2): S's derivatives at the node, which measure parameter steps as lengths."""
+    first = offset
+    for _ in range(ARM_HALVINGS):
+        if settles(reader, crit + offset, jacobian, ARM_FIT * float(np.linalg.norm(jacobian @ offset))):
+            return crit + offset
+        offset = 0.5 * offset
+    return crit + first
+
+
+def settles(reader, uv, jacobian, reach):
+    """True when Newton on g from uv (least-norm steps along grad g, at most ARM_NEWTON) converges (a step below
+    ARM_SETTLED of reach) without moving farther than reach from uv (lengths through jacobian)."""
+    x = np.array(uv, dtype=float)
+    for _ in range(ARM_NEWTON):
+        g = reader.values(x)[0]
+        size = g[1] * g[1] + g[2] * g[2]
+        if not size > 0.0:
+            return False
+        step = -g[0] / size * g[1:3]
+        x = x + step
+        if not np.linalg.norm(jacobian @ (x - uv)) <= reach:
+            return False
+        if np.linalg.norm(jacobian @ step) <= ARM_SETTLED * reach:
+            return True
+    return False
 
 
 def waist_starts(reader, crit, units):

@@ -28,6 +28,8 @@ from .._lib.validation import TOO_LARGE
 
 #: A range of an angle at least this close to a full turn (relative) is no trim.
 FULL_TURN_SLACK = 1e-12
+#: An angular range at most this wide (radians) is also bounded by the half-plane about its middle.
+NARROW = 0.5 * math.pi
 
 TURN, TUBE, HEIGHT, RADIUS = "turn", "tube", "height", "radius"
 
@@ -101,13 +103,22 @@ def angle_range(name, value):
 
 def angular_groups(names, kind, lo_hi, **extra):
     """The groups of limits of an angle in [lo, hi] (kind TURN or TUBE): two groups of one limit each for a
-    width of at most a half turn (both half-planes), one group of both (either) for a wider range."""
+    width of at most a half turn (both half-planes), one group of both (either) for a wider range. A range of at
+    most a quarter turn gets a third group, the half-plane of the angles within a quarter turn of its middle
+    (named ``<u or v>_range``): the two edges' half-planes also hold the opposite wedge, where they fall below
+    zero only by about the distance from the axis times the sine of half the width, within any slack for a
+    narrow range; that half-plane is below zero there by at least the distance times the cosine."""
     if lo_hi is None:
         return ()
     lo, hi = lo_hi
     low = Limit(names[0], kind, lo, True, **extra)
     high = Limit(names[1], kind, hi, False, **extra)
-    return ((low,), (high,)) if hi - lo <= math.pi else ((low, high),)
+    if hi - lo > math.pi:
+        return ((low, high),)
+    if hi - lo > NARROW:
+        return ((low,), (high,))
+    side = Limit(names[0][0] + "_range", kind, 0.5 * (lo + hi) - 0.5 * math.pi, True, **extra)
+    return ((low,), (high,), (side,))
 
 
 def level_groups(names, kind, lo_hi, axis=2):

@@ -87,7 +87,7 @@ def clip_curve(a, b, curve, scale):
         ends = [(0.0, None, None)] + cuts + [(length, None, None)]
     pieces = list(zip(ends[:-1], ends[1:]))
     touch = TOUCH_LENGTH * np.sqrt(slack * scale)    # the longest a touch stays within slack of an edge
-    verdicts = [piece_verdict(a, b, curve, lo[0], hi[0], slack, touch) for lo, hi in pieces]
+    verdicts = [piece_verdict(a, b, curve, lo[0], hi[0], slack, touch, across(lo, hi)) for lo, hi in pieces]
     n = len(verdicts)
     for i, verdict in enumerate(verdicts):         # a touch from inside, cut by round-off on both sides: inside
         inner = curve.closed or 0 < i < n - 1
@@ -99,21 +99,39 @@ def clip_curve(a, b, curve, scale):
         return [curve]                               # whole: every touch lies on it
     ends = [end[0] for arc in arcs for end in arc if end[1] is not None]           # the crossings kept
     points = touch_points(a, b, curve, touches, ends, arcs, slack, scale, touch)
-    return [window(curve, lo, hi) for lo, hi in arcs if hi[0] - lo[0] > curve.tolerance] + points
+    return [window(curve, lo, hi) if hi[0] - lo[0] > curve.tolerance else short_arc(curve, lo[0], hi[0])
+            for lo, hi in arcs] + points
+
+
+def short_arc(curve, s0, s1):
+    """An arc [s0, s1] no longer than the tolerance (a face narrower than that): the faces meet there in one point
+    to that accuracy, its middle (a CurveResult of length 0, status 'boundary', or 'contact' on a curve of
+    tangency)."""
+    s = 0.5 * (s0 + s1)
+    point = curve.sol(np.array([s % curve.length if curve.closed else s]))[0]
+    event = "contact" if curve.status in (TANGENT, CONTACT) else "edge_point"
+    return contact_point(curve.sol.surfaces, point, curve.tolerance, event=event)
 
 
 INSIDE, OUTSIDE, TOUCHED = "inside", "outside", "touched"
 
 
-def piece_verdict(a, b, curve, s0, s1, slack, touch):
+def across(lo, hi):
+    """True when a piece runs between the cuts (s, limit, surface) lo and hi of two different edges: a curve that
+    comes within slack of an edge and leaves again cuts that one edge twice, or not at all."""
+    return lo[1] is not None and hi[1] is not None and (lo[1] is not hi[1] or lo[2] != hi[2])
+
+
+def piece_verdict(a, b, curve, s0, s1, slack, touch, crossing=False):
     """INSIDE when the piece [s0, s1] of the curve between two cuts lies inside both regions: a sample of it
     inside by more than slack, or, within slack of an edge all along, longer than a touch (touch, a length: a curve
-    lying along the edge); TOUCHED when shorter (a curve touching an edge from outside); else OUTSIDE."""
+    lying along the edge) or running from one edge to another (crossing: a face narrower than twice the slack);
+    TOUCHED when neither (a curve touching an edge from outside); else OUTSIDE."""
     s = np.linspace(s0, s1, PIECE_SAMPLES)[1:-1]
     points = curve.sol(s % curve.length if curve.closed else s)
     if not inside_both(a, b, points, slack).all():
         return OUTSIDE
-    if inside_both(a, b, points, -slack).any() or s1 - s0 > touch:
+    if crossing or inside_both(a, b, points, -slack).any() or s1 - s0 > touch:
         return INSIDE
     return TOUCHED
 

@@ -131,6 +131,38 @@ def test_torus_face_and_sphere_on_the_general_path(trims, centre, radius):
                     c(c.length * 1.01)
 
 
+#: Narrow angular faces (surface, sphere radius, widths): a cylinder of radius 1 meets the sphere in the circles at
+#: z = +-sqrt(R^2 - 1) of radius 1, a torus (2, 1) in circles of radius 2 +- ..., a double cone on both nappes.
+NARROW = [(lambda u: sk.Cylinder(1.0, u_range=u), 1.5), (lambda u: sk.Torus(2.0, 1.0, u_range=u), 2.5),
+          (lambda u: sk.Cone(0.5, v_range=(-2.0, 2.0), u_range=u), 1.5)]
+
+
+@pytest.mark.parametrize("face, radius", NARROW)
+@pytest.mark.parametrize("lo, width, tol", [(0.3, 5e-3, 1e-3), (0.3, 5e-3, 1e-10), (-1.0, 1e-4, 1e-10),
+                                            (2.0, 3e-11, 1e-10), (0.0, 1e-11, 1e-10),
+                                            (0.3, 5e-3, 1e-2)])
+def test_narrow_angular_face(face, radius, lo, width, tol):
+    """A face of an angular range narrower than the slack of the inside test (4 tolerances, at a radius of 1-3):
+    two arcs, inside the face by the oracle's atan2 margin, of the face's width times the radius each (measured
+    from the points: the arc length of a circle about the axis), or, where the width is below the tolerance, two
+    points inside the face; never a point in the opposite wedge, where both edges' half-planes are within the
+    slack of zero."""
+    surface = face((lo, lo + width))
+    sphere = sk.Sphere(radius)
+    for curves in both_orders(surface, sphere, tol=tol):
+        assert len(curves) == 2
+        for c in curves:
+            local = to_local(surface, c.points)
+            rho = np.hypot(local[:, 0], local[:, 1])
+            assert face_margin(surface, local).min() >= -c.tolerance
+            assert c.max_distance <= c.tolerance
+            if width * rho.max() > c.tolerance:
+                assert c.status == "boundary" and not c.closed
+                assert abs(c.length - width * rho[0]) <= 1e-9 * width + 4 * c.tolerance
+            else:
+                assert c.length == 0.0 and c.status == "boundary"
+
+
 def test_arc_across_the_start_of_a_closed_component():
     """A face that keeps the piece of a closed circle across its s = 0: one arc, its parameters continuous."""
     sphere = sk.Sphere(1.0, u_range=(-0.5, 0.5))

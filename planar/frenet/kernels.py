@@ -8,6 +8,8 @@ References
 ----------
 S. Pylypaka, A. Chepyzhniy, T. Kresan, "Determining kinematic characteristics of planar mechanisms' driven member
 using Frenet trihedron", 2017.
+T. J. Dekker, "A floating-point technique for extending the available precision", Numer. Math. 18 (1971) (the
+exact product of two doubles).
 """
 import math
 
@@ -43,29 +45,56 @@ def crank_slider_law(k, h, length, branch, s, phi, dphi, ddphi, cg, sg, ck, sk):
             ddphi[i] = 0.0
 
 
+#: pi / 4 as the double nearest it and the rest.
+QUARTER_TURN, QUARTER_TURN_LOW = 0.25 * math.pi, 3.061616997868383e-17
+#: Veltkamp's splitting factor for doubles, 2^27 + 1.
+SPLITTER = 134217729.0
+
+
+@jit(inline="always")
+def two_product(a, b):
+    """(p, e): p = fl(a b) and its rounding error e, a b = p + e exactly (Dekker's product by Veltkamp's
+    splitting; |a|, |b| below about 1e300)."""
+    p = a * b
+    t = SPLITTER * a
+    a_hi = t - (t - a)
+    a_lo = a - a_hi
+    t = SPLITTER * b
+    b_hi = t - (t - b)
+    b_lo = b - b_hi
+    return p, ((a_hi * b_hi - p) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo
+
+
 @jit
 def crank_rocker_law(k, d, s, phi, dphi, ddphi, cg, sg, ck, sk):
     """Crank-rocker through the stone at (d, 0); d = 1/k turns uniformly. cg, sg: the link's direction,
     gamma = atan2(cos ks, kd - sin ks); ck, sk: cos ks, sin ks."""
-    kd = k * d
+    kd, error = two_product(k, d)
+    beyond = (kd - 1.0) + error                  # kd - 1 from the exact product
     for i in range(s.size):
-        ks = k * s[i]
+        ks, ks_error = two_product(k, s[i])
         sn, c = math.sin(ks), math.cos(ks)
+        sn, c = sn + c * ks_error, c - sn * ks_error      # at the exact k s (to first order in its rounding)
         ck[i], sk[i] = c, sn
-        if kd == 1.0:
+        if beyond == 0.0:
             phi[i] = math.pi / 4 - ks / 2
             dphi[i] = -k / 2
             ddphi[i] = 0.0
             cg[i] = math.cos(math.pi / 4 + ks / 2)
             sg[i] = math.sin(math.pi / 4 + ks / 2)
             continue
-        big_d = 1.0 + kd * kd - 2.0 * kd * sn
-        phi[i] = math.atan2(c, kd - sn) - ks
+        half = math.sin((QUARTER_TURN - 0.5 * ks) + (QUARTER_TURN_LOW - 0.5 * ks_error))
+        gap = beyond + 2.0 * half * half          # kd - sin ks, without its cancellation where sin ks is near kd
+        big_d = gap * gap + c * c                 # 1 + kd^2 - 2 kd sin ks, likewise
+        if big_d == 0.0:
+            raise ValueError("the crank pin passes through the stone here (d = 1/k to within round-off, "
+                             "not exactly): the link's direction is undefined")
+        phi[i] = math.atan2(c, gap) - ks
         norm = math.sqrt(big_d)
-        cg[i] = (kd - sn) / norm
+        cg[i] = gap / norm
         sg[i] = c / norm
-        dphi[i] = -k * k * d * (kd - sn) / big_d
-        ddphi[i] = -d * k ** 3 * (kd * kd - 1.0) * c / (big_d * big_d)
+        dphi[i] = -k * k * d * gap / big_d
+        ddphi[i] = -d * k ** 3 * (beyond * (beyond + 2.0)) * c / (big_d * big_d)
 
 
 @jit

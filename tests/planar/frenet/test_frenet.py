@@ -94,6 +94,26 @@ def test_link_passes_through_the_stone(d):
     assert np.min(np.sum(u[1:] * u[:-1], axis=1)) > 0.9
 
 
+@pytest.mark.parametrize("k, d, s", [(0.5, 2.0000001, np.pi - 2.1e-8), (0.5, 2.0000001, np.pi),
+                                     (0.5, 2.00000001, np.pi), (0.5, 2.0 + 4.0 * np.finfo(float).eps, np.pi),
+                                     (0.5, 2.0 - 4.0 * np.finfo(float).eps, np.pi), (0.5, 1.9999, np.pi + 1e-3),
+                                     (0.3, 1.0 / 0.3 + 1e-8, 0.5 * np.pi / 0.3), (0.7, 1.0 / 0.7 - 3e-9, 2.2439)])
+def test_derivatives_where_the_pin_passes_near_the_stone(k, d, s):
+    """d near 1/k, the pin passing within 1e-16 to 1e-4 of the stone: phi' and phi'' against the law's formulas in
+    50-digit arithmetic (mpmath, from the same doubles k, d, s), to 1e-12 relative; finite everywhere."""
+    import mpmath as mp
+    _, dphi, ddphi = planar.CrankRocker(k, d).evaluate(np.array([s]))
+    with mp.workdps(50):
+        K, D, S = mp.mpf(k), mp.mpf(d), mp.mpf(s)
+        sn, c = mp.sin(K * S), mp.cos(K * S)
+        big_d = 1 + K * K * D * D - 2 * K * D * sn
+        true1 = -K * K * D * (K * D - sn) / big_d
+        true2 = -D * K ** 3 * (K * K * D * D - 1) * c / big_d ** 2
+    for got, true in ((dphi[0], true1), (ddphi[0], true2)):
+        assert np.isfinite(got)
+        assert abs(got - float(true)) <= 1e-12 * abs(float(true))
+
+
 def test_corrected_derivatives_at_d_equal_r():
     """At d = r the link is a chord through a point of the circle and turns uniformly at omega/2: phi' = -k/2.
     The printed (15) has the wrong sign of the gamma term: phi'_printed = -k - (phi' + k) = -3k/2 here.

@@ -186,8 +186,9 @@ def check_vector(name, value, length=3):
 
 def check_points(name, value, count=None, allow_empty=False):
     """Finite points (N, 3) as a float array: N >= 1 unless allow_empty, N == count when given; or
-    ValueError naming the argument (and the first row that is not finite)."""
-    pts = np.asarray(value, dtype=float)
+    ValueError naming the argument (and the first row that is not finite; TypeError naming it for values that are no
+    real numbers: as_float_array)."""
+    pts = as_float_array(name, value)
     if pts.ndim != 2 or pts.shape[1] != 3 or (len(pts) == 0 and not allow_empty):
         least = "" if allow_empty else " with N >= 1"
         raise ValueError(f"{name} must have shape (N, 3){least}, got {pts.shape}")
@@ -202,6 +203,7 @@ def check_points(name, value, count=None, allow_empty=False):
 def check_angles(name, values):
     """Angles (radians) as a finite 1-D float array (a scalar is one angle), or ValueError naming the argument
     (also for an empty one: a motion has at least one position)."""
+    refuse_not_real(name, values)
     try:
         angles = np.atleast_1d(np.asarray(values, dtype=float))
     except OverflowError:
@@ -215,11 +217,31 @@ def check_angles(name, values):
     return angles
 
 
+#: Kinds of numpy arrays that are no real numbers (complex, bool, str, bytes) ...
+NOT_REAL = {"c": "complex", "b": "bool", "U": "str", "S": "bytes"}
+
+
+def refuse_not_real(name, value):
+    """TypeError naming the argument when value holds complex, bool or str values (an array, a list or tuple of
+    them, or one of them), which numpy would cast to floats (dropping imaginary parts, reading True as 1)."""
+    kind = value.dtype.kind if isinstance(value, np.ndarray) else None
+    if kind is None and isinstance(value, (list, tuple)):
+        try:
+            kind = np.asarray(value).dtype.kind
+        except (TypeError, ValueError, OverflowError):
+            kind = None
+    if kind in NOT_REAL:
+        raise TypeError(f"{name} must be an array of real numbers, got {NOT_REAL[kind]} values")
+    if isinstance(value, (complex, np.complexfloating, bool, np.bool_)):
+        raise TypeError(f"{name} must be an array of real numbers, got {type(value).__name__}")
+
+
 def as_float_array(name, value):
-    """np.asarray(value, dtype=float), or TypeError naming the argument when value is not numbers (a str, None, an
-    object)."""
+    """np.asarray(value, dtype=float), or TypeError naming the argument when value is not real numbers (a str,
+    None, an object, complex or bool values: numpy would drop the imaginary parts or read True as 1)."""
     if isinstance(value, str) or value is None:
         raise TypeError(f"{name} must be an array of real numbers, got {type(value).__name__}")
+    refuse_not_real(name, value)
     try:
         return np.asarray(value, dtype=float)
     except OverflowError:

@@ -1,8 +1,22 @@
 """Frames: an origin and a proper rotation that place a surface or a link in global coordinates."""
+import math
+
 import numpy as np
 
 from .._lib.validation import check_frame, check_real, check_vector
 from .vectors import cross
+
+
+def unit(name, vector):
+    """The unit vector (3,) along a finite non-zero 3-vector of any length, or ValueError (TypeError) naming it: the
+    vector is first scaled by a power of two that brings its largest entry into [1, 2) (exact), so that its norm
+    neither overflows nor underflows."""
+    v = check_vector(name, vector)
+    top = float(np.max(np.abs(v)))
+    if top == 0.0:
+        raise ValueError(f"{name} must be a non-zero vector")
+    v = np.ldexp(v, 1 - math.frexp(top)[1])
+    return v / np.linalg.norm(v)
 
 
 def rotation_about(axis, angle):
@@ -44,12 +58,8 @@ def rotation_about(axis, angle):
     ...
     ValueError: axis must be a non-zero vector
     """
-    k = check_vector("axis", axis)
-    n = np.linalg.norm(k)
-    if n == 0:
-        raise ValueError("axis must be a non-zero vector")
+    k = unit("axis", axis)
     angle = check_real("angle", angle, finite=True, strict=True)
-    k = k / n
     kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
     return np.eye(3) + np.sin(angle) * kx + (1 - np.cos(angle)) * (kx @ kx)
 
@@ -85,11 +95,7 @@ def rotation_to_z(z_axis):
     >>> np.allclose(R.T @ R, np.eye(3)), round(float(np.linalg.det(R)), 6)
     (True, 1.0)
     """
-    z = check_vector("z_axis", z_axis)
-    n = np.linalg.norm(z)
-    if n == 0:
-        raise ValueError("z_axis must be a non-zero vector")
-    z = z / n
+    z = unit("z_axis", z_axis)
     helper = np.eye(3)[np.argmin(np.abs(z))]
     x = cross(helper, z)
     x /= np.linalg.norm(x)

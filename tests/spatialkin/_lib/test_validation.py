@@ -63,6 +63,20 @@ def test_bad_values_name_the_argument(check, bad, words):
         check(bad)
 
 
+@pytest.mark.parametrize("check", [lambda x: v.check_vector("origin", x), lambda x: v.check_finite("origin", x),
+                                   lambda x: v.check_points("origin", x), lambda x: v.check_angles("origin", x)])
+@pytest.mark.parametrize("bad, kind", [(np.array([1 + 1j, 0, 0]), "complex values"), ([0, 1j, 0], "complex values"),
+                                       ([True, False, True], "bool values"), (np.array([1.0, 2.0], dtype=complex),
+                                                                              "complex values"),
+                                       (np.array(["1", "2"]), "str values"), (1 + 0j, "complex"),
+                                       (np.bool_(True), "bool")])
+def test_values_that_are_not_real_are_refused(check, bad, kind):
+    """Complex, bool and str values raise TypeError naming the argument (numpy would cast them: dropping the
+    imaginary part with a warning, reading True as 1)."""
+    with pytest.raises(TypeError, match=f"origin must be an array of real numbers, got {kind}"):
+        check(bad)
+
+
 def test_points_may_be_empty_when_allowed():
     assert v.check_points("points", np.empty((0, 3)), allow_empty=True).shape == (0, 3)
 

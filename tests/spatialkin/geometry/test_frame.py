@@ -39,3 +39,32 @@ def test_rotation_about_is_proper_and_exact():
     z = sk.rotation_to_z((0.0, 3.0, 4.0))
     np.testing.assert_allclose(z[:, 2], [0, 0.6, 0.8], atol=1e-15)
     np.testing.assert_allclose(z.T @ z, np.eye(3), atol=1e-15)
+
+
+@pytest.mark.parametrize("size", [1e-300, 1e-170, 1.0, 1e160, 1e300])
+def test_axes_of_any_length(size):
+    """An axis is a direction whatever its length: the rotations from (1, 2, 2) x size equal those from (1, 2, 2)
+    (the unit axis (1, 2, 2) / 3, by Rodrigues' formula written apart), and the frame's z follows it."""
+    axis = np.array([1.0, 2.0, 2.0])
+    unit = axis / 3.0
+    k = np.array([[0, -unit[2], unit[1]], [unit[2], 0, -unit[0]], [-unit[1], unit[0], 0]])
+    rodrigues = np.eye(3) + np.sin(0.9) * k + (1 - np.cos(0.9)) * (k @ k)
+    np.testing.assert_allclose(sk.rotation_about(axis * size, 0.9), rodrigues, atol=1e-15)
+    z = sk.rotation_to_z(axis * size)
+    np.testing.assert_allclose(z[:, 2], unit, atol=1e-15)
+    np.testing.assert_allclose(z.T @ z, np.eye(3), atol=1e-15)
+    frame = sk.Frame.from_z_axis((0.0, 0.0, 0.0), axis * size)
+    np.testing.assert_allclose(frame.rotation[:, 2], unit, atol=1e-15)
+
+
+@pytest.mark.parametrize("bad, kind", [(np.array([1 + 1j, 0, 0]), "complex"), ([True, False, False], "bool"),
+                                       (np.array(["1", "0", "0"]), "str")])
+def test_frames_refuse_values_that_are_not_real(bad, kind):
+    """Complex, bool or str values are refused, naming the argument (numpy would drop imaginary parts, read True
+    as 1 or parse the strings)."""
+    with pytest.raises(TypeError, match=f"origin must be an array of real numbers, got {kind}"):
+        sk.Frame(bad)
+    with pytest.raises(TypeError, match="rotation must be an array of real numbers, got complex"):
+        sk.Frame(rotation=np.eye(3) + 0j)
+    with pytest.raises(TypeError, match="axis must be an array of real numbers"):
+        sk.rotation_about(bad, 1.0)

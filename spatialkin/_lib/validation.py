@@ -171,6 +171,19 @@ def check_finite(name, value):
     return arr
 
 
+def check_query_points(name, value):
+    """Points (..., 3) to measure against a surface or a curve, as a float array: finite, each coordinate within
+    LENGTH_MAX of 0 (the supported lengths: farther, the squares of the distances overflow); or ValueError
+    (TypeError) naming the argument."""
+    arr = check_finite(name, value)
+    if arr.shape[-1:] != (3,):
+        raise ValueError(f"{name} must have shape (..., 3), got {arr.shape}")
+    if arr.size and float(np.max(np.abs(arr))) > LENGTH_MAX:
+        raise ValueError(f"{name} must have coordinates within {LENGTH_MAX:g} of 0 (the supported lengths), got "
+                         f"{float(np.max(np.abs(arr))):g}")
+    return arr
+
+
 def check_vector(name, value, length=3):
     """value as a finite float array of shape (length,): a point or a direction, or one value per point of a
     polyline; or ValueError naming the argument (and its first entry that is not finite), TypeError naming it

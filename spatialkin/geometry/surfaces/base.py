@@ -14,7 +14,8 @@ import numpy as np
 from ..frame import Frame
 from ...kernels.geometry import surfaces as ks
 from ..traits import AXIS, check_surface, traits
-from ..._lib.validation import check_finite, check_length, check_positive, check_range, check_real
+from ..._lib.validation import (check_finite, check_length, check_positive, check_query_points, check_range,
+                                check_real)
 
 __all__ = ["Surface", "check_length", "check_positive", "check_range", "check_surface"]
 
@@ -253,9 +254,7 @@ class Surface:
         ...
         ValueError: points must have shape (..., 3), got (2,)
         """
-        pts = check_finite("points", points)
-        if pts.shape[-1:] != (3,):
-            raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
+        pts = check_query_points("points", points)
         flat = np.ascontiguousarray(pts.reshape(-1, 3))
         out = np.empty(flat.shape[0])
         ks.distances(self.data, flat, out)
@@ -264,9 +263,7 @@ class Surface:
     def parameters(self, points):
         """Parameters (u, v) (..., 2) of the surface points nearest to global points (..., 3); u in (-pi, pi].
         ValueError naming `points` when it does not have shape (..., 3) or is not finite."""
-        pts = check_finite("points", points)
-        if pts.shape[-1:] != (3,):
-            raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
+        pts = check_query_points("points", points)
         flat = np.ascontiguousarray(pts.reshape(-1, 3))
         out = np.empty((flat.shape[0], 2))
         ks.inverse(self.data, flat, out)

@@ -29,6 +29,8 @@ from ..._lib.jit import borrowed, jit, kept
 from ..march.curve import curve_frame, project_to_curve
 from ..ode.rk import dense_into
 
+#: Halvings of a foot point's Newton step before it is given up (its distance not shrinking).
+FOOT_HALVINGS = 60
 #: Columns of the spans table.
 LO, FLIP, SHIFT, SIGN, COMPILED = 0, 1, 2, 3, 4
 #: near_mask's verdicts: farther than the reach from every stored point (far from the curve) ...
@@ -156,26 +158,42 @@ def foot_distance(table, closed, length, gap_tol, max_iter, p, s, steps, enough)
 
 @jit(inline="always")
 def _foot(table, closed, length, gap_tol, max_iter, p, s, steps, enough, y, q, at, tangent):
-    """foot_distance with its work arrays y (4,), q, at, tangent (3,)."""
-    for _ in range(steps):
-        s_at = curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
-        if math.isnan(s_at):
-            return np.nan, np.nan
-        d0, d1, d2 = p[0] - at[0], p[1] - at[1], p[2] - at[2]
-        dist = math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
-        if dist <= enough:
-            return s_at, dist
-        s = s + ((d0 * tangent[0] + d2 * tangent[2]) + d1 * tangent[1])
-        if not closed:
-            if s < 0.0:
-                s = 0.0
-            elif s > length:
-                s = length
-    s = curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
-    if math.isnan(s):
+    """foot_distance with its work arrays y (4,), q, at, tangent (3,): Newton on g(s) = (p - C(s)) . C'(s), whose
+    slope -(1 - (p - C) . C'') is read by the secant through the last two iterates (Gauss-Newton's -1 at the
+    first), each step halved (up to FOOT_HALVINGS times) until the distance does not grow: beyond the curve's
+    radius of curvature Gauss-Newton overshoots, by the distance over that radius."""
+    s_at = curve_point(table, closed, length, gap_tol, max_iter, s, y, q, at, tangent)
+    if math.isnan(s_at):
         return np.nan, np.nan
     d0, d1, d2 = p[0] - at[0], p[1] - at[1], p[2] - at[2]
-    return s, math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
+    dist = math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
+    g = (d0 * tangent[0] + d2 * tangent[2]) + d1 * tangent[1]
+    s_prev, g_prev = np.nan, np.nan
+    for _ in range(steps):
+        if dist <= enough:
+            return s_at, dist
+        slope = (g - g_prev) / (s - s_prev) if s != s_prev else np.nan
+        if not slope < 0.0:
+            slope = -1.0
+        step = -g / slope
+        for _ in range(FOOT_HALVINGS + 1):
+            trial = s + step
+            if not closed:
+                trial = min(max(trial, 0.0), length)
+            t_at = curve_point(table, closed, length, gap_tol, max_iter, trial, y, q, at, tangent)
+            if math.isnan(t_at):
+                return np.nan, np.nan
+            d0, d1, d2 = p[0] - at[0], p[1] - at[1], p[2] - at[2]
+            t_dist = math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
+            if t_dist <= dist:
+                break
+            step *= 0.5
+        if not t_dist <= dist:
+            break                                   # no step brings it nearer: s is the foot, to round-off
+        s_prev, g_prev = s, g
+        s, s_at, dist = trial, t_at, t_dist
+        g = (d0 * tangent[0] + d2 * tangent[2]) + d1 * tangent[1]
+    return s_at, dist
 
 
 @jit

@@ -8,6 +8,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ...kernels.curve import near as kn
+from ...kernels.curve.near import FOOT_HALVINGS
 from ...kernels.march import curve as kc
 from ...kernels.geometry import surfaces as ks
 from .curvature import curvature_vectors
@@ -115,13 +116,38 @@ class CurveSolution:
         return s.reshape(pts.shape[:-1]), dist.reshape(pts.shape[:-1])
 
     def foot_points(self, pts, s, steps):
-        """(s, distance) of foot points of pts (M, 3) on the curve by `steps` Newton steps in s from s (M,)."""
+        """(s, distance) of foot points of pts (M, 3) on the curve by `steps` Newton steps in s from s (M,): on
+        g(s) = (p - C(s)) . C'(s), its slope read by the secant through the last two iterates (-1 at the first),
+        each step halved until the distance does not grow (as spatialkin.kernels.curve.near.foot_distance)."""
+        s = np.array(s, dtype=float)
+        at_s, at, tangent, _ = self.evaluate(s, with_params=False)
+        dist = np.linalg.norm(pts - at, axis=1)
+        g = np.einsum("ij,ij->i", pts - at, tangent)
+        s_prev, g_prev = np.full(len(s), np.nan), np.full(len(s), np.nan)
+        active = np.ones(len(s), dtype=bool)
         for _ in range(steps):
-            _, at, tangent, _ = self.evaluate(s, with_params=False)
-            s = s + np.einsum("ij,ij->i", pts - at, tangent)
-            s = s if self.closed else np.clip(s, 0.0, self.length)
-        s, at, _, _ = self.evaluate(s, with_params=False)
-        return s, np.linalg.norm(pts - at, axis=1)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                slope = (g - g_prev) / (s - s_prev)
+            step = -g / np.where(slope < 0.0, slope, -1.0)
+            pending, moved = active.copy(), np.zeros(len(s), dtype=bool)
+            for _ in range(FOOT_HALVINGS + 1):
+                idx = np.nonzero(pending)[0]
+                if not len(idx):
+                    break
+                trial = s[idx] + step[idx]
+                trial = trial if self.closed else np.clip(trial, 0.0, self.length)
+                wrapped, t_at, t_tangent, _ = self.evaluate(trial, with_params=False)
+                t_dist = np.linalg.norm(pts[idx] - t_at, axis=1)
+                ok = t_dist <= dist[idx]
+                keep = idx[ok]
+                s_prev[keep], g_prev[keep] = s[keep], g[keep]
+                s[keep], at_s[keep], dist[keep] = trial[ok], wrapped[ok], t_dist[ok]
+                g[keep] = np.einsum("ij,ij->i", pts[keep] - t_at[ok], t_tangent[ok])
+                moved[keep] = True
+                pending[keep] = False
+                step[idx[~ok]] *= 0.5
+            active &= moved                         # (no step brought it nearer: the foot, to round-off)
+        return at_s, dist
 
     def grid(self):
         """Arc lengths and points of the dense grid closest() starts from (computed once: a curve does not

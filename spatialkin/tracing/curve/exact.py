@@ -275,7 +275,7 @@ class PointSolution(ExactSolution):
         super().__init__(surfaces, 0.0, False, np.zeros(1))
 
     def wrap(self, s):
-        return np.zeros(np.shape(s))
+        return np.zeros(np.shape(super().wrap(s)))         # (s checked as on any open curve: finite, in [0, 0])
 
     def at(self, s):
         return np.broadcast_to(self.point, (len(s), 3)).copy(), np.full((len(s), 3), np.nan)

@@ -8,7 +8,7 @@ import operator
 import numpy as np
 
 from ...kernels.geometry import surfaces as ks
-from ..._lib.validation import TOO_LARGE, check_count, check_finite, check_positive
+from ..._lib.validation import TOO_LARGE, check_count, check_positive, check_query_points
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome
 from ...geometry.traits import traits
@@ -380,9 +380,7 @@ class Curve:
     def closest(self, points):
         """Arc length (...,) of the curve point nearest to each point (..., 3), and the distance (...,).
         ValueError naming `points` when they are not finite or of shape (..., 3)."""
-        pts = check_finite("points", points)
-        if pts.shape[-1:] != (3,):
-            raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
+        pts = check_query_points("points", points)
         return self._result.sol.closest(pts)
 
     def sample(self, n):
@@ -393,7 +391,7 @@ class Curve:
     # --- measured against the surfaces ----------------------------------------------------------------------
     def distances(self, points=None):
         """Exact distances (N, 2) of points (default: self.points) to surface a and surface b."""
-        pts = self.points if points is None else np.asarray(points, dtype=float)
+        pts = self.points if points is None else check_query_points("points", points)
         return np.stack([surf.distance(pts) for surf in self.surfaces], axis=-1)
 
     @functools.cached_property

@@ -85,9 +85,9 @@ def test_tracing_errors_carry_a_status_of_the_table():
 
 
 def test_closed_form_components():
-    """A contact is one point at every s; a tangent circle is the circle, its curvature vector -(p - c) / r^2."""
+    """A contact is one point, at s = 0; a tangent circle is the circle, its curvature vector -(p - c) / r^2."""
     contact = sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((2.0, 0.0, 0.0))))[0]
-    np.testing.assert_array_equal(contact([0.0, 3.0]), contact.points[[0, 0]])
+    np.testing.assert_array_equal(contact([0.0, 0.0]), contact.points[[0, 0]])
     np.testing.assert_allclose(contact.points[0], (1.0, 0.0, 0.0), atol=ROUND_OFF)
     s, d = contact.closest([[1.0, 2.0, 0.0]])
     assert s[0] == 0.0 and abs(d[0] - 2.0) <= ROUND_OFF
@@ -116,3 +116,33 @@ def test_arc_lengths_given_as_python_ints_past_int64_are_read_or_named():
     for s in ("a", True, None, [None, 1.0]):
         with pytest.raises(TypeError, match="^s must be real numbers"):
             curve(s)
+
+
+def test_a_contact_point_takes_only_s_0():
+    """A contact point (two unit spheres 2 apart touch at (1, 0, 0)) is an open curve of length 0: s = 0 gives the
+    point, any other s (NaN, beyond, below) is refused as on any open curve."""
+    point, = sk.intersect(sk.Sphere(1.0), sk.Sphere(1.0, sk.Frame((2.0, 0.0, 0.0))))
+    np.testing.assert_allclose(point([0.0, 0.0]), [[1.0, 0.0, 0.0]] * 2, atol=ROUND_OFF)
+    with pytest.raises(ValueError, match="s must be finite"):
+        point(np.nan)
+    for s in (5.0, -1.0):
+        with pytest.raises(ValueError, match=r"s must lie in \[0, 0\]"):
+            point(s)
+
+
+def test_far_points_are_named_not_overflowed():
+    """Points farther than the supported lengths (1e32) are refused naming `points` by closest, distances and a
+    surface's distance and parameters; within them the answer is the closed form's (the circle of radius 0.8 at
+    z = 0.6, seen from (1e30, 0, 0): its nearest point (0.8, 0, 0.6), at arc length 0)."""
+    circle, = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))))
+    traced = sk.intersect(sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3))))[0]
+    far = [1e160, 0.0, 0.0]
+    for call in (circle.closest, traced.closest, traced.distances, sk.Sphere(1.0).distance,
+                 sk.Torus(1.0, 0.4).parameters):
+        with pytest.raises(ValueError, match="points must have coordinates within 1e\\+32 of 0"):
+            call(far)
+    s, dist = circle.closest([1e30, 0.0, 0.0])
+    np.testing.assert_allclose(circle(s), [0.8, 0.0, 0.6], atol=1e-8)
+    assert dist == 1e30
+    with pytest.raises(TypeError, match="points must be an array of real numbers"):
+        traced.distances("abc")

@@ -148,6 +148,44 @@ def test_foot_and_closest_points_are_the_oracles(kind):
         assert np.all(np.abs(along) <= 1e-8 * scale)
 
 
+@pytest.mark.parametrize("kind, traced", [(kind, True) for kind in KINDS] + [("plane-sphere", False),
+                                                                              ("plane-cone", False)])
+def test_closest_points_from_afar(kind, traced):
+    """Points 0.5 to 1e5 times the curve's size away, beyond its radius of curvature (where Gauss-Newton's step
+    overshoots by the distance over that radius), on traced curves (compiled) and closed forms (numpy): the
+    closest point's distance is the oracle's within 1e-10 of it (relative, and 1e-10 x scale), never below it,
+    and the chord from the point is normal to the curve there (to the distance's flatness), unless the foot is an
+    end of an open curve. The
+    oracle: the bounded minimisation of oracle_distance, without its tangent line (which serves points near the
+    curve, with a foot inside it)."""
+    rng = np.random.default_rng(11)
+    curves = results(*CASES[kind])[0] if traced else [c._result for c in sk.intersect(*CASES[kind])]
+    for curve in curves:
+        scale = float(np.ptp(curve.points, axis=0).max())
+        centre = curve.points.mean(axis=0)
+        away = rng.normal(size=(24, 3))
+        away *= (scale * np.geomspace(0.5, 1e5, 24) / np.linalg.norm(away, axis=1))[:, None]
+        points = centre + away
+        s_grid = np.linspace(0.0, curve.length, ORACLE_SAMPLES)
+        _, nearest = cKDTree(curve.sol(s_grid)).query(points, k=ORACLE_CANDIDATES)
+        want = np.array([min(minimize_scalar(lambda x: np.linalg.norm(p - curve.sol(x)), method="bounded",
+                                             bounds=(max(0.0, s_grid[j] - s_grid[1]),
+                                                     min(curve.length, s_grid[j] + s_grid[1])),
+                                             options={"xatol": ORACLE_XTOL * max(curve.length, 1.0)}).fun
+                             for j in row) for p, row in zip(points, nearest)])
+        if not curve.closed:                    # (the bounded minimisation keeps off its bounds: the ends apart)
+            ends = curve.sol(np.array([0.0, curve.length]))
+            want = np.minimum(want, np.linalg.norm(points[:, None, :] - ends[None], axis=2).min(axis=1))
+        s, dist = curve.sol.closest(points)
+        np.testing.assert_allclose(dist, want, rtol=1e-10, atol=1e-10 * scale)
+        assert np.all(dist >= want * (1 - 1e-12) - 1e-12 * scale)
+        chord = points - curve.sol(s)
+        along = np.einsum("ij,ij->i", chord, curve.sol.tangent(s)) / np.linalg.norm(chord, axis=1)
+        inner = (s > 1e-9 * curve.length) & (s < curve.length * (1 - 1e-9)) | curve.closed
+        # (the distance is flat at the foot: s, and the chord's angle, are settled to about sqrt(eps x distance))
+        assert np.all(np.abs(along[inner]) <= 8.0 * np.sqrt(np.finfo(float).eps * dist[inner] / scale))
+
+
 @pytest.mark.parametrize("kind", ["plane-plane", "cylinder-cone", "sphere-cylinder"])
 def test_solver_states_read_each_span_record(kind):
     """solver_state reads span k's rows of the packed tables: the states of span k's own record (its Steps), at its

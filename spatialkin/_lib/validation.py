@@ -11,7 +11,7 @@ import numpy as np
 
 __all__ = ["ORTHONORMAL_TOL", "LENGTH_MIN", "LENGTH_MAX", "check_real", "check_positive", "check_nonnegative",
            "check_real_type", "check_length", "check_count", "check_omega", "check_choice", "check_range",
-           "check_finite", "check_vector", "check_points", "check_angles", "check_frame", "orthonormalised"]
+           "check_finite", "check_vector", "check_points", "check_query_points", "check_angles", "check_frame", "orthonormalised"]
 
 #: Largest accepted deviation of R^T R from the identity (entrywise), for a rotation given in floats.
 ORTHONORMAL_TOL = 1e-9
@@ -107,12 +107,14 @@ def check_length(name, value, allow_zero=False):
     return x
 
 
-def check_count(name, value, minimum=1):
-    """value itself when it is an integer >= minimum (a number of samples, points, workers), or ValueError
-    naming the argument."""
-    if not (isinstance(value, (int, np.integer)) and value >= minimum):
+def check_count(name, value, minimum=1, maximum=None):
+    """value itself when it is an integer >= minimum (and <= maximum when given: a number of samples, points,
+    workers), not a bool, or ValueError naming the argument."""
+    if not (isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)) and value >= minimum
+            and (maximum is None or value <= maximum)):
         kind = {0: "a non-negative integer", 1: "a positive integer"}.get(minimum, f"an integer >= {minimum}")
-        raise ValueError(f"{name} must be {kind}, got {value!r}")
+        most = "" if maximum is None else f" and at most {maximum}"
+        raise ValueError(f"{name} must be {kind}{most}, got {value!r}")
     return value
 
 

@@ -12,12 +12,16 @@ import numpy as np
 
 from ...kernels.march import restart as kr
 from ...kernels.geometry import surfaces as ks
+from ..._lib.validation import check_count, check_positive, check_real
+from ...geometry.traits import check_surface
 from .segments import NEWTON_MAX_ITER
 from .segments import newton_fixed
 from ..curve.result import TracingError
 
 #: Samples of an auxiliary parameter line when looking for its crossings with the other surface.
 AUX_SAMPLES = 720
+#: ... and at most this many.
+AUX_SAMPLES_MAX = 10_000_000
 
 
 def scene_scale(a, b):
@@ -75,13 +79,34 @@ def auxiliary_starts(a, b, v=0.0, samples=AUX_SAMPLES, tol=1e-10):
     line with a is found (sign changes of a's implicit function over `samples` points of u2 in [-pi, pi)),
     then M1(u1, v1) = M2(u2, v) is solved by Newton for (u1, v1, u2).
 
+    Parameters
+    ----------
+    a, b : Surface
+    v : float
+        The parameter v of b's line (radians or a length, as b reads v).
+    samples : int
+        Points of the line searched for sign changes, 2 to AUX_SAMPLES_MAX.
+    tol : float
+        Accuracy of the crossings, relative to the scene scale, in (0, 1).
+
     Returns
     -------
     ndarray (K, 4)
         (u1, v1, u2, v) of each crossing, in the order of u2.
+
+    Raises
+    ------
+    ValueError, TypeError
+        Naming the argument that is not a surface, a finite real v, a count of samples in range, or a tolerance
+        in (0, 1).
     """
-    if not np.isfinite(v):
-        raise ValueError(f"v must be finite, got {v}")
+    check_surface("a", a)
+    check_surface("b", b)
+    v = check_real("v", v, finite=True, strict=True)
+    samples = check_count("samples", samples, minimum=2, maximum=AUX_SAMPLES_MAX)
+    tol = check_positive("tol", tol, strict=True)
+    if not tol < 1.0:
+        raise ValueError(f"tol must lie in (0, 1), got {tol!r}")
     lo, hi = b.bounds[0]
     lo, hi = (-np.pi, np.pi) if not (np.isfinite(lo) and np.isfinite(hi)) else (lo, hi)
     u2 = np.linspace(lo, hi, int(samples) + 1)

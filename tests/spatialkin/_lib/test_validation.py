@@ -34,6 +34,8 @@ def test_good_values_come_back_converted(check, good, want):
     (lambda x: v.check_count("samples", x, 3), 2, "samples must be an integer >= 3"),
     (lambda x: v.check_count("n", x), 1.0, "n must be a positive integer"),
     (lambda x: v.check_count("processes", x, 0), -1, "processes must be a non-negative integer"),
+    (lambda x: v.check_count("workers", x), True, "workers must be a positive integer, got True"),
+    (lambda x: v.check_count("samples", x, 2, 10), 11, "samples must be an integer >= 2 and at most 10, got 11"),
     (v.check_omega, 0.0, "omega must be finite and non-zero"),
     (v.check_omega, "fast", "omega must be a real number"),
     (lambda x: v.check_choice("branch", x, (0, 1)), 2, "branch must be 0 or 1, got 2"),

@@ -30,6 +30,25 @@ def test_auxiliary_start_is_on_both_surfaces(looper_pair):
     assert np.max(torus.distance(pts)) < TOL * 30 and np.max(sphere.distance(pts)) < TOL * 30
 
 
+@pytest.mark.parametrize("kwargs, error, words", [
+    (dict(tol=0.0), ValueError, "tol must be a positive finite number"),
+    (dict(tol=-1.0), ValueError, "tol must be a positive finite number"),
+    (dict(tol=float("nan")), ValueError, "tol must be a positive finite number"),
+    (dict(tol=1.0), ValueError, r"tol must lie in \(0, 1\)"),
+    (dict(samples=2.7), ValueError, "samples must be an integer >= 2"),
+    (dict(samples=0), ValueError, "samples must be an integer >= 2"),
+    (dict(samples=10 ** 9), ValueError, "at most 10000000"),
+    (dict(v=None), TypeError, "v must be a real number"),
+    (dict(v=float("inf")), ValueError, "v must be finite"),
+])
+def test_auxiliary_starts_name_a_bad_argument(looper_pair, kwargs, error, words):
+    """Options out of range are refused, naming them (a zero or NaN tol gave fewer starts, or none, silently)."""
+    with pytest.raises(error, match=words):
+        sk.auxiliary_starts(*looper_pair, **kwargs)
+    with pytest.raises(TypeError, match="a must be a spatialkin surface"):
+        sk.auxiliary_starts("a", looper_pair[1])
+
+
 def test_looper_curve_closes_with_reference_length(looper_pair):
     """From the equator start at v1 ≈ 110° the ball-centre path is a closed loop 59.7 mm long (the reference
     geometry's path, measured by an independent script)."""

@@ -19,6 +19,7 @@ Newton-Euler equations, shaking force and moment).
 """
 import numpy as np
 
+from spatialkin._lib.validation import check_omega
 from spatialkin.dynamics import Loads
 from spatialkin.dynamics.balance import counterweight
 from spatialkin.dynamics.body import check_bodies
@@ -51,7 +52,7 @@ def linkage_loads(motion, bodies=None, gravity=None, omega=None):
     """The loads of a LinkageMotion (see LinkageMotion.loads)."""
     linkage = motion.linkage
     bodies, g = _check(linkage, bodies, gravity)
-    scale = 1.0 if omega is None else float(omega) / motion.omega
+    scale = 1.0 if omega is None else check_omega(omega) / motion.omega
     members = _members(linkage)
     n = len(motion)
     index = {m[0]: k for k, m in enumerate(members)}
@@ -146,6 +147,6 @@ def linkage_counterweight(motion, radius, bodies=None, crank=1, omega=None):
     d = motion.position(chosen.pin) - motion.position(chosen.pivot)
     x = d / np.linalg.norm(d, axis=1)[:, None]
     axes = np.stack([x, np.stack([-x[:, 1], x[:, 0]], axis=1)], axis=2)
-    rate = chosen.ratio * (motion.omega if omega is None else float(omega))
+    rate = chosen.ratio * (motion.omega if omega is None else check_omega(omega))
     return counterweight(lambda given: linkage_loads(motion, given, None, omega), bodies, chosen.name, axes, rate,
                          radius, lambda loads: loads.torque[chosen.name])

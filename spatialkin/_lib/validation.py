@@ -119,7 +119,9 @@ def check_count(name, value, minimum=1, maximum=None):
 
 
 def check_omega(omega):
-    """A driver's rate omega (rad per unit time) as a finite, non-zero float, or ValueError naming it."""
+    """A driver's rate omega (rad per unit time) as a finite, non-zero float, or ValueError naming it (TypeError
+    when its type is no real number's: a str, a bool)."""
+    check_real_type("omega", omega)
     try:
         value = float(omega)
     except OverflowError:
@@ -132,12 +134,18 @@ def check_omega(omega):
 
 
 def check_choice(name, value, choices):
-    """value itself when it is one of choices (compared with ==), or ValueError naming the argument."""
-    if value not in choices:
+    """The choice equal to value (one of choices: a branch 1.0 is the choice 1; a bool is no number here), or
+    ValueError naming the argument."""
+    number = isinstance(value, (bool, np.bool_)) and not any(isinstance(c, bool) for c in choices)
+    try:
+        found = not number and value in choices
+    except (TypeError, ValueError):                  # (an array, whose == is elementwise)
+        found = False
+    if not found:
         allowed = (" or ".join(repr(c) for c in choices) if len(choices) == 2
                    else "one of " + ", ".join(repr(c) for c in choices))
         raise ValueError(f"{name} must be {allowed}, got {value!r}")
-    return value
+    return choices[list(choices).index(value)]
 
 
 def check_range(name, value, length=False):

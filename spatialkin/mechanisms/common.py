@@ -34,7 +34,8 @@ def check_branch(branch):
 
 
 def check_drive(crank_angles, omega, branch):
-    """Validated crank angles (N,) for solve(crank_angles, omega, branch)."""
-    check_branch(branch)
-    check_omega(omega)
-    return check_angles("crank_angles", crank_angles)
+    """(crank angles (N,), omega, branch) of solve(crank_angles, omega, branch), validated (branch as the int 0 or
+    1)."""
+    branch = check_branch(branch)
+    omega = check_omega(omega)
+    return check_angles("crank_angles", crank_angles), omega, branch

@@ -80,7 +80,7 @@ class RSSR:
 
     def assemble(self, phi, branch=0):
         """(phi, psi) on the branch (0: |C - B| grows with psi) by sampling psi and Newton."""
-        check_branch(branch)
+        branch = check_branch(branch)
         psi = np.linspace(-np.pi, np.pi, ASSEMBLY_SAMPLES + 1)
         f = np.array([self.residual(phi, q)[0] for q in psi])
         for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) <= 0)[0]:
@@ -114,7 +114,7 @@ class RSSR:
 
     def solve(self, crank_angles, omega=1.0, branch=0):
         """Motion at exactly the given crank angles; see RSSRMotion."""
-        phi = check_drive(crank_angles, omega, branch)
+        phi, omega, branch = check_drive(crank_angles, omega, branch)
         inputs, path = self.cycle(branch).branch_samples()
         xs, = solve_at(phi, inputs, path, self._correct, index=0, period=2 * np.pi)
         return RSSRMotion(self, xs, 1.0, omega)

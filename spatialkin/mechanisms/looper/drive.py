@@ -31,7 +31,7 @@ from ...tracing.components import intersect
 from ...tracing.curve.result import TracingError
 from ...tracing.single import trace
 from ...motion.trajectory import Trajectory, time_map, to_time
-from ..._lib.validation import check_choice, check_positive, check_vector
+from ..._lib.validation import check_choice, check_length, check_positive, check_vector
 from ..common import PointMotion, angle_range_text, check_branch, check_drive
 
 #: Crank angles sampled when checking where the mechanism can be assembled.
@@ -137,9 +137,9 @@ class LooperDrive:
 
     def __init__(self, crank_radius, coupler_length, rocker_length, crank_frame=None, rocker_frame=None,
                  looper_tip=(0.0, 0.0, 0.0), looper_link="rocker_arm"):
-        self.crank_radius = check_positive("crank_radius", crank_radius)
-        self.coupler_length = check_positive("coupler_length", coupler_length)
-        self.rocker_length = check_positive("rocker_length", rocker_length)
+        self.crank_radius = check_length("crank_radius", crank_radius)
+        self.coupler_length = check_length("coupler_length", coupler_length)
+        self.rocker_length = check_length("rocker_length", rocker_length)
         self.crank_frame = crank_frame if crank_frame is not None else Frame()
         self.rocker_frame = rocker_frame if rocker_frame is not None else Frame()
         for name, f in (("crank_frame", self.crank_frame), ("rocker_frame", self.rocker_frame)):
@@ -246,7 +246,7 @@ class LooperDrive:
     def assemble(self, crank_angle, branch=0):
         """State (u1, v1, u2, v2) at one crank angle on the given branch (Newton from the coupler circle's
         crossings of the rocker sphere)."""
-        check_branch(branch)
+        branch = check_branch(branch)
         u1 = float(crank_angle)
         self._check_assemblable(np.array([u1]))
         v1 = np.linspace(-np.pi, np.pi, 721)
@@ -374,7 +374,7 @@ class LooperDrive:
         >>> np.allclose((m.ball_center[2] - m.ball_center[0]) / (2 * h), m.ball_velocity[1], atol=1e-6)
         True
         """
-        u1 = check_drive(crank_angles, omega, branch)
+        u1, omega, branch = check_drive(crank_angles, omega, branch)
         t0 = time.perf_counter()
         self._check_assemblable(np.mod(u1, 2 * np.pi))
         samples = self._samples(branch, u1)
@@ -670,11 +670,15 @@ class LooperMotion:
         return fit_spline(evaluate, lo, lo + 2 * math.pi if full else hi, tol * scale, periodic=full)
 
     def angular_velocity(self, link):
-        """Angular velocity (N, 3) of a link in fixed axes (rad per unit time)."""
+        """Angular velocity (N, 3) of a link in fixed axes (rad per unit time); ValueError naming `link` when it is
+        not one of LINKS."""
+        check_choice("link", link, LINKS)
         return self.links()[link].omega
 
     def angular_acceleration(self, link):
-        """Angular acceleration (N, 3) of a link in fixed axes (rad per unit time squared)."""
+        """Angular acceleration (N, 3) of a link in fixed axes (rad per unit time squared); ValueError naming
+        `link` when it is not one of LINKS."""
+        check_choice("link", link, LINKS)
         return self.links()[link].alpha
 
 

@@ -16,6 +16,7 @@ from spatialkin._lib import validation as v
     (lambda x: v.check_count("x", x, 3), 3, 3),
     (v.check_omega, -2, -2.0),
     (lambda x: v.check_choice("x", x, (1, -1)), -1, -1),
+    (lambda x: v.check_choice("branch", x, (0, 1)), 1.0, 1),
     (lambda x: v.check_range("x", x), None, (-math.inf, math.inf)),
     (lambda x: v.check_range("x", x), (0, math.inf), (0.0, math.inf)),
 ])
@@ -37,7 +38,7 @@ def test_good_values_come_back_converted(check, good, want):
     (lambda x: v.check_count("workers", x), True, "workers must be a positive integer, got True"),
     (lambda x: v.check_count("samples", x, 2, 10), 11, "samples must be an integer >= 2 and at most 10, got 11"),
     (v.check_omega, 0.0, "omega must be finite and non-zero"),
-    (v.check_omega, "fast", "omega must be a real number"),
+    (lambda x: v.check_choice("branch", x, (0, 1)), True, "branch must be 0 or 1, got True"),
     (lambda x: v.check_choice("branch", x, (0, 1)), 2, "branch must be 0 or 1, got 2"),
     (lambda x: v.check_choice("kind", x, ("a", "b", "c")), "d", "kind must be one of 'a', 'b', 'c'"),
     (lambda x: v.check_range("u_range", x), (1, 1), "u_range must satisfy min < max"),
@@ -129,3 +130,9 @@ def test_orthonormalised_refuses_naming_the_argument(rotation, tol, words):
     """Too far from orthonormal (the measured deviation in the message), a reflection, a bad shape or entry."""
     with pytest.raises(ValueError, match=words):
         v.orthonormalised("mirror", rotation, tol, advice=" (advice)")
+
+
+@pytest.mark.parametrize("bad", ["3", True, None, [3.0]])
+def test_omega_of_no_real_type_is_a_type_error(bad):
+    with pytest.raises(TypeError, match="omega must be a real number"):
+        v.check_omega(bad)

@@ -110,6 +110,8 @@ def test_mechanism_that_cannot_be_assembled(blocked_drive):
 @pytest.mark.parametrize("kwargs, name", [
     ({"crank_radius": 0}, "crank_radius"), ({"coupler_length": -1}, "coupler_length"),
     ({"rocker_length": np.nan}, "rocker_length"), ({"looper_link": "crank"}, "looper_link"),
+    ({"crank_radius": 1e-40}, "crank_radius must lie within"), ({"coupler_length": 1e40}, "coupler_length must lie"),
+    ({"rocker_length": 1e40}, "rocker_length must lie"),
 ])
 def test_bad_arguments(kwargs, name):
     args = dict(crank_radius=reference.CRANK_RADIUS, coupler_length=reference.COUPLER_LENGTH,
@@ -122,6 +124,17 @@ def test_bad_arguments(kwargs, name):
 def test_bad_solve_arguments(drive):
     with pytest.raises(ValueError, match="branch"):
         drive.solve([0.0], branch=2)
+    with pytest.raises(ValueError, match="branch must be 0 or 1, got True"):
+        drive.solve([0.0], branch=True)
+    assert drive.solve([0.0], branch=1.0).branch == 1 and isinstance(drive.solve([0.0], branch=1.0).branch, int)
+    with pytest.raises(TypeError, match="omega must be a real number"):
+        drive.solve([0.0], omega="3")
+    with pytest.raises(TypeError, match="crank_radius must be a real number"):
+        LooperDrive("8", reference.COUPLER_LENGTH, reference.ROCKER_LENGTH, rocker_frame=reference.rocker_frame())
+    motion = drive.solve([0.0, 0.1])
+    for method in (motion.angular_velocity, motion.angular_acceleration):
+        with pytest.raises(ValueError, match="link must be one of"):
+            method("foo")
     with pytest.raises(ValueError, match="omega"):
         drive.solve([0.0], omega=0.0)
     with pytest.raises(ValueError, match="crank_angles"):

@@ -40,6 +40,8 @@ REFERENCE_ROTATION = np.rint(ref.rocker_rotation()).astype(int).tolist()
 IDENTITY_ROTATION = np.eye(3, dtype=int).tolist()
 #: The rotation forms of a frame table; a table gives exactly one of them beside its origin.
 ROTATION_FORMS = ("rotation", "axis_angle", "z_axis")
+#: The finest crank-angle step of the table (deg).
+STEP_MIN_DEG = 1e-3
 #: key: (default, unit, meaning) -- the keys a looper TOML file may hold (defaults: the reference drive).
 KEYS = {
     "length_unit": ("mm", "-", "unit of every length below: mm, cm, m or in"),
@@ -48,7 +50,7 @@ KEYS = {
     "rocker_length": (ref.ROCKER_LENGTH, "length", "R2, ball centre C to rocker centre P2"),
     "speed_rpm": (DEFAULT_SPEED_RPM, "rpm", "crank speed (machine speed; one turn per stitch)"),
     "branch": (0, "-", "assembly branch, 0 or 1"),
-    "step_deg": (0.1, "deg", "crank-angle step of the table, in (0, 1]"),
+    "step_deg": (0.1, "deg", "crank-angle step of the table, in [0.001, 1]"),
     "looper_link": ("rocker_arm", "-", "link carrying the looper: rocker_arm or rocker_shaft"),
     "looper_tip": (list(ref.LOOPER_TIP), "length", "looper tip in the looper link's frame (rocker arm: x from P2 to C)"),
     "picture_crank_angle_deg": (60.0, "deg", "crank angle at which the 3-D picture draws the links"),
@@ -231,8 +233,9 @@ def load_config(path=None):
     for key in ("crank_radius", "coupler_length", "rocker_length", "speed_rpm", "cad_tolerance"):
         config[key] = _number(key, config[key], positive=True)
     step = _number("step_deg", config["step_deg"])
-    if not (0 < step <= 1.0):
-        raise ValueError(f"step_deg must lie in (0, 1] so that a turn has at least 361 rows, got {step}")
+    if not (STEP_MIN_DEG <= step <= 1.0):
+        raise ValueError(f"step_deg must lie in [{STEP_MIN_DEG:g}, 1] so that a turn has 361 to 360001 rows, got "
+                         f"{step}")
     config["picture_crank_angle_deg"] = _number("picture_crank_angle_deg", config["picture_crank_angle_deg"])
     check_choice("branch", config["branch"], (0, 1))
     if isinstance(config["branch"], bool):
@@ -350,6 +353,13 @@ def run(out_dir, config_path=None, echo=print):
     t_solve = time.perf_counter() - t_solve
     analysis = drive.analyse(branch=branch, motion=motion)
     found = findings(drive, motion, analysis, math.radians(config["step_deg"]))
+    # what may still fail (a CAD tolerance out of reach, the forces) before any file is written
+    t_cad = time.perf_counter()
+    splines = path_splines(drive, motion, config["cad_tolerance"], math.radians(config["step_deg"]))
+    t_cad = time.perf_counter() - t_cad
+    t_forces = time.perf_counter()
+    loads = forces.compute(config, motion)
+    t_forces = time.perf_counter() - t_forces
 
     try:
         os.makedirs(out_dir, exist_ok=True)
@@ -368,11 +378,10 @@ def run(out_dir, config_path=None, echo=print):
     picture_3d(motion, paths["looper_3d.png"], config["picture_crank_angle_deg"], config["length_unit"],
                config["speed_rpm"])
     t_picture = time.perf_counter() - t_picture
-    t_cad = time.perf_counter()
-    written = list(FIGURES) + write_cad(out_dir, drive, motion, config, math.radians(config["step_deg"]), echo)
-    t_cad = time.perf_counter() - t_cad
-    t_forces = time.perf_counter()
-    loads = forces.compute(config, motion)
+    t_write = time.perf_counter()
+    written = list(FIGURES) + write_cad(out_dir, splines, config, echo)
+    t_cad += time.perf_counter() - t_write
+    t_write = time.perf_counter()
     peaks = None
     if loads is not None:
         forces.write({name: os.path.join(out_dir, name) for name in forces.FILES}, config, motion, loads)
@@ -380,7 +389,7 @@ def run(out_dir, config_path=None, echo=print):
         for line in forces.summary(peaks):
             echo(line)
         written += list(forces.FILES)
-    t_forces = time.perf_counter() - t_forces
+    t_forces += time.perf_counter() - t_write
     times = {"solve": t_solve, "figures": t_fig, "picture_3d": t_picture, "cad": t_cad, "forces": t_forces,
              "job": time.perf_counter() - t0}
     with atomic_path(paths[RECORD_FILE]) as tmp:
@@ -411,11 +420,11 @@ def path_splines(drive, motion, tol, step):
     return out
 
 
-def write_cad(out_dir, drive, motion, config, step, echo=print):
+def write_cad(out_dir, splines, config, echo=print):
     """looper_paths.dxf (always) and looper_paths.step (with the cad extra; a line names it otherwise): the
-    ball-centre and tip paths as B-splines within config['cad_tolerance']. Returns the names written."""
+    ball-centre and tip paths' B-splines (path_splines, within config['cad_tolerance']). Returns the names
+    written."""
     from ..export import write_dxf, write_step
-    splines = path_splines(drive, motion, config["cad_tolerance"], step)
     curves = [sp for _, _, sp in splines]
     written = []
     for name, writer in zip(CAD_FILES, (write_dxf, write_step)):

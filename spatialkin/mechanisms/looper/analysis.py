@@ -88,6 +88,10 @@ def clear_all_round(drive, samples=3601):
     return bool(np.min(drive.assembly_margin(angles)) > CLEARANCE * drive.size)
 
 
+#: Most crank angles of a turn analysed (a step of 3.6e-5 degrees).
+ANALYSIS_SAMPLES_MAX = 10_000_001
+
+
 def analyse(drive, branch=0, samples=3601, motion=None):
     """LooperAnalysis of a LooperDrive on one branch; the transmission angle over `samples` crank angles of a
     turn (those clear of the blocked ranges), or over the crank angles of a given motion of this drive and

@@ -31,7 +31,7 @@ from ...tracing.components import intersect
 from ...tracing.curve.result import TracingError
 from ...tracing.single import trace
 from ...motion.trajectory import Trajectory, time_map, to_time
-from ..._lib.validation import check_choice, check_length, check_positive, check_vector
+from ..._lib.validation import check_choice, check_count, check_length, check_positive, check_vector
 from ..common import PointMotion, angle_range_text, check_branch, check_drive
 
 #: Crank angles sampled when checking where the mechanism can be assembled.
@@ -319,9 +319,11 @@ class LooperDrive:
     def analyse(self, branch=0, samples=3601, motion=None):
         """What a designer needs to know: see spatialkin.mechanisms.looper.analysis.LooperAnalysis. The
         transmission angle is given over `samples` crank angles, or over those of `motion` (a LooperMotion of
-        this drive and branch, reused)."""
-        from .analysis import analyse
-        return analyse(self, branch, samples, motion)
+        this drive and branch, reused): an integer from 3 to ANALYSIS_SAMPLES_MAX (ValueError naming it)."""
+        from .analysis import ANALYSIS_SAMPLES_MAX, analyse
+        if motion is None:
+            check_count("samples", samples, minimum=3, maximum=ANALYSIS_SAMPLES_MAX)
+        return analyse(self, check_branch(branch), samples, motion)
 
     def loads(self, crank_angles, omega=1.0, bodies=None, gravity=None, external=None, branch=0):
         """The forces over the crank angles at the crank rate omega (rad/s): ``self.solve(crank_angles, omega,

@@ -173,13 +173,17 @@ def test_crank_z_axis_alone_points_u1_zero_at_the_rocker():
     ("links = { coupler = { mass = 1.0, inertia = [1.0, -2.0, 1.0] } }\n", "links.coupler: inertia"),
     ("links = { coupler = { mass = 1.0, density = 7.85 } }\n", "links.coupler: unknown keys"),
     ("gravity_m_per_s2 = [0, -9.8]\n", "gravity_m_per_s2"),
+    ("step_deg = 1e-9\n", "step_deg must lie in [0.001, 1]"),
+    ("cad_tolerance = 1e-30\n", "a B-spline within 1e-30 was not reached"),
 ])
 def test_bad_config_is_one_line_and_exit_2(tmp_path, capsys, text, needle):
+    """One line naming the key, exit 2, and no file written (a CAD tolerance out of reach is found before any)."""
     cfg = tmp_path / "bad.toml"
     cfg.write_text(text)
     assert main(["looper", "--out", str(tmp_path / "o"), "--config", str(cfg)]) == 2
     err = capsys.readouterr().err
     assert needle in err and len(err.strip().splitlines()) == 1, err
+    assert not (tmp_path / "o").exists()
 
 
 @pytest.mark.parametrize("argv", [["demo", "--tol", "-1"], ["demo", "--tol", "x"], ["looper"], ["bogus"],

@@ -254,3 +254,11 @@ def test_solution_does_not_depend_on_the_order_or_company_of_the_angles(drive):
         np.testing.assert_allclose(one.ball_center[0], ref.ball_center[k], atol=1e-12)
         np.testing.assert_allclose(one.ball_velocity[0], ref.ball_velocity[k],
                                    atol=1e-12 * np.abs(ref.ball_velocity).max())
+
+
+@pytest.mark.parametrize("samples", [0, 1, 2, -1, 3.5, True, 10 ** 9])
+def test_analyse_names_a_bad_count_of_samples(drive, samples):
+    """A turn analysed over fewer than 3 crank angles (1 or 2 gave a degenerate range and a 90 deg minimum
+    transmission angle), a count that is no integer, or one too large for memory, is refused naming it."""
+    with pytest.raises(ValueError, match="samples must be an integer >= 3"):
+        drive.analyse(samples=samples)

@@ -154,10 +154,13 @@ def regions_overlap(a, b):
 
 def check_not_coincident(a, b, scale):
     """Raise CoincidentSurfacesError when the patches overlap in a piece of surface, or when they are patches of
-    one surface cut by angular or circular trims that do not overlap (they meet, if at all, along their edges)."""
-    if not (same_surface(a, b, scale) and trims_overlap(a, b)):
+    one surface (not a plane) that do not overlap (they meet, if at all, along their edges)."""
+    if not same_surface(a, b, scale):
         return
-    if (a.region or b.region) and not regions_overlap(a, b):
+    apart = not trims_overlap(a, b)
+    if apart and a.traits.name == "plane":
+        return                              # (two planes' patches that share an edge or a corner: a closed form)
+    if apart or (a.region or b.region) and not regions_overlap(a, b):
         raise CoincidentSurfacesError(
             f"a and b are patches of the same {type(a).__name__.lower()} that share no area: they meet, if at all, "
             "along their trim edges, which sk.intersect does not compute for one surface given twice")

@@ -188,6 +188,14 @@ def test_patches_of_one_surface():
         sk.intersect(sk.Sphere(1.0, u_range=(0.0, 1.0)), sk.Sphere(1.0, u_range=(2.0, 3.0)))
     with pytest.raises(CoincidentSurfacesError, match="overlap"):
         sk.intersect(sk.Sphere(1.0, u_range=(0.0, 1.0)), sk.Sphere(1.0, u_range=(0.5, 3.0)))
+    # patches along a cylinder's or a cone's axis that abut or lie apart, in both orders and certified
+    for a, b in ((sk.Cylinder(1.0, v_range=(0.0, 1.0)), sk.Cylinder(1.0, v_range=(1.0, 2.0))),
+                 (sk.Cone(0.5, v_range=(0.0, 1.0)), sk.Cone(0.5, v_range=(-1.0, 0.0))),
+                 (sk.Cylinder(1.0, v_range=(0.0, 1.0)), sk.Cylinder(1.0, v_range=(2.0, 3.0)))):
+        for pair in ((a, b), (b, a)):
+            for certify in (False, True):
+                with pytest.raises(CoincidentSurfacesError, match="share no area"):
+                    sk.intersect(*pair, certify=certify)
 
 
 def test_many_pairs_with_faces_on_workers():

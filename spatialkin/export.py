@@ -36,11 +36,19 @@ def _as_pieces(curves):
     from .tracing.curve.result import Curve
     if isinstance(curves, (Curve, BSpline)):
         curves = [curves]
+    if isinstance(curves, (str, bytes)) or not hasattr(curves, "__iter__"):
+        raise TypeError(f"curves must be a Curve, a scipy BSpline or a list of them, got {type(curves).__name__}")
     pieces = []
     for k, c in enumerate(curves):
         if isinstance(c, Curve):
             pieces.append((c, 0.0, c.length, c.closed, c))
         elif isinstance(c, BSpline):
+            coefficients = np.asarray(c.c)
+            if coefficients.ndim != 2 or coefficients.shape[1] != 3:
+                raise ValueError(f"curves[{k}] must be a B-spline of points (its control points of shape (n, 3)), "
+                                 f"got control points of shape {coefficients.shape}")
+            if not (np.all(np.isfinite(coefficients)) and np.all(np.isfinite(c.t))):
+                raise ValueError(f"curves[{k}] must have finite control points and knots")
             t, k_ = c.t, c.k
             pieces.append((c, float(t[k_]), float(t[-k_ - 1]), c.extrapolate == "periodic", c))
         else:
@@ -74,7 +82,7 @@ def _chord_tol(pts, chord_tol):
     if chord_tol is None:
         extent = float(np.linalg.norm(np.ptp(pts, axis=0))) if len(pts) else 1.0
         return CHORD_FRACTION * max(extent, 1e-300)
-    return check_positive("chord_tol", chord_tol)
+    return check_positive("chord_tol", chord_tol, strict=True)
 
 
 def polylines(curves, chord_tol=None):
@@ -90,7 +98,9 @@ def polylines(curves, chord_tol=None):
 def write_csv(path, curves, unit="mm", chord_tol=None):
     """Points of every curve as CSV: curve index, parameter (arc length s for a Curve), x, y, z; the header names
     the unit of each column."""
-    unit = str(unit)
+    if not isinstance(unit, str) or any(ch in unit for ch in ',"\n\r'):
+        raise ValueError(f"unit must be a str without commas, quotes or line breaks (it goes into the CSV's header), "
+                         f"got {unit!r}")
     rows = polylines(curves, chord_tol)
     with atomic_path(path) as tmp, open(tmp, "w") as fh:
         fh.write(f"curve,s [{unit}],x [{unit}],y [{unit}],z [{unit}]\n")

@@ -114,7 +114,32 @@ def test_export_by_suffix_and_errors(tmp_path, looper_pair):
         export_curves(tmp_path / "a.csv", [np.zeros(3)])
     with pytest.raises(ValueError, match="chord_tol"):
         write_csv(tmp_path / "b.csv", curves, chord_tol=-1.0)
+    with pytest.raises(TypeError, match="chord_tol must be a real number"):
+        write_csv(tmp_path / "b.csv", curves, chord_tol="1e-3")
+    with pytest.raises(TypeError, match="curves must be a Curve, a scipy BSpline or a list of them"):
+        export_curves(tmp_path / "b.csv", None)
+    with pytest.raises(ValueError, match="unit must be a str without commas"):
+        write_csv(tmp_path / "b.csv", curves, unit="a,b\nc")
+    with pytest.raises(TypeError, match="tol must be a real number"):
+        curves[0].to_bspline("1e-3")
     assert not os.path.exists(tmp_path / "b.csv") and no_temporaries(tmp_path)
+
+
+@pytest.mark.parametrize("suffix", ["csv", "vtp", "dxf"])
+def test_splines_that_are_no_curves_of_points_are_named(tmp_path, suffix):
+    """A B-spline with a NaN control point, or values that are no 3-D points (scalar, 2-D), is refused naming its
+    index in the list, and no file is written (a NaN spline was written as 'nan' rows)."""
+    from scipy.interpolate import BSpline
+    knots = np.r_[[0.0] * 4, [1.0] * 4]
+    good = BSpline(knots, np.arange(12.0).reshape(4, 3), 3)
+    nan = np.arange(12.0).reshape(4, 3)
+    nan[1, 1] = np.nan
+    for bad, words in ((BSpline(knots, nan, 3), "curves\\[1\\] must have finite control points"),
+                       (BSpline(knots, np.zeros(4), 3), r"curves\[1\] must be a B-spline of points"),
+                       (BSpline(knots, np.zeros((4, 2)), 3), r"curves\[1\] must be a B-spline of points")):
+        with pytest.raises(ValueError, match=words):
+            export_curves(tmp_path / f"c.{suffix}", [good, bad])
+    assert not os.path.exists(tmp_path / f"c.{suffix}") and no_temporaries(tmp_path)
 
 
 def test_looper_paths_as_bsplines():

@@ -655,7 +655,7 @@ class LooperMotion:
             ``deviation`` (mm, or the drive's length unit) and ``checked`` as in ``Curve.to_bspline``.
         """
         check_choice("which", which, ("ball", "tip"))
-        tol = check_positive("tol", tol)
+        tol = check_positive("tol", tol, strict=True)
         lo, hi = float(np.min(self.crank_angle)), float(np.max(self.crank_angle))
         if not hi > lo:
             raise ValueError("a path B-spline needs at least two distinct crank angles")

@@ -447,7 +447,7 @@ class Curve:
         >>> bool(np.max(np.linalg.norm(spline(s) - curve(s), axis=1)) <= 1e-8)
         True
         """
-        tol = check_positive("tol", tol)
+        tol = check_positive("tol", tol, strict=True)
         if self.length == 0:
             raise ValueError("a curve of length zero (a contact point) has no B-spline")
         from ..march.start import scene_scale       # start imports this module

@@ -40,6 +40,7 @@ import tomllib
 
 import numpy as np
 
+from . import USER_ERRORS, OneLineParser
 from .._lib.files import atomic_path
 from ..design.fit import FIT_SAMPLES, Targets
 from ..design.looper import LooperDesign
@@ -112,8 +113,8 @@ def read_targets(path):
 def main_design(argv=None):
     """Entry point of ``spatialkin design``; returns the exit status: 0 every target met, 1 the fit did not converge
     or a target is missed by more than its tolerance (the fitted config is written all the same), 2 an error."""
-    parser = argparse.ArgumentParser(prog="spatialkin design", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = OneLineParser(prog="spatialkin design", description=__doc__,
+                           formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--targets", required=True, help="TOML file with the targets (see above)")
     parser.add_argument("--out", default=None,
                         help="where to write the fitted config (default: <targets>_fitted.toml beside it)")
@@ -127,7 +128,7 @@ def main_design(argv=None):
             with open(tmp, "w", encoding="utf-8") as f:
                 f.write(to_toml(config, comment=f"looper drive fitted by spatialkin design to {args.targets}\n"
                                                 f"free: {', '.join(design.free)}"))
-    except (ValueError, OSError) as err:
+    except USER_ERRORS as err:
         print(f"spatialkin design: {err}", file=sys.stderr)
         return 2
     a = fitted.achieved

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
-from .._lib.validation import check_positive, check_real
+from .._lib.validation import as_float_array, check_nonnegative, check_positive, check_real
 from .params import check_names
 
 #: Crank angles sampled over a full turn for swing, timing and the transmission angle during a fit.
@@ -67,19 +67,21 @@ class Targets:
     tolerances: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        self.tip_angles = np.atleast_1d(np.asarray(self.tip_angles, dtype=float))
-        self.tip_points = np.asarray(self.tip_points, dtype=float).reshape(-1, 3) if np.size(self.tip_points) \
-            else np.empty((0, 3))
+        self.tip_angles = np.atleast_1d(as_float_array("targets: tip_angles", self.tip_angles))
+        points = as_float_array("targets: tip_points", self.tip_points)
+        if points.size and points.shape[-1:] != (3,):
+            raise ValueError(f"targets: tip_points must have shape (K, 3), got {points.shape}")
+        self.tip_points = points.reshape(-1, 3) if points.size else np.empty((0, 3))
         if self.tip_angles.shape != (len(self.tip_points),) or not np.all(np.isfinite(self.tip_points)) \
                 or not np.all(np.isfinite(self.tip_angles)):
             raise ValueError("tip targets: tip_angles (K,) and tip_points (K, 3) must be finite and match, got "
                              f"{self.tip_angles.shape} and {self.tip_points.shape}")
         for name in ("min_transmission", "min_margin"):
             if getattr(self, name) is not None:
-                check_real(f"targets: {name}", getattr(self, name), finite=True)
-        check_positive("targets: swing", self.swing, allow_none=True)
+                setattr(self, name, check_real(f"targets: {name}", getattr(self, name), finite=True, strict=True))
+        self.swing = check_positive("targets: swing", self.swing, allow_none=True, strict=True)
         if self.timing is not None:
-            t = np.asarray(self.timing, dtype=float)
+            t = as_float_array("targets: timing", self.timing)
             if t.shape != (2,) or not np.all(np.isfinite(t)):
                 raise ValueError(f"targets: timing must be two finite crank angles (u2 max, u2 min), got "
                                  f"{self.timing!r}")
@@ -87,10 +89,12 @@ class Targets:
         unknown = set(self.weights) - set(WEIGHTS)
         if unknown:
             raise ValueError(f"targets: unknown weights {sorted(unknown)}; known {sorted(WEIGHTS)}")
+        self.weights = {name: check_nonnegative(f"targets: weight {name}", value, strict=True)
+                        for name, value in self.weights.items()}
         unknown = set(self.tolerances) - set(TOLERANCES)
         if unknown:
             raise ValueError(f"targets: unknown tolerances {sorted(unknown)}; known {sorted(TOLERANCES)}")
-        self.tolerances = {name: check_positive(f"targets: tolerance {name}", value)
+        self.tolerances = {name: check_positive(f"targets: tolerance {name}", value, strict=True)
                            for name, value in self.tolerances.items()}
         if not len(self.tip_angles) and self.swing is None and self.timing is None:
             raise ValueError("targets: give tip points, a swing or a timing to fit to")

@@ -52,6 +52,26 @@ def test_bad_targets_file_is_an_error_naming_it(tmp_path, capsys):
     assert not (tmp_path / "targets_fitted.toml").exists()
 
 
+BAD_WEIGHTS = '[design]\nfree = ["crank_radius"]\n[rocker]\nswing_deg = 30.0\n[weights]\nswing = '
+
+
+@pytest.mark.parametrize("text, words", [(BAD_WEIGHTS + '"x"\n', "weight swing must be a real number"),
+                                         (BAD_WEIGHTS + "nan\n", "weight swing must be a finite number")])
+def test_bad_weights_are_one_line_and_exit_2(tmp_path, capsys, text, words):
+    path = tmp_path / "targets.toml"
+    path.write_text(text)
+    assert main(["design", "--targets", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert words in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err, err
+
+
+def test_design_without_targets_is_one_line(capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["design"])
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and "--targets" in err and len(err.strip().splitlines()) == 1, err
+
+
 def test_start_from_a_config_and_fit_tip_points(tmp_path):
     """The start is a looper config with a wrong crank radius; tip points of the reference drive bring it
     back (1e-8)."""

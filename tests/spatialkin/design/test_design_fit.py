@@ -63,6 +63,23 @@ def test_bad_targets_name_the_argument(true, targets, word):
         true.fit(targets, free=("crank_radius",))
 
 
+@pytest.mark.parametrize("kwargs, error, words", [
+    (dict(swing="0.5"), TypeError, "targets: swing must be a real number"),
+    (dict(swing=0.5, min_transmission="1.2"), TypeError, "targets: min_transmission must be a real number"),
+    (dict(swing=0.5, weights={"swing": "x"}), TypeError, "targets: weight swing must be a real number"),
+    (dict(swing=0.5, weights={"swing": None}), TypeError, "targets: weight swing must be a real number"),
+    (dict(swing=0.5, weights={"swing": math.nan}), ValueError, "targets: weight swing must be a finite number"),
+    (dict(tip_angles=[0.0], tip_points=[[1.0, 2.0]]), ValueError, r"tip_points must have shape \(K, 3\)"),
+])
+def test_targets_check_their_values_when_made(kwargs, error, words):
+    """A target, weight or tolerance of no real type, or not finite, is refused when the Targets are made, naming
+    it (they were stored raw and failed inside the fit); valid numbers are kept as floats."""
+    with pytest.raises(error, match=words):
+        Targets(**kwargs)
+    kept = Targets(swing=np.float32(0.5), weights={"swing": 2})
+    assert type(kept.swing) is float and kept.weights == {"swing": 2.0}
+
+
 @pytest.mark.parametrize("min_margin", [None, 0.0])
 def test_fit_never_ends_on_a_drive_that_stops_turning(min_margin):
     """A 5 deg swing asks for a rocker so short that the crank could not turn fully (below about 26.3 mm):

@@ -23,3 +23,17 @@ def atomic_path(path):
         if os.path.exists(tmp):
             os.remove(tmp)
         raise
+
+
+def check_out_dir(out_dir):
+    """ValueError naming --out when out_dir cannot be the job's folder: a file of that name, or a file where one
+    of the folders above it would be (a missing folder is created by the run)."""
+    path = os.path.abspath(out_dir)
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise ValueError(f"--out {out_dir}: a file of that name exists; give a folder (created if missing)")
+    above = os.path.dirname(path)
+    while not os.path.exists(above):
+        above = os.path.dirname(above)
+    if not os.path.isdir(above):
+        raise ValueError(f"--out {out_dir}: {above} is a file, so no folder can be made below it")
+    return out_dir

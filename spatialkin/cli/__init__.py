@@ -64,7 +64,10 @@ def warm_up(args):
 
 
 def bench(args):
+    from .._lib.files import check_out_dir
     from ..bench import run
+    if args.out is not None:
+        check_out_dir(args.out)                 # (before the runs, not after them)
     run(args.out, quick=args.quick)
     return 0
 

@@ -19,7 +19,7 @@ from . import looper_forces as forces
 from ..plots import looper as figs
 from ..mechanisms.looper import reference as ref
 from ..geometry.frame import Frame, rotation_about, rotation_to_z
-from .._lib.files import atomic_path
+from .._lib.files import atomic_path, check_out_dir
 from ..mechanisms import LooperDrive
 from ..mechanisms.looper.analysis import CLEARANCE
 from .._lib.units import METRES_PER_UNIT, STANDARD_GRAVITY
@@ -272,20 +272,6 @@ def build(config):
 
 
 # --- the run ------------------------------------------------------------------------------------------------
-def check_out_dir(out_dir):
-    """ValueError naming --out when out_dir cannot be the job's folder: a file of that name, or a file where one
-    of the folders above it would be (a missing folder is created by the run)."""
-    path = os.path.abspath(out_dir)
-    if os.path.exists(path) and not os.path.isdir(path):
-        raise ValueError(f"--out {out_dir}: a file of that name exists; give a folder (created if missing)")
-    above = os.path.dirname(path)
-    while not os.path.exists(above):
-        above = os.path.dirname(above)
-    if not os.path.isdir(above):
-        raise ValueError(f"--out {out_dir}: {above} is a file, so no folder can be made below it")
-    return out_dir
-
-
 def reachable_angles(drive, step_deg):
     """Crank angles (rad) of a turn on a grid of step_deg where the drive assembles with margin (CLEARANCE x
     size, as the analysis): the whole turn when the crank turns fully."""

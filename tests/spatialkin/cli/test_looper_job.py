@@ -202,11 +202,12 @@ def test_out_that_is_a_file_is_one_line_naming_out(tmp_path, capsys):
     the reason, the file untouched."""
     existing = tmp_path / "neg.toml"
     existing.write_text("crank_radius = 8.0\n")
-    for out, reason in ((existing, "a file of that name exists"), (existing / "sub", "is a file")):
-        assert main(["looper", "--out", str(out)]) == 2
-        err = capsys.readouterr().err
-        assert err.startswith(f"spatialkin looper: --out {out}: ") and reason in err, err
-        assert len(err.strip().splitlines()) == 1 and "Errno" not in err, err
+    for command in (["looper"], ["bench", "--quick"]):
+        for out, reason in ((existing, "a file of that name exists"), (existing / "sub", "is a file")):
+            assert main(command + ["--out", str(out)]) == 2
+            err = capsys.readouterr().err
+            assert err.startswith(f"spatialkin {command[0]}: --out {out}: ") and reason in err, err
+            assert len(err.strip().splitlines()) == 1 and "Errno" not in err, err
     assert existing.read_text() == "crank_radius = 8.0\n"
 
 

@@ -14,7 +14,7 @@ the corrected ones are used (at d = 1/k they give phi' = -k/2, the uniform turn 
 """
 import numpy as np
 
-from spatialkin._lib.validation import check_choice, check_finite, check_nonnegative, check_positive
+from spatialkin._lib.validation import check_choice, check_finite, check_length, check_positive
 
 from . import kernels as lk
 
@@ -117,11 +117,11 @@ class CrankSlider(Law):
     """
 
     def __init__(self, k, e, L, side=1, branch=0):
-        self.k = check_positive("k", k)
-        self.e = check_nonnegative("e", e)
-        self.L = check_positive("L", L)
-        check_choice("side", side, (1, -1))
-        check_choice("branch", branch, (0, 1))
+        self.k = check_length("k", k)              # (1 / length: within the lengths' range too)
+        self.e = check_length("e", e, allow_zero=True)
+        self.L = check_length("L", L)
+        side = check_choice("side", side, (1, -1))
+        branch = check_choice("branch", branch, (0, 1))
         if self.e + 1.0 / self.k > self.L * (1 + TURN_SLACK):
             raise ValueError(f"the crank-slider needs e + 1/k <= L to turn fully: e + 1/k = "
                              f"{self.e + 1 / self.k:.6g} > L = {self.L:.6g}")
@@ -159,7 +159,8 @@ class CrankRocker(Law):
     Raises
     ------
     ValueError
-        Naming `k` or `d` when it is not a positive finite number.
+        Naming `k` or `d` when it is not a positive finite number within the supported lengths (1e-32 to 1e32;
+        TypeError when its type is no real number's).
 
     References
     ----------
@@ -182,8 +183,8 @@ class CrankRocker(Law):
     """
 
     def __init__(self, k, d):
-        self.k = check_positive("k", k)
-        self.d = check_positive("d", d)
+        self.k = check_length("k", k)
+        self.d = check_length("d", d)
 
     def evaluate_with_direction(self, s):
         return kernel_law(lk.crank_rocker_law, s, self.k, self.d)

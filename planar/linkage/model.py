@@ -27,7 +27,8 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from spatialkin.continuation import CurveKernels, solve_at, trace_cycle
-from spatialkin._lib.validation import check_angles, check_omega, check_positive, check_vector
+from spatialkin._lib.validation import (check_angles, check_count, check_omega, check_positive, check_real,
+                                        check_vector)
 
 from . import kernels as kn
 from .motion import LinkageMotion, LockError
@@ -214,9 +215,17 @@ class Linkage:
     """
 
     def __init__(self, fixed, cranks, links, hint=None, hint_angle=0.0):
-        self.fixed = {str(k): np.asarray(v, dtype=float).reshape(2) for k, v in fixed.items()}
+        if not isinstance(fixed, dict):
+            raise TypeError(f"fixed must be a dict of joint name -> (x, y), got {type(fixed).__name__}")
+        self.fixed = {str(k): check_vector(f"fixed[{k!r}]", v, 2) for k, v in fixed.items()}
         self.cranks = list(cranks)
         self.links = list(links)
+        for k, c in enumerate(self.cranks):
+            if not isinstance(c, Crank):
+                raise TypeError(f"cranks[{k}] must be a planar.Crank, got {type(c).__name__}")
+        for k, lk in enumerate(self.links):
+            if not isinstance(lk, Link):
+                raise TypeError(f"links[{k}] must be a planar.Link, got {type(lk).__name__}")
         if not self.cranks:
             raise ValueError("cranks: a linkage needs at least one driving crank")
         if self.cranks[0].ratio != 1.0 or self.cranks[0].phase != 0.0:
@@ -227,8 +236,17 @@ class Linkage:
         self.ci, self.cf, self.fixed_xy = self._constraints()
         self.layout = _block_layout(self.ci, 2 * len(self.moving))
         self.period = self._period()
-        self.hint = None if hint is None else {k: np.asarray(v, float) for k, v in hint.items()}
-        self.hint_angle = float(hint_angle)
+        if hint is not None:
+            if not isinstance(hint, dict):
+                raise TypeError(f"hint must be a dict of joint name -> (x, y), got {type(hint).__name__}")
+            missing = [j for j in self.moving if j not in hint]
+            unknown = [j for j in hint if j not in self.moving and j not in self.fixed]
+            if missing or unknown:
+                raise ValueError(f"hint must give every moving joint {self.moving}; missing {missing}, not a joint "
+                                 f"{unknown}")
+            hint = {k: check_vector(f"hint[{k!r}]", v, 2) for k, v in hint.items()}
+        self.hint = hint
+        self.hint_angle = check_real("hint_angle", hint_angle, finite=True, strict=True)
         self._cycles = {}
 
     # --- model -----------------------------------------------------------------------------------
@@ -434,6 +452,8 @@ class Linkage:
     def cycle(self, assembly=None):
         """The configuration curve through the chosen assembly at hint_angle (cached): see
         spatialkin.continuation.Cycle."""
+        if assembly is not None:
+            assembly = check_count("assembly", assembly, minimum=0)
         if assembly not in self._cycles:
             y0 = self.assemble(self.hint_angle, assembly)
             args = (self.ci, self.cf, self.fixed_xy, len(self.cranks))

@@ -155,6 +155,15 @@ def test_feasibility_is_checked_up_front():
             planar.CrankSlider(**args)
     with pytest.raises(ValueError, match="d"):
         planar.CrankRocker(0.5, -1.0)
+    for args, kwargs, error, words in (((0.5, 1.0, 1e155), {}, ValueError, "L must lie within"),
+                                       ((1e154, 0.0, 4.0), {}, ValueError, "k must lie within"),
+                                       (("0.5", 1.0, 4.0), {}, TypeError, "k must be a real number"),
+                                       ((0.5, 1.0, 4.0), {"side": True}, ValueError, "side must be 1 or -1"),
+                                       ((0.5, 1.0, 4.0), {"branch": True}, ValueError, "branch must be 0 or 1")):
+        with pytest.raises(error, match=words):
+            planar.CrankSlider(*args, **kwargs)
+    with pytest.raises(ValueError, match="d must lie within"):
+        planar.CrankRocker(0.5, 1e40)
     with pytest.raises(ValueError, match="omega"):
         planar.DrivenLink(planar.CrankRocker(0.5, 4.0), omega=0.0)
     with pytest.raises(TypeError, match="law"):

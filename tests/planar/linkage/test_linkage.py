@@ -229,6 +229,29 @@ def test_bad_input_is_rejected(mech, sol):
         mech.positions("a")
 
 
+def test_a_linkage_checks_its_parts_when_made(mech):
+    """Fixed joints, hints and the parts are checked when the linkage is made, naming them (a NaN pivot or a
+    partial hint failed later inside solve, with scipy's or a KeyError's message)."""
+    fixed = dict(mech.fixed)
+    first = next(iter(fixed))
+    hint = dict(mech.hint)
+    for bad, error, words in (
+            (dict(fixed={**fixed, first: (np.nan, 0.0)}), ValueError, rf"fixed\['{first}'\] must be finite"),
+            (dict(fixed={**fixed, first: (np.inf, 0.0)}), ValueError, rf"fixed\['{first}'\] must be finite"),
+            (dict(fixed=None), TypeError, "fixed must be a dict"),
+            (dict(cranks=["x"]), TypeError, r"cranks\[0\] must be a planar.Crank"),
+            (dict(links=["x"]), TypeError, r"links\[0\] must be a planar.Link"),
+            (dict(hint={mech.moving[0]: (0.0, 0.0)}), ValueError, "hint must give every moving joint"),
+            (dict(hint={**hint, mech.moving[0]: (np.nan, 0.0)}), ValueError, "must be finite"),
+            (dict(hint_angle="a"), TypeError, "hint_angle must be a real number")):
+        parts = dict(fixed=mech.fixed, cranks=mech.cranks, links=mech.links, hint=hint, hint_angle=mech.hint_angle)
+        parts.update(bad)
+        with pytest.raises(error, match=words):
+            Linkage(**parts)
+    with pytest.raises(ValueError, match="assembly must be a non-negative integer"):
+        mech.solve([0.0], assembly="x")
+
+
 def four_bar_with_pin_on_the_coupler():
     """A crank's pin that is also a rigid link's further joint (defined twice: the link's rows stay implicit)
     and a crank on a moving pivot (its pin depends on an explicit joint)."""

@@ -120,6 +120,8 @@ class CurveResult:
             raise ValueError(f"a curve's status is one of {CURVE_STATUSES}, got {self.status!r}")
 
 
+#: The step, relative to the length, of the central differences that give to_bspline C'' beside a node.
+HERMITE_STEP = 1e-5
 #: The record's fields a Curve shows as read-only attributes of the same names (all but the dense output; the
 #: topology and the certificate are the Curve's own, sk.intersect's where it gives them).
 RECORD_FIELDS = tuple(f.name for f in dataclasses.fields(CurveResult) if f.name != "sol")
@@ -451,8 +453,22 @@ class Curve:
         if self.length == 0:
             raise ValueError("a curve of length zero (a contact point) has no B-spline")
         from ..march.start import scene_scale       # start imports this module
-        return fit_spline(self.derivatives, 0.0, self.length, tol * scene_scale(*self.surfaces),
+        return fit_spline(self._hermite_data, 0.0, self.length, tol * scene_scale(*self.surfaces),
                           periodic=self.closed)
+
+    def _hermite_data(self, s):
+        """derivatives(s) for to_bspline, C'' where it is NaN beside a singular point (a node the curve passes)
+        by central differences of the unit tangent HERMITE_STEP x length either side (clipped to an open curve's
+        ends), where the normals are apart again: the spline is measured against the curve all the same."""
+        points, tangents, bend = self.derivatives(s)
+        bad = np.isnan(bend).any(axis=1) & np.isfinite(tangents).all(axis=1)
+        if bad.any():
+            h = HERMITE_STEP * self.length
+            lo, hi = s[bad] - h, s[bad] + h
+            if not self.closed:
+                lo, hi = np.maximum(lo, 0.0), np.minimum(hi, self.length)
+            bend[bad] = (self.tangent(hi) - self.tangent(lo)) / (hi - lo)[:, None]
+        return points, tangents, bend
 
     def __len__(self):
         return len(self.points)

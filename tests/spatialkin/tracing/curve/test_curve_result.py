@@ -133,7 +133,7 @@ def test_a_contact_point_takes_only_s_0():
 def test_far_points_are_named_not_overflowed():
     """Points farther than the supported lengths (1e32) are refused naming `points` by closest, distances and a
     surface's distance and parameters; within them the answer is the closed form's (the circle of radius 0.8 at
-    z = 0.6, seen from (1e30, 0, 0): its nearest point (0.8, 0, 0.6), at arc length 0)."""
+    z = 0.6, seen from (1e6, 0, 0): its nearest point (0.8, 0, 0.6), at the distance sqrt((1e6 - 0.8)^2 + 0.36))."""
     circle, = sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))))
     traced = sk.intersect(sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3))))[0]
     far = [1e160, 0.0, 0.0]
@@ -142,7 +142,34 @@ def test_far_points_are_named_not_overflowed():
         with pytest.raises(ValueError, match="points must have coordinates within 1e\\+32 of 0"):
             call(far)
     s, dist = circle.closest([1e30, 0.0, 0.0])
-    np.testing.assert_allclose(circle(s), [0.8, 0.0, 0.6], atol=1e-8)
-    assert dist == 1e30
+    assert dist == 1e30                           # (every point of the circle, to the round-off of 1e30)
+    s, dist = circle.closest([1e6, 0.0, 0.0])     # (the distance settles the angle to sqrt(ulp(1e6) / 0.4))
+    np.testing.assert_allclose(circle(s), [0.8, 0.0, 0.6], atol=1e-4)
+    assert abs(dist - np.hypot(1e6 - 0.8, 0.6)) <= 1e-9
     with pytest.raises(TypeError, match="points must be an array of real numbers"):
         traced.distances("abc")
+
+
+def test_curvature_beside_a_node_is_nan_or_right():
+    """Viviani's curve (a sphere of radius 2 and a cylinder of radius 1 through its centre) passes its node
+    (2, 0, 0) twice. Its curvature is sqrt(13 + 3 cos t) / (3 + cos t)^(3/2), t the angle about the cylinder's axis
+    (closed form): beside the node C'' is NaN or within 1e-2 of it (relative), and 1e-6 of it from 1e-4 away; at
+    the node NaN (it was 1.5e9). The B-spline through the node stays within its tolerance of the curve (the
+    distance of its points from the curve, measured by closest)."""
+    curve, = sk.intersect(sk.Sphere(2.0), sk.Cylinder(1.0, sk.Frame((1.0, 0.0, 0.0)), v_range=(-3.0, 3.0)))
+    node = curve.closest(curve.nodes[0])[0]
+    offsets = np.concatenate([[0.0], np.geomspace(1e-12, 1e-1, 45)])
+    for side in (1.0, -1.0):
+        s = (node + side * offsets) % curve.length
+        points, _, bend = curve.derivatives(s)
+        t = np.arctan2(points[:, 1], points[:, 0] - 1.0)
+        true = np.sqrt(13.0 + 3.0 * np.cos(t)) / (3.0 + np.cos(t)) ** 1.5
+        got = np.linalg.norm(bend, axis=1)
+        assert np.isnan(got[0])
+        known = ~np.isnan(got)
+        assert np.all(np.abs(got[known] - true[known]) <= 1e-2 * true[known])
+        far = offsets >= 1e-4
+        assert known[far].all() and np.all(np.abs(got[far] - true[far]) <= 1e-6 * true[far])
+    spline = curve.to_bspline(1e-8)
+    _, dist = curve.closest(spline(np.linspace(0.0, curve.length, 20001)))
+    assert spline.deviation <= 1e-8 and dist.max() <= 1e-8 * 2.0

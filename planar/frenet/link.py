@@ -90,7 +90,7 @@ class DrivenLink:
         """Trajectory (the spatial side's pipeline) of the points (s, rho), broadcast together: the law is
         evaluated once per value of s and shared by every rho (s[:, None] with rho (R,) gives R points of
         the link at N crank positions), positions and s-derivatives by a jitted kernel."""
-        s = np.asarray(s, dtype=float)
+        s = check_finite("s", s)
         rho = check_finite("rho", rho)
         shape = np.broadcast_shapes(s.shape, rho.shape)
         if s.ndim == 2 and s.shape[1] == 1 and rho.ndim == 1:        # N positions x R points

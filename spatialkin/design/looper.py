@@ -4,7 +4,7 @@ import numpy as np
 from ..geometry.frame import Frame
 from ..mechanisms import LooperDrive
 from .._lib.validation import TOO_LARGE, check_choice
-from .params import (PARAMETERS, angles_from_rotation, check_names, check_values, default_bounds,
+from .params import (LENGTHS, PARAMETERS, angles_from_rotation, check_names, check_values, default_bounds,
                      rotation_from_angles)
 
 #: Crank angles of a full turn sampled by default (0.1 deg steps, both ends).
@@ -88,12 +88,16 @@ class LooperDesign:
                     raise ValueError(f"bounds: {name} must be a pair (low, high), got {pair!r}") from None
                 if not lo < hi:
                     raise ValueError(f"bounds: {name} needs low < high, got ({lo}, {hi})")
+                if name in LENGTHS and not lo > 0.0:
+                    raise ValueError(f"bounds: {name} is a length: its low bound must be > 0, got {lo}")
+                if not lo <= self.values[name] <= hi:
+                    raise ValueError(f"bounds: {name} = {self.values[name]:g} lies outside its bounds ({lo}, {hi})")
                 self.bounds[name] = (lo, hi)
         self.crank_frame = crank_frame if crank_frame is not None else Frame()
         if not isinstance(self.crank_frame, Frame):
             raise ValueError(f"crank_frame must be a spatialkin.Frame, got {type(crank_frame).__name__}")
-        check_choice("looper_link", looper_link, ("rocker_arm", "rocker_shaft"))
-        check_choice("branch", branch, (0, 1))
+        looper_link = check_choice("looper_link", looper_link, ("rocker_arm", "rocker_shaft"))
+        branch = check_choice("branch", branch, (0, 1))
         self.looper_link, self.branch = looper_link, branch
         self._drive = None
 

@@ -168,6 +168,8 @@ def test_feasibility_is_checked_up_front():
         planar.DrivenLink(planar.CrankRocker(0.5, 4.0), omega=0.0)
     with pytest.raises(TypeError, match="law"):
         planar.DrivenLink("law")
+    with pytest.raises(TypeError, match="s must be an array of real numbers"):
+        planar.DrivenLink(planar.CrankRocker(0.5, 4.0)).position("a", 1.0)
     arcsin_law = planar.LawFromFunctions(0.5, lambda s: np.arcsin(s), lambda s: 1 / np.sqrt(1 - s * s), lambda s: s)
     with pytest.raises(ValueError, match="non-finite"), np.errstate(invalid="ignore"):
         arcsin_law.evaluate(np.array([2.0]))

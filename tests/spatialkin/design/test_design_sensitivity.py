@@ -108,7 +108,11 @@ def test_from_drive_round_trip():
                                           (dict(bounds={"crank_radius": (3, 2)}), "bounds"),
                                           (dict(bounds={"crank_radius": (0, 10 ** 400)}),
                                            "bounds: crank_radius must be finite, got an integer too large"),
-                                          (dict(branch=2), "branch")])
+                                          (dict(bounds={"crank_radius": (20.0, 30.0)}),
+                                           "crank_radius = 8 lies outside its bounds"),
+                                          (dict(bounds={"crank_radius": (-1.0, 30.0)}),
+                                           "crank_radius is a length: its low bound must be > 0"),
+                                          (dict(branch=2), "branch"), (dict(branch=True), "branch")])
 def test_bad_input_names_the_argument(kwargs, word):
     with pytest.raises(ValueError, match=word):
         LooperDesign(LooperDesign.reference().values, **kwargs)

@@ -320,6 +320,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
         s = seg.s1
         y = ys[:, -1].copy()
         if status == -1 and steps.budget_exceeded:
+            kc.curve_frame(y, a, b, point, tangent)          # (the point where it ran out, not the segment's start)
             branch.status, branch.message = outcome("stalled", s=s, budget=SEGMENT_MAX_EVALUATIONS,
                                                     point=point.tolist())
             break

@@ -5,6 +5,8 @@ Along such a loop the normals stay within about its size (relative to the scale)
 which a local minimum of it is suspected of being a node; only the topology search tells a node from a loop round
 a critical point off the curve, and sk.trace runs it there.
 """
+import re
+
 import numpy as np
 import pytest
 
@@ -63,3 +65,17 @@ def test_trace_runs_the_search_only_at_a_suspect_point(monkeypatch):
     case = next(c for c in ring_cases() if c.name == "tiny/torus-torus/1e-05")
     assert sk.trace(case.a, case.b, case.samples[0]).status == "closed"
     assert len(calls) == 1
+
+
+def test_a_line_of_two_unbounded_planes_runs_out_where_it_says():
+    """Two untrimmed planes meet in the x axis: traced without max_length the segment's budget runs out far along
+    it, and the error names that point (on the axis, at the arc length it gives), not the start; with max_length
+    the line comes back, status 'max_length'."""
+    a, b = sk.Plane(), sk.Plane(sk.Frame((0.0, 0.0, 0.0), sk.rotation_about((1.0, 0.0, 0.0), 0.5)))
+    with pytest.raises(sk.TracingError, match="max_length asks for less") as info:
+        sk.trace(a, b, (0.0, 0.0, 0.0))
+    s, x, y, z = (float(v) for v in re.search(r"ran out at s = ([0-9.e+]+), near point \[([^,]+), ([^,]+), ([^\]]+)\]",
+                                              str(info.value)).groups())
+    assert s > 100.0 and abs(abs(x) - s) <= 1e-6 * s and abs(y) <= 1e-9 * s and abs(z) <= 1e-9 * s
+    line = sk.trace(a, b, (0.0, 0.0, 0.0), max_length=10.0)
+    assert line.status == "max_length" and abs(line.length - 20.0) <= 1e-9

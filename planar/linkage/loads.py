@@ -19,7 +19,7 @@ Newton-Euler equations, shaking force and moment).
 """
 import numpy as np
 
-from spatialkin._lib.validation import check_omega
+from spatialkin._lib.validation import as_float_array, check_omega
 from spatialkin.dynamics import Loads
 from spatialkin.dynamics.balance import counterweight
 from spatialkin.dynamics.body import check_bodies
@@ -38,7 +38,7 @@ def _check(linkage, bodies, gravity):
     bodies = check_bodies(bodies, [m[0] for m in _members(linkage)])
     g = np.zeros(2)
     if gravity is not None:
-        g = np.asarray(gravity, dtype=float)
+        g = as_float_array("gravity", gravity)
         if g.shape != (2,) or not np.all(np.isfinite(g)):
             raise ValueError(f"gravity must be 2 finite numbers (L / s^2, fixed axes), got {np.ravel(g).tolist()}")
     for crank in linkage.cranks:

@@ -17,6 +17,7 @@ import numpy as np
 from ...dynamics import DRIVEN, REVOLUTE, SPHERICAL, Joint, inverse_dynamics
 from ...dynamics.balance import counterweight
 from ...dynamics.body import check_bodies
+from ..._lib.validation import as_float_array
 
 #: The drive's moving links (the keys of `bodies`).
 LINKS = ("crank", "coupler", "rocker_shaft", "rocker_arm")
@@ -39,7 +40,7 @@ def motion_loads(motion, bodies=None, gravity=None, external=None):
     """The loads of a LooperMotion (see LooperMotion.loads): spatialkin.dynamics.Loads with ``crank_torque``."""
     bodies = check_bodies(bodies, LINKS)
     if gravity is not None:
-        gravity = np.asarray(gravity, dtype=float)
+        gravity = as_float_array("gravity", gravity)
         if gravity.shape != (3,) or not np.all(np.isfinite(gravity)):
             raise ValueError(f"gravity must be 3 finite numbers (L / s^2, fixed axes), got {gravity.tolist()}")
     loads_on = None

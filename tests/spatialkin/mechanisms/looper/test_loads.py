@@ -124,6 +124,8 @@ def test_bad_input_is_named(kwargs, key):
     motion = DRIVE.solve(np.linspace(0.0, 1.0, 3))
     with pytest.raises(ValueError, match=key):
         motion.loads(**kwargs)
+    with pytest.raises(TypeError, match="gravity must be an array of real numbers"):
+        motion.loads(gravity="down")
 
 
 def test_the_crank_counterweight_is_the_least_rms_shaking_force():

@@ -140,8 +140,8 @@ class CrankRocker(Law):
     phi'' = -d k^3 (k^2 d^2 - 1) cos ks / D^2, D = 1 + k^2 d^2 - 2 kd sin ks [1]_ (the paper's printed (15), (16)
     have the wrong sign of the gamma term; these are the corrected derivatives), computed as
     D = (kd - sin ks)^2 + cos^2 ks with kd - sin ks = (kd - 1) + 2 sin^2(pi/4 - ks/2), which keep their relative
-    accuracy where the pin passes near the stone (d near 1/k). d > r (r = 1/k): a rocking stone; d = r: the link turns uniformly at -k/2 per unit s; d < r: a rotating
-    stone.
+    accuracy where the pin passes near the stone (d near 1/k). d > r (r = 1/k): a rocking stone; d = r: the link
+    turns uniformly at -k/2 per unit s; d < r: a rotating stone.
 
     Parameters
     ----------

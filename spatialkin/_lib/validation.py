@@ -11,7 +11,8 @@ import numpy as np
 
 __all__ = ["ORTHONORMAL_TOL", "LENGTH_MIN", "LENGTH_MAX", "check_real", "check_positive", "check_nonnegative",
            "check_real_type", "check_length", "check_count", "check_omega", "check_choice", "check_range",
-           "check_finite", "check_vector", "check_points", "check_query_points", "check_angles", "check_frame", "orthonormalised"]
+           "check_finite", "check_vector", "check_points", "check_query_points", "check_angles", "check_frame",
+           "orthonormalised"]
 
 #: Largest accepted deviation of R^T R from the identity (entrywise), for a rotation given in floats.
 ORTHONORMAL_TOL = 1e-9
@@ -240,7 +241,7 @@ def check_angles(name, values):
     return angles
 
 
-#: Kinds of numpy arrays that are no real numbers (complex, bool, str, bytes) ...
+#: Kinds of numpy arrays that are no real numbers (complex, bool, str, bytes).
 NOT_REAL = {"c": "complex", "b": "bool", "U": "str", "S": "bytes"}
 
 

@@ -95,7 +95,7 @@ class CurveSolution:
 
     def derivatives(self, s):
         """(points, unit tangents C', curvature vectors C'') (..., 3) each at arc lengths s: from the points and
-        the two surfaces' implicit functions (NaN at a singular point)."""
+        the two surfaces' implicit functions (C'' NaN at and beside a singular point: curvature_vectors)."""
         shape = np.shape(s)
         _, points, tangents, _ = self.evaluate(s, with_params=False)
         bend = curvature_vectors(*self.surfaces, points, tangents)

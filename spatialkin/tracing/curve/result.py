@@ -375,8 +375,9 @@ class Curve:
 
     def derivatives(self, s):
         """(points, unit tangents C', curvature vectors C'') (..., 3) each at arc lengths s: exact, from the
-        corrected points and the two surfaces' implicit functions, or in closed form (NaN at a singular
-        point)."""
+        corrected points and the two surfaces' implicit functions, or in closed form; C'' is NaN at and beside a
+        singular point, where the normals lie within about 1.2e-6 rad of parallel
+        (spatialkin.tracing.curve.curvature)."""
         return self._result.sol.derivatives(arc_lengths(s))
 
     def closest(self, points):

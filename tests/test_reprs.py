@@ -47,12 +47,12 @@ def test_solve_on_scalar_empty_and_bad_input():
     for bad in ([], np.zeros((0,)), "x", [[0.1, 0.2]]):
         with pytest.raises(ValueError, match="crank_angles"):
             drive.solve(bad)
-    for omega in ("x", None, 0.0, np.nan):
-        with pytest.raises(ValueError, match="omega"):
+    for omega, error in (("x", TypeError), (None, TypeError), (0.0, ValueError), (np.nan, ValueError)):
+        with pytest.raises(error, match="omega"):
             drive.solve([0.1], omega=omega)
-        with pytest.raises(ValueError, match="omega"):
+        with pytest.raises(error, match="omega"):
             planar.DrivenLink(planar.CrankRocker(1.0, 2.0), omega=omega)
-        with pytest.raises(ValueError, match="omega"):
+        with pytest.raises(error, match="omega"):
             planar.examples.fnf_sixbar().solve([0.1], omega=omega)
     with pytest.raises(ValueError, match="crank_angles"):
         planar.examples.fnf_sixbar().solve([])

@@ -231,8 +231,8 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
     ------
     ValueError
         Naming the argument: a space that is not a non-empty dict of 1-D arrays of one length over known
-        parameters, unknown outputs, samples < 3, chunk < 1, processes < 0, a base that is not a LooperDesign,
-        as_frame=True without pandas.
+        parameters, unknown or repeated outputs, samples < 3, chunk < 1, processes < 0, a base that is not a
+        LooperDesign, as_frame=True without pandas.
     RuntimeError
         A local worker process died, which breaks the pool (BrokenProcessPool, chained as the cause). From a
         script the usual cause is a main module without ``if __name__ == "__main__":`` (the workers re-import
@@ -270,6 +270,9 @@ def sweep(space, outputs=("swing", "min_transmission", "assembly_margin"), clien
     bad = [o for o in outputs if o not in OUTPUTS]
     if bad or not outputs:
         raise ValueError(f"outputs: unknown {bad}; known {sorted(OUTPUTS)}")
+    twice = sorted({o for o in outputs if outputs.count(o) > 1} | (set(outputs) & set(names)))
+    if twice:
+        raise ValueError(f"outputs: {twice} given twice (or also swept): each column of the table is named once")
     check_count("samples", samples, 3)
     check_count("chunk", chunk)
     base = LooperDesign.reference() if base is None else base

@@ -82,7 +82,8 @@ def test_random_space_lies_within_bounds():
 
 @pytest.mark.parametrize("kwargs, word", [(dict(space={}), "space"), (dict(space={"crank": [1.0]}), "space"),
                                           (dict(outputs=("speed",)), "outputs"), (dict(processes=-1), "processes"),
-                                          (dict(samples=2), "samples")])
+                                          (dict(samples=2), "samples"),
+                                          (dict(outputs=("swing", "swing")), r"outputs: \['swing'\] given twice")])
 def test_bad_input_names_the_argument(kwargs, word):
     args = dict(space={"crank_radius": [8.0]}, outputs=("swing",), progress=False)
     args.update(kwargs)

@@ -44,8 +44,11 @@ def test_solve_on_scalar_empty_and_bad_input():
     one, many = drive.solve(0.5), drive.solve([0.5, 1.0])
     assert one.ball_center.shape == (1, 3)
     np.testing.assert_array_equal(one.ball_center[0], many.ball_center[0])     # the same angle, the same numbers
-    for bad in ([], np.zeros((0,)), "x", [[0.1, 0.2]]):
+    for bad in ([], np.zeros((0,)), [[0.1, 0.2]]):
         with pytest.raises(ValueError, match="crank_angles"):
+            drive.solve(bad)
+    for bad in ("x", "1", ["1"]):
+        with pytest.raises(TypeError, match="crank_angles must be an array of real numbers"):
             drive.solve(bad)
     for omega, error in (("x", TypeError), (None, TypeError), (0.0, ValueError), (np.nan, ValueError)):
         with pytest.raises(error, match="omega"):

@@ -247,7 +247,8 @@ NOT_REAL = {"c": "complex", "b": "bool", "U": "str", "S": "bytes"}
 
 def refuse_not_real(name, value):
     """TypeError naming the argument when value holds complex, bool or str values (an array, a list or tuple of
-    them, or one of them), which numpy would cast to floats (dropping imaginary parts, reading True as 1)."""
+    them, or one of them), which numpy would cast to floats (dropping imaginary parts, reading True as 1, parsing
+    '1')."""
     kind = value.dtype.kind if isinstance(value, np.ndarray) else None
     if kind is None and isinstance(value, (list, tuple)):
         try:
@@ -256,7 +257,7 @@ def refuse_not_real(name, value):
             kind = None
     if kind in NOT_REAL:
         raise TypeError(f"{name} must be an array of real numbers, got {NOT_REAL[kind]} values")
-    if isinstance(value, (complex, np.complexfloating, bool, np.bool_)):
+    if isinstance(value, (complex, np.complexfloating, bool, np.bool_, str, bytes)):
         raise TypeError(f"{name} must be an array of real numbers, got {type(value).__name__}")
 
 

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..curve.clip import WindowSolution
 from ..curve.status import CONTACT, TANGENT
 from ...kernels.certify import tubes as kt
 from ...kernels.certify import singular as ks_singular
@@ -297,7 +298,7 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None, wholes=
     proven first, then the cut (spatialkin.tracing.certify.faces)."""
     if wholes is None or not (a.region or b.region):
         return uncut(a, b, curves, topology, scale, tolerance, failure)
-    base = uncut(a, b, wholes, topology, scale, tolerance, failure, regions=False)
+    base = uncut(a, b, wholes, topology, scale, tolerance, failure, regions=False, arcs=cut_arcs(curves, wholes))
     failures, radii, tubes, bounds = cut(base, a, b, curves, wholes)
     c = base.claims
     claims = [joined(c["complete"], failures, "every root of the search lies on a component traced before the faces "
@@ -313,6 +314,18 @@ def certify(a, b, curves, topology, scale, tolerance=None, failure=None, wholes=
     return Certificate(claims, base.topology, radii, tubes, bounds, len(curves), base.chart)
 
 
+def cut_arcs(curves, wholes):
+    """{index of a whole: [(s0, s1)]}: the arcs the returned curves (a face's cut) take from each whole, in its arc
+    length (s1 may pass a closed whole's length)."""
+    out = {}
+    for curve in curves:
+        if isinstance(curve.sol, WindowSolution) and curve.length > 0:
+            j = next((j for j, w in enumerate(wholes) if w.sol is curve.sol.whole), None)
+            if j is not None:
+                out.setdefault(j, []).append((curve.sol.start, curve.sol.start + curve.length))
+    return out
+
+
 def unproven_points(radii, curves):
     """(text, point) of each curve with a stored point of no proven radius (radii: (N,) per curve)."""
     out = []
@@ -324,9 +337,10 @@ def unproven_points(radii, curves):
     return out
 
 
-def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=True):
+def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=True, arcs=None):
     """The Certificate of an answer as certify makes it where no region cuts it (regions False: the faces'
-    regions left out, as the search leaves them)."""
+    regions left out, as the search leaves them; arcs: {curve index: the arcs a face cuts from it}, whose tubes
+    get samples in and beside them, cut_arcs)."""
     general = topology
     tolerance = scale * 1e-10 if tolerance is None else tolerance
     if topology is not None and topology.mode in ("coaxial", "ruled") and not exactly_symmetric(topology.P,
@@ -349,7 +363,7 @@ def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=T
     arcs_failed, whole_failed = [], []
     for i, curve in enumerate(curves):
         regular = curve.length > 0 and curve.status not in (TANGENT, CONTACT)
-        t = tube(chart, curve, nodes) if regular and chart is not None else None
+        t = tube(chart, curve, nodes, (arcs or {}).get(i, ())) if regular and chart is not None else None
         tubes.append(t)
         if not regular:
             radii.append(np.full(len(curve.points), math.inf))

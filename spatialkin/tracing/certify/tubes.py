@@ -114,30 +114,62 @@ class Chart:
         return np.ascontiguousarray(boxes / np.repeat(self.units, 2))
 
 
-def curve_samples(curve):
-    """(points (M, 3), s (M,)): the curve's stored points with SAMPLES_PER_STEP - 1 dense samples between each
+def curve_samples(curve, arcs=()):
+    """(points (M, 3), s (M,), the arc lengths of the arcs' samples among s): the curve's stored points with SAMPLES_PER_STEP - 1 dense samples between each
     two (the dense output's points, Newton-corrected onto both surfaces); a closed form's stored points alone (its
-    dense output is exact, its points evenly spread)."""
+    dense output is exact, its points evenly spread); and, for each arc (s0, s1) of it that a face cuts out
+    (arcs), the samples arc_samples puts in and beside it."""
     s = np.asarray(curve.s, dtype=float)
-    if len(s) < 2 or not curve.length > 0 or isinstance(curve.sol, ExactSolution):
-        return np.asarray(curve.points, dtype=float), s
-    fractions = np.arange(SAMPLES_PER_STEP) / SAMPLES_PER_STEP
-    dense = (s[:-1, None] + np.diff(s)[:, None] * fractions[None, :]).ravel()
-    dense = np.append(dense, s[-1])
-    points = np.asarray(curve.sol(dense), dtype=float).reshape(-1, 3)
-    stored = np.arange(0, len(dense), SAMPLES_PER_STEP)
-    points[stored] = curve.points                  # the stored points themselves, not their re-evaluation
-    return points, dense
+    if len(s) < 2 or not curve.length > 0:
+        return np.asarray(curve.points, dtype=float), s, np.empty(0)
+    if isinstance(curve.sol, ExactSolution):
+        points = np.asarray(curve.points, dtype=float)
+    else:
+        fractions = np.arange(SAMPLES_PER_STEP) / SAMPLES_PER_STEP
+        dense = (s[:-1, None] + np.diff(s)[:, None] * fractions[None, :]).ravel()
+        dense = np.append(dense, s[-1])
+        points = np.asarray(curve.sol(dense), dtype=float).reshape(-1, 3)
+        points[np.arange(0, len(dense), SAMPLES_PER_STEP)] = curve.points     # the stored points, not re-evaluated
+        s = dense
+    extra = arc_samples(curve, arcs, float(np.median(np.diff(s))), s)
+    if not len(extra):
+        return points, s, extra
+    every = np.concatenate([s, extra])
+    order = np.argsort(every, kind="stable")
+    points = np.concatenate([points, np.asarray(curve.sol(extra), dtype=float).reshape(-1, 3)])[order]
+    return points, every[order], extra
 
 
-def tube(chart, curve, nodes=()):
-    """The Tube of one curve (a CurveResult of positive length) in the chart: one chain along its samples, or, where
-    it passes the boxes of nodes (spatialkin.tracing.certify.nodes.NodeBox), one open chain along each run of
-    samples between them, each run's ends inside the node boxes it leaves and enters (node_runs)."""
-    points, s = curve_samples(curve)
+def arc_samples(curve, arcs, chord, s):
+    """Arc lengths (K,) inside (0, length) of the samples added for the arcs (s0, s1) a face cuts from the curve
+    (its samples at s, their typical chord: chord): a quarter, a half and three quarters along each arc shorter
+    than 4 chords, and beside its ends at a quarter of its length times 2, 4, 8, ... up to the chord, each no
+    nearer to a sample than a tenth of that quarter (a narrow face crossed within one chord would leave both
+    crossings of its edges in one run of the tube's pieces; the chords grow by no more than twice from one to the
+    next, and the chain keeps these samples however close: chain_samples)."""
+    out = []
+    for s0, s1 in arcs:
+        step = 0.25 * (s1 - s0)
+        if not 0.0 < step < chord:
+            continue
+        grades = step * 2.0 ** np.arange(int(math.log2(chord / step)) + 1)
+        more = np.concatenate([s0 + step * np.arange(1.0, 4.0), s0 - grades, s1 + grades])
+        more = np.mod(more, curve.length) if curve.closed else more
+        more = more[(more > 0.0) & (more < curve.length)]
+        gap = np.min(np.abs(more[:, None] - s[None, :]), axis=1)
+        out.append(more[gap >= 0.1 * step])
+    return np.unique(np.concatenate(out)) if out else np.empty(0)
+
+
+def tube(chart, curve, nodes=(), arcs=()):
+    """The Tube of one curve (a CurveResult of positive length) in the chart: one chain along its samples (and those
+    of the arcs (s0, s1) a face cuts from it: curve_samples), or, where it passes the boxes of nodes
+    (spatialkin.tracing.certify.nodes.NodeBox), one open chain along each run of samples between them, each run's
+    ends inside the node boxes it leaves and enters (node_runs)."""
+    points, s, forced = curve_samples(curve, arcs)
     runs, passed = node_runs(chart, curve, points, s, nodes) if len(nodes) else (None, ())
     if runs is None:
-        return chained(chart, curve, points, s, curve.closed)
+        return chained(chart, curve, points, s, curve.closed, forced)
     if not runs:
         failed = Tube(np.empty((0, kt.WIDTH)), kt.PIECE_FAILED, points[0], s, points, chart.scaled(points))
         failed.split = True
@@ -157,14 +189,14 @@ def tube(chart, curve, nodes=()):
     return whole
 
 
-def chained(chart, curve, points, s, closed):
+def chained(chart, curve, points, s, closed, forced=()):
     """The Tube of one chain along the samples points (M, 3) at arc lengths s (M,) of the curve (closed: the last
     sample is the first one, a whole loop on): where the chain fails, the samples around the failing chord are
     refined (dense output at the midpoints) and the chain is proven again, up to REFINEMENTS times; where it runs
     out of pieces, it is given more (up to MOST_PIECES_PER_CHORD per chord), then every chord is halved."""
     per_chord = PIECES_PER_CHORD
     for _ in range(REFINEMENTS):
-        x, kept = chain_samples(chart, points, closed)
+        x, kept = chain_samples(chart, points, closed, np.isin(s, forced))
         pieces, status, chord = chain(chart, x, closed, x[-1] - x[0] if closed else np.zeros(2), per_chord)
         if status == kt.PROVEN:
             return Tube(pieces, status, None, s, points, x)
@@ -283,9 +315,10 @@ def merged(points, s_new, mids, fresh):
     return out
 
 
-def chain_samples(chart, points, closed):
+def chain_samples(chart, points, closed, forced=None):
     """(x (M, 2) scaled parameters of the kept samples, their indices): unwrapped, the closing point of a closed
-    chain put exactly a whole number of turns from the first, too-close samples dropped (spaced)."""
+    chain put exactly a whole number of turns from the first, too-close samples dropped (spaced) but those marked
+    forced (M,) (arc_samples: graded, so that no chord is shorter than half the one before it)."""
     x = np.ascontiguousarray(chart.scaled(points))
     if closed:
         shift = np.zeros(2)
@@ -294,6 +327,8 @@ def chain_samples(chart, points, closed):
                 shift[j] = round((x[-1, j] - x[0, j]) / chart.periods[j]) * chart.periods[j]
         x[-1] = x[0] + shift                   # the closing point is the first one, a whole number of turns on
     keep = spaced(x)
+    if forced is not None and forced.any():
+        keep = np.union1d(keep, np.flatnonzero(forced))
     return np.ascontiguousarray(x[keep]), keep
 
 

@@ -85,6 +85,28 @@ def test_a_dropped_arc_is_not_complete(monkeypatch):
     assert not cert.proven and not cert.claims["complete"].proven
 
 
+#: Narrow faces (from the angle, its width) and the sphere radius that cuts them (centred off the axis).
+NARROW = {"cylinder": (lambda lo, w: sk.Cylinder(1.0, v_range=(-2.0, 2.0), u_range=(lo, lo + w)), 1.5),
+          "torus": (lambda lo, w: sk.Torus(2.0, 1.0, u_range=(lo, lo + w)), 2.5),
+          "torus tube": (lambda lo, w: sk.Torus(2.0, 1.0, v_range=(1.25 + lo, 1.25 + lo + w)), 2.5)}
+
+
+@pytest.mark.parametrize("width", [1e-4, 5e-3, 0.1])
+@pytest.mark.parametrize("kind", sorted(NARROW))
+def test_narrow_faces_are_proven_and_a_dropped_arc_is_not(monkeypatch, kind, width):
+    """Faces 1e-4 to 0.1 rad wide, narrower than a chord of their components' tubes (a tube's pieces then held both
+    crossings of one arc, and nothing was proven): each arc inside gets samples of its own, so the answer is
+    proven; the answer less one arc is not (complete). The arcs lie inside the face by the oracle's atan2 margin."""
+    face, radius = NARROW[kind]
+    a, b = face(0.0 if kind == "torus tube" else 0.3, width), sk.Sphere(radius, sk.Frame((0.1, 0.05, 0.02)))
+    answer, topo, scale, tolerance, wholes = parts(monkeypatch, a, b)
+    assert len(answer) >= 2 and proven(a, b, answer, topo, scale, tolerance, wholes)
+    from tests.oracles.ssi import face_margin, to_local
+    assert all(face_margin(a, to_local(a, c.points)).min() >= -1e-12 for c in answer)
+    cert = certify(a, b, answer[1:], topo, scale, tolerance, wholes=wholes)
+    assert not cert.proven and not cert.claims["complete"].proven
+
+
 def test_an_uncut_component_is_not_proven(monkeypatch):
     """The component returned whole instead of its arc inside the half cylinder: not one arc between crossings."""
     a, b = PAIRS["half cylinder, sphere"]

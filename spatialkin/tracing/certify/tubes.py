@@ -115,10 +115,10 @@ class Chart:
 
 
 def curve_samples(curve, arcs=()):
-    """(points (M, 3), s (M,), the arc lengths of the arcs' samples among s): the curve's stored points with SAMPLES_PER_STEP - 1 dense samples between each
-    two (the dense output's points, Newton-corrected onto both surfaces); a closed form's stored points alone (its
-    dense output is exact, its points evenly spread); and, for each arc (s0, s1) of it that a face cuts out
-    (arcs), the samples arc_samples puts in and beside it."""
+    """(points (M, 3), s (M,), the arc lengths of the arcs' samples among s): the curve's stored points with
+    SAMPLES_PER_STEP - 1 dense samples between each two (the dense output's points, Newton-corrected onto both
+    surfaces); a closed form's stored points alone (its dense output is exact, its points evenly spread); and, for
+    each arc (s0, s1) of it that a face cuts out (arcs), the samples arc_samples puts in and beside it."""
     s = np.asarray(curve.s, dtype=float)
     if len(s) < 2 or not curve.length > 0:
         return np.asarray(curve.points, dtype=float), s, np.empty(0)
@@ -175,7 +175,7 @@ def tube(chart, curve, nodes=(), arcs=()):
         failed.split = True
         failed.passes = frozenset(nodes[j].index for j in passed)
         return failed
-    parts = [chained(chart, curve, run_points, run_s, False) for run_points, run_s in runs]
+    parts = [chained(chart, curve, run_points, run_s, False, forced) for run_points, run_s in runs]
     failed = next((t for t in parts if not t.proven), None)
     every_s = np.concatenate([s] + [t.s for t in parts])     # (a closed curve's runs may pass s = 0)
     every_s = np.where((every_s < 0.0) | (every_s > curve.length), np.mod(every_s, curve.length), every_s)

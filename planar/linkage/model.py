@@ -45,6 +45,8 @@ HINT_REACH = 0.05
 #: Newton at fixed input: residual tolerance (mean length units) and iterations.
 NEWTON_TOL = 1e-14
 NEWTON_ITER = 30
+#: ... or this many ulps of the joints' scaled coordinates, where larger (a linkage far from the origin).
+ROUNDOFF_ULPS = 8.0
 #: A Newton solution further than this (mean length units) from its traced prediction is another branch.
 BRANCH_JUMP = 1e-3
 #: A requested input within this much (rad) of the one solved before it (in order along the branch) is
@@ -234,6 +236,9 @@ class Linkage:
         self.mean_length = float(np.mean([c.radius for c in self.cranks] + [
             np.max(np.linalg.norm(lk.local() - lk.local()[0], axis=1)) for lk in self.links]))
         self.ci, self.cf, self.fixed_xy = self._constraints()
+        # Newton's residual to NEWTON_TOL, or to the round-off of joints far from the origin (in mean lengths)
+        reach = float(np.max(np.abs(self.fixed_xy))) if self.fixed_xy.size else 0.0
+        self.newton_tol = max(NEWTON_TOL, ROUNDOFF_ULPS * np.finfo(float).eps * reach)
         self.layout = _block_layout(self.ci, 2 * len(self.moving))
         self.period = self._period()
         if hint is not None:
@@ -414,7 +419,7 @@ class Linkage:
     def _newton(self, state):
         """Newton at the state's input angle (jitted); the solved state, or None."""
         y = np.array(state, dtype=float)
-        status = kn.correct_configuration(y, self.ci, self.cf, self.fixed_xy, self.layout, NEWTON_TOL, NEWTON_ITER)
+        status = kn.correct_configuration(y, self.ci, self.cf, self.fixed_xy, self.layout, self.newton_tol, NEWTON_ITER)
         return y if status == 0 and np.max(np.abs(y - state)) < HINT_REACH else None
 
     def _onto_curve(self, state, steps=4):
@@ -555,7 +560,7 @@ class Linkage:
         parts = np.empty((m, len(self.cranks), n - 1))
         status = np.empty(m, dtype=np.int64)
         kn.solve_configurations(guess, np.arange(m), TAYLOR_REACH, BRANCH_JUMP, self.ci, self.cf, self.fixed_xy,
-                                self.layout, NEWTON_TOL, NEWTON_ITER, ys, d1, d2, parts, status)
+                                self.layout, self.newton_tol, NEWTON_ITER, ys, d1, d2, parts, status)
         bad = (status != 0) | (np.max(np.abs(ys - guess), axis=1) > BRANCH_JUMP)
         ys[bad] = np.nan
         return ys, d1, d2, parts

@@ -40,8 +40,10 @@ ASSEMBLY_SAMPLES = 3600
 LOOP_SAMPLES = 2048
 #: Newton iterations at a fixed crank angle.
 NEWTON_MAX_ITER = 30
-#: Accuracy of positions relative to the mechanism's size.
+#: Accuracy of positions relative to the mechanism's size ...
 POSITION_TOL = 1e-14
+#: ... or this many ulps of the coordinates' magnitude, where larger (a mechanism far from the origin).
+ROUNDOFF_ULPS = 8.0
 #: Crank angles at most this far apart (rad) are solved by continuation, each Newton started from a second
 #: order prediction off the angle before; farther ones start from the nearest dense sample.
 CONTINUATION_REACH = 0.02
@@ -150,6 +152,9 @@ class LooperDrive:
         self.torus = Torus(self.crank_radius, self.coupler_length, self.crank_frame)
         self.sphere = Sphere(self.rocker_length, self.rocker_frame)
         self.size = self.crank_radius + self.coupler_length + self.rocker_length
+        reach = max(float(np.max(np.abs(self.crank_frame.origin))), float(np.max(np.abs(self.rocker_frame.origin))))
+        # positions to POSITION_TOL x size, or to the round-off of coordinates far from the origin
+        self.position_tol = max(POSITION_TOL * self.size, ROUNDOFF_ULPS * np.finfo(float).eps * (reach + self.size))
         grid = np.linspace(0.0, 2 * np.pi, ASSEMBLY_SAMPLES, endpoint=False)
         margin = self.assembly_margin(grid)
         if np.all(margin < 0):
@@ -260,7 +265,7 @@ class LooperDrive:
         raise ValueError(f"no assembly on branch {branch} at crank angle {math.degrees(u1):.6g} deg")
 
     def _check_assemblable(self, u1):
-        bad = self.assembly_margin(u1) < -POSITION_TOL * self.size
+        bad = self.assembly_margin(u1) < -self.position_tol
         if np.any(bad):
             spans = ", ".join(f"[{math.degrees(a):.3f}, {math.degrees(b):.3f}] deg" for a, b in self._blocked)
             raise ValueError(f"the mechanism cannot be assembled at {int(bad.sum())} of the requested crank "
@@ -271,7 +276,7 @@ class LooperDrive:
         """Newton at fixed u1 (column 0) onto torus ∩ sphere, in place; None if any fails."""
         ys = np.ascontiguousarray(ys, dtype=float)
         ok = np.zeros(len(ys), dtype=np.bool_)
-        kc.newton_fixed_many(ys, self.torus.data, self.sphere.data, 0, POSITION_TOL * self.size,
+        kc.newton_fixed_many(ys, self.torus.data, self.sphere.data, 0, self.position_tol,
                              NEWTON_MAX_ITER, ok)
         return ys if np.all(ok) else None
 
@@ -405,7 +410,7 @@ class LooperDrive:
         dy, ddy, d1, d2 = np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 3)), np.empty((n, 3))
         status = np.empty(n, dtype=np.int64)
         kc.fixed_parameter_path(ys, np.ascontiguousarray(ys[:, 0]), self.torus.data, self.sphere.data, 0,
-                                CONTINUATION_REACH, POSITION_TOL * self.size, NEWTON_MAX_ITER, dy, ddy, d1, d2,
+                                CONTINUATION_REACH, self.position_tol, NEWTON_MAX_ITER, dy, ddy, d1, d2,
                                 status)
         return ys, status, dy, ddy, d1, d2
 

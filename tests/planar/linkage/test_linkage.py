@@ -317,3 +317,19 @@ def test_examples_import_as_the_tutorials_spell_it():
     assert examples is planar.examples is planar.linkage.examples
     from planar.examples import fnf_sixbar
     assert fnf_sixbar is planar.linkage.examples.fnf_sixbar
+
+
+@pytest.mark.parametrize("shift", [5000.0, 1e6])
+def test_a_linkage_far_from_the_origin_moves_as_at_it(mech, shift):
+    """The six-link moved by shift along x (a LockError 'locks at none found' before): identity oracle, the
+    motion at the origin translated, to 64 ulps of the coordinates (times the velocities' and accelerations'
+    scale)."""
+    phi = np.radians(np.arange(0.0, 360.0, 5.0))
+    far = Linkage({k: v + (shift, 0.0) for k, v in mech.fixed.items()}, mech.cranks, mech.links,
+                  hint={k: v + (shift, 0.0) for k, v in mech.hint.items()}, hint_angle=mech.hint_angle)
+    near, moved = mech.solve(phi, omega=2.0), far.solve(phi, omega=2.0)
+    tol = 64 * np.finfo(float).eps * (shift + mech.mean_length)
+    for joint in mech.moving:
+        np.testing.assert_allclose(moved.position(joint) - (shift, 0.0), near.position(joint), rtol=0, atol=tol)
+        np.testing.assert_allclose(moved.velocity(joint), near.velocity(joint), rtol=0, atol=16 * tol)
+        np.testing.assert_allclose(moved.acceleration(joint), near.acceleration(joint), rtol=0, atol=64 * tol)

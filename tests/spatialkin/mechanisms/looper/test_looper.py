@@ -262,3 +262,23 @@ def test_analyse_names_a_bad_count_of_samples(drive, samples):
     transmission angle), a count that is no integer, or one too large for memory, is refused naming it."""
     with pytest.raises(ValueError, match="samples must be an integer >= 3"):
         drive.analyse(samples=samples)
+
+
+@pytest.mark.parametrize("offset", [(5000.0, 0.0, 0.0), (0.0, 0.0, 8000.0), (1e6, 2e6, -3e6)])
+def test_a_drive_far_from_the_origin_moves_as_at_it(offset):
+    """The reference drive moved by an offset (its Newton tolerance below the coordinates' round-off there made
+    solve fail with a false 'dead position'): identity oracle, the motion at the origin translated: positions
+    shifted by the offset, velocities and accelerations the same, to 64 ulps of the coordinates."""
+    o = np.array(offset)
+    ref = LooperDrive.reference()
+    far = LooperDrive(reference.CRANK_RADIUS, reference.COUPLER_LENGTH, reference.ROCKER_LENGTH,
+                      crank_frame=sk.Frame(o), rocker_frame=sk.Frame(ref.rocker_frame.origin + o,
+                                                                     ref.rocker_frame.rotation),
+                      looper_tip=ref.looper_tip)
+    angles = np.radians(np.arange(0.0, 360.0, 2.0))
+    near, moved = ref.solve(angles, omega=2.0), far.solve(angles, omega=2.0)
+    tol = 64 * np.finfo(float).eps * (np.max(np.abs(o)) + ref.size)
+    np.testing.assert_allclose(moved.ball_center - o, near.ball_center, rtol=0, atol=tol)
+    np.testing.assert_allclose(moved.ball_velocity, near.ball_velocity, rtol=0, atol=4 * tol)
+    np.testing.assert_allclose(moved.ball_acceleration, near.ball_acceleration, rtol=0, atol=16 * tol)
+    assert far.analyse().turns_fully

@@ -18,21 +18,26 @@ def implicit_jets(surface, points):
     return value, grad @ rot.T, np.einsum("ij,njk,lk->nil", rot, hess, rot)
 
 
-#: The relative error of C'' near a singular point is up to ERROR_FACTOR x eps / sin^2 of the normals' angle
-#: (2 to 40 measured on Viviani's curve beside its node): C'' is NaN where that exceeds SINGULAR_ERROR.
-ERROR_FACTOR, SINGULAR_ERROR = 64.0, 1e-2
+#: The relative error of C'' beside a singular point, measured on Viviani's curve beside its node, is up to
+#: (ERROR_FACTOR x eps + SPREAD_FACTOR x kappa d) / sin^2 of the normals' angle: the solve's round-off, and the
+#: error of the unit tangent, d / sin (kappa: the surfaces' |hess F| / |grad F|; d: the spread of the point's two
+#: surface points, the dense output's Newton tolerance, and its coordinates' round-off). C'' is NaN where that
+#: exceeds SINGULAR_ERROR.
+ERROR_FACTOR, SPREAD_FACTOR, SINGULAR_ERROR = 64.0, 8.0, 1e-2
 
 
-def curvature_vectors(a, b, points, tangents):
+def curvature_vectors(a, b, points, tangents, spread=0.0):
     """C'' (N, 3) of the intersection curve of a and b at points (N, 3) with unit tangents (N, 3); NaN rows at and
-    beside a singular point, where the normals are so nearly parallel that the solve's relative error, about
-    ERROR_FACTOR x eps / sin^2 of their angle, exceeds SINGULAR_ERROR (within about 1.2e-6 rad of parallel)."""
+    beside a singular point, where the normals are so nearly parallel that its estimated relative error exceeds
+    SINGULAR_ERROR (see ERROR_FACTOR; spread: the points' Newton tolerance, a length)."""
     t = np.asarray(tangents, dtype=float)
-    rows, rhs = [], []
+    rows, rhs, bend = [], [], np.zeros(len(t))
     for surf in (a, b):
         _, grad, hess = implicit_jets(surf, points)
         rows.append(grad)
         rhs.append(-np.einsum("ni,nij,nj->n", t, hess, t))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            bend = np.maximum(bend, np.linalg.norm(hess, axis=(1, 2)) / np.linalg.norm(grad, axis=1))
     mat = np.stack([rows[0], rows[1], t], axis=1)
     vec = np.stack([rhs[0], rhs[1], np.zeros(len(t))], axis=1)
     out = np.full((len(t), 3), np.nan)
@@ -40,7 +45,10 @@ def curvature_vectors(a, b, points, tangents):
     sizes = np.einsum("ij,ij->i", rows[0], rows[0]) * np.einsum("ij,ij->i", rows[1], rows[1])
     with np.errstate(invalid="ignore", divide="ignore"):
         sine2 = np.einsum("ij,ij->i", cross, cross) / sizes
-    ok = (sine2 * SINGULAR_ERROR > ERROR_FACTOR * np.finfo(float).eps) & (np.abs(np.linalg.det(mat)) > 1e-300)
+    eps = np.finfo(float).eps
+    spread = spread + 4.0 * eps * np.max(np.abs(np.asarray(points, dtype=float)), axis=1)
+    ok = ((sine2 * SINGULAR_ERROR > ERROR_FACTOR * eps + SPREAD_FACTOR * bend * spread)
+          & (np.abs(np.linalg.det(mat)) > 1e-300))
     if ok.any():
         out[ok] = np.linalg.solve(mat[ok], vec[ok][:, :, None])[:, :, 0]
     return out

@@ -98,7 +98,7 @@ class CurveSolution:
         the two surfaces' implicit functions (C'' NaN at and beside a singular point: curvature_vectors)."""
         shape = np.shape(s)
         _, points, tangents, _ = self.evaluate(s, with_params=False)
-        bend = curvature_vectors(*self.surfaces, points, tangents)
+        bend = curvature_vectors(*self.surfaces, points, tangents, float(getattr(self, "gap_tol", 0.0)))
         return tuple(x.reshape(shape + (3,)) for x in (points, tangents, bend))
 
     def closest(self, points):

@@ -374,10 +374,10 @@ class Curve:
         return self._result.sol.predicted_parameters(arc_lengths(s))
 
     def derivatives(self, s):
-        """(points, unit tangents C', curvature vectors C'') (..., 3) each at arc lengths s: exact, from the
-        corrected points and the two surfaces' implicit functions, or in closed form; C'' is NaN at and beside a
-        singular point, where the normals lie within about 1.2e-6 rad of parallel
-        (spatialkin.tracing.curve.curvature)."""
+        """(points, unit tangents C', curvature vectors C'') (..., 3) each at arc lengths s: from the corrected
+        points and the two surfaces' implicit functions, or in closed form. Beside a singular point both lose
+        accuracy, the tangent as the points' spread over the sine of the normals' angle, C'' as its square; C'' is
+        NaN where its estimated relative error passes 1e-2 (spatialkin.tracing.curve.curvature)."""
         return self._result.sol.derivatives(arc_lengths(s))
 
     def closest(self, points):

@@ -648,7 +648,9 @@ class LooperMotion:
     def path_bspline(self, which="ball", tol=1e-8):
         """The path of the ball centre ('ball') or the looper tip ('tip') as a C2 quintic B-spline in the crank
         angle (rad), over the requested crank angles' range, within tol times the mechanism's scale (the
-        smaller of the torus and sphere sizes), measured against exact solutions of the drive.
+        smaller of the torus and sphere sizes) of the path, measured against exact solutions of the drive (the
+        distance to the path, at the path's point one Newton step from the spline's angle; at the same crank
+        angle the spline and the drive's position may differ by up to about three times as much).
 
         Built from exact positions and their first and second derivatives in the crank angle (the velocity and
         acceleration at omega = 1) at its knots, refined until the measured distance to the path is below

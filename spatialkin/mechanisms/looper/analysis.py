@@ -4,6 +4,7 @@ transmitted over the cycle."""
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.optimize import brentq
 
 from ...kernels.march import curve as kc
 from ...tracing.curve.status import SINGULAR
@@ -50,22 +51,30 @@ class LooperAnalysis:
                 f"min_transmission={deg(self.min_transmission[0]):.3f} deg at {deg(self.min_transmission[1]):.2f} deg)")
 
 
+def crank_rates(drive, ys):
+    """u1' (N,) along torus ∩ sphere at the states ys (N, 4) (NaN where the curve's frame is singular)."""
+    ys = np.ascontiguousarray(ys, dtype=float)
+    n = len(ys)
+    dy, ddy, d1, d2 = np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 3)), np.empty((n, 3))
+    ok = np.zeros(n, dtype=np.bool_)
+    kc.curve_derivatives_many(ys, drive.torus.data, drive.sphere.data, 1.0, dy, ddy, d1, d2, ok)
+    return np.where(ok, dy[:, 0], np.nan)
+
+
 def dead_positions(drive):
-    """Crank angles where u1' changes sign along any traced loop of torus ∩ sphere."""
+    """Crank angles where u1' changes sign along any traced loop of torus ∩ sphere: each sign change between
+    LOOP_SAMPLES samples solved for its arc length by Brent's method, the crank angle read there (stationary in s,
+    so exact to the round-off)."""
     out = []
     for c in drive.loops():
         if c.length == 0:
             continue
         s = np.linspace(0.0, c.length, LOOP_SAMPLES)
-        ys = np.ascontiguousarray(c.parameters(s))
-        n = len(ys)
-        dy, ddy, d1, d2 = np.empty((n, 4)), np.empty((n, 4)), np.empty((n, 3)), np.empty((n, 3))
-        ok = np.zeros(n, dtype=np.bool_)
-        kc.curve_derivatives_many(ys, drive.torus.data, drive.sphere.data, 1.0, dy, ddy, d1, d2, ok)
-        rate = np.where(ok, dy[:, 0], np.nan)
+        rate = crank_rates(drive, c.parameters(s))
         for i in np.nonzero(rate[:-1] * rate[1:] < 0)[0]:
-            w = rate[i] / (rate[i] - rate[i + 1])
-            out.append(float(np.mod((1 - w) * ys[i, 0] + w * ys[i + 1, 0], 2 * np.pi)))
+            root = brentq(lambda x: float(crank_rates(drive, c.parameters(np.array([x])))[0]), s[i], s[i + 1],
+                          xtol=1e-15 * max(c.length, 1.0), rtol=4.0 * np.finfo(float).eps)
+            out.append(float(np.mod(c.parameters(np.array([root]))[0, 0], 2 * np.pi)))
     return sorted(out)
 
 

@@ -191,14 +191,21 @@ def test_analysis_of_the_reference(drive):
 
 def test_dead_positions_are_the_edges_of_the_blocked_ranges(blocked_drive):
     """A crank that cannot turn fully: the dead positions found on the traced loops (u1' = 0) are the crank
-    angles where the coupler circle just touches the rocker sphere (independent distance formula)."""
+    angles where the coupler circle just touches the rocker sphere (independent distance formula), to 1e-12 (they
+    were interpolated between samples, 2e-6 off)."""
     d = blocked_drive
     a = d.analyse()
     assert not a.turns_fully
     edges = sorted(x for rng in d.blocked_ranges for x in rng)
     assert len(a.dead_positions) == len(edges) == 4
-    np.testing.assert_allclose(a.dead_positions, edges, atol=1e-5)
+    np.testing.assert_allclose(a.dead_positions, edges, atol=1e-12)
     assert np.all(d.assembly_margin(a.crank_angles) > 0)
+    for scale in (1.0, 1e-3):               # a crank of 25 rocking, at two scales: the same to the round-off
+        ref = LooperDrive.reference()
+        rocking = LooperDrive(25.0 * scale, 50.0 * scale, 30.0 * scale,
+                              rocker_frame=sk.Frame(ref.rocker_frame.origin * scale, ref.rocker_frame.rotation))
+        edges = np.ravel(rocking.blocked_ranges)
+        np.testing.assert_allclose(rocking.analyse().dead_positions, edges, atol=1e-12)
 
 
 def test_equator_start_and_assembly_agree_with_solve(drive):

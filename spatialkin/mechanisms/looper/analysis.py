@@ -24,7 +24,8 @@ class LooperAnalysis:
     dead_positions : crank angles where u1' = 0 on a traced loop (the crank's extreme positions)
     branch_points : crank angles where torus and sphere are tangent (N1 || N2): assembly branches meet
     blocked_ranges : crank-angle intervals where the mechanism cannot be assembled
-    u2_range, v2_range : (min, max) of the rocker angles over the turn
+    u2_range, v2_range : (min, max) of the rocker angles at the analysed crank angles (``samples`` of the turn,
+        or a given motion's; spatialkin.design.LooperDesign.sensitivities gives the swing's exact extremes)
     transmission_angle : (N,) 90 deg minus the pressure angle at C. The coupler (revolute at the pin,
         ball at C) can push C only with forces in the plane of the coupler line and the pin axis (their
         moment about the pin axis must vanish); the pressure angle is the angle between C's velocity and

@@ -105,10 +105,14 @@ def clip_curve(a, b, curve, scale):
 
 def short_arc(curve, s0, s1):
     """An arc [s0, s1] no longer than the tolerance (a face narrower than that): the faces meet there in one point
-    to that accuracy, its middle (a CurveResult of length 0, status 'boundary', or 'contact' on a curve of
-    tangency)."""
+    to that accuracy, its middle (face_point)."""
     s = 0.5 * (s0 + s1)
-    point = curve.sol(np.array([s % curve.length if curve.closed else s]))[0]
+    return face_point(curve, curve.sol(np.array([s % curve.length if curve.closed else s]))[0])
+
+
+def face_point(curve, point):
+    """A point (3,) of the component where the faces meet alone: a CurveResult of length 0, status 'boundary', or
+    'contact' on a curve of tangency."""
     event = "contact" if curve.status in (TANGENT, CONTACT) else "edge_point"
     return contact_point(curve.sol.surfaces, point, curve.tolerance, event=event)
 
@@ -152,7 +156,6 @@ def touch_points(a, b, curve, touches, cuts, arcs, slack, scale, reach):
             spans[-1][1] = max(spans[-1][1], hi)
         else:
             spans.append([lo, hi])
-    event = "contact" if curve.status in (TANGENT, CONTACT) else "edge_point"
     turns = (-length, 0.0, length) if curve.closed else (0.0,)
     out = []
     for lo, hi in spans:
@@ -166,7 +169,7 @@ def touch_points(a, b, curve, touches, cuts, arcs, slack, scale, reach):
             continue
         point = curve.sol(np.array([s]))
         if inside_both(a, b, point, slack)[0] and all(np.linalg.norm(point[0] - q.points[0]) > reach for q in out):
-            out.append(contact_point(curve.sol.surfaces, point[0], curve.tolerance, event=event))
+            out.append(face_point(curve, point[0]))
     return out
 
 

@@ -31,13 +31,13 @@ def curvature_vectors(a, b, points, tangents, spread=0.0):
     beside a singular point, where the normals are so nearly parallel that its estimated relative error exceeds
     SINGULAR_ERROR (see ERROR_FACTOR; spread: the points' Newton tolerance, a length)."""
     t = np.asarray(tangents, dtype=float)
-    rows, rhs, bend = [], [], np.zeros(len(t))
+    rows, rhs, kappa = [], [], np.zeros(len(t))
     for surf in (a, b):
         _, grad, hess = implicit_jets(surf, points)
         rows.append(grad)
         rhs.append(-np.einsum("ni,nij,nj->n", t, hess, t))
         with np.errstate(invalid="ignore", divide="ignore"):
-            bend = np.maximum(bend, np.linalg.norm(hess, axis=(1, 2)) / np.linalg.norm(grad, axis=1))
+            kappa = np.maximum(kappa, np.linalg.norm(hess, axis=(1, 2)) / np.linalg.norm(grad, axis=1))
     mat = np.stack([rows[0], rows[1], t], axis=1)
     vec = np.stack([rhs[0], rhs[1], np.zeros(len(t))], axis=1)
     out = np.full((len(t), 3), np.nan)
@@ -47,7 +47,7 @@ def curvature_vectors(a, b, points, tangents, spread=0.0):
         sine2 = np.einsum("ij,ij->i", cross, cross) / sizes
     eps = np.finfo(float).eps
     spread = spread + 4.0 * eps * np.max(np.abs(np.asarray(points, dtype=float)), axis=1)
-    ok = ((sine2 * SINGULAR_ERROR > ERROR_FACTOR * eps + SPREAD_FACTOR * bend * spread)
+    ok = ((sine2 * SINGULAR_ERROR > ERROR_FACTOR * eps + SPREAD_FACTOR * kappa * spread)
           & (np.abs(np.linalg.det(mat)) > 1e-300))
     if ok.any():
         out[ok] = np.linalg.solve(mat[ok], vec[ok][:, :, None])[:, :, 0]

@@ -103,6 +103,14 @@ class SurfaceTraits:
         """(centre (3,), radius) of a ball holding the (trimmed) surface, or None when it is unbounded."""
         raise NotImplementedError(f"{self.name}: bounding_ball is not declared")
 
+    def asymptote(self, surface):
+        """(w, angle, offset, origin) of an unbounded surface's directions to infinity, or None where the surface is
+        bounded: every point x of the untrimmed surface lies within the angle asin(offset / |x - origin|), seen
+        from origin, of the double cone of unit vectors at ``angle`` (in [0, pi/2]) from +-w (unit, (3,)): a
+        cylinder's axis (angle 0, offset its radius), a cone's (its half angle, from its apex), a plane's normal
+        (pi/2). spatialkin.geometry.asymptotic reads it."""
+        return None
+
     # --- parameters ----------------------------------------------------------------------------------------------
     def natural_domain(self, surface):
         """((u_lo, u_hi), (v_lo, v_hi)) of the surface's own chart: the full turn for a periodic angle, else the

@@ -21,6 +21,7 @@ from .._lib import stages, warm
 from .curve.status import BOUNDARY, CONTACT, FAILED, TANGENT
 from .search.rescue import LOST_RADIUS, crossing_starts
 from .search.topology import TopologyError, distances_at, points_at, topology
+from ..geometry.asymptotic import bounded_pair
 from ..geometry.traits import check_surface
 from .march.trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
@@ -38,7 +39,10 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     Parameters
     ----------
     a, b : Surface
-        Trimmed or not; at least one of them bounded (a sphere, a torus, or a trimmed plane, cylinder or cone).
+        Trimmed or not. Where both are unbounded (planes, cylinders or cones not trimmed all round), their
+        intersection is bounded when the directions in which they run to infinity lie apart (a cylinder's axis, a
+        cone's cone of rulings, the directions in a plane): those at least 1e-3 rad apart are cut to a ball that
+        holds every common point (spatialkin.geometry.asymptotic), and the curves keep the surfaces as given.
     tol : float
         Accuracy of every returned point and every dense evaluation, relative to the scene scale (see Notes).
     method, rtol, atol, max_length, singular_tol, pullback
@@ -71,8 +75,9 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         The two patches overlap in a piece of surface (the same sphere twice, coaxial equal cylinders, coplanar
         planes whose rectangles overlap). A subclass of ValueError.
     ValueError
-        Both surfaces unbounded, or bad arguments (named; the options' ranges:
-        spatialkin.tracing.march.trace.check_options).
+        Both surfaces unbounded and running to infinity in directions less than 1e-3 rad apart (they may meet
+        arbitrarily far out: a plane along a cylinder's axis, two parallel cylinders), or bad arguments (named; the
+        options' ranges: spatialkin.tracing.march.trace.check_options).
     TypeError
         Naming `a` or `b` when it is not a spatialkin surface, an option when it is not a real number.
     TopologyError
@@ -89,7 +94,8 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     -----
     **The tolerance.** ``tol`` is relative to the scene scale, the smaller characteristic length of the two
     surfaces (a sphere's or cylinder's radius, a torus's R + r, a cone's slant length when trimmed at both ends;
-    without one, the smaller half-diagonal of the trimmed planes' rectangles). Every returned point, and every
+    without one, the smaller half-diagonal of the trimmed planes' rectangles; of two unbounded surfaces, read as
+    they are cut to the ball). Every returned point, and every
     dense evaluation ``curve(s)``, lies within tol x scale of both surfaces: Newton corrects each point onto both
     of them to a hundredth of that, and the distances are measured with the surfaces' exact distance functions
     (``curve.max_distance``, ``curve.distances()``). ``curve.tolerance`` is that absolute length, never below
@@ -165,19 +171,22 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     if not (certify is False or certify is True or isinstance(certify, str) and certify == "strict"):
         raise ValueError(f"certify must be False, True or 'strict', got {certify!r}")
     warm.refresh()
+    given = (a, b)
+    a, b = bounded_pair(a, b)             # (two unbounded surfaces: cut to a ball holding all they share)
+    given = None if a is given[0] else given
     scene = None
     found = None
     if CLOSED_FORMS:                      # (its settings are checked as make_settings checks them)
         closed = closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback)
         found = closed_form(a, b, closed)
         if found is not None and not certify:
-            return [Curve(c) for c in in_sk_order(clip_curves(a, b, found, closed.scale))]
+            return [Curve(c) for c in on_given(in_sk_order(clip_curves(a, b, found, closed.scale)), given)]
         scene = closed.checked
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor, scene)
     if not certify:
         curves, topo, _ = searched(a, b, settings)
-        return [Curve(c, topology=topo) for c in curves]
+        return [Curve(c, topology=topo) for c in on_given(curves, given)]
     # the general path's answer, or the closed forms' (the plain call's): proven in closed form where the algebra
     # settles it, else against the topology search
     wholes = None
@@ -189,14 +198,14 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     # exactly (where the placement is exact: the tightest bounds), else in closed form
     proof = coaxial_certificate(a, b, curves) or parallel_certificate(a, b, curves) or closed_certificate(a, b, curves)
     if proof is not None:
-        return certified(a, b, curves, None, settings.scale, settings.tolerance, certify, proof=proof)
+        return certified(a, b, curves, None, settings.scale, settings.tolerance, certify, proof=proof, given=given)
     if topo is None:
         try:
             topo = topology(a, b, settings.scale, settings.tolerance)
         except TopologyError as err:
             return certified(a, b, curves, None, settings.scale, settings.tolerance, certify,
-                             f"the search stopped ({err}); the answer is the closed form's")
-    return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify, wholes=wholes)
+                             f"the search stopped ({err}); the answer is the closed form's", given=given)
+    return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify, wholes=wholes, given=given)
 
 
 def searched(a, b, settings):
@@ -253,6 +262,15 @@ def searched(a, b, settings):
     return in_sk_order(curves), topo, (wholes if a.region or b.region else None)
 
 
+def on_given(results, given):
+    """The results (CurveResults), their surfaces those the user gave (given: (a, b) or None) where intersect cut
+    them to a ball (spatialkin.geometry.asymptotic): the same surfaces, untrimmed where the cut copies are not."""
+    if given is not None:
+        for result in results:
+            result.sol.surfaces = given
+    return results
+
+
 class Curves(list):
     """The list of curves sk.intersect(..., certify=True) returns, with the answer's ``certificate``
     (spatialkin.tracing.certify.certificate.Certificate; empty answers have one too)."""
@@ -260,14 +278,16 @@ class Curves(list):
     certificate = None
 
 
-def certified(a, b, results, topo, scale, tolerance, mode, failure=None, proof=None, wholes=None):
+def certified(a, b, results, topo, scale, tolerance, mode, failure=None, proof=None, wholes=None, given=None):
     """The Curves of the results (CurveResults), each with its view of the answer's certificate (failure: why no
     search stands behind them; proof: the certificate when made already, in closed form; wholes: the components
-    before the faces' regions cut them); with mode 'strict', CertificationError when a claim is not proven."""
+    before the faces' regions cut them; given: the surfaces as the user gave them, where a and b were cut to a ball);
+    with mode 'strict', CertificationError when a claim is not proven."""
     answer = proof if proof is not None else certify_answer(a, b, results, topo, scale, tolerance, failure, wholes)
     if mode == "strict" and not answer.proven:
         raise CertificationError(answer)
-    out = Curves(Curve(c, topology=topo, certificate=CurveCertificate(answer, i)) for i, c in enumerate(results))
+    out = Curves(Curve(c, topology=topo, certificate=CurveCertificate(answer, i))
+                 for i, c in enumerate(on_given(results, given)))
     out.certificate = answer
     return out
 

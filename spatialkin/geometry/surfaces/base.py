@@ -13,7 +13,7 @@ import numpy as np
 
 from ..frame import Frame
 from ...kernels.geometry import surfaces as ks
-from ..traits import AXIS, check_surface, traits
+from ..traits import AXIS, LENGTH, check_surface, traits
 from ..._lib.validation import (check_finite, check_length, check_positive, check_query_points, check_range,
                                 check_real)
 
@@ -133,6 +133,17 @@ class Surface:
         out.data = np.array(data, dtype=float)
         out.data.flags.writeable = False
         out.floats = tuple(out.data.tolist())
+        return out
+
+    def with_bounds(self, bounds):
+        """A copy of the surface whose watched trims (``bounds``) are bounds ((u_min, u_max), (v_min, v_max)), shown
+        as its u_range and v_range where those are lengths (an angular trim stays as given)."""
+        data = self.data.copy()
+        data[ks.BOUNDS:ks.BOUNDS + 4] = [x for pair in bounds for x in pair]
+        out = self.with_data(data)
+        if self._shown is not None:
+            out._shown = tuple(tuple(map(float, new)) if unit == LENGTH else shown
+                               for new, shown, unit in zip(bounds, self._shown, self.traits.units))
         return out
 
     @property

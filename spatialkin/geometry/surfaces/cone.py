@@ -123,6 +123,11 @@ class ConeTraits(SurfaceTraits):
         t = math.tan(surface.half_angle)
         return surface.frame.to_global([0.0, 0.0, 0.5 * (v0 + v1)]), math.hypot(t * max(abs(v0), abs(v1)), half)
 
+    def asymptote(self, surface):
+        if self.bounding_ball(surface) is not None:
+            return None
+        return surface.frame.rotation[:, 2], surface.half_angle, 0.0, surface.frame.origin
+
     def trim_slack(self, surface, slack):
         return slack, slack * math.cos(surface.half_angle)
 

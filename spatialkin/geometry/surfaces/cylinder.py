@@ -102,6 +102,11 @@ class CylinderTraits(SurfaceTraits):
         half = 0.5 * (v1 - v0)
         return surface.frame.to_global([0.0, 0.0, 0.5 * (v0 + v1)]), math.hypot(surface.radius, half)
 
+    def asymptote(self, surface):
+        if self.bounding_ball(surface) is not None:
+            return None
+        return surface.frame.rotation[:, 2], 0.0, surface.radius, surface.frame.origin
+
     def symmetry(self, surface):
         return own_axis(surface)
 

@@ -138,6 +138,11 @@ class PlaneTraits(SurfaceTraits):
             return None
         return surface.frame.to_global([0.5 * (u0 + u1), 0.5 * (v0 + v1), 0.0]), 0.5 * math.hypot(u1 - u0, v1 - v0)
 
+    def asymptote(self, surface):
+        if self.bounding_ball(surface) is not None:
+            return None
+        return surface.frame.rotation[:, 2], 0.5 * math.pi, 0.0, surface.frame.origin
+
     def symmetry(self, surface):
         return NORMAL, surface.frame.rotation[:, 2]
 

@@ -42,6 +42,7 @@ from ...kernels.geometry import interval as ki
 from ...kernels.geometry import surfaces as ks
 from ...kernels.search import topology as kt
 from .meridians import BAND, BESIDE, REVOLVED, meridian_circle, meridian_nodes, meridian_segment, tangent_meridians
+from ...geometry.asymptotic import unbounded_message
 from ...geometry.placement import bounding_ball, check_not_coincident, common_axis, ruled_along
 from ..march.ivp import APEX_ON_CURVE
 from ..march.trace import EPS, ROUNDOFF_ULPS
@@ -524,8 +525,7 @@ def search_roles(a, b, scale, general=False, chart_of=None):
     chart_of: P of the general search (a or b), else choose_roles'."""
     balls = {id(a): bounding_ball(a), id(b): bounding_ball(b)}
     if balls[id(a)] is None and balls[id(b)] is None:
-        raise ValueError(f"intersect needs a bounded pair: {type(a).__name__} and {type(b).__name__} are both "
-                         "unbounded (give a Plane u_range and v_range, a Cylinder or Cone a v_range)")
+        raise ValueError(unbounded_message(a, b))
     axis = None if general else common_axis(a, b, scale)
     ruled = ruled_along(a, b, scale) if axis is None and not general else None
     if general and chart_of is not None:

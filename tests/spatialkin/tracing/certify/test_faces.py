@@ -57,9 +57,9 @@ def parts(monkeypatch, a, b):
     seen = {}
     real = components.certified
 
-    def spy(a, b, results, topo, scale, tolerance, mode, failure=None, proof=None, wholes=None):
+    def spy(a, b, results, topo, scale, tolerance, mode, failure=None, proof=None, wholes=None, given=None):
         seen.update(results=results, topo=topo, scale=scale, tolerance=tolerance, wholes=wholes)
-        return real(a, b, results, topo, scale, tolerance, mode, failure, proof, wholes)
+        return real(a, b, results, topo, scale, tolerance, mode, failure, proof, wholes, given)
 
     monkeypatch.setattr(components, "certified", spy)
     sk.intersect(a, b, certify=True)

@@ -209,8 +209,9 @@ def test_degenerate_placements_decline(monkeypatch):
         assert declined(a, b)
         with pytest.raises(CoincidentSurfacesError):
             sk.intersect(a, b)
-    with pytest.raises(ValueError):
-        sk.intersect(sk.Plane(), sk.Cylinder(1.0))
+    with pytest.raises(ValueError, match="bounded pair"):              # the plane along the cylinder's axis
+        sk.intersect(sk.Plane(sk.Frame((0.0, 0.0, 0.0), rotation_about((1.0, 0.0, 0.0), math.pi / 2))),
+                     sk.Cylinder(1.0))
 
 
 def moved(rotation, shift, origin, local=np.eye(3)):

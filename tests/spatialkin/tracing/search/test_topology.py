@@ -189,14 +189,14 @@ def test_arc_length_through_a_near_node_waist():
 
 
 def test_bounded_pair_accepted_in_either_order():
-    """An untrimmed cone with a trimmed cylinder about its axis: two circles, in either order; two unbounded
-    surfaces: a ValueError naming the need for bounds."""
-    cone, cylinder = sk.Cone(1.0), sk.Cylinder(0.5, v_range=(-3, 3))
+    """An untrimmed cone with a cylinder about its axis, trimmed or not: two circles, in either order; two
+    unbounded cylinders along one direction: a ValueError naming the need for bounds."""
     r = 0.5
-    for a, b in ((cone, cylinder), (cylinder, cone)):
-        assert lengths(sk.intersect(a, b)) == [round(2 * math.pi * r, 6)] * 2
+    for cylinder in (sk.Cylinder(r, v_range=(-3, 3)), sk.Cylinder(r)):
+        for a, b in ((sk.Cone(1.0), cylinder), (cylinder, sk.Cone(1.0))):
+            assert lengths(sk.intersect(a, b)) == [round(2 * math.pi * r, 6)] * 2
     with pytest.raises(ValueError, match="bounded"):
-        sk.intersect(sk.Cone(1.0), sk.Cylinder(0.5))
+        sk.intersect(sk.Cylinder(1.0), sk.Cylinder(0.5, sk.Frame((0.7, 0.0, 0.0))))
 
 
 @pytest.mark.parametrize("seed", range(4))

@@ -182,13 +182,20 @@ def check_finite(name, value):
     return arr
 
 
+def check_point_array(name, value):
+    """Points (..., 3) of any leading shape as a finite float array, or ValueError (TypeError) naming the
+    argument."""
+    arr = check_finite(name, value)
+    if arr.shape[-1:] != (3,):
+        raise ValueError(f"{name} must have shape (..., 3), got {arr.shape}")
+    return arr
+
+
 def check_query_points(name, value):
     """Points (..., 3) to measure against a surface or a curve, as a float array: finite, each coordinate within
     LENGTH_MAX of 0 (the supported lengths: farther, the squares of the distances overflow); or ValueError
     (TypeError) naming the argument."""
-    arr = check_finite(name, value)
-    if arr.shape[-1:] != (3,):
-        raise ValueError(f"{name} must have shape (..., 3), got {arr.shape}")
+    arr = check_point_array(name, value)
     if arr.size and float(np.max(np.abs(arr))) > LENGTH_MAX:
         raise ValueError(f"{name} must have coordinates within {LENGTH_MAX:g} of 0 (the supported lengths), got "
                          f"{float(np.max(np.abs(arr))):g}")

@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from .._lib.validation import check_frame, check_real, check_vector
+from .._lib.validation import check_frame, check_point_array, check_real, check_vector
 from .vectors import cross
 
 
@@ -199,12 +199,17 @@ class Frame:
         return cls(origin, rotation_to_z(z_axis))
 
     def to_global(self, local_points):
-        """Global coordinates (..., 3) of local points (..., 3): origin + rotation @ p for each point p."""
-        return self.origin + np.asarray(local_points, dtype=float) @ self.rotation.T
+        """Global coordinates (..., 3) of local points (..., 3): origin + rotation @ p for each point p. ValueError
+        naming `local_points` where they are not finite or not of shape (..., 3); TypeError where they are not real
+        numbers."""
+        return self.origin + check_point_array("local_points", local_points) @ self.rotation.T
 
     def to_local(self, points):
-        """Local coordinates (..., 3) of global points (..., 3): rotation.T @ (p - origin) for each point p."""
-        return (np.asarray(points, dtype=float) - self.origin) @ self.rotation
+        """Local coordinates (..., 3) of global points (..., 3): rotation.T @ (p - origin) for each point p.
+        ValueError naming `points` where they are not finite or not of shape (..., 3); TypeError where they are not
+        real numbers."""
+        return (check_point_array("points", points) - self.origin) @ self.rotation
 
     def __repr__(self):
         return f"Frame(origin={self.origin.tolist()}, rotation={self.rotation.tolist()})"
+

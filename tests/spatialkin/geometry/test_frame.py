@@ -68,3 +68,28 @@ def test_frames_refuse_values_that_are_not_real(bad, kind):
         sk.Frame(rotation=np.eye(3) + 0j)
     with pytest.raises(TypeError, match="axis must be an array of real numbers"):
         sk.rotation_about(bad, 1.0)
+
+
+@pytest.mark.parametrize("method, name", [("to_global", "local_points"), ("to_local", "points")])
+@pytest.mark.parametrize("bad, error, fragment", [
+    ([np.nan, 0.0, 0.0], ValueError, "must be finite"),
+    ([[0.0, 0.0, 0.0], [1.0, np.inf, 0.0]], ValueError, "must be finite"),
+    ([1.0, 2.0], ValueError, r"must have shape \(\.\.\., 3\), got \(2,\)"),
+    ("abc", TypeError, "must be an array of real numbers"),
+    ([1j, 0.0, 0.0], TypeError, "must be an array of real numbers"),
+])
+def test_frame_maps_refuse_bad_points(method, name, bad, error, fragment):
+    frame = sk.Frame((1.0, 2.0, 3.0), sk.rotation_about((0.0, 0.0, 1.0), 0.5))
+    with pytest.raises(error, match=f"^{name} {fragment}"):
+        getattr(frame, method)(bad)
+
+
+def test_frame_maps_keep_any_leading_shape():
+    """Oracle: origin + R p point by point; an empty set of points maps to an empty set."""
+    frame = sk.Frame((1.0, 2.0, 3.0), sk.rotation_about((1.0, 1.0, 0.0), 0.7))
+    pts = np.random.default_rng(0).normal(size=(4, 5, 3))
+    out = frame.to_global(pts)
+    assert out.shape == (4, 5, 3)
+    assert np.allclose(out[2, 3], frame.origin + frame.rotation @ pts[2, 3], rtol=0, atol=1e-14)
+    assert np.allclose(frame.to_local(out), pts, rtol=0, atol=1e-14)
+    assert frame.to_global(np.zeros((0, 3))).shape == (0, 3)

@@ -242,10 +242,26 @@ def start_background(workload=WORKLOAD):
     env = {**os.environ, ENV: "compile"}
     env.pop("SPATIALKIN_DISABLE_JIT", None)
     _STARTED[workload] = subprocess.Popen(
-        [sys.executable, "-c", f"from spatialkin._lib import warm; warm.background({workload!r}, {lock!r})"],
+        [sys.executable, "-c", prelude(workload) + f"from spatialkin._lib import warm; "
+         f"warm.background({workload!r}, {lock!r})"],
         env=env, start_new_session=True, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL)
     return True
+
+
+def prelude(workload):
+    """The first statement of a child process's ``python -c`` code: the folders this process imported spatialkin and
+    the workload's package from, first on its path. ``python -c`` puts the working folder first, and a child started
+    in a source checkout would import the checkout's copy, compiling kernels this process never looks up (numba
+    keys its cache by the kernels' source files)."""
+    roots = []
+    for name in ("spatialkin", workload.partition(".")[0]):
+        module = sys.modules.get(name)
+        if module is not None and getattr(module, "__file__", None):
+            root = os.path.dirname(os.path.dirname(os.path.abspath(module.__file__)))
+            if root not in roots:
+                roots.append(root)
+    return f"import sys; sys.path[:0] = {roots!r}; "
 
 
 def stop_background():

@@ -190,6 +190,22 @@ def test_a_cold_cache_runs_plain_python_at_once_and_warms_in_the_background(tmp_
                 pass
 
 
+def test_the_background_warm_up_imports_the_packages_this_process_imported(tmp_path):
+    """A child started as the background warm-up is (python -c, the prelude first) in a folder that holds other
+    copies of spatialkin and planar (a source checkout beside an installed package) imports this process's copies:
+    numba keys its cache by the kernels' source files, so the other copies' kernels would never be looked up."""
+    import planar
+    for name in ("spatialkin", "planar"):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "__init__.py").write_text("raise ImportError('the copy in the working folder')\n")
+    code = warm.prelude("planar.warmup") + "import spatialkin, planar; print(spatialkin.__file__); print(planar.__file__)"
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stdout.split() == [os.path.abspath(sk.__file__), os.path.abspath(planar.__file__)]
+    bare = subprocess.run([sys.executable, "-c", "import spatialkin"], capture_output=True, text=True, cwd=tmp_path)
+    assert "the copy in the working folder" in bare.stderr          # (without the prelude, the decoy is found)
+
+
 @pytest.mark.skipif(_jit.JIT_DISABLED, reason="no compiling with jit off")
 def test_a_line_when_the_first_kernel_compiles():
     said = []

@@ -1,7 +1,6 @@
 """Compile planar's kernels ahead: the workload of the background warm-up (spatialkin._lib.warm, registered when
 planar is imported) and of ``python -m planar.warmup``: the six-link of the warp-knitting machine over a turn and
 the Frenet module's laws (crank-slider and crank-rocker) with their driven links."""
-import time
 
 
 def run():
@@ -20,16 +19,12 @@ def run():
 
 
 def main(echo=print):
-    """Compile the workload in the foreground, stamp the cache, report the time. Returns 0."""
-    from spatialkin._lib import jit, warm
-    warm.stop_background()              # (started at import on a cold cache: this does its work)
-    warm.drop_stale("planar.warmup")   # (a kernel module changed since the last warm-up: all of them compile again)
+    """Compile the workload in the foreground, stamp the cache, report the time (``spatialkin warmup`` compiles it
+    too, beside spatialkin's). Returns 0."""
+    from spatialkin._lib import warm
     warm.say_with(lambda line: None)    # (it says what it did when done)
-    jit.use(jit.COMPILED)
-    t0 = time.perf_counter()
-    run()
-    warm.write_stamp(__name__ if __name__ != "__main__" else "planar.warmup")
-    echo(f"planar warmup: done in {time.perf_counter() - t0:.1f} s; numba's cache: {warm.cache_folder()}")
+    seconds = warm.compile_ahead(["planar.warmup"])
+    echo(f"planar warmup: done in {sum(seconds.values()):.1f} s; numba's cache: {warm.cache_folder()}")
     return 0
 
 

@@ -31,6 +31,8 @@ from . import jit
 ENV = "SPATIALKIN_FIRST_RUN"
 #: The workload spatialkin itself compiles (a module run as ``python -m``).
 WORKLOAD = "spatialkin.cli.warmup"
+#: The entry point group naming other packages' workloads (a module with ``run()``; planar's: planar.warmup).
+PLUGIN_GROUP = "spatialkin.warmup"
 #: The names beside numba's cache: a workload's stamp, and the lock its background warm-up holds.
 STAMP = "spatialkin-warm-{}.json"
 LOCK = "spatialkin-warm-{}.lock"
@@ -282,6 +284,47 @@ def stop_background():
             except OSError:
                 pass
         del _STARTED[workload]
+
+
+def workloads():
+    """spatialkin's workload, every other registered one, then every installed package's (a module named by the
+    entry point group PLUGIN_GROUP, e.g. planar.warmup)."""
+    from importlib.metadata import entry_points
+    names = list(_WORKLOADS)
+    for point in entry_points(group=PLUGIN_GROUP):
+        if point.module not in names:
+            names.append(point.module)
+    return names
+
+
+def compile_ahead(names=None):
+    """Compile the workloads (default: workloads()) in the foreground, each kernel compiled or loaded from the
+    cache, and stamp each; this process's background warm-ups are stopped (this does their work) and the kernels
+    turned to their compiled form. Stale caches are dropped first, all of them before any compiles (a kernel
+    module changed since a stamp: its folders compile again). Returns {workload: seconds}."""
+    import importlib
+    names = workloads() if names is None else list(names)
+    stop_background()
+    for name in names:
+        drop_stale(name)
+    jit.use(jit.COMPILED)
+    seconds = {}
+    for name in names:
+        t0 = time.perf_counter()
+        importlib.import_module(name).run()
+        write_stamp(name)
+        seconds[name] = time.perf_counter() - t0
+    return seconds
+
+
+def compiled_for_timing(say):
+    """Before a benchmark: the kernels compiled, so that it times compiled code. Nothing to do where the kernels
+    are compiled and every workload's cache is warm; else say(line) and compile_ahead (the background warm-up's
+    work, in the foreground). Returns the seconds spent compiling (0.0 when none)."""
+    if jit.JIT_DISABLED or jit.mode() == jit.COMPILED and all(ready(w) for w in workloads()):
+        return 0.0
+    say("compiling the kernels first (about a minute on a cold cache), so that the timings are of compiled code")
+    return sum(compile_ahead().values())
 
 
 def background(workload, lock):

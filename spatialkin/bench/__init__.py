@@ -12,6 +12,7 @@ and sk.intersect_many on a sweep of the looper pair against the compiled kernels
 import os
 from importlib.metadata import entry_points
 
+from .._lib import warm
 from . import batch
 
 from . import runner
@@ -36,6 +37,7 @@ def run(out_dir=None, quick=False, echo=print):
     comparisons : runner.Comparisons
     """
     echo(f"machine: {machine()}")
+    warm.compiled_for_timing(echo)
     if not runner.baselines.occ_available():
         echo("OpenCascade (cadquery-ocp): not installed -- pip install '.[bench]' for the side-by-side run")
     rows, comparisons = runner.run_all(quick=quick, echo=echo)

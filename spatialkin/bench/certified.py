@@ -4,6 +4,7 @@ spatialkin.bench.certified``)."""
 import statistics
 import time
 
+from .._lib import warm
 from ..tracing.components import intersect
 from .kinds import face_cases, pair_kind_cases
 
@@ -29,6 +30,7 @@ def run(repeats=REPEATS, echo=print):
     """Print the table, the pair kinds then CAD faces (kinds.face_cases); returns its rows (name, plain ms,
     certified ms, ratio, proven, not proven claims, bound, how: 'search' or 'closed form')."""
     rows = []
+    warm.compiled_for_timing(echo)
     echo("certify=True per pair kind (median of interleaved calls); not proven: the claims that failed; distance: "
          "the proven bound from the curves' points and dense samples to the true curve (proven in closed form: "
          "of the whole dense output, both ways)")

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._lib import stages
+from .._lib import stages, warm
 from ..tracing.components import intersect
 from . import baselines
 from .kinds import occ_surface, pair_kind_cases, special_cases
@@ -250,6 +250,7 @@ def _profile_line(name, p, kernel):
 
 def run(quick=False, echo=print):
     """Measure every pair kind, print both tables; returns the KindRows."""
+    warm.compiled_for_timing(echo)
     echo("per pair kind: sk.intersect profile and OpenCascade side by side")
     rows = kind_rows(quick=quick, echo=echo)
     for line in profile_table(rows) + [""]:

@@ -85,17 +85,20 @@ def parser():
     p_looper.add_argument("--out", required=True, help="output folder (created if missing)")
     p_looper.add_argument("--config", default=None, help="TOML file overriding the built-in drive (keys below)")
     p_looper.set_defaults(func=looper)
-    p_demo = sub.add_parser("demo", help="trace torus ∩ sphere of the looper drive and print the components")
+    demo_help = "trace torus ∩ sphere of the looper drive and print the components"
+    p_demo = sub.add_parser("demo", help=demo_help, description=demo_help[0].upper() + demo_help[1:] + ".")
     p_demo.add_argument("--tol", type=positive_float, default=1e-10,
                         help="accuracy relative to the scene scale (positive; default 1e-10)")
     p_demo.set_defaults(func=demo)
-    p_bench = sub.add_parser("bench", help="speed against error: every solve_ivp method and tolerance, "
-                             "OpenCascade (if installed), the looper against a per-angle root solve")
+    bench_help = ("speed against error: every solve_ivp method and tolerance, OpenCascade (if installed), the looper "
+                  "against a per-angle root solve, planar's cases; the kernels are compiled (or loaded) first")
+    p_bench = sub.add_parser("bench", help=bench_help, description=bench_help[0].upper() + bench_help[1:] + ".")
     p_bench.add_argument("--out", default=None, help="folder for bench.csv, bench.png, bench_kinds.csv and bench_kinds.png (created if missing)")
     p_bench.add_argument("--quick", action="store_true", help="a short run: two cases, two tolerances, one repeat")
     p_bench.set_defaults(func=bench)
-    p_warm = sub.add_parser("warmup", help="compile the numerical kernels ahead (an image, a cluster's workers) and "
-                            "report the time")
+    warm_help = ("compile the numerical kernels ahead, spatialkin's and every installed package's (planar's), for an "
+                 "image or a cluster's workers, and report the time")
+    p_warm = sub.add_parser("warmup", help=warm_help, description=warm_help[0].upper() + warm_help[1:] + ".")
     p_warm.set_defaults(func=warm_up)
     # listed here for --help; ``main`` hands `spatialkin design ...` to spatialkin/cli/design.py before parsing
     sub.add_parser("design", help="fit a looper drive to targets and write its config (spatialkin design --help)")

@@ -9,7 +9,6 @@ fully), ``certify=True`` on the looper pair, on circles in closed form, on a tri
 figure-eight (a node), its design sensitivities, and ``sk.intersect_many``; numba compiles every kernel and
 specialisation they reach into its cache.
 """
-import time
 
 #: Crank angles of the looper drive's turn in the workload.
 ANGLES = 361
@@ -55,20 +54,16 @@ def run():
 
 
 def main(echo=print):
-    """``spatialkin warmup``: compile the workload in the foreground, stamp the cache, report the time. Returns 0."""
+    """``spatialkin warmup``: compile every workload in the foreground (spatialkin's and each installed package's:
+    spatialkin._lib.warm.compile_ahead), stamp the cache, report the time. Returns 0."""
     from .._lib import jit, warm
-    warm.stop_background()              # (started at import on a cold cache: this does its work)
-    warm.drop_stale(warm.WORKLOAD)   # (a kernel module changed since the last warm-up: all of them compile again)
     warm.say_with(lambda line: None)    # (it says what it did when done)
-    jit.use(jit.COMPILED)
     before = sum(len(d.signatures) for d in jit.dispatchers())
-    t0 = time.perf_counter()
-    run()
-    warm.write_stamp(warm.WORKLOAD)
+    seconds = warm.compile_ahead()
     after = sum(len(d.signatures) for d in jit.dispatchers())
     echo(f"spatialkin warmup: {after} kernel specialisations ready ({after - before} compiled or loaded here) in "
-         f"{time.perf_counter() - t0:.1f} s; numba's cache: {warm.cache_folder()}")
-    echo("(planar's kernels: python -m planar.warmup)")
+         f"{sum(seconds.values()):.1f} s ({', '.join(f'{name} {t:.1f} s' for name, t in seconds.items())}); "
+         f"numba's cache: {warm.cache_folder()}")
     return 0
 
 

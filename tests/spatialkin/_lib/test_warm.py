@@ -190,6 +190,24 @@ def test_a_cold_cache_runs_plain_python_at_once_and_warms_in_the_background(tmp_
                 pass
 
 
+def test_workloads_are_spatialkins_then_each_installed_packages():
+    assert warm.workloads()[:2] == [warm.WORKLOAD, "planar.warmup"]
+
+
+def test_a_benchmark_compiles_first_unless_every_workload_is_warm(monkeypatch):
+    """compiled_for_timing: nothing said or compiled where the kernels are compiled and every workload is warm;
+    else one line, then compile_ahead of every workload."""
+    said, compiled = [], []
+    monkeypatch.setattr(warm, "compile_ahead", lambda: compiled.append(1) or {"w": 2.5})
+    monkeypatch.setattr(warm.jit, "mode", lambda: warm.jit.COMPILED)
+    monkeypatch.setattr(warm, "ready", lambda workload: True)
+    assert warm.compiled_for_timing(said.append) == 0.0 and said == [] and compiled == []
+    monkeypatch.setattr(warm, "ready", lambda workload: workload != "planar.warmup")
+    if not _jit.JIT_DISABLED:
+        assert warm.compiled_for_timing(said.append) == 2.5 and len(said) == 1 and compiled == [1]
+        assert "compiling the kernels first" in said[0]
+
+
 def test_the_background_warm_up_imports_the_packages_this_process_imported(tmp_path):
     """A child started as the background warm-up is (python -c, the prelude first) in a folder that holds other
     copies of spatialkin and planar (a source checkout beside an installed package) imports this process's copies:
@@ -265,7 +283,7 @@ COVERAGE_STRIDE = 4
 @pytest.mark.skipif(_jit.JIT_DISABLED, reason="no cache with jit off")
 def test_after_spatialkin_warmup_the_stress_cases_compile_nothing(tmp_path):
     """On an empty cache, `spatialkin warmup` in one process (it reports, and leaves the cache stamped warm for its
-    workload); then, in a fresh one, a user's calls on pairs the workload never saw (every COVERAGE_STRIDE-th stress
+    workload and planar's, an installed package's); then, in a fresh one, a user's calls on pairs the workload never saw (every COVERAGE_STRIDE-th stress
     case: with and without certify=True, then a dense evaluation and closest points of each curve) compile no
     spatialkin kernel: each loads from the cache the warm-up left. Oracle: numba's compile events (numba fires none
     for a kernel loaded from its cache)."""
@@ -280,7 +298,7 @@ def test_after_spatialkin_warmup_the_stress_cases_compile_nothing(tmp_path):
         from numba.core import event
         import spatialkin as sk
         from spatialkin._lib import warm
-        print(warm.ready(warm.WORKLOAD))
+        print(warm.ready(warm.WORKLOAD) and warm.ready("planar.warmup"))
         from tests.oracles.ssi_cases import all_cases
         compiled = set()
         class Listener(event.Listener):

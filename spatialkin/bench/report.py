@@ -82,38 +82,99 @@ def write_csv(rows, path):
 
 
 def plot(rows, path, title):
-    """Error against wall time per curve (log–log), one panel per case, written whole or not at all."""
+    """The work–precision figure (log–log), written whole or not at all. Per torus–sphere case, two panels
+    against the wall time per curve: above, the relative error of the arc length s (what a solve_ivp method's
+    tolerance buys: one line per method over the tolerances, and sk.intersect); below, the largest distance of
+    the returned points and dense samples to either surface (Newton puts them on both whatever the tolerance),
+    beside certify=True's proven bound and OpenCascade's points at its tolerances. The looper drive's panel: the
+    position error against the closed form per crank angle. An exact zero is drawn at PLOT_ERROR_FLOOR, marked."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    cases = list(dict.fromkeys(r.case for r in rows))
-    ncol = min(3, len(cases))
-    nrow = -(-len(cases) // ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol, 3.8 * nrow), squeeze=False)
-    for ax, case in zip(axes.ravel(), cases):
+    cases = [c for c in dict.fromkeys(r.case for r in rows) if c != "looper drive"]
+    drive = [r for r in rows if r.case == "looper drive"]
+    ncol = len(cases) + bool(drive)
+    fig, axes = plt.subplots(2, ncol, figsize=(3.6 * ncol + 1.8, 6.6), squeeze=False)
+    colours = {"sk.intersect (tol 1e-10)": "tab:olive", "certify=True: measured; proven bound (hollow)": "tab:cyan",
+               "OpenCascade GeomAPI_IntSS (tol 1e-7, 1e-10)": "black"}
+    methods = list(dict.fromkeys(r.method for r in rows if r.solver == "trace"))
+
+    def colour(label):
+        if label not in colours:            # (the methods' lines C0.., the drive's solvers after them)
+            method = label.split(" ")[1] if label.startswith("trace ") else None
+            colours[label] = f"C{(methods.index(method) if method in methods else len(colours)) % 10}"
+        return colours[label]
+
+    def floor(values):
+        return [max(v, PLOT_ERROR_FLOOR) for v in values]
+
+    for k, case in enumerate(cases):
         mine = [r for r in rows if r.case == case]
+        top, bottom = axes[0, k], axes[1, k]
         for method in dict.fromkeys(r.method for r in mine if r.solver == "trace"):
-            pts = sorted((r.per_curve, r.error) for r in mine if r.solver == "trace" and r.method == method)
-            x, y = zip(*pts)
-            ax.plot(x, np.maximum(y, PLOT_ERROR_FLOOR), "o-", ms=4, label=f"trace {method}")
+            pts = sorted((r.per_curve, r.length_error, r.error) for r in mine
+                         if r.solver == "trace" and r.method == method and not np.isnan(r.length_error))
+            if pts:
+                x, y, d = zip(*pts)
+                label = f"trace {method} (rtol 1e-4 .. 1e-12)"
+                top.plot(x, floor(y), "o-", ms=3, lw=1, color=colour(label), label=label)
+                bottom.plot(x, floor(d), "o", ms=3, color=colour(label), alpha=0.6)
         for r in mine:
-            if r.solver == "trace":
-                continue
-            label = r.solver if np.isnan(r.rtol) else f"{r.solver} tol {r.rtol:g}"
-            marker = {"intersect": "s", "OCC IntSS": "X"}.get(r.solver, "D")
-            ax.plot([r.per_curve], [max(r.error, PLOT_ERROR_FLOOR)], marker, ms=8, label=label)
+            if r.solver == "intersect":
+                label = "sk.intersect (tol 1e-10)"
+                top.plot([r.per_curve], floor([r.length_error]), "s", ms=8, color=colour(label), label=label)
+                bottom.plot([r.per_curve], floor([r.error]), "s", ms=8, color=colour(label))
+            elif r.solver == "certified":
+                label = "certify=True: measured; proven bound (hollow)"
+                bottom.plot([r.per_curve], floor([r.error]), "D", ms=7, color=colour(label), label=label)
+                bound = proven_bound(r.extra)
+                if bound is not None:
+                    bottom.plot([r.per_curve], [bound], "D", ms=7, mfc="none", color=colour(label))
+            elif r.solver == "OCC IntSS":
+                label = "OpenCascade GeomAPI_IntSS (tol 1e-7, 1e-10)"
+                bottom.plot([r.per_curve], floor([r.error]), "X", ms=9, color=colour(label), label=label)
+        top.set_title(case)
+        top.set_ylabel("arc length s: relative error")
+        bottom.set_ylabel("points: distance to the surfaces")
+        for ax in (top, bottom):
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.grid(True, which="both", alpha=0.3)
+        bottom.set_xlabel("wall time per curve [s]")
+    if drive:
+        ax = axes[0, -1]
+        for r in drive:
+            label = f"looper drive: {r.solver}"
+            ax.plot([r.per_curve], floor([r.error]), "D", ms=8, color=colour(label), label=label)
+            if r.error == 0.0:
+                ax.annotate("exact (0)", (r.per_curve, PLOT_ERROR_FLOOR), textcoords="offset points", xytext=(8, 0),
+                            va="center", fontsize=7)
+        ax.set_title("looper drive, a turn")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_title(case)
-        ax.set_xlabel("wall time per curve [s]" if case != "looper drive" else "wall time per crank angle [s]")
-        ax.set_ylabel("max distance to the exact curve")
+        ax.set_xlabel("wall time per crank angle [s]")
+        ax.set_ylabel("position error vs closed form [mm]")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=6)
-    for ax in axes.ravel()[len(cases):]:
-        ax.set_visible(False)
-    fig.suptitle(title, fontsize=8)
-    fig.tight_layout()
+        axes[1, -1].set_visible(False)
+    handles, labels = [], []
+    for ax in axes.ravel():
+        for h, label in zip(*ax.get_legend_handles_labels()):
+            if label not in labels:
+                handles.append(h)
+                labels.append(label)
+    fig.legend(handles, labels, loc="lower right", fontsize=7, frameon=False)
+    fig.suptitle(f"speed against error (lengths in the cases' unit, mm for the drive); {title}", fontsize=8)
+    fig.tight_layout(rect=(0, 0, 1, 0.96))
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=90, format="png")
     plt.close(fig)
+
+
+def proven_bound(extra):
+    """The proven distance bound a certified row's notes give ('distance <= 6.7e-13'), or None."""
+    _, found, rest = extra.partition("distance <= ")
+    try:
+        return float(rest.split()[0].rstrip(",;")) if found else None
+    except (ValueError, IndexError):
+        return None

@@ -2,6 +2,7 @@
 it reports are recomputed from the returned points, its closed forms agree with the oracle's, and the command
 writes its table, CSV and PNG. No timing is asserted."""
 import csv
+import math
 import functools
 
 import numpy as np
@@ -189,3 +190,32 @@ def test_calls_counted_by_function_kind():
     assert line == ("calls: one sk.intersect of the looper's pair calls 378 Python functions, each compiled kernel one "
                     "of them (917 with C builtins; cProfile)")
     assert len(report.comparison_lines(runner.Comparisons(np.nan, "-", np.nan, "-", 0, np.nan), runner)) == 3
+
+
+def test_the_figure_plots_length_error_above_and_distances_below(tmp_path, monkeypatch):
+    """bench.png: per case, the methods' arc-length errors over the tolerances (above) and the points' distances
+    with OpenCascade's and the proven bound (below); the drive's exact zero at the floor, marked. Oracle: the rows."""
+    import matplotlib.figure
+    seen = {}
+    real = matplotlib.figure.Figure.savefig
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig",
+                        lambda fig, *a, **k: (seen.setdefault("fig", fig), real(fig, *a, **k))[1])
+    rows = [runner.Row("looper", "trace", "RK45", rtol, 2, 2, 2 * t, t, 1e-14, 10, "", err)
+            for rtol, t, err in ((1e-4, 1e-3, 3e-6), (1e-8, 4e-3, 5e-9), (1e-12, 2e-2, 5e-13))]
+    rows += [runner.Row("looper", "intersect", "compiled", np.nan, 2, 2, 8e-4, 4e-4, 1.8e-14, 400, "", 1e-11),
+             runner.Row("looper", "certified", "compiled", np.nan, 2, 2, 2e-3, 1e-3, 1.8e-14, 0,
+                        "2x intersect; proven, distance <= 6.7e-13"),
+             runner.Row("looper", "OCC IntSS", "-", 1e-7, 2, 2, 6e-3, 3e-3, 6e-8),
+             runner.Row("looper drive", "closed form", "-", np.nan, 10, 10, 1e-6, 1e-7, 0.0)]
+    report.plot(rows, str(tmp_path / "bench.png"), "machine")
+    assert (tmp_path / "bench.png").stat().st_size > 0
+    top, drive, bottom = seen["fig"].axes[:3]
+    assert top.get_ylabel() == "arc length s: relative error" and bottom.get_ylabel().startswith("points: distance")
+    line = next(ln for ln in top.get_lines() if ln.get_label().startswith("trace RK45"))
+    assert list(line.get_xdata()) == [1e-3, 4e-3, 2e-2] and list(line.get_ydata()) == [3e-6, 5e-9, 5e-13]
+    below = {tuple(ln.get_ydata()) for ln in bottom.get_lines()}
+    assert (6e-8,) in below and (6.7e-13,) in below and (1.8e-14,) in below
+    assert [t.get_text() for t in drive.texts] == ["exact (0)"]
+    assert list(drive.get_lines()[0].get_ydata()) == [report.PLOT_ERROR_FLOOR]
+    assert report.proven_bound("3x intersect; not proven, distance <= inf") == math.inf
+    assert report.proven_bound("no bound here") is None

@@ -20,6 +20,8 @@ from ..plotting import new_figure
 #: Grey levels and widths of the drawing.
 LINK_COLOUR, GROUND_COLOUR, TERNARY_FILL = "0.25", "0.45", "0.85"
 JOINT_SIZE = 4.0
+#: The input angles a mechanism picture's title lists (the rest counted).
+TITLE_ANGLES = 8
 
 
 def _axes(ax, size=(6.0, 6.0)):
@@ -29,11 +31,13 @@ def _axes(ax, size=(6.0, 6.0)):
 
 
 def mechanism(motion, indices=(0,), ax=None, labels=True, title=None):
-    """The linkage at the positions `indices` of a LinkageMotion (the first drawn dark, the rest light).
-    Returns a matplotlib Figure."""
+    """The linkage at the positions `indices` of a LinkageMotion (the first drawn dark with its joints named, the
+    rest light, each with its input angle beside its first crank pin); the title lists the angles (the first
+    TITLE_ANGLES). Returns a matplotlib Figure."""
     fig, ax = _axes(ax)
     linkage = motion.linkage
     indices = np.atleast_1d(indices)
+    angles = [math.degrees(motion.crank_angles[i]) for i in indices]
     for rank, i in enumerate(indices):
         alpha = 1.0 if rank == 0 else 0.35
         p = {j: motion.position(j)[i] for j in linkage.joints}
@@ -50,13 +54,20 @@ def mechanism(motion, indices=(0,), ax=None, labels=True, title=None):
         if labels and rank == 0:
             for j in linkage.joints:
                 ax.annotate(j, p[j], xytext=(4, 4), textcoords="offset points", fontsize=8)
+        elif len(indices) > 1:                   # a light position: its input angle beside its first crank pin
+            ax.annotate(f"{angles[rank]:.4g}°", p[linkage.cranks[0].pin], xytext=(5, -9), textcoords="offset points",
+                        fontsize=7, color=LINK_COLOUR)
     ground = np.array(list(linkage.fixed.values()))
     ax.plot(ground[:, 0], ground[:, 1], "^", ms=JOINT_SIZE + 4, color=GROUND_COLOUR)
     ax.set_aspect("equal")
     ax.set_xlabel("x (length unit)")
     ax.set_ylabel("y (length unit)")
-    ax.set_title(title or "mechanism at input angle(s) " + ", ".join(
-        f"{math.degrees(motion.crank_angles[i]):.4g}" for i in indices[:4]) + " deg")
+    if title is None:
+        shown = ", ".join(f"{a:.4g}" for a in angles[:TITLE_ANGLES])
+        more = f" and {len(angles) - TITLE_ANGLES} more" if len(angles) > TITLE_ANGLES else ""
+        title = (f"mechanism at input angle {shown} deg" if len(angles) == 1 else
+                 f"mechanism at input angles {shown}{more} deg (the first dark)")
+    ax.set_title(title)
     return fig
 
 
@@ -83,29 +94,42 @@ def paths(motion, joints=("B", "C", "K"), ax=None, with_mechanism=True, title=No
 def velocity_plans(motion, index, joints=("A", "B", "C", "K", "D"), title=None):
     """Velocity plans at position `index`: one panel per crank with the others stopped (crank k's share
     of every joint's velocity, from the pole p) and one of the full motion, where each share is drawn
-    tip to tail to show V = sum of the shares. Returns a matplotlib Figure."""
+    tip to tail (dashed, a legend naming the cranks) to show V = sum of the shares; every panel on one scale, in
+    length units per second. Returns a matplotlib Figure."""
     cranks = len(motion.linkage.cranks)
-    fig, axes = new_figure((4.0 * (cranks + 1), 4.2), columns=cranks + 1)
+    fig, axes = new_figure((4.2 * (cranks + 1), 4.6), columns=cranks + 1)
     panels = [(k + 1, f"crank {k + 1} alone (others stopped)") for k in range(cranks)]
     panels.append((None, "full motion = sum of the shares"))
+    ends = [np.zeros(2)]
     for ax, (crank, name) in zip(axes, panels):
         ax.plot(0, 0, "ko", ms=3)
         ax.annotate("p", (0, 0), xytext=(-10, -10), textcoords="offset points")
         for j in joints:
             v = motion.velocity(j, crank)[index]
+            ends.append(v)
             ax.annotate("", v, (0, 0), arrowprops=dict(arrowstyle="->", lw=1.3))
-            ax.update_datalim([(0.0, 0.0), v])
             ax.annotate(j.lower(), v, xytext=(3, 3), textcoords="offset points", fontsize=9)
             if crank is None and cranks > 1:
                 tail = np.zeros(2)
                 for k in range(cranks):
                     share = motion.velocity(j, k + 1)[index]
-                    ax.plot(*np.column_stack([tail, tail + share]), ls="--", lw=0.8, color=f"C{k}")
+                    ax.plot(*np.column_stack([tail, tail + share]), ls="--", lw=0.8, color=f"C{k}",
+                            label=f"crank {k + 1}'s share" if j == joints[0] else None)
                     tail = tail + share
-        ax.autoscale_view()
-        ax.set_aspect("equal")
-        ax.margins(0.15)
+                    ends.append(tail)
         ax.set_title(name, fontsize=9)
+        ax.set_xlabel("v_x (length unit / s)")
+        ax.grid(True, alpha=0.3)
+        if crank is None and cranks > 1:
+            ax.legend(fontsize=7, loc="best")
+    axes[0].set_ylabel("v_y (length unit / s)")
+    ends = np.array(ends)                    # one scale for every panel: a joint's arrows compare across them
+    lo, hi = ends.min(axis=0), ends.max(axis=0)
+    pad = 0.12 * float(np.max(hi - lo)) or 1.0
+    for ax in axes:
+        ax.set_xlim(lo[0] - pad, hi[0] + pad)
+        ax.set_ylim(lo[1] - pad, hi[1] + pad)
+        ax.set_aspect("equal", adjustable="box")
     fig.suptitle(title or f"velocity plans at input angle {math.degrees(motion.crank_angles[index]):.4g} "
-                 f"deg (omega = {motion.omega:g})")
+                 f"deg (omega = {motion.omega:g} rad/s)")
     return fig

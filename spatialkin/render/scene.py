@@ -67,6 +67,8 @@ AXES_VIEWPORT = (0.82, 0.13, 1.0, 0.31)
 #: File suffixes of screenshot() and export().
 IMAGE_SUFFIXES = (".png",)
 EXPORT_SUFFIXES = (".vtm", ".vtp", ".ply")
+#: What the camera can be fitted to (Scene's fit).
+FITS = ("all", "curves")
 #: Name of the arc-length and speed arrays on a curve's data.
 S_ARRAY, SPEED_ARRAY, VECTOR_ARRAY = "s", "speed", "vectors"
 
@@ -105,6 +107,9 @@ class Scene:
     focal_point : array_like (3,), optional
         The point the camera looks at (the scene fitted first, then the camera moved parallel to its view);
         default the middle of the scene.
+    fit : {'all', 'curves'}
+        What the camera is fitted to: everything drawn (default), or the curves alone (the surfaces around them
+        cut by the picture's edges: intersection curves small beside their surfaces fill the picture).
 
     Examples
     --------
@@ -115,7 +120,7 @@ class Scene:
     """
 
     def __init__(self, window_size=None, theme=None, camera_position="iso", zoom=1.0, off_screen=True, title=None,
-                 axes=False, unit=None, scale_bar=False, focal_point=None):
+                 axes=False, unit=None, scale_bar=False, focal_point=None, fit="all"):
         if window_size is not None:
             try:
                 w, h = (int(x) for x in window_size)
@@ -134,6 +139,7 @@ class Scene:
         self.unit = None if unit is None else str(unit)
         self.scale_bar = bool(scale_bar)
         self.focal_point = None if focal_point is None else check_vector("focal_point", focal_point, 3)
+        self.fit = check_choice("fit", fit, FITS)
         self._items = []
 
     def __repr__(self):
@@ -355,15 +361,23 @@ class Scene:
         plotter = pv.Plotter(**kwargs)
         size = self.extent()
         bars = self._bar_places()
+        curves = []
         for item in self._items:
-            _draw(plotter, item, _drawn(item, size), self, bars)
+            mesh = _drawn(item, size)
+            _draw(plotter, item, mesh, self, bars)
+            if item.kind == "curve":
+                curves.append(mesh.bounds)
         if any(item.kind == "surface" and item.style["opacity"] < 1 for item in self._items):
             plotter.ren_win.SetMultiSamples(0)      # see ANTI_ALIASING
             plotter.enable_depth_peeling()
         plotter.camera_position = self.camera_position
         if self.scale_bar:
             plotter.camera.parallel_projection = True
-        plotter.reset_camera()
+        if self.fit == "curves" and curves:
+            lows, highs = np.min(np.array(curves)[:, 0::2], axis=0), np.max(np.array(curves)[:, 1::2], axis=0)
+            plotter.reset_camera(bounds=[x for pair in zip(lows, highs) for x in pair])
+        else:
+            plotter.reset_camera()
         if self.focal_point is not None:
             camera = plotter.camera
             shift = self.focal_point - np.asarray(camera.focal_point)
@@ -548,7 +562,7 @@ def _draw(plotter, item, mesh, scene, bars):
     style = item.style
     if item.kind == "surface":
         plotter.add_mesh(mesh, color=style["color"], opacity=style["opacity"], smooth_shading=True,
-                         name=item.name)
+                         split_sharp_edges=True, name=item.name)     # (flat at a spindle torus's or cone's apex)
     elif item.kind == "curve":
         mode = style["color_by"]
         if mode is None:

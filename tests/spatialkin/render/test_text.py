@@ -140,3 +140,23 @@ def test_focal_point_is_the_middle_of_the_picture(pair, testing_theme):
                                    atol=1.0)
     finally:
         plotter.close()
+
+
+def test_fit_curves_fills_the_picture_with_the_curves(pair, testing_theme):
+    """fit='curves': the camera frames the curves alone, so their drawn points span most of the picture (the
+    README pair's loops are small beside a spindle torus: a fifth of it when the camera frames everything)."""
+    torus, sphere, curves = pair
+    points = np.vstack([c(np.linspace(0.0, c.length, 64)) for c in curves])
+    spans = {}
+    for fit in ("all", "curves"):
+        plotter = readme_scene(pair, testing_theme, fit=fit).plotter()
+        try:
+            pixels = scene_module.to_pixels(plotter, points)
+            spans[fit] = np.max(np.ptp(pixels, axis=0) / np.array(plotter.window_size))
+            inside = (pixels >= 0).all() and (pixels <= np.array(plotter.window_size)).all()
+        finally:
+            plotter.close()
+        assert inside
+    assert spans["curves"] > 0.6 and spans["curves"] > 2.0 * spans["all"]
+    with pytest.raises(ValueError, match="fit"):
+        Scene(fit="surfaces")

@@ -15,6 +15,8 @@ LINK_NAMES = {"coupler": "coupler 2", "rocker_arm": "rocker arm 3", "looper": "l
 PATH_CMAPS = ("winter", "autumn")
 #: Consecutive crank angles further apart than this many times their median step leave a gap in the paths.
 GAP_STEPS = 1.5
+#: Colours of the ball centre's and the looper tip's velocity arrows (each of its path's family: blue, red).
+ARROW_COLOURS = ("#08306b", "#a50f15")
 #: Lower-left corners of the two colour bars (fractions of the window) in a labelled picture.
 BAR_POSITIONS = ((0.05, 0.03), (0.55, 0.03))
 #: Points per link where a path's name looks for the place seen farthest from the links.
@@ -39,7 +41,7 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
         Also the torus and the sphere (translucent) whose intersection is the ball centre's path.
     velocities : int
         Velocity arrows drawn on each of the two paths (spread evenly over the motion's crank angles, one
-        length scale for both); 0 for none.
+        length scale for both, given in the scene's note: length per unit of speed); 0 for none.
     color_by : {'speed', 's', None}
         Colour of the two paths: speed |v| of the point, arc length, or plain.
     labels : bool
@@ -65,6 +67,7 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
         scene_args.setdefault("axes", True)
         scene_args.setdefault("scale_bar", True)
         scene_args.setdefault("zoom", LABELLED_ZOOM)
+        scene_args.setdefault("fit", ("ball_path", "tip_path", "looper"))     # (the surfaces cut at the edges)
         if "camera_position" not in scene_args:
             links, joints = geo.looper_links(motion, index)
             pts = np.vstack([joints, *links.values(), motion.ball_center, motion.looper_tip.position])
@@ -113,9 +116,11 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
                       np.max(np.linalg.norm(tip.velocity, axis=1)))
         scale = ARROW_FRACTION * scene.extent() / longest if longest > 0 else 1.0     # one scale for both
         scene.add_arrows(motion.ball_center[every], motion.ball_velocity[every], scale=scale,
-                         name="ball_velocity", color="#d62728")
+                         name="ball_velocity", color=ARROW_COLOURS[0])
         scene.add_arrows(tip.position[every], tip.velocity[every], scale=scale, name="tip_velocity",
-                         color="#2ca02c")
+                         color=ARROW_COLOURS[1])
+        length = (f"{scale / factor:.3g} {unit} per {speed_unit}" if unit else f"length = {scale:.3g} s x speed")
+        scene.note = f"velocity arrows: {length} (C dark blue, T dark red)"
     return scene
 
 

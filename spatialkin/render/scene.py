@@ -107,9 +107,13 @@ class Scene:
     focal_point : array_like (3,), optional
         The point the camera looks at (the scene fitted first, then the camera moved parallel to its view);
         default the middle of the scene.
-    fit : {'all', 'curves'}
-        What the camera is fitted to: everything drawn (default), or the curves alone (the surfaces around them
-        cut by the picture's edges: intersection curves small beside their surfaces fill the picture).
+    note : str, optional
+        A line of small text in the upper-left corner, below the title (a key: what an arrow's length means),
+        made smaller where it would not fit the window's width.
+    fit : {'all', 'curves'} or sequence of str
+        What the camera is fitted to: everything drawn (default), the curves alone (the surfaces around them
+        cut by the picture's edges: intersection curves small beside their surfaces fill the picture), or the
+        items of these names.
 
     Examples
     --------
@@ -120,7 +124,7 @@ class Scene:
     """
 
     def __init__(self, window_size=None, theme=None, camera_position="iso", zoom=1.0, off_screen=True, title=None,
-                 axes=False, unit=None, scale_bar=False, focal_point=None, fit="all"):
+                 axes=False, unit=None, scale_bar=False, focal_point=None, fit="all", note=None):
         if window_size is not None:
             try:
                 w, h = (int(x) for x in window_size)
@@ -135,11 +139,17 @@ class Scene:
         self.zoom = check_positive("zoom", zoom)
         self.off_screen = bool(off_screen)
         self.title = None if title is None else str(title)
+        self.note = None if note is None else str(note)
         self.axes = bool(axes)
         self.unit = None if unit is None else str(unit)
         self.scale_bar = bool(scale_bar)
         self.focal_point = None if focal_point is None else check_vector("focal_point", focal_point, 3)
-        self.fit = check_choice("fit", fit, FITS)
+        if isinstance(fit, str):
+            self.fit = check_choice("fit", fit, FITS)
+        elif isinstance(fit, (list, tuple)) and fit and all(isinstance(name, str) for name in fit):
+            self.fit = tuple(fit)
+        else:
+            raise ValueError(f"fit must be one of {FITS} or a sequence of item names, got {fit!r}")
         self._items = []
 
     def __repr__(self):
@@ -361,20 +371,23 @@ class Scene:
         plotter = pv.Plotter(**kwargs)
         size = self.extent()
         bars = self._bar_places()
-        curves = []
+        if not isinstance(self.fit, str) and not set(self.fit) <= set(self.names):
+            raise ValueError(f"fit names items the scene does not have: "
+                             f"{sorted(set(self.fit) - set(self.names))} (it has {self.names})")
+        framed = []
         for item in self._items:
             mesh = _drawn(item, size)
             _draw(plotter, item, mesh, self, bars)
-            if item.kind == "curve":
-                curves.append(mesh.bounds)
+            if item.kind == "curve" if self.fit == "curves" else item.name in self.fit:
+                framed.append(mesh.bounds)
         if any(item.kind == "surface" and item.style["opacity"] < 1 for item in self._items):
             plotter.ren_win.SetMultiSamples(0)      # see ANTI_ALIASING
             plotter.enable_depth_peeling()
         plotter.camera_position = self.camera_position
         if self.scale_bar:
             plotter.camera.parallel_projection = True
-        if self.fit == "curves" and curves:
-            lows, highs = np.min(np.array(curves)[:, 0::2], axis=0), np.max(np.array(curves)[:, 1::2], axis=0)
+        if self.fit != "all" and framed:
+            lows, highs = np.min(np.array(framed)[:, 0::2], axis=0), np.max(np.array(framed)[:, 1::2], axis=0)
             plotter.reset_camera(bounds=[x for pair in zip(lows, highs) for x in pair])
         else:
             plotter.reset_camera()
@@ -394,6 +407,16 @@ class Scene:
         if self.scale_bar:
             bottom = _draw_scale_bar(plotter, self.unit, bottom)
         top = height - (3.0 * TITLE_FONT_SIZE if self.title else 0.0)
+        if self.note:
+            size = 2 * BAR_TITLE_SIZE
+            actor, (w, h) = _text(plotter, self.note, (LABEL_MARGIN, top - LABEL_MARGIN - 1.5 * size), size,
+                                  name="note")
+            room = width - 2 * LABEL_MARGIN
+            if w > room:
+                size = int(size * room / w)
+                actor.GetTextProperty().SetFontSize(size)
+            actor.SetPosition(LABEL_MARGIN, top - LABEL_MARGIN - 1.5 * size)
+            top -= LABEL_MARGIN + 1.5 * size
         placed = [item for item in self._items if item.kind == "labels" and item.style["placement"] == "auto"]
         if placed:
             _place_labels(plotter, placed, self, (LABEL_MARGIN, bottom + LABEL_MARGIN, width - LABEL_MARGIN,

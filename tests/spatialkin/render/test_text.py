@@ -160,3 +160,31 @@ def test_fit_curves_fills_the_picture_with_the_curves(pair, testing_theme):
     assert spans["curves"] > 0.6 and spans["curves"] > 2.0 * spans["all"]
     with pytest.raises(ValueError, match="fit"):
         Scene(fit="surfaces")
+
+
+def test_the_velocity_arrows_key_gives_their_scale_and_colours(motion, testing_theme):
+    """looper_scene's note: the arrows' length per m/s (mm drive: the arrows' scale / 1e-3 m per mm), the ball
+    centre's arrows in the blue of its path's colours, the tip's in the red; the note is drawn in the window."""
+    from spatialkin.render.looper import ARROW_COLOURS
+    scene = looper_scene(motion, 10, velocities=4, unit="mm", theme=testing_theme)
+    scale = scene._item("tip_velocity").style["scale"]
+    assert scene.note == f"velocity arrows: {scale / 1e-3:.3g} mm per m/s (C dark blue, T dark red)"
+    assert [scene._item(n).style["color"] for n in ("ball_velocity", "tip_velocity")] == list(ARROW_COLOURS)
+    plotter = scene.plotter()
+    try:
+        x0, y0, x1, y1 = box_of(plotter, plotter.actors["note"])
+        assert 0 <= x0 and x1 <= plotter.window_size[0] and y1 <= plotter.window_size[1]
+    finally:
+        plotter.close()
+    assert looper_scene(motion, 10, velocities=4, theme=testing_theme).note.startswith("velocity arrows: length = ")
+
+
+def test_fit_names_the_items_framed(pair, testing_theme):
+    torus, sphere, curves = pair
+    scene = readme_scene(pair, testing_theme, fit=("curve0",))
+    plotter = scene.plotter()
+    plotter.close()
+    with pytest.raises(ValueError, match="fit names items the scene does not have: \\['ring'\\]"):
+        readme_scene(pair, testing_theme, fit=("ring",)).plotter()
+    with pytest.raises(ValueError, match="fit must be one of"):
+        Scene(fit=3)

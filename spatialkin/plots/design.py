@@ -1,9 +1,14 @@
 """Pictures of spatialkin.design's results with matplotlib (presentation layer): the tip-path tolerance
 envelope, and a sweep's outputs over two swept parameters."""
+import math
+
 import numpy as np
 
 #: Half-width of the drawn envelope in standard deviations.
 ENVELOPE_SIGMAS = 3.0
+#: The envelope's half-width drawn at least this fraction of the path's size (deviations exaggerated), and the
+#: Monte-Carlo paths drawn at most.
+VISIBLE, MC_DRAWN = 0.04, 100
 
 
 def _figure(size):
@@ -19,10 +24,22 @@ def path_plane(points):
     return vt[0], vt[1]
 
 
+def exaggeration(width, size):
+    """The factor (1, 2 or 5 times a power of ten; at least 1) that draws a band of half-width `width` at VISIBLE
+    of a picture of `size` or more."""
+    if not width > 0 or width >= VISIBLE * size:
+        return 1
+    want = VISIBLE * size / width
+    decade = 10.0 ** math.floor(math.log10(want))
+    return next(f * decade for f in (1, 2, 5, 10) if f * decade >= want)
+
+
 def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS, unit="mm"):
     """The looper tip's path with its tolerance envelope: left, the path in its best-fit plane with the
-    Monte-Carlo paths and the linear +-sigmas band (normal to the path, in that plane); right, the RMS
-    deviation of the tip against the crank angle, linear and Monte-Carlo.
+    Monte-Carlo paths and the linear +-sigmas band (normal to the path, in that plane), the deviations from the
+    nominal path drawn times a round factor where the band would be thinner than VISIBLE of the path (the
+    legend and title give it); right, the RMS deviation of the tip against the crank angle, linear and
+    Monte-Carlo, as they are.
 
     Parameters
     ----------
@@ -47,21 +64,25 @@ def tolerance_figure(result, path=None, sigmas=ENVELOPE_SIGMAS, unit="mm"):
     normal2 /= np.linalg.norm(normal2, axis=1, keepdims=True)
     normal3 = normal2[:, :1] * e1 + normal2[:, 1:] * e2                           # (N, 3)
     sigma_n = np.sqrt(np.einsum("ni,nij,nj->n", normal3, result.tip_covariance, normal3))
-    fig = _figure((11, 4.6))
+    k = exaggeration(sigmas * float(np.max(sigma_n)), float(np.max(np.ptp(xy, axis=0))))
+    times = "" if k == 1 else f", deviations ×{k:g}"
+    fig = _figure((11, 5.2))
     ax, ax2 = fig.subplots(1, 2)
-    for tips in result.mc_tips[:100]:
-        ax.plot((tips - centre) @ e1, (tips - centre) @ e2, color="0.75", lw=0.5)
+    for tips in result.mc_tips[:MC_DRAWN]:          # (each drawn as its deviation from the nominal path, times k)
+        ax.plot(*(xy + k * np.column_stack([(tips - result.tip) @ e1, (tips - result.tip) @ e2])).T,
+                color="0.75", lw=0.5)
     ax.plot(*xy.T, color="C0", lw=1.5, label="nominal tip path")
     for sign in (1, -1):
-        band = xy + sign * sigmas * sigma_n[:, None] * normal2
+        band = xy + sign * k * sigmas * sigma_n[:, None] * normal2
         ax.plot(*band.T, color="C3", lw=1.0, ls="--",
-                label=f"linear ±{sigmas:g}σ envelope" if sign == 1 else None)
-    ax.plot([], [], color="0.75", lw=0.5, label=f"Monte-Carlo ({len(result.mc_tips)})")
+                label=f"linear ±{sigmas:g}σ envelope{times}" if sign == 1 else None)
+    ax.plot([], [], color="0.75", lw=0.5,
+            label=f"Monte-Carlo ({min(MC_DRAWN, len(result.mc_tips))} of {len(result.mc_tips)}){times}")
     ax.set_aspect("equal")
     ax.set_xlabel(f"along the path's main axis [{unit}]")
     ax.set_ylabel(f"across [{unit}]")
-    ax.legend(loc="best", fontsize=8)
-    ax.set_title("looper tip path (best-fit plane)")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=8, frameon=False)    # (off the paths)
+    ax.set_title("looper tip path (best-fit plane)" + (f": deviations drawn ×{k:g}" if k != 1 else ""))
     deg = np.degrees(result.crank_angles)
     ax2.plot(deg, result.tip_rms_linear, color="C3", label="linear (sensitivities)")
     ax2.plot(deg, result.tip_rms_mc, color="k", ls=":", label="Monte-Carlo")

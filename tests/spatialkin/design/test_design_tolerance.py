@@ -50,3 +50,31 @@ def test_uniform_half_width_is_sigma_times_root_three():
 def test_bad_input_names_the_argument(kwargs, word):
     with pytest.raises(ValueError, match=word):
         LooperDesign.reference().tolerance(**kwargs)
+
+
+def test_exaggeration_is_a_round_factor_making_the_band_visible():
+    from spatialkin.plots.design import VISIBLE, exaggeration
+    assert exaggeration(0.24, 30.0) == 5          # 0.24 x 5 = 1.2 = VISIBLE x 30
+    assert exaggeration(0.1, 30.0) == 20 and exaggeration(0.02, 30.0) == 100
+    assert exaggeration(VISIBLE * 30.0, 30.0) == 1 and exaggeration(0.0, 30.0) == 1
+    assert all(exaggeration(w, 1.0) * w >= VISIBLE for w in (1e-6, 3e-4, 0.007, 0.039))
+
+
+def test_the_figure_draws_the_band_and_samples_at_its_stated_exaggeration(result):
+    """Left panel: the band's half-width is k x 3 sigma normal to the path and each Monte-Carlo path is the
+    nominal one plus k times its deviation (in the path's plane), k the factor the title states. Oracle: the
+    result's arrays, projected by hand."""
+    from spatialkin.plots.design import tolerance_figure
+    _, r = result
+    fig = tolerance_figure(r)
+    ax = fig.axes[0]
+    k = float(ax.get_title().rpartition("×")[2])
+    lines = ax.get_lines()
+    nominal = next(ln for ln in lines if ln.get_label() == "nominal tip path").get_xydata()
+    band = next(ln for ln in lines if ln.get_label().startswith("linear ±3σ envelope, deviations ×")).get_xydata()
+    widest = np.max(np.linalg.norm(band - nominal, axis=1))
+    assert k > 1 and widest >= 0.04 * np.max(np.ptp(nominal, axis=0)) - 1e-12
+    first_mc = lines[0].get_xydata()                 # the first Monte-Carlo path, drawn first
+    moved = np.linalg.norm(first_mc - nominal, axis=1)
+    true = np.linalg.norm(r.mc_tips[0] - r.tip, axis=1)
+    assert np.all(moved <= k * true * (1 + 1e-9) + 1e-12) and np.max(moved) >= 0.3 * k * np.max(true)

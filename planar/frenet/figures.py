@@ -53,25 +53,31 @@ def positions(link, rhos, link_from=-4.0, link_to=None, count=12, samples=721, t
 
 
 def vectors(link, rhos, kind="velocity", scale=0.5, ds=None, samples=721, title=None):
-    """Velocity or acceleration vectors (scaled by `scale`) drawn from trajectory points spaced ds apart
-    (default: 36 per turn) along the trajectories of the points rhos."""
+    """Velocity or acceleration vectors (times `scale`, in s or s²: an arrow is a length) drawn from trajectory
+    points spaced ds apart (default: 36 per turn) along the trajectories of the points rhos, each point's path
+    and arrows in one colour, named in the legend."""
     check_choice("kind", kind, KINDS)
     check_positive("scale", scale)
     turn = 2 * np.pi / link.k
     ds = turn / VECTORS_PER_TURN if ds is None else check_positive("ds", ds)
     fig, ax = new_figure()
-    for rho in np.atleast_1d(rhos):
+    for k, rho in enumerate(np.atleast_1d(rhos)):
         path = link.position(_turn(link, samples), rho)
-        ax.plot(path[:, 0], path[:, 1], lw=1.2)
+        ax.plot(path[:, 0], path[:, 1], lw=1.2, color=f"C{k}", label=f"rho = {rho:g}")
         s = np.arange(0.0, turn, ds)
         t = link.trajectory(s, rho)
-        vec = t.velocity if kind == "velocity" else t.acceleration
-        ax.quiver(t.position[:, 0], t.position[:, 1], scale * vec[:, 0], scale * vec[:, 1], angles="xy",
-                  scale_units="xy", scale=1.0, width=0.004)
+        vec = scale * (t.velocity if kind == "velocity" else t.acceleration)
+        ax.quiver(t.position[:, 0], t.position[:, 1], vec[:, 0], vec[:, 1], angles="xy", scale_units="xy",
+                  scale=1.0, width=0.004, color=f"C{k}")
+        ax.update_datalim(t.position + vec)          # (quiver leaves its arrows' tips out of the limits)
+    ax.autoscale_view()
     ax.set_aspect("equal")
     ax.set_xlabel("x (length unit)")
     ax.set_ylabel("y (length unit)")
-    ax.set_title(title or f"{kind} vectors, m = {scale:g}")
+    ax.legend(fontsize=8, loc="best")
+    unit = "s" if kind == "velocity" else "s²"
+    letter = "v" if kind == "velocity" else "a"
+    ax.set_title(title or f"{kind} vectors, drawn as m {letter} with m = {scale:g} {unit}")
     return fig
 
 
@@ -85,7 +91,7 @@ def magnitudes(link, rhos, kind="velocity", samples=721, title=None):
         t = link.trajectory(s, rho)
         ax.plot(deg, t.speed if kind == "velocity" else t.acceleration_magnitude, label=f"rho = {rho:g}")
     ax.set_xlabel("crank angle [deg]")
-    ax.set_ylabel("|v|" if kind == "velocity" else "|a|")
+    ax.set_ylabel("|v| (length unit / s)" if kind == "velocity" else "|a| (length unit / s²)")
     ax.set_xlim(0, 360)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)

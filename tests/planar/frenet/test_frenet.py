@@ -232,3 +232,27 @@ def test_figure_arguments_are_checked():
         figures.vectors(link, [1.0], "velocity", scale=-1)
     fig = figures.magnitudes(link, [4.0, -4.0], "acceleration")
     assert len(fig.axes[0].lines) == 2
+
+
+def test_vectors_colour_each_point_and_keep_the_arrow_tips_in_view():
+    """Each point's path and arrows share a colour, named in the legend; every arrow tip lies inside the axes
+    (oracle: the trajectory's velocity times the scale, added to its positions)."""
+    link = planar.DrivenLink(planar.CrankSlider(0.5, 1.0, 4.0))
+    fig = figures.vectors(link, [-4.0, 2.0], "velocity", 0.5)
+    ax = fig.axes[0]
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["rho = -4", "rho = 2"]
+    paths = [ln for ln in ax.get_lines() if ln.get_label().startswith("rho")]
+    for line, arrows in zip(paths, ax.collections):
+        assert np.allclose(arrows.get_facecolor()[0][:3], matplotlib_rgb(line.get_color()))
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    turn = 2 * np.pi / link.k
+    for rho in (-4.0, 2.0):
+        t = link.trajectory(np.arange(0.0, turn, turn / figures.VECTORS_PER_TURN), rho)
+        tips = t.position + 0.5 * t.velocity
+        assert np.all((tips[:, 0] >= x0) & (tips[:, 0] <= x1) & (tips[:, 1] >= y0) & (tips[:, 1] <= y1))
+    assert ax.get_title() == "velocity vectors, drawn as m v with m = 0.5 s"
+
+
+def matplotlib_rgb(colour):
+    from matplotlib.colors import to_rgb
+    return to_rgb(colour)

@@ -12,6 +12,8 @@ from ..plots import forces as figs
 
 #: Files written when the config gives masses.
 FILES = ("looper_forces.csv", "looper_torque.png", "looper_bearing_loads.png")
+#: A mean crank power below this fraction of the peak is that of frictionless joints (the summary says so).
+IDEAL_MEAN = 1e-6
 
 
 def bodies_of(links, unit):
@@ -95,7 +97,9 @@ def peaks(config, motion, loads):
         k = int(np.argmax(values))
         return [float(values[k]), float(deg[k])]
     torque = loads.crank_torque * si ** 2
-    return {"crank_torque_N_m": peak(np.abs(torque)), "mean_power_W": float(np.mean(torque * motion.omega)),
+    power = torque * motion.omega
+    return {"crank_torque_N_m": peak(np.abs(torque)), "mean_power_W": float(np.mean(power)),
+            "peak_power_W": peak(np.abs(power)),
             "joint_force_N": {j: peak(np.linalg.norm(loads.joint_force[j], axis=1) * si) for j in JOINTS},
             "shaking_force_N": peak(np.linalg.norm(loads.shaking_force, axis=1) * si),
             "shaking_moment_N_m": peak(np.linalg.norm(loads.shaking_moment, axis=1) * si ** 2),
@@ -106,6 +110,9 @@ def summary(record):
     """The printed lines of the forces."""
     joints = ", ".join(f"{j.replace('_', ' ')} {v[0]:.4g}" for j, v in record["joint_force_N"].items())
     return [f"forces: peak crank torque {record['crank_torque_N_m'][0]:.4g} N m (crank "
-            f"{record['crank_torque_N_m'][1]:.1f} deg), mean power {record['mean_power_W']:.3g} W",
+            f"{record['crank_torque_N_m'][1]:.1f} deg), peak power {record['peak_power_W'][0]:.3g} W, mean power "
+            f"{record['mean_power_W']:.3g} W" + (" (frictionless joints: the links' energy is the same after a turn)"
+                                                  if abs(record["mean_power_W"]) <= IDEAL_MEAN * record["peak_power_W"][0]
+                                                  else ""),
             f"peak joint loads (N): {joints}",
             f"peak shaking force {record['shaking_force_N'][0]:.4g} N, moment {record['shaking_moment_N_m'][0]:.4g} N m"]

@@ -90,8 +90,9 @@ CAD_FILES = ("looper_paths.dxf", "looper_paths.step")
 FIGURES = ("looper_cyclogram.png", "looper_transmission.png", "looper_speed.png", "looper_3d.png")
 #: What each file of the job holds (--help lists output_files() with these).
 FILE_NOTES = {
-    TABLE_FILE: "the motion, one row per crank angle: ball centre C, rocker angles u2, v2 and the looper tip with "
-                "velocities and accelerations at machine speed (units in the header, angles in degrees)",
+    TABLE_FILE: "the motion, one row per crank angle: ball centre C (ball_...), rocker angles u2, v2 and the looper "
+                "tip (tip_...) with velocities and accelerations at machine speed (units in the header, angles in "
+                "degrees)",
     RECORD_FILE: "the run's record: geometry, speed, branch, analysis, peaks, measured errors, times, versions, "
                  "the files written",
     "looper_cyclogram.png": "rocker angles and looper-tip coordinates against the crank angle",
@@ -300,10 +301,10 @@ def _ranges_text(ranges):
 
 
 def columns(unit):
-    """CSV header: every column with its unit."""
+    """CSV header: every column with its unit (ball_: the ball centre C, tip_: the looper tip T)."""
     v, a = f"{unit}_per_s", f"{unit}_per_s2"
-    return (["crank_angle_deg", "time_s"] + [f"{c}_{unit}" for c in "xyz"] + [f"v{c}_{v}" for c in "xyz"]
-            + [f"a{c}_{a}" for c in "xyz"]
+    return (["crank_angle_deg", "time_s"] + [f"ball_{c}_{unit}" for c in "xyz"] + [f"ball_v{c}_{v}" for c in "xyz"]
+            + [f"ball_a{c}_{a}" for c in "xyz"]
             + ["u2_deg", "v2_deg", "u2_dot_deg_per_s", "v2_dot_deg_per_s", "u2_ddot_deg_per_s2", "v2_ddot_deg_per_s2"]
             + [f"tip_{c}_{unit}" for c in "xyz"] + [f"tip_v{c}_{v}" for c in "xyz"] + [f"tip_a{c}_{a}" for c in "xyz"])
 

@@ -38,17 +38,17 @@ def test_table_has_units_degrees_and_machine_speed(reference_run):
     out, header, table, record = reference_run
     col = {name: k for k, name in enumerate(header)}
     assert all("_" in name for name in header)           # every column names its unit
-    assert {"crank_angle_deg", "time_s", "vx_mm_per_s", "ax_mm_per_s2", "u2_deg", "u2_dot_deg_per_s",
+    assert {"crank_angle_deg", "time_s", "ball_vx_mm_per_s", "ball_ax_mm_per_s2", "u2_deg", "u2_dot_deg_per_s",
             "tip_az_mm_per_s2"} <= set(header)
     omega = DEFAULT_SPEED_RPM * 2 * np.pi / 60
     u1 = np.radians(table[:, col["crank_angle_deg"]])
     np.testing.assert_allclose(table[:, col["time_s"]], u1 / omega, rtol=SCALING_TOL, atol=0)
     drive = LooperDrive.reference()
-    assert np.max(np.abs(table[:, [col["x_mm"], col["y_mm"], col["z_mm"]]] - looper_closed_form(drive, u1, 0)[1])) < POSITION_TOL
+    assert np.max(np.abs(table[:, [col["ball_x_mm"], col["ball_y_mm"], col["ball_z_mm"]]] - looper_closed_form(drive, u1, 0)[1])) < POSITION_TOL
     # oracle: velocities scale with omega, accelerations with omega^2 (constant crank speed)
     unit = drive.solve(u1, omega=1.0)
-    v = table[:, [col["vx_mm_per_s"], col["vy_mm_per_s"], col["vz_mm_per_s"]]]
-    a = table[:, [col["ax_mm_per_s2"], col["ay_mm_per_s2"], col["az_mm_per_s2"]]]
+    v = table[:, [col["ball_vx_mm_per_s"], col["ball_vy_mm_per_s"], col["ball_vz_mm_per_s"]]]
+    a = table[:, [col["ball_ax_mm_per_s2"], col["ball_ay_mm_per_s2"], col["ball_az_mm_per_s2"]]]
     scale = np.max(np.abs(unit.ball_velocity)) * omega
     assert np.max(np.abs(v - omega * unit.ball_velocity)) < SCALING_TOL * scale
     assert np.max(np.abs(a - omega ** 2 * unit.ball_acceleration)) < SCALING_TOL * scale * omega
@@ -272,7 +272,7 @@ def test_cad_paths_read_back(reference_run):
     splines = list(ezdxf.readfile(out / "looper_paths.dxf").modelspace().query("SPLINE"))
     assert len(splines) == 2 and all(sp.dxf.degree == 5 for sp in splines)
     tip_cols = [header.index(f"tip_{c}_mm") for c in "xyz"]
-    for sp, cols in zip(splines, ([header.index(f"{c}_mm") for c in "xyz"], tip_cols)):
+    for sp, cols in zip(splines, ([header.index(f"ball_{c}_mm") for c in "xyz"], tip_cols)):
         tool = sp.construction_tool()
         knots = list(sp.knots)
         lo, hi = knots[5], np.nextafter(knots[-6], 0.0)              # ezdxf evaluates inside [lo, hi)
@@ -307,6 +307,12 @@ def test_forces_at_machine_speed_with_si_units(reference_run, tmp_path):
     np.testing.assert_allclose(forces[:, col["power_W"]], torque * omega, rtol=1e-14)
     assert abs(np.mean(forces[:-1, col["power_W"]])) < 1e-9 * np.max(np.abs(forces[:, col["power_W"]]))
     assert rec["forces"]["crank_torque_N_m"][0] == pytest.approx(np.max(np.abs(torque)), rel=1e-12)
+    assert rec["forces"]["peak_power_W"][0] == pytest.approx(np.max(np.abs(torque * omega)), rel=1e-12)
+    from spatialkin.cli.looper_forces import summary
+    line = summary(rec["forces"])[0]
+    assert "mean power" in line and line.endswith("(frictionless joints: the links' energy is the same after a turn)")
+    lossy = dict(rec["forces"], mean_power_W=0.01 * rec["forces"]["peak_power_W"][0])
+    assert "frictionless" not in summary(lossy)[0]
     ball = np.linalg.norm(forces[:, [col["ball_Fx_N"], col["ball_Fy_N"], col["ball_Fz_N"]]], axis=1)
     np.testing.assert_allclose(forces[:, col["ball_F_N"]], ball, rtol=1e-12)
     off = tmp_path / "off.toml"

@@ -147,7 +147,7 @@ def test_looper_job_writes_what_it_promises(tmp_path):
     assert main(["looper", "--out", str(out)]) == 0
     table = np.loadtxt(out / "looper_motion.csv", delimiter=",", skiprows=1)
     header = (out / "looper_motion.csv").read_text().splitlines()[0].split(",")
-    assert header[:5] == ["crank_angle_deg", "time_s", "x_mm", "y_mm", "z_mm"]
+    assert header[:5] == ["crank_angle_deg", "time_s", "ball_x_mm", "ball_y_mm", "ball_z_mm"]
     assert table.shape[0] >= 361 and table.shape[1] == len(header)
     drive = LooperDrive.reference()
     _, c = looper_closed_form(drive, np.radians(table[:, 0]), 0)

@@ -147,6 +147,12 @@ def kinds_figure(rows, title):
         right.plot([max(r.occ_error, ERROR_FLOOR) for r in rows], y + ERROR_OFFSET, "X", ms=7, color="tab:orange",
                    label=f"GeomAPI_IntSS (tol {OCC_DEFAULT_TOL:g})", zorder=3)
     right.set_xscale("log")
+    drawn = [max(e, ERROR_FLOOR) for r in rows for e in (r.our_error, r.occ_error) if np.isfinite(e)]
+    if drawn:                                 # whole decades, labelled at the decades only (no crowded minor labels)
+        lo, hi = np.floor(np.log10(min(drawn))), np.ceil(np.log10(max(drawn)))
+        right.set_xlim(10.0 ** lo, 10.0 ** max(hi, lo + 1))
+    from matplotlib.ticker import NullFormatter
+    right.xaxis.set_minor_formatter(NullFormatter())
     right.set_xlabel("largest distance to either surface\n[length units]", fontsize=LABEL_SIZE)
     right.legend(fontsize=LEGEND_SIZE, loc="upper center")
     right.grid(True, axis="x", which="major", alpha=0.3)

@@ -16,9 +16,11 @@ def torque(angles_deg, torque_nm, omega, path, title="crank torque at machine sp
             label=f"peak {torque_nm[k]:.4g} N m at {angles_deg[k]:.1f} deg")
     ax.axhline(0.0, color="0.6", lw=0.8)
     power = torque_nm * omega
-    ax.set_xlabel("crank angle (deg)")
-    ax.set_ylabel("torque on the crank (N m)")
+    ax.set_xlabel("crank angle u1 [deg]")
+    ax.set_ylabel("torque on the crank [N m]")
     ax.set_xlim(float(np.min(angles_deg)), float(np.max(angles_deg)))
+    if np.ptp(angles_deg) >= 180.0:
+        ax.set_xticks(np.arange(45.0 * np.ceil(np.min(angles_deg) / 45.0), np.max(angles_deg) + 1e-9, 45.0))
     ax.set_title(f"{title}: mean power {np.mean(power):.3g} W, peak power {np.max(np.abs(power)):.3g} W")
     ax.legend(loc="best", fontsize=9)
     ax.grid(alpha=0.3)
@@ -32,6 +34,7 @@ def bearing_loads(loads_by_joint, path, planes, title="joint loads at machine sp
     (loads_by_joint: name -> (N, 3) in the child link's axes, N; planes: name -> (i, j) the components' indices),
     angle measured from component i towards j, radius in N, the peak of the third (axial) component named; into a
     PNG at path."""
+    from matplotlib.ticker import FuncFormatter, MaxNLocator
     plt = _pyplot()
     names = list(loads_by_joint)
     cols = min(3, len(names))
@@ -50,6 +53,9 @@ def bearing_loads(loads_by_joint, path, planes, title="joint loads at machine sp
         ax.set_title(f"{name.replace('_', ' ')}: in-plane peak {radius[peak]:.3g} N, along {axes_names[3 - i - j]} "
                      f"{axial:.3g} N\n(angle from link {axes_names[i]} towards {axes_names[j]})", fontsize=9)
         ax.tick_params(labelsize=7)
+        ax.yaxis.set_major_locator(MaxNLocator(4))          # (four rings, named in N, beside the curve)
+        ax.yaxis.set_major_formatter(FuncFormatter(lambda r, _: f"{r:.3g} N"))
+        ax.set_rlabel_position(112.5)
     fig.suptitle(title, fontsize=11)
     fig.tight_layout()
     fig.savefig(path, format="png")

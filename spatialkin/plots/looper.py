@@ -79,9 +79,12 @@ def cyclogram(motion, path, unit="mm", marks=None, step=None):
         x, y = with_gaps(deg, values, step_deg)
         ax.plot(x, y, color=color, lw=1.6)
         for k, name in ((int(np.argmin(values)), "least"), (int(np.argmax(values)), "greatest")):
-            ax.plot(deg[k], values[k], "o", color="k", ms=4)
+            ax.plot(deg[k], values[k], "o", color="k", ms=4, clip_on=False)
+            left = deg[k] > 0.75 * np.nanmax(deg)         # (set off to the side with room, on a white box)
             ax.annotate(f"{name} {values[k]:.2f} deg\nat {deg[k]:.1f} deg", (deg[k], values[k]), fontsize=8,
-                        xytext=(6, -14 if name == "greatest" else 6), textcoords="offset points")
+                        xytext=(-8 if left else 8, -24 if name == "greatest" else 8), textcoords="offset points",
+                        ha="right" if left else "left", bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="0.8",
+                                                                  alpha=0.9), clip_on=False)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
     x, y = with_gaps(deg, tip, step_deg)
@@ -155,7 +158,7 @@ def speed(motion, path, unit="mm", speed_rpm=None, step=None):
         ax.legend(loc="best", fontsize=8)
     g_axis = axes[1].secondary_yaxis("right", functions=(lambda a: a / STANDARD_GRAVITY,
                                                          lambda g: g * STANDARD_GRAVITY))
-    g_axis.set_ylabel("[g]")
+    g_axis.set_ylabel("acceleration [g]")
     _crank_axis(axes[1])
     rpm = f" at {speed_rpm:g} rpm ({motion.omega:.4g} rad/s)" if speed_rpm else f" at {motion.omega:.4g} rad/s"
     fig.suptitle("Looper drive: speed and acceleration" + rpm, fontsize=11)

@@ -391,7 +391,21 @@ def _say(line):
     if _SAY[0] is not None:
         _SAY[0](line)
     else:
-        warnings.warn(line, RuntimeWarning, stacklevel=4)
+        warnings.warn(line, RuntimeWarning, stacklevel=_caller_level())
+
+
+def _caller_level():
+    """The stacklevel, for a warnings.warn in _say, of the first frame outside spatialkin, planar and numba (the
+    user's call: the line a warning names)."""
+    import numba
+    inside = (os.path.dirname(os.path.dirname(os.path.abspath(__file__))) + os.sep,
+              os.path.dirname(os.path.abspath(numba.__file__)) + os.sep,
+              os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "planar")
+              + os.sep)
+    frame, level = sys._getframe(2), 2              # (_say's caller: stacklevel 2 of a warn in _say)
+    while frame.f_back is not None and os.path.abspath(frame.f_code.co_filename).startswith(inside):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 def refresh():

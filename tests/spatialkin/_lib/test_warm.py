@@ -163,6 +163,7 @@ COLD_START = textwrap.dedent("""
     started = warm._STARTED.get(warm.WORKLOAD)
     print(jit.mode(), started.pid if started else -1, sorted(round(c.length, 9) for c in loops))
     print(sum(str(w.message) == warm.COLD for w in caught))
+    print(*{w.filename for w in caught if str(w.message) == warm.COLD})
 """)
 
 
@@ -174,7 +175,7 @@ def test_a_cold_cache_runs_plain_python_at_once_and_warms_in_the_background(tmp_
     env.pop(warm.ENV, None)
     run = subprocess.run([sys.executable, "-c", COLD_START], capture_output=True, text=True, env=env, timeout=300)
     assert run.returncode == 0, run.stderr[-2000:]
-    first, second = run.stdout.strip().splitlines()
+    first, second, where = run.stdout.strip().splitlines()
     mode, pid, lengths = first.split(" ", 2)
     try:
         assert mode == _jit.INTERPRETED and int(pid) > 0
@@ -182,6 +183,7 @@ def test_a_cold_cache_runs_plain_python_at_once_and_warms_in_the_background(tmp_
             (2.5, 0.0, 0.3)))))
         assert lengths == str(want)
         assert second == "1"
+        assert where == "<string>"              # the warning names the user's line, not spatialkin's or numba's
     finally:
         if int(pid) > 0:
             try:

@@ -25,6 +25,20 @@ def atomic_path(path):
         raise
 
 
+def check_out_file(out_file):
+    """ValueError naming --out when out_file cannot be written: a folder of that name, or a file where one of the
+    folders above it would be (a missing folder is created when the file is written)."""
+    path = os.path.abspath(out_file)
+    if os.path.isdir(path):
+        raise ValueError(f"--out {out_file}: a folder of that name exists; give a file name")
+    above = os.path.dirname(path)
+    while not os.path.exists(above):
+        above = os.path.dirname(above)
+    if not os.path.isdir(above):
+        raise ValueError(f"--out {out_file}: {above} is a file, so no folder can be made below it")
+    return out_file
+
+
 def check_out_dir(out_dir):
     """ValueError naming --out when out_dir cannot be the job's folder: a file of that name, or a file where one
     of the folders above it would be (a missing folder is created by the run)."""

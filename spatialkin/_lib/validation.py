@@ -269,13 +269,16 @@ def refuse_not_real(name, value):
 
 
 def as_float_array(name, value):
-    """np.asarray(value, dtype=float), or TypeError naming the argument when value is not real numbers (a str,
-    None, an object, complex or bool values: numpy would drop the imaginary parts or read True as 1)."""
+    """np.asarray(value, dtype=float), copied where it is read-only (a curve's own arrays: the kernels are compiled
+    for writable arrays, and numba would compile them again for read-only ones), or TypeError naming the argument
+    when value is not real numbers (a str, None, an object, complex or bool values: numpy would drop the imaginary
+    parts or read True as 1)."""
     if isinstance(value, str) or value is None:
         raise TypeError(f"{name} must be an array of real numbers, got {type(value).__name__}")
     refuse_not_real(name, value)
     try:
-        return np.asarray(value, dtype=float)
+        arr = np.asarray(value, dtype=float)
+        return arr if arr.flags.writeable else arr.copy()
     except OverflowError:
         raise ValueError(f"{name} must be finite, got {TOO_LARGE}") from None
     except (TypeError, ValueError):

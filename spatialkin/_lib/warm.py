@@ -304,6 +304,8 @@ def compile_ahead(names=None):
     module changed since a stamp: its folders compile again). Returns {workload: seconds}."""
     import importlib
     names = workloads() if names is None else list(names)
+    for name in names:        # (a package registers its workload when imported, and on a cold cache turns the kernels
+        importlib.import_module(name.partition(".")[0])       # to plain Python: before the switch below, not after)
     stop_background()
     for name in names:
         drop_stale(name)

@@ -41,7 +41,7 @@ import tomllib
 import numpy as np
 
 from . import USER_ERRORS, OneLineParser
-from .._lib.files import atomic_path
+from .._lib.files import atomic_path, check_out_file
 from ..design.fit import FIT_SAMPLES, Targets
 from ..design.looper import LooperDesign
 from ..design.report import format_rows, target_rows
@@ -121,9 +121,11 @@ def main_design(argv=None):
     args = parser.parse_args(argv)
     out = args.out or os.path.splitext(args.targets)[0] + "_fitted.toml"
     try:
+        check_out_file(out)                       # (before the fit, not after it)
         design, targets, job = read_targets(args.targets)
         fitted = design.fit(targets)
         config = fitted.design.to_config(**job)
+        os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)
         with atomic_path(out) as tmp:
             with open(tmp, "w", encoding="utf-8") as f:
                 f.write(to_toml(config, comment=f"looper drive fitted by spatialkin design to {args.targets}\n"

@@ -57,8 +57,8 @@ def looper_scene(motion, index=0, surfaces=False, velocities=0, color_by="speed"
     Returns
     -------
     Scene
-        Items 'torus', 'sphere' (if asked), 'ball_path', 'tip_path', 'looper', 'ball_velocity' and
-        'tip_velocity' (if asked).
+        Items 'torus', 'sphere' (if asked), 'ball_path', 'tip_path', 'looper', 'names' (with labels),
+        'ball_velocity' and 'tip_velocity' (if asked).
     """
     count = int(velocities)
     if count != velocities or count < 0:

@@ -117,10 +117,17 @@ class Scene:
 
     Examples
     --------
-    >>> scene = Scene()
-    >>> scene.add_surface(torus); scene.add_surface(sphere)
-    >>> scene.add_curve(curve, color_by="s")
-    >>> scene.screenshot("curves.png"); scene.export("curves.vtm")
+    >>> import spatialkin as sk
+    >>> from spatialkin.render import Scene
+    >>> torus, sphere = sk.Torus(1.0, 0.4), sk.Sphere(1.0, sk.Frame((1.0, 0.0, 0.3)))
+    >>> scene = Scene(fit="curves", unit="mm")
+    >>> scene.add_surface(torus), scene.add_surface(sphere, opacity=0.3)
+    ('surface0', 'surface1')
+    >>> [scene.add_curve(curve, color_by="s") for curve in sk.intersect(torus, sphere)]
+    ['curve0', 'curve1']
+    >>> scene.screenshot("curves.png").shape        # writes the PNG; the picture (height, width, RGB)
+    (768, 1024, 3)
+    >>> scene.export("curves.vtm")                  # a multiblock for ParaView
     """
 
     def __init__(self, window_size=None, theme=None, camera_position="iso", zoom=1.0, off_screen=True, title=None,

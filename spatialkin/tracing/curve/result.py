@@ -201,11 +201,20 @@ FIELD_DOCS = {
 """,
 }
 
+def read_only(curve, name):
+    """The record's array `name` of a Curve, made read-only (in place, once): the curve's stored points, arc lengths
+    and parameters are what its dense output and measures read, so a user's write into them would change those."""
+    value = getattr(curve._result, name)
+    if value.flags.writeable:
+        value.flags.writeable = False
+    return value
+
+
 class Curve:
     """One connected component of the intersection of two surfaces, parametrised by arc length.
 
     ``sk.trace`` and ``sk.intersect`` return curves; each is built once from a CurveResult (``Curve(result)``)
-    and its attributes are read-only. Evaluations go through the dense output ``result.sol``: ``curve(s)`` gives
+    and its attributes are read-only (its arrays too). Evaluations go through the dense output ``result.sol``: ``curve(s)`` gives
     points corrected onto both surfaces at any arc length; ``max_distance`` is measured on first access. Lengths
     are in the user's unit, parameters of angle kind in radians, arrays with the point index first.
 
@@ -286,16 +295,16 @@ class Curve:
     """
 
     # --- the record's fields, read-only -----------------------------------------------------------------------
-    points = property(operator.attrgetter("_result.points"), doc=FIELD_DOCS["points"])
-    s = property(operator.attrgetter("_result.s"), doc=FIELD_DOCS["s"])
-    params = property(operator.attrgetter("_result.params"), doc=FIELD_DOCS["params"])
+    points = property(functools.partial(read_only, name="points"), doc=FIELD_DOCS["points"])
+    s = property(functools.partial(read_only, name="s"), doc=FIELD_DOCS["s"])
+    params = property(functools.partial(read_only, name="params"), doc=FIELD_DOCS["params"])
     closed = property(operator.attrgetter("_result.closed"), doc=FIELD_DOCS["closed"])
     length = property(operator.attrgetter("_result.length"), doc=FIELD_DOCS["length"])
     status = property(operator.attrgetter("_result.status"), doc=FIELD_DOCS["status"])
     message = property(operator.attrgetter("_result.message"), doc=FIELD_DOCS["message"])
     tolerance = property(operator.attrgetter("_result.tolerance"), doc=FIELD_DOCS["tolerance"])
-    nodes = property(operator.attrgetter("_result.nodes"), doc=FIELD_DOCS["nodes"])
-    solver_gap = property(operator.attrgetter("_result.solver_gap"), doc=FIELD_DOCS["solver_gap"])
+    nodes = property(functools.partial(read_only, name="nodes"), doc=FIELD_DOCS["nodes"])
+    solver_gap = property(functools.partial(read_only, name="solver_gap"), doc=FIELD_DOCS["solver_gap"])
     nfev = property(operator.attrgetter("_result.nfev"), doc=FIELD_DOCS["nfev"])
     wall_time = property(operator.attrgetter("_result.wall_time"), doc=FIELD_DOCS["wall_time"])
     topology = property(operator.attrgetter("_topology"), doc=FIELD_DOCS["topology"])

@@ -285,10 +285,11 @@ COVERAGE_STRIDE = 4
 @pytest.mark.skipif(_jit.JIT_DISABLED, reason="no cache with jit off")
 def test_after_spatialkin_warmup_the_stress_cases_compile_nothing(tmp_path):
     """On an empty cache, `spatialkin warmup` in one process (it reports, and leaves the cache stamped warm for its
-    workload and planar's, an installed package's); then, in a fresh one, a user's calls on pairs the workload never saw (every COVERAGE_STRIDE-th stress
-    case: with and without certify=True, then a dense evaluation and closest points of each curve) compile no
-    spatialkin kernel: each loads from the cache the warm-up left. Oracle: numba's compile events (numba fires none
-    for a kernel loaded from its cache)."""
+    workload and planar's, an installed package's); then, in a fresh one, a user's calls on pairs the workload never
+    saw (every COVERAGE_STRIDE-th stress case: with and without certify=True, then a dense evaluation and closest
+    points of each curve) and planar's six-link over a turn compile no kernel of spatialkin or planar: each loads
+    from the cache the warm-up left. Oracle: numba's compile events (numba fires none for a kernel loaded from its
+    cache)."""
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
     env.pop(warm.ENV, None)
     warmed = subprocess.run([sys.executable, "-m", "spatialkin.cli", "warmup"], capture_output=True, text=True,
@@ -306,7 +307,7 @@ def test_after_spatialkin_warmup_the_stress_cases_compile_nothing(tmp_path):
         class Listener(event.Listener):
             def on_start(self, e):
                 kernel = getattr(e.data.get("dispatcher"), "py_func", None)
-                if (getattr(kernel, "__module__", "") or "").startswith("spatialkin"):
+                if (getattr(kernel, "__module__", "") or "").startswith(("spatialkin", "planar")):
                     compiled.add(kernel.__module__ + "." + kernel.__name__)
             def on_end(self, e):
                 pass
@@ -321,6 +322,8 @@ def test_after_spatialkin_warmup_the_stress_cases_compile_nothing(tmp_path):
                     if curve.length > 0:
                         curve(np.linspace(0.0, curve.length, 3))
                         curve.closest(curve.points[:2])
+        import planar
+        planar.examples.fnf_sixbar().solve(np.linspace(0.0, 2 * np.pi, 361))
         print(sorted(compiled))
         """)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=900)

@@ -105,3 +105,21 @@ def test_the_help_example_meets_every_target_as_copied(tmp_path, capsys):
     assert len(verdicts) == 6 and all(line.endswith(": met") for line in verdicts), report
     drive = build(load_config(str(tmp_path / "targets_fitted.toml")))
     assert drive.analyse().turns_fully
+
+
+def test_out_in_a_missing_folder_is_made_and_a_bad_out_is_refused_before_the_fit(tmp_path, capsys, monkeypatch):
+    """--out in a folder that does not exist yet: the folder is made and the config written there; --out naming a
+    folder, or below a file, is one line and exit 2 before any fit runs (a fit that would run says so)."""
+    path = tmp_path / "targets.toml"
+    path.write_text('[design]\nfree = ["crank_radius"]\n[rocker]\nswing_deg = 37.0\n')
+    out = tmp_path / "new" / "deeper" / "fit.toml"
+    assert main(["design", "--targets", str(path), "--out", str(out)]) in (0, 1)
+    assert load_config(str(out))["crank_radius"] > 0
+    capsys.readouterr()
+    from spatialkin.design import looper as design_looper
+    monkeypatch.setattr(design_looper.LooperDesign, "fit", lambda *a, **k: pytest.fail("the fit ran"))
+    (tmp_path / "plain").write_text("x")
+    for bad, words in ((tmp_path, "a folder of that name exists"), (tmp_path / "plain" / "fit.toml", "is a file")):
+        assert main(["design", "--targets", str(path), "--out", str(bad)]) == 2
+        err = capsys.readouterr().err
+        assert words in err and len(err.strip().splitlines()) == 1, err

@@ -50,8 +50,10 @@ def intersection_ball(a, b):
         return None
     d = math.dist(oa, ob)
     reach = d + 0.5 * math.pi * (ca + cb + d) / gap
-    floor = 2.0 ** -20 * max(1.0, *(abs(float(x)) for x in (*oa, *ob)))    # (apexes at one point: it alone)
-    return oa, max(MARGIN * reach, floor)
+    if reach > 0.0:
+        return oa, MARGIN * reach
+    # planes and cones through one point share it alone: no length but the coordinates' (any ball holds it)
+    return oa, 2.0 ** -20 * max(abs(float(x)) for x in oa) or 1.0
 
 
 def unbounded_message(a, b):

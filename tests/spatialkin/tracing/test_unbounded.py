@@ -122,7 +122,7 @@ def test_random_unbounded_pairs_match_the_same_pair_trimmed_far_out(seed):
     assert on_both(curves, a, b) <= max(c.tolerance for c in curves)
 
 
-@pytest.mark.parametrize("scale, shift", [(1e-3, 0.0), (1e3, 0.0), (1.0, 1e6)])
+@pytest.mark.parametrize("scale, shift", [(1e-20, 0.0), (1e-3, 0.0), (1e3, 0.0), (1e20, 0.0), (1.0, 1e6)])
 def test_the_answer_does_not_depend_on_scale_or_place(scale, shift):
     """A cylinder and a cone, untrimmed: the same lengths scaled and moved (relative 1e-9)."""
     def pair(k, t):
@@ -131,6 +131,17 @@ def test_the_answer_does_not_depend_on_scale_or_place(scale, shift):
     base = sorted(c.length for c in sk.intersect(*pair(1.0, 0.0), tol=TOL))
     moved = sorted(c.length / scale for c in sk.intersect(*pair(scale, shift), tol=TOL))
     assert len(base) == 2 and moved == pytest.approx(base, rel=1e-9)
+
+
+def test_planes_and_cones_through_one_point_share_it_alone():
+    """A cone and a plane through its apex tilted beyond its half angle, and two cones on one apex whose rulings
+    point apart: the apex, a contact point (no length in the scene: at the origin and 1e6 from it)."""
+    for o in (np.zeros(3), np.array([1e6, -2e6, 5e5])):
+        plane = sk.Plane(sk.Frame(o, R((1, 0, 0), 0.2)))
+        for a, b in ((plane, sk.Cone(0.3, sk.Frame(o))),
+                     (sk.Cone(0.3, sk.Frame(o)), sk.Cone(0.3, sk.Frame(o, R((1, 0, 0), 1.4))))):
+            point, = sk.intersect(a, b, tol=TOL)
+            assert point.status == "contact" and np.allclose(point.points[0], o, rtol=0, atol=1e-9 * (1 + abs(o).max()))
 
 
 def test_certify_proves_the_answer_of_an_unbounded_pair():

@@ -31,11 +31,7 @@ def check_out_file(out_file):
     path = os.path.abspath(out_file)
     if os.path.isdir(path):
         raise ValueError(f"--out {out_file}: a folder of that name exists; give a file name")
-    above = os.path.dirname(path)
-    while not os.path.exists(above):
-        above = os.path.dirname(above)
-    if not os.path.isdir(above):
-        raise ValueError(f"--out {out_file}: {above} is a file, so no folder can be made below it")
+    _check_above(out_file, path)
     return out_file
 
 
@@ -45,9 +41,14 @@ def check_out_dir(out_dir):
     path = os.path.abspath(out_dir)
     if os.path.exists(path) and not os.path.isdir(path):
         raise ValueError(f"--out {out_dir}: a file of that name exists; give a folder (created if missing)")
+    _check_above(out_dir, path)
+    return out_dir
+
+
+def _check_above(given, path):
+    """ValueError naming --out (as given) when the nearest existing folder above path is a file."""
     above = os.path.dirname(path)
     while not os.path.exists(above):
         above = os.path.dirname(above)
     if not os.path.isdir(above):
-        raise ValueError(f"--out {out_dir}: {above} is a file, so no folder can be made below it")
-    return out_dir
+        raise ValueError(f"--out {given}: {above} is a file, so no folder can be made below it")

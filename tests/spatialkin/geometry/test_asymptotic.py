@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 from tests.oracles.closed_forms import random_rotation
+from tests.oracles.unbounded import unbounded_pair
 
 import spatialkin as sk
 from spatialkin.geometry.asymptotic import MARGIN, MIN_GAP, cut_to_ball, direction_gap, intersection_ball
@@ -51,13 +52,8 @@ def test_direction_gap_in_closed_form():
 
 
 def unbounded_pairs(seed):
-    """A random unbounded pair (plane, cylinder, cone; origins within 2 of each other), sizes about 1."""
-    rng = np.random.default_rng(seed)
-    makers = [lambda f: sk.Plane(f), lambda f: sk.Cylinder(rng.uniform(0.2, 1.5), f),
-              lambda f: sk.Cone(rng.uniform(0.1, 1.3), f)]
-    a = makers[seed % 3](sk.Frame(rng.uniform(-1, 1, 3), random_rotation(rng)))
-    b = makers[(seed // 3) % 3](sk.Frame(rng.uniform(-1, 1, 3), random_rotation(rng)))
-    return a, b
+    """A random unbounded pair, origins within 2 of each other, sizes about 1."""
+    return unbounded_pair(seed, 1.0, (0.2, 1.5), (0.1, 1.3))
 
 
 def far_points(surface, centre, rho, n=400):

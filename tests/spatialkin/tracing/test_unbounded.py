@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 from scipy.special import ellipe
-from tests.oracles.closed_forms import random_rotation
+from tests.oracles.measure import on_both
+from tests.oracles.unbounded import unbounded_pair
 
 import spatialkin as sk
 
@@ -37,15 +38,6 @@ def cone_section_length(half_angle, height, tilt):
         return float(np.linalg.norm(dt * d + t * dd))
 
     return quad(speed, 0.0, 2 * math.pi, epsabs=1e-13, epsrel=1e-13, limit=200)[0]
-
-
-def on_both(curves, a, b):
-    """Largest distance of the stored points and 200 dense samples of each curve to either surface."""
-    worst = 0.0
-    for c in curves:
-        pts = c.points if c.length == 0 else np.vstack([c.points, c(np.linspace(0, c.length, 200))])
-        worst = max(worst, float(np.max(a.distance(pts))), float(np.max(b.distance(pts))))
-    return worst
 
 
 @pytest.mark.parametrize("tilt", [0.0, 0.5, 1.2])
@@ -82,13 +74,8 @@ def test_two_perpendicular_cylinders_of_one_radius_meet_in_two_ellipses():
 
 
 def random_pair(seed):
-    """Two unbounded surfaces of random kinds crossing near the origin, or None where they may meet far out."""
-    rng = np.random.default_rng(seed)
-    makers = [lambda f: sk.Plane(f), lambda f: sk.Cylinder(rng.uniform(0.3, 1.2), f),
-              lambda f: sk.Cone(rng.uniform(0.15, 1.2), f)]
-    a = makers[seed % 3](sk.Frame(rng.uniform(-0.5, 0.5, 3), random_rotation(rng)))
-    b = makers[(seed // 3) % 3](sk.Frame(rng.uniform(-0.5, 0.5, 3), random_rotation(rng)))
-    return a, b
+    """Two unbounded surfaces of random kinds crossing near the origin."""
+    return unbounded_pair(seed, 0.5, (0.3, 1.2), (0.15, 1.2))
 
 
 def trimmed(surface, half):

@@ -6,6 +6,7 @@ import warnings
 import numpy as np
 import pytest
 from tests.oracles.closed_forms import random_rotation
+from tests.oracles.measure import on_both
 
 import spatialkin as sk
 from spatialkin.tracing.search import topology as tp
@@ -15,15 +16,6 @@ TOL = 1e-10
 
 def lengths(curves):
     return sorted(round(c.length, 6) for c in curves)
-
-
-def on_both(curves, a, b):
-    """Largest distance of stored points and 200 dense evaluations per curve to either surface."""
-    worst = 0.0
-    for c in curves:
-        pts = c.points if c.length == 0 else np.vstack([c.points, c(np.linspace(0, c.length, 200))])
-        worst = max(worst, float(np.max(a.distance(pts))), float(np.max(b.distance(pts))))
-    return worst
 
 
 def test_shaft_through_a_ball():

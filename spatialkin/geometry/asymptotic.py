@@ -44,7 +44,7 @@ def intersection_ball(a, b):
     """(centre (3,), radius) of a ball holding every common point of two unbounded surfaces (their trims ignored),
     MARGIN times the bound of the module's docstring; None where their directions to infinity come within MIN_GAP
     of each other (unbounded_message says so)."""
-    (wa, angle_a, ca, oa), (wb, angle_b, cb, ob) = a.traits.asymptote(a), b.traits.asymptote(b)
+    (wa, angle_a, ca, oa), (wb, angle_b, cb, ob) = asymptote(a), asymptote(b)
     gap = direction_gap([float(x) for x in wa], angle_a, [float(x) for x in wb], angle_b)
     if not gap >= MIN_GAP:
         return None
@@ -58,7 +58,7 @@ def intersection_ball(a, b):
 
 def unbounded_message(a, b):
     """Why intersect refuses a pair of unbounded surfaces that intersection_ball cannot bound."""
-    (wa, angle_a, _, _), (wb, angle_b, _, _) = a.traits.asymptote(a), b.traits.asymptote(b)
+    (wa, angle_a, _, _), (wb, angle_b, _, _) = asymptote(a), asymptote(b)
     gap = direction_gap([float(x) for x in wa], angle_a, [float(x) for x in wb], angle_b)
     near = ("share a direction to infinity" if gap == 0.0 else
             f"run to infinity in directions only {gap:.3g} rad apart (at least {MIN_GAP} rad needed)")
@@ -84,10 +84,15 @@ def cut_to_ball(surface, centre, radius):
     return surface.with_bounds(bounds)
 
 
+def asymptote(surface):
+    """The surface's SurfaceTraits.asymptote, read once (kept in its memo)."""
+    return surface.memo("asymptote", surface.traits.asymptote)
+
+
 def bounded_pair(a, b):
     """(a, b) as they are when either is bounded, or where no ball holds their whole intersection (the search then
     refuses them: unbounded_message); else both cut to the ball of intersection_ball."""
-    if a.traits.asymptote(a) is None or b.traits.asymptote(b) is None:
+    if asymptote(a) is None or asymptote(b) is None:
         return a, b
     ball = intersection_ball(a, b)
     if ball is None:

@@ -21,7 +21,7 @@ from .._lib import stages, warm
 from .curve.status import BOUNDARY, CONTACT, FAILED, TANGENT
 from .search.rescue import LOST_RADIUS, crossing_starts
 from .search.topology import TopologyError, distances_at, points_at, topology
-from ..geometry.asymptotic import bounded_pair
+from ..geometry.asymptotic import asymptote, bounded_pair
 from ..geometry.traits import check_surface
 from .march.trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
@@ -171,22 +171,25 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     if not (certify is False or certify is True or isinstance(certify, str) and certify == "strict"):
         raise ValueError(f"certify must be False, True or 'strict', got {certify!r}")
     warm.refresh()
-    given = (a, b)
-    a, b = bounded_pair(a, b)             # (two unbounded surfaces: cut to a ball holding all they share)
-    given = None if a is given[0] else given
+    given = None
+    if not (a.traits.compact or b.traits.compact) and asymptote(a) is not None and asymptote(b) is not None:
+        cut = bounded_pair(a, b)          # (two unbounded surfaces: cut to a ball holding all they share)
+        if cut[0] is not a:
+            given, (a, b) = (a, b), cut
     scene = None
     found = None
     if CLOSED_FORMS:                      # (its settings are checked as make_settings checks them)
         closed = closed_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback)
         found = closed_form(a, b, closed)
         if found is not None and not certify:
-            return [Curve(c) for c in on_given(in_sk_order(clip_curves(a, b, found, closed.scale)), given)]
+            curves = in_sk_order(clip_curves(a, b, found, closed.scale))
+            return [Curve(c) for c in (curves if given is None else on_given(curves, given))]
         scene = closed.checked
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor, scene)
     if not certify:
         curves, topo, _ = searched(a, b, settings)
-        return [Curve(c, topology=topo) for c in on_given(curves, given)]
+        return [Curve(c, topology=topo) for c in (curves if given is None else on_given(curves, given))]
     # the general path's answer, or the closed forms' (the plain call's): proven in closed form where the algebra
     # settles it, else against the topology search
     wholes = None

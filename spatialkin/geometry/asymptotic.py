@@ -71,7 +71,7 @@ def cut_to_ball(surface, centre, radius):
     """A copy of the surface trimmed, along each parameter that is a length (a plane's u and v, a cylinder's or
     cone's axial v), to the ball's extent; a trim of the user's that lies beyond the ball keeps a piece of the same
     width at its edge (no common point lies there either)."""
-    local = surface.frame.to_local(centre)
+    local = surface.frame.local_of(centre)
     bounds = []
     for (lo, hi), axis in zip(surface.bounds, surface.traits.parameter_axes):
         if axis is not None:

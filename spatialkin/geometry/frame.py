@@ -202,13 +202,21 @@ class Frame:
         """Global coordinates (..., 3) of local points (..., 3): origin + rotation @ p for each point p. ValueError
         naming `local_points` where they are not finite or not of shape (..., 3); TypeError where they are not real
         numbers."""
-        return self.origin + check_point_array("local_points", local_points) @ self.rotation.T
+        return self.global_of(check_point_array("local_points", local_points))
 
     def to_local(self, points):
         """Local coordinates (..., 3) of global points (..., 3): rotation.T @ (p - origin) for each point p.
         ValueError naming `points` where they are not finite or not of shape (..., 3); TypeError where they are not
         real numbers."""
-        return (check_point_array("points", points) - self.origin) @ self.rotation
+        return self.local_of(check_point_array("points", points))
+
+    def global_of(self, local_points):
+        """to_global of points (..., 3) the library has made itself (float arrays, finite): not checked again."""
+        return self.origin + local_points @ self.rotation.T
+
+    def local_of(self, points):
+        """to_local of points (..., 3) the library has made itself (float arrays, finite): not checked again."""
+        return (points - self.origin) @ self.rotation
 
     def __repr__(self):
         return f"Frame(origin={self.origin.tolist()}, rotation={self.rotation.tolist()})"

@@ -135,7 +135,7 @@ def level_groups(names, kind, lo_hi, axis=2):
 
 def region_values(surface, points):
     """(N, G): each group's value (its largest limit) at global points (N, 3); inside where all are >= 0."""
-    local = surface.frame.to_local(np.asarray(points, dtype=float).reshape(-1, 3))
+    local = surface.frame.local_of(np.asarray(points, dtype=float).reshape(-1, 3))
     region = surface.region
     if not region:
         return np.zeros((len(local), 0))

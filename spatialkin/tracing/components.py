@@ -389,10 +389,10 @@ def other_sheet(curve, points):
     for surface in getattr(curve.sol, "surfaces", ()):
         if surface.traits.name != "cone":
             continue
-        heights = surface.frame.to_local(curve.points)[..., 2]
+        heights = surface.frame.local_of(curve.points)[..., 2]
         side = 1.0 if np.all(heights > guard) else -1.0 if np.all(heights < -guard) else 0.0
         if side:
-            out |= side * surface.frame.to_local(points)[..., 2] < -guard
+            out |= side * surface.frame.local_of(points)[..., 2] < -guard
     return out
 
 

@@ -121,7 +121,7 @@ class ConeTraits(SurfaceTraits):
             return None
         half = 0.5 * (v1 - v0)
         t = math.tan(surface.half_angle)
-        return surface.frame.to_global([0.0, 0.0, 0.5 * (v0 + v1)]), math.hypot(t * max(abs(v0), abs(v1)), half)
+        return surface.frame.global_of([0.0, 0.0, 0.5 * (v0 + v1)]), math.hypot(t * max(abs(v0), abs(v1)), half)
 
     def asymptote(self, surface):
         if self.bounding_ball(surface) is not None:

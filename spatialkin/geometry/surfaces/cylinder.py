@@ -100,7 +100,7 @@ class CylinderTraits(SurfaceTraits):
         if not (math.isfinite(v0) and math.isfinite(v1)):
             return None
         half = 0.5 * (v1 - v0)
-        return surface.frame.to_global([0.0, 0.0, 0.5 * (v0 + v1)]), math.hypot(surface.radius, half)
+        return surface.frame.global_of([0.0, 0.0, 0.5 * (v0 + v1)]), math.hypot(surface.radius, half)
 
     def asymptote(self, surface):
         if self.bounding_ball(surface) is not None:
@@ -134,7 +134,7 @@ def axial_trims_overlap(a, b):
     """For one cylinder or cone given twice: the axial trims overlap (b's rim mapped to a's axial coordinate)."""
     flip = float(a.frame.rotation[:, 2] @ b.frame.rotation[:, 2]) < 0
     lo_b, hi_b = b.v_range
-    shift = float(a.frame.to_local(b.frame.origin)[2])
+    shift = float(a.frame.local_of(b.frame.origin)[2])
     lo_b, hi_b = (shift - hi_b, shift - lo_b) if flip else (shift + lo_b, shift + hi_b)
     return max(lo_b, a.v_range[0]) < min(hi_b, a.v_range[1])
 

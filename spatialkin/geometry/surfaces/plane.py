@@ -136,7 +136,7 @@ class PlaneTraits(SurfaceTraits):
         (u0, u1), (v0, v1) = surface.u_range, surface.v_range
         if not all(math.isfinite(x) for x in (u0, u1, v0, v1)):
             return None
-        return surface.frame.to_global([0.5 * (u0 + u1), 0.5 * (v0 + v1), 0.0]), 0.5 * math.hypot(u1 - u0, v1 - v0)
+        return surface.frame.global_of([0.5 * (u0 + u1), 0.5 * (v0 + v1), 0.0]), 0.5 * math.hypot(u1 - u0, v1 - v0)
 
     def asymptote(self, surface):
         if self.bounding_ball(surface) is not None:
@@ -172,9 +172,9 @@ class PlaneTraits(SurfaceTraits):
             return False
         (u0, v0), (u1, v1) = box
         uu, vv = np.meshgrid(np.linspace(u0, u1, OVERLAP_SAMPLES)[1:-1], np.linspace(v0, v1, OVERLAP_SAMPLES)[1:-1])
-        points = a.frame.to_global(np.stack([uu.ravel(), vv.ravel(), np.zeros(uu.size)], axis=1))
+        points = a.frame.global_of(np.stack([uu.ravel(), vv.ravel(), np.zeros(uu.size)], axis=1))
         inside = np.all(region_values(a, points) > 0.0, axis=1) & np.all(region_values(b, points) > 0.0, axis=1)
-        local = b.frame.to_local(points)
+        local = b.frame.local_of(points)
         (bu0, bu1), (bv0, bv1) = b.u_range, b.v_range
         inside &= (local[:, 0] > bu0) & (local[:, 0] < bu1) & (local[:, 1] > bv0) & (local[:, 1] < bv1)
         inside &= (uu.ravel() > a.u_range[0]) & (uu.ravel() < a.u_range[1])
@@ -198,7 +198,7 @@ def rectangles_overlap(a, b):
     """
     rot = a.frame.rotation.T @ b.frame.rotation                 # b's local axes in a's coordinates
     axes = (rot[:2, 0], rot[:2, 1])
-    offset = a.frame.to_local(b.frame.origin)[:2]
+    offset = a.frame.local_of(b.frame.origin)[:2]
     ranges_a, ranges_b = (a.u_range, a.v_range), (b.u_range, b.v_range)
     lines = []                                                  # (normal, level): normal . x = level, in a's (u, v)
     for j in range(2):

@@ -195,7 +195,7 @@ def crossings(curve, surface, limit, k, slack, scale):
     frame = surface.frame
 
     def value(s):
-        return limit(frame.to_local(sol(np.atleast_1d(s)).reshape(-1, 3)))
+        return limit(frame.local_of(sol(np.atleast_1d(s)).reshape(-1, 3)))
 
     s = np.unique(np.concatenate([curve.s, [0.0, length]]))
     f = value(s)
@@ -230,7 +230,7 @@ def crossings(curve, surface, limit, k, slack, scale):
                                                                   rtol=1e-15)
         if not curve.closed and (root <= curve.tolerance or root >= length - curve.tolerance):
             continue                                       # the curve ends on this edge already
-        if not limit.on_edge_side(frame.to_local(sol(np.array([root])).reshape(1, 3)))[0]:
+        if not limit.on_edge_side(frame.local_of(sol(np.array([root])).reshape(1, 3)))[0]:
             continue                 # the line of a half-plane through the axis, beyond it: not this edge
         cuts.append((float(root), limit, k))
     return cuts, touches

@@ -75,7 +75,7 @@ def tangent_meridians(p, reader, v_range):
 def meridian_circle(p, u0):
     """(centre (3,), axis (3,), radius) of the meridian u = u0 of the torus p."""
     c, s = math.cos(u0), math.sin(u0)
-    centre = p.frame.to_global([p.major_radius * c, p.major_radius * s, 0.0])
+    centre = p.frame.global_of([p.major_radius * c, p.major_radius * s, 0.0])
     axis = p.frame.rotation @ np.array([-s, c, 0.0])
     return centre, axis, p.minor_radius
 
@@ -84,7 +84,7 @@ def meridian_segment(p, q, u0, v_range):
     """(p0, p1) of the generator u = u0 of the cone or cylinder p over v_range, clipped by the trims of q that
     are lengths along its local axes (exact: they are affine along the line); None where nothing is left."""
     ends = p.point(np.full(2, u0), np.asarray(v_range, dtype=float))
-    local = q.frame.to_local(ends)
+    local = q.frame.local_of(ends)
     lo, hi = 0.0, 1.0
     for axis, (a, b) in zip(q.traits.parameter_axes, q.bounds):
         if axis is None:

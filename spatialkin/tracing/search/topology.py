@@ -227,7 +227,7 @@ def domain(p, q_ball):
     kind = p.traits
     ranges = [list(r) for r in kind.natural_domain(p)]
     if q_ball is not None:
-        centre = p.frame.to_local(q_ball[0])
+        centre = p.frame.local_of(q_ball[0])
         reach = BALL_MARGIN * q_ball[1]
         for j, axis in enumerate(kind.parameter_axes):
             if axis is not None:
@@ -241,7 +241,7 @@ def limited_range(surface, j, ball):
     lo, hi = kind.natural_domain(surface)[j]
     axis = kind.parameter_axes[j]
     if axis is not None and (not math.isfinite(lo) or not math.isfinite(hi)) and ball is not None:
-        centre = surface.frame.to_local(ball[0])[axis]
+        centre = surface.frame.local_of(ball[0])[axis]
         lo, hi = max(lo, centre - BALL_MARGIN * ball[1]), min(hi, centre + BALL_MARGIN * ball[1])
     return lo, hi
 
@@ -598,7 +598,7 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
             found.append((double_root(pq, 0, -math.pi, v, v_unit), False))
     for v, simple in found:
         pt = p.point(0.0, v)
-        radius = math.hypot(*p.frame.to_local(pt)[:2])
+        radius = math.hypot(*p.frame.local_of(pt)[:2])
         if radius <= 1e-9 * scale or any(abs(v - w) < 1e-12 * v_unit for w in apexes):
             # (a point on the axis is met once per side of a periodic meridian: a horn torus's centre at v = +-pi)
             if keep(pt) and not any(np.linalg.norm(pt - c) <= 1e-9 * scale for c in topo.contacts):
@@ -606,7 +606,7 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
             continue
         if not simple:
             if not q_rim:
-                centre = p.frame.to_global([0.0, 0.0, p.frame.to_local(pt)[2]])
+                centre = p.frame.global_of([0.0, 0.0, p.frame.local_of(pt)[2]])
                 if keep(pt) and not any(np.linalg.norm(centre - c) <= 1e-9 * scale and abs(radius - r) <= 1e-9 * scale
                                         for c, _, r in topo.tangent_circles):
                     topo.tangent_circles.append((centre, p.frame.rotation[:, 2].copy(), radius))
@@ -614,7 +614,7 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
         if not q_rim:
             # a parallel crossed transversally, in closed form (traced, its parameters would move linearly in
             # s, and the solver's error estimate, zero, would let one step lap a small circle)
-            centre = p.frame.to_global([0.0, 0.0, p.frame.to_local(pt)[2]])
+            centre = p.frame.global_of([0.0, 0.0, p.frame.local_of(pt)[2]])
             if keep(pt) and not any(np.linalg.norm(centre - c) <= 1e-9 * scale and abs(radius - r) <= 1e-9 * scale
                                     for c, _, r in topo.circles):       # (once: a seam's two ends are one circle)
                 topo.circles.append((centre, p.frame.rotation[:, 2].copy(), radius))
@@ -683,7 +683,7 @@ def clip_line(p, u, v_lo, v_hi, q, scale):
     of the coordinates' magnitude) lies on it, inside the closed trim."""
     ends = p.point(np.array([u, u]), np.array([v_lo, v_hi]))
     lo, hi = 0.0, 1.0
-    local = q.frame.to_local(ends)
+    local = q.frame.local_of(ends)
     slack = ROUNDOFF_ULPS * EPS * max(scale, float(np.max(np.abs(ends))), float(np.max(np.abs(q.frame.origin))))
     limits = [(axis, *trim) for axis, trim in zip(q.traits.parameter_axes, q.bounds)
               if axis is not None]

@@ -28,12 +28,16 @@ INITIAL_SPANS = 8
 #: Rounds of refinement (each halves every span still above the tolerance).
 MAX_ROUNDS = 40
 #: Halving the spans cuts a quintic's error about 64-fold once they are short beside the curve's radius of
-#: curvature; two rounds in a row that do not halve the largest deviation, while it is below STALL_FLOOR times
-#: the curve's extent, have met the round-off of the curve's points: the tolerance cannot be reached. (Above it
-#: the spans are still long beside a sharp bend, where halving may not yet halve the error: a near-tangent loop's
-#: deviation goes 0.197, 0.291, 0.189, 0.069 in its first rounds.)
+#: curvature. Two rounds in a row that do not halve the largest deviation, while it is below STALL_FLOOR times
+#: the curve's extent or below STALL_CHORD times the chord of the span where it sits, have met the error of the
+#: curve's exact points (their round-off, or the conditioning of a near-tangent intersection): the tolerance
+#: cannot be reached. Above both, a span is still long beside a sharp bend, where halving may not yet halve the
+#: error: a near-tangent loop's deviation goes 0.197, 0.291, 0.189, 0.069 in its first rounds. A quintic
+#: Hermite span of chord h bends away from a circle of radius R by about h (h / R)^5 / 46080, so a deviation
+#: below 1e-3 h that does not fall 64-fold when h halves is not truncation.
 STALL = 0.5
 STALL_FLOOR = 1e-6
+STALL_CHORD = 1e-3
 #: Most knots of one spline.
 MAX_KNOTS = 100_000
 
@@ -145,7 +149,9 @@ def fit(evaluate, x0, x1, tol, periodic=False, initial=None):
             spline.checked = checked
             return spline
         worst = float(dev.max())
-        stalled = stalled + 1 if worst > STALL * previous and worst <= STALL_FLOOR * np.ptp(p, axis=0).max() else 0
+        chord = float(np.linalg.norm(p[np.argmax(dev) + 1] - p[np.argmax(dev)]))
+        noise = worst <= STALL_FLOOR * np.ptp(p, axis=0).max() or worst <= STALL_CHORD * chord
+        stalled = stalled + 1 if worst > STALL * previous and noise else 0
         previous = worst
         mids = 0.5 * (knots[:-1] + knots[1:])[bad]
         if stalled >= 2 or len(knots) + len(mids) > MAX_KNOTS or np.min(np.diff(knots)[bad]) <= 1e-12 * (abs(x1) + abs(x0) + 1):

@@ -45,13 +45,64 @@ def sharp_bend(x, eps=1e-3):
             np.stack([np.zeros_like(x), eps * eps / r ** 3], 1))
 
 
-def test_fit_goes_on_through_a_sharp_bend_until_the_tolerance():
-    """Spans long beside a bend of radius 1e-3 do not halve their error at once (the fit stopped there at 3.3e-3,
-    taking it for round-off, as it did on a near-tangent intersection loop); the spline reaches 1e-6, measured
-    and against 200 001 exact points (closed form)."""
-    sp = fit(sharp_bend, -1.0, 0.93, 1e-6)
-    x = np.linspace(-1.0, 0.93, 200_001)
-    assert sp.deviation <= 1e-6 and np.max(np.linalg.norm(sp(x) - sharp_bend(x)[0], axis=1)) <= 1e-6
+def distance_to_sharp_bend(q, x, eps):
+    """Distances of points q (M, 2) to the hyperbola sharp_bend(., eps): Newton's method on the foot point's
+    parameter, from x (M,)."""
+    for _ in range(40):
+        p, d1, d2 = sharp_bend(x, eps)
+        r = p - q
+        x = x - np.einsum("ij,ij->i", r, d1) / (np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", r, d2))
+    return np.linalg.norm(sharp_bend(x, eps)[0] - q, axis=1)
+
+
+@pytest.mark.parametrize("eps, tol", [(1e-3, 1e-6), (1e-5, 1e-9), (1e-7, 1e-12)])
+def test_fit_goes_on_through_a_sharp_bend_until_the_tolerance(eps, tol):
+    """Spans long beside a bend of radius eps do not halve their error at once, and that is not round-off: the
+    spline reaches tol, measured and as the distance of 220 001 of its points (20 001 across the bend) to the
+    hyperbola (closed form, foot points by Newton's method)."""
+    sp = fit(lambda x: sharp_bend(x, eps), -1.0, 0.93, tol)
+    x = np.r_[np.linspace(-1.0, 0.93, 200_001), np.linspace(-100 * eps, 100 * eps, 20_001)]
+    assert sp.deviation <= tol and distance_to_sharp_bend(sp(x), x, eps).max() <= tol
+
+
+def test_fit_stops_soon_where_the_curve_points_are_noisy():
+    """A helix 1e-5 across whose exact points carry an error of 5e-11 (5e-6 of its extent, as the points of a
+    tiny near-tangent intersection loop do): a tolerance of 1e-12 is refused after about 1000 evaluations of the
+    curve, not after the most knots allowed; 5e-10 is reached."""
+    def noisy(t):
+        p, d1, d2 = helix(t)
+        return 1e-5 * p + 5e-11 * np.sin(1.2345e7 * np.asarray(t) + 0.3)[:, None], 1e-5 * d1, 1e-5 * d2
+    calls = []
+    def counted(t):
+        calls.append(len(t))
+        return noisy(t)
+    with pytest.raises(SplineToleranceError, match="round-off"):
+        fit(counted, 0.0, 2 * math.pi, 1e-12)
+    assert sum(calls) < 5000
+    assert fit(noisy, 0.0, 2 * math.pi, 5e-10).deviation <= 5e-10
+
+
+def test_to_bspline_of_a_tiny_near_tangent_loop_stops_at_its_round_off():
+    """Two cylinders meeting in a loop 4.6e-5 long near tangency: 1e-9 is reached (checked against the two
+    surfaces' exact distance functions); 1e-11, below the error of the loop's points (about 5e-11), is refused
+    with fewer than 1000 knots."""
+    a = sk.Cylinder(0.312087037011044, frame=sk.Frame(
+        (-0.19761942178565717, -0.4186685260360638, 0.19185862875746637),
+        [(0.8968106550716552, 0.28835864185784765, -0.3355293468772087),
+         (-0.32424852462623444, 0.944368460820828, -0.055055467345309014),
+         (0.3009876130801049, 0.15816922542896167, 0.9404195621633694)]), v_range=(-1.9111662495240034, 1.132528154787801))
+    b = sk.Cylinder(0.776997434836475, frame=sk.Frame(
+        (-0.2941694093027249, 0.6700151961861531, -0.273959162060577),
+        [(0.4324020335184729, 0.03377221666492862, -0.9010482333319492),
+         (-0.6259645926928467, 0.7305014265158073, -0.27301281023653257),
+         (0.6489967720289277, 0.6820755846971124, 0.3370105141625771)]), v_range=(-1.7713937414029344, 2.011938987033233))
+    loop, = sk.intersect(a, b)
+    assert loop.closed and loop.length < 1e-4
+    sp = loop.to_bspline(1e-9)
+    pts = sp(np.linspace(0, loop.length, 5001))
+    assert max(a.distance(pts).max(), b.distance(pts).max()) <= 1e-9
+    with pytest.raises(SplineToleranceError, match=r"with (\d{1,3}) knots"):
+        loop.to_bspline(1e-11)
 
 
 def test_implicit_jets_match_differences():

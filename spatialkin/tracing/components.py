@@ -56,7 +56,9 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         claim (no component missed, each curve one component, the curves distinct, the stored points, the arcs
         between them, the singular points) as proven or not, and where; every curve has its view of it
         (``curve.certificate``). 'strict' raises CertificationError unless every claim is proven. Where the search
-        refuses a pair that meets in a closed form, that answer comes back, said not proven.
+        refuses a pair that meets in a closed form, that answer comes back, said not proven. Each curve's tube has a
+        work budget (spatialkin.tracing.certify.tubes.MOST_WORK): branches too close beside each other for it are
+        said not proven.
 
     Returns
     -------

@@ -492,36 +492,72 @@ def _piece_hull(piece):
     return xu[0], xu[1], xv[0], xv[1]
 
 
+#: Consecutive pieces of a chain grouped under one hull in tubes_disjoint (a chain's pieces lie along it, so a
+#: group's hull is tight and pairs of groups far apart are dismissed without looking at their pieces).
+GROUP = 32
+
+
+@jit
+def _group_hulls(pieces):
+    """(G, 4): the hulls (u lo, u hi, v lo, v hi) of the pieces' hulls, GROUP consecutive pieces each; and
+    (P, 4) the pieces' own hulls."""
+    n = pieces.shape[0]
+    own = np.empty((n, 4))
+    groups = np.empty(((n + GROUP - 1) // GROUP, 4))
+    for i in range(n):
+        own[i, 0], own[i, 1], own[i, 2], own[i, 3] = _piece_hull(pieces[i])
+        g = i // GROUP
+        if i % GROUP == 0:
+            groups[g] = own[i]
+        else:
+            groups[g, 0], groups[g, 2] = min(groups[g, 0], own[i, 0]), min(groups[g, 2], own[i, 2])
+            groups[g, 1], groups[g, 3] = max(groups[g, 1], own[i, 1]), max(groups[g, 3], own[i, 3])
+    return groups, own
+
+
+@jit
+def _turn_range(lo, hi, other_lo, other_hi, period):
+    """(first, last) whole numbers of periods k for which [other_lo, other_hi] + k period may meet [lo, hi], one
+    more either side (the division's rounding; _apart then decides each); (0, 0) when not periodic."""
+    if period == 0.0:
+        return 0, 0
+    return int(math.ceil((lo - other_hi) / period)) - 1, int(math.floor((hi - other_lo) / period)) + 1
+
+
+@jit
+def _apart(a, b, su, sv):
+    """True when the hull a (4,) and the hull b (4,) shifted by (su, sv) are apart (with the shifted bounds'
+    rounding, far below any gap that matters)."""
+    slack_u = 8.0 * EPS * (abs(su) + abs(a[0]) + abs(a[1])) + 1e-300
+    slack_v = 8.0 * EPS * (abs(sv) + abs(a[2]) + abs(a[3])) + 1e-300
+    return (b[1] + su + slack_u < a[0] or a[1] < b[0] + su - slack_u or
+            b[3] + sv + slack_v < a[2] or a[3] < b[2] + sv - slack_v)
+
+
 @jit
 def tubes_disjoint(first, second, periods):
     """(-1, -1) when every piece of first (K, WIDTH) is proven disjoint from every piece of second (L, WIDTH),
-    the second shifted by any whole number of periods (periods (2,): of u and v, 0 when not periodic; for each
-    pair the turns nearest to it and one either side, the pieces being far shorter than a period); else the
-    indices of a pair that may overlap. Pairs whose hulls are apart are disjoint; the rest are decided by
-    pieces_overlap."""
-    hulls = np.empty((second.shape[0], 4))
-    for j in range(second.shape[0]):
-        hulls[j, 0], hulls[j, 1], hulls[j, 2], hulls[j, 3] = _piece_hull(second[j])
-    for i in range(first.shape[0]):
-        a0, a1, a2, a3 = _piece_hull(first[i])
-        for j in range(second.shape[0]):
-            nu = _turns(0.5 * (a0 + a1 - hulls[j, 0] - hulls[j, 1]), periods[0])
-            nv = _turns(0.5 * (a2 + a3 - hulls[j, 2] - hulls[j, 3]), periods[1])
-            for ku in range(-1, 2):
-                if periods[0] == 0.0 and ku != 0:
-                    continue
-                su = (nu + ku) * periods[0]
-                for kv in range(-1, 2):
-                    if periods[1] == 0.0 and kv != 0:
+    the second shifted by any whole number of periods (periods (2,): of u and v, 0 when not periodic); else the
+    indices of a pair that may overlap. Groups of GROUP consecutive pieces whose hulls are apart under a shift
+    are disjoint under it; within groups that may meet, pairs whose hulls are apart are disjoint, and the rest
+    are decided by pieces_overlap. Every shift under which two groups' hulls may meet is tried."""
+    groups_a, own_a = _group_hulls(first)
+    groups_b, own_b = _group_hulls(second)
+    for ga in range(groups_a.shape[0]):
+        a = groups_a[ga]
+        for gb in range(groups_b.shape[0]):
+            b = groups_b[gb]
+            ku0, ku1 = _turn_range(a[0], a[1], b[0], b[1], periods[0])
+            kv0, kv1 = _turn_range(a[2], a[3], b[2], b[3], periods[1])
+            for ku in range(ku0, ku1 + 1):
+                su = ku * periods[0]
+                for kv in range(kv0, kv1 + 1):
+                    sv = kv * periods[1]
+                    if _apart(a, b, su, sv):
                         continue
-                    sv = (nv + kv) * periods[1]
-                    # (the shifted bounds' rounding, far below any gap that matters)
-                    slack_u = 8.0 * EPS * (abs(su) + abs(a0) + abs(a1)) + 1e-300
-                    slack_v = 8.0 * EPS * (abs(sv) + abs(a2) + abs(a3)) + 1e-300
-                    if hulls[j, 1] + su + slack_u < a0 or a1 < hulls[j, 0] + su - slack_u:
-                        continue
-                    if hulls[j, 3] + sv + slack_v < a2 or a3 < hulls[j, 2] + sv - slack_v:
-                        continue
-                    if pieces_overlap(first[i], second[j], su, sv):
-                        return i, j
+                    for i in range(ga * GROUP, min((ga + 1) * GROUP, first.shape[0])):
+                        for j in range(gb * GROUP, min((gb + 1) * GROUP, second.shape[0])):
+                            if not _apart(own_a[i], own_b[j], su, sv) and pieces_overlap(first[i], second[j],
+                                                                                          su, sv):
+                                return i, j
     return -1, -1

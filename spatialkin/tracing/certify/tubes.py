@@ -21,8 +21,16 @@ from . import nodes as nd
 SAMPLES_PER_STEP = 2
 #: Refinements of the samples round a failing chord before a tube is given up.
 REFINEMENTS = 96
-#: Chords refined on each side of a failing one.
-WINDOW = 4
+#: Chords refined on each side of a failing one. The window doubles, up to MOST_WINDOW, each time the chain
+#: fails beyond the stretch refined the time before (near a tangency it fails chord after chord, and each proof
+#: of it starts again); after STUCK_ROUNDS refinements in a row that do not carry it beyond, the tube is given up
+#: (a chain that creeps towards a singular end).
+WINDOW, MOST_WINDOW, STUCK_ROUNDS = 4, 256, 16
+#: The work one chain may take: at most MOST_SAMPLES samples, MOST_PIECES pieces (about 20 MB) and MOST_WORK
+#: pieces and samples over all its attempts (a few seconds); beyond, its tube is given up as out of budget (not
+#: proven). A chain beside another branch a distance d away needs pieces narrower than d: near a tangency the
+#: count grows like one over the square root of the tangency's gap.
+MOST_SAMPLES, MOST_PIECES, MOST_WORK = 50_000, 250_000, 1_000_000
 #: Shortest chord kept, relative to the median chord.
 MIN_CHORD = 0.2
 #: Pieces allowed per chord, on average, before the chain gives up (BUDGET); a chain that runs out is tried again
@@ -70,7 +78,7 @@ class Tube:
     def reason(self):
         return {kt.PROVEN: "proven", kt.PIECE_FAILED: "no piece of the tube could be proven",
                 kt.LINK_FAILED: "two consecutive pieces could not be linked",
-                kt.BUDGET: "the tube ran out of pieces"}[self.status]
+                kt.BUDGET: "the tube ran out of its work budget (pieces or samples)"}[self.status]
 
 
 class Chart:
@@ -194,22 +202,40 @@ def chained(chart, curve, points, s, closed, forced=()):
     sample is the first one, a whole loop on): where the chain fails, the samples around the failing chord are
     refined (dense output at the midpoints) and the chain is proven again, up to REFINEMENTS times; where it runs
     out of pieces, it is given more (up to MOST_PIECES_PER_CHORD per chord), then every chord is halved."""
-    per_chord = PIECES_PER_CHORD
+    per_chord, window, beyond, stuck, work = PIECES_PER_CHORD, WINDOW, None, 0, 0
     for _ in range(REFINEMENTS):
         x, kept = chain_samples(chart, points, closed, np.isin(s, forced))
+        per_chord = min(per_chord, max(MOST_PIECES // len(x), 1))
         pieces, status, chord = chain(chart, x, closed, x[-1] - x[0] if closed else np.zeros(2), per_chord)
         if status == kt.PROVEN:
             return Tube(pieces, status, None, s, points, x)
-        if status == kt.BUDGET and per_chord < MOST_PIECES_PER_CHORD:
+        work += len(pieces) + len(x)
+        if work > MOST_WORK:
+            status = kt.BUDGET
+            break
+        if status == kt.BUDGET and per_chord < MOST_PIECES_PER_CHORD and 2 * per_chord * len(x) <= MOST_PIECES:
             per_chord *= 2              # (pieces short all along, near a tangency: more of them, the same samples)
             continue
+        if status == kt.BUDGET and 2 * per_chord * len(x) > MOST_PIECES:
+            break                       # (out of the whole budget of pieces: more samples would not give more)
         at = kept[min(max(chord, 0), len(kept) - 2)]
-        lo, hi = max(at - WINDOW, 0), min(at + WINDOW + 1, len(s) - 1)
         if status == kt.BUDGET:
             lo, hi = 0, len(s) - 1          # (out of pieces all along: every chord halved)
+        else:
+            if beyond is None or s[at] >= beyond:
+                window = WINDOW if beyond is None else min(2 * window, MOST_WINDOW)
+                stuck = 0
+            else:
+                stuck += 1
+                if stuck >= STUCK_ROUNDS:
+                    break
+            lo, hi = max(at - window, 0), min(at + window + 1, len(s) - 1)
+            beyond = s[hi]
         mids = 0.5 * (s[lo:hi] + s[lo + 1:hi + 1])
         mids = mids[(mids > s[lo:hi]) & (mids < s[lo + 1:hi + 1])]      # (none between neighbouring floats)
-        if not len(mids):
+        if not len(mids) or len(s) + len(mids) > MOST_SAMPLES:
+            if len(mids):
+                status = kt.BUDGET
             break
         s = np.sort(np.concatenate([s, mids]))
         points = merged(points, s, mids, np.asarray(curve.sol(mids), dtype=float).reshape(-1, 3))

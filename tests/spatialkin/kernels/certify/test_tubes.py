@@ -108,3 +108,84 @@ def test_close_branches_of_nearly_touching_surfaces_are_proven():
         curves = sk.intersect(case.a, case.b, certify=True)
         assert curves.certificate.proven, (name, curves.certificate.failed)
         assert len(curves) == case.count == 2, name
+
+
+def chain_pieces(points, h):
+    """Pieces (K, WIDTH) along the polyline points (K + 1, 2): each centred on its chord, along it, T its half
+    length plus 10%, half-width h."""
+    chords = np.diff(points, axis=0)
+    length = np.linalg.norm(chords, axis=1)
+    pieces = np.zeros((len(chords), kt.WIDTH))
+    pieces[:, [kt.CU, kt.CV]] = 0.5 * (points[:-1] + points[1:])
+    pieces[:, [kt.P, kt.Q]] = chords / length[:, None]
+    pieces[:, kt.T0], pieces[:, kt.T1], pieces[:, kt.H] = -0.55 * length, 0.55 * length, h
+    return pieces
+
+
+def corners(pieces):
+    """(K, 4, 2): the corners c +- T a +- h n of the pieces' parallelograms."""
+    c, a = pieces[:, [kt.CU, kt.CV]], pieces[:, [kt.P, kt.Q]]
+    n = np.column_stack([-a[:, 1], a[:, 0]])
+    return np.stack([c + t[:, None] * a + w * pieces[:, kt.H, None] * n
+                     for t in (pieces[:, kt.T0], pieces[:, kt.T1]) for w in (-1.0, 1.0)], axis=1)
+
+
+def parallelogram_gaps(first, second, shift):
+    """(K, L): the largest separation (positive: apart) of each pair of parallelograms, the second shifted by
+    shift along u, over their four edge normals (exact for convex polygons, in floats)."""
+    ca, cb = corners(first), corners(second) + np.array([shift, 0.0])
+    gap = np.full((len(first), len(second)), -np.inf)
+    for pieces, mine in ((first, True), (second, False)):
+        a = pieces[:, [kt.P, kt.Q]]
+        for axis in (a, np.column_stack([-a[:, 1], a[:, 0]])):
+            if mine:        # (K, 4) projections of first, (K, L, 4) of second on first's axes
+                p, q = np.einsum("kcd,kd->kc", ca, axis)[:, None, :], np.einsum("lcd,kd->klc", cb, axis)
+            else:
+                p, q = np.einsum("kcd,ld->klc", ca, axis), np.einsum("lcd,ld->lc", cb, axis)[None, :, :]
+            gap = np.maximum(gap, np.maximum(q.min(-1) - p.max(-1), p.min(-1) - q.max(-1)))
+    return gap
+
+
+def may_overlap(first, second, shift):
+    """(K, L) the pair test alone: the pieces' parameter boxes meet (second shifted by shift along u) and
+    pieces_overlap does not part them."""
+    boxes = [np.array([np.ravel(kt.piece_span(p)) for p in pieces]) for pieces in (first, second)]
+    (au0, au1, av0, av1), (bu0, bu1, bv0, bv1) = (b.T[:, :, None] if k == 0 else b.T[:, None, :]
+                                                  for k, b in enumerate(boxes))
+    meet = ~((bu1 + shift < au0) | (au1 < bu0 + shift) | (bv1 < av0) | (av1 < bv0))
+    out = np.zeros_like(meet)
+    for i, j in zip(*np.nonzero(meet)):
+        out[i, j] = kt.pieces_overlap(first[i], second[j], shift, 0.0)
+    return out
+
+
+def test_tubes_disjoint_agrees_with_every_pair_under_every_shift():
+    """Two chains of pieces (30 to 300 each, spiralling over more than a period of u, so that a group of pieces
+    spans more than one period) a clear gap apart, alongside or crossing. tubes_disjoint against every pair under
+    every whole period from -8 to 8: it reports an overlap whenever two parallelograms overlap (separating axes,
+    in floats; pairs within 1e-9 of touching are not drawn), it reports one exactly when the pair test does for
+    some pair and period, and the pair it reports is one of those."""
+    rng = np.random.default_rng(7)
+    period = 2.0 * math.pi
+    verdicts = set()
+    for case in range(24):
+        s = np.linspace(0.0, 1.0, int(rng.integers(30, 300)))
+        u0, v0, turns = rng.uniform(-10, 10), rng.uniform(-1, 1), rng.uniform(0.2, 2.5)
+        line = np.column_stack([u0 + turns * period * s, v0 + 0.3 * np.sin(7 * s + case)])
+        other = line + np.array([rng.uniform(-0.5, 0.5) + period * rng.integers(-3, 4),
+                                 rng.choice([rng.uniform(0.02, 0.2), rng.uniform(-0.01, 0.01)])])
+        if case % 3 == 0:                       # crossing, not alongside
+            other = np.column_stack([other[:, 0], v0 + 4.0 * (s - 0.5) + rng.uniform(-0.1, 0.1)])
+        first, second = chain_pieces(line, 0.004), chain_pieces(other[::-1], 0.003)
+        shifts = period * np.arange(-8, 9)
+        gaps = np.min([parallelogram_gaps(first, second, k) for k in shifts], axis=0)
+        if np.min(np.abs(gaps)) < 1e-9:
+            continue
+        flagged = np.any([may_overlap(first, second, k) for k in shifts], axis=0)
+        i, j = kt.tubes_disjoint(first, second, np.array([period, 0.0]))
+        assert i >= 0 or gaps.min() > 0
+        assert (i >= 0) == flagged.any()
+        if i >= 0:
+            assert flagged[i, j]
+        verdicts.add(bool(gaps.min() > 0))
+    assert verdicts == {True, False}

@@ -479,3 +479,47 @@ def test_arcs_crossing_a_trim_edge_at_a_shallow_angle_are_proven():
         assert curves.certificate.proven, (name, curves.certificate.failed)
         count, _ = curve_components(curves, case.scale, 2e-6, [dense_points(c, case.scale) for c in curves])
         assert count == truth, name
+
+
+def plane_along_a_ruling(gap):
+    """A cone of half-angle 0.6 (trimmed to 0.2 <= v <= 1.5) and a plane parallel to its tangent plane along the
+    ruling in the xz-plane, gap inside it: the plane meets the cone in a parabola whose two arms run beside that
+    ruling, about sqrt(gap) apart, each cut by the trims to the ruling's length 1.3 / cos 0.6 (to O(gap))."""
+    k = math.tan(0.6)
+    n = np.array([1.0, 0.0, -k]) / math.hypot(1.0, k)
+    x = np.array([k, 0.0, 1.0]) / math.hypot(1.0, k)
+    plane = sk.Plane(sk.Frame(-gap * n, np.column_stack([x, (0.0, -1.0, 0.0), n])), u_range=(0.0, 2.0),
+                     v_range=(-1.0, 1.0))
+    return plane, sk.Cone(0.6, v_range=(0.2, 1.5))
+
+
+@pytest.mark.parametrize("gap", [1e-10, 1e-12, 1e-14])
+def test_arms_beside_a_ruling_are_proven_right_or_refused_within_the_work_budget(gap, monkeypatch):
+    """Tubes along arms sqrt(gap) apart need pieces narrower than that, so their count grows as the gap closes:
+    no chain takes more than its budget of pieces and samples (counted over all its attempts), and an answer
+    certified proven has both arms at the ruling's length (1e-6)."""
+    from spatialkin.tracing.certify import tubes
+    work, chain = [], tubes.chain
+
+    def counted(chart, x, closed, shift, per_chord=tubes.PIECES_PER_CHORD):
+        out = chain(chart, x, closed, shift, per_chord)
+        work.append(len(out[0]) + len(x))
+        return out
+
+    monkeypatch.setattr(tubes, "chain", counted)
+    curves = sk.intersect(*plane_along_a_ruling(gap), certify=True)
+    assert sum(work) <= 2 * (tubes.MOST_WORK + tubes.MOST_PIECES + tubes.MOST_SAMPLES)
+    if curves.certificate.proven:
+        assert len(curves) == 2
+        np.testing.assert_allclose([c.length for c in curves], 1.3 / math.cos(0.6), rtol=0, atol=1e-6)
+
+
+def test_a_tube_out_of_its_work_budget_is_not_proven(monkeypatch):
+    """Arms 1e-11 apart (relative) are proven with the whole budget; with a budget of 20 000 pieces and samples
+    the arcs' claim fails and says the tube ran out of its work budget."""
+    from spatialkin.tracing.certify import tubes
+    assert sk.intersect(*plane_along_a_ruling(1e-11), certify=True).certificate.proven
+    monkeypatch.setattr(tubes, "MOST_WORK", 20_000)
+    certificate = sk.intersect(*plane_along_a_ruling(1e-11), certify=True).certificate
+    assert not certificate.proven and not certificate.claims["arcs"].proven
+    assert "work budget" in certificate.claims["arcs"].detail

@@ -18,7 +18,7 @@ from .curve.clip import clip_curves
 from .march.graze import across_edges, rejoined
 from .closed.forms import Placed, along_normals, closed_form, closed_settings
 from .._lib import stages, warm
-from .curve.status import BOUNDARY, CONTACT, FAILED, TANGENT
+from .curve.status import BOUNDARY, CONTACT, FAILED, MAX_LENGTH, TANGENT
 from .search.rescue import LOST_RADIUS, crossing_starts
 from .search.topology import TopologyError, distances_at, points_at, topology
 from ..geometry.asymptotic import asymptote, bounded_pair
@@ -190,13 +190,13 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     anchor = np.concatenate([a.frame.origin, b.frame.origin])
     settings = make_settings(a, b, tol, method, rtol, atol, max_length, singular_tol, pullback, True, anchor, scene)
     if not certify:
-        curves, topo, _ = searched(a, b, settings)
+        curves, topo, _ = searched(a, b, settings, max_length is None)
         return [Curve(c, topology=topo) for c in (curves if given is None else on_given(curves, given))]
     # the general path's answer, or the closed forms' (the plain call's): proven in closed form where the algebra
     # settles it, else against the topology search
     wholes = None
     if found is None:
-        curves, topo, wholes = searched(a, b, settings)
+        curves, topo, wholes = searched(a, b, settings, max_length is None)
     else:
         curves, topo = in_sk_order(clip_curves(a, b, found, settings.scale)), None
         wholes = found if a.region or b.region else None
@@ -213,9 +213,11 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
     return certified(a, b, curves, topo, settings.scale, settings.tolerance, certify, wholes=wholes, given=given)
 
 
-def searched(a, b, settings):
+def searched(a, b, settings, closing=True):
     """(CurveResults of every component, in sk's order; the Topology; the components before the faces' regions
-    cut them, or None where neither surface has a region): the general path of intersect."""
+    cut them, or None where neither surface has a region): the general path of intersect. closing: max_length is
+    the default one (MAX_LENGTH_TURNS turns round the surfaces' extent, longer than any curve they share), so a
+    component that reaches it has not been followed (TopologyError)."""
     if stages.ON:
         stages.switch("topology")
     topo = topology(a, b, settings.scale, settings.tolerance)
@@ -259,6 +261,12 @@ def searched(a, b, settings):
     for i, c in enumerate(curves):          # of two copies of one piece, the first is kept
         if not covered(c, kept + curves[i + 1:], radius):
             kept.append(c)
+    unclosed = next((c for c in kept if c.status == MAX_LENGTH), None) if closing else None
+    if unclosed is not None:
+        raise TopologyError(f"a component traced from {np.round(unclosed.points[0], 12).tolist()} ran to "
+                            f"max_length = {settings.max_length:.6g} without closing, longer than any curve the "
+                            "surfaces share: the march crossed between branches where the surfaces nearly touch",
+                            where="march")
     on = lambda curve, whole: bool(within(whole, curve.points, radius).all())          # noqa: E731
     wholes = rejoined(a, b, kept, settings, on)
     curves = clip_curves(a, b, wholes, settings.scale)

@@ -298,6 +298,9 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
         for event in events:
             event.system = system
         method = settings.method if compiled or settings.method not in COMPILED_SOLVERS else FALLBACK_METHOD
+        if s >= settings.max_length:         # (a jump across a singular point may land beyond it)
+            branch.status, branch.message = outcome("max_length", max_length=settings.max_length)
+            break
         mark = stages.enter("integration") if stages.ON else None
         try:
             res = integrate(system, (0.0, settings.max_length - s), y, method, events, settings.rtol, settings.atol,

@@ -9,6 +9,7 @@ the solution of a Cauchy problem.
 E. Hairer, S. P. Nørsett, G. Wanner, Solving Ordinary Differential Equations I, 2nd ed., Springer, 1993: the
 Dormand-Prince pairs (DOP853), dense output and step-size control.
 """
+import dataclasses
 import functools
 import math
 import time
@@ -24,7 +25,7 @@ from ...ode.solvers import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from ..curve.dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS, Span, TracedSolution
 from ..curve.result import CurveResult, TracingError, DUPLICATE_SPACING
-from .start import scale_of, scene_reading
+from .start import locate_on_curve, scale_of, scene_reading
 from ..curve.status import CLOSED, FAILED, SINGULAR, open_outcome
 from ..._lib import stages
 from ..._lib.validation import check_choice, check_nonnegative, check_positive
@@ -52,6 +53,10 @@ MAX_LENGTH_TURNS = 32
 #: scale of its own path farther than ITSELF_CLEAR x scale (in arc length) from that end: a jump across a singular
 #: point landed on a branch the curve had followed already (a loop through the point shorter than the jump).
 OVER_ITSELF, ITSELF_CLEAR = 1e-6, 1e-2
+#: A start closer than APEX_CLEAR x scale to an apex of the surfaces is first carried along the curve by twice
+#: that: a curve passing a cone's apex at a distance d turns from near one ruling to near another within about d,
+#: so that its tangent at such a start is not the one it comes back with, and the loop would not close.
+APEX_CLEAR = 1e-3
 #: Newton's target for |M1 - M2|, as a fraction of the requested tolerance ...
 GAP_FRACTION = 1e-2
 #: ... but never below this many ulps of the coordinates' magnitude (round-off floor).
@@ -175,6 +180,7 @@ def scene_lengths(a, b, tol, max_length, magnitude):
 def trace_from(a, b, point, y, settings, t_start):
     """Trace both directions from a point on the curve: the CurveResult of the component, with its dense
     output."""
+    point, y = clear_of_apexes(a, b, point, y, settings)
     tangent = np.empty(3)
     p = np.empty(3)
     a_chart, b_chart, y_chart = charts_at(a, b, point, np.zeros(3), y)
@@ -282,6 +288,29 @@ def in_order(s, y):
         return s[::-1], y[::-1]
     order = np.argsort(s)
     return s[order], y[order]
+
+
+def clear_of_apexes(a, b, point, y, settings):
+    """(point, y) the start itself, or, where it lies within APEX_CLEAR x scale of an apex of the surfaces, the
+    point twice that far along the curve (forward; the start itself where the curve ends before, or where the way
+    there crosses a singular point)."""
+    if not len(settings.apexes):
+        return point, y
+    clear = APEX_CLEAR * settings.scale
+    if float(np.min(np.linalg.norm(settings.apexes - point, axis=1))) >= clear:
+        return point, y
+    tangent = np.empty(3)
+    a_chart, b_chart, y_chart = charts_at(a, b, point, np.zeros(3), y)
+    if kc.curve_frame(y_chart, a_chart, b_chart, np.empty(3), tangent) < settings.singular_tol:
+        return point, y
+    short = dataclasses.replace(settings, max_length=2.0 * clear)
+    branch = integrate_branch(a, b, point, tangent, y, 1.0, short)
+    if branch.status != "max_length" or not branch.segments or branch.nodes:
+        return point, y             # (it ended, or it jumped across the apex: a loop through it may be shorter)
+    try:
+        return locate_on_curve(a, b, branch_end(branch, point), settings.gap_tol)
+    except TracingError:
+        return point, y
 
 
 def measured_branch(a, b, point, tangent, y, sign, settings):

@@ -110,14 +110,16 @@ class TopologyError(RuntimeError):
     ``sk.intersect`` raises it rather than return an answer that may miss a component. It happens on a tangency
     along a curve in a placement the stage does not recognise, or surfaces that nearly touch along a stretch: the
     interval search runs out of its box budget, fills its record of roots, or finds starts it can neither place on
-    a curve nor trace.
+    a curve nor trace; or a component is followed to the default max_length without closing (the march crossed
+    between branches a hair apart where the surfaces nearly touch).
 
     Parameters
     ----------
     message : str
         What stopped and where.
     where : str, optional
-        The search that stopped: 'interior', 'edge of P', 'meridian', ... or 'starts'.
+        The search that stopped: 'interior', 'edge of P', 'meridian', ..., 'starts', or 'march' (a component
+        not closed).
 
     Attributes
     ----------

@@ -21,7 +21,7 @@ from .._lib import stages, warm
 from .curve.status import BOUNDARY, CONTACT, FAILED, MAX_LENGTH, TANGENT
 from .search.rescue import LOST_RADIUS, crossing_starts
 from .search.topology import TopologyError, distances_at, points_at, topology
-from ..geometry.asymptotic import asymptote, bounded_pair
+from ..geometry.asymptotic import bounded_pair
 from ..geometry.traits import check_surface
 from .march.trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
 
@@ -174,7 +174,7 @@ def intersect(a, b, tol=1e-10, *, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, atol
         raise ValueError(f"certify must be False, True or 'strict', got {certify!r}")
     warm.refresh()
     given = None
-    if not (a.traits.compact or b.traits.compact) and asymptote(a) is not None and asymptote(b) is not None:
+    if not (a.traits.compact or b.traits.compact):
         cut = bounded_pair(a, b)          # (two unbounded surfaces: cut to a ball holding all they share)
         if cut[0] is not a:
             given, (a, b) = (a, b), cut

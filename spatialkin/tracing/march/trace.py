@@ -26,7 +26,7 @@ from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from ..curve.dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS, Span, TracedSolution
 from ..curve.result import CurveResult, TracingError, DUPLICATE_SPACING
 from .start import locate_on_curve, scale_of, scene_reading
-from ..curve.status import CLOSED, FAILED, SINGULAR, open_outcome
+from ..curve.status import CLOSED, FAILED, MAX_LENGTH, SINGULAR, open_outcome
 from ..._lib import stages
 from ..._lib.validation import check_choice, check_nonnegative, check_positive
 
@@ -305,7 +305,7 @@ def clear_of_apexes(a, b, point, y, settings):
         return point, y
     short = dataclasses.replace(settings, max_length=2.0 * clear)
     branch = integrate_branch(a, b, point, tangent, y, 1.0, short)
-    if branch.status != "max_length" or not branch.segments or branch.nodes:
+    if branch.status != MAX_LENGTH or not branch.segments or branch.nodes:
         return point, y             # (it ended, or it jumped across the apex: a loop through it may be shorter)
     try:
         return locate_on_curve(a, b, branch_end(branch, point), settings.gap_tol)

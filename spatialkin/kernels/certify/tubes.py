@@ -336,10 +336,11 @@ def tube_chain(s_data, t_data, m, c, pad, cpad, su, sv, x, closed, shift_u, shif
     one piece or by halves of it (down to MAX_DEPTH), consecutive pieces overlapping by OVERLAP of their length.
 
     Returns (pieces written to pieces (max_pieces, WIDTH), status (PROVEN, PIECE_FAILED, LINK_FAILED, BUDGET), the
-    index of the chord where it failed (-1 when proven)).
+    index of the chord where it failed (-1 when proven), the pieces tried (proven or not: the work done)).
     """
     n = x.shape[0]
     count = 0
+    tries = 0
     stack = np.empty((MAX_DEPTH + 2, 2))
     for k in range(n - 1):
         du = x[k + 1, 0] - x[k, 0]
@@ -358,8 +359,9 @@ def tube_chain(s_data, t_data, m, c, pad, cpad, su, sv, x, closed, shift_u, shif
             span = end - start
             pad_t = OVERLAP * span
             if count >= max_pieces:
-                return count, BUDGET, k
+                return count, BUDGET, k, tries
             h = max(h_floor, 0.25 * span)
+            tries += 1
             ok = prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, x[k, 0], x[k, 1], p, q, start - pad_t,
                              end + pad_t, h, pieces[count])
             if not ok:      # the same stretch on the arc itself: centred on it, along its tangent
@@ -368,34 +370,36 @@ def tube_chain(s_data, t_data, m, c, pad, cpad, su, sv, x, closed, shift_u, shif
                                                       x[k, 1] + tm * q, p, q, span)
                 half = 0.5 * span + pad_t
                 if found:
+                    tries += 1
                     ok = prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, ac_u, ac_v, ap, aq, -half, half, h,
                                      pieces[count])
                 for _ in range(NARROWER_TRIES if found and depth >= NARROWER_DEPTH else 0):
                     if ok or h <= h_floor:      # (narrower, as long: another branch may run close beside this one)
                         break
                     h = max(h_floor, h / NARROWER)
+                    tries += 1
                     ok = prove_piece(s_data, t_data, m, c, pad, cpad, su, sv, ac_u, ac_v, ap, aq, -half, half, h,
                                      pieces[count])
             if not ok:
                 if depth >= MAX_DEPTH:
-                    return count, PIECE_FAILED, k
+                    return count, PIECE_FAILED, k, tries
                 mid = 0.5 * (start + end)
                 stack[top, 0], stack[top, 1] = end, depth + 1
                 stack[top + 1, 0], stack[top + 1, 1] = mid, depth + 1
                 top += 2
                 continue
             if not exit_enclosure(s_data, t_data, m, c, pad, cpad, su, sv, pieces[count]):
-                return count, PIECE_FAILED, k
+                return count, PIECE_FAILED, k, tries
             if count > 0 and not linked(pieces[count - 1], pieces[count], 0.0, 0.0):
-                return count, LINK_FAILED, k
+                return count, LINK_FAILED, k, tries
             pieces[count, CHORD] = k
             count += 1
             start = end
     if count == 0:
-        return 0, PIECE_FAILED, 0
+        return 0, PIECE_FAILED, 0, tries
     if closed and not linked(pieces[count - 1], pieces[0], -shift_u, -shift_v):
-        return count, LINK_FAILED, n - 2
-    return count, PROVEN, -1
+        return count, LINK_FAILED, n - 2, tries
+    return count, PROVEN, -1, tries
 
 
 @jit

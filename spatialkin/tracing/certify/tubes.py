@@ -27,7 +27,7 @@ REFINEMENTS = 96
 #: (a chain that creeps towards a singular end).
 WINDOW, MOST_WINDOW, STUCK_ROUNDS = 4, 256, 16
 #: The work one chain may take: at most MOST_SAMPLES samples, MOST_PIECES pieces (about 20 MB) and MOST_WORK
-#: pieces and samples over all its attempts (a few seconds); beyond, its tube is given up as out of budget (not
+#: pieces tried (proven or not) and samples over all its attempts (a few seconds); beyond, its tube is given up as out of budget (not
 #: proven). A chain beside another branch a distance d away needs pieces narrower than d: near a tangency the
 #: count grows like one over the square root of the tangency's gap.
 MOST_SAMPLES, MOST_PIECES, MOST_WORK = 50_000, 250_000, 1_000_000
@@ -206,10 +206,10 @@ def chained(chart, curve, points, s, closed, forced=()):
     for _ in range(REFINEMENTS):
         x, kept = chain_samples(chart, points, closed, np.isin(s, forced))
         per_chord = min(per_chord, max(MOST_PIECES // len(x), 1))
-        pieces, status, chord = chain(chart, x, closed, x[-1] - x[0] if closed else np.zeros(2), per_chord)
+        pieces, status, chord, tries = chain(chart, x, closed, x[-1] - x[0] if closed else np.zeros(2), per_chord)
         if status == kt.PROVEN:
             return Tube(pieces, status, None, s, points, x)
-        work += len(pieces) + len(x)
+        work += tries + len(x)
         if work > MOST_WORK:
             status = kt.BUDGET
             break
@@ -359,15 +359,15 @@ def chain_samples(chart, points, closed, forced=None):
 
 
 def chain(chart, x, closed, shift, per_chord=PIECES_PER_CHORD):
-    """(pieces (K, WIDTH), status, failing chord) of kernels.certify.tubes.tube_chain along x, with per_chord
-    pieces per chord on average at most."""
+    """(pieces (K, WIDTH), status, failing chord, pieces tried) of kernels.certify.tubes.tube_chain along x, with
+    per_chord pieces per chord on average at most."""
     floor = FLOOR_ULPS * np.finfo(float).eps * max(float(np.max(np.abs(x))), 1.0)
     pieces = np.empty((per_chord * len(x) + 8, kt.WIDTH))
     r = chart.reader
-    count, status, chord = kt.tube_chain(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]),
-                                         float(chart.units[1]), x, bool(closed), float(shift[0]), float(shift[1]),
-                                         floor, len(pieces), pieces)
-    return pieces[:count].copy(), status, chord
+    count, status, chord, tries = kt.tube_chain(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, float(chart.units[0]),
+                                                float(chart.units[1]), x, bool(closed), float(shift[0]),
+                                                float(shift[1]), floor, len(pieces), pieces)
+    return pieces[:count].copy(), status, chord, tries
 
 
 def spaced(x):

@@ -496,14 +496,14 @@ def plane_along_a_ruling(gap):
 @pytest.mark.parametrize("gap", [1e-10, 1e-12, 1e-14])
 def test_arms_beside_a_ruling_are_proven_right_or_refused_within_the_work_budget(gap, monkeypatch):
     """Tubes along arms sqrt(gap) apart need pieces narrower than that, so their count grows as the gap closes:
-    no chain takes more than its budget of pieces and samples (counted over all its attempts), and an answer
+    no chain takes more than its budget of pieces tried and samples (counted over all its attempts), and an answer
     certified proven has both arms at the ruling's length (1e-6)."""
     from spatialkin.tracing.certify import tubes
     work, chain = [], tubes.chain
 
     def counted(chart, x, closed, shift, per_chord=tubes.PIECES_PER_CHORD):
         out = chain(chart, x, closed, shift, per_chord)
-        work.append(len(out[0]) + len(x))
+        work.append(out[3] + len(x))
         return out
 
     monkeypatch.setattr(tubes, "chain", counted)

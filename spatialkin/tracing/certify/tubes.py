@@ -27,9 +27,9 @@ REFINEMENTS = 96
 #: (a chain that creeps towards a singular end).
 WINDOW, MOST_WINDOW, STUCK_ROUNDS = 4, 256, 16
 #: The work one chain may take: at most MOST_SAMPLES samples, MOST_PIECES pieces (about 20 MB) and MOST_WORK
-#: pieces tried (proven or not) and samples over all its attempts (a few seconds); beyond, its tube is given up as out of budget (not
-#: proven). A chain beside another branch a distance d away needs pieces narrower than d: near a tangency the
-#: count grows like one over the square root of the tangency's gap.
+#: pieces tried (proven or not) and samples over all its attempts (a few seconds); beyond, its tube is given up as
+#: out of budget (not proven). A chain beside another branch a distance d away needs pieces narrower than d: near
+#: a tangency the count grows like one over the square root of the tangency's gap.
 MOST_SAMPLES, MOST_PIECES, MOST_WORK = 50_000, 250_000, 1_000_000
 #: Shortest chord kept, relative to the median chord.
 MIN_CHORD = 0.2
@@ -213,11 +213,12 @@ def chained(chart, curve, points, s, closed, forced=()):
         if work > MOST_WORK:
             status = kt.BUDGET
             break
-        if status == kt.BUDGET and per_chord < MOST_PIECES_PER_CHORD and 2 * per_chord * len(x) <= MOST_PIECES:
-            per_chord *= 2              # (pieces short all along, near a tangency: more of them, the same samples)
-            continue
-        if status == kt.BUDGET and 2 * per_chord * len(x) > MOST_PIECES:
-            break                       # (out of the whole budget of pieces: more samples would not give more)
+        if status == kt.BUDGET:
+            if 2 * per_chord * len(x) > MOST_PIECES:
+                break                   # (out of the whole budget of pieces: more samples would not give more)
+            if per_chord < MOST_PIECES_PER_CHORD:
+                per_chord *= 2          # (pieces short all along, near a tangency: more of them, the same samples)
+                continue
         at = kept[min(max(chord, 0), len(kept) - 2)]
         if status == kt.BUDGET:
             lo, hi = 0, len(s) - 1          # (out of pieces all along: every chord halved)

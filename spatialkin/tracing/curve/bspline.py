@@ -149,7 +149,8 @@ def fit(evaluate, x0, x1, tol, periodic=False, initial=None):
             spline.checked = checked
             return spline
         worst = float(dev.max())
-        chord = float(np.linalg.norm(p[np.argmax(dev) + 1] - p[np.argmax(dev)]))
+        at = int(np.argmax(dev))
+        chord = float(np.linalg.norm(p[at + 1] - p[at]))
         noise = worst <= STALL_FLOOR * np.ptp(p, axis=0).max() or worst <= STALL_CHORD * chord
         stalled = stalled + 1 if worst > STALL * previous and noise else 0
         previous = worst

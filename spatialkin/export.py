@@ -6,7 +6,7 @@ B-spline (scipy.interpolate.BSpline, e.g. ``curve.to_bspline(tol)`` or a mechani
 written with its own knots and control points (degree 5).
 
 DXF needs ezdxf (a dependency); STEP needs OpenCascade (cadquery-ocp), the ``cad`` extra. The helpers
-``dense_polyline``, ``require`` and ``atomic_path`` are public for other exporters (planar's DXF drawings).
+``dense_polyline``, ``dxf_document``, ``require`` and ``atomic_path`` are public for other exporters (planar's DXF drawings).
 """
 import contextlib
 import os
@@ -18,7 +18,7 @@ from scipy.interpolate import BSpline
 from ._lib.files import atomic_path
 from ._lib.validation import check_positive
 
-__all__ = ["atomic_path", "dense_polyline", "export_curves", "polylines", "require", "splines", "write_csv",
+__all__ = ["atomic_path", "dense_polyline", "dxf_document", "export_curves", "polylines", "require", "splines", "write_csv",
            "write_dxf", "write_step", "write_vtp"]
 
 #: The extra that provides ezdxf and OpenCascade.
@@ -29,6 +29,9 @@ CHORD_FRACTION = 1e-6
 SPLINE_TOL = 1e-8
 #: Most points of one polyline.
 MAX_POLYLINE = 2_000_000
+#: Length units a file can declare: DXF's $INSUNITS code and OpenCascade's STEP unit name (None: no unit, which
+#: STEP cannot state). The coordinates are written as they are: the unit says what they are in.
+UNITS = {"mm": (4, "MM"), "cm": (5, "CM"), "m": (6, "M"), "in": (1, "INCH"), None: (0, None)}
 
 
 def _as_pieces(curves):
@@ -95,15 +98,23 @@ def polylines(curves, chord_tol=None):
     return out
 
 
+def check_unit(unit, what="a DXF or CSV file"):
+    """The unit (a key of UNITS), or ValueError naming the argument and the units allowed."""
+    if unit not in UNITS or (unit is None and what == "STEP"):
+        allowed = ", ".join(repr(u) for u in UNITS if u is not None or what != "STEP")
+        raise ValueError(f"unit must be one of {allowed} (the length unit {what} declares; its coordinates are "
+                         f"written as they are), got {unit!r}")
+    return unit
+
+
 def write_csv(path, curves, unit="mm", chord_tol=None):
     """Points of every curve as CSV: curve index, parameter (arc length s for a Curve), x, y, z; the header names
-    the unit of each column."""
-    if not isinstance(unit, str) or any(ch in unit for ch in ',"\n\r'):
-        raise ValueError(f"unit must be a str without commas, quotes or line breaks (it goes into the CSV's header), "
-                         f"got {unit!r}")
+    the unit of each column (a key of UNITS; None: no unit)."""
+    check_unit(unit)
     rows = polylines(curves, chord_tol)
+    label = "" if unit is None else f" [{unit}]"
     with atomic_path(path) as tmp, open(tmp, "w") as fh:
-        fh.write(f"curve,s [{unit}],x [{unit}],y [{unit}],z [{unit}]\n")
+        fh.write(f"curve,s{label},x{label},y{label},z{label}\n")
         for k, (x, pts, _) in enumerate(rows):
             block = np.column_stack([np.full(len(x), k), x, pts])
             np.savetxt(fh, block, delimiter=",", fmt=["%d", "%.17g", "%.17g", "%.17g", "%.17g"])
@@ -162,10 +173,20 @@ def require(module):
         raise ImportError(f"this export needs {module}: pip install '{CAD_EXTRA}'") from None
 
 
-def write_dxf(path, curves, tol=SPLINE_TOL, layer="CURVES"):
-    """DXF (R2010) with one 3-D SPLINE entity per curve: the B-spline's own degree, knots and control points."""
+def dxf_document(unit):
+    """A new ezdxf document (R2010) whose header declares the length unit (a key of UNITS: $INSUNITS, and
+    $MEASUREMENT metric or imperial)."""
     ezdxf = require("ezdxf")
     doc = ezdxf.new("R2010")
+    doc.units = UNITS[check_unit(unit)][0]
+    doc.header["$MEASUREMENT"] = 0 if unit == "in" else 1
+    return doc
+
+
+def write_dxf(path, curves, tol=SPLINE_TOL, layer="CURVES", unit="mm"):
+    """DXF (R2010) with one 3-D SPLINE entity per curve: the B-spline's own degree, knots and control points; the
+    header declares the unit the coordinates are in (a key of UNITS; None: unitless)."""
+    doc = dxf_document(unit)
     msp = doc.modelspace()
     doc.layers.add(layer)
     for sp in splines(curves, tol):
@@ -176,8 +197,10 @@ def write_dxf(path, curves, tol=SPLINE_TOL, layer="CURVES"):
     return path
 
 
-def write_step(path, curves, tol=SPLINE_TOL):
-    """STEP (AP214) of the B-spline curves as edges, through OpenCascade (the ``cad`` extra)."""
+def write_step(path, curves, tol=SPLINE_TOL, unit="mm"):
+    """STEP (AP214) of the B-spline curves as edges, through OpenCascade (the ``cad`` extra); the file declares
+    the unit the coordinates are in ("mm", "cm", "m" or "in"), and they are written as they are."""
+    check_unit(unit, "STEP")
     require("OCP")
     from OCP.BRep import BRep_Builder
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
@@ -209,11 +232,29 @@ def write_step(path, curves, tol=SPLINE_TOL):
         curve = Geom_BSplineCurve(poles, knots, mults, int(sp.k))
         builder.Add(compound, BRepBuilderAPI_MakeEdge(curve).Edge())
     writer = STEPControl_Writer()
-    with atomic_path(path) as tmp, _quiet_stdout():
+    with atomic_path(path) as tmp, _quiet_stdout(), _step_unit(UNITS[unit][1]):
         writer.Transfer(compound, STEPControl_AsIs)
         if writer.Write(tmp) != IFSelect_RetDone:
             raise OSError(f"OpenCascade could not write {os.path.basename(path)}")
     return path
+
+
+@contextlib.contextmanager
+def _step_unit(name):
+    """OpenCascade's STEP writer declaring the unit name, its own unit set to the same so that no coordinate is
+    scaled (both are process-wide settings: restored after)."""
+    from OCP.Interface import Interface_Static
+    from OCP.STEPControl import STEPControl_Controller
+    STEPControl_Controller.Init_s()
+    keys = ("write.step.unit", "xstep.cascade.unit")
+    saved = [Interface_Static.CVal_s(key) for key in keys]
+    try:
+        for key in keys:
+            Interface_Static.SetCVal_s(key, name)
+        yield
+    finally:
+        for key, value in zip(keys, saved):
+            Interface_Static.SetCVal_s(key, value)
 
 
 @contextlib.contextmanager

@@ -3,7 +3,7 @@ as dense polylines (spaced by a chord height, from exact solutions), written ato
 dependency of spatialkin)."""
 import numpy as np
 
-from spatialkin.export import atomic_path, dense_polyline, require
+from spatialkin.export import atomic_path, dense_polyline, dxf_document
 from spatialkin._lib.validation import check_positive
 
 #: Joint circles' radius, as a fraction of the linkage's mean link length.
@@ -14,7 +14,7 @@ CHORD_FRACTION = 1e-5
 LAYERS = ("LINKS", "JOINTS", "GROUND", "CRANK_CIRCLES", "PATHS")
 
 
-def write_dxf(path, motion, indices=(0,), paths=(), chord_tol=None):
+def write_dxf(path, motion, indices=(0,), paths=(), chord_tol=None, unit="mm"):
     """Draw a LinkageMotion in a DXF (R2010) file.
 
     Parameters
@@ -29,10 +29,12 @@ def write_dxf(path, motion, indices=(0,), paths=(), chord_tol=None):
         Joints whose paths over the solved input range are drawn as LWPOLYLINE, dense by a chord height.
     chord_tol : float, optional
         Chord height of the paths (default CHORD_FRACTION of the mean link length), in the linkage's unit.
+    unit : str or None
+        The linkage's length unit, which the file's header declares ("mm", "cm", "m", "in"; None: unitless); the
+        coordinates are written as they are.
 
     Each crank pin's circle is drawn as a CIRCLE about its pivot (layer CRANK_CIRCLES).
     """
-    ezdxf = require("ezdxf")
     linkage = motion.linkage
     size = linkage.mean_length
     indices = [int(i) for i in np.atleast_1d(indices)]
@@ -40,7 +42,7 @@ def write_dxf(path, motion, indices=(0,), paths=(), chord_tol=None):
         if not -len(motion) <= i < len(motion):
             raise ValueError(f"indices must lie in [0, {len(motion)}), got {i}")
     chord = CHORD_FRACTION * size if chord_tol is None else check_positive("chord_tol", chord_tol)
-    doc = ezdxf.new("R2010")
+    doc = dxf_document(unit)
     msp = doc.modelspace()
     for name in LAYERS:
         doc.layers.add(name)

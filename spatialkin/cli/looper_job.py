@@ -416,7 +416,7 @@ def write_cad(out_dir, splines, config, echo=print):
     written = []
     for name, writer in zip(CAD_FILES, (write_dxf, write_step)):
         try:
-            writer(os.path.join(out_dir, name), curves)
+            writer(os.path.join(out_dir, name), curves, unit=config["length_unit"])
             written.append(name)
         except ImportError as err:
             echo(f"not written: {name} ({err})")

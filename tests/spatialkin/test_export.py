@@ -118,11 +118,65 @@ def test_export_by_suffix_and_errors(tmp_path, looper_pair):
         write_csv(tmp_path / "b.csv", curves, chord_tol="1e-3")
     with pytest.raises(TypeError, match="curves must be a Curve, a scipy BSpline or a list of them"):
         export_curves(tmp_path / "b.csv", None)
-    with pytest.raises(ValueError, match="unit must be a str without commas"):
+    with pytest.raises(ValueError, match="unit must be one of"):
         write_csv(tmp_path / "b.csv", curves, unit="a,b\nc")
+    with pytest.raises(ValueError, match="unit must be one of 'mm', 'cm', 'm', 'in', None"):
+        write_dxf(tmp_path / "b.dxf", curves, unit="furlong")
     with pytest.raises(TypeError, match="tol must be a real number"):
         curves[0].to_bspline("1e-3")
     assert not os.path.exists(tmp_path / "b.csv") and no_temporaries(tmp_path)
+
+
+@pytest.mark.parametrize("unit, code", [("mm", 4), ("cm", 5), ("m", 6), ("in", 1), (None, 0)])
+def test_files_declare_the_unit_given(tmp_path, looper_pair, unit, code):
+    """The DXF header's $INSUNITS is the DXF code of the unit given (AutoCAD's table: 4 mm, 5 cm, 6 m, 1 inch, 0
+    unitless), $MEASUREMENT metric but for inches; the CSV's columns name it; the coordinates are not scaled."""
+    ezdxf = pytest.importorskip("ezdxf")
+    _, _, curves = looper_pair
+    write_dxf(tmp_path / "c.dxf", curves, unit=unit)
+    doc = ezdxf.readfile(tmp_path / "c.dxf")
+    assert doc.header["$INSUNITS"] == code and doc.header["$MEASUREMENT"] == (0 if unit == "in" else 1)
+    control = np.asarray(doc.modelspace().query("SPLINE")[0].control_points)
+    np.testing.assert_array_equal(control, np.asarray(curves[0].to_bspline(1e-8).c))
+    write_csv(tmp_path / "c.csv", curves, unit=unit)
+    with open(tmp_path / "c.csv") as fh:
+        label = "" if unit is None else f" [{unit}]"
+        assert fh.readline().strip() == f"curve,s{label},x{label},y{label},z{label}"
+
+
+@pytest.mark.parametrize("unit, metres", [("mm", 1e-3), ("m", 1.0), ("in", 0.0254)])
+def test_step_declares_the_unit_given(tmp_path, looper_pair, unit, metres):
+    """The STEP file states the unit given, its coordinates unscaled: OpenCascade's reader, set to read in mm,
+    gives the curve's points times the unit's millimetres (1, 1000, 25.4) within 1e-9 x scale; the writer's
+    process-wide unit settings are as they were after."""
+    pytest.importorskip("OCP")
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.Interface import Interface_Static
+    from OCP.STEPControl import STEPControl_Controller, STEPControl_Reader
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+    _, _, curves = looper_pair
+    STEPControl_Controller.Init_s()                     # (the settings exist once the STEP controller is made)
+    before = Interface_Static.CVal_s("write.step.unit"), Interface_Static.CVal_s("xstep.cascade.unit")
+    write_step(tmp_path / "c.step", curves[:1], tol=1e-9, unit=unit)
+    assert (Interface_Static.CVal_s("write.step.unit"), Interface_Static.CVal_s("xstep.cascade.unit")) == before
+    with open(tmp_path / "c.step") as fh:
+        text = fh.read()
+    assert {"mm": "SI_UNIT(.MILLI.,.METRE.)", "m": "SI_UNIT($,.METRE.)", "in": "'INCH'"}[unit] in text
+    Interface_Static.SetCVal_s("xstep.cascade.unit", "MM")
+    try:
+        reader = STEPControl_Reader()
+        reader.ReadFile(str(tmp_path / "c.step"))
+        reader.TransferRoots()
+    finally:
+        Interface_Static.SetCVal_s("xstep.cascade.unit", before[1])
+    explorer = TopExp_Explorer(reader.OneShape(), TopAbs_EDGE)
+    edge = TopoDS.Edge(explorer.Current()) if hasattr(TopoDS, "Edge") else TopoDS.Edge_s(explorer.Current())
+    adaptor = BRepAdaptor_Curve(edge)
+    u = np.linspace(adaptor.FirstParameter(), adaptor.LastParameter(), 50)
+    pts = np.array([[p.X(), p.Y(), p.Z()] for p in (adaptor.Value(x) for x in u)]) * (1e-3 / metres)
+    assert np.max(curves[0].closest(pts)[1]) <= 1e-9 * 30.0
 
 
 @pytest.mark.parametrize("suffix", ["csv", "vtp", "dxf"])

@@ -9,9 +9,13 @@ __all__ = ["atomic_path"]
 @contextmanager
 def atomic_path(path):
     """Yield a temporary path in the target's folder; on success it replaces `path` atomically, on error
-    it is removed and `path` is left untouched."""
+    it is removed and `path` is left untouched. An OSError about the temporary file (a missing folder, no
+    permission, a full disk, a folder of the target's name) is raised about `path`, the file asked for."""
     folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=os.path.splitext(path)[1], dir=folder)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=os.path.splitext(path)[1], dir=folder)
+    except OSError as err:
+        raise about(err, path) from None
     os.close(fd)
     try:
         yield tmp
@@ -19,10 +23,17 @@ def atomic_path(path):
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as err:
         if os.path.exists(tmp):
             os.remove(tmp)
+        if isinstance(err, OSError) and err.errno is not None and err.filename == tmp:
+            raise about(err, path) from None
         raise
+
+
+def about(err, path):
+    """The OSError err (its type, number and reason) about path."""
+    return type(err)(err.errno, err.strerror, os.fspath(path))
 
 
 def check_out_file(out_file):

@@ -397,13 +397,14 @@ def _say(line):
 
 
 def _caller_level():
-    """The stacklevel, for a warnings.warn in _say, of the first frame outside spatialkin, planar and numba (the
-    user's call: the line a warning names)."""
+    """The stacklevel, for a warnings.warn in _say, of the first frame outside spatialkin, planar, numba and the
+    context managers numba's compile events pass through (contextlib): the user's call, the line a warning names."""
+    import contextlib
     import numba
     inside = (os.path.dirname(os.path.dirname(os.path.abspath(__file__))) + os.sep,
               os.path.dirname(os.path.abspath(numba.__file__)) + os.sep,
               os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "planar")
-              + os.sep)
+              + os.sep, os.path.abspath(contextlib.__file__))
     frame, level = sys._getframe(2), 2              # (_say's caller: stacklevel 2 of a warn in _say)
     while frame.f_back is not None and os.path.abspath(frame.f_code.co_filename).startswith(inside):
         frame, level = frame.f_back, level + 1

@@ -241,6 +241,29 @@ def test_a_line_when_the_first_kernel_compiles():
     assert said == [1]                      # once, however many kernels compile
 
 
+@pytest.mark.skipif(_jit.JIT_DISABLED, reason="no compiling with jit off")
+def test_the_compiling_warning_names_the_users_line(monkeypatch):
+    """The line said while a kernel compiles is a RuntimeWarning naming the call that made it compile (this file),
+    not a frame of numba's events (contextlib) or of spatialkin."""
+    import functools
+    import warnings
+    monkeypatch.setattr(warm, "_SAID", set())
+    monkeypatch.setattr(warm, "_SAY", [None])
+    listener = _jit.announce_compilation(functools.partial(warm._say, warm.COMPILING))
+    space = {"__name__": "spatialkin._warning_probe"}
+    exec("def probe(x):\n    return x + 3.0\n", space)
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            assert _jit.jit(cache=False)(space["probe"])(1.0) == 4.0
+    finally:
+        from numba.core import event
+        event.unregister("numba:compile", listener)
+    said = [w for w in caught if str(w.message) == warm.COMPILING]
+    assert len(said) == 1 and said[0].category is RuntimeWarning
+    assert os.path.abspath(said[0].filename) == os.path.abspath(__file__)
+
+
 def test_import_compiles_nothing():
     """A fresh interpreter imports spatialkin, planar and the job without a single compile event."""
     code = ("from numba.core import event\nhits = []\n"

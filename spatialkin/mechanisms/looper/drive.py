@@ -40,6 +40,9 @@ ASSEMBLY_SAMPLES = 3600
 LOOP_SAMPLES = 2048
 #: Newton iterations at a fixed crank angle.
 NEWTON_MAX_ITER = 30
+#: The coupler's circle is taken to reach the rocker sphere within this relative round-off of its reach (a crank
+#: angle at a dead position, where the two crossings meet).
+CROSSING_SLACK = 1e-12
 #: Accuracy of positions relative to the mechanism's size ...
 POSITION_TOL = 1e-14
 #: ... or this many ulps of the coordinates' magnitude, where larger (a mechanism far from the origin).
@@ -249,20 +252,35 @@ class LooperDrive:
         return np.where(outward > 0, 0, 1).reshape(np.shape(states)[:-1])
 
     def assemble(self, crank_angle, branch=0):
-        """State (u1, v1, u2, v2) at one crank angle on the given branch (Newton from the coupler circle's
-        crossings of the rocker sphere)."""
+        """State (u1, v1, u2, v2) at one crank angle on the given branch: Newton from the coupler circle's
+        crossings of the rocker sphere, found in closed form (crossings), so that both are found however close
+        together, next to a dead position."""
         branch = check_branch(branch)
         u1 = float(crank_angle)
         self._check_assemblable(np.array([u1]))
-        v1 = np.linspace(-np.pi, np.pi, 721)
-        pts = self.torus.point(np.full_like(v1, u1), v1)
-        f = np.linalg.norm(pts - self.rocker_frame.origin, axis=1) - self.rocker_length
-        for i in np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) <= 0)[0]:
-            y = np.array([u1, v1[i], *self.sphere.parameters(pts[i])])
-            y = self._at_crank_angles(y.reshape(1, 4))
+        for v1 in self.crossings(u1):
+            point = self.torus.point(u1, v1)
+            y = self._at_crank_angles(np.array([[u1, v1, *self.sphere.parameters(point)]]))
             if y is not None and self.branch_of(y[0]) == branch:
                 return y[0]
         raise ValueError(f"no assembly on branch {branch} at crank angle {math.degrees(u1):.6g} deg")
+
+    def crossings(self, crank_angle):
+        """The tube angles v1 (0, 1 or 2 of them) where the coupler's circle at the crank angle crosses the rocker
+        sphere. The circle is C(v) = c + a cos v + b sin v with |a| = |b| = r and a normal to b (the torus at fixed
+        u), so |C(v) - P2|^2 - L^2 = A + B cos v + D sin v: v = phi +- acos(-A / hypot(B, D)), phi = atan2(D, B)
+        (clipped to the circle's reach where round-off puts a touching crossing just outside it), in [-pi, pi]."""
+        u1 = float(crank_angle)
+        c0, a0, b0 = (self.torus.point(u1, v) for v in (math.pi, 0.0, 0.5 * math.pi))
+        c = 0.5 * (c0 + a0)
+        a, b, rel = a0 - c, b0 - c, c - self.rocker_frame.origin
+        A = rel @ rel + self.coupler_length ** 2 - self.rocker_length ** 2
+        B, D = 2.0 * (rel @ a), 2.0 * (rel @ b)
+        reach = math.hypot(B, D)
+        if reach == 0.0 or abs(A) > reach * (1.0 + CROSSING_SLACK):
+            return []
+        phi, half = math.atan2(D, B), math.acos(min(1.0, max(-1.0, -A / reach)))
+        return [math.remainder(v, 2.0 * math.pi) for v in ((phi - half, phi + half) if half > 0.0 else (phi,))]
 
     def _check_assemblable(self, u1):
         bad = self.assembly_margin(u1) < -self.position_tol

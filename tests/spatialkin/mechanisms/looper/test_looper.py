@@ -107,6 +107,26 @@ def test_mechanism_that_cannot_be_assembled(blocked_drive):
         d.solve([0.5 * (lo + hi)])
 
 
+@pytest.mark.parametrize("branch", [0, 1])
+def test_assembled_next_to_a_dead_position(branch):
+    """Crank angles 1e-2 to 1e-10 rad inside either edge of a blocked range (where the coupler's circle touches the
+    rocker sphere and the two crossings meet): each branch assembles, its ball centre within 1e-8 mm of the closed
+    form's root of that branch (ill-conditioned as one over the square root of the margin), on both surfaces to
+    1e-12 mm, and of the branch asked for."""
+    base = LooperDrive.reference()
+    d = LooperDrive(25.0, 50.0, 30.0, rocker_frame=base.rocker_frame)
+    lo, hi = d.blocked_ranges[0]
+    eps = np.array([1e-2, 1e-4, 1e-6, 1e-8, 1e-10])
+    for angles in (lo - eps, hi + eps):
+        assert np.all(d.assembly_margin(angles) > 0)
+        states = np.array([d.solve([u], branch=branch).states[0] for u in angles])
+        _, truth = looper_closed_form(d, np.mod(angles, 2 * np.pi), branch)
+        ball = d.torus.point(states[:, 0], states[:, 1])
+        assert np.max(np.linalg.norm(ball - truth, axis=1)) < 1e-8
+        assert max(np.max(d.torus.distance(ball)), np.max(d.sphere.distance(ball))) < 1e-12
+        assert np.all(d.branch_of(states) == branch)
+
+
 @pytest.mark.parametrize("kwargs, name", [
     ({"crank_radius": 0}, "crank_radius"), ({"coupler_length": -1}, "coupler_length"),
     ({"rocker_length": np.nan}, "rocker_length"), ({"looper_link": "crank"}, "looper_link"),

@@ -323,9 +323,9 @@ def test_forces_at_machine_speed_with_si_units(reference_run, tmp_path):
 
 
 def test_demo_times_a_second_call():
-    """spatialkin demo prints the components and, apart, the first call's time (its kernels included, spatialkin's import not) and a
-    second call's, whose curves' times the table shows: no curve's time carries the first call's loading (each at
-    most the second call's whole time)."""
+    """spatialkin demo prints the components and, apart, the first call's time (its kernels included, spatialkin's
+    import not) and a second call's, whose curves' times the table shows: no curve's time carries the first call's
+    loading (each at most the second call's whole time)."""
     import re
     import subprocess
     import sys

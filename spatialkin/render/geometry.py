@@ -4,7 +4,8 @@ import math
 
 import numpy as np
 
-from ..geometry.surfaces import Plane, Surface
+from ..geometry.surfaces import Plane
+from ..geometry.traits import check_surface
 from .._lib.validation import check_range
 
 #: Default grid of a surface: samples along u and along v.
@@ -37,9 +38,9 @@ def _check_range(name, value, default):
 
 def parameter_domain(surface, u_range=None, v_range=None):
     """Finite ((u_lo, u_hi), (v_lo, v_hi)) to mesh: the given ranges, else the surface's own (its trimmed
-    ranges; the full turn for angles). ValueError naming u_range / v_range where it would be unbounded."""
-    if not isinstance(surface, Surface):
-        raise ValueError(f"surface must be a spatialkin surface, got {type(surface).__name__}")
+    ranges; the full turn for angles). ValueError naming u_range / v_range where it would be unbounded, TypeError
+    naming surface when it is not a spatialkin surface."""
+    check_surface("surface", surface)
     u0, v0 = natural_domain(surface)
     return _check_range("u_range", u_range, u0), _check_range("v_range", v_range, v0)
 

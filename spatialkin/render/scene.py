@@ -258,6 +258,9 @@ class Scene:
         str : the item's name.
         """
         check_choice("color_by", color_by, COLOR_MODES)
+        if isinstance(curve, (list, tuple)) and curve and all(isinstance(c, Curve) for c in curve):
+            raise TypeError(f"curve must be one Curve (or points (N, 3)), got a list of {len(curve)} Curves: add "
+                            "each one (for c in curves: scene.add_curve(c))")
         if isinstance(curve, Curve):
             # a dense polyline spaced by the chord height, never the solver's steps
             (s, points, _), = polylines(curve, chord_tol)

@@ -235,6 +235,10 @@ def test_bad_input_names_the_argument(pair):
         scene.add_arrows(np.zeros((1, 3)), np.ones((1, 3)), scale=-1.0)
     with pytest.raises(ValueError, match="u_range"):
         scene.add_surface(sk.Plane())
+    with pytest.raises(TypeError, match="surface must be a spatialkin surface .*got str"):
+        scene.add_surface("torus")
+    with pytest.raises(TypeError, match="one Curve .* a list of 2 Curves: add each one"):
+        scene.add_curve(pair[2])
     with pytest.raises(ValueError, match="opacity"):
         scene.add_surface(pair[0], opacity=1.5)
     with pytest.raises(ValueError, match="resolution"):

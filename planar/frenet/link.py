@@ -101,6 +101,7 @@ class DrivenLink:
             rho = np.broadcast_to(rho, shape).reshape(-1, 1)
         _, dphi, ddphi, cg, sg, ck, sk = self.law.evaluate_with_direction(s)
         out = np.empty((3,) + rho.shape + (2,))
+        rho = np.array(rho, dtype=float, order="C")       # (a broadcast view is read-only: one kernel signature)
         lk.link_derivatives(self.k, dphi, ddphi, cg, sg, ck, sk, rho, out[0], out[1], out[2])
         sdot, sddot = time_map(self.k, 0.0, self.omega)        # uniform: ds/dt = omega / k for every point
         return Trajectory(*(o.reshape(shape + (2,)) for o in out), sdot, sddot)

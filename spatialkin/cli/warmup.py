@@ -27,6 +27,8 @@ def run():
             if curve.length > 0:
                 curve(np.linspace(0.0, curve.length, 5))
                 curve.closest(curve.points[:3])
+                # (foot points, as the de-duplication of starts asks them: of writable arrays)
+                curve.result.sol.foot_points(np.array(curve.points[:3]), np.array(curve.s[:3]), 2)
         sk.intersect(a, b, certify=True)
     face = sk.Cylinder(1.0, u_range=(0.0, 2.0), v_range=(-1.0, 1.0))
     sk.intersect(face, sk.Sphere(1.2, sk.Frame((0.5, 0.0, 0.3)), u_range=(-1.0, 2.5)))

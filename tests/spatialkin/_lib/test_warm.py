@@ -310,7 +310,8 @@ def test_after_spatialkin_warmup_the_stress_cases_compile_nothing(tmp_path):
     """On an empty cache, `spatialkin warmup` in one process (it reports, and leaves the cache stamped warm for its
     workload and planar's, an installed package's); then, in a fresh one, a user's calls on pairs the workload never
     saw (every COVERAGE_STRIDE-th stress case: with and without certify=True, then a dense evaluation and closest
-    points of each curve) and planar's six-link over a turn compile no kernel of spatialkin or planar: each loads
+    points of each curve; the notebooks' hard cases) and planar's six-link over a turn and driven links in the
+    Frenet trihedron (the notebook's figures) compile no kernel of spatialkin or planar: each loads
     from the cache the warm-up left. Oracle: numba's compile events (numba fires none for a kernel loaded from its
     cache)."""
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
@@ -345,8 +346,22 @@ def test_after_spatialkin_warmup_the_stress_cases_compile_nothing(tmp_path):
                     if curve.length > 0:
                         curve(np.linspace(0.0, curve.length, 3))
                         curve.closest(curve.points[:2])
+        import math
+        turned = sk.rotation_about((1, 0, 0), math.asin(0.5))         # (the hard cases of the notebooks)
+        for a, b in [(sk.Torus(2.0, 1.0), sk.Plane(sk.Frame((0, 0, 0), turned))),
+                     (sk.Sphere(1.0), sk.Cylinder(0.5, sk.Frame((0.5, 0, 0)), v_range=(-1.5, 1.5))),
+                     (sk.Cylinder(1.0, v_range=(-2, 2)), sk.Cylinder(1.0, sk.Frame((0, 0, 0), sk.rotation_about(
+                         (0, 1, 0), math.pi / 2)), v_range=(-2, 2))),
+                     (sk.Torus(2.0, 0.5), sk.Plane(sk.Frame((0, 0, 0.5)))),
+                     (sk.Torus(8.0, 50.0), sk.Sphere(0.5, sk.Frame((58.5, 0, 0))))]:
+            sk.intersect(a, b)
         import planar
+        from planar.frenet import figures
         planar.examples.fnf_sixbar().solve(np.linspace(0.0, 2 * np.pi, 361))
+        for law in (planar.CrankSlider(k=0.5, e=1.0, L=4.0), planar.CrankRocker(k=0.5, d=4.0)):
+            link = planar.DrivenLink(law, omega=1.0)
+            figures.positions(link, [0.0, 4.0], count=3, samples=31)
+            link.velocity(np.linspace(0.0, 4.0, 5), -4.0), link.acceleration(np.linspace(0.0, 4.0, 5), 2.0)
         print(sorted(compiled))
         """)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=900)

@@ -171,6 +171,16 @@ class FitResult:
     def success(self):
         return bool(self.result.success)
 
+    def __repr__(self):
+        got = self.achieved
+        parts = [f"swing {math.degrees(got['swing']):.6g} deg",
+                 f"min transmission {math.degrees(got['min_transmission']):.6g} deg",
+                 f"assembly margin {got['assembly_margin']:.6g}"]
+        if "tip_miss" in got:
+            parts.append(f"tip miss {got['tip_miss']:.3g}")
+        return (f"FitResult(success={self.success}, cost={got['cost']:.3g}, evaluations={self.result.nfev}; "
+                f"{', '.join(parts)}; {self.design!r})")
+
 
 class _Problem:
     """Residuals and their Jacobian for least_squares, sharing one evaluation per x."""

@@ -57,6 +57,12 @@ class ToleranceResult:
     scalars: dict = field(default_factory=dict)
     failed: int = 0
 
+    def __repr__(self):
+        runs = f"{len(self.mc_tips)} Monte-Carlo runs" + (f" ({self.failed} not assembled)" if self.failed else "")
+        return (f"ToleranceResult({self.distribution}, parameters {list(self.names)}, {len(self.crank_angles)} crank "
+                f"angles, {runs}; tip RMS max linear {self.tip_rms_linear.max():.4g}, Monte-Carlo "
+                f"{self.tip_rms_mc.max():.4g}; table() for the whole)")
+
     def table(self):
         """A plain-text table: per parameter the linear contributions, then linear against Monte-Carlo.
         Angles in degrees (marked), lengths in the drive's unit."""

@@ -1,7 +1,7 @@
 """The kernels' first use on a machine: run them as plain Python at once, compile them in the background.
 
 numba compiles a kernel the first time it is called and caches it on disk (``cache=True``): a few hundred
-specialisations, about a minute of compiling on a 2-core machine, against well under a second to run a first
+specialisations, one to two minutes of compiling on a 2-core machine, against well under a second to run a first
 ``sk.intersect`` or looper drive with the same kernels as plain Python. So when the package is imported and the
 cache is not warm (no stamp of a finished warm-up for these versions and kernel sources), the kernels run as plain
 Python (spatialkin._lib.jit.use), one warning says so, and a background process at the lowest priority compiles
@@ -49,9 +49,9 @@ POLL_S = 1.0
 KERNELS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "kernels")
 #: The line of a cold cache, and of a compile in the foreground (each once per process).
 COLD = ("spatialkin: first use of its compiled kernels on this machine: they are being compiled in the background "
-        "(about a minute); until then they run as plain Python (the same results, slower), and this process turns "
-        "to the compiled ones when they are ready. `spatialkin warmup` compiles them ahead.")
-COMPILING = ("spatialkin: compiling the numerical kernels this call needs (up to a minute on first use; numba "
+        "(one to two minutes); until then they run as plain Python (the same results, slower), and this process "
+        "turns to the compiled ones when they are ready. `spatialkin warmup` compiles them ahead.")
+COMPILING = ("spatialkin: compiling the numerical kernels this call needs (one to two minutes on first use; numba "
              "caches them, later calls and processes start at once). `spatialkin warmup` compiles them ahead.")
 
 #: The workloads registered (spatialkin's, then each package's that imports this), the background processes
@@ -325,7 +325,7 @@ def compiled_for_timing(say):
     work, in the foreground). Returns the seconds spent compiling (0.0 when none)."""
     if jit.JIT_DISABLED or jit.mode() == jit.COMPILED and all(ready(w) for w in workloads()):
         return 0.0
-    say("compiling the kernels first (about a minute on a cold cache), so that the timings are of compiled code")
+    say("compiling the kernels first (one to two minutes on a cold cache), so that the timings are of compiled code")
     return sum(compile_ahead().values())
 
 

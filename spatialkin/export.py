@@ -6,7 +6,8 @@ B-spline (scipy.interpolate.BSpline, e.g. ``curve.to_bspline(tol)`` or a mechani
 written with its own knots and control points (degree 5).
 
 DXF needs ezdxf (a dependency); STEP needs OpenCascade (cadquery-ocp), the ``cad`` extra. The helpers
-``dense_polyline``, ``dxf_document``, ``require`` and ``atomic_path`` are public for other exporters (planar's DXF drawings).
+``dense_polyline``, ``dxf_document``, ``require`` and ``atomic_path`` are public for other exporters (planar's DXF
+drawings).
 """
 import contextlib
 import os
@@ -18,8 +19,8 @@ from scipy.interpolate import BSpline
 from ._lib.files import atomic_path
 from ._lib.validation import check_positive
 
-__all__ = ["atomic_path", "dense_polyline", "dxf_document", "export_curves", "polylines", "require", "splines", "write_csv",
-           "write_dxf", "write_step", "write_vtp"]
+__all__ = ["atomic_path", "dense_polyline", "dxf_document", "export_curves", "polylines", "require", "splines",
+           "write_csv", "write_dxf", "write_step", "write_vtp"]
 
 #: The extra that provides ezdxf and OpenCascade.
 CAD_EXTRA = "spatialkin[cad]"
@@ -98,12 +99,13 @@ def polylines(curves, chord_tol=None):
     return out
 
 
-def check_unit(unit, what="a DXF or CSV file"):
-    """The unit (a key of UNITS), or ValueError naming the argument and the units allowed."""
-    if unit not in UNITS or (unit is None and what == "STEP"):
-        allowed = ", ".join(repr(u) for u in UNITS if u is not None or what != "STEP")
-        raise ValueError(f"unit must be one of {allowed} (the length unit {what} declares; its coordinates are "
-                         f"written as they are), got {unit!r}")
+def check_unit(unit, what="a DXF or CSV file", unitless=True):
+    """The unit (a key of UNITS; None only where the file may be unitless), or ValueError naming the argument and
+    the units allowed."""
+    allowed = [u for u in UNITS if u is not None or unitless]
+    if unit not in allowed:
+        raise ValueError(f"unit must be one of {', '.join(map(repr, allowed))} (the length unit {what} declares; its "
+                         f"coordinates are written as they are), got {unit!r}")
     return unit
 
 
@@ -200,7 +202,7 @@ def write_dxf(path, curves, tol=SPLINE_TOL, layer="CURVES", unit="mm"):
 def write_step(path, curves, tol=SPLINE_TOL, unit="mm"):
     """STEP (AP214) of the B-spline curves as edges, through OpenCascade (the ``cad`` extra); the file declares
     the unit the coordinates are in ("mm", "cm", "m" or "in"), and they are written as they are."""
-    check_unit(unit, "STEP")
+    check_unit(unit, "STEP", unitless=False)
     require("OCP")
     from OCP.BRep import BRep_Builder
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge

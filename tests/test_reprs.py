@@ -20,7 +20,8 @@ def objects():
     from spatialkin.design import LooperDesign, Targets
     design = LooperDesign.reference(free=("rocker_length",))
     fitted = design.fit(Targets(swing=design.sensitivities(np.linspace(0.0, 2 * np.pi, 91)).swing + 0.01))
-    return {"FitResult": fitted, "ToleranceResult": design.tolerance({"crank_radius": 0.01}, samples=20),"LooperDrive": drive, "LooperMotion": motion, "LooperAnalysis": drive.analyse(samples=361),
+    return {"FitResult": fitted, "ToleranceResult": design.tolerance({"crank_radius": 0.01}, samples=20),
+            "LooperDrive": drive, "LooperMotion": motion, "LooperAnalysis": drive.analyse(samples=361),
             "PointMotion": motion.looper_tip, "Trajectory": motion.ball, "LinkState": motion.links()["crank"],
             "RSSR": rssr, "RSSRMotion": rssr.solve(np.linspace(0.0, 1.0, 5)), "CrankSlider": law,
             "CrankRocker": planar.CrankRocker(1.0, 2.0), "DrivenLink": planar.DrivenLink(law, omega=2.0),
@@ -28,7 +29,8 @@ def objects():
             "Frame": sk.Frame(), "Torus": sk.Torus(8.0, 50.0)}
 
 
-@pytest.mark.parametrize("name", ["FitResult", "ToleranceResult", "LooperDrive", "LooperMotion", "LooperAnalysis", "PointMotion", "Trajectory",
+@pytest.mark.parametrize("name", ["FitResult", "ToleranceResult",
+                                  "LooperDrive", "LooperMotion", "LooperAnalysis", "PointMotion", "Trajectory",
                                   "LinkState", "RSSR", "RSSRMotion", "CrankSlider", "CrankRocker", "DrivenLink",
                                   "Linkage", "LinkageMotion", "Scene", "Frame", "Torus"])
 def test_repr_is_readable(objects, name):

@@ -40,8 +40,8 @@ ASSEMBLY_SAMPLES = 3600
 LOOP_SAMPLES = 2048
 #: Newton iterations at a fixed crank angle.
 NEWTON_MAX_ITER = 30
-#: The coupler's circle is taken to reach the rocker sphere within this relative round-off of its reach (a crank
-#: angle at a dead position, where the two crossings meet).
+#: The coupler's circle is taken to reach the rocker sphere within this relative rounding error of its reach (a
+#: crank angle at a dead position, where the two crossings meet).
 CROSSING_SLACK = 1e-12
 #: Accuracy of positions relative to the mechanism's size ...
 POSITION_TOL = 1e-14
@@ -269,7 +269,7 @@ class LooperDrive:
         """The tube angles v1 (0, 1 or 2 of them) where the coupler's circle at the crank angle crosses the rocker
         sphere. The circle is C(v) = c + a cos v + b sin v with |a| = |b| = r and a normal to b (the torus at fixed
         u), so |C(v) - P2|^2 - L^2 = A + B cos v + D sin v: v = phi +- acos(-A / hypot(B, D)), phi = atan2(D, B)
-        (clipped to the circle's reach where round-off puts a touching crossing just outside it), in [-pi, pi]."""
+        (clipped to the circle's reach where rounding puts a touching crossing just outside it), in [-pi, pi]."""
         u1 = float(crank_angle)
         c0, a0, b0 = (self.torus.point(u1, v) for v in (math.pi, 0.0, 0.5 * math.pi))
         c = 0.5 * (c0 + a0)

@@ -310,6 +310,7 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
     appending each to curves (a list, changed in place) and dropping the starts on it; returns the starts (3,) that
     could be neither located nor traced (the messages of the tracing failures appended to reasons)."""
     failed = []
+    traced = lambda point: any(near_curve(curve, point, radius)[0] for curve in curves)        # noqa: E731
     while pending:
         point, y, _ = pending.pop(0)
         if y is None:
@@ -322,17 +323,15 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
                 continue
             if stages.ON:
                 stages.switch("dedupe")
-            for curve in curves:
-                if near_curve(curve, point, radius)[0]:
-                    break
-            else:
-                curve = None
-            if curve is not None:                   # (on a curve traced already)
+            if traced(point):                       # (on a curve traced already)
                 continue
         if stages.ON:
             stages.switch("trace_setup")
         try:
-            found = [trace_from(a, b, point, y, settings, time.perf_counter())]
+            found = trace_from(a, b, point, y, settings, time.perf_counter(), known=traced)
+            if found is None:
+                continue        # (the start lay off the curve, beside a component traced already)
+            found = [found]
         except TracingError as err:
             wide = across_edges(a, b, point, y, settings) if err.status == BOUNDARY else None
             if wide is None:

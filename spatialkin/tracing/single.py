@@ -16,6 +16,7 @@ from .march.start import locate_on_curve
 from .march.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings,
                           trace_from)
 from .search.topology import TopologyError, topology
+from ..geometry.asymptotic import bounded_pair
 from ..geometry.traits import check_surface
 from .._lib import warm
 from .._lib.validation import as_float_array
@@ -155,8 +156,9 @@ def trace(a, b, start, *, tol=1e-10, method=DEFAULT_METHOD, rtol=DEFAULT_RTOL, a
 def searched_nodes(a, b, scale, tolerance):
     """(K, 3) the singular points of a ∩ b the topology search proves a branch may pass (the nodes, and the apexes
     and poles lying on the other surface), as sk.intersect hands them to the march; None where the search cannot
-    run (neither surface bounded, the surfaces coincide) or stops (TopologyError): every suspect minimum is then
-    taken for a node."""
+    run (the surfaces coincide, or neither is bounded and no ball holds all they share) or stops (TopologyError):
+    every suspect minimum is then taken for a node."""
+    a, b = bounded_pair(a, b)             # (two unbounded surfaces: cut to a ball holding all they share)
     try:
         topo = topology(a, b, scale, tolerance)
     except (TopologyError, ValueError):

@@ -53,6 +53,8 @@ MESSAGES = {
                                  "sin = {sin:.2g}): no tangent to follow"),
     "nothing_traced": (None, "nothing could be traced from {point}: {message}"),
     "no_start": (NO_START, "no intersection point found near start {point}: Newton on M1 = M2 did not converge"),
+    "off_curve": (FAILED, "the start {point} lies off the curve, within the gap tolerance of both surfaces where they "
+                          "nearly touch: the march from it went round a loop through {rejoin} that does not pass it"),
     "branch_failed": (FAILED, "the curve could not be traced past {point}: {message}"),
     "runs_over_itself": (FAILED, "the curve runs over itself: its end {point} lies {gap:.2g} from its own path at "
                                  "s = {s:.6g} (a jump across a singular point landed on a branch followed already: "
@@ -74,6 +76,8 @@ MESSAGES = {
                         "point {point} (the budget is per segment: a shorter max_length asks for less)"),
     "solver_failed": (FAILED, "solve_ivp failed at s = {s:.6g}: {message}"),
     "too_many_segments": (FAILED, "more than {count} segments"),
+    "lapped": (FAILED, "went round a loop that does not pass the start (the start lies off the curve, where the "
+                       "surfaces nearly touch) at s = {s:.6g}, point {point}"),
 }
 
 

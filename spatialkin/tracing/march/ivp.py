@@ -219,6 +219,30 @@ def lapping(branch, max_step):
     return None
 
 
+def lapped(branch, passed, point, direction, radius, s):
+    """True, with the branch ended (status failed; rejoin: a point of the loop and its state), where the branch passes
+    again a geometric event it passed already (within radius, moving the same way: cosine at least CLOSURE_COSINE)
+    without having closed on its start: it went round a loop that does not pass the start, which lies off the curve
+    (within the gap tolerance of both surfaces where they nearly touch, yet farther from the curve than the closure's
+    radius; asked only where the start's sine allows that: from a start on the curve, such a lap crossed between
+    branches, and the branch runs on to max_length, which sk.intersect refuses). The rejoin point is the last segment's stored state where the normals are farthest from parallel (a
+    loop's events sit where they are closest: minima of the sine). Else the event is added to passed (a list of
+    (point, direction))."""
+    for seen, heading in passed:
+        gap = point - seen
+        if math.sqrt(gap.dot(gap)) <= radius and float(heading.dot(direction)) >= CLOSURE_COSINE:
+            seg = branch.segments[-1]
+            best = max(range(seg.y.shape[1]), key=lambda k: kc.degeneracy(seg.y[:, k], seg.a, seg.b, 0.0, 0.0))
+            y = seg.y[:, best].copy()
+            on = np.empty(3)
+            kc.curve_frame(y, seg.a, seg.b, on, np.empty(3))
+            branch.status, branch.message = outcome("lapped", s=s, point=on.tolist())
+            branch.rejoin = (on, y)
+            return True
+    passed.append((point.copy(), direction.copy()))
+    return False
+
+
 def at_outer_edge(a, b, y, sign, bounds):
     """True where y lies on (or past) an edge of a trimmed surface and the direction of travel leaves it (a curve
     running along the edge does not leave it). bounds: finite_bounds(a, b); the direction of travel is evaluated
@@ -262,6 +286,8 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
     bounds = finite_bounds(a_user, b_user)
     watched = {}
     max_step = settings.max_step
+    passed = []             # (point, direction) of the geometric events passed (minima, charts, crossings elsewhere)
+    off_start = None        # whether the start may lie off the curve by more than the closure's radius (laps watched)
     for _ in range(MAX_SEGMENTS):
         y_prev = y
         mark = stages.enter("correction") if stages.ON else None
@@ -285,6 +311,8 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
             else:
                 branch.status, branch.message = outcome("newton_failed", s=s)
             break
+        if off_start is None:           # (the start's gap, at most gap_tol, over the sine: its distance to the curve)
+            off_start = settings.gap_tol > radius * kc.degeneracy(y, a, b, 0.0, 0.0)
         if at_outer_edge(a, b, y, sign, bounds):
             branch.status, branch.message = outcome("leaves_edge", s=s)
             break
@@ -384,6 +412,8 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
                 return branch
             continue
         if kind in ("minimum", "chart"):
+            if off_start and lapped(branch, passed, point, sign * tangent, radius, s):
+                break
             continue
         if kind == "apex":                   # beside an apex the topology stage proved off the curve: go round it,
             watch_apex = False               # unwatched until clear of it (else its event fires again at each start)
@@ -399,6 +429,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
                 redo = lapping(branch, max_step)
                 if redo is not None:             # integrated again from that segment, with shorter steps
                     k, max_step = redo
+                    passed.clear()       # (passed again on the way)
                     seg = branch.segments[k]
                     del branch.segments[k:]
                     s, sign, a, b, y, compiled = seg.s0, seg.sign, seg.a, seg.b, seg.y[:, 0].copy(), seg.compiled
@@ -410,6 +441,8 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
                 branch.end_state = yp
                 return branch
             s_arm = s          # a crossing elsewhere: go on, re-armed past it
+            if off_start and lapped(branch, passed, p_e, sign * t_e, radius, s):
+                break
             continue
         if kind == "boundary":
             k, j = info

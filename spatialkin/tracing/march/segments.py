@@ -74,6 +74,7 @@ class Branch:
     nfev: int = 0
     end_state: np.ndarray = None
     nodes: list = field(default_factory=list)      # (s, point) of singular points passed through
+    rejoin: tuple = None            # (point, state) on the loop the branch went round without passing its start
 
 
 @dataclass

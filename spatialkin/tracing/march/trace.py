@@ -26,7 +26,7 @@ from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from ..curve.dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS, Span, TracedSolution
 from ..curve.result import CurveResult, TracingError, DUPLICATE_SPACING
 from .start import locate_on_curve, scale_of, scene_reading
-from ..curve.status import CLOSED, FAILED, MAX_LENGTH, SINGULAR, open_outcome
+from ..curve.status import CLOSED, FAILED, MAX_LENGTH, SINGULAR, open_outcome, outcome
 from ..._lib import stages
 from ..._lib.validation import check_choice, check_nonnegative, check_positive
 
@@ -177,9 +177,33 @@ def scene_lengths(a, b, tol, max_length, magnitude):
     return scale, tolerance, gap_tol, max_length
 
 
-def trace_from(a, b, point, y, settings, t_start):
+class OffCurve(TracingError):
+    """A branch went round a loop that does not pass its start: the start lies off the curve (within the gap
+    tolerance of both surfaces where they nearly touch). rejoin: (point (3,), state (4,) in the march's charts) on
+    that loop."""
+
+    def __init__(self, message, rejoin):
+        super().__init__(message, where=rejoin[0])
+        self.rejoin = rejoin
+
+
+def trace_from(a, b, point, y, settings, t_start, known=None):
     """Trace both directions from a point on the curve: the CurveResult of the component, with its dense
-    output."""
+    output. A start off the curve (OffCurve) is moved, once, onto the loop its march went round (located there by
+    Newton) and the component traced from that point; None where known (a callable of that point, or None) says its
+    component is traced already."""
+    try:
+        return component_from(a, b, point, y, settings, t_start)
+    except OffCurve as off:
+        rejoin = off.rejoin
+    point, y = locate_on_curve(a, b, rejoin[0], settings.gap_tol, rejoin[1])
+    if known is not None and known(point):
+        return None
+    return component_from(a, b, point, y, settings, t_start)
+
+
+def component_from(a, b, point, y, settings, t_start):
+    """trace_from's march from one start."""
     point, y = clear_of_apexes(a, b, point, y, settings)
     tangent = np.empty(3)
     p = np.empty(3)
@@ -317,6 +341,9 @@ def measured_branch(a, b, point, tangent, y, sign, settings):
     """One direction integrated from point (integrate_branch) with its arc length re-measured on the curve
     (remeasure_branch, timed as correction)."""
     branch = integrate_branch(a, b, point, tangent, y, sign, settings)
+    if branch.rejoin is not None:
+        raise OffCurve(outcome("off_curve", point=np.round(point, 12).tolist(),
+                               rejoin=np.round(branch.rejoin[0], 12).tolist())[1], branch.rejoin)
     if branch.status == FAILED:
         end = branch_end(branch, point)
         raise TracingError.of("branch_failed", where=end, point=np.round(end, 12).tolist(), message=branch.message)

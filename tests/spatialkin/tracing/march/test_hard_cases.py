@@ -337,3 +337,41 @@ def test_tori_a_hair_from_touching_are_refused_not_followed_to_max_length():
     assert err.value.where == "march"
     curves = sk.intersect(a, b, max_length=3.0)         # a max_length asked for is the user's: traced to it
     assert curves and all(c.status == "max_length" and abs(c.length - 6.0) < 1e-6 for c in curves)
+
+
+def near_tangent_cylinders():
+    """Two untrimmed cylinders 2.4e4 from the origin, 2.5e-9 (relative) from touching: one loop 3.4e-4 long whose
+    normals' sine falls to 6e-6 at its tips, so that points within the gap tolerance of both surfaces lie up to 1e-5
+    off it."""
+    a = sk.Cylinder(0.1413875351916232, sk.Frame(
+        (21412.986948007456, -813.6479107772784, -11997.63644131216),
+        [[-0.8369333470956916, 0.3402774756925714, -0.42866515143581985],
+         [-0.34985028612535285, 0.26970000542215644, 0.8971436252759631],
+         [0.42088876180911694, 0.900818043009564, -0.10667475601663265]]))
+    b = sk.Cylinder(0.034277285873440436, sk.Frame(
+        (21413.19347888011, -813.7280635479508, -11997.709747417772),
+        [[0.8918424115906136, 0.23349389560989187, 0.38742446180017487],
+         [0.3736631825423068, 0.10242226565495177, -0.9218923502830799],
+         [-0.25493712734827956, 0.9669489542943946, 0.004096448264493346]]))
+    return a, b
+
+
+def test_starts_off_a_near_tangent_loop_rejoin_it():
+    """Where the surfaces nearly touch, a start within the gap tolerance of both may lie 1e-5 off the curve; the march
+    from it goes round the loop without passing it. Both sk.intersect (whose search gives about a hundred such starts)
+    and sk.trace from such a start return the one loop, closed, its length within the 40-digit oracle's (the trapezoid
+    rule's error plus the loop's conditioning, 2 pi ulp(|x|) / smallest sine, tests.oracles.mp) of the truth."""
+    from tests.oracles.mp import foot, loop_length
+    a, b = near_tangent_cylinders()
+    off = np.asarray(a.point(3.14151741, 9.68063763e-05), dtype=float)
+    answers = [sk.intersect(a, b), sk.intersect(b, a), [sk.trace(a, b, off)], [sk.trace(b, a, off)]]
+    s, gap = answers[0][0].closest(off[None])
+    nearest = np.asarray(answers[0][0](s), dtype=float).reshape(3)
+    # (the start is within the gap tolerance of both surfaces, and 1e-6 or more from the curve: from the nearest
+    # point of the one traced, which lies on the true curve)
+    assert float(b.distance(off)) < 3e-10 and gap[0] > 1e-6 and foot(a, b, nearest)[0] < 1e-10
+    exact, error, sine = loop_length(a, b, answers[0][0].points[::5], n=1024)
+    bound = error + 2 * math.pi * np.finfo(float).eps * float(np.abs(off).max()) / sine
+    for curves in answers:
+        assert len(curves) == 1 and curves[0].status == "closed"
+        assert abs(curves[0].length - exact) <= bound, (curves[0].length, exact, bound)

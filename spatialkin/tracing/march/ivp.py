@@ -229,8 +229,7 @@ def lapped(branch, passed, point, direction, radius, s):
     loop's events sit where they are closest: minima of the sine). Else the event is added to passed (a list of
     (point, direction))."""
     for seen, heading in passed:
-        gap = point - seen
-        if math.sqrt(gap.dot(gap)) <= radius and float(heading.dot(direction)) >= CLOSURE_COSINE:
+        if passes_again(point, direction, seen, heading, radius):
             seg = branch.segments[-1]
             best = max(range(seg.y.shape[1]), key=lambda k: kc.degeneracy(seg.y[:, k], seg.a, seg.b, 0.0, 0.0))
             y = seg.y[:, best].copy()
@@ -241,6 +240,13 @@ def lapped(branch, passed, point, direction, radius, s):
             return True
     passed.append((point.copy(), direction.copy()))
     return False
+
+
+def passes_again(point, heading, place, direction, radius):
+    """True where point lies within radius of place and heading (the unit direction of travel at point) has a cosine
+    of at least CLOSURE_COSINE with direction (place's): the branch passes place again, the same way."""
+    gap = point - place
+    return math.sqrt(gap.dot(gap)) <= radius and float(heading.dot(direction)) >= CLOSURE_COSINE
 
 
 def at_outer_edge(a, b, y, sign, bounds):
@@ -423,9 +429,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
             yp, p_e, t_e, _ = project_state(y, a, b, settings)
             if mark is not None:
                 stages.leave(mark)
-            gap = p_e - start
-            close_enough = math.sqrt(gap.dot(gap)) <= radius           # (np.linalg.norm's sum and root)
-            if close_enough and float((sign * t_e).dot(direction)) >= CLOSURE_COSINE:
+            if passes_again(p_e, sign * t_e, start, direction, radius):
                 redo = lapping(branch, max_step)
                 if redo is not None:             # integrated again from that segment, with shorter steps
                     k, max_step = redo

@@ -62,6 +62,8 @@ LABEL_BOX_OPACITY, OBSTACLE_STEP, LABEL_MARGIN = 0.8, 3.0, 6.0
 #: Scale bar: longest length (fraction of the window's width), lower-left corner (fraction of the width;
 #: pixels above the colour bars), tick height and line width (pixels).
 SCALE_BAR_FRACTION, SCALE_BAR_X, SCALE_BAR_GAP, SCALE_BAR_TICK, SCALE_BAR_LINE = 0.22, 0.05, 10.0, 8.0, 3.0
+#: Height (pixels) kept below the drawing for the scale bar: its gap, half its tick and its length's text.
+SCALE_BAR_ROOM = SCALE_BAR_GAP + 0.5 * SCALE_BAR_TICK + 2.0 * LABEL_FONT_SIZE
 #: Where the orientation marker goes (fractions of the window: x0, y0, x1, y1): lower right, above colour bars.
 AXES_VIEWPORT = (0.82, 0.13, 1.0, 0.31)
 #: File suffixes of screenshot() and export().
@@ -408,15 +410,17 @@ class Scene:
             camera.position = tuple(np.asarray(camera.position) + shift)
             plotter.renderer.ResetCameraClippingRange()
         plotter.camera.zoom(self.zoom)
+        width, height = plotter.window_size
+        bottom = max([(y + BAR_HEIGHT) * height + 2.5 * BAR_TITLE_SIZE for _, y in bars.values()], default=0.0)
+        top = height - (3.0 * TITLE_FONT_SIZE if self.title else 0.0)
+        _into_band(plotter, bottom + (SCALE_BAR_ROOM if self.scale_bar else 0.0),
+                   top - (LABEL_MARGIN + 3.0 * BAR_TITLE_SIZE if self.note else 0.0))
         if self.title:
             plotter.add_text(self.title, position="upper_edge", font_size=TITLE_FONT_SIZE, color="black")
         if self.axes:
             plotter.add_axes(line_width=3, labels_off=False, viewport=AXES_VIEWPORT)
-        width, height = plotter.window_size
-        bottom = max([(y + BAR_HEIGHT) * height + 2.5 * BAR_TITLE_SIZE for _, y in bars.values()], default=0.0)
         if self.scale_bar:
             bottom = _draw_scale_bar(plotter, self.unit, bottom)
-        top = height - (3.0 * TITLE_FONT_SIZE if self.title else 0.0)
         if self.note:
             size = 2 * BAR_TITLE_SIZE
             actor, (w, h) = _text(plotter, self.note, (LABEL_MARGIN, top - LABEL_MARGIN - 1.5 * size), size,
@@ -649,6 +653,26 @@ def pixels_per_length(plotter):
     if camera.parallel_projection:
         return height / (2.0 * camera.parallel_scale)
     return height / (2.0 * camera.distance * np.tan(np.radians(camera.view_angle) / 2.0))
+
+
+def _into_band(plotter, low, high):
+    """Shrink and move the view so that what filled the window's height fills the rows from low to high (pixels
+    from the bottom) instead: the drawing clear of the colour bars and scale bar below it and of the title and
+    note above it."""
+    height = plotter.window_size[1]
+    if not 0.0 < high - low < height:
+        return
+    camera = plotter.camera
+    camera.zoom((high - low) / height)
+    shift = (0.5 * (low + high) - 0.5 * height) / pixels_per_length(plotter)
+    focal, position = np.asarray(camera.focal_point), np.asarray(camera.position)
+    view = (focal - position) / np.linalg.norm(focal - position)
+    up = np.asarray(camera.up, dtype=float)
+    up = up - up.dot(view) * view
+    up /= np.linalg.norm(up)
+    camera.focal_point = tuple(focal - shift * up)
+    camera.position = tuple(position - shift * up)
+    plotter.renderer.ResetCameraClippingRange()
 
 
 def _overlay_lines(plotter, segments, color="black", width=1.0):

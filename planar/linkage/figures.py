@@ -30,10 +30,11 @@ def _axes(ax, size=(6.0, 6.0)):
     return new_figure(size)
 
 
-def mechanism(motion, indices=(0,), ax=None, labels=True, title=None):
+def mechanism(motion, indices=(0,), ax=None, labels=True, title=None, unit=None):
     """The linkage at the positions `indices` of a LinkageMotion (the first drawn dark with its joints named, the
     rest light, each with its input angle beside its first crank pin); the title lists the angles (the first
-    TITLE_ANGLES). Returns a matplotlib Figure."""
+    TITLE_ANGLES); the axes in `unit`, the linkage's length unit (e.g. "mm"; None: "length unit"). Returns a
+    matplotlib Figure."""
     fig, ax = _axes(ax)
     linkage = motion.linkage
     indices = np.atleast_1d(indices)
@@ -60,8 +61,7 @@ def mechanism(motion, indices=(0,), ax=None, labels=True, title=None):
     ground = np.array(list(linkage.fixed.values()))
     ax.plot(ground[:, 0], ground[:, 1], "^", ms=JOINT_SIZE + 4, color=GROUND_COLOUR)
     ax.set_aspect("equal")
-    ax.set_xlabel("x (length unit)")
-    ax.set_ylabel("y (length unit)")
+    _label_axes(ax, ("x", "y"), unit)
     if title is None:
         shown = ", ".join(f"{a:.4g}" for a in angles[:TITLE_ANGLES])
         more = f" and {len(angles) - TITLE_ANGLES} more" if len(angles) > TITLE_ANGLES else ""
@@ -71,12 +71,23 @@ def mechanism(motion, indices=(0,), ax=None, labels=True, title=None):
     return fig
 
 
+def _label_axes(ax, names, unit, per_second=False):
+    """Axis labels "name [unit]" (x first, then y; None leaves one as it is), "name (length unit)" without a unit;
+    per_second: a velocity's, "[unit/s]" or "(length unit / s)"."""
+    shown = (f"[{unit}/s]" if per_second else f"[{unit}]") if unit else (
+        "(length unit / s)" if per_second else "(length unit)")
+    for name, setter in zip(names, (ax.set_xlabel, ax.set_ylabel)):
+        if name is not None:
+            setter(f"{name} {shown}")
+
+
 def _segment(ax, p, q, colour, width, alpha):
     ax.plot([p[0], q[0]], [p[1], q[1]], color=colour, lw=width, alpha=alpha, solid_capstyle="round")
 
 
-def paths(motion, joints=("B", "C", "K"), ax=None, with_mechanism=True, title=None):
-    """Trajectories of the joints over the solved input angles, over the mechanism at the first one."""
+def paths(motion, joints=("B", "C", "K"), ax=None, with_mechanism=True, title=None, unit=None):
+    """Trajectories of the joints over the solved input angles, over the mechanism at the first one; the axes in
+    `unit` (as mechanism's)."""
     fig, ax = _axes(ax)
     if with_mechanism:
         mechanism(motion, (0,), ax=ax, labels=True)
@@ -85,17 +96,16 @@ def paths(motion, joints=("B", "C", "K"), ax=None, with_mechanism=True, title=No
         ax.plot(p[:, 0], p[:, 1], lw=1.4, label=f"path of {j}")
     ax.legend(loc="best", fontsize=8)
     ax.set_aspect("equal")
-    ax.set_xlabel("x (length unit)")
-    ax.set_ylabel("y (length unit)")
+    _label_axes(ax, ("x", "y"), unit)
     ax.set_title(title or "joint trajectories")
     return fig
 
 
-def velocity_plans(motion, index, joints=("A", "B", "C", "K", "D"), title=None):
+def velocity_plans(motion, index, joints=("A", "B", "C", "K", "D"), title=None, unit=None):
     """Velocity plans at position `index`: one panel per crank with the others stopped (crank k's share
     of every joint's velocity, from the pole p) and one of the full motion, where each share is drawn
     tip to tail (dashed, a legend naming the cranks) to show V = sum of the shares; every panel on one scale, in
-    length units per second. Returns a matplotlib Figure."""
+    `unit` (the linkage's length unit; None: "length unit") per second. Returns a matplotlib Figure."""
     cranks = len(motion.linkage.cranks)
     fig, axes = new_figure((4.2 * (cranks + 1), 4.6), columns=cranks + 1)
     panels = [(k + 1, f"crank {k + 1} alone (others stopped)") for k in range(cranks)]
@@ -118,11 +128,11 @@ def velocity_plans(motion, index, joints=("A", "B", "C", "K", "D"), title=None):
                     tail = tail + share
                     ends.append(tail)
         ax.set_title(name, fontsize=9)
-        ax.set_xlabel("v_x (length unit / s)")
+        _label_axes(ax, ("v_x",), unit, per_second=True)
         ax.grid(True, alpha=0.3)
         if crank is None and cranks > 1:
             ax.legend(fontsize=7, loc="best")
-    axes[0].set_ylabel("v_y (length unit / s)")
+    _label_axes(axes[0], (None, "v_y"), unit, per_second=True)
     ends = np.array(ends)                    # one scale for every panel: a joint's arrows compare across them
     lo, hi = ends.min(axis=0), ends.max(axis=0)
     pad = 0.12 * float(np.max(hi - lo)) or 1.0

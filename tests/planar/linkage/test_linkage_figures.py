@@ -60,3 +60,12 @@ def test_velocity_plans_share_one_scale_and_name_the_shares(sol):
     assert len(limits) == 1
     assert [t.get_text() for t in fig.axes[2].get_legend().get_texts()] == ["crank 1's share", "crank 2's share"]
     assert fig.axes[0].get_xlabel() == "v_x (length unit / s)" and fig.axes[0].get_ylabel() == "v_y (length unit / s)"
+
+
+def test_figures_label_their_axes_in_the_unit_given(sol):
+    """unit="mm" puts the unit on every axis (velocities per second); without it the axes say "length unit"."""
+    for fig in (lf.mechanism(sol, unit="mm"), lf.paths(sol, unit="mm")):
+        assert (fig.axes[0].get_xlabel(), fig.axes[0].get_ylabel()) == ("x [mm]", "y [mm]")
+    plans = lf.velocity_plans(sol, 10, unit="mm")
+    assert {ax.get_xlabel() for ax in plans.axes} == {"v_x [mm/s]"} and plans.axes[0].get_ylabel() == "v_y [mm/s]"
+    assert lf.paths(sol).axes[0].get_xlabel() == "x (length unit)"

@@ -1,4 +1,5 @@
-"""Independent oracles (numpy only, no spatialkin kernels): exact distances, closed forms, topology.
+"""Independent oracles (numpy, and mpmath for one quadrature; no spatialkin code): exact distances, closed forms,
+topology.
 
 Exact distances to the torus (both circles of the meridian plane, which matter for horn and spindle tori) and the
 sphere; the closed form alpha cos v + beta sin v = gamma of torus ∩ sphere per torus angle; the critical sphere radii
@@ -87,3 +88,31 @@ def looper_closed_form(drive, u1, branch):
     w = big + small * np.cos(v1)
     local = np.stack([w * np.cos(u1), w * np.sin(u1), small * np.sin(v1)], axis=-1)
     return v1, o1 + local @ rot.T
+
+
+def torus_cylinder_lobe_length(shift, digits=30):
+    """Length of one lobe of the torus (major radius 1, minor 0.4, axis z) cut by the cylinder of radius 0.8 whose
+    axis is parallel to y through (1.4 + shift, 0, 0), for shift < 0 (the cylinder touches the tube's inner equator at
+    (0.6, 0, 0) when shift = 0; moved inwards, the figure eight's node splits and the lobes y > 0 and y < 0 come
+    apart, by 2 sqrt(-1.2 shift) at tau = 0). On the cylinder, x = 1.4 + shift - 0.8 cos(tau), z = -0.8 sin(tau),
+    |tau| <= pi / 6; the torus gives rho = sqrt(x^2 + y^2) = 1 -+ w, w = sqrt(0.16 - z^2) (the inner and the outer
+    half of the lobe, joined where w = 0), y = sqrt(rho^2 - x^2). The length is the integral of the speed
+    (derivatives in closed form) by tanh-sinh quadrature (mpmath), split at tau = 0 where y turns on the scale
+    sqrt(-shift), in `digits`-digit arithmetic."""
+    import mpmath as mp
+    if not shift < 0:
+        raise ValueError("shift must be negative (the lobes apart)")
+    with mp.workdps(digits):
+        kap = mp.mpf(shift)
+
+        def speed(tau, sign):
+            s, c = mp.sin(tau), mp.cos(tau)
+            x, dx, dz = mp.mpf("1.4") + kap - mp.mpf("0.8") * c, mp.mpf("0.8") * s, -mp.mpf("0.8") * c
+            w = mp.sqrt(mp.mpf("0.16") - mp.mpf("0.64") * s * s)
+            rho, drho = 1 + sign * w, -sign * mp.mpf("0.64") * s * c / w
+            y = mp.sqrt(rho * rho - x * x)
+            dy = (rho * drho - x * dx) / y
+            return mp.sqrt(dx * dx + dy * dy + dz * dz)
+
+        end = mp.pi / 6
+        return float(sum(mp.quad(lambda t: speed(t, sign), [-end, 0, end]) for sign in (-1, 1)))

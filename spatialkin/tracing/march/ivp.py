@@ -230,16 +230,33 @@ def lapped(branch, passed, point, direction, radius, s):
     (point, direction))."""
     for seen, heading in passed:
         if passes_again(point, direction, seen, heading, radius):
-            seg = branch.segments[-1]
-            best = max(range(seg.y.shape[1]), key=lambda k: kc.degeneracy(seg.y[:, k], seg.a, seg.b, 0.0, 0.0))
-            y = seg.y[:, best].copy()
-            on = np.empty(3)
-            kc.curve_frame(y, seg.a, seg.b, on, np.empty(3))
-            branch.status, branch.message = outcome("lapped", s=s, point=on.tolist())
-            branch.rejoin = (on, y)
+            branch.rejoin = steadiest(branch.segments[-1:])
+            branch.status, branch.message = outcome("lapped", s=s, point=branch.rejoin[0].tolist())
             return True
     passed.append((point.copy(), direction.copy()))
     return False
+
+
+def steadiest(segments):
+    """(point (3,), state (4,) in its segment's charts) of the segments' stored state where the normals are farthest
+    from parallel."""
+    best, where = -1.0, None
+    for seg in segments:
+        for k in range(seg.y.shape[1]):
+            sine = kc.degeneracy(seg.y[:, k], seg.a, seg.b, 0.0, 0.0)
+            if sine > best:
+                best, where = sine, (seg, k)
+    seg, k = where
+    y = seg.y[:, k].copy()
+    point = np.empty(3)
+    kc.curve_frame(y, seg.a, seg.b, point, np.empty(3))
+    return point, y
+
+
+def may_be_off(settings, sine):
+    """True where a start with this sine of the normals' angle may lie farther than the closure's radius from the
+    curve: its gap (at most the gap tolerance) over the sine, to first order."""
+    return settings.gap_tol > CLOSURE_RADIUS * settings.scale * sine
 
 
 def passes_again(point, heading, place, direction, radius):
@@ -317,8 +334,8 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
             else:
                 branch.status, branch.message = outcome("newton_failed", s=s)
             break
-        if off_start is None:           # (the start's gap, at most gap_tol, over the sine: its distance to the curve)
-            off_start = settings.gap_tol > radius * kc.degeneracy(y, a, b, 0.0, 0.0)
+        if off_start is None:
+            off_start = may_be_off(settings, kc.degeneracy(y, a, b, 0.0, 0.0))
         if at_outer_edge(a, b, y, sign, bounds):
             branch.status, branch.message = outcome("leaves_edge", s=s)
             break

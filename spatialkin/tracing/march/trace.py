@@ -20,7 +20,7 @@ from ...kernels.march import curve as kc
 from ...kernels.curve import stored as kst
 from ...kernels.geometry import surfaces as ks
 from .arclength import remeasure_branch
-from .ivp import integrate_branch
+from .ivp import NODE_SUSPECT, integrate_branch, may_be_off, steadiest
 from ...ode.solvers import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from ..curve.dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS, Span, TracedSolution
@@ -49,6 +49,9 @@ DEFAULT_METHOD = COMPILED
 MAX_STEP = 0.2
 #: Without a max_length, a branch may run this many times 2 pi times the larger surface extent.
 MAX_LENGTH_TURNS = 32
+#: Points of an open curve traced from a start that may lie off the curve (may_be_off) tested for running over the
+#: curve's own path (over_itself), evenly in arc length, both ends included.
+OVERLAP_SAMPLES = 5
 #: An open curve whose two ends stop at singular points runs over itself where an end lies within OVER_ITSELF x
 #: scale of its own path farther than ITSELF_CLEAR x scale (in arc length) from that end: a jump across a singular
 #: point landed on a branch the curve had followed already (a loop through the point shorter than the jump).
@@ -276,6 +279,15 @@ def component_from(a, b, point, y, settings, t_start):
         if overlap is not None:
             end, gap, s_near = overlap
             raise TracingError.of("runs_over_itself", where=end, point=np.round(end, 12).tolist(), gap=gap, s=s_near)
+    elif not closed and (sin_normals < NODE_SUSPECT or may_be_off(settings, sin_normals)):
+        # a start beside a singular point or off the curve whose two branches went round one loop and stopped at a
+        # trim edge (one the loop comes within the gap tolerance of where the surfaces nearly touch): traced again
+        # from the loop's point where the normals are farthest from parallel
+        overlap = over_itself(sol, settings.scale, np.linspace(0.0, length, OVERLAP_SAMPLES))
+        if overlap is not None:
+            rejoin = steadiest([seg for branch, _, _ in branches for seg in branch.segments])
+            raise OffCurve(outcome("off_curve", point=np.round(point, 12).tolist(),
+                                   rejoin=np.round(rejoin[0], 12).tolist())[1], rejoin)
     result = CurveResult(points=points, s=s_all, params=params, closed=closed, length=length, status=status,
                          message=message, tolerance=settings.tolerance, sol=sol, nodes=nodes, solver_gap=raw_gap,
                          nfev=nfev, wall_time=time.perf_counter() - t_start)
@@ -284,13 +296,14 @@ def component_from(a, b, point, y, settings, t_start):
     return result
 
 
-def over_itself(sol, scale):
-    """(end (3,), gap, s) where an end of the open curve (its dense output sol) lies within OVER_ITSELF x scale of
-    the curve's own path at an arc length s more than ITSELF_CLEAR x scale from that end (the nearest of the
-    CLOSEST_CANDIDATES grid points there, refined by Newton in s); None where neither end does."""
+def over_itself(sol, scale, at=None):
+    """(end (3,), gap, s) where an end of the open curve (its dense output sol; or a point at one of the arc lengths
+    `at`) lies within OVER_ITSELF x scale of the curve's own path at an arc length s more than ITSELF_CLEAR x scale
+    from it (the nearest of the CLOSEST_CANDIDATES grid points there, refined by Newton in s); None where none
+    does."""
     grid_s, grid = sol.grid()
     clear = ITSELF_CLEAR * scale
-    for s_end in (0.0, sol.length):
+    for s_end in ((0.0, sol.length) if at is None else at):
         end = np.asarray(sol(s_end), dtype=float).reshape(3)
         far = np.nonzero(np.abs(grid_s - s_end) > clear)[0]
         if not len(far):

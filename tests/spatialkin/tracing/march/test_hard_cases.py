@@ -375,3 +375,26 @@ def test_starts_off_a_near_tangent_loop_rejoin_it():
     for curves in answers:
         assert len(curves) == 1 and curves[0].status == "closed"
         assert abs(curves[0].length - exact) <= bound, (curves[0].length, exact, bound)
+
+
+@pytest.mark.parametrize("shift, edge", [(-1e-12, 1e-10), (-1e-12, 1e-8), (-1e-9, 1e-10)])
+@pytest.mark.parametrize("placed", [False, True])
+def test_a_lobe_beside_a_split_node_and_a_trim_edge_is_one_loop(shift, edge, placed):
+    """A cylinder (radius 0.8) touching a torus (1, 0.4) at its inner equator, moved inwards by 1e-12 or 1e-9: the
+    figure eight splits into two lobes; the cylinder trimmed to v >= 1e-10 or 1e-8 keeps the lobe y > 0 whole. Its
+    seeds on the trim edge sit where the surfaces nearly touch: the march from them went round the lobe both ways
+    and stopped at the edge (one open curve, twice the lobe's length); it is traced again from the lobe. Both
+    argument orders, at the origin and placed (scale 216, turned, moved): one closed curve, its length within
+    1e-8 (relative) of the closed form (tests.oracles.closed_forms.torus_cylinder_lobe_length)."""
+    from tests.oracles.closed_forms import torus_cylinder_lobe_length
+    scale, turn, move = (1.0, np.eye(3), np.zeros(3)) if not placed else (
+        215.98166976261078, random_rotation(np.random.default_rng(1138)), np.array([-6.68, -8.24, 4.95]))
+    axis_y = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])       # the cylinder's axis along y
+    torus = sk.Torus(scale, 0.4 * scale, sk.Frame(move, turn))
+    cylinder = sk.Cylinder(0.8 * scale, sk.Frame(move + scale * turn @ np.array([1.4 + shift, 0.0, 0.0]),
+                                                 turn @ axis_y), v_range=(edge * scale, 2.0 * scale))
+    exact = torus_cylinder_lobe_length(shift) * scale
+    for a, b in ((torus, cylinder), (cylinder, torus)):
+        curves = sk.intersect(a, b)
+        assert len(curves) == 1 and curves[0].status == "closed", curves
+        assert abs(curves[0].length - exact) <= 1e-8 * exact, (curves[0].length, exact)

@@ -225,9 +225,9 @@ def lapped(branch, passed, point, direction, radius, s):
     without having closed on its start: it went round a loop that does not pass the start, which lies off the curve
     (within the gap tolerance of both surfaces where they nearly touch, yet farther from the curve than the closure's
     radius; asked only where the start's sine allows that: from a start on the curve, such a lap crossed between
-    branches, and the branch runs on to max_length, which sk.intersect refuses). The rejoin point is the last segment's stored state where the normals are farthest from parallel (a
-    loop's events sit where they are closest: minima of the sine). Else the event is added to passed (a list of
-    (point, direction))."""
+    branches, and the branch runs on to max_length, which sk.intersect refuses). The rejoin point is the last
+    segment's stored state where the normals are farthest from parallel (a loop's events sit where they are closest:
+    minima of the sine). Else the event is added to passed (a list of (point, direction))."""
     for seen, heading in passed:
         if passes_again(point, direction, seen, heading, radius):
             branch.rejoin = steadiest(branch.segments[-1:])

@@ -49,8 +49,8 @@ DEFAULT_METHOD = COMPILED
 MAX_STEP = 0.2
 #: Without a max_length, a branch may run this many times 2 pi times the larger surface extent.
 MAX_LENGTH_TURNS = 32
-#: Points of an open curve traced from a start that may lie off the curve (may_be_off) tested for running over the
-#: curve's own path (over_itself), evenly in arc length, both ends included.
+#: Points of an open curve traced from a start beside a singular point or possibly off the curve (may_be_off) tested
+#: for running over the curve's own path (over_itself), evenly in arc length, both ends included.
 OVERLAP_SAMPLES = 5
 #: An open curve whose two ends stop at singular points runs over itself where an end lies within OVER_ITSELF x
 #: scale of its own path farther than ITSELF_CLEAR x scale (in arc length) from that end: a jump across a singular
@@ -181,9 +181,10 @@ def scene_lengths(a, b, tol, max_length, magnitude):
 
 
 class OffCurve(TracingError):
-    """A branch went round a loop that does not pass its start: the start lies off the curve (within the gap
-    tolerance of both surfaces where they nearly touch). rejoin: (point (3,), state (4,) in the march's charts) on
-    that loop."""
+    """The march from a start off the curve (within the gap tolerance of both surfaces where they nearly touch) or
+    beside a singular point went round a loop without passing the start, or both its branches went round it, running
+    over each other. rejoin: (point (3,), state (4,) in the march's charts) on that loop, where the normals are
+    farthest from parallel."""
 
     def __init__(self, message, rejoin):
         super().__init__(message, where=rejoin[0])
@@ -193,8 +194,8 @@ class OffCurve(TracingError):
 def trace_from(a, b, point, y, settings, t_start, known=None):
     """Trace both directions from a point on the curve: the CurveResult of the component, with its dense
     output. A start off the curve (OffCurve) is moved, once, onto the loop its march went round (located there by
-    Newton) and the component traced from that point; None where known (a callable of that point, or None) says its
-    component is traced already."""
+    Newton from the march's state) and the component traced from that point; None where known (a callable of that
+    point, or None) says its component is traced already."""
     try:
         return component_from(a, b, point, y, settings, t_start)
     except OffCurve as off:

@@ -83,6 +83,9 @@ LOOP_FLOOR = 0.1
 #: Half-width (relative to the searched range) of the interval round an unresolved cluster on a line whose end
 #: values tell a simple root (sign change) from a multiple one.
 CLUSTER_SIDE = 1e-6
+#: Where round-off hides g's sign at an end of that interval, its half-width grows this many times, at most
+#: CLUSTER_WIDENINGS times (to CLUSTER_SIDE x 4^4 = 2.6e-4 of the range).
+CLUSTER_GROWTH, CLUSTER_WIDENINGS = 4.0, 4
 #: Eigenvalues of the Hessian of g below this fraction of the largest are zero (a degenerate singular point).
 EIGEN_RATIO = 1e-10
 #: Seeds on the arms of a node sit this far (relative to the scale) from it, or closer where the arm bends away
@@ -586,15 +589,14 @@ def coaxial_components(p, q, pq, qp, box, topo, keep, add_line_roots, scale, q_i
     found = [(v, True) for v in roots]
     # v runs on past a trim (a cylinder's or cone's rim), or round a periodic v's seam (a torus's inner equator)
     beyond = p.traits.units[1] == LENGTH or p.traits.periodic[1]
-    for v in merge_values(unresolved, 4 * COARSE * (box[3] - box[2])):
+    clusters = merge_values(unresolved, 4 * COARSE * (box[3] - box[2]))
+    for v in clusters:
         # a cluster across which g changes sign is a simple root blurred by round-off (a tiny parallel near a
-        # pole); one across which it keeps its sign is a multiple root (a tangency); at a rim or a seam, g is read
-        # past it
-        h = CLUSTER_SIDE * (box[3] - box[2])
-        lo, hi = (v - h, v + h) if beyond else (max(v - h, box[2]), min(v + h, box[3]))
-        side = pq.values([[-math.pi, lo], [-math.pi, hi]])[:, 0]
-        clear = not pq.on_level((-math.pi, lo)) and not pq.on_level((-math.pi, hi))
-        if clear and side[0] * side[1] < 0:
+        # pole, or a parallel the surfaces cross at a small angle); one across which it keeps its sign is a multiple
+        # root (a tangency); at a rim or a seam, g is read past it
+        bracket = cluster_bracket(pq, v, box, beyond, [w for w in (*roots, *clusters) if w != v])
+        if bracket is not None:
+            lo, hi = bracket
             found.append((brentq(lambda x: pq.values([-math.pi, x])[0, 0], lo, hi, xtol=1e-15 * v_unit), True))
         else:
             found.append((double_root(pq, 0, -math.pi, v, v_unit), False))
@@ -706,6 +708,24 @@ def split_range(lo, hi, bands):
     for b_lo, b_hi in bands:
         pieces = [q for a, b in pieces for q in ((a, min(b, b_lo)), (max(a, b_hi), b)) if q[0] < q[1]]
     return pieces
+
+
+def cluster_bracket(pq, v, box, beyond, others):
+    """(lo, hi) round the cluster v of unresolved roots on P's meridian u = -pi across which g changes sign (a simple
+    root), or None (a multiple root: g keeps its sign, or round-off hides it at every width). The interval's
+    half-width starts at CLUSTER_SIDE of the range and grows CLUSTER_GROWTH-fold, at most CLUSTER_WIDENINGS times,
+    while g is within round-off of zero at an end (a root crossed at a small angle is blurred over round-off / slope),
+    never taking in another root or cluster (others); beyond: g is read past the range's ends (else clipped)."""
+    h = CLUSTER_SIDE * (box[3] - box[2])
+    for _ in range(CLUSTER_WIDENINGS + 1):
+        lo, hi = (v - h, v + h) if beyond else (max(v - h, box[2]), min(v + h, box[3]))
+        if any(lo <= w <= hi for w in others):
+            return None
+        if not pq.on_level((-math.pi, lo)) and not pq.on_level((-math.pi, hi)):
+            side = pq.values([[-math.pi, lo], [-math.pi, hi]])[:, 0]
+            return (lo, hi) if side[0] * side[1] < 0 else None
+        h *= CLUSTER_GROWTH
+    return None
 
 
 def merge_values(values, gap):

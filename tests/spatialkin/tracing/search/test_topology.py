@@ -447,3 +447,30 @@ def test_two_loops_beside_a_waist_far_from_the_origin(shift, scale):
         assert [c.closed for c in curves] == [True, True]
         for c in curves:
             assert abs(c.length / scale - OPENED_VIVIANI_LOOP) <= (1e-9 if shift == 0.0 else 1e-7) * OPENED_VIVIANI_LOOP
+
+
+@pytest.mark.parametrize("offset", [0.0, 2.6e5])
+@pytest.mark.parametrize("overlap", [1e-6, 1e-7, 4e-8])
+def test_spheres_crossing_at_a_small_angle_give_their_circle_not_a_tangency(overlap, offset):
+    """Two spheres (radii 2.50 and 2.31) whose centres lie `overlap` farther apart than the radii's difference
+    (11 to 272 times the tolerance at 2.6e5 from the origin): they cross at a sine of 2.6e-4 to 5.2e-5 along a circle.
+    Round-off blurs g's root on the common meridian over the narrowest interval; the circle is still read as
+    crossed (status 'closed', both orders), not as one the spheres touch along, its length within 1e-8 (relative)
+    of the 50-digit closed form: r^2 = R1^2 - ((d^2 + R1^2 - R2^2) / 2d)^2, the centres' distance d taken from the
+    stored doubles."""
+    import mpmath as mp
+    big, small = 2.5025682306252945, 2.3091309474524637
+    direction = np.array([0.7395177, -0.40175899, -0.54009558])
+    direction /= np.linalg.norm(direction)
+    centre = np.full(3, offset) + np.array([0.3, 0.1, -0.2])
+    other = centre + (big - small + overlap) * direction
+    a, b = sk.Sphere(big, sk.Frame(tuple(centre))), sk.Sphere(small, sk.Frame(tuple(other)))
+    with mp.workdps(50):
+        d = mp.sqrt(sum((mp.mpf(float(x)) - mp.mpf(float(y))) ** 2
+                        for x, y in zip(a.frame.origin, b.frame.origin)))
+        h = (d * d + mp.mpf(big) ** 2 - mp.mpf(small) ** 2) / (2 * d)
+        exact = float(2 * mp.pi * mp.sqrt(mp.mpf(big) ** 2 - h * h))
+    for x, y in ((a, b), (b, a)):
+        curves = sk.intersect(x, y)
+        assert len(curves) == 1 and curves[0].status == "closed", curves[0].message
+        assert abs(curves[0].length - exact) <= 1e-8 * exact, (curves[0].length, exact)

@@ -44,6 +44,9 @@ from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
 #: A curve within this many times the tolerance of touching the other surface (tangency, a plane through an apex)
 #: or of a vertex's touch of a trim level is left to the general path.
 GRAZE = 1e3
+#: Two spheres' distances to tangency, d - |ra - rb| and ra + rb - d, are read to within this many ulps of the
+#: largest of their centres' coordinates, radii and distance: within it they touch (a contact point).
+SPHERE_ROUNDOFF_ULPS = 8
 #: crossings' answer where an ellipse touches a trim level (a double root: no crossing).
 TOUCH = "touch"
 #: A conic whose centre or semi-axes exceed this many scales (a plane nearly parallel to a cylinder's axis or to a
@@ -140,6 +143,8 @@ def closed_form(a, b, settings):
         circle = sphere_circle(a, b, graze, settings.scale)
         if not circle:
             return None if circle is None else []
+        if len(circle) == 1:
+            return [contact_point((a, b), circle[0], settings.tolerance)]
         return [exact_curve((a, b), settings.tolerance, circle=circle, event="axis_circle", topology=topo)]
     placed = (a.memo("placed", Placed), b.memo("placed", Placed))
     gap = roundoff(placed, settings.scale)
@@ -151,6 +156,9 @@ def closed_form(a, b, settings):
         plane, quadric = placed if names[0] == "plane" else placed[::-1]
         if quadric.name == "cone" and abs(dot(plane.z, [quadric.origin[k] - plane.origin[k] for k in range(3)])) <= gap:
             return apex_components((a, b), placed, plane, quadric, graze, gap, settings, topo)
+        touch = plane_sphere_touch(plane, quadric) if quadric.name == "sphere" else None
+        if touch is not None:
+            return [contact_point((a, b), touch, settings.tolerance)]
         conics = plane_conics(plane, quadric, graze, settings.scale, gap)
         if isinstance(conics, tuple):                       # a circle about a common axis: as the general path
             return [] if not conics else [exact_curve((a, b), settings.tolerance, circle=along_normals(placed, conics),
@@ -360,20 +368,27 @@ def to_local(rot, x):
 # --- the conics: (shape, [centre, P, Q]) in global coordinates ------------------------------------------------
 def sphere_circle(a, b, graze, scale):
     """(centre, axis, radius) of the circle of two spheres (centre and axis 3 floats each), the axis from a's centre
-    to b's (as the topology stage's common axis); () when they do not meet; None near tangency or coincidence."""
+    to b's (as the topology stage's common axis); (point,) where they touch within the round-off of their centres'
+    distance (SPHERE_ROUNDOFF_ULPS); () when they do not meet; None when they (nearly) share their centre. The radius
+    comes from the distances to both tangencies, d - |ra - rb| and ra + rb - d, each read once (no difference of
+    squares), so that a circle just past a tangency keeps its relative accuracy."""
     (a0, a1, a2), (b0, b1, b2) = a.frame.origin.tolist(), b.frame.origin.tolist()
     d = [b0 - a0, b1 - a1, b2 - a2]
     dist = math.sqrt(dot(d, d))
     ra, rb = a.radius, b.radius
     if dist <= SAME * scale:
         return None if abs(ra - rb) <= graze else ()
-    if min(abs(dist - ra - rb), abs(dist - abs(ra - rb))) <= graze:
-        return None
-    if dist > ra + rb or dist < abs(ra - rb):
+    floor = SPHERE_ROUNDOFF_ULPS * EPS * max(abs(x) for x in (a0, a1, a2, b0, b1, b2, ra, rb, dist))
+    inner, outer = dist - abs(ra - rb), ra + rb - dist
+    if inner < -floor or outer < -floor:
         return ()
     axis = [d[0] / dist, d[1] / dist, d[2] / dist]
+    if min(abs(inner), abs(outer)) <= floor:          # touching: on the axis, on b's side of a unless b holds a
+        side = -ra if abs(inner) <= floor and rb > ra else ra
+        return ([a0 + side * axis[0], a1 + side * axis[1], a2 + side * axis[2]],)
     x = 0.5 * (dist * dist + ra * ra - rb * rb) / dist
-    return [a0 + x * axis[0], a1 + x * axis[1], a2 + x * axis[2]], axis, math.sqrt(ra * ra - x * x)
+    radius = math.sqrt(inner * (dist + abs(ra - rb)) * outer * (ra + rb + dist)) / (2.0 * dist)
+    return [a0 + x * axis[0], a1 + x * axis[1], a2 + x * axis[2]], axis, radius
 
 
 def plane_line(a, b, graze, scale):
@@ -434,6 +449,24 @@ def coplanar_faces(surfaces, placed, touch, settings, topo):
     return [exact_curve(surfaces, settings.tolerance, segment=(np.array(ends[0]), np.array(ends[1])), topology=topo)]
 
 
+def touching(plane, sphere):
+    """The round-off (SPHERE_ROUNDOFF_ULPS) of the distance from a plane to a sphere's centre (both Placed), within
+    which the plane touches the sphere."""
+    return SPHERE_ROUNDOFF_ULPS * EPS * max(*map(abs, plane.origin), *map(abs, sphere.origin), sphere.surface.radius)
+
+
+def plane_sphere_touch(plane, sphere):
+    """The point where the plane touches the sphere (both Placed), their distance within its round-off (touching) of
+    the radius; None otherwise."""
+    offset = [plane.origin[i] - sphere.origin[i] for i in range(3)]
+    d = dot(plane.z, offset)
+    radius = sphere.surface.radius
+    if abs(abs(d) - radius) > touching(plane, sphere):
+        return None
+    side = radius if d > 0 else -radius
+    return [sphere.origin[i] + side * plane.z[i] for i in range(3)]
+
+
 def quadric_form(quadric):
     """(mu, rho): the quadric (Placed) is x^2 + y^2 + mu z^2 = rho in its local coordinates."""
     name, surface = quadric.name, quadric.surface
@@ -449,7 +482,8 @@ def plane_conics(plane, quadric, graze, scale, apex_gap=None):
     """[(shape, rows)] (global) of the plane and the quadric (Placed); a tuple (centre, axis, radius) for the circle
     of an untrimmed plane about the quadric's axis (or a sphere's), () when nothing is there; None where
     declined. A plane within apex_gap of a cone's apex passes through it (declined; graze when None: the split
-    pairs' planes, known to about that): a user's plane farther from it cuts a conic of its own, however small
+    pairs' planes, known to about that, which graze a sphere within graze too; a user's plane touches it within the
+    round-off of their distance): a user's plane farther from it cuts a conic of its own, however small
     (a plane 1e-7 from the apex, tilted less than the half angle: an ellipse 3.6e-7 long, which the general path's
     search does not look for so close to an apex on the plane)."""
     origin, rot = quadric.origin, quadric.rot
@@ -459,8 +493,8 @@ def plane_conics(plane, quadric, graze, scale, apex_gap=None):
     d = dot(normal, (p0 - o0, p1 - o1, p2 - o2))            # the plane: n . q = d (local)
     mu, rho = quadric.form
     name = quadric.name
-    if name == "sphere" and abs(abs(d) - math.sqrt(rho)) <= graze:
-        return None                                          # tangent
+    if name == "sphere" and abs(abs(d) - math.sqrt(rho)) <= (graze if apex_gap is None else touching(plane, quadric)):
+        return None                                          # tangent (a user's plane: plane_sphere_touch)
     if name == "cone" and abs(d) <= (graze if apex_gap is None else apex_gap):
         return None                                          # through the apex
     n0, n1, n2 = n
@@ -488,7 +522,8 @@ def plane_conics(plane, quadric, graze, scale, apex_gap=None):
             return None
     else:
         y0 = -B / A
-        K = A * y0 * y0 - C
+        # (a sphere's: R^2 - d^2 as (R - |d|)(R + |d|), which keeps its relative accuracy beside a tangency)
+        K = (math.sqrt(rho) - abs(d)) * (math.sqrt(rho) + abs(d)) if name == "sphere" else A * y0 * y0 - C
         if A > 0 and K <= 0:
             return []
         if K == 0 or max(abs(y0), math.sqrt(abs(K)), math.sqrt(abs(K / A))) > LARGE * scale:

@@ -185,12 +185,13 @@ def declined(a, b):
 
 
 def test_degenerate_placements_decline(monkeypatch):
-    """Tangency (at a point, along a cone's ruling through its apex), coincidence, both surfaces unbounded:
-    declined, and sk.intersect answers as its general path does (a contact point, a line of tangency, an error).
-    A touch of a trim edge from outside is answered: the point."""
+    """Tangency along a cone's ruling through its apex or a cylinder's, coincidence, both surfaces unbounded:
+    declined, and sk.intersect answers as its general path does (a line of tangency, an error). A plane touching a
+    sphere is answered: the contact point (exactly here); so is a touch of a trim edge from outside: the point."""
     sphere = sk.Sphere(1.0)
     tangent = sk.Plane(sk.Frame((0.0, 0.0, 1.0), np.eye(3)), (-1, 1), (-1, 1))
-    assert declined(tangent, sphere)
+    touch, = closed_form(tangent, sphere, settings_of(tangent, sphere))
+    assert touch.status == "contact" and np.array_equal(touch.points, [[0.0, 0.0, 1.0]])
     assert [c.status for c in sk.intersect(tangent, sphere)] == ["contact"]
     cone = sk.Cone(0.5, sk.Frame(), (-1.0, 2.0))
     along = sk.Plane(sk.Frame((0.0, 0.0, 0.0), rotation_about((1.0, 0.0, 0.0), math.pi / 2 - 0.5)), (-3, 3), (-3, 3))
@@ -432,3 +433,83 @@ def test_faces_sharing_an_edge():
                                                       v_range=(0.0, 10.0))))
     with pytest.raises(CoincidentSurfacesError):
         sk.intersect(square, sk.Plane(sk.Frame((5.0, 3.0, 0.0)), u_range=(0.0, 10.0), v_range=(0.0, 10.0)))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_spheres_beside_a_tangency_give_their_circle_or_touch(seed):
+    """Two spheres 1e-12 to 1e-5 (of the scale) past or short of an inner or outer tangency, up to 1e5 from the
+    origin: a circle (status 'closed') whose length is within its conditioning of the 50-digit closed form from the
+    stored doubles (1e-12, plus 4 ulps of the coordinates over the distance to tangency, relative), a contact point
+    where that distance is within 8 ulps, nothing where they are apart by more; never a circle of tangency (two
+    spheres touch along none) and never the general path's answer."""
+    import mpmath as mp
+    rng = np.random.default_rng(seed)
+    for _ in range(25):
+        scale = 10 ** rng.uniform(-2, 2)
+        offset = 10 ** rng.uniform(0, 5) * rng.normal(size=3) if rng.random() < 0.7 else np.zeros(3)
+        ra, rb = scale * rng.uniform(0.5, 2.0), scale * rng.uniform(0.3, 2.0)
+        touch = abs(ra - rb) if rng.random() < 0.5 else ra + rb
+        direction = rng.normal(size=3)
+        direction /= np.linalg.norm(direction)
+        step = scale * 10 ** rng.uniform(-12, -5) * rng.choice([1.0, -1.0])
+        a = sk.Sphere(ra, sk.Frame(tuple(offset)))
+        b = sk.Sphere(rb, sk.Frame(tuple(offset + (touch + step) * direction)))
+        with mp.workdps(50):
+            d = mp.sqrt(sum((mp.mpf(float(x)) - mp.mpf(float(y))) ** 2
+                            for x, y in zip(a.frame.origin, b.frame.origin)))
+            big, small = mp.mpf(ra), mp.mpf(rb)
+            inner, outer = d - abs(big - small), big + small - d
+            away = float(min(abs(inner), abs(outer)))
+            square = inner * (d + abs(big - small)) * outer * (big + small + d) / (4 * d * d)
+            exact = float(2 * mp.pi * mp.sqrt(square)) if square > 0 else None
+        ulp = np.spacing(max(np.abs(offset).max(), ra + rb, float(d)))
+        for x, y in ((a, b), (b, a)):
+            curves = sk.intersect(x, y)
+            statuses = [c.status for c in curves]
+            if away <= 8 * ulp:
+                assert statuses in (["contact"], []) or statuses == ["closed"] and exact is not None
+            elif exact is None:
+                assert curves == []
+            else:
+                assert statuses == ["closed"], (statuses, step / scale)
+                bound = exact * (1e-12 + 4 * ulp / away)
+                assert abs(curves[0].length - exact) <= bound, (curves[0].length, exact, bound)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_a_plane_beside_a_sphere_tangency_gives_its_circle_or_touches(seed):
+    """A plane (turned at random) 1e-12 to 1e-5 (of the scale) inside or outside a sphere's tangent plane, up to 1e5
+    from the origin: a circle (status 'closed') within its conditioning of the 50-digit closed form from the stored
+    doubles (2 pi sqrt(R^2 - h^2), h the centre's distance to the plane; 1e-12 plus 4 ulps of the coordinates over
+    |R - h|, relative), a contact point where |R - h| is within 8 ulps, nothing where the plane misses by more; never
+    a circle of tangency."""
+    import mpmath as mp
+    from tests.oracles.closed_forms import random_rotation
+    rng = np.random.default_rng(seed)
+    for _ in range(25):
+        scale = 10 ** rng.uniform(-2, 2)
+        offset = 10 ** rng.uniform(0, 5) * rng.normal(size=3) if rng.random() < 0.7 else np.zeros(3)
+        radius, turn = scale * rng.uniform(0.5, 2.0), random_rotation(rng)
+        step = scale * 10 ** rng.uniform(-12, -5) * rng.choice([1.0, -1.0])
+        sphere = sk.Sphere(radius, sk.Frame(tuple(offset)))
+        plane = sk.Plane(sk.Frame(tuple(offset + (radius - step) * turn[:, 2]), turn))
+        with mp.workdps(50):
+            z = [mp.mpf(float(x)) for x in np.asarray(plane.frame.rotation)[:, 2]]
+            h = abs(sum((mp.mpf(float(c)) - mp.mpf(float(o))) * w
+                        for c, o, w in zip(sphere.frame.origin, plane.frame.origin, z)))
+            h /= mp.sqrt(sum(w * w for w in z))
+            away = float(abs(mp.mpf(radius) - h))
+            square = mp.mpf(radius) ** 2 - h * h
+            exact = float(2 * mp.pi * mp.sqrt(square)) if square > 0 else None
+        ulp = np.spacing(max(np.abs(offset).max(), radius))
+        for x, y in ((sphere, plane), (plane, sphere)):
+            curves = sk.intersect(x, y)
+            statuses = [c.status for c in curves]
+            if away <= 8 * ulp:
+                assert statuses in (["contact"], []) or statuses == ["closed"] and exact is not None
+            elif exact is None:
+                assert curves == []
+            else:
+                assert statuses == ["closed"], (statuses, step / scale)
+                bound = exact * (1e-12 + 4 * ulp / away)
+                assert abs(curves[0].length - exact) <= bound, (curves[0].length, exact, bound)

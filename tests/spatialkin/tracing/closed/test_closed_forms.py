@@ -462,18 +462,7 @@ def test_spheres_beside_a_tangency_give_their_circle_or_touch(seed):
             away = float(min(abs(inner), abs(outer)))
             square = inner * (d + abs(big - small)) * outer * (big + small + d) / (4 * d * d)
             exact = float(2 * mp.pi * mp.sqrt(square)) if square > 0 else None
-        ulp = np.spacing(max(np.abs(offset).max(), ra + rb, float(d)))
-        for x, y in ((a, b), (b, a)):
-            curves = sk.intersect(x, y)
-            statuses = [c.status for c in curves]
-            if away <= 8 * ulp:
-                assert statuses in (["contact"], []) or statuses == ["closed"] and exact is not None
-            elif exact is None:
-                assert curves == []
-            else:
-                assert statuses == ["closed"], (statuses, step / scale)
-                bound = exact * (1e-12 + 4 * ulp / away)
-                assert abs(curves[0].length - exact) <= bound, (curves[0].length, exact, bound)
+        circle_or_touch(a, b, away, exact, np.spacing(max(np.abs(offset).max(), ra + rb, float(d))))
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -501,15 +490,21 @@ def test_a_plane_beside_a_sphere_tangency_gives_its_circle_or_touches(seed):
             away = float(abs(mp.mpf(radius) - h))
             square = mp.mpf(radius) ** 2 - h * h
             exact = float(2 * mp.pi * mp.sqrt(square)) if square > 0 else None
-        ulp = np.spacing(max(np.abs(offset).max(), radius))
-        for x, y in ((sphere, plane), (plane, sphere)):
-            curves = sk.intersect(x, y)
-            statuses = [c.status for c in curves]
-            if away <= 8 * ulp:
-                assert statuses in (["contact"], []) or statuses == ["closed"] and exact is not None
-            elif exact is None:
-                assert curves == []
-            else:
-                assert statuses == ["closed"], (statuses, step / scale)
-                bound = exact * (1e-12 + 4 * ulp / away)
-                assert abs(curves[0].length - exact) <= bound, (curves[0].length, exact, bound)
+        circle_or_touch(sphere, plane, away, exact, np.spacing(max(np.abs(offset).max(), radius)))
+
+
+def circle_or_touch(a, b, away, exact, ulp):
+    """In both argument orders: a contact point or nothing where the distance to tangency, away, is within 8 ulps
+    (or the circle, where there is one); nothing where there is no circle (exact None); else one circle, status
+    'closed', its length within 1e-12 + 4 ulp / away (relative) of exact."""
+    for x, y in ((a, b), (b, a)):
+        curves = sk.intersect(x, y)
+        statuses = [c.status for c in curves]
+        if away <= 8 * ulp:
+            assert statuses in (["contact"], []) or statuses == ["closed"] and exact is not None
+        elif exact is None:
+            assert curves == []
+        else:
+            assert statuses == ["closed"], (statuses, away)
+            bound = exact * (1e-12 + 4 * ulp / away)
+            assert abs(curves[0].length - exact) <= bound, (curves[0].length, exact, bound)

@@ -15,11 +15,13 @@ oriented as the tracer runs them (along N_a x N_b), sampled as exact points with
 
 An ellipse that touches a trim edge from inside to round-off (a circle inscribed in a plane's rectangle, a half
 circle ending in the corners of the edges it touches) keeps the trim's side: the touch is no crossing, and
-crossings of two trims at one point (a corner) are one end. ``closed_form`` declines (returns None, and
-sk.intersect runs its general path) on what is degenerate otherwise: a tangency of the surfaces or a touch of a
-trim edge from outside (the patch met in one point) or by a hyperbola's or parabola's vertex within GRAZE x
-tolerance, a plane through a cone's apex tangent to it along a ruling, coincident surfaces, near-parallel
-configurations whose conic would be huge, both surfaces unbounded.
+crossings of two trims at one point (a corner) are one end. Two spheres, or a sphere and a plane, beside a
+tangency meet in a circle whose radius comes from their distance to the tangency (no difference of squares), or
+touch in a point where that distance is within its round-off (SPHERE_ROUNDOFF_ULPS). ``closed_form`` declines
+(returns None, and sk.intersect runs its general path) on what is degenerate otherwise: another tangency of the
+surfaces or a touch of a trim edge from outside (the patch met in one point) or by a hyperbola's or parabola's vertex
+within GRAZE x tolerance, a plane through a cone's apex tangent to it along a ruling, coincident surfaces,
+near-parallel configurations whose conic would be huge, both surfaces unbounded.
 """
 import collections
 import functools
@@ -42,7 +44,8 @@ from ..march.start import scene_reading
 from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
 
 #: A curve within this many times the tolerance of touching the other surface (tangency, a plane through an apex)
-#: or of a vertex's touch of a trim level is left to the general path.
+#: or of a vertex's touch of a trim level is left to the general path (a sphere's tangency to a sphere or a user's
+#: plane is not: SPHERE_ROUNDOFF_ULPS).
 GRAZE = 1e3
 #: Two spheres' distances to tangency, d - |ra - rb| and ra + rb - d, are read to within this many ulps of the
 #: largest of their centres' coordinates, radii and distance: within it they touch (a contact point).

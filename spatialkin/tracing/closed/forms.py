@@ -17,7 +17,8 @@ An ellipse that touches a trim edge from inside to round-off (a circle inscribed
 circle ending in the corners of the edges it touches) keeps the trim's side: the touch is no crossing, and
 crossings of two trims at one point (a corner) are one end. Two spheres, or a sphere and a plane, beside a
 tangency meet in a circle whose radius comes from their distance to the tangency (no difference of squares), or
-touch in a point where that distance is within its round-off (SPHERE_ROUNDOFF_ULPS). ``closed_form`` declines
+touch in a point where that distance is within its round-off (TANGENCY_ULPS); a plane along a cylinder's axis
+beside a ruling cuts two lines whose distance comes likewise. ``closed_form`` declines
 (returns None, and sk.intersect runs its general path) on what is degenerate otherwise: another tangency of the
 surfaces or a touch of a trim edge from outside (the patch met in one point) or by a hyperbola's or parabola's vertex
 within GRAZE x tolerance, a plane through a cone's apex tangent to it along a ruling, coincident surfaces,
@@ -44,12 +45,13 @@ from ..march.start import scene_reading
 from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
 
 #: A curve within this many times the tolerance of touching the other surface (tangency, a plane through an apex)
-#: or of a vertex's touch of a trim level is left to the general path (a sphere's tangency to a sphere or a user's
-#: plane is not: SPHERE_ROUNDOFF_ULPS).
+#: or of a vertex's touch of a trim level is left to the general path (a user's plane's tangency to a sphere or a
+#: cylinder, and two spheres', only within TANGENCY_ULPS).
 GRAZE = 1e3
-#: Two spheres' distances to tangency, d - |ra - rb| and ra + rb - d, are read to within this many ulps of the
-#: largest of their centres' coordinates, radii and distance: within it they touch (a contact point).
-SPHERE_ROUNDOFF_ULPS = 8
+#: Distances to a tangency (two spheres': d - |ra - rb| and ra + rb - d; a plane's to a sphere's centre or a
+#: cylinder's axis, less the radius) are read to within this many ulps of the largest coordinate, radius or distance:
+#: within it the surfaces touch (a contact point; a cylinder's ruling, left to the general path).
+TANGENCY_ULPS = 8
 #: crossings' answer where an ellipse touches a trim level (a double root: no crossing).
 TOUCH = "touch"
 #: A conic whose centre or semi-axes exceed this many scales (a plane nearly parallel to a cylinder's axis or to a
@@ -372,7 +374,7 @@ def to_local(rot, x):
 def sphere_circle(a, b, graze, scale):
     """(centre, axis, radius) of the circle of two spheres (centre and axis 3 floats each), the axis from a's centre
     to b's (as the topology stage's common axis); (point,) where they touch within the round-off of their centres'
-    distance (SPHERE_ROUNDOFF_ULPS); () when they do not meet; None when they (nearly) share their centre. The radius
+    distance (TANGENCY_ULPS); () when they do not meet; None when they (nearly) share their centre. The radius
     comes from the distances to both tangencies, d - |ra - rb| and ra + rb - d, each read once (no difference of
     squares), so that a circle just past a tangency keeps its relative accuracy."""
     (a0, a1, a2), (b0, b1, b2) = a.frame.origin.tolist(), b.frame.origin.tolist()
@@ -381,7 +383,7 @@ def sphere_circle(a, b, graze, scale):
     ra, rb = a.radius, b.radius
     if dist <= SAME * scale:
         return None if abs(ra - rb) <= graze else ()
-    floor = SPHERE_ROUNDOFF_ULPS * EPS * max(abs(x) for x in (a0, a1, a2, b0, b1, b2, ra, rb, dist))
+    floor = TANGENCY_ULPS * EPS * max(abs(x) for x in (a0, a1, a2, b0, b1, b2, ra, rb, dist))
     inner, outer = dist - abs(ra - rb), ra + rb - dist
     if inner < -floor or outer < -floor:
         return ()
@@ -452,10 +454,10 @@ def coplanar_faces(surfaces, placed, touch, settings, topo):
     return [exact_curve(surfaces, settings.tolerance, segment=(np.array(ends[0]), np.array(ends[1])), topology=topo)]
 
 
-def touching(plane, sphere):
-    """The round-off (SPHERE_ROUNDOFF_ULPS) of the distance from a plane to a sphere's centre (both Placed), within
-    which the plane touches the sphere."""
-    return SPHERE_ROUNDOFF_ULPS * EPS * max(*map(abs, plane.origin), *map(abs, sphere.origin), sphere.surface.radius)
+def touching(plane, quadric):
+    """The round-off (TANGENCY_ULPS) of the distance from a plane to a sphere's centre or a cylinder's axis
+    (both Placed), within which the plane touches the sphere (or the cylinder along a ruling)."""
+    return TANGENCY_ULPS * EPS * max(*map(abs, plane.origin), *map(abs, quadric.origin), quadric.surface.radius)
 
 
 def plane_sphere_touch(plane, sphere):
@@ -512,11 +514,12 @@ def plane_conics(plane, quadric, graze, scale, apex_gap=None):
     zero = [0.0, 0.0, 0.0]
     if abs(A) <= (PARABOLA_A if name == "cone" else PARALLEL_A):
         if name == "cylinder":                               # parallel to the axis: two lines x = +-sqrt(-C)
-            if abs(math.sqrt(rho) - abs(d)) <= graze:
-                return None
-            if C > 0:
+            away = math.sqrt(rho) - abs(d)                   # (-C as (r - |d|)(r + |d|), as a sphere's K below)
+            if abs(away) <= (graze if apex_gap is None else touching(plane, quadric)):
+                return None                                  # along a ruling: a segment of tangency
+            if away < 0:
                 return []
-            x = math.sqrt(-C)
+            x = math.sqrt(away * (math.sqrt(rho) + abs(d)))
             local = [(LINE, [[q0[i] + s * x * e1[i] for i in range(3)], zero, e2]) for s in (1.0, -1.0)]
         elif name == "cone" and B != 0.0:                    # parallel to a generatrix: y = -(x^2 + C) / (2 B)
             local = [(PARABOLA, [[q0[i] - C / (2.0 * B) * e2[i] for i in range(3)], [-x / (2.0 * B) for x in e2],

@@ -508,3 +508,44 @@ def circle_or_touch(a, b, away, exact, ulp):
             assert statuses == ["closed"], (statuses, away)
             bound = exact * (1e-12 + 4 * ulp / away)
             assert abs(curves[0].length - exact) <= bound, (curves[0].length, exact, bound)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_a_plane_beside_a_cylinder_ruling_gives_two_lines_or_the_ruling(seed):
+    """A plane parallel to a trimmed cylinder's axis, 1e-12 to 1e-5 (of the scale) inside or outside the tangent
+    plane along a ruling, up to 1e5 from the origin: two lines (each 'boundary' at both rims), 2 sqrt(r^2 - h^2)
+    apart within their conditioning of the 50-digit closed form from the stored doubles (h the axis's distance to
+    the plane; 1e-12 plus 4 ulps of the coordinates over |r - h|, relative), nothing where the plane misses by more
+    than 16 ulps; within 8 ulps, the ruling as a segment of tangency (the general path's answer)."""
+    import mpmath as mp
+    from tests.oracles.closed_forms import random_rotation
+    rng = np.random.default_rng(seed)
+    for _ in range(20):
+        scale = 10 ** rng.uniform(-2, 2)
+        offset = 10 ** rng.uniform(0, 5) * rng.normal(size=3) if rng.random() < 0.7 else np.zeros(3)
+        radius, turn = scale * rng.uniform(0.5, 2.0), random_rotation(rng)
+        step = scale * 10 ** rng.uniform(-12, -5) * rng.choice([1.0, -1.0])
+        cylinder = sk.Cylinder(radius, sk.Frame(tuple(offset), turn), v_range=(-2.0 * scale, 2.0 * scale))
+        facing = np.column_stack([turn[:, 2], -turn[:, 1], turn[:, 0]])        # normal along the cylinder's x
+        plane = sk.Plane(sk.Frame(tuple(offset + (radius - step) * turn[:, 0]), facing))
+        with mp.workdps(50):
+            z = [mp.mpf(float(x)) for x in np.asarray(plane.frame.rotation)[:, 2]]
+            h = abs(sum((mp.mpf(float(c)) - mp.mpf(float(o))) * w
+                        for c, o, w in zip(cylinder.frame.origin, plane.frame.origin, z)))
+            h /= mp.sqrt(sum(w * w for w in z))
+            away = float(abs(mp.mpf(radius) - h))
+            square = mp.mpf(radius) ** 2 - h * h
+            exact = float(2 * mp.sqrt(square)) if square > 0 else None
+        ulp = np.spacing(max(np.abs(offset).max(), radius))
+        for x, y in ((cylinder, plane), (plane, cylinder)):
+            curves = sk.intersect(x, y)
+            statuses = [c.status for c in curves]
+            if away <= 16 * ulp:
+                assert statuses in (["tangent"], ["boundary", "boundary"], [])
+            elif exact is None:
+                assert curves == []
+            else:
+                assert statuses == ["boundary", "boundary"], (statuses, step / scale)
+                middles = [np.asarray(c.points, dtype=float).mean(axis=0) for c in curves]
+                apart = np.linalg.norm(np.cross(middles[0] - middles[1], turn[:, 2]))
+                assert abs(apart - exact) <= exact * (1e-12 + 4 * ulp / away) + 4 * ulp, (apart, exact)

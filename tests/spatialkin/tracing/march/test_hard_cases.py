@@ -382,8 +382,8 @@ def test_starts_off_a_near_tangent_loop_rejoin_it():
 def test_a_lobe_beside_a_split_node_and_a_trim_edge_is_one_loop(shift, edge, placed):
     """A cylinder (radius 0.8) touching a torus (1, 0.4) at its inner equator, moved inwards by 1e-12 or 1e-9: the
     figure eight splits into two lobes; the cylinder trimmed to v >= 1e-10 or 1e-8 keeps the lobe y > 0 whole. Its
-    seeds on the trim edge sit where the surfaces nearly touch: the march from them went round the lobe both ways
-    and stopped at the edge (one open curve, twice the lobe's length); it is traced again from the lobe. Both
+    seeds on the trim edge sit where the surfaces nearly touch: the march from them goes round the lobe both ways to
+    the edge, its two branches running over each other, and the lobe is traced again from its steadiest point. Both
     argument orders, at the origin and placed (scale 216, turned, moved): one closed curve, its length within
     1e-8 (relative) of the closed form (tests.oracles.closed_forms.torus_cylinder_lobe_length)."""
     from tests.oracles.closed_forms import torus_cylinder_lobe_length

@@ -116,3 +116,34 @@ def torus_cylinder_lobe_length(shift, digits=30):
 
         end = mp.pi / 6
         return float(sum(mp.quad(lambda t: speed(t, sign), [-end, 0, end]) for sign in (-1, 1)))
+
+
+def cylinder_sphere_loops(cylinder, sphere, digits=30):
+    """(R - r - d, length of each loop) of a cylinder of radius r and a sphere of radius R whose centre lies d from the
+    cylinder's axis, d + r < R: the surfaces meet in two loops, mirror images in the plane through the centre normal
+    to the axis (a gap of R - r - d > 0 keeps them apart where the cylinder comes nearest the sphere). From the
+    doubles of the frames and radii as exact binary numbers, in `digits`-digit arithmetic (mpmath): with theta the
+    angle round the axis from the direction to the centre, a loop's height over the centre is
+    z = sqrt(R^2 - r^2 - d^2 + 2 r d cos(theta)), and its length the integral of sqrt(r^2 + z'^2), z' = -r d sin / z,
+    by tanh-sinh quadrature split round theta = pi, where z turns on the scale sqrt((R - r - d) / d)."""
+    import mpmath as mp
+    with mp.workdps(digits):
+        origin = [mp.mpf(float(v)) for v in cylinder.frame.origin]
+        axis = [mp.mpf(float(v)) for v in np.asarray(cylinder.frame.rotation)[:, 2]]
+        centre = [mp.mpf(float(v)) for v in sphere.frame.origin]
+        v = [centre[i] - origin[i] for i in range(3)]
+        along = sum(v[i] * axis[i] for i in range(3)) / sum(x * x for x in axis)
+        d = mp.sqrt(sum((v[i] - along * axis[i]) ** 2 for i in range(3)))
+        r, big = mp.mpf(float(cylinder.radius)), mp.mpf(float(sphere.radius))
+        gap = big - r - d
+        if not gap > 0:
+            raise ValueError("the cylinder must lie inside the sphere's tangent cylinder: d + r < R")
+
+        def speed(theta):
+            z = mp.sqrt(big * big - r * r - d * d + 2 * r * d * mp.cos(theta))
+            return mp.sqrt(r * r + (r * d * mp.sin(theta) / z) ** 2)
+
+        width = mp.sqrt(gap / d)
+        cuts = [0] + [mp.pi - k * width for k in (1e3, 30, 1)] + [mp.pi]
+        half = mp.quad(speed, cuts)
+        return float(gap), float(2 * half)

@@ -361,6 +361,22 @@ def inverse_param(k, q, p):
     return u, np.arctan2(z, np.hypot(x, y) - q["R"])
 
 
+def window_regions(a, b, centre, du, dv, n=2001):
+    """(regions where b's implicit function is negative, regions where it is positive, whether the window's border
+    meets both signs) over the window u0 +- du, v0 +- dv of a's parameters round the point centre (3,), on an n x n
+    grid of a's points (connected by edges, scipy.ndimage.label). Where the border keeps one sign, the intersection
+    inside the window is made of (negative regions + positive regions - 1) closed loops: each loop bounds one region,
+    nested or not. A loop or a bridge narrower than a cell is not seen."""
+    from scipy import ndimage
+    ka, qa = kind(a), shape_params(a)
+    kb, qb = kind(b), shape_params(b)
+    u0, v0 = inverse_param(ka, qa, to_local(a, np.asarray(centre, dtype=float)))
+    uu, vv = np.meshgrid(u0 + np.linspace(-du, du, n), v0 + np.linspace(-dv, dv, n), indexing="ij")
+    h = implicit(kb, qb, to_local(b, to_global(a, local_point(ka, qa, uu, vv))))
+    border = np.concatenate([h[0], h[-1], h[:, 0], h[:, -1]])
+    return ndimage.label(h < 0)[1], ndimage.label(h > 0)[1], bool((border < 0).any() and (border > 0).any())
+
+
 def ray_roots(A, B, u0, v0, du, dv, scale, doublings=90, bisections=200):
     """Zeros of h = (implicit of B) on A along the parameter rays (u0, v0) + t (du, dv), t > 0, nearest to the
     start: the first sign change found by doubling t from 1e-13 x scale, then bisection to the last bit.

@@ -13,11 +13,18 @@ References
 N. M. Patrikalakis, T. Maekawa, Shape Interrogation for Computer Aided Design and Manufacturing, Springer, 2002
 (marching: a corrector in the plane normal to the tangent, as in pseudo-arclength continuation).
 """
+import math
+
 import numpy as np
 
 from ..._lib.jit import jit
 from .curve import curve_derivatives, curve_frame, project_to_curve
-from ..geometry.surfaces import inverse, recharted_sphere
+from ..geometry.surfaces import frame, inverse, recharted_sphere
+
+#: settle's most steps, and the move (in ulps of the point's coordinates) below which it stops.
+SETTLE_STEPS = 60
+SETTLE_ULPS = 4.0
+EPS = 2.220446049250313e-16
 
 
 @jit
@@ -89,9 +96,9 @@ def project_state(y, a, b, gap_tol, max_iter, point_out, tangent_out):
 def locate(a_user, b_user, rechart_a, rechart_b, guess, y_guess, keep_guess, gap_tol, max_iter, point, y_user):
     """A point of the curve near guess (3,) by minimum-norm Gauss-Newton on M1 - M2 = 0, in charts made at guess
     (re-charted where rechart_a, rechart_b; the others' (u, v) from y_guess (4,) with keep_guess, else from the
-    foot points): the point into point (3,), its state into y_user (4,) with a re-charted surface's (u, v) read in
-    the user's chart. Returns False when Newton fails or the point is not finite (spatialkin.tracing.march.start.
-    locate_on_curve, the same kernels in the same order as it called them one by one)."""
+    foot points), then settled onto the curve to round-off (settle): the point into point (3,), its state into
+    y_user (4,) with a re-charted surface's (u, v) read in the user's chart. Returns False when Newton fails or the
+    point is not finite (spatialkin.tracing.march.start.locate_on_curve)."""
     zero = np.zeros(3)
     a_out, b_out = np.empty(a_user.shape[0]), np.empty(b_user.shape[0])
     y = np.empty(4)
@@ -102,6 +109,8 @@ def locate(a_user, b_user, rechart_a, rechart_b, guess, y_guess, keep_guess, gap
     curve_frame(y, a_out, b_out, point, tangent)
     if iters < 0 or not (np.isfinite(point[0]) and np.isfinite(point[1]) and np.isfinite(point[2])):
         return False
+    settle(y, a_out, b_out)
+    curve_frame(y, a_out, b_out, point, tangent)
     for i in range(4):
         y_user[i] = y[i]
     if rechart_a:
@@ -109,3 +118,42 @@ def locate(a_user, b_user, rechart_a, rechart_b, guess, y_guess, keep_guess, gap
     if rechart_b:
         foot_parameters(b_user, point, y_user, 1)
     return True
+
+
+@jit
+def gap_at(y, a, b):
+    """|M1(u1, v1) - M2(u2, v2)| at the state y (4,)."""
+    p1 = frame(a, y[0], y[1])[0]
+    p2 = frame(b, y[2], y[3])[0]
+    return math.sqrt((p1[0] - p2[0]) ** 2 + (p1[1] - p2[1]) ** 2 + (p1[2] - p2[2]) ** 2)
+
+
+@jit
+def settle(y, a, b):
+    """Minimum-norm Gauss-Newton steps from y (4,), within the gap tolerance of the curve, on to round-off: y becomes
+    the iterate of least gap, the steps stopping where one moves the point by at most SETTLE_ULPS of its coordinates
+    (or after SETTLE_STEPS). Where the surfaces nearly touch, a point within the gap tolerance of both lies up to
+    gap / sine of the normals' angle off the curve (3e-4 where they are 3e-9 from tangency), and Newton creeps
+    there, its gap wavering, which its test takes for stagnation: the points located from the starts of one
+    component would scatter farther than its radius, each traced to a loop of its own."""
+    zero = np.zeros(3)
+    best = y.copy()
+    best_gap = gap_at(y, a, b)
+    trial = y.copy()
+    for _ in range(SETTLE_STEPS):
+        if not best_gap > 0.0:
+            break
+        before = frame(a, trial[0], trial[1])[0]
+        project_to_curve(trial, a, b, zero, zero, 0.0, 1)           # (one step: it cannot meet a zero tolerance)
+        after = frame(a, trial[0], trial[1])[0]
+        gap = gap_at(trial, a, b)
+        if gap < best_gap:
+            best_gap = gap
+            for i in range(4):
+                best[i] = trial[i]
+        moved = math.sqrt((after[0] - before[0]) ** 2 + (after[1] - before[1]) ** 2 + (after[2] - before[2]) ** 2)
+        size = max(abs(after[0]), abs(after[1]), abs(after[2]))
+        if not moved > SETTLE_ULPS * EPS * size:
+            break
+    for i in range(4):
+        y[i] = best[i]

@@ -6,7 +6,6 @@ surface, and C'' is normal to C': three linear equations for the curvature vecto
 import numpy as np
 
 
-
 def implicit_jets(surface, points):
     """(F (N,), grad F (N, 3), hess F (N, 3, 3)) of the surface's polynomial implicit function at global points
     (N, 3): its traits' local jets (plane z, sphere |q|^2 - R^2, cylinder x^2 + y^2 - r^2, cone
@@ -16,6 +15,20 @@ def implicit_jets(surface, points):
     q = (np.asarray(points, dtype=float) - surface.frame.origin) @ rot
     value, grad, hess = surface.traits.implicit_jets(surface, q)
     return value, grad @ rot.T, np.einsum("ij,njk,lk->nil", rot, hess, rot)
+
+
+def sine_squares(grad_a, grad_b):
+    """sin^2 of the angle between the gradients (N, 3) row by row (NaN where one vanishes)."""
+    cross = np.cross(grad_a, grad_b)
+    sizes = np.einsum("ij,ij->i", grad_a, grad_a) * np.einsum("ij,ij->i", grad_b, grad_b)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.einsum("ij,ij->i", cross, cross) / sizes
+
+
+def normal_sines(a, b, points):
+    """sin of the angle between the normals of surfaces a and b at global points (N, 3), from their implicit
+    functions' gradients (no chart involved; NaN where a gradient vanishes)."""
+    return np.sqrt(sine_squares(implicit_jets(a, points)[1], implicit_jets(b, points)[1]))
 
 
 #: The relative error of C'' beside a singular point, measured on Viviani's curve beside its node, is up to
@@ -41,10 +54,7 @@ def curvature_vectors(a, b, points, tangents, spread=0.0):
     mat = np.stack([rows[0], rows[1], t], axis=1)
     vec = np.stack([rhs[0], rhs[1], np.zeros(len(t))], axis=1)
     out = np.full((len(t), 3), np.nan)
-    cross = np.cross(rows[0], rows[1])
-    sizes = np.einsum("ij,ij->i", rows[0], rows[0]) * np.einsum("ij,ij->i", rows[1], rows[1])
-    with np.errstate(invalid="ignore", divide="ignore"):
-        sine2 = np.einsum("ij,ij->i", cross, cross) / sizes
+    sine2 = sine_squares(rows[0], rows[1])
     eps = np.finfo(float).eps
     spread = spread + 4.0 * eps * np.max(np.abs(np.asarray(points, dtype=float)), axis=1)
     ok = ((sine2 * SINGULAR_ERROR > ERROR_FACTOR * eps + SPREAD_FACTOR * kappa * spread)

@@ -1,4 +1,5 @@
 """Hard cases (ssi-notes): near tangency, crossing branches, parametrisation singularities, scale."""
+import functools
 import math
 
 import numpy as np
@@ -361,16 +362,16 @@ def test_starts_off_a_near_tangent_loop_rejoin_it():
     from it goes round the loop without passing it. Both sk.intersect (whose search gives about a hundred such starts)
     and sk.trace from such a start return the one loop, closed, its length within the 40-digit oracle's (the trapezoid
     rule's error plus the loop's conditioning, 2 pi ulp(|x|) / smallest sine, tests.oracles.mp) of the truth."""
-    from tests.oracles.mp import foot, loop_length
+    from tests.oracles.mp import loop_length
     a, b = near_tangent_cylinders()
     off = np.asarray(a.point(3.14151741, 9.68063763e-05), dtype=float)
     answers = [sk.intersect(a, b), sk.intersect(b, a), [sk.trace(a, b, off)], [sk.trace(b, a, off)]]
-    s, gap = answers[0][0].closest(off[None])
-    nearest = np.asarray(answers[0][0](s), dtype=float).reshape(3)
-    # (the start is within the gap tolerance of both surfaces, and 1e-6 or more from the curve: from the nearest
-    # point of the one traced, which lies on the true curve)
-    assert float(b.distance(off)) < 3e-10 and gap[0] > 1e-6 and foot(a, b, nearest)[0] < 1e-10
+    gap = answers[0][0].closest(off[None])[1]
     exact, error, sine = loop_length(a, b, answers[0][0].points[::5], n=1024)
+    # (the start is within the gap tolerance of both surfaces, and 1e-6 or more from the curve: farther from the one
+    # traced than its points' conditioning, 4 ulp(|x|) / smallest sine, plus 1e-6)
+    places = 4 * np.finfo(float).eps * float(np.abs(off).max()) / sine
+    assert float(b.distance(off)) < 3e-10 and gap[0] > 1e-6 + places
     bound = error + 2 * math.pi * np.finfo(float).eps * float(np.abs(off).max()) / sine
     for curves in answers:
         assert len(curves) == 1 and curves[0].status == "closed"
@@ -398,3 +399,81 @@ def test_a_lobe_beside_a_split_node_and_a_trim_edge_is_one_loop(shift, edge, pla
         curves = sk.intersect(a, b)
         assert len(curves) == 1 and curves[0].status == "closed", curves
         assert abs(curves[0].length - exact) <= 1e-8 * exact, (curves[0].length, exact)
+
+
+def near_tangent_cylinder_cone():
+    """A cylinder and a cone (both nappes, trimmed along the axis) 1e-8 (relative) from touching, 2e5 from the
+    origin: they meet in a thin loop, 5.6e-3 long and 1.8e-4 wide, where the normals' sine falls to 5e-6, and in two
+    curves across the cone's trim edges."""
+    a = sk.Cylinder(0.6930632828650811, sk.Frame(
+        (-30254.33187656742, -205781.4439664306, -34684.75333391829),
+        [[-0.7115996767309053, 0.13168412641138566, 0.6901341832772384],
+         [-0.6869378736400427, -0.33655550811329615, -0.6440859785133481],
+         [0.14745256130487294, -0.9324106824837812, 0.32995160456461115]]))
+    b = sk.Cone(1.0370627045961436, sk.Frame(
+        (-30256.14671500991, -205779.83795546676, -34686.35921171851),
+        [[0.4559015818496644, -0.5636174104775376, 0.6888317372722956],
+         [-0.44932700052801344, -0.8138246116902531, -0.3685033894059966],
+         [0.768283147194752, -0.14150942022990462, -0.6242724483130132]]),
+        v_range=(-0.691409525651711, 2.476532259998504))
+    return a, b
+
+
+@functools.lru_cache(maxsize=None)
+def thin_loop_truth():
+    """(length, its error estimate, smallest sine of the normals' angle) of near_tangent_cylinder_cone's loop, in
+    40-digit arithmetic (tests.oracles.mp), from samples of the loop sk.intersect returns."""
+    from tests.oracles.mp import loop_length
+    a, b = near_tangent_cylinder_cone()
+    loop = next(c for c in sk.intersect(a, b) if c.closed)
+    return loop_length(a, b, loop.points[::2], n=1024)
+
+
+@pytest.mark.parametrize("swap", [False, True])
+def test_a_thin_near_tangent_loop_is_traced_once(swap):
+    """Each of the search's 1,450 starts on the thin loop is located within the gap tolerance of both surfaces, up to
+    3e-4 off the loop (gap over sine); the tracer settles each onto the curve to round-off, and one loop traced from
+    two starts (its places fixed only to an ulp over the sine) is one component. The oracles: the sign regions of
+    the cone's implicit function on a grid of the cylinder's chart round the loop (one loop: one negative region
+    inside one positive, no other loop there), and the loop's 40-digit length (tests.oracles.mp), within its
+    conditioning, 2 pi ulp(|x|) / smallest sine."""
+    from tests.oracles.ssi import window_regions
+    a, b = near_tangent_cylinder_cone()
+    curves = sk.intersect(b, a) if swap else sk.intersect(a, b)
+    loops = [c for c in curves if c.closed]
+    assert len(loops) == 1 and sorted(c.status for c in curves) == ["boundary", "boundary", "closed"]
+    loop = loops[0]
+    centre = loop.points.mean(axis=0)
+    assert window_regions(a, b, centre, 0.01 / a.radius, 0.01) == (1, 1, False)
+    assert all(c.max_distance <= c.tolerance for c in curves)
+    exact, error, sine = thin_loop_truth()
+    bound = error + 2 * math.pi * np.finfo(float).eps * float(np.abs(centre).max()) / sine
+    assert abs(loop.length - exact) <= bound, (loop.length, exact, bound)
+
+
+@pytest.mark.parametrize("swap", [False, True])
+def test_a_cylinder_a_hair_inside_a_sphere_cuts_two_loops(swap):
+    """A cylinder 2e-9 (relative) inside a sphere's tangent cylinder, 1.8e6 from the origin: the two loops pass 1e-4
+    apart where the cylinder comes nearest the sphere, within the tolerance of a node there, which the search
+    reports. The march that crosses between them there runs round both, once from each of the search's hundred
+    starts; those curves lie on the two loops within the error of their places (gap over sine), and the answer is
+    the two loops in both argument orders (in one, a loop the march leaves open at that node). The oracle: the gap R - r - d > 0 and the loops' length by quadrature in
+    30-digit arithmetic (tests.oracles.closed_forms.cylinder_sphere_loops), within 1e-6 relative (1e-4 where the
+    loops pass: 2 pi ulp(|x|) over the smallest sine, 2e-5 of the length, bounds what doubles can fix)."""
+    from tests.oracles.closed_forms import cylinder_sphere_loops
+    a = sk.Cylinder(1.2650800463272425, sk.Frame(
+        (1226618.1500858318, -1350363.433052412, 517417.21657624067),
+        [[0.6782916004821165, -0.6879940417301931, 0.25804011947594985],
+         [0.22551611874318647, 0.5291423012223048, 0.8180164455829557],
+         [-0.6993303832255668, -0.4966614778709108, 0.5140665243882983]]))
+    b = sk.Sphere(4.319199704927846, sk.Frame((1226617.0368326479, -1350362.2083425173, 517420.8619835968)))
+    gap, exact = cylinder_sphere_loops(a, b)
+    assert 0 < gap < 1e-8
+    curves = sk.intersect(b, a) if swap else sk.intersect(a, b)
+    assert len(curves) == 2
+    for curve in curves:
+        # (one order stops the march at the reported node from both sides: a loop open there, its ends 1.3e-6 apart)
+        assert curve.status == "closed" or (curve.status == "singular"
+                                            and np.linalg.norm(curve.points[0] - curve.points[-1]) < 1e-5 * a.radius)
+        assert curve.max_distance <= curve.tolerance
+        assert abs(curve.length - exact) <= 1e-6 * exact, (curve.length, exact)

@@ -264,9 +264,9 @@ def searched(a, b, settings, closing=True):
     kept = []
     for i, c in enumerate(curves):          # of two copies of one piece, the first is kept (of a loop, the shorter)
         if c.closed:
-            if not traced_twice(c, kept, radius, settings.singular_tol):
+            if not traced_twice(c, kept, radius, settings):
                 kept.append(c)
-        elif not covered(c, kept + curves[i + 1:], radius, settings.singular_tol):
+        elif not covered(c, kept + curves[i + 1:], radius, settings):
             kept.append(c)
     unclosed = next((c for c in kept if c.status == MAX_LENGTH), None) if closing else None
     if unclosed is not None:
@@ -317,19 +317,21 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
     appending each to curves (a list, changed in place) and dropping the starts on it; returns the starts (3,) that
     could be neither located nor traced (the messages of the tracing failures appended to reasons)."""
     failed = []
-    largest = {}                # (the largest error of place of each curve, by id: placing)
+    largest = {}                # (id: (curve, the largest gap of its points), placing; the curve held, its id kept)
 
     def traced(point):
         """True where the point lies on a curve traced already: within radius, or within its place's error and the
         curve's largest (where the surfaces nearly touch: same_loop)."""
         if any(near_curve(curve, point, radius)[0] for curve in curves):
             return True
-        gap, sine = placing(a, b, point.reshape(1, 3))
+        gap, sine = placing(a, b, point.reshape(1, 3), settings.tolerance)
         for curve in curves:
             if id(curve) not in largest:
-                largest[id(curve)] = float(placing(a, b, curve.points)[0].max()) if len(curve.points) > 1 else 0.0
-            reach = radius + 2 * (gap[0] + largest[id(curve)]) / max(sine[0], settings.singular_tol)
-            if largest[id(curve)] > 0 and near_curve(curve, point, reach)[0]:
+                spread = placing(a, b, curve.points, settings.tolerance)[0].max() if len(curve.points) > 1 else 0.0
+                largest[id(curve)] = curve, spread
+            other_gap = largest[id(curve)][1]
+            reach = radius + 2 * (gap[0] + other_gap) / max(sine[0], settings.singular_tol)
+            if other_gap > 0 and near_curve(curve, point, reach)[0]:
                 return True
         return False
 
@@ -362,8 +364,8 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
                     reasons.append(str(err))
                 continue        # the seed sits on a singular point (the arms' seeds trace it), or tracing failed
             found = wide[1]     # it leaves the faces both ways at once: the pieces inside them (a touch point)
-        found = [c for c in found if not (traced_twice(c, curves, radius, settings.singular_tol) if c.closed else
-                                          covered(c, curves, radius, settings.singular_tol))]
+        found = [c for c in found if not (traced_twice(c, curves, radius, settings) if c.closed else
+                                          covered(c, curves, radius, settings))]
         curves += found
         if stages.ON:
             stages.switch("dedupe")
@@ -371,40 +373,42 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
     return failed
 
 
-def traced_twice(loop, curves, radius, sine_floor):
+def traced_twice(loop, curves, radius, settings):
     """True when the closed curve loop (a CurveResult) is a component in curves (a list, changed in place) traced
     again (same_loop); of the two, the shorter is kept in curves (a march whose start lies a gap over the sine off
     the curve may close only after two laps)."""
     for k, other in enumerate(curves):
-        if same_loop(loop, other, radius, sine_floor):
+        if same_loop(loop, other, radius, settings):
             if loop.length < other.length:
                 curves[k] = loop
             return True
     return False
 
 
-def same_loop(loop, other, radius, sine_floor):
+def same_loop(loop, other, radius, settings):
     """True when the closed curves loop and other (CurveResults) each lie along the other: one component traced
     twice, from two starts apart on it where the surfaces nearly touch (each march closes on its own start). Each
     stored point is placed only to within its gap to the surfaces (plus ROUNDOFF_ULPS of its coordinates) over the
-    sine of the normals' angle there (at least sine_floor, below which no march goes on), twice that where it lies
-    the gap from both surfaces (the far corner of the rhombus the two bands of that width cut): a point lies along a
-    curve within radius plus twice its own and the curve's largest such error."""
-    return other.closed and lies_on(loop, other, radius, sine_floor) and lies_on(other, loop, radius, sine_floor)
+    sine of the normals' angle there (at least settings.singular_tol, below which no march goes on), twice that where
+    it lies the gap from both surfaces (the far corner of the rhombus the two bands of that width cut): a point lies
+    along a curve within radius plus twice its own and the curve's largest such error (a gap counted at most
+    settings.tolerance: a point farther is no point of the curve)."""
+    return other.closed and lies_on(loop, other, radius, settings) and lies_on(other, loop, radius, settings)
 
 
-def lies_on(curve, other, radius, sine_floor):
+def lies_on(curve, other, radius, settings):
     """True when every stored point of the curve lies along the curve other (CurveResults; same_loop)."""
-    gap, sine = placing(*curve.sol.surfaces, curve.points)
-    other_gap = placing(*other.sol.surfaces, other.points)[0].max()
-    return lies_along(curve, other, radius + 2 * (gap + other_gap) / np.maximum(sine, sine_floor))
+    gap, sine = placing(*curve.sol.surfaces, curve.points, settings.tolerance)
+    other_gap = placing(*other.sol.surfaces, other.points, settings.tolerance)[0].max()
+    return lies_along(curve, other, radius + 2 * (gap + other_gap) / np.maximum(sine, settings.singular_tol))
 
 
-def placing(a, b, points):
-    """(gap to the farther of the surfaces a and b plus ROUNDOFF_ULPS of the coordinates, sine of the normals' angle)
-    (M,) each at the points (M, 3)."""
+def placing(a, b, points, tolerance):
+    """(gap to the farther of the surfaces a and b, at most the tolerance (a point farther is no point of the curve),
+    plus ROUNDOFF_ULPS of the coordinates; sine of the normals' angle) (M,) each at the points (M, 3)."""
     points = np.ascontiguousarray(points, dtype=float)
-    gap = np.maximum(a.distance(points), b.distance(points)) + ROUNDOFF_ULPS * EPS * np.max(np.abs(points), axis=1)
+    gap = np.minimum(np.maximum(a.distance(points), b.distance(points)), tolerance)
+    gap += ROUNDOFF_ULPS * EPS * np.max(np.abs(points), axis=1)
     return gap, np.nan_to_num(normal_sines(a, b, points), nan=0.0)
 
 
@@ -515,13 +519,13 @@ def python_verdicts(curve, points, radius):
     return verdict
 
 
-def covered(curve, others, radius, sine_floor):
+def covered(curve, others, radius, settings):
     """True for an open curve lying wholly on another curve (a piece of a component traced again: each point within
     radius), or on others together, each point within its place's error (where the surfaces nearly touch: same_loop)
     of one of them (a march that crossed between two loops a round-off's width apart), or a contact point on a
     circle or segment of tangency (where the surfaces touch all along). A curve one of whose points lies beyond the
     reach of every stored point of the other (kernels.near.within_reach) is not on it; the closest points decide the
-    rest."""
+    rest. A curve followed to max_length is covered only within radius."""
     if curve.closed:
         return False
     points = np.ascontiguousarray(curve.points)
@@ -530,14 +534,16 @@ def covered(curve, others, radius, sine_floor):
     if any(other.length >= curve.length and could_cover(other, points, radius) and within(other, points, radius).all()
            for other in others):
         return True
-    gap, sine = placing(*curve.sol.surfaces, points)
+    if curve.status == MAX_LENGTH:
+        return False            # (a march that crossed between branches and never closed: searched refuses the pair)
+    gap, sine = placing(*curve.sol.surfaces, points, settings.tolerance)
     lo, hi = points.min(axis=0), points.max(axis=0)
     near = np.zeros(len(points), dtype=bool)
     for other in others:
         if other.status == CONTACT or not (other.length > 0 and len(other.points) > 1):
             continue
-        other_gap = placing(*other.sol.surfaces, other.points)[0].max()
-        reach = radius + 2 * (gap + other_gap) / np.maximum(sine, sine_floor)
+        other_gap = placing(*other.sol.surfaces, other.points, settings.tolerance)[0].max()
+        reach = radius + 2 * (gap + other_gap) / np.maximum(sine, settings.singular_tol)
         if np.any(other.points.min(axis=0) > hi + reach.max()) or np.any(other.points.max(axis=0) < lo - reach.max()):
             continue
         ask = ~near

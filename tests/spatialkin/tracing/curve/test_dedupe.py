@@ -21,6 +21,7 @@ from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels.curve import near as kn
 from spatialkin.tracing.components import SAME_COMPONENT, covered, near_curve, within
 from spatialkin.tracing.curve.dense import CLOSEST_NEWTON_STEPS, TracedSolution
+from spatialkin.tracing.march.trace import DEFAULT_SINGULAR_TOL
 from tests.oracles.closed_forms import torus_sphere_critical_radii
 
 #: Pair kinds whose curves cover the tables: closed and open, one span and several (a sphere re-charted), the
@@ -239,13 +240,15 @@ def test_covered(kind):
     off = on + 10.0 * radius * np.cross(curve.sol.tangent(s), [0.0, 0.0, 1.0])
 
     def piece(points):
-        return SimpleNamespace(closed=False, status="boundary", points=points, length=0.4 * curve.length)
+        return SimpleNamespace(closed=False, status="boundary", points=points, length=0.4 * curve.length,
+                               sol=SimpleNamespace(surfaces=curve.sol.surfaces))
 
     pieces = {"on": piece(on), "off": piece(off)}
+    limits = SimpleNamespace(singular_tol=DEFAULT_SINGULAR_TOL, tolerance=curve.tolerance)
     if len(curves) > 1:
         pieces["other"] = piece(curves[1].sol(np.linspace(0.0, 0.4, 40) * curves[1].length))
     for name, p in pieces.items():
-        assert covered(p, [curve], radius) == (name == "on"), name
+        assert covered(p, [curve], radius, limits) == (name == "on"), name
 
 
 def test_remapped_time_is_numpys_interp_and_extends_the_end_steps():

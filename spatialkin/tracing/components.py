@@ -24,13 +24,13 @@ from .search.rescue import LOST_RADIUS, crossing_starts
 from .search.topology import TopologyError, distances_at, points_at, topology
 from ..geometry.asymptotic import bounded_pair
 from ..geometry.traits import check_surface
-from .march.trace import DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings, trace_from
+from .march.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, EPS, make_settings,
+                          trace_from)
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
 SAME_COMPONENT = 1e-6
 #: The round-off of a stored point's gap to the surfaces, in ulps of its coordinates (same_loop).
-ROUNDOFF_ULPS = 4.0
-EPS = np.finfo(float).eps
+GAP_ROUNDOFF_ULPS = 4.0
 #: Pairs that meet in conics are solved in closed form (spatialkin.tracing.closed.forms); False forces the general
 #: path (the tests compare the two).
 CLOSED_FORMS = True
@@ -327,11 +327,9 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
         gap, sine = placing(a, b, point.reshape(1, 3), settings.tolerance)
         for curve in curves:
             if id(curve) not in largest:
-                spread = placing(a, b, curve.points, settings.tolerance)[0].max() if len(curve.points) > 1 else 0.0
-                largest[id(curve)] = curve, spread
+                largest[id(curve)] = curve, errors(curve, settings)[0].max() if len(curve.points) > 1 else 0.0
             other_gap = largest[id(curve)][1]
-            reach = radius + 2 * (gap[0] + other_gap) / max(sine[0], settings.singular_tol)
-            if other_gap > 0 and near_curve(curve, point, reach)[0]:
+            if other_gap > 0 and near_curve(curve, point, reach(radius, gap, sine, other_gap, settings)[0])[0]:
                 return True
         return False
 
@@ -388,27 +386,35 @@ def traced_twice(loop, curves, radius, settings):
 def same_loop(loop, other, radius, settings):
     """True when the closed curves loop and other (CurveResults) each lie along the other: one component traced
     twice, from two starts apart on it where the surfaces nearly touch (each march closes on its own start). Each
-    stored point is placed only to within its gap to the surfaces (plus ROUNDOFF_ULPS of its coordinates) over the
+    stored point is placed only to within its gap to the surfaces (plus GAP_ROUNDOFF_ULPS of its coordinates) over the
     sine of the normals' angle there (at least settings.singular_tol, below which no march goes on), twice that where
     it lies the gap from both surfaces (the far corner of the rhombus the two bands of that width cut): a point lies
     along a curve within radius plus twice its own and the curve's largest such error (a gap counted at most
     settings.tolerance: a point farther is no point of the curve)."""
-    return other.closed and lies_on(loop, other, radius, settings) and lies_on(other, loop, radius, settings)
+    if not other.closed:
+        return False
+    (gap, sine), (other_gap, other_sine) = errors(loop, settings), errors(other, settings)
+    return (lies_along(loop, other, reach(radius, gap, sine, other_gap.max(), settings))
+            and lies_along(other, loop, reach(radius, other_gap, other_sine, gap.max(), settings)))
 
 
-def lies_on(curve, other, radius, settings):
-    """True when every stored point of the curve lies along the curve other (CurveResults; same_loop)."""
-    gap, sine = placing(*curve.sol.surfaces, curve.points, settings.tolerance)
-    other_gap = placing(*other.sol.surfaces, other.points, settings.tolerance)[0].max()
-    return lies_along(curve, other, radius + 2 * (gap + other_gap) / np.maximum(sine, settings.singular_tol))
+def reach(radius, gap, sine, other_gap, settings):
+    """How far from a curve points with these gaps and sines (placing) may lie and still lie on it, whose largest
+    gap is other_gap (same_loop)."""
+    return radius + 2 * (gap + other_gap) / np.maximum(sine, settings.singular_tol)
+
+
+def errors(curve, settings):
+    """placing at the stored points of the curve (a CurveResult), the gaps counted at most settings.tolerance."""
+    return placing(*curve.sol.surfaces, curve.points, settings.tolerance)
 
 
 def placing(a, b, points, tolerance):
     """(gap to the farther of the surfaces a and b, at most the tolerance (a point farther is no point of the curve),
-    plus ROUNDOFF_ULPS of the coordinates; sine of the normals' angle) (M,) each at the points (M, 3)."""
+    plus GAP_ROUNDOFF_ULPS of the coordinates; sine of the normals' angle) (M,) each at the points (M, 3)."""
     points = np.ascontiguousarray(points, dtype=float)
     gap = np.minimum(np.maximum(a.distance(points), b.distance(points)), tolerance)
-    gap += ROUNDOFF_ULPS * EPS * np.max(np.abs(points), axis=1)
+    gap += GAP_ROUNDOFF_ULPS * EPS * np.max(np.abs(points), axis=1)
     return gap, np.nan_to_num(normal_sines(a, b, points), nan=0.0)
 
 
@@ -536,18 +542,17 @@ def covered(curve, others, radius, settings):
         return True
     if curve.status == MAX_LENGTH:
         return False            # (a march that crossed between branches and never closed: searched refuses the pair)
-    gap, sine = placing(*curve.sol.surfaces, points, settings.tolerance)
+    gap, sine = errors(curve, settings)
     lo, hi = points.min(axis=0), points.max(axis=0)
     near = np.zeros(len(points), dtype=bool)
     for other in others:
         if other.status == CONTACT or not (other.length > 0 and len(other.points) > 1):
             continue
-        other_gap = placing(*other.sol.surfaces, other.points, settings.tolerance)[0].max()
-        reach = radius + 2 * (gap + other_gap) / np.maximum(sine, settings.singular_tol)
-        if np.any(other.points.min(axis=0) > hi + reach.max()) or np.any(other.points.max(axis=0) < lo - reach.max()):
+        far = reach(radius, gap, sine, errors(other, settings)[0].max(), settings)
+        if np.any(other.points.min(axis=0) > hi + far.max()) or np.any(other.points.max(axis=0) < lo - far.max()):
             continue
         ask = ~near
-        near[ask] = other.sol.closest(points[ask])[1] <= reach[ask]
+        near[ask] = other.sol.closest(points[ask])[1] <= far[ask]
         if near.all():
             return True
     return False

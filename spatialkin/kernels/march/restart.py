@@ -19,12 +19,12 @@ import numpy as np
 
 from ..._lib.jit import jit
 from .curve import curve_derivatives, curve_frame, project_to_curve
+from ..geometry.interval import EPS
 from ..geometry.surfaces import frame, inverse, recharted_sphere
 
 #: settle's most steps, and the move (in ulps of the point's coordinates) below which it stops.
 SETTLE_STEPS = 60
 SETTLE_ULPS = 4.0
-EPS = 2.220446049250313e-16
 
 
 @jit
@@ -122,10 +122,10 @@ def locate(a_user, b_user, rechart_a, rechart_b, guess, y_guess, keep_guess, gap
 
 @jit
 def gap_at(y, a, b):
-    """|M1(u1, v1) - M2(u2, v2)| at the state y (4,)."""
+    """(|M1(u1, v1) - M2(u2, v2)|, M1 (3,)) at the state y (4,)."""
     p1 = frame(a, y[0], y[1])[0]
     p2 = frame(b, y[2], y[3])[0]
-    return math.sqrt((p1[0] - p2[0]) ** 2 + (p1[1] - p2[1]) ** 2 + (p1[2] - p2[2]) ** 2)
+    return math.sqrt((p1[0] - p2[0]) ** 2 + (p1[1] - p2[1]) ** 2 + (p1[2] - p2[2]) ** 2), p1
 
 
 @jit
@@ -138,15 +138,13 @@ def settle(y, a, b):
     component would scatter farther than its radius, each traced to a loop of its own."""
     zero = np.zeros(3)
     best = y.copy()
-    best_gap = gap_at(y, a, b)
+    best_gap, before = gap_at(y, a, b)
     trial = y.copy()
     for _ in range(SETTLE_STEPS):
         if not best_gap > 0.0:
             break
-        before = frame(a, trial[0], trial[1])[0]
         project_to_curve(trial, a, b, zero, zero, 0.0, 1)           # (one step: it cannot meet a zero tolerance)
-        after = frame(a, trial[0], trial[1])[0]
-        gap = gap_at(trial, a, b)
+        gap, after = gap_at(trial, a, b)
         if gap < best_gap:
             best_gap = gap
             for i in range(4):
@@ -155,5 +153,6 @@ def settle(y, a, b):
         size = max(abs(after[0]), abs(after[1]), abs(after[2]))
         if not moved > SETTLE_ULPS * EPS * size:
             break
+        before = after
     for i in range(4):
         y[i] = best[i]

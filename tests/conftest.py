@@ -1,4 +1,6 @@
 import os
+import shutil
+import tempfile
 
 import pytest
 
@@ -11,6 +13,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [ROOT, os.environ.get("PYTHONPATH")]))
 
 _REPORT = []
+#: The folder of the session's warm-up record (tests/suite_warmup.py), removed at the end.
+_WARMUP_FOLDER = []
 
 #: Tests that take long or start processes, marked ``slow`` (deselect with ``-m "not slow"``): the stress suites,
 #: the notebooks, worker pools and whole-command runs. A path selects a module or folder, a ``::`` id one test.
@@ -50,6 +54,30 @@ def _selected(nodeid, table):
     return False
 
 
+def pytest_configure(config):
+    """On a cold numba cache (spatialkin's or planar's workload not stamped warm), `spatialkin warmup` once, in a
+    fresh process, before any test and any test runner's worker starts: they all load the kernels from the cache
+    it leaves. Not in a worker, for --collect-only, with jit off, or when the session's warm-up ran already."""
+    from tests import suite_warmup
+    if hasattr(config, "workerinput") or config.option.collectonly or os.environ.get(suite_warmup.RECORD_ENV):
+        return
+    from spatialkin._lib import jit, warm
+    if jit.JIT_DISABLED or all(warm.ready(workload) for workload in warm.workloads()):
+        return
+    reporter = config.pluginmanager.get_plugin("terminalreporter")
+    if reporter is not None:
+        reporter.write_line("numba's cache is cold: `spatialkin warmup` first, in one process (a few minutes)")
+    _WARMUP_FOLDER.append(tempfile.mkdtemp(prefix="spatialkin-suite-"))
+    data = suite_warmup.record(os.path.join(_WARMUP_FOLDER[0], "warmup.json"))
+    if reporter is not None:
+        reporter.write_line(data["report"])
+
+
+def pytest_unconfigure(config):
+    for folder in _WARMUP_FOLDER:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
 def pytest_collection_modifyitems(config, items):
     for item in items:
         if _selected(item.nodeid, SLOW):
@@ -58,10 +86,18 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.images)
 
 
-@pytest.fixture(scope="session")
-def stress_report():
-    """Lines a stress test wants in the terminal summary."""
-    return _REPORT
+@pytest.fixture
+def stress_report(request):
+    """Lines a stress test wants in the terminal summary (a list to extend): passed on with its teardown report,
+    which reaches the main process from a test runner's worker too."""
+    lines = []
+    yield lines
+    request.node.user_properties.extend(("stress report", line) for line in lines)
+
+
+def pytest_runtest_logreport(report):
+    if report.when == "teardown":
+        _REPORT.extend(line for name, line in report.user_properties if name == "stress report")
 
 
 def pytest_terminal_summary(terminalreporter):

@@ -9,11 +9,21 @@ name in spatialkin's and planar's modules to one or the other, so that a process
 yet runs them as plain Python (the same arithmetic, about a hundred times slower, with no wait) and turns to the
 compiled ones once they are in numba's cache (spatialkin._lib.warm decides when).
 
+Saves to numba's on-disk cache are made under an exclusive lock of the cache folder (POSIX ``flock``): numba
+reads a kernel's index, adds the new specialisation and writes the index back, so two processes compiling the
+same kernel at once (a worker pool or a test runner's workers on a cold cache) would otherwise lose one entry, or
+give two specialisations one data file.
+
 ``borrowed`` and ``kept`` let a kernel use arrays without numba's reference counts (atomic operations) where a loop
 would count them at every step: the integrator's, Newton's and the dense output's.
 """
 import os
 import sys
+
+try:
+    import fcntl
+except ImportError:                 # (no flock: numba's own saves, unlocked)
+    fcntl = None
 
 import numba
 import numba.extending
@@ -26,6 +36,9 @@ JIT_DISABLED = os.environ.get("SPATIALKIN_DISABLE_JIT", "0") not in ("", "0")
 COMPILED, INTERPRETED = "compiled", "interpreted"
 #: The packages whose modules use, and bind, kernels.
 PACKAGES = ("spatialkin", "planar")
+
+#: The lock file numba's saves take, one per cache folder.
+SAVE_LOCK = "spatialkin-numba-save.lock"
 
 #: The current mode (one entry, so that the decorator and use() share it).
 _MODE = [COMPILED]
@@ -44,11 +57,37 @@ def jit(func=None, **options):
         if JIT_DISABLED:
             return f
         dispatcher = numba.njit(**options)(f)
+        if options["cache"]:
+            lock_saves(dispatcher)
         _KERNELS.append((f, dispatcher))
         _COUNTERPART[id(f)], _COUNTERPART[id(dispatcher)] = dispatcher, f
         return f if _MODE[0] == INTERPRETED else dispatcher
 
     return wrap if func is None else wrap(func)
+
+
+def lock_saves(dispatcher):
+    """Make the dispatcher's saves to numba's cache take SAVE_LOCK of its cache folder, exclusively, for the whole
+    read-add-write of the index and the data file; left as numba's where flock or numba's cache layout is missing,
+    or where the lock file cannot be opened (a read-only folder: numba then saves nothing there either)."""
+    cache_file = getattr(getattr(dispatcher, "_cache", None), "_cache_file", None)
+    folder = getattr(cache_file, "_cache_path", None)
+    if fcntl is None or folder is None or not callable(getattr(cache_file, "save", None)):
+        return
+    save = cache_file.save
+
+    def locked_save(key, data):
+        try:
+            fd = os.open(os.path.join(folder, SAVE_LOCK), os.O_CREAT | os.O_RDWR, 0o644)
+        except OSError:
+            return save(key, data)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX)
+            return save(key, data)
+        finally:
+            os.close(fd)            # (closing releases the lock)
+
+    cache_file.save = locked_save
 
 
 def mode():

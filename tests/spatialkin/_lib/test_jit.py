@@ -1,6 +1,7 @@
 """borrowed and kept (spatialkin._lib.jit): compiled code reads and writes the very arrays it borrows, an owner kept
 alive holds its values while other arrays come and go, every array made is freed (numba's own allocation counts,
-in a fresh process), and in Python both are the identity and a no-op."""
+in a fresh process), and in Python both are the identity and a no-op; two processes saving specialisations of one
+kernel to the cache at once both keep theirs."""
 import os
 import subprocess
 import sys
@@ -8,7 +9,9 @@ import textwrap
 
 import numba
 import numpy as np
+import pytest
 
+from spatialkin._lib import jit
 from spatialkin._lib.jit import borrowed, kept
 
 
@@ -98,3 +101,51 @@ def test_in_python_borrowed_is_the_identity_and_kept_does_nothing():
     pair = (a, 1.0)
     assert borrowed(a) is a and borrowed(pair) is pair
     assert kept(a, pair) is None
+
+
+#: A cached kernel in a module file of its own (numba caches only kernels whose source is a file).
+RACED_KERNEL = "from spatialkin._lib.jit import jit\n\n\n@jit\ndef twice(x):\n    return x + x\n"
+
+#: A process that compiles one specialisation of the raced kernel, numba's index write held back in between
+#: (after the index was read) until the other process has read it too, or HOLD_S passed.
+RACER = textwrap.dedent("""
+    import os, sys, time
+    from numba.core import caching
+    folder, me, other = sys.argv[1:4]
+    write = caching.IndexDataCacheFile._save_index
+    def held(self, overloads):
+        open(os.path.join(folder, me), "w").close()
+        until = time.monotonic() + {hold}
+        while not os.path.exists(os.path.join(folder, other)) and time.monotonic() < until:
+            time.sleep(0.05)
+        write(self, overloads)
+    caching.IndexDataCacheFile._save_index = held
+    sys.path.insert(0, folder)
+    import raced
+    print(raced.twice(2 if me == "a" else 2.5))
+""")
+#: How long a racer holds its index write for the other to read it (the lock makes the other wait this long).
+HOLD_S = 8.0
+
+
+def test_two_processes_saving_one_kernel_at_once_both_keep_their_specialisation(tmp_path):
+    """Two processes compile different specialisations of one cached kernel at once, each reading the index before
+    either writes it (numba's read-add-write would keep only the last): with the saves locked, a third process
+    loads both from the cache and compiles nothing. Oracle: numba's compile events and 2 + 2, 2.5 + 2.5."""
+    if jit.JIT_DISABLED or jit.fcntl is None:
+        pytest.skip("no cache with jit off, no flock here")
+    (tmp_path / "raced.py").write_text(RACED_KERNEL)
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    code = RACER.format(hold=HOLD_S)
+    racers = [subprocess.Popen([sys.executable, "-c", code, str(tmp_path), me, other], env=env, text=True,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE) for me, other in ("ab", "ba")]
+    outs = [racer.communicate(timeout=300) for racer in racers]
+    assert [racer.returncode for racer in racers] == [0, 0], [err[-2000:] for _, err in outs]
+    assert [out.strip() for out, _ in outs] == ["4", "5.0"]
+    check = ("import sys\nfrom numba.core import event\nhits = []\n"
+             "class L(event.Listener):\n    def on_start(self, e): hits.append(1)\n    def on_end(self, e): pass\n"
+             "event.register('numba:compile', L())\n"
+             f"sys.path.insert(0, {str(tmp_path)!r})\nimport raced\nprint(raced.twice(2), raced.twice(2.5), len(hits))\n")
+    out = subprocess.run([sys.executable, "-c", check], env=env, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split() == ["4", "5.0", "0"]

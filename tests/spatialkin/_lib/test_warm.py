@@ -19,6 +19,7 @@ import spatialkin as sk
 from spatialkin._lib import jit as _jit
 from spatialkin._lib import warm
 from spatialkin.mechanisms import LooperDrive
+from tests import suite_warmup
 
 #: Interpreted and compiled kernels: the same arithmetic; allow round-off should the compiler contract a product.
 SAME = 1e-12
@@ -304,67 +305,75 @@ def test_the_looper_job_on_a_cold_cache_says_so_once_and_gives_the_compiled_tabl
 #: Every how many-th stress case the warm-up's coverage is tried on (all of them take a minute).
 COVERAGE_STRIDE = 4
 
+#: A user's calls on pairs the warm-up's workload never saw, in a fresh process: prints whether the cache is stamped
+#: warm, the kernels that compiled (numba's compile events), and the specialisations the process then holds.
+USERS_CALLS = textwrap.dedent(f"""
+    import numpy as np
+    from numba.core import event
+    import spatialkin as sk
+    from spatialkin._lib import warm
+    print(warm.ready(warm.WORKLOAD) and warm.ready("planar.warmup"))
+    from tests.oracles.ssi_cases import all_cases
+    compiled = set()
+    class Listener(event.Listener):
+        def on_start(self, e):
+            kernel = getattr(e.data.get("dispatcher"), "py_func", None)
+            if (getattr(kernel, "__module__", "") or "").startswith(("spatialkin", "planar")):
+                compiled.add(kernel.__module__ + "." + kernel.__name__)
+        def on_end(self, e):
+            pass
+    event.register("numba:compile", Listener())
+    for case in all_cases()[::{COVERAGE_STRIDE}]:
+        for certify in (False, True):
+            try:
+                curves = sk.intersect(case.a, case.b, certify=certify)
+            except (sk.TopologyError, ValueError):
+                continue
+            for curve in curves:
+                if curve.length > 0:
+                    curve(np.linspace(0.0, curve.length, 3))
+                    curve.closest(curve.points[:2])
+    import math
+    turned = sk.rotation_about((1, 0, 0), math.asin(0.5))         # (the hard cases of the notebooks)
+    for a, b in [(sk.Torus(2.0, 1.0), sk.Plane(sk.Frame((0, 0, 0), turned))),
+                 (sk.Sphere(1.0), sk.Cylinder(0.5, sk.Frame((0.5, 0, 0)), v_range=(-1.5, 1.5))),
+                 (sk.Cylinder(1.0, v_range=(-2, 2)), sk.Cylinder(1.0, sk.Frame((0, 0, 0), sk.rotation_about(
+                     (0, 1, 0), math.pi / 2)), v_range=(-2, 2))),
+                 (sk.Torus(2.0, 0.5), sk.Plane(sk.Frame((0, 0, 0.5)))),
+                 (sk.Torus(8.0, 50.0), sk.Sphere(0.5, sk.Frame((58.5, 0, 0))))]:
+        sk.intersect(a, b)
+    import planar
+    from planar.frenet import figures
+    planar.examples.fnf_sixbar().solve(np.linspace(0.0, 2 * np.pi, 361))
+    for law in (planar.CrankSlider(k=0.5, e=1.0, L=4.0), planar.CrankRocker(k=0.5, d=4.0)):
+        link = planar.DrivenLink(law, omega=1.0)
+        figures.positions(link, [0.0, 4.0], count=3, samples=31)
+        link.velocity(np.linspace(0.0, 4.0, 5), -4.0), link.acceleration(np.linspace(0.0, 4.0, 5), 2.0)
+    print(sorted(compiled))
+""") + suite_warmup.SPECIALISATIONS
+
 
 @pytest.mark.skipif(_jit.JIT_DISABLED, reason="no cache with jit off")
 def test_after_spatialkin_warmup_the_stress_cases_compile_nothing(tmp_path):
-    """On an empty cache, `spatialkin warmup` in one process (it reports, and leaves the cache stamped warm for its
-    workload and planar's, an installed package's); then, in a fresh one, a user's calls on pairs the workload never
-    saw (every COVERAGE_STRIDE-th stress case: with and without certify=True, then a dense evaluation and closest
-    points of each curve; the notebooks' hard cases) and planar's six-link over a turn and driven links in the
-    Frenet trihedron (the notebook's figures) compile no kernel of spatialkin or planar: each loads
-    from the cache the warm-up left. Oracle: numba's compile events (numba fires none for a kernel loaded from its
-    cache)."""
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
-    env.pop(warm.ENV, None)
-    warmed = subprocess.run([sys.executable, "-m", "spatialkin.cli", "warmup"], capture_output=True, text=True,
-                            env=env, timeout=900)
-    assert warmed.returncode == 0, warmed.stderr[-2000:]
-    assert warmed.stdout.startswith("spatialkin warmup: ") and "kernel specialisations ready" in warmed.stdout
-    code = textwrap.dedent(f"""
-        import numpy as np
-        from numba.core import event
-        import spatialkin as sk
-        from spatialkin._lib import warm
-        print(warm.ready(warm.WORKLOAD) and warm.ready("planar.warmup"))
-        from tests.oracles.ssi_cases import all_cases
-        compiled = set()
-        class Listener(event.Listener):
-            def on_start(self, e):
-                kernel = getattr(e.data.get("dispatcher"), "py_func", None)
-                if (getattr(kernel, "__module__", "") or "").startswith(("spatialkin", "planar")):
-                    compiled.add(kernel.__module__ + "." + kernel.__name__)
-            def on_end(self, e):
-                pass
-        event.register("numba:compile", Listener())
-        for case in all_cases()[::{COVERAGE_STRIDE}]:
-            for certify in (False, True):
-                try:
-                    curves = sk.intersect(case.a, case.b, certify=certify)
-                except (sk.TopologyError, ValueError):
-                    continue
-                for curve in curves:
-                    if curve.length > 0:
-                        curve(np.linspace(0.0, curve.length, 3))
-                        curve.closest(curve.points[:2])
-        import math
-        turned = sk.rotation_about((1, 0, 0), math.asin(0.5))         # (the hard cases of the notebooks)
-        for a, b in [(sk.Torus(2.0, 1.0), sk.Plane(sk.Frame((0, 0, 0), turned))),
-                     (sk.Sphere(1.0), sk.Cylinder(0.5, sk.Frame((0.5, 0, 0)), v_range=(-1.5, 1.5))),
-                     (sk.Cylinder(1.0, v_range=(-2, 2)), sk.Cylinder(1.0, sk.Frame((0, 0, 0), sk.rotation_about(
-                         (0, 1, 0), math.pi / 2)), v_range=(-2, 2))),
-                     (sk.Torus(2.0, 0.5), sk.Plane(sk.Frame((0, 0, 0.5)))),
-                     (sk.Torus(8.0, 50.0), sk.Sphere(0.5, sk.Frame((58.5, 0, 0))))]:
-            sk.intersect(a, b)
-        import planar
-        from planar.frenet import figures
-        planar.examples.fnf_sixbar().solve(np.linspace(0.0, 2 * np.pi, 361))
-        for law in (planar.CrankSlider(k=0.5, e=1.0, L=4.0), planar.CrankRocker(k=0.5, d=4.0)):
-            link = planar.DrivenLink(law, omega=1.0)
-            figures.positions(link, [0.0, 4.0], count=3, samples=31)
-            link.velocity(np.linspace(0.0, 4.0, 5), -4.0), link.acceleration(np.linspace(0.0, 4.0, 5), 2.0)
-        print(sorted(compiled))
-        """)
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=900)
+    """`spatialkin warmup` in one process (it reports, and leaves the cache stamped warm for its workload and
+    planar's, an installed package's); then, in a fresh one, a user's calls on pairs the workload never saw (every
+    COVERAGE_STRIDE-th stress case: with and without certify=True, then a dense evaluation and closest points of each
+    curve; the notebooks' hard cases) and planar's six-link over a turn and driven links in the Frenet trihedron (the
+    notebook's figures) compile no kernel of spatialkin or planar, and need no specialisation the warm-up did not
+    make: each would load from a cache that only the warm-up wrote.
+
+    The warm-up is the session's (tests/conftest.py runs it on a cold cache before any test), or one run here on an
+    empty cache of its own: either compiled every specialisation it left in the cache (its record is complete). The
+    user's calls run on the suite's cache, which the other tests may have added specialisations to: those would load
+    without a compile event, and are caught by the comparison with the warm-up's own. Oracles: numba's compile events
+    (none for a kernel loaded from its cache) and the specialisations each process holds."""
+    warmed = suite_warmup.recorded()
+    if warmed is None or not warmed["complete"]:
+        warmed = suite_warmup.warm_up({**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")})
+    assert warmed["complete"]
+    assert warmed["report"].startswith("spatialkin warmup: ") and "kernel specialisations ready" in warmed["report"]
+    out = subprocess.run([sys.executable, "-c", USERS_CALLS], capture_output=True, text=True, timeout=900)
     assert out.returncode == 0, out.stderr[-2000:]
-    stamped, *_, compiled = out.stdout.strip().splitlines()
+    stamped, *_, compiled, held = out.stdout.strip().splitlines()
     assert stamped == "True" and compiled == "[]"
+    assert sorted(set(json.loads(held)) - set(warmed["specialisations"])) == []

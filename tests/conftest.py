@@ -1,6 +1,7 @@
 import os
 import shutil
 import tempfile
+import time
 
 import pytest
 
@@ -13,6 +14,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [ROOT, os.environ.get("PYTHONPATH")]))
 
 _REPORT = []
+#: What the session's warm-up took, said after the tests.
+_WARMED = []
 #: The folder of the session's warm-up record (tests/suite_warmup.py), removed at the end.
 _WARMUP_FOLDER = []
 
@@ -54,11 +57,13 @@ def _selected(nodeid, table):
     return False
 
 
-def pytest_configure(config):
+@pytest.hookimpl(tryfirst=True)
+def pytest_sessionstart(session):
     """On a cold numba cache (spatialkin's or planar's workload not stamped warm), `spatialkin warmup` once, in a
     fresh process, before any test and any test runner's worker starts: they all load the kernels from the cache
     it leaves. Not in a worker, for --collect-only, with jit off, or when the session's warm-up ran already."""
     from tests import suite_warmup
+    config = session.config
     if hasattr(config, "workerinput") or config.option.collectonly or os.environ.get(suite_warmup.RECORD_ENV):
         return
     from spatialkin._lib import jit, warm
@@ -66,9 +71,12 @@ def pytest_configure(config):
         return
     reporter = config.pluginmanager.get_plugin("terminalreporter")
     if reporter is not None:
-        reporter.write_line("numba's cache is cold: `spatialkin warmup` first, in one process (a few minutes)")
+        reporter.write_line("numba's cache is cold: `spatialkin warmup` first, in one process")
     _WARMUP_FOLDER.append(tempfile.mkdtemp(prefix="spatialkin-suite-"))
+    t0 = time.perf_counter()
     data = suite_warmup.record(os.path.join(_WARMUP_FOLDER[0], "warmup.json"))
+    _WARMED.append(f"spatialkin warmup before the tests took {time.perf_counter() - t0:.0f} s (not in the time "
+                   "pytest gives below)")
     if reporter is not None:
         reporter.write_line(data["report"])
 
@@ -101,6 +109,8 @@ def pytest_runtest_logreport(report):
 
 
 def pytest_terminal_summary(terminalreporter):
+    for line in _WARMED:
+        terminalreporter.write_line(line)
     if _REPORT:
         terminalreporter.write_sep("-", "stress report")
         for line in _REPORT:

@@ -1,4 +1,5 @@
 """sk.intersect: every component of the intersection of two surfaces, each once."""
+import dataclasses
 import time
 
 import numpy as np
@@ -9,6 +10,7 @@ from .curve.curvature import normal_sines
 from .curve.dense import CLOSEST_NEWTON_STEPS
 from .curve.exact import contact_point, exact_curve
 from .curve.result import Curve, TracingError, in_sk_order
+from .march.ivp import KNOWN_NODE
 from .march.segments import NEWTON_MAX_ITER
 from .march.start import locate_on_curve, newton_fixed_surfaces
 from .certify.certificate import CertificationError, CurveCertificate, certify as certify_answer
@@ -268,6 +270,7 @@ def searched(a, b, settings, closing=True):
                 kept.append(c)
         elif not covered(c, kept + curves[i + 1:], radius, settings):
             kept.append(c)
+    kept = split_laps(a, b, kept, settings, radius)
     unclosed = next((c for c in kept if c.status == MAX_LENGTH), None) if closing else None
     if unclosed is not None:
         raise TopologyError(f"a component traced from {np.round(unclosed.points[0], 12).tolist()} ran to "
@@ -369,6 +372,58 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
             stages.switch("dedupe")
         pending = drop_traced(pending, found, radius)
     return failed
+
+
+def split_laps(a, b, curves, settings, radius):
+    """The curves (CurveResults), each closed one that runs round a shorter closed one of them and on round another
+    loop replaced by that other loop. Such a lap comes from a march that took a node the search reported where the
+    surfaces nearly touch for a crossing, and jumped there onto the other loop, so that one loop would come back
+    twice. Beside a reported node (within KNOWN_NODE) the loop turns where the lap went straight on: there the two
+    need not lie along each other. The other loop is traced from the lap's stored point farthest from the loop, with
+    the reported nodes beside the loop set aside (there the march turns with the branch), and taken only when it
+    closes, lies along the lap and, with the loop, covers the whole lap."""
+    out = list(curves)
+    for i, lap in enumerate(out):
+        if not lap.closed or settings.nodes is None or not len(settings.nodes):
+            continue
+        gap, sine = errors(lap, settings)
+        for loop in out:
+            if loop is lap or not loop.closed or loop.length >= lap.length:
+                continue
+            if not along_union(loop, [lap], radius, settings, off_nodes(loop, settings)):
+                continue
+            away = loop.sol.closest(np.ascontiguousarray(lap.points))[1] - reach(radius, gap, sine, errors(
+                loop, settings)[0].max(), settings)
+            if away.max() <= 0:
+                continue            # (each lies along the other: traced_twice's copies)
+            other = other_loop(a, b, lap.points[int(np.argmax(away))], loop, settings)
+            if other is not None and along_union(other, [lap], radius, settings, off_nodes(other, settings)) and \
+                    along_union(lap, [loop, other], radius, settings):
+                out[i] = other
+            break
+    return out
+
+
+def off_nodes(curve, settings):
+    """Mask of the curve's stored points farther than KNOWN_NODE from every node the search reported."""
+    nodes = np.asarray(settings.nodes, dtype=float).reshape(-1, 3)
+    points = np.ascontiguousarray(curve.points)
+    return cKDTree(nodes).query(points)[0] > KNOWN_NODE * settings.scale
+
+
+def other_loop(a, b, point, loop, settings):
+    """The closed curve traced from the point (located on the curve first), with the reported nodes within
+    KNOWN_NODE of the loop (a CurveResult) set aside; None where it cannot be located, traced or does not close."""
+    nodes = settings.nodes
+    if nodes is not None and len(nodes):
+        nodes = np.asarray(nodes, dtype=float).reshape(-1, 3)
+        nodes = nodes[~near_curve(loop, nodes, KNOWN_NODE * settings.scale)]
+    try:
+        point, y = locate_on_curve(a, b, point, settings.gap_tol)
+        other = trace_from(a, b, point, y, dataclasses.replace(settings, nodes=nodes), time.perf_counter())
+    except TracingError:
+        return None
+    return other if other is not None and other.closed else None
 
 
 def traced_twice(loop, curves, radius, settings):
@@ -542,7 +597,18 @@ def covered(curve, others, radius, settings):
         return True
     if curve.status == MAX_LENGTH:
         return False            # (a march that crossed between branches and never closed: searched refuses the pair)
+    return along_union(curve, others, radius, settings)
+
+
+def along_union(curve, others, radius, settings, mask=None):
+    """True when every stored point of the curve (those of the mask, if given) lies within its reach (same_loop's,
+    with each other curve's largest gap) of one of the others (CurveResults)."""
+    points = np.ascontiguousarray(curve.points)
     gap, sine = errors(curve, settings)
+    if mask is not None:
+        points, gap, sine = np.ascontiguousarray(points[mask]), gap[mask], sine[mask]
+        if not len(points):
+            return True
     lo, hi = points.min(axis=0), points.max(axis=0)
     near = np.zeros(len(points), dtype=bool)
     for other in others:

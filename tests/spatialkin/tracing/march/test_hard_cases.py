@@ -451,22 +451,36 @@ def test_a_thin_near_tangent_loop_is_traced_once(swap):
     assert abs(loop.length - exact) <= bound, (loop.length, exact, bound)
 
 
+#: Cylinders a hair inside a sphere's tangent cylinder, far from the origin: (radius, origin, axes), (radius, centre).
+HAIR_INSIDE = {
+    "2e-9 at 1.8e6": ((1.2650800463272425, (1226618.1500858318, -1350363.433052412, 517417.21657624067),
+                       [[0.6782916004821165, -0.6879940417301931, 0.25804011947594985],
+                        [0.22551611874318647, 0.5291423012223048, 0.8180164455829557],
+                        [-0.6993303832255668, -0.4966614778709108, 0.5140665243882983]]),
+                      (4.319199704927846, (1226617.0368326479, -1350362.2083425173, 517420.8619835968))),
+    "7e-10 at 8.6e4": ((1.4803247636830736, (-57184.62381583693, -8583.37946854299, -63622.86208895696),
+                        [[-0.1505049726501111, 0.45002895497759987, 0.8802398496372218],
+                         [0.9877611974209392, 0.03158113575660626, 0.1527430808052374],
+                         [0.040939834845072354, 0.8924553610943755, -0.4492742574160755]]),
+                       (2.843736506417479, (-57184.50691030673, -8581.976850121653, -63622.9706738348))),
+}
+
+
 @pytest.mark.parametrize("swap", [False, True])
-def test_a_cylinder_a_hair_inside_a_sphere_cuts_two_loops(swap):
-    """A cylinder 2e-9 (relative) inside a sphere's tangent cylinder, 1.8e6 from the origin: the two loops pass 1e-4
-    apart where the cylinder comes nearest the sphere, within the tolerance of a node there, which the search
-    reports. The march that crosses between them there runs round both, once from each of the search's hundred
-    starts; those curves lie on the two loops within the error of their places (gap over sine), and the answer is
-    the two loops in both argument orders (in one, a loop the march leaves open at that node). The oracle: the gap R - r - d > 0 and the loops' length by quadrature in
+@pytest.mark.parametrize("placing", list(HAIR_INSIDE))
+def test_a_cylinder_a_hair_inside_a_sphere_cuts_two_loops(placing, swap):
+    """A cylinder 2e-9 or 7e-10 (relative) inside a sphere's tangent cylinder, far from the origin: the two loops
+    pass 1e-4 apart where the cylinder comes nearest the sphere, within the tolerance of a node there, which the
+    search reports. A march that crosses between them there runs round both: from each of the search's hundred
+    starts (those curves lie on the two loops within the error of their places, gap over sine), or once, jumping
+    across the reported node as across a crossing, beside a loop traced on its own (that lap is traced again as
+    the other loop, the node set aside). The answer is the two loops in both argument orders (in one, a loop the
+    march leaves open at that node). The oracle: the gap R - r - d > 0 and the loops' length by quadrature in
     30-digit arithmetic (tests.oracles.closed_forms.cylinder_sphere_loops), within 1e-6 relative (1e-4 where the
     loops pass: 2 pi ulp(|x|) over the smallest sine, 2e-5 of the length, bounds what doubles can fix)."""
     from tests.oracles.closed_forms import cylinder_sphere_loops
-    a = sk.Cylinder(1.2650800463272425, sk.Frame(
-        (1226618.1500858318, -1350363.433052412, 517417.21657624067),
-        [[0.6782916004821165, -0.6879940417301931, 0.25804011947594985],
-         [0.22551611874318647, 0.5291423012223048, 0.8180164455829557],
-         [-0.6993303832255668, -0.4966614778709108, 0.5140665243882983]]))
-    b = sk.Sphere(4.319199704927846, sk.Frame((1226617.0368326479, -1350362.2083425173, 517420.8619835968)))
+    (r, origin, axes), (big, centre) = HAIR_INSIDE[placing]
+    a, b = sk.Cylinder(r, sk.Frame(origin, axes)), sk.Sphere(big, sk.Frame(centre))
     gap, exact = cylinder_sphere_loops(a, b)
     assert 0 < gap < 1e-8
     curves = sk.intersect(b, a) if swap else sk.intersect(a, b)
@@ -477,3 +491,5 @@ def test_a_cylinder_a_hair_inside_a_sphere_cuts_two_loops(swap):
                                             and np.linalg.norm(curve.points[0] - curve.points[-1]) < 1e-5 * a.radius)
         assert curve.max_distance <= curve.tolerance
         assert abs(curve.length - exact) <= 1e-6 * exact, (curve.length, exact)
+    distance = curves[0].closest(curves[1].points)[1].min()
+    assert distance > 1e-6 * a.radius, distance           # (two loops, not one twice)

@@ -26,10 +26,9 @@ SPECIALISATIONS = textwrap.dedent("""
                              for d in jit.dispatchers() for sig in d.signatures})))
 """)
 
-#: `spatialkin warmup`, then the kernel specialisations it compiled (numba's compile events) and those it holds, as
-#: JSON lines.
-WARM_UP = textwrap.dedent("""
-    import json
+#: Collect in the set `compiled` each kernel specialisation of spatialkin and planar numba compiles from here on
+#: (its compile events; none for one loaded from the cache).
+COMPILES = textwrap.dedent("""
     from numba.core import event
     compiled = set()
     class Listener(event.Listener):
@@ -40,6 +39,11 @@ WARM_UP = textwrap.dedent("""
         def on_end(self, e):
             pass
     event.register("numba:compile", Listener())
+""")
+
+#: `spatialkin warmup`, then the kernel specialisations it compiled and those it holds, as JSON lines.
+WARM_UP = COMPILES + textwrap.dedent("""
+    import json
     from spatialkin.cli.warmup import main
     main()
     print(json.dumps(sorted(compiled)))

@@ -307,22 +307,12 @@ COVERAGE_STRIDE = 4
 
 #: A user's calls on pairs the warm-up's workload never saw, in a fresh process: prints whether the cache is stamped
 #: warm, the kernels that compiled (numba's compile events), and the specialisations the process then holds.
-USERS_CALLS = textwrap.dedent(f"""
+USERS_CALLS = suite_warmup.COMPILES + textwrap.dedent(f"""
     import numpy as np
-    from numba.core import event
     import spatialkin as sk
     from spatialkin._lib import warm
     print(warm.ready(warm.WORKLOAD) and warm.ready("planar.warmup"))
     from tests.oracles.ssi_cases import all_cases
-    compiled = set()
-    class Listener(event.Listener):
-        def on_start(self, e):
-            kernel = getattr(e.data.get("dispatcher"), "py_func", None)
-            if (getattr(kernel, "__module__", "") or "").startswith(("spatialkin", "planar")):
-                compiled.add(kernel.__module__ + "." + kernel.__name__)
-        def on_end(self, e):
-            pass
-    event.register("numba:compile", Listener())
     for case in all_cases()[::{COVERAGE_STRIDE}]:
         for certify in (False, True):
             try:

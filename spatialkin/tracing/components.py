@@ -383,15 +383,17 @@ def split_laps(a, b, curves, settings, radius):
     the reported nodes beside the loop set aside (there the march turns with the branch), and taken only when it
     closes, lies along the lap and, with the loop, covers the whole lap."""
     out = list(curves)
+    if settings.nodes is None or not len(settings.nodes):
+        return out
     for i, lap in enumerate(out):
-        if not lap.closed or settings.nodes is None or not len(settings.nodes):
+        if not lap.closed:
             continue
-        gap, sine = errors(lap, settings)
         for loop in out:
             if loop is lap or not loop.closed or loop.length >= lap.length:
                 continue
             if not along_union(loop, [lap], radius, settings, off_nodes(loop, settings)):
                 continue
+            gap, sine = errors(lap, settings)
             away = loop.sol.closest(np.ascontiguousarray(lap.points))[1] - reach(radius, gap, sine, errors(
                 loop, settings)[0].max(), settings)
             if away.max() <= 0:
@@ -412,12 +414,11 @@ def off_nodes(curve, settings):
 
 
 def other_loop(a, b, point, loop, settings):
-    """The closed curve traced from the point (located on the curve first), with the reported nodes within
-    KNOWN_NODE of the loop (a CurveResult) set aside; None where it cannot be located, traced or does not close."""
-    nodes = settings.nodes
-    if nodes is not None and len(nodes):
-        nodes = np.asarray(nodes, dtype=float).reshape(-1, 3)
-        nodes = nodes[~near_curve(loop, nodes, KNOWN_NODE * settings.scale)]
+    """The closed curve traced from the point (located on the curve first), with the reported nodes (settings.nodes,
+    some) within KNOWN_NODE of the loop (a CurveResult) set aside; None where it cannot be located, traced or does
+    not close."""
+    nodes = np.asarray(settings.nodes, dtype=float).reshape(-1, 3)
+    nodes = nodes[~near_curve(loop, nodes, KNOWN_NODE * settings.scale)]
     try:
         point, y = locate_on_curve(a, b, point, settings.gap_tol)
         other = trace_from(a, b, point, y, dataclasses.replace(settings, nodes=nodes), time.perf_counter())

@@ -59,9 +59,9 @@ def _selected(nodeid, table):
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_sessionstart(session):
-    """On a cold numba cache (spatialkin's or planar's workload not stamped warm), `spatialkin warmup` once, in a
-    fresh process, before any test and any test runner's worker starts: they all load the kernels from the cache
-    it leaves. Not in a worker, for --collect-only, with jit off, or when the session's warm-up ran already."""
+    """On a cold numba cache (spatialkin's or planar's workload not stamped warm), `spatialkin warmup` once, each
+    workload in a fresh process of its own, before any test and any test runner's worker starts: they all load the
+    kernels from the cache it leaves. Not in a worker, for --collect-only, with jit off, or when the session's warm-up ran already."""
     from tests import suite_warmup
     config = session.config
     if hasattr(config, "workerinput") or config.option.collectonly or os.environ.get(suite_warmup.RECORD_ENV):
@@ -71,7 +71,7 @@ def pytest_sessionstart(session):
         return
     reporter = config.pluginmanager.get_plugin("terminalreporter")
     if reporter is not None:
-        reporter.write_line("numba's cache is cold: `spatialkin warmup` first, in one process")
+        reporter.write_line("numba's cache is cold: `spatialkin warmup` first, a process per workload")
     _WARMUP_FOLDER.append(tempfile.mkdtemp(prefix="spatialkin-suite-"))
     t0 = time.perf_counter()
     data = suite_warmup.record(os.path.join(_WARMUP_FOLDER[0], "warmup.json"))

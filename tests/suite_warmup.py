@@ -1,8 +1,9 @@
 """`spatialkin warmup` for the suite, and the check that the calls a user makes after it compile nothing.
 
-On a cold numba cache, tests/conftest.py runs the warm-up once, in a fresh process, before any test: every process
-the suite starts then loads the compiled kernels from the cache instead of compiling its own. The warm-up's record
-(its report line and the kernel specialisations it holds when done) goes to a file the tests read
+On a cold numba cache, tests/conftest.py runs the warm-up once before any test, each workload in a fresh process of
+its own, side by side: every process the suite starts then loads the compiled kernels from the cache instead of
+compiling its own. The warm-up's record (its report lines and the kernel specialisations its processes hold when
+done) goes to a file the tests read
 (``recorded()``); where no warm-up ran for the session (the cache was warm), ``warm_up`` makes one.
 
 A process holds the specialisations of the kernels it called from Python, and of the kernels those call only where
@@ -41,26 +42,48 @@ COMPILES = textwrap.dedent("""
     event.register("numba:compile", Listener())
 """)
 
-#: `spatialkin warmup`, then the kernel specialisations it compiled and those it holds, as JSON lines.
+#: The workloads of `spatialkin warmup`, their stale caches dropped (all of them, before any compiles), as JSON.
+PREPARE = textwrap.dedent("""
+    import json
+    from spatialkin._lib import warm
+    print(json.dumps(warm.prepare()))
+""")
+
+#: `spatialkin warmup` of the workloads named in sys.argv, then the kernel specialisations it compiled and those it
+#: holds, as JSON lines.
 WARM_UP = COMPILES + textwrap.dedent("""
     import json
+    import sys
     from spatialkin.cli.warmup import main
-    main()
+    main(names=sys.argv[1:])
     print(json.dumps(sorted(compiled)))
 """) + SPECIALISATIONS
 
 
 def warm_up(env=None):
-    """Run `spatialkin warmup` in a fresh process (env: its environment, default this one's); returns its record
-    {"report": the line it printed, "specialisations": [...], "complete": it compiled every one}. RuntimeError with
-    its stderr when it fails."""
-    run = subprocess.run([sys.executable, "-c", WARM_UP], capture_output=True, text=True, env=env, timeout=1800)
-    if run.returncode != 0:
-        raise RuntimeError(f"spatialkin warmup failed:\n{run.stderr[-3000:]}")
-    *report, compiled, specialisations = run.stdout.strip().splitlines()
-    specialisations = json.loads(specialisations)
-    return {"report": "\n".join(report), "specialisations": specialisations,
-            "complete": set(specialisations) <= set(json.loads(compiled))}
+    """Run `spatialkin warmup` in fresh processes, one per workload (spatialkin's, planar's), side by side (env:
+    their environment, default this one's); returns its record {"report": the lines they printed,
+    "specialisations": [...] they hold, "complete": they compiled every one}. RuntimeError with the stderr of one
+    that fails. numba's cache saves are locked (spatialkin._lib.jit.lock_saves): two processes compiling one kernel
+    both keep their specialisation."""
+    prepared = subprocess.run([sys.executable, "-c", PREPARE], capture_output=True, text=True, env=env, timeout=600)
+    if prepared.returncode != 0:
+        raise RuntimeError(f"spatialkin warmup failed:\n{prepared.stderr[-3000:]}")
+    names = json.loads(prepared.stdout.strip().splitlines()[-1])
+    runs = [subprocess.Popen([sys.executable, "-c", WARM_UP, name], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, env=env) for name in names]
+    reports, compiled, held = [], set(), set()
+    for run in runs:
+        out, err = run.communicate(timeout=1800)
+        if run.returncode != 0:
+            for other in runs:
+                other.kill()
+            raise RuntimeError(f"spatialkin warmup failed:\n{err[-3000:]}")
+        *report, events, specialisations = out.strip().splitlines()
+        reports.extend(report)
+        compiled |= set(json.loads(events))
+        held |= set(json.loads(specialisations))
+    return {"report": "\n".join(reports), "specialisations": sorted(held), "complete": held <= compiled}
 
 
 def recorded():

@@ -297,11 +297,11 @@ def workloads():
     return names
 
 
-def compile_ahead(names=None):
-    """Compile the workloads (default: workloads()) in the foreground, each kernel compiled or loaded from the
-    cache, and stamp each; this process's background warm-ups are stopped (this does their work) and the kernels
-    turned to their compiled form. Stale caches are dropped first, all of them before any compiles (a kernel
-    module changed since a stamp: its folders compile again). Returns {workload: seconds}."""
+def prepare(names=None):
+    """Before compiling the workloads (default: workloads()): their packages imported, this process's background
+    warm-ups stopped, and the stale caches of them all dropped (drop_stale), before any of them compiles. Returns
+    the workloads' names. (Workloads compiled in parallel processes each call it on their own workload only, after
+    one call on them all.)"""
     import importlib
     names = workloads() if names is None else list(names)
     for name in names:        # (a package registers its workload when imported, and on a cold cache turns the kernels
@@ -309,6 +309,16 @@ def compile_ahead(names=None):
     stop_background()
     for name in names:
         drop_stale(name)
+    return names
+
+
+def compile_ahead(names=None):
+    """Compile the workloads (default: workloads()) in the foreground, each kernel compiled or loaded from the
+    cache, and stamp each; this process's background warm-ups are stopped (this does their work) and the kernels
+    turned to their compiled form. Stale caches are dropped first, all of them before any compiles (a kernel
+    module changed since a stamp: its folders compile again). Returns {workload: seconds}."""
+    import importlib
+    names = prepare(names)
     jit.use(jit.COMPILED)
     seconds = {}
     for name in names:

@@ -55,13 +55,13 @@ def run():
     LooperDesign.from_drive(drive).sensitivities(angles[::10])
 
 
-def main(echo=print):
-    """``spatialkin warmup``: compile every workload in the foreground (spatialkin's and each installed package's:
-    spatialkin._lib.warm.compile_ahead), stamp the cache, report the time. Returns 0."""
+def main(echo=print, names=None):
+    """``spatialkin warmup``: compile every workload (names: these only) in the foreground (spatialkin's and each
+    installed package's: spatialkin._lib.warm.compile_ahead), stamp the cache, report the time. Returns 0."""
     from .._lib import jit, warm
     warm.say_with(lambda line: None)    # (it says what it did when done)
     before = sum(len(d.signatures) for d in jit.dispatchers())
-    seconds = warm.compile_ahead()
+    seconds = warm.compile_ahead(names)
     after = sum(len(d.signatures) for d in jit.dispatchers())
     echo(f"spatialkin warmup: {after} kernel specialisations ready ({after - before} compiled or loaded here) in "
          f"{sum(seconds.values()):.1f} s ({', '.join(f'{name} {t:.1f} s' for name, t in seconds.items())}); "

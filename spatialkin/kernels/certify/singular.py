@@ -7,7 +7,8 @@ with lambda >= det / trace a lower bound of its smallest eigenvalue magnitude, s
 sqrt(2 |g(c*)| / lambda) of c*. When that radius (plus c*'s offset from c) is below h, the level inside B is a point,
 a loop inside that ball, or nothing: which one cannot be decided in floating point (g(c*) = 0 is an equality), but
 nothing else of the intersection comes near. A Hessian of negative determinant over B makes c* a saddle (a node or
-two branches passing close): only its uniqueness is proven.
+two branches passing close): only its uniqueness is proven here; sign_on_segment proves g free of zeros along a
+segment (across a saddle's box: the branches pass close, spatialkin.tracing.certify.nodes).
 
 References
 ----------
@@ -17,7 +18,11 @@ R. E. Moore, R. B. Kearfott, M. J. Cloud, Introduction to Interval Analysis, SIA
 import math
 
 from ..._lib.jit import jit
-from ..geometry.interval import box_trig, iadd, imul, iscale, isub, jet, krawczyk_row, local_first, mag, point
+from ..geometry.interval import (box_trig, iadd, imul, intersect, iscale, isub, jet, jet_first, krawczyk_row,
+                                 local_first, mag, point, widen)
+
+#: Most pieces sign_on_segment splits a segment into.
+SEGMENT_BOXES = 4096
 
 #: Outcomes: no box passed; a unique critical point, a saddle over its box; a unique extremum isolated in its box
 #: (the level within the ball); an extremum whose ball reaches the box's edge.
@@ -85,3 +90,51 @@ def critical_ball(s_data, t_data, m, c, pad, cpad, su, sv, cu, cv, h0, cap, out)
             result = EXTREMUM               # the ball reaches the box's edge: a larger box may hold it
         h *= 8.0
     return result
+
+
+@jit(forceinline=True)
+def _segment_enclosure(s_data, t_data, m, c, pad, cpad, su, sv, au, av, bu, bv, t0, t1):
+    """Enclosure of g over the box hull (raw parameters) of the points a + t (b - a), t in [t0, t1], of the
+    scaled segment from a to b: the natural enclosure met with the mean-value form about the hull's centre."""
+    pu0, pu1 = au + t0 * (bu - au), au + t1 * (bu - au)
+    pv0, pv1 = av + t0 * (bv - av), av + t1 * (bv - av)
+    slack_u = 4e-16 * (abs(au) + abs(bu - au)) + 1e-300
+    slack_v = 4e-16 * (abs(av) + abs(bv - av)) + 1e-300
+    U = iscale(widen((min(pu0, pu1), max(pu0, pu1)), slack_u), su)
+    V = iscale(widen((min(pv0, pv1), max(pv0, pv1)), slack_v), sv)
+    g, gu, gv = jet_first(s_data, t_data, m, c, pad, cpad, U, V, box_trig(s_data, U, V))[0]
+    um, vm = 0.5 * (U[0] + U[1]), 0.5 * (V[0] + V[1])
+    Um, Vm = (um, um), (vm, vm)
+    gm = jet_first(s_data, t_data, m, c, pad, cpad, Um, Vm, box_trig(s_data, Um, Vm))[0][0]
+    form = iadd(gm, iadd(imul(gu, isub(U, Um)), imul(gv, isub(V, Vm))))
+    both = intersect(g, form)
+    return both if both[0] <= both[1] else g
+
+
+@jit
+def sign_on_segment(s_data, t_data, m, c, pad, cpad, su, sv, au, av, bu, bv, max_boxes):
+    """+1 or -1 when g is proven to keep that sign along the whole segment from a = (au, av) to b = (bu, bv) in
+    scaled parameters (every point a + t (b - a), t in [0, 1], in exact arithmetic), else 0. The segment is split
+    into pieces (bisection of t, from a on) until each piece's enclosure of g (_segment_enclosure) excludes 0; 0 as
+    soon as a piece can be split no further or max_boxes pieces have been tried."""
+    stack = [(0.0, 1.0)]
+    sign = 0
+    tried = 0
+    while len(stack):
+        t0, t1 = stack.pop()
+        tried += 1
+        if tried > max_boxes:
+            return 0
+        g = _segment_enclosure(s_data, t_data, m, c, pad, cpad, su, sv, au, av, bu, bv, t0, t1)
+        if g[0] > 0.0 or g[1] < 0.0:
+            here = 1 if g[0] > 0.0 else -1
+            if sign != 0 and here != sign:
+                return 0
+            sign = here
+            continue
+        mid = 0.5 * (t0 + t1)
+        if not (t0 < mid < t1):
+            return 0
+        stack.append((mid, t1))
+        stack.append((t0, mid))
+    return sign

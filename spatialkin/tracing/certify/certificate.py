@@ -18,7 +18,7 @@ from ...kernels.search import topology as ks
 from .certify_points import certify_points
 from ..search.topology import TopologyError, points_at, search
 from .trims import Ends, closed_inside, edges, open_curve, outside, q_edge_roots
-from .nodes import box_radii, in_boxes, linked, node_boxes, typical_chord
+from .nodes import box_radii, in_boxes, linked, node_boxes, passages, typical_chord
 from .tubes import Chart, tube
 from .faces import cut
 
@@ -129,8 +129,12 @@ class Certificate:
       point of g in a box where its Hessian is definite, so the intersection within the box lies within the ball
       (a point, a small loop or nothing); a node gets a box proven to hold one critical point, a saddle, and
       exactly four branches leaving it, each through a proven tube (spatialkin.tracing.certify.nodes: the tubes
-      are chained between node boxes, so the arcs and completeness are proven through nodes, while which branches
-      join at a node, and so one_component and distinct for the curves through it, is not decided). An apex of a
+      are chained between node boxes, so the arcs and completeness are proven through nodes). Where the level is
+      proven to keep one sign along a segment across the box (two branches passing close, the saddle off the
+      level), the box holds no singular point and the branches join two by two in a proven way: a curve through
+      it is one component when each passage takes one arc from end to end, and two curves through it by different
+      arcs are distinct. Otherwise (a crossing, or branches too close for floating point to tell) which branches
+      join is not decided, and neither are one_component and distinct for the curves through it. An apex of a
       cone lying on the other surface gets its ball the same way, in the chart of the surface it is not an apex of
       (where the cone's implicit function has its critical point): isolated, or a saddle where two branches cross.
       Where the search's own chart collapses at such an apex, the whole answer is read in the other surface's
@@ -358,6 +362,7 @@ def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=T
     chart = Chart(charted, scale) if charted is not None and charted.chart is not None else None
     trims, unsupported = edges(charted, chart, regions) if chart is not None else ([], [])
     nodes = node_boxes(chart, charted.nodes, typical_chord(chart, curves)) if chart is not None else []
+    uses = {}                   # {curve index: {node index: the arcs (pairs) its passages take}}
     ends = Ends()
     radii, tubes, bounds = [], [], []
     arcs_failed, whole_failed = [], []
@@ -381,9 +386,14 @@ def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=T
                                 None if t is None else t.where))
             whole_failed.append((f"curve {i}: its tube is not proven", None if t is None else t.where))
         elif t.split:
-            node = next((n for n in nodes if n.index in t.passes), None)
-            whole_failed.append((f"curve {i} passes a node: which of the branches there join is not decided",
-                                 t.points[0] if node is None else node.point))
+            through = passages(nodes, t.runs, chart.periods) if curve.closed and not (trims or unsupported) else None
+            if through is None:
+                node = next((n for n in nodes if n.index in t.passes and n.pairs is None), None)
+                whole_failed.append((f"curve {i} passes a node: which of the branches there join is not decided"
+                                     if node is not None else f"curve {i} does not pass its nodes along the arcs "
+                                     "that join there", t.points[0] if node is None else node.point))
+            else:
+                uses[i] = through
         elif not curve.closed and not open_curve(chart, trims, unsupported, t, curve, ends, i):
             whole_failed.append(ends.failures[-1])
         elif curve.closed and not closed_inside(chart, trims, unsupported, t, i, ends):
@@ -399,7 +409,7 @@ def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=T
     claims = [complete,
               claim("one_component", whole_failed, "every closed curve's tube closes on itself, every open "
                     "curve runs between two proven crossings of trim edges"),
-              distinct_claim(chart, tubes, contact_boxes(curves, singular), nodes),
+              distinct_claim(chart, tubes, contact_boxes(curves, singular), nodes, uses),
               claim("points", unproven_points(radii, curves), "every stored point has a proven radius"),
               claim("arcs", arcs_failed, "every curve lies in a chain of proven pieces" +
                     (", outside the node boxes (whose branches leave through them)" if nodes else "")),
@@ -454,7 +464,7 @@ def singular_places(topology, chart, curves, scale, nodes=()):
     if topology is not None:
         out += [(f"a node: its ball of {node.radius:.1e} holds one critical point of the level, a saddle, and four "
                  "branches leaving it through proven tubes; which of them join there (a crossing, or two branches "
-                 "passing close) is not decided", node.point, node.radius) for node in nodes]
+                 "passing close) is not decided", node.point, node.radius) for node in nodes if node.pairs is None]
         boxed = {node.index for node in nodes}
         points = [(p, "node") for k, p in enumerate(topology.nodes) if k not in boxed]
         points += [(p, "contact") for p in topology.contacts]
@@ -630,10 +640,14 @@ def within_isolated(chart, raw, isolated):
     return False
 
 
-def distinct_claim(chart, tubes, boxes=None, nodes=()):
+def distinct_claim(chart, tubes, boxes=None, nodes=(), uses=None):
     """The curves' tubes pairwise disjoint (pieces_overlap, with whole periods of the chart); a contact point's
     isolation box (boxes: {curve index: scaled box (4,)}) stands for its tube, and the boxes of the nodes a curve
-    passes (nodes: NodeBox) belong to its tube; two curves through one node are not proven distinct."""
+    passes (nodes: NodeBox) belong to its tube. Two curves through one node are distinct where both are proven one
+    component each passing the node by its arcs (uses: {curve index: {node index: [pairs]}}, from
+    spatialkin.tracing.certify.nodes.passages) and, at some node they share, by different arcs: a whole component
+    meets the node's box in the arcs its passages take, and the two arcs are disjoint; else not proven."""
+    uses = uses or {}
     boxes = boxes or {}
     pieces = [t.pieces if t is not None and t.proven else box_piece(boxes[i]) if i in boxes else None
               for i, t in enumerate(tubes)]
@@ -648,8 +662,9 @@ def distinct_claim(chart, tubes, boxes=None, nodes=()):
                 continue
             shared = tubes[i].passes & tubes[j].passes if tubes[i] is not None and tubes[j] is not None else ()
             if shared:
-                failures.append((f"curves {i} and {j} meet at a node, where which branches join is not decided",
-                                 None))
+                if not (i in uses and j in uses and any(not set(uses[i].get(n, ())) & set(uses[j].get(n, ())) for n in shared)):
+                    failures.append((f"curves {i} and {j} meet at a node, where which branches join is not decided",
+                                     None))
                 continue
             hit = overlapping(chart, pieces[i], pieces[j])
             if hit is not None:

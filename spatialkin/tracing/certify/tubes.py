@@ -59,6 +59,9 @@ class Tube:
     split : bool             made of one open chain per run of the curve between node boxes (their ends
                              reaching into the boxes), not of one chain
     passes : frozenset       the indices (among the search's nodes) of the node boxes the curve passes
+    runs : list              where split: per run of the curve between node boxes, in the curve's order,
+                             (its pieces (K, WIDTH) in chain order, the NodeBox it comes from, the one it goes to;
+                             None at the curve's own end)
     end_boxes : list         an open curve's ends proven on trim edges: the scaled boxes (4,) holding them
                              (spatialkin.tracing.certify.trims.open_curve), else empty
     """
@@ -68,6 +71,7 @@ class Tube:
         self.radii = None
         self.split = False
         self.passes = frozenset()
+        self.runs = []
         self.end_boxes = []
 
     @property
@@ -183,7 +187,7 @@ def tube(chart, curve, nodes=(), arcs=()):
         failed.split = True
         failed.passes = frozenset(nodes[j].index for j in passed)
         return failed
-    parts = [chained(chart, curve, run_points, run_s, False, forced) for run_points, run_s in runs]
+    parts = [chained(chart, curve, run_points, run_s, False, forced) for run_points, run_s, _, _ in runs]
     failed = next((t for t in parts if not t.proven), None)
     every_s = np.concatenate([s] + [t.s for t in parts])     # (a closed curve's runs may pass s = 0)
     every_s = np.where((every_s < 0.0) | (every_s > curve.length), np.mod(every_s, curve.length), every_s)
@@ -194,6 +198,8 @@ def tube(chart, curve, nodes=(), arcs=()):
                  np.concatenate([t.x for t in parts]))
     whole.split = True
     whole.passes = frozenset(nodes[j].index for j in passed)
+    whole.runs = [(t.pieces, nodes[before] if before >= 0 else None, nodes[after] if after >= 0 else None)
+                  for t, (_, _, before, after) in zip(parts, runs)]
     return whole
 
 
@@ -245,9 +251,10 @@ def chained(chart, curve, points, s, closed, forced=()):
 
 def node_runs(chart, curve, points, s, nodes):
     """(runs, the indices into nodes of the boxes passed): the runs of the curve's samples outside the node boxes,
-    each (points (K, 3), s (K,)) beginning and ending at a point of the curve inside the box it comes from or goes
-    to (at half its half-width from the node, found by bisection on the dense output), or at the curve's own ends;
-    runs None when the curve passes no node box, [] when it lies wholly inside them."""
+    in the curve's order, each (points (K, 3), s (K,), the index into nodes of the box it comes from, of the box it
+    goes to; -1 at the curve's own end) beginning and ending at a point of the curve inside the box it comes from
+    or goes to (at half its half-width from the node, found by bisection on the dense output), or at the curve's
+    own ends; runs None when the curve passes no node box, [] when it lies wholly inside them."""
     points, s = node_passages(chart, curve, points, s, nodes)
     x = chart.scaled(points)
     where = np.full(len(x), -1)
@@ -286,7 +293,8 @@ def node_runs(chart, curve, points, s, nodes):
             p, at = node_end(chart, curve, nodes[where[after]], s_in, flat_s[k - 1])
             run_points.append(p)
             run_s.append(at)
-        runs.append((np.array(run_points), np.array(run_s)))
+        runs.append((np.array(run_points), np.array(run_s), int(where[before]) if before >= 0 else -1,
+                     int(where[after]) if after >= 0 else -1))
     return runs, passed
 
 

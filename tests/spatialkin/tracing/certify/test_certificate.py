@@ -306,6 +306,59 @@ def test_a_point_moved_near_a_node_is_in_the_distance_bound():
     assert cert.radii[0][k] * math.sqrt(3.0) >= 1e-3 and cert.distance_bounds[0] >= 1e-3
 
 
+def hair_inside(swap=False):
+    """A cylinder 7e-10 (relative) inside a sphere's tangent cylinder, 8.6e4 from the origin: two loops passing 1e-4
+    apart where the cylinder comes nearest the sphere, within the tolerance of a node there, which the search
+    reports."""
+    from tests.oracles.closed_forms import HAIR_INSIDE
+    (r, origin, axes), (big, centre) = HAIR_INSIDE["7e-10 at 8.6e4"]
+    pair = sk.Cylinder(r, sk.Frame(origin, axes)), sk.Sphere(big, sk.Frame(centre))
+    return pair[::-1] if swap else pair
+
+
+@pytest.mark.parametrize("swap", [False, True])
+def test_loops_passing_close_at_a_saddle_are_proven_two(swap):
+    """The loops of hair_inside: the saddle of the level between them is proven off the level (g keeps one sign
+    along a segment across its box), so the arcs there join the branches two by two, each loop passes by one of
+    them and the two are distinct: every claim proven. Oracle: the gap R - r - d > 0 (two loops) and their length by
+    quadrature in 30-digit arithmetic (tests.oracles.closed_forms.cylinder_sphere_loops), within 1e-6 relative."""
+    from tests.oracles.closed_forms import cylinder_sphere_loops
+    a, b = hair_inside(swap)
+    gap, exact = cylinder_sphere_loops(*(b, a) if swap else (a, b))
+    assert 0.0 < gap < 1e-8
+    curves = sk.intersect(a, b, certify=True)
+    cert = curves.certificate
+    assert cert.proven, cert
+    assert len(curves) == 2 and all(abs(c.length - exact) <= 1e-6 * exact for c in curves)
+    assert cert.claims["singular"].proven and cert.claims["distinct"].proven
+    assert all(len(t.passes) == 1 for t in cert.tubes)        # (both pass the reported node)
+
+
+def test_loops_passing_close_at_a_saddle_tampered_with_are_not_proven(monkeypatch):
+    """hair_inside's answer with one loop given twice (not distinct: both pass the saddle by one arc), with one
+    dropped (the other arc's branches lie in no tube), and with the saddle's arcs said to join the branches the
+    other way (each loop would cross from one arc to the other: not one component)."""
+    from spatialkin.tracing.certify import nodes
+    a, b = hair_inside()
+    curves = sk.intersect(a, b)
+    first, second = curves[0].result, curves[1].result
+    twice = certify(a, b, [first, first, second], curves[0].topology, 3.0)
+    assert not twice.proven and not twice.claims["distinct"].proven
+    dropped = certify(a, b, [first], curves[0].topology, 3.0)
+    assert not dropped.proven and not (dropped.claims["complete"].proven and dropped.claims["arcs"].proven)
+    joined = nodes.joined
+
+    def other_way(chart, node):
+        pairs = joined(chart, node)
+        return None if pairs is None else (frozenset((min(pairs[0]), min(pairs[1]))),
+                                           frozenset((max(pairs[0]), max(pairs[1]))))
+
+    monkeypatch.setattr(nodes, "joined", other_way)
+    swapped = certify(a, b, [first, second], curves[0].topology, 3.0)
+    assert not swapped.proven and not swapped.claims["one_component"].proven
+    assert "arcs that join" in swapped.claims["one_component"].detail
+
+
 def villarceau():
     """A ring torus (R = 1, r = 0.5) and its bitangent plane through the centre (turned about x by asin(r / R)):
     the two Villarceau circles of radius R about (+-r, 0, 0), crossing at two nodes."""

@@ -4,8 +4,8 @@ import math
 
 import numpy as np
 import pytest
-from tests.oracles.closed_forms import (random_rotation, sphere_distance, torus_distance, torus_sphere_closed_form,
-                     torus_sphere_critical_radii)
+from tests.oracles.closed_forms import (HAIR_INSIDE, random_rotation, sphere_distance, torus_distance,
+                                       torus_sphere_closed_form, torus_sphere_critical_radii)
 
 import spatialkin as sk
 
@@ -449,21 +449,6 @@ def test_a_thin_near_tangent_loop_is_traced_once(swap):
     exact, error, sine = thin_loop_truth()
     bound = error + 2 * math.pi * np.finfo(float).eps * float(np.abs(centre).max()) / sine
     assert abs(loop.length - exact) <= bound, (loop.length, exact, bound)
-
-
-#: Cylinders a hair inside a sphere's tangent cylinder, far from the origin: (radius, origin, axes), (radius, centre).
-HAIR_INSIDE = {
-    "2e-9 at 1.8e6": ((1.2650800463272425, (1226618.1500858318, -1350363.433052412, 517417.21657624067),
-                       [[0.6782916004821165, -0.6879940417301931, 0.25804011947594985],
-                        [0.22551611874318647, 0.5291423012223048, 0.8180164455829557],
-                        [-0.6993303832255668, -0.4966614778709108, 0.5140665243882983]]),
-                      (4.319199704927846, (1226617.0368326479, -1350362.2083425173, 517420.8619835968))),
-    "7e-10 at 8.6e4": ((1.4803247636830736, (-57184.62381583693, -8583.37946854299, -63622.86208895696),
-                        [[-0.1505049726501111, 0.45002895497759987, 0.8802398496372218],
-                         [0.9877611974209392, 0.03158113575660626, 0.1527430808052374],
-                         [0.040939834845072354, 0.8924553610943755, -0.4492742574160755]]),
-                       (2.843736506417479, (-57184.50691030673, -8581.976850121653, -63622.9706738348))),
-}
 
 
 @pytest.mark.parametrize("swap", [False, True])

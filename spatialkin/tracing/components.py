@@ -21,7 +21,7 @@ from .curve.clip import clip_curves
 from .march.graze import across_edges, rejoined
 from .closed.forms import Placed, along_normals, closed_form, closed_settings
 from .._lib import stages, warm
-from .curve.status import BOUNDARY, CONTACT, FAILED, MAX_LENGTH, TANGENT
+from .curve.status import BOUNDARY, CONTACT, FAILED, MAX_LENGTH, SINGULAR, TANGENT
 from .search.rescue import LOST_RADIUS, crossing_starts
 from .search.topology import TopologyError, distances_at, points_at, topology
 from ..geometry.asymptotic import bounded_pair
@@ -270,7 +270,7 @@ def searched(a, b, settings, closing=True):
                 kept.append(c)
         elif not covered(c, kept + curves[i + 1:], radius, settings):
             kept.append(c)
-    kept = split_laps(a, b, kept, settings, radius)
+    kept = split_stopped_laps(a, b, split_laps(a, b, kept, settings, radius), settings, radius)
     unclosed = next((c for c in kept if c.status == MAX_LENGTH), None) if closing else None
     if unclosed is not None:
         raise TopologyError(f"a component traced from {np.round(unclosed.points[0], 12).tolist()} ran to "
@@ -318,26 +318,76 @@ def certified(a, b, results, topo, scale, tolerance, mode, failure=None, proof=N
 def trace_pending(a, b, pending, curves, settings, radius, reasons):
     """Trace the components of the pending starts ((point, y, on the curve) each; y None: to be located first),
     appending each to curves (a list, changed in place) and dropping the starts on it; returns the starts (3,) that
-    could be neither located nor traced (the messages of the tracing failures appended to reasons)."""
+    could be neither located nor traced (the messages of the tracing failures appended to reasons). Once a curve is
+    traced, the starts still to be located are located together and tested against the curves in one query per
+    curve (on_traced), and tested again each time more curves come."""
     failed = []
     largest = {}                # (id: (curve, the largest gap of its points), placing; the curve held, its id kept)
+    checked = [0]               # (the curves the located starts among pending have been tested against)
+
+    def other_gap(curve):
+        if id(curve) not in largest:
+            largest[id(curve)] = curve, errors(curve, settings)[0].max() if len(curve.points) > 1 else 0.0
+        return largest[id(curve)][1]
+
+    def on_traced(points, against):
+        """Mask (M,) of the points (M, 3) on the curve lying on a curve of `against` traced already: within radius,
+        or within their place's error and the curve's largest (where the surfaces nearly touch: same_loop)."""
+        points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
+        out = np.zeros(len(points), dtype=bool)
+        gap, sine = placing(a, b, points, settings.tolerance) if len(points) else (None, None)
+        for curve in against:
+            ask = ~out
+            if not ask.any():
+                break
+            out[ask] = near_curve(curve, points[ask], radius)
+            ask = ~out
+            if other_gap(curve) > 0 and ask.any():
+                far = reach(radius, gap[ask], sine[ask], other_gap(curve), settings)
+                maybe = near_curve(curve, points[ask], float(far.max()))
+                if maybe.any():
+                    idx = np.flatnonzero(ask)[maybe]
+                    out[idx] = curve.sol.closest(points[idx])[1] <= far[maybe]
+        return out
 
     def traced(point):
-        """True where the point lies on a curve traced already: within radius, or within its place's error and the
-        curve's largest (where the surfaces nearly touch: same_loop)."""
-        if any(near_curve(curve, point, radius)[0] for curve in curves):
-            return True
-        gap, sine = placing(a, b, point.reshape(1, 3), settings.tolerance)
-        for curve in curves:
-            if id(curve) not in largest:
-                largest[id(curve)] = curve, errors(curve, settings)[0].max() if len(curve.points) > 1 else 0.0
-            other_gap = largest[id(curve)][1]
-            if other_gap > 0 and near_curve(curve, point, reach(radius, gap, sine, other_gap, settings)[0])[0]:
-                return True
-        return False
+        """True where the point lies on a curve traced already (on_traced)."""
+        return bool(on_traced(point, curves)[0])
+
+    def settle(pending):
+        """The pending starts, each still to be located located (or set aside, failed), those lying on a curve
+        traced already dropped; the located ones tested against the curves that came since they were."""
+        if stages.ON:
+            stages.switch("correction")
+        kept, fresh, old = [], [], []
+        for item in pending:
+            if item[1] is None:
+                try:
+                    point, y = locate_on_curve(a, b, item[0], settings.gap_tol)
+                except TracingError:
+                    failed.append(np.asarray(item[0], dtype=float))
+                    continue
+                fresh.append(len(kept))
+                item = (point, y, item[2], True)        # (located here: tested against every curve to come)
+            elif len(item) > 3:
+                old.append(len(kept))
+            kept.append(item)
+        if stages.ON:
+            stages.switch("dedupe")
+        hit = np.zeros(len(kept), dtype=bool)
+        if fresh:
+            hit[fresh] = on_traced([kept[k][0] for k in fresh], curves)
+        if old and checked[0] < len(curves):
+            hit[old] = on_traced([kept[k][0] for k in old], curves[checked[0]:])
+        checked[0] = len(curves)
+        return [item for k, item in enumerate(kept) if not hit[k]]
 
     while pending:
-        point, y, _ = pending.pop(0)
+        if curves and (pending[0][1] is None or checked[0] < len(curves)):
+            pending = settle(pending)
+            if not pending:
+                break
+        point, y = pending.pop(0)[:2]
         if y is None:
             if stages.ON:
                 stages.switch("correction")
@@ -348,8 +398,6 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
                 continue
             if stages.ON:
                 stages.switch("dedupe")
-            if traced(point):                       # (on a curve traced already)
-                continue
         if stages.ON:
             stages.switch("trace_setup")
         try:
@@ -403,6 +451,44 @@ def split_laps(a, b, curves, settings, radius):
                     along_union(lap, [loop, other], radius, settings):
                 out[i] = other
             break
+    return out
+
+
+def split_stopped_laps(a, b, curves, settings, radius):
+    """The curves (CurveResults), each open one stopped at reported nodes (status singular) that runs round one or
+    two loops replaced by them. Such a curve comes from a march that stopped at a node the search reported where the
+    surfaces nearly touch, or jumped across it onto the other loop and stopped when it came back to it. The first
+    loop is traced from the curve's stored point farthest from the nodes, the second (where the curve runs on
+    beyond the first) from its point farthest from the first loop, each with the reported nodes beside the curve
+    set aside (other_loop); they are taken only when each closes and lies along the curve and the curve lies along
+    them, each unless another curve is that loop already."""
+    out = list(curves)
+    if settings.nodes is None or not len(settings.nodes):
+        return out
+    for lap in curves:
+        if lap.closed or lap.status != SINGULAR or not (lap.length > 0 and len(lap.points) > 2):
+            continue
+        off = off_nodes(lap, settings)
+        if not off.any():
+            continue
+        nodes = np.asarray(settings.nodes, dtype=float).reshape(-1, 3)
+        first = other_loop(a, b, lap.points[int(np.argmax(cKDTree(nodes).query(lap.points)[0]))], lap, settings)
+        if first is None or not along_union(first, [lap], radius, settings, off_nodes(first, settings)):
+            continue
+        gap, sine = errors(lap, settings)
+        away = first.sol.closest(np.ascontiguousarray(lap.points))[1] - reach(radius, gap, sine, errors(
+            first, settings)[0].max(), settings)
+        away[~off] = -np.inf
+        loops = [first]
+        if away.max() > 0:              # (else it lies along the first loop: a loop stopped at the node)
+            second = other_loop(a, b, lap.points[int(np.argmax(away))], lap, settings)
+            if second is None or not (along_union(second, [lap], radius, settings, off_nodes(second, settings)) and
+                                      along_union(lap, [first, second], radius, settings)):
+                continue
+            loops.append(second)
+        others = [c for c in out if c is not lap]
+        at = out.index(lap)
+        out[at:at + 1] = [loop for loop in loops if not traced_twice(loop, others, radius, settings)]
     return out
 
 

@@ -24,12 +24,16 @@ def side(surface, x):
     return np.hypot(x[:, 0], x[:, 1]) - 1.0
 
 
-def test_sign_along_segments_follows_the_side_of_the_other_surface():
+def pair_chart():
+    """(the loops, the search's chart, its Reader, its units) of the unit cylinder and the sphere."""
     cylinder, sphere = sk.Cylinder(1.0, v_range=(-3.0, 3.0)), sk.Sphere(1.5, sk.Frame((D, 0.0, 0.0)))
     curves = sk.intersect(cylinder, sphere)
     chart = Chart(curves[0].topology, 1.0)
-    r = chart.reader
-    su, sv = float(chart.units[0]), float(chart.units[1])
+    return curves, chart, chart.reader, float(chart.units[0]), float(chart.units[1])
+
+
+def test_sign_along_segments_follows_the_side_of_the_other_surface():
+    curves, chart, r, su, sv = pair_chart()
     x = chart.scaled(np.concatenate([c.points for c in curves]))
     lo, hi = x.min(axis=0) - 0.3 * np.ptp(x, axis=0), x.max(axis=0) + 0.3 * np.ptp(x, axis=0)
     rng = np.random.default_rng(7)
@@ -53,17 +57,14 @@ def test_sign_along_segments_follows_the_side_of_the_other_surface():
 
 
 def test_a_segment_beyond_its_budget_is_not_proven():
-    """Far from the curve, one piece proves the sign; with no piece allowed, nothing is proven."""
-    cylinder, sphere = sk.Cylinder(1.0, v_range=(-3.0, 3.0)), sk.Sphere(1.5, sk.Frame((D, 0.0, 0.0)))
-    curves = sk.intersect(cylinder, sphere)
-    chart = Chart(curves[0].topology, 1.0)
-    r = chart.reader
-    su, sv = float(chart.units[0]), float(chart.units[1])
+    """A chord of one loop (g vanishes at its ends) is never proven; a short segment between the loops is, but not
+    with no piece allowed."""
+    curves, chart, r, su, sv = pair_chart()
     x = chart.scaled(curves[0].points)
     a, b = x[0], x[len(x) // 2]           # (two points of one loop: g vanishes at both ends)
     assert ksg.sign_on_segment(r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, a[0], a[1], b[0], b[1],
                                ksg.SEGMENT_BOXES) == 0
-    mid = 0.5 * (chart.scaled(curves[0].points).mean(axis=0) + chart.scaled(curves[1].points).mean(axis=0))
+    mid = 0.5 * (x.mean(axis=0) + chart.scaled(curves[1].points).mean(axis=0))
     ends = mid - 1e-3, mid + 1e-3
     args = (r.s.data, r.t.data, r.m, r.c, r.pad, r.cpad, su, sv, ends[0][0], ends[0][1], ends[1][0], ends[1][1])
     assert ksg.sign_on_segment(*args, ksg.SEGMENT_BOXES) != 0

@@ -61,7 +61,8 @@ def _selected(nodeid, table):
 def pytest_sessionstart(session):
     """On a cold numba cache (spatialkin's or planar's workload not stamped warm), `spatialkin warmup` once, each
     workload in a fresh process of its own, before any test and any test runner's worker starts: they all load the
-    kernels from the cache it leaves. Not in a worker, for --collect-only, with jit off, or when the session's warm-up ran already."""
+    kernels from the cache it leaves. Not in a worker, for --collect-only, with jit off, or when the session's
+    warm-up ran already."""
     from tests import suite_warmup
     config = session.config
     if hasattr(config, "workerinput") or config.option.collectonly or os.environ.get(suite_warmup.RECORD_ENV):

@@ -3,8 +3,8 @@
 On a cold numba cache, tests/conftest.py runs the warm-up once before any test, each workload in a fresh process of
 its own, side by side: every process the suite starts then loads the compiled kernels from the cache instead of
 compiling its own. The warm-up's record (its report lines and the kernel specialisations its processes hold when
-done) goes to a file the tests read
-(``recorded()``); where no warm-up ran for the session (the cache was warm), ``warm_up`` makes one.
+done) goes to a file the tests read (``recorded()``); where no warm-up ran for the session (the cache was warm),
+``warm_up`` makes one.
 
 A process holds the specialisations of the kernels it called from Python, and of the kernels those call only where
 it compiled them: one loaded from the cache brings no callee with it. A record is complete when its warm-up

@@ -662,7 +662,9 @@ def distinct_claim(chart, tubes, boxes=None, nodes=(), uses=None):
                 continue
             shared = tubes[i].passes & tubes[j].passes if tubes[i] is not None and tubes[j] is not None else ()
             if shared:
-                if not (i in uses and j in uses and any(not set(uses[i].get(n, ())) & set(uses[j].get(n, ())) for n in shared)):
+                apart = i in uses and j in uses and any(not set(uses[i].get(n, ())) & set(uses[j].get(n, ()))
+                                                        for n in shared)
+                if not apart:
                     failures.append((f"curves {i} and {j} meet at a node, where which branches join is not decided",
                                      None))
                 continue

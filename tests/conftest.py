@@ -80,6 +80,9 @@ def pytest_sessionstart(session):
                    "pytest gives below)")
     if reporter is not None:
         reporter.write_line(data["report"])
+        if not data["complete"]:            # (the warm-up coverage test then makes a record of its own)
+            reporter.write_line(f"the warm-up holds {len(data['uncompiled'])} specialisations none of its processes "
+                                f"compiled (first: {data['uncompiled'][0]})")
 
 
 def pytest_unconfigure(config):

@@ -63,9 +63,9 @@ WARM_UP = COMPILES + textwrap.dedent("""
 def warm_up(env=None):
     """Run `spatialkin warmup` in fresh processes, one per workload (spatialkin's, planar's), side by side (env:
     their environment, default this one's); returns its record {"report": the lines they printed,
-    "specialisations": [...] they hold, "complete": they compiled every one}. RuntimeError with the stderr of one
-    that fails. numba's cache saves are locked (spatialkin._lib.jit.lock_saves): two processes compiling one kernel
-    both keep their specialisation."""
+    "specialisations": [...] they hold, "complete": they compiled every one, "uncompiled": those none of them
+    compiled}. RuntimeError with the stderr of one that fails. numba's cache saves are locked
+    (spatialkin._lib.jit.lock_saves): two processes compiling one kernel both keep their specialisation."""
     prepared = subprocess.run([sys.executable, "-c", PREPARE], capture_output=True, text=True, env=env, timeout=600)
     if prepared.returncode != 0:
         raise RuntimeError(f"spatialkin warmup failed:\n{prepared.stderr[-3000:]}")
@@ -83,7 +83,8 @@ def warm_up(env=None):
         reports.extend(report)
         compiled |= set(json.loads(events))
         held |= set(json.loads(specialisations))
-    return {"report": "\n".join(reports), "specialisations": sorted(held), "complete": held <= compiled}
+    return {"report": "\n".join(reports), "specialisations": sorted(held), "complete": held <= compiled,
+            "uncompiled": sorted(held - compiled)}
 
 
 def recorded():

@@ -441,9 +441,7 @@ def split_laps(a, b, curves, settings, radius):
                 continue
             if not along_union(loop, [lap], radius, settings, off_nodes(loop, settings)):
                 continue
-            gap, sine = errors(lap, settings)
-            away = loop.sol.closest(np.ascontiguousarray(lap.points))[1] - reach(radius, gap, sine, errors(
-                loop, settings)[0].max(), settings)
+            away = beyond(lap, loop, radius, settings)
             if away.max() <= 0:
                 continue            # (each lies along the other: traced_twice's copies)
             other = other_loop(a, b, lap.points[int(np.argmax(away))], loop, settings)
@@ -468,16 +466,14 @@ def split_stopped_laps(a, b, curves, settings, radius):
     for lap in curves:
         if lap.closed or lap.status != SINGULAR or not (lap.length > 0 and len(lap.points) > 2):
             continue
-        off = off_nodes(lap, settings)
+        clearance = node_distances(lap, settings)
+        off = clearance > KNOWN_NODE * settings.scale
         if not off.any():
             continue
-        nodes = np.asarray(settings.nodes, dtype=float).reshape(-1, 3)
-        first = other_loop(a, b, lap.points[int(np.argmax(cKDTree(nodes).query(lap.points)[0]))], lap, settings)
+        first = other_loop(a, b, lap.points[int(np.argmax(clearance))], lap, settings)
         if first is None or not along_union(first, [lap], radius, settings, off_nodes(first, settings)):
             continue
-        gap, sine = errors(lap, settings)
-        away = first.sol.closest(np.ascontiguousarray(lap.points))[1] - reach(radius, gap, sine, errors(
-            first, settings)[0].max(), settings)
+        away = beyond(lap, first, radius, settings)
         away[~off] = -np.inf
         loops = [first]
         if away.max() > 0:              # (else it lies along the first loop: a loop stopped at the node)
@@ -492,11 +488,23 @@ def split_stopped_laps(a, b, curves, settings, radius):
     return out
 
 
+def node_distances(curve, settings):
+    """(M,) the distance of each stored point of the curve to the nearest node the search reported."""
+    nodes = np.asarray(settings.nodes, dtype=float).reshape(-1, 3)
+    return cKDTree(nodes).query(np.ascontiguousarray(curve.points))[0]
+
+
 def off_nodes(curve, settings):
     """Mask of the curve's stored points farther than KNOWN_NODE from every node the search reported."""
-    nodes = np.asarray(settings.nodes, dtype=float).reshape(-1, 3)
-    points = np.ascontiguousarray(curve.points)
-    return cKDTree(nodes).query(points)[0] > KNOWN_NODE * settings.scale
+    return node_distances(curve, settings) > KNOWN_NODE * settings.scale
+
+
+def beyond(curve, other, radius, settings):
+    """(M,) how far each stored point of the curve lies beyond its reach (same_loop's, with the other curve's
+    largest gap) of the other curve: <= 0 where it lies along it (both CurveResults)."""
+    gap, sine = errors(curve, settings)
+    return other.sol.closest(np.ascontiguousarray(curve.points))[1] - reach(
+        radius, gap, sine, errors(other, settings)[0].max(), settings)
 
 
 def other_loop(a, b, point, loop, settings):

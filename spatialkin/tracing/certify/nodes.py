@@ -111,7 +111,7 @@ def joined(chart, node):
     if not np.all(np.isfinite(hessian)):
         return None
     order = perimeter_order(node)
-    if order is None or any(order[k][1] >= order[k + 1][0] for k in range(3)):
+    if order is None:
         return None
     for e in np.linalg.eigh(hessian)[1].T:
         (ea, a), (eb, b) = across(node, e)
@@ -140,7 +140,7 @@ def perimeter(edge, along):
 def perimeter_order(node):
     """[(lo, hi, index)] of the node's crossings in counterclockwise order round the box's edge (lo, hi: perimeter
     keys of the stretch of the edge each crossing's box covers); None where a box lies on no single edge or reaches
-    a corner."""
+    a corner, or where two of them overlap."""
     spans = []
     for i, box in enumerate(node.crossings):
         on = [e for e, (fixed, side, _) in enumerate(EDGES)
@@ -152,7 +152,8 @@ def perimeter_order(node):
         if not (node.x[1 - fixed] - node.h < lo and hi < node.x[1 - fixed] + node.h):
             return None
         spans.append(tuple(sorted((perimeter(on[0], lo), perimeter(on[0], hi)))) + (i,))
-    return sorted(spans)
+    spans.sort()
+    return None if any(spans[k][1] >= spans[k + 1][0] for k in range(len(spans) - 1)) else spans
 
 
 def across(node, e):
@@ -163,11 +164,11 @@ def across(node, e):
     lo, hi = node.x[1 - k] - node.h, node.x[1 - k] + node.h
     out = []
     for side in (-1.0, 1.0):
+        towards = 1 if side * e[k] > 0 else -1
         p = node.x + side * t * e
-        p[k] = node.x[k] + (1 if side * e[k] > 0 else -1) * node.h
+        p[k] = node.x[k] + towards * node.h
         p[1 - k] = min(max(p[1 - k], lo), hi)
-        edge = next(n for n, (fixed, s, _) in enumerate(EDGES) if fixed == k and s == (1 if side * e[k] > 0 else -1))
-        out.append((edge, p))
+        out.append((EDGES.index(next(edge for edge in EDGES if edge[:2] == (k, towards))), p))
     return out
 
 
@@ -198,7 +199,7 @@ def passages(nodes, runs, periods):
         held = {}
         for node in nodes:
             for i, box in enumerate(node.crossings):
-                k = kt.point_in_pieces(pieces, len(pieces), np.ascontiguousarray(box), periods[0], periods[1])
+                k = piece_holding(pieces, box, periods)
                 if k >= 0:
                     held[(node.index, i)] = k
         if len(held) != 2:
@@ -226,6 +227,12 @@ def typical_chord(chart, curves):
     return float(np.median(np.concatenate(chords))) if chords else 0.0
 
 
+def piece_holding(pieces, box, periods):
+    """Index of a piece (kernels.certify.tubes.point_in_pieces, whole periods (2,) of the chart) holding the scaled
+    box (4,) strictly inside, or -1."""
+    return kt.point_in_pieces(pieces, len(pieces), np.ascontiguousarray(box), periods[0], periods[1])
+
+
 def linked(chart, boxes, tubes):
     """(the node boxes whose four crossings each lie in a proven piece of a tube, failures [(text, point)] of the
     others)."""
@@ -233,8 +240,7 @@ def linked(chart, boxes, tubes):
     pieces = np.concatenate(pieces) if pieces else np.empty((0, kt.WIDTH))
     good, failures = [], []
     for node in boxes:
-        if all(kt.point_in_pieces(pieces, len(pieces), np.ascontiguousarray(box), chart.periods[0],
-                                  chart.periods[1]) >= 0 for box in node.crossings):
+        if all(piece_holding(pieces, box, chart.periods) >= 0 for box in node.crossings):
             good.append(node)
         else:
             failures.append(("a branch leaving a node lies in no proven tube", node.point))

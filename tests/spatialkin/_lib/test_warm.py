@@ -345,7 +345,7 @@ USERS_CALLS = suite_warmup.COMPILES + textwrap.dedent(f"""
 
 @pytest.mark.skipif(_jit.JIT_DISABLED, reason="no cache with jit off")
 def test_after_spatialkin_warmup_the_stress_cases_compile_nothing(tmp_path):
-    """`spatialkin warmup` in one process (it reports, and leaves the cache stamped warm for its workload and
+    """`spatialkin warmup` (a process per workload; it reports, and leaves the cache stamped warm for its workload and
     planar's, an installed package's); then, in a fresh one, a user's calls on pairs the workload never saw (every
     COVERAGE_STRIDE-th stress case: with and without certify=True, then a dense evaluation and closest points of each
     curve; the notebooks' hard cases) and planar's six-link over a turn and driven links in the Frenet trihedron (the

@@ -327,7 +327,7 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
 
     def other_gap(curve):
         if id(curve) not in largest:
-            largest[id(curve)] = curve, errors(curve, settings)[0].max() if len(curve.points) > 1 else 0.0
+            largest[id(curve)] = curve, largest_gap(curve, settings) if len(curve.points) > 1 else 0.0
         return largest[id(curve)][1]
 
     def on_traced(points, against):
@@ -335,7 +335,7 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
         or within their place's error and the curve's largest (where the surfaces nearly touch: same_loop)."""
         points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
         out = np.zeros(len(points), dtype=bool)
-        gap, sine = placing(a, b, points, settings.tolerance) if len(points) else (None, None)
+        gap = gaps(a, b, points, settings.tolerance) if len(points) else None
         for curve in against:
             ask = ~out
             if not ask.any():
@@ -343,11 +343,13 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
             out[ask] = near_curve(curve, points[ask], radius)
             ask = ~out
             if other_gap(curve) > 0 and ask.any():
-                far = reach(radius, gap[ask], sine[ask], other_gap(curve), settings)
-                maybe = near_curve(curve, points[ask], float(far.max()))
+                # (the widest reach, sines at settings.singular_tol, picks the points whose sines are needed)
+                widest = reach(radius, gap[ask], 0.0, other_gap(curve), settings)
+                maybe = near_curve(curve, points[ask], float(widest.max()))
                 if maybe.any():
                     idx = np.flatnonzero(ask)[maybe]
-                    out[idx] = curve.sol.closest(points[idx])[1] <= far[maybe]
+                    far = reach(radius, gap[idx], sines(a, b, points[idx]), other_gap(curve), settings)
+                    out[idx] = curve.sol.closest(points[idx])[1] <= far
         return out
 
     def traced(point):
@@ -504,7 +506,7 @@ def beyond(curve, other, radius, settings):
     largest gap) of the other curve: <= 0 where it lies along it (both CurveResults)."""
     gap, sine = errors(curve, settings)
     return other.sol.closest(np.ascontiguousarray(curve.points))[1] - reach(
-        radius, gap, sine, errors(other, settings)[0].max(), settings)
+        radius, gap, sine, largest_gap(other, settings), settings)
 
 
 def other_loop(a, b, point, loop, settings):
@@ -543,9 +545,9 @@ def same_loop(loop, other, radius, settings):
     settings.tolerance: a point farther is no point of the curve)."""
     if not other.closed:
         return False
-    (gap, sine), (other_gap, other_sine) = errors(loop, settings), errors(other, settings)
-    return (lies_along(loop, other, reach(radius, gap, sine, other_gap.max(), settings))
-            and lies_along(other, loop, reach(radius, other_gap, other_sine, gap.max(), settings)))
+    gap, other_gap = curve_gaps(loop, settings), curve_gaps(other, settings)
+    return (lies_along(loop, other, gap, other_gap.max(), radius, settings)
+            and lies_along(other, loop, other_gap, gap.max(), radius, settings))
 
 
 def reach(radius, gap, sine, other_gap, settings):
@@ -559,19 +561,44 @@ def errors(curve, settings):
     return placing(*curve.sol.surfaces, curve.points, settings.tolerance)
 
 
+def curve_gaps(curve, settings):
+    """placing's gaps (M,) at the stored points of the curve (a CurveResult)."""
+    return gaps(*curve.sol.surfaces, curve.points, settings.tolerance)
+
+
+def largest_gap(curve, settings):
+    """The largest of placing's gaps at the stored points of the curve (a CurveResult)."""
+    return float(curve_gaps(curve, settings).max())
+
+
+def sines(a, b, points):
+    """(M,) sine of the normals' angle of the surfaces a and b at the points (M, 3) (0 where they meet no normal)."""
+    return np.nan_to_num(normal_sines(a, b, points), nan=0.0)
+
+
 def placing(a, b, points, tolerance):
-    """(gap to the farther of the surfaces a and b, at most the tolerance (a point farther is no point of the curve),
-    plus GAP_ROUNDOFF_ULPS of the coordinates; sine of the normals' angle) (M,) each at the points (M, 3)."""
+    """(gaps; sine of the normals' angle) (M,) each at the points (M, 3) on the surfaces a and b."""
+    points = np.ascontiguousarray(points, dtype=float)
+    return gaps(a, b, points, tolerance), sines(a, b, points)
+
+
+def gaps(a, b, points, tolerance):
+    """(M,) gap of the points (M, 3) to the farther of the surfaces a and b, at most the tolerance (a point farther
+    is no point of the curve), plus GAP_ROUNDOFF_ULPS of the coordinates."""
     points = np.ascontiguousarray(points, dtype=float)
     gap = np.minimum(np.maximum(a.distance(points), b.distance(points)), tolerance)
-    gap += GAP_ROUNDOFF_ULPS * EPS * np.max(np.abs(points), axis=1)
-    return gap, np.nan_to_num(normal_sines(a, b, points), nan=0.0)
+    return gap + GAP_ROUNDOFF_ULPS * EPS * np.max(np.abs(points), axis=1)
 
 
-def lies_along(curve, other, reach):
-    """True when every stored point of curve lies within its reach (M,) of the curve other (CurveResults)."""
+def lies_along(curve, other, gap, other_gap, radius, settings):
+    """True when every stored point of curve lies within its reach (same_loop's: gap (M,) its gaps, other_gap the
+    largest of the other's) of the curve other (CurveResults). The widest reach (sines at settings.singular_tol)
+    is tried first, by the stored points alone, before any sine is computed."""
     points = np.ascontiguousarray(curve.points)
-    return could_cover(other, points, float(reach.max())) and bool((other.sol.closest(points)[1] <= reach).all())
+    if not could_cover(other, points, float(reach(radius, gap, 0.0, other_gap, settings).max())):
+        return False
+    far = reach(radius, gap, sines(*curve.sol.surfaces, points), other_gap, settings)
+    return could_cover(other, points, float(far.max())) and bool((other.sol.closest(points)[1] <= far).all())
 
 
 def lost_starts(points, curves, radius):
@@ -698,18 +725,24 @@ def covered(curve, others, radius, settings):
 def along_union(curve, others, radius, settings, mask=None):
     """True when every stored point of the curve (those of the mask, if given) lies within its reach (same_loop's,
     with each other curve's largest gap) of one of the others (CurveResults)."""
-    points = np.ascontiguousarray(curve.points)
-    gap, sine = errors(curve, settings)
-    if mask is not None:
-        points, gap, sine = np.ascontiguousarray(points[mask]), gap[mask], sine[mask]
-        if not len(points):
-            return True
+    points = np.ascontiguousarray(curve.points if mask is None else curve.points[mask])
+    if not len(points):
+        return True
+    others = [other for other in others
+              if other.status != CONTACT and other.length > 0 and len(other.points) > 1]
+    if not others:
+        return False
+    gap = gaps(*curve.sol.surfaces, points, settings.tolerance)
+    largest = [largest_gap(other, settings) for other in others]
+    # the widest reach (sines at settings.singular_tol) first: a point beyond it of every other curve's stored
+    # points, by more than half the longest step, settles the answer before any sine is computed
+    if beyond_stored(points, others, [reach(radius, gap, 0.0, g, settings) for g in largest]).any():
+        return False
+    sine = sines(*curve.sol.surfaces, points)
     lo, hi = points.min(axis=0), points.max(axis=0)
     near = np.zeros(len(points), dtype=bool)
-    for other in others:
-        if other.status == CONTACT or not (other.length > 0 and len(other.points) > 1):
-            continue
-        far = reach(radius, gap, sine, errors(other, settings)[0].max(), settings)
+    for other, other_gap in zip(others, largest):
+        far = reach(radius, gap, sine, other_gap, settings)
         if np.any(other.points.min(axis=0) > hi + far.max()) or np.any(other.points.max(axis=0) < lo - far.max()):
             continue
         ask = ~near
@@ -717,6 +750,18 @@ def along_union(curve, others, radius, settings, mask=None):
         if near.all():
             return True
     return False
+
+
+def beyond_stored(points, curves, reaches):
+    """Mask (M,) of the points (M, 3) farther from every stored point of each curve (CurveResults of positive
+    length) than that curve's reach (M,) plus half its longest step: each such point lies farther than its reach
+    from every curve (each arc between two stored points lies within half its length of one of them)."""
+    out = np.ones(len(points), dtype=bool)
+    for curve, far in zip(curves, reaches):
+        out &= cKDTree(curve.points).query(points)[0] > far + 0.5 * float(np.max(np.diff(curve.s)))
+        if not out.any():
+            break
+    return out
 
 
 def could_cover(curve, points, radius):

@@ -6,7 +6,9 @@ kinds) and on trimmed faces (arcs ending on trim edges, open pieces of one loop 
 ``certify=True`` (the closed forms' proofs, the tubes, the arcs against the trims), ``sk.trace`` (from a point, and
 from ``sk.auxiliary_starts``), the looper drive over a turn with its analysis (and a drive whose crank does not turn
 fully), ``certify=True`` on the looper pair, on circles in closed form, on a trimmed cylinder and on Viviani's
-figure-eight (a node), its design sensitivities, and ``sk.intersect_many``; numba compiles every kernel and
+figure-eight (a node), its design sensitivities, ``sk.intersect_many``, a torus and its bitangent plane (Villarceau's
+circles), and pairs whose loops pass close where the surfaces nearly touch (steps capped beside them: a torus and a
+sphere, a torus and a plane just below its bitangent one); numba compiles every kernel and
 specialisation they reach into its cache.
 """
 
@@ -16,9 +18,12 @@ ANGLES = 361
 
 def run():
     """Call the workload (each kernel it reaches compiled, or loaded from the cache)."""
+    import math
+
     import numpy as np
 
     import spatialkin as sk
+    from ..bench.cases import torus_sphere_cases
     from ..bench.kinds import face_cases, pair_kind_cases
     from ..design import LooperDesign
     from ..mechanisms import LooperDrive
@@ -44,6 +49,13 @@ def run():
     sk.intersect(sk.Sphere(1.0), sk.Plane(sk.Frame((0.0, 0.0, 0.6))), certify=True)
     sk.intersect(sk.Cylinder(1.0, v_range=(-1.0, 1.0)), sk.Sphere(1.5, sk.Frame((0.05, 0.0, 0.0))), certify=True)
     sk.intersect(sk.Sphere(1.0), sk.Cylinder(0.5, sk.Frame((0.5, 0.0, 0.0)), v_range=(-2.0, 2.0)), certify=True)
+    for case in torus_sphere_cases()[2:]:       # (loops nearly touching, a small loop: steps capped beside them)
+        sk.intersect(case.torus, case.sphere)
+    turn = sk.rotation_about((0.3, -1.0, 0.2), 1.1)     # (a torus and planes at and just below its bitangent one)
+    for tilt in (math.asin(0.5), math.asin(0.5 - 1e-9)):
+        sk.intersect(sk.Torus(1.0, 0.5, sk.Frame((0.4, -0.2, 0.3), turn)),
+                     sk.Plane(sk.Frame((0.4, -0.2, 0.3), turn @ sk.rotation_about((1.0, 0.0, 0.0), tilt)),
+                              u_range=(-3.0, 3.0), v_range=(-3.0, 3.0)))
     angles = np.linspace(0.0, 2 * np.pi, ANGLES)
     motion = drive.solve(angles, omega=2.0, branch=0)
     drive.analyse(branch=0, samples=ANGLES)

@@ -118,6 +118,43 @@ def torus_cylinder_lobe_length(shift, digits=30):
         return float(sum(mp.quad(lambda t: speed(t, sign), [-end, 0, end]) for sign in (-1, 1)))
 
 
+def bitangent_loops(torus, plane, digits=30):
+    """(r^2 - R^2 sin^2 a, lengths of the inner and the outer loop) where a plane through the centre of a ring torus
+    (R, r) makes an angle a with its equatorial plane just below the bitangent one (sin a < r / R): the plane cuts two
+    nested loops, which pass closest (2 sqrt(r^2 - R^2 sin^2 a) apart) where the plane nearly touches the torus. From the
+    doubles of the frames and radii as exact binary numbers, in `digits`-digit arithmetic (mpmath): in the plane, at the
+    angle phi from its line in the equatorial plane, a loop lies at rho = R k -+ sqrt(R^2 k^2 - R^2 + r^2),
+    k = sqrt(cos^2 phi + sin^2 phi cos^2 a); each length is the integral of sqrt(rho^2 + rho'^2) over a turn, by
+    tanh-sinh quadrature split round phi = pi / 2, where rho turns on the scale of the loops' gap."""
+    import mpmath as mp
+    with mp.workdps(digits):
+        centre = [mp.mpf(float(v)) for v in torus.frame.origin]
+        axis = [mp.mpf(float(v)) for v in np.asarray(torus.frame.rotation)[:, 2]]
+        normal = [mp.mpf(float(v)) for v in np.asarray(plane.frame.rotation)[:, 2]]
+        if any(mp.mpf(float(v)) != c for v, c in zip(plane.frame.origin, centre)):
+            raise ValueError("the plane must pass through the torus's centre: give both frames one origin")
+        cos_a = abs(sum(x * y for x, y in zip(axis, normal))) / mp.sqrt(sum(x * x for x in axis) * sum(
+            x * x for x in normal))
+        big, small = mp.mpf(float(torus.major_radius)), mp.mpf(float(torus.minor_radius))
+        gap = small ** 2 - big ** 2 * (1 - cos_a ** 2)
+        if not gap > 0:
+            raise ValueError("the plane must be tilted less than the bitangent plane: R sin(a) < r")
+        c2 = cos_a ** 2
+
+        def speed(phi, sign):
+            k2 = mp.cos(phi) ** 2 + mp.sin(phi) ** 2 * c2
+            k = mp.sqrt(k2)
+            dk = mp.sin(phi) * mp.cos(phi) * (c2 - 1) / k
+            root = mp.sqrt(big ** 2 * k2 - big ** 2 + small ** 2)
+            rho = big * k + sign * root
+            drho = big * dk + sign * big ** 2 * k * dk / root
+            return mp.sqrt(rho ** 2 + drho ** 2)
+
+        width = mp.sqrt(gap) / big
+        cuts = [0] + [mp.pi / 2 - k * width for k in (1e3, 30, 1)] + [mp.pi / 2]
+        return float(gap), tuple(float(4 * mp.quad(lambda phi: speed(phi, sign), cuts)) for sign in (-1, 1))
+
+
 def cylinder_sphere_loops(cylinder, sphere, digits=30):
     """(R - r - d, length of each loop) of a cylinder of radius r and a sphere of radius R whose centre lies d from the
     cylinder's axis, d + r < R: the surfaces meet in two loops, mirror images in the plane through the centre normal

@@ -32,7 +32,9 @@ POLE_A = 13
 POLE_B = 14
 #: The closure plane behind the start is crossed upwards (past the arming length).
 CLOSURE = 15
-COUNT = 16
+#: The normals' sine leaves the band [lo, hi] a segment's step cap was made for (beside a near tangency).
+BAND = 16
+COUNT = 17
 
 # --- layout of ep ----------------------------------------------------------------------------------------
 P_SINGULAR_TOL = 0
@@ -53,7 +55,9 @@ P_CLOSURE_OFFSET = 28
 P_START = 29            # 3 entries
 P_DIRECTION = 32        # 3 entries
 P_AREA_WEIGHT = 35      # the apex and area hand-over events' factor (area_weight)
-P_SIZE = 36
+P_BAND_LO = 36
+P_BAND_HI = 37
+P_SIZE = 38
 
 # --- layout of memo: the state of the last right-hand side, the normals' sine and M1 there ---------------------
 M_STATE = 0             # 4 entries
@@ -120,6 +124,9 @@ def branch_event(i, t, y, args, ep):
         return degeneracy_slope(y, a, b, sign, ep[P_SLOPE_STEP]) - ep[P_SLOPE_FLOOR]
     if i == HANDOFF_SINE:
         return sine_at(y, a, b, memo) - ep[P_HANDOFF_SINE]
+    if i == BAND:
+        sine = sine_at(y, a, b, memo)
+        return min(sine - ep[P_BAND_LO], ep[P_BAND_HI] - sine)
     if EDGE <= i < EDGE + 8:
         j = i - EDGE
         idx = j // 2

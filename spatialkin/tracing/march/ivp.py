@@ -27,6 +27,7 @@ from ...ode.solvers import COMPILED_SOLVERS, BudgetExceeded, Event, System, Watc
 from .segments import (EDGE_NAMES, EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment,
                        area_flag, finite_bounds, newton_fixed, project_state, segment_start)
 from ..curve.status import outcome
+from .near_tangent import step_cap
 from .singular import APEX_GUARD, closes_within_jump, jump_across, jump_past_edge, take_jump
 from ..._lib import stages
 
@@ -158,9 +159,10 @@ def segment_system(a, b, settings, sign, s_arm, shared, bounds):
                   ep, kb.COUNT)
 
 
-def segment_events(system, settings, compiled, near_edge, bounds, recharts, watch_apex=True):
+def segment_events(system, settings, compiled, near_edge, bounds, recharts, watch_apex=True, band=False):
     """(Events as a Watch, kinds) of one segment, in a fixed order: singular, apex, minimum, boundaries, poles,
-    closure (the apex unless watch_apex is False).
+    closure (the apex unless watch_apex is False), and the sine's band where the segment's steps are capped beside a
+    near tangency (band; near_tangent.step_cap).
 
     The compiled method watches levels instead of the first three: where the sine or the area element nears a hard case,
     the segment ends at the last step before (that step dropped) and the hand-over (FALLBACK_METHOD) goes on with the
@@ -173,17 +175,17 @@ def segment_events(system, settings, compiled, near_edge, bounds, recharts, watc
     rows, recharts: whether each surface re-charts."""
     ep = system.eargs
     flagged = bool(ep[kb.P_FLAG_A] or ep[kb.P_FLAG_B]) and watch_apex
-    plan, kinds = event_plan(compiled, near_edge, flagged, bounds, recharts, settings.close)
+    plan, kinds = event_plan(compiled, near_edge, flagged, bounds, recharts, settings.close, band)
     return Watch([Event(system, i, d, level=level, probed=probed) for i, d, level, probed in plan],
                  system.n_events), list(kinds)
 
 
 @functools.lru_cache(maxsize=256)
-def event_plan(compiled, near_edge, flagged, bounds, recharts, close):
+def event_plan(compiled, near_edge, flagged, bounds, recharts, close, band=False):
     """segment_events' plan: ((event index, direction, level, probed), ...) and the kinds
     (what integrate_branch does at each), for the method (compiled or not), near_edge, whether an area element is
-    watched (flagged), the finite_bounds rows, whether each surface re-charts, and whether closure is watched (all
-    hashable: made once per combination)."""
+    watched (flagged), the finite_bounds rows, whether each surface re-charts, whether closure is watched and whether
+    the sine's band is (all hashable: made once per combination)."""
     handoff = ("handoff", None)
     if compiled:
         plan = [(kb.HANDOFF_SINE, -1, handoff, "before")] + (
@@ -200,6 +202,8 @@ def event_plan(compiled, near_edge, flagged, bounds, recharts, close):
             plan.append((kb.POLE_A + k, -1, ("chart", k), "after" if compiled else None))
     if close:
         plan.append((kb.CLOSURE, 1, ("closure", None), None))
+    if band and not compiled:
+        plan.append((kb.BAND, -1, ("band", None), None))
     edges = range(kb.EDGE, kb.EDGE + 8)
     return (tuple((i, d, level, compiled and (i in edges or i == kb.HANDOFF_AREA)) for i, d, _, level in plan),
             tuple(kind for _, _, kind, _ in plan))
@@ -310,6 +314,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
     watched = {}
     max_step = settings.max_step
     passed = []             # (point, direction) of the geometric events passed (minima, charts, crossings elsewhere)
+    last_cap = math.inf     # the last segment's step cap beside a near tangency (near_tangent)
     off_start = None        # whether the start may lie off the curve by more than the closure's radius (laps watched)
     for _ in range(MAX_SEGMENTS):
         y_prev = y
@@ -325,6 +330,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
             if jump is not None:
                 sign, y, point, tangent = take_jump(branch, last, y_prev, jump)
                 s = branch.segments[-1].s1
+                last_cap = math.inf      # (landed clear of the singular point: its cap starts afresh)
                 continue
         if not ok:
             sin_normals = kc.degeneracy(y, a, b, 0.0, 0.0)
@@ -339,13 +345,20 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
         if at_outer_edge(a, b, y, sign, bounds):
             branch.status, branch.message = outcome("leaves_edge", s=s)
             break
-        system = segment_system(a, b, settings, sign, s_arm - s, shared, bounds)
         if not watch_apex and kc.area_degeneracy(y, a, b, area[0], area[1]) > APEX_REARM * APEX_GUARD:
             watch_apex = True            # clear of the apex passed beside: watched again
-        if (compiled, near_edge, watch_apex) not in watched:
-            watched[compiled, near_edge, watch_apex] = segment_events(system, settings, compiled, near_edge, bounds,
-                                                                      recharts, watch_apex)
-        events, kinds = watched[compiled, near_edge, watch_apex]
+        # beside a near tangency, steps shorter than the gap two branches may pass each other at (near_tangent)
+        cap = None if compiled else step_cap(y, a, b, sign, SLOPE_STEP * settings.scale, last_cap, point,
+                                             settings.nodes, settings.scale)
+        last_cap = math.inf if cap is None else cap[0]
+        system = segment_system(a, b, settings, sign, s_arm - s, shared, bounds)
+        if cap is not None:
+            system.eargs[kb.P_BAND_LO], system.eargs[kb.P_BAND_HI] = cap[1]
+        key = (compiled, near_edge, watch_apex, cap is not None)
+        if key not in watched:
+            watched[key] = segment_events(system, settings, compiled, near_edge, bounds, recharts, watch_apex,
+                                          cap is not None)
+        events, kinds = watched[key]
         for event in events:
             event.system = system
         method = settings.method if compiled or settings.method not in COMPILED_SOLVERS else FALLBACK_METHOD
@@ -355,7 +368,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
         mark = stages.enter("integration") if stages.ON else None
         try:
             res = integrate(system, (0.0, settings.max_length - s), y, method, events, settings.rtol, settings.atol,
-                            max_step, SEGMENT_MAX_EVALUATIONS)
+                            max_step if cap is None else min(max_step, cap[0]), SEGMENT_MAX_EVALUATIONS)
         except BudgetExceeded:
             branch.status, branch.message = outcome("stalled", s=s, budget=SEGMENT_MAX_EVALUATIONS,
                                                     point=point.tolist())
@@ -403,6 +416,8 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
         if kind == "near_edge":
             near_edge = True
             continue
+        if kind == "band":
+            continue
         # (a trim edge met beside a node, where the traced path is off the curve by gap / sine, may be the node's
         # own crossing of the edge: it is taken through the node, and the jump ends on the edge)
         singular = kind == "singular" or (kind == "apex" and known_apex(point, settings, (a_surface, b_surface))) or (
@@ -427,6 +442,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
                 break
             sign, y, point, tangent = take_jump(branch, seg, y, jump)
             s = branch.segments[-1].s1
+            last_cap = math.inf
             closing = closes_within_jump(branch.segments[-1], start, direction, CLOSURE_COSINE)
             if closing is not None:
                 branch.status, branch.message = outcome("closed_in_jump", s=closing)

@@ -1,0 +1,75 @@
+"""Planes just below a bitangent plane of a ring torus, run with certify=True: how many answers have both loops of
+the quadrature's lengths, how many are wrong (a lie where certified) and how many are refused
+(``python -m tests.oracles.bitangent_hunt`` prints the counts).
+
+Each placing (seeded): R = 1 and r in [0.2, 0.7], scaled by 1e-3 to 1e3; the tilt asin(r / R - delta), delta from 1e-13
+to 1e-5 (the loops pass 2 sqrt(r^2 - R^2 sin^2 tilt) apart at two points); a random rotation, and half of the placings
+moved 1 to 1e6 from the origin; both argument orders. Oracle: tests.oracles.closed_forms.bitangent_loops.
+"""
+import collections
+import math
+import sys
+
+import numpy as np
+
+import spatialkin as sk
+from spatialkin._lib import jit
+from tests.oracles.closed_forms import bitangent_loops, random_rotation
+
+SEEDS = (1, 2, 3, 4)
+PLACINGS = 15
+#: Relative length error within which a loop is right.
+LENGTH_TOL = 1e-9
+
+
+def placings(seed, count=PLACINGS):
+    """(torus, plane, delta) of `count` seeded placings."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(count):
+        share = rng.uniform(0.2, 0.7)
+        delta = 10.0 ** rng.uniform(-13, -5)
+        scale = 10.0 ** rng.uniform(-3, 3)
+        far = 10.0 ** rng.uniform(0, 6) * rng.choice([0, 1])
+        rot = random_rotation(rng)
+        origin = rng.normal(size=3)
+        origin *= far / np.linalg.norm(origin)
+        torus = sk.Torus(scale, share * scale, frame=sk.Frame(origin, rot))
+        plane = sk.Plane(sk.Frame(origin, rot @ sk.rotation_about((1.0, 0.0, 0.0), math.asin(share - delta))),
+                         u_range=(-3 * scale, 3 * scale), v_range=(-3 * scale, 3 * scale))
+        out.append((torus, plane, delta))
+    return out
+
+
+def run(seeds=SEEDS, echo=print):
+    """Counter of the answers: right, wrong, refused, proven, lies; echo the wrong ones and the counts."""
+    jit.use(jit.COMPILED)
+    counts = collections.Counter()
+    for seed in seeds:
+        for torus, plane, delta in placings(seed):
+            _, exact = bitangent_loops(torus, plane)
+            for pair in ((torus, plane), (plane, torus)):
+                counts["answers"] += 1
+                try:
+                    curves = sk.intersect(*pair, certify=True)
+                except sk.TopologyError:
+                    counts["refused"] += 1
+                    continue
+                got = sorted(c.length for c in curves)
+                right = (len(curves) == 2 and all(c.closed for c in curves)
+                         and all(abs(g - e) <= LENGTH_TOL * e for g, e in zip(got, exact)))
+                proven = curves.certificate.proven
+                counts["proven"] += proven
+                counts["right" if right else "wrong"] += 1
+                counts["lies"] += proven and not right
+                if not right:
+                    echo(f"wrong: seed {seed}, delta {delta:.1e}, {float(np.linalg.norm(torus.frame.origin)):.2g} "
+                         f"from the origin, scale {torus.major_radius:.2g}: lengths / scale "
+                         f"{[round(g / torus.major_radius, 9) for g in got]}, quadrature "
+                         f"{[round(e / torus.major_radius, 9) for e in exact]}, proven {proven}")
+    echo(", ".join(f"{k} {counts[k]}" for k in ("answers", "right", "wrong", "refused", "proven", "lies")))
+    return counts
+
+
+if __name__ == "__main__":
+    sys.exit(1 if run()["lies"] else 0)

@@ -322,7 +322,7 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
     traced, the starts still to be located are located together and tested against the curves in one query per
     curve (on_traced), and tested again each time more curves come."""
     failed = []
-    largest = {}                # (id: (curve, the largest gap of its points), placing; the curve held, its id kept)
+    largest = {}                # (id: (curve, the largest of its points' gaps); the curve held, its id kept)
     checked = [0]               # (the curves the located starts among pending have been tested against)
 
     def other_gap(curve):
@@ -504,9 +504,9 @@ def off_nodes(curve, settings):
 def beyond(curve, other, radius, settings):
     """(M,) how far each stored point of the curve lies beyond its reach (same_loop's, with the other curve's
     largest gap) of the other curve: <= 0 where it lies along it (both CurveResults)."""
-    gap, sine = errors(curve, settings)
-    return other.sol.closest(np.ascontiguousarray(curve.points))[1] - reach(
-        radius, gap, sine, largest_gap(other, settings), settings)
+    points = np.ascontiguousarray(curve.points)
+    return other.sol.closest(points)[1] - reach(radius, curve_gaps(curve, settings), sines(*curve.sol.surfaces, points),
+                                                largest_gap(other, settings), settings)
 
 
 def other_loop(a, b, point, loop, settings):
@@ -551,35 +551,24 @@ def same_loop(loop, other, radius, settings):
 
 
 def reach(radius, gap, sine, other_gap, settings):
-    """How far from a curve points with these gaps and sines (placing) may lie and still lie on it, whose largest
+    """How far from a curve points with these gaps and sines (gaps, sines) may lie and still lie on it, whose largest
     gap is other_gap (same_loop)."""
     return radius + 2 * (gap + other_gap) / np.maximum(sine, settings.singular_tol)
 
 
-def errors(curve, settings):
-    """placing at the stored points of the curve (a CurveResult), the gaps counted at most settings.tolerance."""
-    return placing(*curve.sol.surfaces, curve.points, settings.tolerance)
-
-
 def curve_gaps(curve, settings):
-    """placing's gaps (M,) at the stored points of the curve (a CurveResult)."""
+    """gaps (M,) at the stored points of the curve (a CurveResult), counted at most settings.tolerance."""
     return gaps(*curve.sol.surfaces, curve.points, settings.tolerance)
 
 
 def largest_gap(curve, settings):
-    """The largest of placing's gaps at the stored points of the curve (a CurveResult)."""
+    """The largest of the gaps at the stored points of the curve (a CurveResult)."""
     return float(curve_gaps(curve, settings).max())
 
 
 def sines(a, b, points):
     """(M,) sine of the normals' angle of the surfaces a and b at the points (M, 3) (0 where they meet no normal)."""
     return np.nan_to_num(normal_sines(a, b, points), nan=0.0)
-
-
-def placing(a, b, points, tolerance):
-    """(gaps; sine of the normals' angle) (M,) each at the points (M, 3) on the surfaces a and b."""
-    points = np.ascontiguousarray(points, dtype=float)
-    return gaps(a, b, points, tolerance), sines(a, b, points)
 
 
 def gaps(a, b, points, tolerance):

@@ -34,11 +34,18 @@ def placings(seed, count=PLACINGS):
         rot = random_rotation(rng)
         origin = rng.normal(size=3)
         origin *= far / np.linalg.norm(origin)
-        torus = sk.Torus(scale, share * scale, frame=sk.Frame(origin, rot))
-        plane = sk.Plane(sk.Frame(origin, rot @ sk.rotation_about((1.0, 0.0, 0.0), math.asin(share - delta))),
-                         u_range=(-3 * scale, 3 * scale), v_range=(-3 * scale, 3 * scale))
-        out.append((torus, plane, delta))
+        out.append(bitangent_pair(share, delta, scale, origin, rot) + (delta,))
     return out
+
+
+def bitangent_pair(share, delta, scale, origin, rotation):
+    """(torus, plane): a ring torus (R = scale, r = share * scale) at the origin (3,), turned by the rotation (3, 3),
+    and a plane through its centre tilted asin(share - delta) about its local x axis (just below the bitangent tilt
+    for small delta > 0), trimmed to 3 scales each way."""
+    torus = sk.Torus(scale, share * scale, sk.Frame(origin, rotation))
+    plane = sk.Plane(sk.Frame(origin, rotation @ sk.rotation_about((1.0, 0.0, 0.0), math.asin(share - delta))),
+                     u_range=(-3.0 * scale, 3.0 * scale), v_range=(-3.0 * scale, 3.0 * scale))
+    return torus, plane
 
 
 def run(seeds=SEEDS, echo=print):

@@ -95,10 +95,13 @@ def known_node(point, settings):
     narrow waist between two branches, or a small loop round a critical point off the curve, is not a node: the
     branch goes round it); True wherever they are not known (proven_nodes)."""
     nodes = proven_nodes(settings)
-    if nodes is None:
-        return True
-    nodes = np.asarray(nodes).reshape(-1, 3)
-    return bool(len(nodes)) and float(np.min(np.linalg.norm(nodes - point, axis=1))) <= KNOWN_NODE * settings.scale
+    return nodes is None or node_distance(point, nodes) <= KNOWN_NODE * settings.scale
+
+
+def node_distance(point, nodes):
+    """Distance of the point (3,) to the nearest of the nodes ((K, 3) or None); inf where there are none."""
+    nodes = np.empty((0, 3)) if nodes is None else np.asarray(nodes).reshape(-1, 3)
+    return float(np.min(np.linalg.norm(nodes - point, axis=1))) if len(nodes) else math.inf
 
 
 def known_apex(point, settings, surfaces):
@@ -348,8 +351,8 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
         if not watch_apex and kc.area_degeneracy(y, a, b, area[0], area[1]) > APEX_REARM * APEX_GUARD:
             watch_apex = True            # clear of the apex passed beside: watched again
         # beside a near tangency, steps shorter than the gap two branches may pass each other at (near_tangent)
-        cap = None if compiled else step_cap(y, a, b, sign, SLOPE_STEP * settings.scale, last_cap, point,
-                                             settings.nodes, settings.scale)
+        cap = None if compiled else step_cap(y, a, b, sign, SLOPE_STEP * settings.scale, last_cap,
+                                             node_distance(point, settings.nodes), settings.scale)
         last_cap = math.inf if cap is None else cap[0]
         system = segment_system(a, b, settings, sign, s_arm - s, shared, bounds)
         if cap is not None:

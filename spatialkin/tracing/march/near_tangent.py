@@ -11,8 +11,6 @@ a node the search proved (within NODE_CLEAR of the scale), the march passes by a
 """
 import math
 
-import numpy as np
-
 from ...kernels.march import curve as kc
 
 #: Steps at most this share of the distance over which the sine would vanish at the segment start's slope ...
@@ -27,20 +25,18 @@ BAND_RATIO = 2.0
 NODE_CLEAR = 1e-2
 
 
-def step_cap(y, a, b, sign, slope_step, previous, point, nodes, scale):
-    """(largest step, band (lo, hi) of the sine) for a segment starting at the state y (4,) in the charts a, b, its
-    point (3,) (travelling the way sign says; slope_step: the arc-length step of the sine's slope, kernels.march.curve
+def step_cap(y, a, b, sign, slope_step, previous, clearance, scale):
+    """(largest step, band (lo, hi) of the sine) for a segment starting at the state y (4,) in the charts a, b
+    (travelling the way sign says; slope_step: the arc-length step of the sine's slope, kernels.march.curve
     .degeneracy_slope), after a segment whose cap was previous (inf where none): at or above CAP_BELOW, no cap (inf)
-    until the sine falls below CAP_BELOW / BAND_RATIO; None (no cap, no band) where one of the nodes the search
-    proved ((K, 3) or None) lies within NODE_CLEAR times the scale, or twice the distance over which the sine would
-    vanish (the march passes a node by a jump)."""
+    until the sine falls below CAP_BELOW / BAND_RATIO; None (no cap, no band) where the nearest node the search
+    proved (clearance away; inf where none) lies within NODE_CLEAR times the scale, or twice the distance over which
+    the sine would vanish (the march passes a node by a jump)."""
     sine = kc.degeneracy(y, a, b, 0.0, 0.0)
     if not sine < CAP_BELOW:
         return math.inf, (CAP_BELOW / BAND_RATIO, math.inf)
     slope = abs(kc.degeneracy_slope(y, a, b, float(sign), float(slope_step)))
     reach = sine / slope if slope > 0.0 else math.inf
-    if nodes is not None and len(nodes):
-        nearest = float(np.min(np.linalg.norm(np.asarray(nodes).reshape(-1, 3) - point, axis=1)))
-        if nearest <= max(2.0 * reach, NODE_CLEAR * scale):
-            return None
+    if math.isfinite(clearance) and clearance <= max(2.0 * reach, NODE_CLEAR * scale):
+        return None
     return min(STEP_PER_SINE * reach, GROWTH * previous), (sine / BAND_RATIO, sine * BAND_RATIO)

@@ -381,15 +381,13 @@ def test_a_plane_beside_a_bitangent_plane_of_a_torus_cuts_two_loops(share, delta
     other (which gave two circles through those places, loops 85% too long or short, or a march that never
     closed). Both argument orders: two closed curves, each of its loop's length within 1e-9 (relative) of the
     quadrature in 30-digit arithmetic (tests.oracles.closed_forms.bitangent_loops)."""
+    from tests.oracles.bitangent_hunt import bitangent_pair
     from tests.oracles.closed_forms import bitangent_loops
     rng = np.random.default_rng(seed)
     rot = random_rotation(rng)
     origin = rng.normal(size=3)
     origin *= far / np.linalg.norm(origin)
-    tilt = math.asin(share - delta)
-    torus = sk.Torus(scale, share * scale, sk.Frame(origin, rot))
-    plane = sk.Plane(sk.Frame(origin, rot @ sk.rotation_about((1.0, 0.0, 0.0), tilt)),
-                     u_range=(-3.0 * scale, 3.0 * scale), v_range=(-3.0 * scale, 3.0 * scale))
+    torus, plane = bitangent_pair(share, delta, scale, origin, rot)
     _, exact = bitangent_loops(torus, plane)
     for pair in ((torus, plane), (plane, torus)):
         curves = sk.intersect(*pair)

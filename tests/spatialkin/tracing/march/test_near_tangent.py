@@ -6,6 +6,7 @@ import numpy as np
 
 import spatialkin as sk
 from spatialkin.tracing.march import near_tangent as nt
+from spatialkin.tracing.march.ivp import node_distance
 
 SPHERE, CYLINDER = sk.Sphere(1.0), sk.Cylinder(0.5, sk.Frame((0.5, 0.0, 0.0)))
 NODE = np.array([1.0, 0.0, 0.0])
@@ -18,9 +19,10 @@ def viviani(t):
 
 
 def cap_at(point, previous=math.inf, nodes=None):
-    """step_cap at the point of both surfaces (their own charts), travelling either way."""
+    """step_cap at the point of both surfaces (their own charts), travelling either way, the search's nodes ((K, 3)
+    or None) at node_distance."""
     y = np.concatenate([SPHERE.parameters(point), CYLINDER.parameters(point)])
-    return nt.step_cap(y, SPHERE.data, CYLINDER.data, 1.0, 1e-7, previous, point, nodes, 1.0)
+    return nt.step_cap(y, SPHERE.data, CYLINDER.data, 1.0, 1e-7, previous, node_distance(point, nodes), 1.0)
 
 
 def test_far_from_the_touching_point_no_cap_until_the_sine_falls():

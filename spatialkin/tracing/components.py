@@ -9,7 +9,7 @@ from ..kernels.curve import near as kn
 from .curve.curvature import normal_sines
 from .curve.dense import CLOSEST_NEWTON_STEPS
 from .curve.exact import contact_point, exact_curve
-from .curve.result import Curve, TracingError, in_sk_order
+from .curve.result import Curve, TracingError, in_sk_order, point_gaps
 from .march.ivp import KNOWN_NODE
 from .march.segments import NEWTON_MAX_ITER
 from .march.start import locate_on_curve, newton_fixed_surfaces
@@ -23,16 +23,15 @@ from .closed.forms import Placed, along_normals, closed_form, closed_settings
 from .._lib import stages, warm
 from .curve.status import BOUNDARY, CONTACT, FAILED, MAX_LENGTH, SINGULAR, TANGENT
 from .search.rescue import LOST_RADIUS, crossing_starts
-from .search.topology import TopologyError, distances_at, points_at, topology
+from .search.topology import TopologyError, points_at, topology
+from ..geometry.surfaces.base import distances_at
 from ..geometry.asymptotic import bounded_pair
 from ..geometry.traits import check_surface
-from .march.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, EPS, make_settings,
+from .march.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings,
                           trace_from)
 
 #: A seed lying within this distance (relative to the scale) of a curve already traced belongs to it.
 SAME_COMPONENT = 1e-6
-#: The round-off of a stored point's gap to the surfaces, in ulps of its coordinates (same_loop).
-GAP_ROUNDOFF_ULPS = 4.0
 #: Pairs that meet in conics are solved in closed form (spatialkin.tracing.closed.forms); False forces the general
 #: path (the tests compare the two).
 CLOSED_FORMS = True
@@ -327,7 +326,7 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
 
     def other_gap(curve):
         if id(curve) not in largest:
-            largest[id(curve)] = curve, largest_gap(curve, settings) if len(curve.points) > 1 else 0.0
+            largest[id(curve)] = curve, curve.largest_gap if len(curve.points) > 1 else 0.0
         return largest[id(curve)][1]
 
     def on_traced(points, against):
@@ -335,7 +334,7 @@ def trace_pending(a, b, pending, curves, settings, radius, reasons):
         or within their place's error and the curve's largest (where the surfaces nearly touch: same_loop)."""
         points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
         out = np.zeros(len(points), dtype=bool)
-        gap = gaps(a, b, points, settings.tolerance) if len(points) else None
+        gap = point_gaps(a, b, points, settings.tolerance) if len(points) else None
         for curve in against:
             ask = ~out
             if not ask.any():
@@ -505,8 +504,8 @@ def beyond(curve, other, radius, settings):
     """(M,) how far each stored point of the curve lies beyond its reach (same_loop's, with the other curve's
     largest gap) of the other curve: <= 0 where it lies along it (both CurveResults)."""
     points = np.ascontiguousarray(curve.points)
-    return other.sol.closest(points)[1] - reach(radius, curve_gaps(curve, settings), sines(*curve.sol.surfaces, points),
-                                                largest_gap(other, settings), settings)
+    return other.sol.closest(points)[1] - reach(radius, curve.gaps, sines(*curve.sol.surfaces, points),
+                                                other.largest_gap, settings)
 
 
 def other_loop(a, b, point, loop, settings):
@@ -545,9 +544,8 @@ def same_loop(loop, other, radius, settings):
     settings.tolerance: a point farther is no point of the curve)."""
     if not other.closed:
         return False
-    gap, other_gap = curve_gaps(loop, settings), curve_gaps(other, settings)
-    return (lies_along(loop, other, gap, other_gap.max(), radius, settings)
-            and lies_along(other, loop, other_gap, gap.max(), radius, settings))
+    return (lies_along(loop, other, loop.gaps, other.largest_gap, radius, settings)
+            and lies_along(other, loop, other.gaps, loop.largest_gap, radius, settings))
 
 
 def reach(radius, gap, sine, other_gap, settings):
@@ -556,27 +554,9 @@ def reach(radius, gap, sine, other_gap, settings):
     return radius + 2 * (gap + other_gap) / np.maximum(sine, settings.singular_tol)
 
 
-def curve_gaps(curve, settings):
-    """gaps (M,) at the stored points of the curve (a CurveResult), counted at most settings.tolerance."""
-    return gaps(*curve.sol.surfaces, curve.points, settings.tolerance)
-
-
-def largest_gap(curve, settings):
-    """The largest of the gaps at the stored points of the curve (a CurveResult)."""
-    return float(curve_gaps(curve, settings).max())
-
-
 def sines(a, b, points):
     """(M,) sine of the normals' angle of the surfaces a and b at the points (M, 3) (0 where they meet no normal)."""
     return np.nan_to_num(normal_sines(a, b, points), nan=0.0)
-
-
-def gaps(a, b, points, tolerance):
-    """(M,) gap of the points (M, 3) to the farther of the surfaces a and b, at most the tolerance (a point farther
-    is no point of the curve), plus GAP_ROUNDOFF_ULPS of the coordinates."""
-    points = np.ascontiguousarray(points, dtype=float)
-    gap = np.minimum(np.maximum(a.distance(points), b.distance(points)), tolerance)
-    return gap + GAP_ROUNDOFF_ULPS * EPS * np.max(np.abs(points), axis=1)
 
 
 def lies_along(curve, other, gap, other_gap, radius, settings):
@@ -721,8 +701,8 @@ def along_union(curve, others, radius, settings, mask=None):
               if other.status != CONTACT and other.length > 0 and len(other.points) > 1]
     if not others:
         return False
-    gap = gaps(*curve.sol.surfaces, points, settings.tolerance)
-    largest = [largest_gap(other, settings) for other in others]
+    gap = curve.gaps if mask is None else curve.gaps[mask]
+    largest = [other.largest_gap for other in others]
     # the widest reach (sines at settings.singular_tol) first: a point beyond it of every other curve's stored
     # points, by more than half the longest step, settles the answer before any sine is computed
     if beyond_stored(points, others, [reach(radius, gap, 0.0, g, settings) for g in largest]).any():

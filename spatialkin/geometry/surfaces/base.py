@@ -266,10 +266,7 @@ class Surface:
         ValueError: points must have shape (..., 3), got (2,)
         """
         pts = check_query_points("points", points)
-        flat = np.ascontiguousarray(pts.reshape(-1, 3))
-        out = np.empty(flat.shape[0])
-        ks.distances(self.data, flat, out)
-        return out.reshape(pts.shape[:-1])
+        return distances_at(self, pts).reshape(pts.shape[:-1])
 
     def parameters(self, points):
         """Parameters (u, v) (..., 2) of the surface points nearest to global points (..., 3); u in (-pi, pi].
@@ -289,6 +286,15 @@ class Surface:
 
 
 # --- pieces the kinds share --------------------------------------------------------------------------------
+def distances_at(surface, points):
+    """Distances (N,) of points (..., 3), finite floats, to the untrimmed surface: Surface.distance without its
+    argument checks, for points the library made."""
+    points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
+    out = np.empty(len(points))
+    ks.distances(surface.data, points, out)
+    return out
+
+
 def trims_given(surface):
     """(u_range, v_range) as given to the constructor of a kind whose trims are all angles (None: untrimmed)."""
     return tuple(None if not math.isfinite(r[0]) else r for r in (surface.u_range, surface.v_range))

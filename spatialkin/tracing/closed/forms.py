@@ -40,7 +40,8 @@ from ..curve.result import in_sk_order
 from ..march.segments import EDGE_NAMES
 from .split import split_planes
 from ..curve.status import BOUNDARY, CLOSED, open_outcome, outcome
-from ..search.topology import Topology, distances_at
+from ..search.topology import Topology
+from ...geometry.surfaces.base import distances_at
 from ..march.start import scene_reading
 from ..march.trace import EPS, ROUNDOFF_ULPS, check_options, scene_lengths
 

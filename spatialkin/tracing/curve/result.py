@@ -12,6 +12,7 @@ from ..._lib.validation import TOO_LARGE, check_count, check_positive, check_que
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome
 from ...geometry.traits import traits
+from ...geometry.surfaces.base import distances_at
 
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.
@@ -81,6 +82,22 @@ class TracingError(RuntimeError):
         return cls(message, where=where, status=status or own)
 
 
+#: The round-off of a stored point's gap to the surfaces, in ulps of its coordinates (CurveResult.gaps).
+GAP_ROUNDOFF_ULPS = 4.0
+EPS = np.finfo(float).eps
+
+
+def point_gaps(a, b, points, tolerance):
+    """(M,) gap of the points (M, 3) to the farther of the surfaces a and b, at most the tolerance, plus
+    GAP_ROUNDOFF_ULPS of the coordinates (CurveResult.gaps)."""
+    points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
+    gap = distances_at(a, points)
+    np.maximum(gap, distances_at(b, points), out=gap)
+    np.minimum(gap, tolerance, out=gap)
+    gap += GAP_ROUNDOFF_ULPS * EPS * np.abs(points).max(axis=1)
+    return gap
+
+
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
 class CurveResult:
     """What tracing found about one component: a plain record; ``sol`` evaluates it. (A closed form's,
@@ -110,6 +127,18 @@ class CurveResult:
     def first_point(self):
         """The first stored point (3,) (points[0])."""
         return self.points[0]
+
+    @functools.cached_property
+    def gaps(self):
+        """(M,) how far off the curve each stored point may lie, as the de-duplication counts it: its distance to
+        the farther of the two surfaces, at most the tolerance (a point farther is no point of the curve), plus
+        GAP_ROUNDOFF_ULPS of its coordinates. Made on first read."""
+        return point_gaps(*self.sol.surfaces, self.points, self.tolerance)
+
+    @functools.cached_property
+    def largest_gap(self):
+        """The largest of the gaps."""
+        return float(self.gaps.max())
 
     def __post_init__(self):
         state = self.__dict__                   # (frozen: written as object.__setattr__ writes, at a third of its cost)

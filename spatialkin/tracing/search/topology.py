@@ -43,6 +43,7 @@ from ...kernels.geometry import surfaces as ks
 from ...kernels.search import topology as kt
 from .meridians import BAND, BESIDE, REVOLVED, meridian_circle, meridian_nodes, meridian_segment, tangent_meridians
 from ...geometry.asymptotic import unbounded_message
+from ...geometry.surfaces.base import distances_at
 from ...geometry.placement import bounding_ball, check_not_coincident, common_axis, ruled_along
 from ..march.ivp import APEX_ON_CURVE
 from ..march.trace import EPS, ROUNDOFF_ULPS
@@ -360,15 +361,6 @@ def points_at(surface, uv):
     uv = np.ascontiguousarray(uv, dtype=float).reshape(-1, 2)
     out = np.empty((len(uv), 3))
     ks.evaluate(surface.data, uv, out)
-    return out
-
-
-def distances_at(surface, points):
-    """Distances (N,) of points (N, 3) (finite floats, made by the search) to the untrimmed surface:
-    Surface.distance without its argument checks."""
-    points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
-    out = np.empty(len(points))
-    ks.distances(surface.data, points, out)
     return out
 
 

@@ -21,6 +21,7 @@ from spatialkin.bench.kinds import pair_kind_cases
 from spatialkin.kernels.curve import near as kn
 from spatialkin.tracing.components import SAME_COMPONENT, covered, near_curve, within
 from spatialkin.tracing.curve.dense import CLOSEST_NEWTON_STEPS, TracedSolution
+from spatialkin.tracing.curve.result import point_gaps
 from spatialkin.tracing.march.trace import DEFAULT_SINGULAR_TOL
 from tests.oracles.closed_forms import torus_sphere_critical_radii
 
@@ -240,8 +241,9 @@ def test_covered(kind):
     off = on + 10.0 * radius * np.cross(curve.sol.tangent(s), [0.0, 0.0, 1.0])
 
     def piece(points):
+        gaps = point_gaps(*curve.sol.surfaces, points, curve.tolerance)
         return SimpleNamespace(closed=False, status="boundary", points=points, length=0.4 * curve.length,
-                               sol=SimpleNamespace(surfaces=curve.sol.surfaces))
+                               sol=SimpleNamespace(surfaces=curve.sol.surfaces), gaps=gaps, largest_gap=gaps.max())
 
     pieces = {"on": piece(on), "off": piece(off)}
     limits = SimpleNamespace(singular_tol=DEFAULT_SINGULAR_TOL, tolerance=curve.tolerance)

@@ -93,6 +93,16 @@ def branch_fun(t, y, args, out):
 
 
 @jit
+def branch_first_step(y, args, t_bound, max_step, rtol, atol, order, unit):
+    """The first step of a segment from (0, y): spatialkin.kernels.ode.rk.initial_step of branch_fun in units of
+    `unit` of the arc length (the scene's scale), so that a scene scaled by a factor is marched with every step
+    scaled by it."""
+    f0 = np.empty(y.shape[0])
+    branch_fun(0.0, y, args, f0)
+    return rk.initial_step(branch_fun, args, 0.0, y, f0, t_bound, max_step, rtol, atol, order, unit)
+
+
+@jit
 def remembered(y, memo):
     """True when the memo holds the state y (exactly)."""
     for i in range(4):

@@ -473,18 +473,21 @@ def probe_crossing(events, args, eargs, only, values, index, t_old, step, y_old,
 
 
 @jit(inline="always")
-def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol, order):
-    """scipy's select_initial_step for an error estimator of the given order (forward in t)."""
+def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol, order, unit):
+    """scipy's select_initial_step for an error estimator of the given order (forward in t), read in units of
+    `unit` of t: scipy's own step for unit 1; else the step scipy's rule gives the problem in t / unit, times unit.
+    The rule's floors and its root of the derivatives' norms do not scale with t: a problem stretched in t by a
+    factor gets its first step stretched by that factor only where unit is stretched with it."""
     n = y0.shape[0]
     scale = np.empty(n)
     for i in range(n):
         scale[i] = atol[i] + abs(y0[i]) * rtol
     d0 = rms(y0, scale)
-    d1 = rms(f0, scale)
+    d1 = rms(f0, scale) * unit
     if d0 < 1e-5 or d1 < 1e-5:
-        h0 = 1e-6
+        h0 = 1e-6 * unit
     else:
-        h0 = 0.01 * d0 / d1
+        h0 = 0.01 * d0 / d1 * unit
     h0 = min(h0, t_bound - t0)
     y1 = np.empty(n)
     for i in range(n):
@@ -493,11 +496,11 @@ def initial_step(fun, args, t0, y0, f0, t_bound, max_step, rtol, atol, order):
     fun(t0 + h0, y1, args, f1)
     for i in range(n):
         f1[i] -= f0[i]
-    d2 = rms(f1, scale) / h0
+    d2 = rms(f1, scale) / h0 * unit * unit
     if d1 <= 1e-15 and d2 <= 1e-15:
-        h1 = max(1e-6, h0 * 1e-3)
+        h1 = max(1e-6 * unit, h0 * 1e-3)
     else:
-        h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1)) * unit
     return min(100.0 * h0, h1, t_bound - t0, max_step)
 
 
@@ -647,7 +650,7 @@ def advance(fun, events, args, eargs, t, y, f, h, fresh, t_bound, rtol, atol, ma
         fun(t, y, args, f)
         nfev += 1
         if h <= 0.0:
-            h = initial_step(fun, args, t, y, f, t_bound, max_step, rtol, atol, ERROR_ORDERS[method])
+            h = initial_step(fun, args, t, y, f, t_bound, max_step, rtol, atol, ERROR_ORDERS[method], 1.0)
             nfev += 1
     last = END_ROWS[method]
     exponent = -1.0 / (ERROR_ORDERS[method] + 1)

@@ -18,7 +18,7 @@ from ...kernels.search import topology as ks
 from .certify_points import certify_points
 from ..search.topology import TopologyError, points_at, search
 from .trims import Ends, closed_inside, edges, open_curve, outside, q_edge_roots
-from .nodes import box_radii, in_boxes, linked, node_boxes, passages, typical_chord
+from .nodes import SHARES, box_radii, in_boxes, linked, node_boxes, passages, typical_chord
 from .tubes import Chart, tube
 from .faces import cut
 
@@ -341,6 +341,25 @@ def unproven_points(radii, curves):
     return out
 
 
+def node_tubes(chart, charted, curves, arcs):
+    """(the node boxes, the Tube of each curve (None for a contact, a curve of tangency or without a chart)): the
+    boxes of the search's nodes the smallest that pass (nodes.node_boxes), each curve's tube reaching into them.
+    Where a tube that passes a node box fails, the boxes are tried again each the next size up (SHARES): close
+    beside a node, where two branches pass near each other, a run's end inside a small box may lie nearer the other
+    branch than a piece can be narrow."""
+    if chart is None:
+        return [], [None] * len(curves)
+    chord = typical_chord(chart, curves)
+    for first in range(len(SHARES)):
+        nodes = node_boxes(chart, charted.nodes, chord, SHARES[first:])
+        tubes = [tube(chart, curve, nodes, (arcs or {}).get(i, ()))
+                 if curve.length > 0 and curve.status not in (TANGENT, CONTACT) else None
+                 for i, curve in enumerate(curves)]
+        if not any(t is not None and t.split and not t.proven for t in tubes):
+            break
+    return nodes, tubes
+
+
 def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=True, arcs=None):
     """The Certificate of an answer as certify makes it where no region cuts it (regions False: the faces'
     regions left out, as the search leaves them; arcs: {curve index: the arcs a face cuts from it}, whose tubes
@@ -361,15 +380,14 @@ def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=T
         failure = None
     chart = Chart(charted, scale) if charted is not None and charted.chart is not None else None
     trims, unsupported = edges(charted, chart, regions) if chart is not None else ([], [])
-    nodes = node_boxes(chart, charted.nodes, typical_chord(chart, curves)) if chart is not None else []
+    nodes, tubes = node_tubes(chart, charted, curves, arcs)
     uses = {}                   # {curve index: {node index: the arcs (pairs) its passages take}}
     ends = Ends()
-    radii, tubes, bounds = [], [], []
+    radii, bounds = [], []
     arcs_failed, whole_failed = [], []
     for i, curve in enumerate(curves):
         regular = curve.length > 0 and curve.status not in (TANGENT, CONTACT)
-        t = tube(chart, curve, nodes, (arcs or {}).get(i, ())) if regular and chart is not None else None
-        tubes.append(t)
+        t = tubes[i]
         if not regular:
             radii.append(np.full(len(curve.points), math.inf))
         elif t is None:

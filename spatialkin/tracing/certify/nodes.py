@@ -66,14 +66,15 @@ class NodeBox:
         return np.array([self.x[0] - self.h, self.x[0] + self.h, self.x[1] - self.h, self.x[1] + self.h])
 
 
-def node_boxes(chart, nodes, chord):
-    """The NodeBox of each node point (3,) in the chart for which one is proven: the smallest box of SHARES x chord
-    that passes (module docstring); the others are left out (the chain through them fails)."""
+def node_boxes(chart, nodes, chord, shares=SHARES):
+    """The NodeBox of each node point (3,) in the chart for which one is proven: the smallest box of shares x chord
+    that passes (module docstring; shares: SHARES, or its larger ones); the others are left out (the chain through
+    them fails)."""
     boxes = []
     for index, point in enumerate(nodes):
         point = np.asarray(point, dtype=float)
         x = chart.scaled(point[None])[0]
-        for share in SHARES:
+        for share in shares:
             h = share * chord
             speed = saddle_box(chart, x, h) if h > 0.0 else None
             if speed is not None:

@@ -23,6 +23,7 @@ import numpy as np
 from ...kernels.march import branch_ode as kb
 from ...kernels.march import curve as kc
 from ...kernels.geometry import surfaces as ks
+from ...kernels.ode import rk
 from ...ode.solvers import COMPILED_SOLVERS, BudgetExceeded, Event, System, Watch, integrate
 from .segments import (EDGE_NAMES, EDGE_RATE, EDGE_TOL, POLE_GUARD, SEGMENT_MAX_EVALUATIONS, Branch, Segment,
                        area_flag, finite_bounds, newton_fixed, project_state, segment_start)
@@ -79,6 +80,21 @@ FALLBACK_METHOD = "compiled"
 HANDOFF_MARGIN = 2.0
 #: At most this many segments in one branch (each ends at an event): bounds the work on pathological input.
 MAX_SEGMENTS = 10_000
+
+
+#: The error estimator's order of solve_ivp's own methods (scipy's select_initial_step takes it; error_order).
+SCIPY_ORDERS = {"RK23": 2, "RK45": 4, "DOP853": 7, "Radau": 3, "BDF": 1, "LSODA": 4}
+#: Right-hand sides evaluated to choose a segment's first step (kernels.march.branch_ode.branch_first_step).
+FIRST_STEP_EVALUATIONS = 2
+
+
+def error_order(method):
+    """The order of the method's error estimator, which shapes its first step (a compiled method's, a solve_ivp
+    method's by name or class; 4 where it has none)."""
+    solver = COMPILED_SOLVERS.get(method)
+    if solver is not None:
+        return rk.ERROR_ORDERS[solver.METHOD]
+    return SCIPY_ORDERS.get(method, getattr(method, "error_estimator_order", 4))
 
 
 def proven_nodes(settings):
@@ -369,9 +385,14 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
             branch.status, branch.message = outcome("max_length", max_length=settings.max_length)
             break
         mark = stages.enter("integration") if stages.ON else None
+        span, longest = settings.max_length - s, max_step if cap is None else min(max_step, cap[0])
+        # (the first step in units of the scale: the march of a scaled scene is the same, scaled)
+        first = kb.branch_first_step(y, system.args, span, longest, settings.rtol, settings.atol, error_order(method),
+                                     settings.scale)
+        branch.nfev += FIRST_STEP_EVALUATIONS
         try:
-            res = integrate(system, (0.0, settings.max_length - s), y, method, events, settings.rtol, settings.atol,
-                            max_step if cap is None else min(max_step, cap[0]), SEGMENT_MAX_EVALUATIONS)
+            res = integrate(system, (0.0, span), y, method, events, settings.rtol, settings.atol, longest,
+                            SEGMENT_MAX_EVALUATIONS, first)
         except BudgetExceeded:
             branch.status, branch.message = outcome("stalled", s=s, budget=SEGMENT_MAX_EVALUATIONS,
                                                     point=point.tolist())

@@ -255,14 +255,15 @@ def take_jump(branch, seg, y_event, jump):
     index, t_back, y_own, y_back, y_after, d, length, node, arc = jump
     owner = branch.segments[index]
     keep = owner.t <= t_back
-    owner.t, owner.y = np.append(owner.t[keep], t_back), np.column_stack([owner.y[:, keep], y_own])
+    # (states as every segment holds them: (4, m), each state's column contiguous, the transpose of the record's)
+    owner.t, owner.y = np.append(owner.t[keep], t_back), np.concatenate([owner.y[:, keep].T, y_own[None]]).T
     owner.s1 = owner.s0 + t_back
     del branch.segments[index + 1:]
     point, tangent = np.empty(3), np.empty(3)
     branch.nodes.append((owner.s1, node))
     branch.segments.append(Segment(s0=owner.s1, s1=owner.s1 + length, sign=1.0,
                                    sol=LinearStates(y_back, y_after, length, arc), a=seg.a, b=seg.b,
-                                   t=np.array([0.0, length]), y=np.column_stack([y_back, y_after]), normal=d,
+                                   t=np.array([0.0, length]), y=np.array([y_back, y_after]).T, normal=d,
                                    area=seg.area))
     kc.curve_frame(y_after, seg.a, seg.b, point, tangent)
     sign = 1.0 if float(np.dot(tangent, d)) > 0 else -1.0

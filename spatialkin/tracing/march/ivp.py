@@ -39,6 +39,10 @@ CLOSURE_OFFSET = 1e-8
 #: A crossing of the closure plane closes the curve if it lies within this distance (relative to the
 #: curve scale) of the start and moves in the same direction (cosine above CLOSURE_COSINE).
 CLOSURE_RADIUS = 1e-5
+#: ... or within this many times rtol (relative to the scale), where that is more: a crossing is located on the
+#: step's interpolant, whose error grows with rtol (at rtol 1e-4, RK45 places it 5e-5 of the scale along a small
+#: loop from its start lap after lap, BDF farther still; at the default rtol the radius is CLOSURE_RADIUS's).
+CLOSURE_RTOLS = 10.0
 CLOSURE_COSINE = 0.9
 #: A segment ends at each local minimum of sin(angle between the normals) along the path; a minimum below
 #: this is a singular point: the node itself (where N1 x N2 flips) or, on a path a gap's width beside it,
@@ -279,7 +283,13 @@ def steadiest(segments):
 def may_be_off(settings, sine):
     """True where a start with this sine of the normals' angle may lie farther than the closure's radius from the
     curve: its gap (at most the gap tolerance) over the sine, to first order."""
-    return settings.gap_tol > CLOSURE_RADIUS * settings.scale * sine
+    return settings.gap_tol > closure_radius(settings) * sine
+
+
+def closure_radius(settings):
+    """The distance from its start within which a crossing of the closure plane closes a branch (CLOSURE_RADIUS,
+    CLOSURE_RTOLS), a length."""
+    return max(CLOSURE_RADIUS, CLOSURE_RTOLS * settings.rtol) * settings.scale
 
 
 def passes_again(point, heading, place, direction, radius):
@@ -319,7 +329,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
     y = np.asarray(y_start, dtype=float)
     start, direction = point.copy(), sign * tangent
     s, s_arm = 0.0, 0.0
-    radius = CLOSURE_RADIUS * settings.scale
+    radius = closure_radius(settings)
     compiled = settings.method in COMPILED_SOLVERS
     near_edge = False
     watch_apex = True

@@ -19,9 +19,9 @@ scaling:
 The march itself is the same at every power-of-two scale: the near-tangent pair below (two loops 1e-9 apart where
 the surfaces nearly touch) gives the same stored points, scaled, and certify=True proves the same answer.
 
-Still scale-dependent, not tested here: scaled/random/cylinder-cone/0/+1e5 at 2^-27, whose loop grazes a trim
-edge within round-off: at_outer_edge's tolerance is absolute where a trim's range is longer than 1, and at 2^-27
-the loop closes instead of ending on the edge.
+Still scale-dependent, not tested here: scaled/random/cylinder-cone/0/+1e5, whose curve grazes a trim edge within
+round-off: at 2^0 and 2^27 two arcs end on the edge, at 2^-27 one of them is a closed loop instead. Making the
+edge test's tolerance relative to the scale does not change that; the absolute quantity behind it is not found.
 """
 import numpy as np
 import pytest

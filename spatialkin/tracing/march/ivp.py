@@ -299,19 +299,21 @@ def passes_again(point, heading, place, direction, radius):
     return math.sqrt(gap.dot(gap)) <= radius and float(heading.dot(direction)) >= CLOSURE_COSINE
 
 
-def at_outer_edge(a, b, y, sign, bounds):
+def at_outer_edge(a, b, y, sign, bounds, units):
     """True where y lies on (or past) an edge of a trimmed surface and the direction of travel leaves it (a curve
-    running along the edge does not leave it). bounds: finite_bounds(a, b); the direction of travel is evaluated
+    running along the edge does not leave it). bounds: finite_bounds(a, b); units (4,): each state parameter's unit
+    (1 for an angle, the scene's scale for a length: SurfaceTraits.parameter_units), in which the rates are
+    compared (an angle's and a length's rates otherwise differ by the scale); the direction of travel is evaluated
     only at an edge."""
     dy = None
     for k, _, idx, bound, lower, _, size in bounds:
         inside = y[idx] - bound if lower else bound - y[idx]
-        if not inside <= EDGE_TOL * max(min(1.0, size), abs(bound)):
+        if not inside <= EDGE_TOL * max(min(units[idx], size), abs(bound)):
             continue
         if dy is None:
             dy = kc.dragilev_rhs(0.0, y, a, b, sign, 0.0)
-        rate = dy[idx] if lower else -dy[idx]
-        if rate < -EDGE_RATE * np.hypot(dy[2 * k], dy[2 * k + 1]):
+        rate = (dy[idx] if lower else -dy[idx]) / units[idx]
+        if rate < -EDGE_RATE * math.hypot(dy[2 * k] / units[2 * k], dy[2 * k + 1] / units[2 * k + 1]):
             return True
     return False
 
@@ -340,6 +342,8 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
     # a re-chart turns a chart's axes only: every segment's charts have the user's bounds, and for one method and
     # near_edge the same events, made once per branch and pointed at each segment's System
     bounds = finite_bounds(a_user, b_user)
+    units = tuple(a_surface.traits.parameter_units(settings.scale).tolist() +
+                  b_surface.traits.parameter_units(settings.scale).tolist())
     watched = {}
     max_step = settings.max_step
     passed = []             # (point, direction) of the geometric events passed (minima, charts, crossings elsewhere)
@@ -371,7 +375,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
             break
         if off_start is None:
             off_start = may_be_off(settings, kc.degeneracy(y, a, b, 0.0, 0.0))
-        if at_outer_edge(a, b, y, sign, bounds):
+        if at_outer_edge(a, b, y, sign, bounds, units):
             branch.status, branch.message = outcome("leaves_edge", s=s)
             break
         if not watch_apex and kc.area_degeneracy(y, a, b, area[0], area[1]) > APEX_REARM * APEX_GUARD:

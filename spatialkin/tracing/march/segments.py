@@ -20,14 +20,14 @@ from ...geometry.traits import LENGTH
 POLE_GUARD = 0.5
 #: The edges of a trim, in the order of the bounds in a surface's data (finite_bounds rows' j).
 EDGE_NAMES = ("u_min", "u_max", "v_min", "v_max")
-#: A parameter this close to a bound (relative to the bound, or to its range where that is below 1: a length
-#: parameter of a small scene) counts as on the edge.
+#: A parameter this close to a bound (relative to the bound, or to its range where that is below the parameter's
+#: unit: 1 for an angle, the scene's scale for a length) counts as on the edge.
 EDGE_TOL = 1e-12
 #: A curve running along an edge drifts across it by round-off: an edge stops the integration only this many
 #: ulp (of the parameter's range) past it, and the end is then snapped onto the edge.
 EDGE_ULPS = 64
 #: A curve on an edge leaves the surface when the edge parameter decreases faster than this (relative to the
-#: speed of that surface's parameters); slower is a curve running along the edge.
+#: speed of that surface's parameters, each in its unit); slower is a curve running along the edge.
 EDGE_RATE = 1e-9
 #: Newton iterations allowed for one projection onto the curve.
 NEWTON_MAX_ITER = 12

@@ -14,14 +14,15 @@ scaling:
 - tiny/plane-torus/1e-06: a tiny loop ending 'singular' (the Newton systems' pivot test across columns of
   lengths and of numbers);
 - contact/sphere-cylinder/outside-out: a loop of 1e-4 of the scale, whose first step, in absolute units, would
-  pass it whole at 2^-27.
+  pass it whole at 2^-27;
+- scaled/random/cylinder-cone/0/+1e5: a start on a trim edge, 2e-13 of the scale past it, where the curve leaves
+  the surface: the test of whether it leaves compares the edge parameter's rate with the speed of both
+  parameters, an angle's and a length's, which differ by the scale unless each is read in its unit (at 2^-27 the
+  march went on round a loop instead of ending there).
 
-The march itself is the same at every power-of-two scale: the near-tangent pair below (two loops 1e-9 apart where
-the surfaces nearly touch) gives the same stored points, scaled, and certify=True proves the same answer.
-
-Still scale-dependent, not tested here: scaled/random/cylinder-cone/0/+1e5, whose curve grazes a trim edge within
-round-off: at 2^0 and 2^27 two arcs end on the edge, at 2^-27 one of them is a closed loop instead. Making the
-edge test's tolerance relative to the scale does not change that; the absolute quantity behind it is not found.
+The march itself is the same at every power-of-two scale: the near-tangent pair below (a sphere and a cylinder 1e-9
+of the scale from internal tangency, on either side) gives the same stored points, scaled, and certify=True proves
+the same answer.
 """
 import numpy as np
 import pytest
@@ -31,7 +32,7 @@ import spatialkin as sk
 
 CASES = ("contact/sphere-cylinder/far-at", "contact/sphere-cone/ruling-at", "contact/sphere-cylinder/node-at",
          "viviani/sphere-cylinder/3", "contact/plane-cone/ruling-in", "scaled/coaxial/cone-cone/0/x1e-4",
-         "tiny/plane-torus/1e-06", "contact/sphere-cylinder/outside-out")
+         "tiny/plane-torus/1e-06", "contact/sphere-cylinder/outside-out", "scaled/random/cylinder-cone/0/+1e5")
 FACTORS = (2.0 ** -27, 2.0 ** 27)
 LENGTH_RTOL = 1e-8
 

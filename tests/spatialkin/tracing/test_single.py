@@ -84,10 +84,10 @@ def test_a_line_of_two_unbounded_planes_runs_out_where_it_says():
 @pytest.mark.parametrize("method", ["RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA", "compiled-rk45"])
 def test_a_loose_rtol_closes_each_loop_on_its_first_lap(method):
     """At rtol 1e-4, with every solve_ivp method, each loop of the bench's torus-sphere cases (the looper's pair, two
-    loops, two loops nearly touching, a loop of a third of the scale) closes on its first lap: the crossing of the
-    plane across its start lies off the start by the error of the step's interpolant, up to 5e-5 of the scale for
-    RK45 on the small loop, and a second lap would double the length. Oracle: the same loops at the default rtol,
-    within 3e-2 (a lap too many is off by 1 or more)."""
+    loops, two loops nearly touching, a small loop whose length is a third of the scale) closes on its first lap:
+    the crossing of the plane across its start lies off the start by the error of the step's interpolant, up to
+    5e-5 of the scale for RK45 on the small loop, and a second lap would double the length. Oracle: the same loops at
+    the default rtol, within 3e-2 (a lap too many is off by 1 or more)."""
     from spatialkin.bench.cases import torus_sphere_cases
     for case in torus_sphere_cases():
         for loop in sk.intersect(case.torus, case.sphere):

@@ -341,6 +341,11 @@ def unproven_points(radii, curves):
     return out
 
 
+def regular(curve):
+    """True for a curve with a tube: of positive length, neither a contact point nor a curve of tangency."""
+    return curve.length > 0 and curve.status not in (TANGENT, CONTACT)
+
+
 def node_tubes(chart, charted, curves, arcs):
     """(the node boxes, the Tube of each curve (None for a contact, a curve of tangency or without a chart)): the
     boxes of the search's nodes the smallest that pass (nodes.node_boxes), each curve's tube reaching into them.
@@ -352,8 +357,7 @@ def node_tubes(chart, charted, curves, arcs):
     chord = typical_chord(chart, curves)
     for first in range(len(SHARES)):
         nodes = node_boxes(chart, charted.nodes, chord, SHARES[first:])
-        tubes = [tube(chart, curve, nodes, (arcs or {}).get(i, ()))
-                 if curve.length > 0 and curve.status not in (TANGENT, CONTACT) else None
+        tubes = [tube(chart, curve, nodes, (arcs or {}).get(i, ())) if regular(curve) else None
                  for i, curve in enumerate(curves)]
         if not any(t is not None and t.split and not t.proven for t in tubes):
             break
@@ -386,9 +390,8 @@ def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=T
     radii, bounds = [], []
     arcs_failed, whole_failed = [], []
     for i, curve in enumerate(curves):
-        regular = curve.length > 0 and curve.status not in (TANGENT, CONTACT)
         t = tubes[i]
-        if not regular:
+        if not regular(curve):
             radii.append(np.full(len(curve.points), math.inf))
         elif t is None:
             radii.append(certify_points(a, b, curve.points, curve.sol.tangent(curve.s)))
@@ -397,7 +400,7 @@ def uncut(a, b, curves, topology, scale, tolerance=None, failure=None, regions=T
             if t.split:
                 box_radii(chart, nodes, curve.points, radii[-1])
         bounds.append(math.inf if t is None or not t.proven else distance_bound(chart, nodes, curve, t, radii[-1]))
-        if not regular:
+        if not regular(curve):
             continue
         if t is None or not t.proven:
             arcs_failed.append((f"curve {i}: {t.reason if t is not None else 'no search chart'}",

@@ -119,7 +119,8 @@ def known_node(point, settings):
 
 
 def node_distance(point, nodes):
-    """Distance of the point (3,) to the nearest of the nodes ((K, 3) or None); inf where there are none."""
+    """Distance of the point (3,) to the nearest of the nodes ((K, 3) or None: singular points, or apexes); inf where
+    there are none."""
     nodes = np.empty((0, 3)) if nodes is None else np.asarray(nodes).reshape(-1, 3)
     return float(np.min(np.linalg.norm(nodes - point, axis=1))) if len(nodes) else math.inf
 

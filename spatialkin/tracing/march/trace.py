@@ -20,7 +20,7 @@ from ...kernels.march import curve as kc
 from ...kernels.curve import stored as kst
 from ...kernels.geometry import surfaces as ks
 from .arclength import remeasure_branch
-from .ivp import NODE_SUSPECT, integrate_branch, may_be_off, steadiest
+from .ivp import NODE_SUSPECT, integrate_branch, may_be_off, node_distance, steadiest
 from ...ode.solvers import COMPILED, COMPILED_SOLVERS
 from .segments import NEWTON_MAX_ITER, Settings, charts_at
 from ..curve.dense import CLOSEST_CANDIDATES, CLOSEST_NEWTON_STEPS, Span, TracedSolution
@@ -335,7 +335,7 @@ def clear_of_apexes(a, b, point, y, settings):
     if not len(settings.apexes):
         return point, y
     clear = APEX_CLEAR * settings.scale
-    if float(np.min(np.linalg.norm(settings.apexes - point, axis=1))) >= clear:
+    if node_distance(point, settings.apexes) >= clear:
         return point, y
     tangent = np.empty(3)
     a_chart, b_chart, y_chart = charts_at(a, b, point, np.zeros(3), y)

@@ -1,11 +1,13 @@
 """sk.intersect: every component of the intersection of two surfaces, each once."""
 import dataclasses
+import math
 import time
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from ..kernels.curve import near as kn
+from ..kernels.geometry import surfaces as ks
 from .curve.curvature import normal_sines
 from .curve.dense import CLOSEST_NEWTON_STEPS
 from .curve.exact import contact_point, exact_curve
@@ -24,7 +26,6 @@ from .._lib import stages, warm
 from .curve.status import BOUNDARY, CONTACT, FAILED, MAX_LENGTH, SINGULAR, TANGENT
 from .search.rescue import LOST_RADIUS, crossing_starts
 from .search.topology import TopologyError, points_at, topology
-from ..geometry.surfaces.base import distances_at
 from ..geometry.asymptotic import bounded_pair
 from ..geometry.traits import check_surface
 from .march.trace import (DEFAULT_METHOD, DEFAULT_PULLBACK, DEFAULT_RTOL, DEFAULT_SINGULAR_TOL, make_settings,
@@ -242,7 +243,9 @@ def searched(a, b, settings, closing=True):
                                                  for point, index, fixed, value in topo.edge_starts) if y is not None]
     if topo.seeds:
         seeds = np.array(topo.seeds, dtype=float).reshape(-1, 3)
-        on = np.maximum(distances_at(a, seeds), distances_at(b, seeds)) <= settings.tolerance
+        gaps = np.empty(len(seeds))
+        ks.farther_distances(a.data, b.data, seeds, math.inf, 0.0, gaps)
+        on = gaps <= settings.tolerance
         pending += [(seed, None, bool(exact)) for seed, exact in zip(seeds, on)]
     if stages.ON:
         stages.switch("dedupe")

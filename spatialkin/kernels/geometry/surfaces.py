@@ -218,6 +218,21 @@ def distances(data, points, out):
 
 
 @jit
+def farther_distances(a_data, b_data, points, cap, roundoff, out):
+    """out (N,): each point's (N, 3) distance to the farther of the surfaces a and b, at most cap, plus roundoff
+    times its largest |coordinate| (a point's gap to a curve's surfaces; cap inf and roundoff 0: the larger of its
+    two distances)."""
+    q = np.empty(3)
+    for k in range(points.shape[0]):
+        to_local(a_data, points[k], q)
+        gap = distance_local(a_data, q)
+        to_local(b_data, points[k], q)
+        gap = max(gap, distance_local(b_data, q))
+        gap = min(gap, cap)
+        out[k] = gap + roundoff * max(abs(points[k, 0]), abs(points[k, 1]), abs(points[k, 2]))
+
+
+@jit
 def inverse_local(data, q, uv):
     """Parameters (u, v) of the surface point nearest to the local point q, written to uv.
 

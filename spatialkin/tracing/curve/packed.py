@@ -24,7 +24,7 @@ def pack(spans):
             ode = ode.sol
         remap_off.append(remap_off[-1] + (len(remap_new[-1]) if ode is not span.seg.sol else 0))
         # (a jump across a node or an apex, a solve_ivp method without polynomial steps: not held, left to Python)
-        own = isinstance(ode, Steps) and ode.compiled and len(ode.t) >= 2 and not any(span.seg.normal.tolist())
+        own = isinstance(ode, Steps) and ode.compiled and len(ode.t) >= 2 and not span.seg.jump
         held.append(own)
         if own:
             records.append(ode)

@@ -12,7 +12,6 @@ from ..._lib.validation import TOO_LARGE, check_count, check_positive, check_que
 from .bspline import fit as fit_spline
 from .status import CURVE_STATUSES, END_PRECEDENCE, FAILED, check_status, describe, outcome
 from ...geometry.traits import traits
-from ...geometry.surfaces.base import distances_at
 
 #: Interior sample points closer than this (relative to the curve scale) to the closing point are dropped,
 #: so that a closed curve has no near-duplicate of its first point before the exact copy at its end.
@@ -91,10 +90,8 @@ def point_gaps(a, b, points, tolerance):
     """(M,) gap of the points (M, 3) to the farther of the surfaces a and b, at most the tolerance, plus
     GAP_ROUNDOFF_ULPS of the coordinates (CurveResult.gaps)."""
     points = np.ascontiguousarray(points, dtype=float).reshape(-1, 3)
-    gap = distances_at(a, points)
-    np.maximum(gap, distances_at(b, points), out=gap)
-    np.minimum(gap, tolerance, out=gap)
-    gap += GAP_ROUNDOFF_ULPS * EPS * np.abs(points).max(axis=1)
+    gap = np.empty(len(points))
+    ks.farther_distances(a.data, b.data, points, float(tolerance), GAP_ROUNDOFF_ULPS * EPS, gap)
     return gap
 
 

@@ -72,7 +72,7 @@ def remeasure_segment(seg, pullback, gap_tol):
     if seg.compiled:                 # the compiled method hands over well above
         return float(seg.s1 - seg.s0)
     t = np.asarray(seg.t, dtype=float)
-    if len(t) < 2 or np.any(seg.normal):
+    if len(t) < 2 or seg.jump:
         return float(seg.s1 - seg.s0)
     y = np.ascontiguousarray(np.asarray(seg.y, dtype=float).T)
     if min(kc.degeneracy(row, seg.a, seg.b, 0.0, 0.0) for row in y) >= CHECK_BELOW:

@@ -121,8 +121,16 @@ def known_node(point, settings):
 def node_distance(point, nodes):
     """Distance of the point (3,) to the nearest of the nodes ((K, 3) or None: singular points, or apexes); inf where
     there are none."""
-    nodes = np.empty((0, 3)) if nodes is None else np.asarray(nodes).reshape(-1, 3)
-    return float(np.min(np.linalg.norm(nodes - point, axis=1))) if len(nodes) else math.inf
+    if nodes is None or not len(nodes):
+        return math.inf
+    p0, p1, p2 = np.asarray(point, dtype=float).reshape(3).tolist()
+    best = math.inf
+    for x0, x1, x2 in np.asarray(nodes, dtype=float).reshape(-1, 3).tolist():
+        d0, d1, d2 = x0 - p0, x1 - p1, x2 - p2
+        distance = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
+        if distance < best:
+            best = distance
+    return best
 
 
 def known_apex(point, settings, surfaces):
@@ -239,7 +247,7 @@ def lapping(branch, max_step):
     a pass by the start turns the tangent by more than half a turn: on a loop integrated exactly (a circle) every
     step turns it alike, and the longest most. Jumps across singular points are not steps."""
     for k, seg in enumerate(branch.segments):
-        if len(seg.t) < 2 or seg.normal.any():
+        if len(seg.t) < 2 or seg.jump:
             continue
         step, bend = kc.longest_step_bend(seg.t, seg.y, seg.a, seg.b)
         if step * bend > LAP_TURN:
@@ -357,7 +365,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
         a, b, y, point, tangent, ok = segment_start(a_user, b_user, recharts, point, sign * tangent, y, settings)
         if mark is not None:
             stages.leave(mark)
-        if not ok and branch.segments and not np.any(branch.segments[-1].normal):
+        if not ok and branch.segments and not branch.segments[-1].jump:
             # a restart beside a singular point: pass it from the last integrated segment instead
             last = branch.segments[-1]
             jump = jump_across(branch, last, last.s1 - last.s0, y_prev, settings)

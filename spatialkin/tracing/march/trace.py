@@ -404,9 +404,10 @@ def _closing_params(a, b, first, last):
     """The parameters of the closing point: the first point's, shifted by whole turns in periodic u (and v)
     so that they continue the last point's."""
     out = first.copy()
+    firsts, lasts = first.tolist(), last.tolist()
     for k, surface in enumerate((a, b)):
         for j, periodic in enumerate(surface.traits.periodic):
-            if periodic:       # (np.rint is np.round to 0 decimals)
+            if periodic:       # (round: to the nearest whole turn, half to even as np.rint)
                 i = 2 * k + j
-                out[i] = first[i] + 2 * np.pi * np.rint((last[i] - first[i]) / (2 * np.pi))
+                out[i] = firsts[i] + 2 * math.pi * round((lasts[i] - firsts[i]) / (2 * math.pi))
     return out

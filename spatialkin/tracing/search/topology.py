@@ -232,7 +232,7 @@ def domain(p, q_ball):
     parameter where it is unbounded limited by Q's bounding ball."""
     kind = p.traits
     ranges = [list(r) for r in kind.natural_domain(p)]
-    if q_ball is not None:
+    if q_ball is not None and any(axis is not None for axis in kind.parameter_axes):
         centre = p.frame.local_of(q_ball[0])
         reach = BALL_MARGIN * q_ball[1]
         for j, axis in enumerate(kind.parameter_axes):

@@ -348,15 +348,19 @@ def samples_near(a, b, centre, radius, n=16):
 
 
 def inverse_param(k, q, p):
-    """(u, v) of local points p on (or near) a surface of kind k (the parameters of the nearby surface point)."""
+    """(u, v) of local points p on (or near) a surface of kind k (the parameters of the nearby surface point; on a
+    cone's lower nappe, v < 0, the point (v tan a cos u, v tan a sin u, v) lies opposite u, at angle u + pi)."""
     p = np.asarray(p, dtype=float)
     x, y, z = p[..., 0], p[..., 1], p[..., 2]
     if k == "plane":
         return x, y
+    if k == "cone":
+        flip = np.where(z < 0, -1.0, 1.0)
+        return np.arctan2(flip * y, flip * x), z
     u = np.arctan2(y, x)
     if k == "sphere":
         return u, np.arctan2(z, np.hypot(x, y))
-    if k in ("cylinder", "cone"):
+    if k == "cylinder":
         return u, z
     return u, np.arctan2(z, np.hypot(x, y) - q["R"])
 

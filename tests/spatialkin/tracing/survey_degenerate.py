@@ -324,7 +324,7 @@ def survey(families=FAMILIES, echo=print):
                 for seed in range(PLACEMENTS):
                     a, b = family(np.random.default_rng(seed), sign * eps)
                     answers += [answer(a, b), answer(b, a)]
-                kinds = sorted(set(a for a, _ in answers))
+                kinds = sorted(set(a for a, _ in answers), key=repr)    # (an exception's answer beside curves')
                 key = f"{family.__name__} {sign * eps:+.0e}"
                 if len(kinds) > 1:
                     flagged.append(key)

@@ -34,3 +34,14 @@ def test_a_trim_grazed_by_the_offset_ends_the_curve_on_its_side():
                 a, b = family(np.random.default_rng(0), sign * eps)
                 got = sorted(status for status, _ in sd.answer(a, b)[0])
                 assert got == expected, (family.__name__, sign * eps, got)
+
+
+def test_a_refusal_beside_curves_is_flagged_not_a_crash(monkeypatch):
+    """An offset whose placements answer with curves in one and an exception in another (the survey's answer of a
+    refusal is the exception's name) is flagged and echoed with both answers, not a TypeError of their sort."""
+    answers = iter([((("closed", 1.0),), 0.0), (("TopologyError",), 0.0)] * (len(sd.OFFSETS) * 2 * sd.PLACEMENTS))
+    monkeypatch.setattr(sd, "answer", lambda a, b: next(answers))
+    lines = []
+    flagged = sd.survey((sd.fam_corner,), echo=lines.append)
+    assert len(flagged) == len(sd.OFFSETS) * 2
+    assert all(line.startswith("!!!") and "TopologyError" in line and "closed" in line for line in lines)

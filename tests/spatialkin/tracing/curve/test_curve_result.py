@@ -189,3 +189,24 @@ def test_curvature_beside_a_node_is_nan_or_right(offset, far_from, far_error):
     spline = curve.to_bspline(1e-8)
     _, dist = curve.closest(spline(np.linspace(0.0, curve.length, 20001)))
     assert spline.deviation <= 1e-8 and dist.max() <= 1e-8 * 2.0
+
+
+@pytest.mark.parametrize("kind", ["plane-torus", "sphere-cone", "cylinder-torus", "cone-cone"])
+def test_point_gaps_are_the_farther_surfaces_distance_capped_plus_round_off(kind):
+    """point_gaps (one compiled call: kernels.geometry.surfaces.farther_distances) at points scattered round each
+    surface of a pair and far from it: the larger of the two distances by the oracle's own distance functions
+    (tests.oracles.ssi.distance, from the parametrisations), at most the tolerance, plus GAP_ROUNDOFF_ULPS ulps of the
+    point's largest coordinate; within 1e-12 of the scale plus 8 ulps of the coordinates (two ways of rounding)."""
+    from spatialkin.bench.kinds import pair_kind_cases
+    from spatialkin.tracing.curve.result import EPS, GAP_ROUNDOFF_ULPS, point_gaps
+    from tests.oracles.ssi import distance
+    a, b = {k: (x, y) for k, x, y in pair_kind_cases()}[kind]
+    rng = np.random.default_rng(5)
+    near = [np.asarray(s.point(rng.uniform(-3, 3, 50), rng.uniform(0.5, 1.5, 50)), dtype=float) for s in (a, b)]
+    points = np.concatenate(near + [rng.normal(size=(50, 3))])
+    points += rng.normal(size=points.shape) * 10.0 ** rng.uniform(-12, 0, (len(points), 1))
+    for cap in (1e-6, np.inf):
+        got = point_gaps(a, b, points, cap)
+        want = np.minimum(np.maximum(distance(a, points), distance(b, points)), cap)
+        want += GAP_ROUNDOFF_ULPS * EPS * np.abs(points).max(axis=1)
+        assert np.all(np.abs(got - want) <= 1e-12 + 8 * EPS * np.abs(points).max(axis=1)), kind

@@ -96,3 +96,15 @@ def test_certify_proves_the_same_answer_at_every_scale(eps):
         for c, b in zip(got, base):
             bound, ref = c.certificate.distance_bound / scale, b.certificate.distance_bound
             assert 0.5 * ref <= bound <= 2.0 * ref, (scale, bound, ref)
+
+
+def test_random_contacts_answer_alike_swapped_scaled_and_moved():
+    """Thirty random near-tangent contacts of every pair kind (tests.oracles.contact_hunt: one surface placed touching
+    the other at a random point, from outside or inside, then moved 1e-8 to 1e-6 of the scale along the normal; a
+    loop there is 1e-4 to 1e-3 of the scale): each answer is the same in the other argument order and scaled by 1e-3
+    and 1e3 and moved 1e2 to 1e3 scales from the origin, counts and statuses exactly, lengths within 1e-4 (relative:
+    the conditioning of a small loop far away), and none is refused."""
+    from tests.oracles.contact_hunt import run
+    lines = []
+    counts = run(seeds=(5, 6, 7), count=10, lo=-8.0, hi=-6.0, echo=lines.append)
+    assert counts["pairs"] == 30 and counts["differ"] == 0 and counts["refused"] == 0, "\n".join(lines)

@@ -34,8 +34,14 @@ from ..._lib import stages
 
 # --- named limits -------------------------------------------------------------------------------------
 #: The closure plane is put this far (relative to the curve scale) behind the start, so that the start
-#: itself is never taken for a crossing.
+#: itself is never taken for a crossing ...
 CLOSURE_OFFSET = 1e-8
+#: ... and at least this many ulps of the start's largest coordinate, its round-off (a scene a million scales and more
+#: from the origin: the march's first point, the start projected onto the curve, may lie that far on either side).
+CLOSURE_OFFSET_ULPS = 64
+#: A crossing of the closure plane within this many times that least offset of the start closes the curve too
+#: (closure_radius: the crossing lies the offset behind the start, and off it by the round-off of the loop's places).
+CLOSURE_OFFSET_RADII = 4.0
 #: A crossing of the closure plane closes the curve if it lies within this distance (relative to the
 #: curve scale) of the start and moves in the same direction (cosine above CLOSURE_COSINE).
 CLOSURE_RADIUS = 1e-5
@@ -173,7 +179,7 @@ def branch_event_params(a, b, settings, start, direction):
     ep[kb.P_HANDOFF_SINE] = HANDOFF_MARGIN * max(WATCH_BELOW, settings.singular_tol)
     ep[kb.P_HANDOFF_AREA] = HANDOFF_MARGIN * APEX_GUARD
     ep[kb.P_POLE_GUARD] = POLE_GUARD
-    ep[kb.P_CLOSURE_OFFSET] = CLOSURE_OFFSET * settings.scale
+    ep[kb.P_CLOSURE_OFFSET] = max(CLOSURE_OFFSET * settings.scale, closure_offset_floor(start))
     ep[kb.P_START:kb.P_START + 3] = start
     ep[kb.P_DIRECTION:kb.P_DIRECTION + 3] = direction
     return ep
@@ -295,10 +301,19 @@ def may_be_off(settings, sine):
     return settings.gap_tol > closure_radius(settings) * sine
 
 
-def closure_radius(settings):
+def closure_radius(settings, start=None):
     """The distance from its start within which a crossing of the closure plane closes a branch (CLOSURE_RADIUS,
-    CLOSURE_RTOLS), a length."""
-    return max(CLOSURE_RADIUS, CLOSURE_RTOLS * settings.rtol) * settings.scale
+    CLOSURE_RTOLS), a length; given the start (3,), at least CLOSURE_OFFSET_RADII times the closure plane's offset's
+    round-off floor there (branch_event_params: the crossing lies that far behind the start)."""
+    radius = max(CLOSURE_RADIUS, CLOSURE_RTOLS * settings.rtol) * settings.scale
+    if start is None:
+        return radius
+    return max(radius, CLOSURE_OFFSET_RADII * closure_offset_floor(start))
+
+
+def closure_offset_floor(start):
+    """CLOSURE_OFFSET_ULPS ulps of the start's (3,) largest coordinate: the least offset of the closure plane."""
+    return CLOSURE_OFFSET_ULPS * np.spacing(float(np.max(np.abs(start))))
 
 
 def passes_again(point, heading, place, direction, radius):
@@ -340,7 +355,7 @@ def integrate_branch(a_surface, b_surface, point, tangent, y_start, sign, settin
     y = np.asarray(y_start, dtype=float)
     start, direction = point.copy(), sign * tangent
     s, s_arm = 0.0, 0.0
-    radius = closure_radius(settings)
+    radius = closure_radius(settings, start)
     compiled = settings.method in COMPILED_SOLVERS
     near_edge = False
     watch_apex = True

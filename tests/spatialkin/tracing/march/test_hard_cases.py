@@ -556,3 +556,35 @@ def test_a_cylinder_a_hair_inside_a_sphere_cuts_two_loops(placing, swap):
         assert abs(curve.length - exact) <= 1e-6 * exact, (curve.length, exact)
     distance = curves[0].closest(curves[1].points)[1].min()
     assert distance > 1e-6 * a.radius, distance           # (two loops, not one twice)
+
+
+#: Points of the loop of a sphere of radius 1e-9 straddling a ring torus (R 1, r 0.3) 1.3 from its centre (a billion
+#: scales from the origin) by the search of two placings: (placing seed, start (3,)).
+TINY_LOOP_STARTS = [(1, (0.7321216490496261, -0.3358929690310265, 1.3096193857590643)),
+                    (1, (0.732121649445173, -0.3358929703580412, 1.309619384718597)),
+                    (2, (1.3218277670586613, 0.011144945845018406, -0.1414361903281336)),
+                    (2, (1.3218277673617127, 0.011144945002327655, -0.14143619181070916))]
+
+
+@pytest.mark.parametrize("seed, start", TINY_LOOP_STARTS)
+def test_a_tiny_loop_a_billion_scales_out_closes_once_round(seed, start):
+    """A loop of 5.4e-9 a billion of its scales from the origin (where an ulp of a coordinate is 2e-7 of the scale),
+    traced from points on it that the search gives: the march's first point, the start projected onto the curve, may
+    lie an ulp on either side of the start, so the closure plane lies behind the start by its round-off, not only by
+    1e-8 of the scale (else the march closed at once, a loop of 1e-17, or kept no point). Both argument orders close
+    once round the loop. Oracle: a circle of radius sqrt(r^2 - h^2), h the sphere centre's distance to the torus by
+    the oracle's own distance function (the torus's curvature changes it by 1e-9 relative), within 1e-6 (the
+    placement's round-off over h)."""
+    from tests.oracles.ssi import distance
+    rng = np.random.default_rng(seed)
+    turn = sk.rotation_about(rng.normal(size=3), rng.uniform(0, 6))
+    origin = rng.uniform(-1, 1, 3)
+    torus = sk.Torus(1.0, 0.3, sk.Frame(origin, turn))
+    sphere = sk.Sphere(1e-9, sk.Frame(origin + turn @ np.array([1.3 + 0.5e-9, 0.0, 0.0]), turn))
+    h = float(distance(torus, np.asarray(sphere.frame.origin)[None])[0])
+    exact = 2 * math.pi * math.sqrt(1e-18 - h * h)
+    for a, b in ((torus, sphere), (sphere, torus)):
+        curve = sk.trace(a, b, np.array(start))
+        assert curve.closed and abs(curve.length - exact) <= 1e-6 * exact, (curve.status, curve.length, exact)
+        curves = sk.intersect(a, b)
+        assert len(curves) == 1 and curves[0].closed and abs(curves[0].length - exact) <= 1e-6 * exact

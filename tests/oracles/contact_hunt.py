@@ -60,25 +60,6 @@ def _interior(rng, surface):
     return u, v
 
 
-def _turn_onto(w, target):
-    """A rotation (3, 3) taking the unit vector w to the unit vector target."""
-    axis, c = np.cross(w, target), float(np.dot(w, target))
-    if np.linalg.norm(axis) < 1e-12:
-        if c > 0:
-            return np.eye(3)
-        p = np.cross(w, [1.0, 0.0, 0.0] if abs(w[0]) < 0.9 else [0.0, 1.0, 0.0])
-        p /= np.linalg.norm(p)
-        return 2.0 * np.outer(p, p) - np.eye(3)
-    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    return np.eye(3) + k + k @ k / (1.0 + c)
-
-
-def _about(w, angle):
-    """The rotation (3, 3) by angle about the unit vector w (Rodrigues)."""
-    k = np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
-    return np.eye(3) + np.sin(angle) * k + (1.0 - np.cos(angle)) * k @ k
-
-
 def touching(rng, a, b, eps, inside):
     """b moved rigidly so that a random point of it touches a random point of a, from outside (normals opposite) or
     inside (normals alike), turned at random about the normal, then moved by eps along a's unit normal there."""
@@ -88,7 +69,8 @@ def touching(rng, a, b, eps, inside):
     q, m = np.asarray(b.point(ub, vb), dtype=float).reshape(3), np.asarray(b.normal(ub, vb), dtype=float).reshape(3)
     n, m = n / np.linalg.norm(n), m / np.linalg.norm(m)
     target = n if inside else -n
-    turn = _about(target, rng.uniform(0.0, 2.0 * np.pi)) @ _turn_onto(m, target)
+    # (m onto target: m to the local z of one rotation, that z to target by another; then a random turn about it)
+    turn = sk.rotation_about(target, rng.uniform(0.0, 2.0 * np.pi)) @ sk.rotation_to_z(target) @ sk.rotation_to_z(m).T
     origin = turn @ (np.asarray(b.frame.origin) - q) + p + eps * n
     return b.with_frame(sk.Frame(origin, turn @ np.asarray(b.frame.rotation)))
 

@@ -127,16 +127,8 @@ def known_node(point, settings):
 def node_distance(point, nodes):
     """Distance of the point (3,) to the nearest of the nodes ((K, 3) or None: singular points, or apexes); inf where
     there are none."""
-    if nodes is None or not len(nodes):
-        return math.inf
-    p0, p1, p2 = np.asarray(point, dtype=float).reshape(3).tolist()
-    best = math.inf
-    for x0, x1, x2 in np.asarray(nodes, dtype=float).reshape(-1, 3).tolist():
-        d0, d1, d2 = x0 - p0, x1 - p1, x2 - p2
-        distance = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
-        if distance < best:
-            best = distance
-    return best
+    nodes = np.empty((0, 3)) if nodes is None else np.asarray(nodes, dtype=float).reshape(-1, 3)
+    return float(np.min(np.linalg.norm(nodes - point, axis=1))) if len(nodes) else math.inf
 
 
 def known_apex(point, settings, surfaces):

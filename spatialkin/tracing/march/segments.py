@@ -47,9 +47,13 @@ class Segment:
     t: np.ndarray        # solver step points (local t)
     y: np.ndarray        # states at the step points (4, n)
     normal: np.ndarray = field(default_factory=lambda: np.zeros(3))   # fixed correction plane (jumps)
-    jump: bool = False       # a jump across a singular point (its normal set), not a solver run
     compiled: bool = False   # integrated by the compiled method (never beside a hard case)
     area: tuple = (0.0, 0.0)  # area_flag of a and b (the relative area element's units; 0.0: not watched)
+
+    @property
+    def jump(self):
+        """True for a jump across a singular point (its correction plane's normal set), not a solver run."""
+        return bool(self.normal.any())
 
 
 class LinearStates:

@@ -264,7 +264,7 @@ def take_jump(branch, seg, y_event, jump):
     branch.segments.append(Segment(s0=owner.s1, s1=owner.s1 + length, sign=1.0,
                                    sol=LinearStates(y_back, y_after, length, arc), a=seg.a, b=seg.b,
                                    t=np.array([0.0, length]), y=np.array([y_back, y_after]).T, normal=d,
-                                   jump=True, area=seg.area))
+                                   area=seg.area))
     kc.curve_frame(y_after, seg.a, seg.b, point, tangent)
     sign = 1.0 if float(np.dot(tangent, d)) > 0 else -1.0
     return sign, y_after.copy(), point, tangent
